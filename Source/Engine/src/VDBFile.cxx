@@ -1,0 +1,465 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The only translation unit of ModelSynth that includes OpenVDB's headers (they compile
+// slowly). Everything OpenVDB-specific stays in this file, behind msynth/VDBFile.h.
+#include "msynth/VDBFile.h"
+
+#include "msynth/AtomicFile.h"
+#include "msynth/Error.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+namespace msynth
+{
+namespace vdb
+{
+
+const char* ValueTypeName(ValueType type)
+{
+  switch (type)
+  {
+    case ValueType::Int32:
+      return "int32";
+    case ValueType::Float:
+      return "float";
+    case ValueType::Vec3Float:
+      return "vec3s";
+  }
+  return "unknown";
+}
+
+int ComponentCount(ValueType type)
+{
+  return type == ValueType::Vec3Float ? 3 : 1;
+}
+
+namespace
+{
+// ---------------------------------------------------------------------------------------------
+// internal
+// ---------------------------------------------------------------------------------------------
+constexpr const char* IndexMinKey = "msynth_index_min";
+constexpr const char* IndexMaxKey = "msynth_index_max";
+
+void InitializeOpenVDB()
+{
+  // openvdb::initialize() is idempotent and guarded by OpenVDB's own mutex.
+  openvdb::initialize();
+}
+
+openvdb::math::Transform::Ptr MakeTransform(const GridHeader& h)
+{
+  for (double s : h.Spacing)
+  {
+    if (!(s > 0.0) || !std::isfinite(s))
+    {
+      throw Error("grid '" + h.Name + "' has a spacing that is not positive and finite");
+    }
+  }
+  for (double o : h.Origin)
+  {
+    if (!std::isfinite(o))
+    {
+      throw Error("grid '" + h.Name + "' has an origin that is not finite");
+    }
+  }
+  const openvdb::Vec3d scale(h.Spacing[0], h.Spacing[1], h.Spacing[2]);
+  const openvdb::Vec3d translate(h.Origin[0], h.Origin[1], h.Origin[2]);
+  openvdb::math::MapBase::Ptr map(new openvdb::math::ScaleTranslateMap(scale, translate));
+  return openvdb::math::Transform::Ptr(new openvdb::math::Transform(map));
+}
+
+template <typename GridT, typename ValueT>
+typename GridT::Ptr DenseToGrid(const DenseGridView& view, const ValueT& background)
+{
+  const GridHeader& h = view.Header;
+  const openvdb::Coord lo(h.IndexMin[0], h.IndexMin[1], h.IndexMin[2]);
+  const openvdb::Coord hi(static_cast<openvdb::Int32>(h.IndexMin[0] + h.Dims[0] - 1),
+    static_cast<openvdb::Int32>(h.IndexMin[1] + h.Dims[1] - 1),
+    static_cast<openvdb::Int32>(h.IndexMin[2] + h.Dims[2] - 1));
+  // copyFromDense only reads the dense buffer; the Dense class just lacks a const flavour.
+  openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(
+    openvdb::CoordBBox(lo, hi), const_cast<ValueT*>(static_cast<const ValueT*>(view.Values)));
+  typename GridT::Ptr grid = GridT::create(background);
+  // Tolerance zero: exactly the voxels equal to the background become inactive.
+  openvdb::tools::copyFromDense(dense, *grid, openvdb::zeroVal<ValueT>());
+  grid->insertMeta(IndexMinKey, openvdb::Vec3IMetadata(openvdb::Vec3i(lo.x(), lo.y(), lo.z())));
+  grid->insertMeta(IndexMaxKey, openvdb::Vec3IMetadata(openvdb::Vec3i(hi.x(), hi.y(), hi.z())));
+  return grid;
+}
+
+openvdb::GridBase::Ptr MakeGrid(const DenseGridView& view)
+{
+  const GridHeader& h = view.Header;
+  if (h.Name.empty())
+  {
+    throw Error("a grid has no name");
+  }
+  if (view.Values == nullptr)
+  {
+    throw Error("grid '" + h.Name + "' has no values");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t last = std::int64_t(h.IndexMin[a]) + h.Dims[a] - 1;
+    if (h.Dims[a] < 1 || last > std::numeric_limits<std::int32_t>::max())
+    {
+      throw Error("grid '" + h.Name + "' has an extent OpenVDB cannot index");
+    }
+  }
+  openvdb::GridBase::Ptr grid;
+  switch (h.Type)
+  {
+    case ValueType::Int32:
+      grid = DenseToGrid<openvdb::Int32Grid, std::int32_t>(
+        view, static_cast<std::int32_t>(h.Background));
+      break;
+    case ValueType::Float:
+      grid = DenseToGrid<openvdb::FloatGrid, float>(view, static_cast<float>(h.Background));
+      break;
+    case ValueType::Vec3Float:
+    {
+      const auto b = static_cast<float>(h.Background);
+      grid = DenseToGrid<openvdb::Vec3SGrid, openvdb::Vec3s>(view, openvdb::Vec3s(b, b, b));
+      break;
+    }
+  }
+  grid->setName(h.Name);
+  grid->setTransform(MakeTransform(h));
+  if (h.GridClass == "level set")
+  {
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  }
+  else if (h.GridClass == "fog volume")
+  {
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  }
+  else if (!h.GridClass.empty())
+  {
+    throw Error("grid '" + h.Name + "' has unknown grid class '" + h.GridClass + "'");
+  }
+  for (const auto& kv : h.Metadata)
+  {
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  return grid;
+}
+
+MetadataMap StringMetadataOf(const openvdb::MetaMap& meta)
+{
+  MetadataMap result;
+  for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it)
+  {
+    // Only user-level strings; OpenVDB's own entries (class, stats...) are reachable elsewhere.
+    if (it->second && it->second->typeName() == openvdb::StringMetadata::staticTypeName())
+    {
+      result[it->first] = it->second->str();
+    }
+  }
+  return result;
+}
+
+/// Index-space extent to read: our stored extent, else the active voxel bounding box.
+openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
+{
+  auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(IndexMinKey);
+  auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(IndexMaxKey);
+  if (lo && hi)
+  {
+    const openvdb::Vec3i a = lo->value(), b = hi->value();
+    return openvdb::CoordBBox(openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
+  }
+  return grid.evalActiveVoxelBoundingBox();
+}
+
+template <typename GridT, typename ValueT>
+void GridToDense(const GridT& grid, const openvdb::CoordBBox& box, ValueT* out)
+{
+  openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(box, out);
+  openvdb::tools::copyToDense(grid, dense);
+}
+
+DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& options)
+{
+  DenseGrid out;
+  GridHeader& h = out.Header;
+  h.Name = base->getName();
+  if (base->isType<openvdb::Int32Grid>())
+  {
+    h.Type = ValueType::Int32;
+  }
+  else if (base->isType<openvdb::FloatGrid>())
+  {
+    h.Type = ValueType::Float;
+  }
+  else if (base->isType<openvdb::Vec3SGrid>())
+  {
+    h.Type = ValueType::Vec3Float;
+  }
+  else
+  {
+    throw Error("grid '" + h.Name + "' has value type '" + base->valueType() +
+      "', which ModelSynth does not read (int32, float and vec3s grids are supported)");
+  }
+
+  const openvdb::math::Transform& xform = base->transform();
+  if (!xform.isLinear())
+  {
+    throw Error("grid '" + h.Name + "' has a non-linear (frustum) transform");
+  }
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (r != c && m(r, c) != 0.0)
+      {
+        throw Error("grid '" + h.Name + "' has a rotated or sheared transform; only "
+          "axis-aligned voxel grids map to image data");
+      }
+    }
+  }
+  const openvdb::Vec3d origin = xform.indexToWorld(openvdb::Vec3d(0.0, 0.0, 0.0));
+  h.Origin = { { origin.x(), origin.y(), origin.z() } };
+  h.Spacing = { { m(0, 0), m(1, 1), m(2, 2) } };
+
+  const openvdb::GridClass cls = base->getGridClass();
+  h.GridClass = cls == openvdb::GRID_LEVEL_SET ? "level set"
+    : cls == openvdb::GRID_FOG_VOLUME           ? "fog volume"
+                                                : "";
+  h.Metadata = StringMetadataOf(*base);
+
+  openvdb::CoordBBox box = ExtentOf(*base);
+  if (box.empty())
+  {
+    // A grid with no active voxel and no stored extent: one background voxel.
+    box = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
+  }
+  const openvdb::Coord dim = box.dim();
+  h.IndexMin = { { box.min().x(), box.min().y(), box.min().z() } };
+  h.Dims = { { dim.x(), dim.y(), dim.z() } };
+  const std::int64_t limit = options.MaxVoxels;
+  if (h.Dims[0] > limit || h.Dims[1] > limit / h.Dims[0] ||
+    h.Dims[2] > limit / (h.Dims[0] * h.Dims[1]))
+  {
+    throw Error("grid '" + h.Name + "' spans " + std::to_string(h.Dims[0]) + " x " +
+      std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) +
+      " voxels, more than the limit of " + std::to_string(limit) + " voxels");
+  }
+  const auto n = static_cast<std::size_t>(h.NumberOfVoxels());
+  switch (h.Type)
+  {
+    case ValueType::Int32:
+    {
+      const auto& g = static_cast<const openvdb::Int32Grid&>(*base);
+      h.Background = g.background();
+      out.Ints.resize(n);
+      GridToDense(g, box, out.Ints.data());
+      break;
+    }
+    case ValueType::Float:
+    {
+      const auto& g = static_cast<const openvdb::FloatGrid&>(*base);
+      h.Background = g.background();
+      out.Floats.resize(n);
+      GridToDense(g, box, out.Floats.data());
+      break;
+    }
+    case ValueType::Vec3Float:
+    {
+      const auto& g = static_cast<const openvdb::Vec3SGrid&>(*base);
+      h.Background = g.background().x();
+      out.Floats.resize(3 * n);
+      GridToDense(g, box, reinterpret_cast<openvdb::Vec3s*>(out.Floats.data()));
+      break;
+    }
+  }
+  return out;
+}
+
+/// A whole VDB file in memory: its metadata and grids.
+struct Archive
+{
+  openvdb::MetaMap::Ptr Metadata;
+  openvdb::GridPtrVecPtr Grids;
+};
+
+/// Reads all of @p path through a stream we own, so that a short read (a truncated file) is
+/// seen as the stream's failure: OpenVDB itself does not check every read.
+Archive LoadArchive(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
+  }
+  char magic[8] = {};
+  in.read(magic, 8);
+  // OpenVDB files start with the 64-bit magic number 0x56444220 ("VDB ") in little endian.
+  if (!in || static_cast<unsigned char>(magic[0]) != 0x20 || magic[1] != 'B' ||
+    magic[2] != 'D' || magic[3] != 'V')
+  {
+    throw Error::InFile(path, "is not a readable OpenVDB file (wrong magic number)");
+  }
+  in.seekg(0);
+  // Throw at the first short read: OpenVDB does not check its reads, and after a failed one it
+  // would go on with garbage lengths (allocating up to 2 GB per string).
+  in.exceptions(std::ios::failbit | std::ios::badbit);
+  Archive archive;
+  try
+  {
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
+    archive.Metadata = stream.getMetadata();
+    archive.Grids = stream.getGrids();
+  }
+  catch (const std::ios_base::failure&)
+  {
+    throw Error::InFile(path, "is truncated or corrupt (the file ended before its data)");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error::InFile(path, "is corrupt or needs more memory than is available");
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, std::string("is not a readable OpenVDB file: ") + e.what());
+  }
+  in.exceptions(std::ios::goodbit);
+  if (in.fail() || !archive.Metadata || !archive.Grids)
+  {
+    throw Error::InFile(path, "is truncated or corrupt (the file ended before its data)");
+  }
+  in.peek();
+  if (!in.eof())
+  {
+    throw Error::InFile(path, "is corrupt (unexpected data after the last grid)");
+  }
+  return archive;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// public API
+// ---------------------------------------------------------------------------------------------
+void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+  const MetadataMap& metadata)
+{
+  InitializeOpenVDB();
+  if (path.empty())
+  {
+    throw Error("no output file name was given");
+  }
+  openvdb::GridPtrVec vdbGrids;
+  try
+  {
+    for (const auto& view : grids)
+    {
+      for (const auto& g : vdbGrids)
+      {
+        if (g->getName() == view.Header.Name)
+        {
+          throw Error("two grids are named '" + view.Header.Name + "'");
+        }
+      }
+      vdbGrids.push_back(MakeGrid(view));
+    }
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, std::string("not written: ") + e.what());
+  }
+
+  openvdb::MetaMap fileMeta;
+  for (const auto& kv : metadata)
+  {
+    fileMeta.insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  fileMeta.insertMeta("generator", openvdb::StringMetadata(std::string("ModelSynth ") + MSYNTH_VERSION));
+
+  const std::string tmp = TemporaryPathBeside(path);
+  try
+  {
+    openvdb::io::File file(tmp);
+    file.write(vdbGrids, fileMeta);
+    file.close();
+  }
+  catch (const std::exception& e)
+  {
+    std::remove(tmp.c_str());
+    throw Error::InFile(path, std::string("could not be written: ") + e.what());
+  }
+  CommitTemporaryFile(tmp, path);
+}
+
+FileContents ReadFile(const std::string& path, const ReadOptions& options)
+{
+  InitializeOpenVDB();
+  const Archive archive = LoadArchive(path);
+  FileContents contents;
+  try
+  {
+    contents.Metadata = StringMetadataOf(*archive.Metadata);
+    for (const auto& grid : *archive.Grids)
+    {
+      const std::string name = grid->getName();
+      if (!options.GridNames.empty() &&
+        std::find(options.GridNames.begin(), options.GridNames.end(), name) ==
+          options.GridNames.end())
+      {
+        continue;
+      }
+      contents.Grids.push_back(ReadGrid(grid, options));
+    }
+    for (const auto& wanted : options.GridNames)
+    {
+      if (std::none_of(contents.Grids.begin(), contents.Grids.end(),
+            [&](const DenseGrid& g) { return g.Header.Name == wanted; }))
+      {
+        throw Error("has no grid named '" + wanted + "'");
+      }
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error::InFile(path, "needs more memory than is available");
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, e.what());
+  }
+  return contents;
+}
+
+std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
+{
+  InitializeOpenVDB();
+  const Archive archive = LoadArchive(path);
+  if (fileMetadata)
+  {
+    *fileMetadata = StringMetadataOf(*archive.Metadata);
+  }
+  std::vector<GridSummary> result;
+  for (const auto& g : *archive.Grids)
+  {
+    GridSummary s;
+    s.Name = g->getName();
+    s.TypeName = g->valueType();
+    s.GridClass = openvdb::GridBase::gridClassToString(g->getGridClass());
+    s.Metadata = StringMetadataOf(*g);
+    s.ActiveVoxelCount = static_cast<std::int64_t>(g->activeVoxelCount());
+    result.push_back(std::move(s));
+  }
+  return result;
+}
+
+} // namespace vdb
+} // namespace msynth

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSTransitionTables.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+
+#include "msynth/ExampleAnalysis.h"
+
+vtkStandardNewMacro(vtkMSTransitionTables);
+
+vtkMSTransitionTables::vtkMSTransitionTables()
+{
+  this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
+}
+
+int vtkMSTransitionTables::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+namespace
+{
+template <typename ArrayT>
+vtkSmartPointer<ArrayT> NewColumn(const char* name, int components = 1)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  return array;
+}
+} // namespace
+
+int vtkMSTransitionTables::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkTable* transitions = vtkTable::GetData(outputVector, 0);
+  vtkTable* labels = vtkTable::GetData(outputVector, 1);
+  if (!input)
+  {
+    vtkErrorMacro(<< "No input image.");
+    return 0;
+  }
+  vtkDataArray* array = this->GetInputArrayToProcess(0, inputVector);
+  if (!array)
+  {
+    vtkErrorMacro(<< "The input has no label array (expected an integer point array, by "
+                     "default 'Label').");
+    return 0;
+  }
+  std::string problem;
+  if (!vtkMSEngineBridge::CheckLabelArray(input, array, problem))
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+
+  msynth::ExampleAnalysis analysis;
+  try
+  {
+    analysis = msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, array));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Example analysis failed: " << e.what());
+    return 0;
+  }
+  const auto& values = analysis.Labels();
+
+  // Port 0: allowed pairs.
+  static const char* const directions[3] = { "+x", "+y", "+z" };
+  auto axis = NewColumn<vtkIntArray>("Axis");
+  auto direction = NewColumn<vtkStringArray>("Direction");
+  auto from = NewColumn<vtkIntArray>("From");
+  auto to = NewColumn<vtkIntArray>("To");
+  auto count = NewColumn<vtkIdTypeArray>("Count");
+  vtkSmartPointer<vtkIntArray> pairs[3] = { NewColumn<vtkIntArray>("TransitionsX", 2),
+    NewColumn<vtkIntArray>("TransitionsY", 2), NewColumn<vtkIntArray>("TransitionsZ", 2) };
+  for (int a = 0; a < 3; ++a)
+  {
+    for (const auto& t : analysis.Transitions(a))
+    {
+      const int b = values[static_cast<std::size_t>(t.From)];
+      const int c = values[static_cast<std::size_t>(t.To)];
+      axis->InsertNextValue(a);
+      direction->InsertNextValue(directions[a]);
+      from->InsertNextValue(b);
+      to->InsertNextValue(c);
+      count->InsertNextValue(static_cast<vtkIdType>(t.Count));
+      const int tuple[2] = { b, c };
+      pairs[a]->InsertNextTypedTuple(tuple);
+    }
+  }
+  transitions->AddColumn(axis);
+  transitions->AddColumn(direction);
+  transitions->AddColumn(from);
+  transitions->AddColumn(to);
+  transitions->AddColumn(count);
+
+  // Port 1: labels and frequencies.
+  auto label = NewColumn<vtkIntArray>("Label");
+  auto index = NewColumn<vtkIntArray>("Index");
+  auto labelCount = NewColumn<vtkIdTypeArray>("Count");
+  auto frequency = NewColumn<vtkDoubleArray>("Frequency");
+  const double sites = static_cast<double>(input->GetNumberOfPoints());
+  for (int b = 0; b < analysis.NumberOfLabels(); ++b)
+  {
+    label->InsertNextValue(values[static_cast<std::size_t>(b)]);
+    index->InsertNextValue(b);
+    labelCount->InsertNextValue(static_cast<vtkIdType>(analysis.LabelCounts()[static_cast<std::size_t>(b)]));
+    frequency->InsertNextValue(static_cast<double>(analysis.LabelCounts()[static_cast<std::size_t>(b)]) / sites);
+  }
+  labels->AddColumn(label);
+  labels->AddColumn(index);
+  labels->AddColumn(labelCount);
+  labels->AddColumn(frequency);
+
+  // Field data on both tables.
+  auto labelValues = NewColumn<vtkIntArray>("Labels");
+  labelValues->DeepCopy(label);
+  labelValues->SetName("Labels");
+  auto labelCounts = NewColumn<vtkIdTypeArray>("LabelCounts");
+  labelCounts->DeepCopy(labelCount);
+  labelCounts->SetName("LabelCounts");
+  for (vtkTable* table : { transitions, labels })
+  {
+    vtkFieldData* fd = table->GetFieldData();
+    fd->AddArray(labelValues);
+    fd->AddArray(labelCounts);
+    for (const auto& p : pairs)
+    {
+      fd->AddArray(p);
+    }
+    if (vtkAbstractArray* file = input->GetFieldData()->GetAbstractArray("ExampleFile"))
+    {
+      fd->AddArray(file);
+    }
+  }
+  return 1;
+}
+
+void vtkMSTransitionTables::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

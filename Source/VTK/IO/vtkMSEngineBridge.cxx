@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSEngineBridge.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkType.h"
+
+#include <cstdint>
+#include <limits>
+
+vtkStandardNewMacro(vtkMSEngineBridge);
+
+vtkMSEngineBridge::~vtkMSEngineBridge()
+{
+  this->Reset();
+}
+
+bool vtkMSEngineBridge::IsIntegerArray(vtkDataArray* array)
+{
+  switch (array ? array->GetDataType() : VTK_VOID)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_LONG:
+    case VTK_UNSIGNED_LONG:
+    case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+    case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool vtkMSEngineBridge::CheckLabelArray(
+  vtkImageData* image, vtkDataArray* array, std::string& problem)
+{
+  if (!image || !array)
+  {
+    problem = "no label array";
+    return false;
+  }
+  const std::string name = array->GetName() ? array->GetName() : "(unnamed)";
+  if (!IsIntegerArray(array))
+  {
+    problem = "array '" + name + "' holds " + array->GetDataTypeAsString() +
+      " values; labels must be integers";
+    return false;
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    problem = "array '" + name + "' has " + std::to_string(array->GetNumberOfComponents()) +
+      " components; labels need exactly one";
+    return false;
+  }
+  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    problem = "array '" + name + "' has " + std::to_string(array->GetNumberOfTuples()) +
+      " values for " + std::to_string(image->GetNumberOfPoints()) + " sites";
+    return false;
+  }
+  if (image->GetNumberOfPoints() == 0)
+  {
+    problem = "the label grid has no sites";
+    return false;
+  }
+  double range[2];
+  array->GetRange(range, 0);
+  if (range[0] < std::numeric_limits<std::int32_t>::min() ||
+    range[1] > std::numeric_limits<std::int32_t>::max())
+  {
+    problem = "array '" + name + "' has values outside the 32-bit integer range";
+    return false;
+  }
+  return true;
+}
+
+msynth::LabelGrid vtkMSEngineBridge::ToLabelGrid(vtkImageData* image, vtkDataArray* labels)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  std::vector<msynth::Label> values(static_cast<std::size_t>(labels->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+  {
+    values[static_cast<std::size_t>(i)] = static_cast<msynth::Label>(labels->GetTuple1(i));
+  }
+  return msynth::LabelGrid({ { dims[0], dims[1], dims[2] } }, std::move(values));
+}
+
+vtkIntArray* vtkMSEngineBridge::NewLabelArray(const msynth::LabelGrid& grid, const char* name)
+{
+  vtkIntArray* array = vtkIntArray::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(grid.NumberOfSites());
+  std::copy(grid.Data().begin(), grid.Data().end(), array->GetPointer(0));
+  return array;
+}
+
+void vtkMSEngineBridge::Watch(vtkObject* source)
+{
+  this->Reset();
+  this->Source = source;
+  this->Tag = source->AddObserver(vtkCommand::ErrorEvent, this, &vtkMSEngineBridge::OnError);
+}
+
+void vtkMSEngineBridge::Reset()
+{
+  if (this->Source)
+  {
+    this->Source->RemoveObserver(this->Tag);
+  }
+  this->Source = nullptr;
+  this->Messages.clear();
+}
+
+void vtkMSEngineBridge::OnError(vtkObject*, unsigned long, void* data)
+{
+  std::string message = data ? static_cast<const char*>(data) : "unknown error";
+  // VTK prefixes messages with "ERROR: In <file>, line N\n<class> (<address>): "; keep the text.
+  const auto pos = message.rfind("): ");
+  if (pos != std::string::npos)
+  {
+    message = message.substr(pos + 3);
+  }
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+  {
+    message.pop_back();
+  }
+  if (!this->Messages.empty())
+  {
+    this->Messages += "; ";
+  }
+  this->Messages += message;
+}

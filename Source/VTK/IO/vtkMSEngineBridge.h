@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSEngineBridge
+ * @brief Conversions between VTK data and the plain-C++ engine, shared by ModelSynth's VTK
+ * classes (not wrapped for Python: its signatures use engine types).
+ *
+ * Also an error collector: internal VTK algorithms report through ErrorEvent; the collector
+ * keeps their messages so that our own classes can report one clear error that names the file.
+ */
+#ifndef vtkMSEngineBridge_h
+#define vtkMSEngineBridge_h
+
+#include "ModelSynthIOModule.h" // for export macro
+#include "vtkObject.h"
+
+#include "msynth/LabelGrid.h" // for msynth::LabelGrid
+
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkIntArray;
+
+class MODELSYNTHIO_EXPORT vtkMSEngineBridge : public vtkObject
+{
+public:
+  static vtkMSEngineBridge* New();
+  vtkTypeMacro(vtkMSEngineBridge, vtkObject);
+
+  /// True when @p array holds integers (any width or signedness).
+  static bool IsIntegerArray(vtkDataArray* array);
+
+  /**
+   * Checks that @p array can serve as labels of @p image's points: integer type, one
+   * component, one value per point, values within the 32-bit range. On failure returns false
+   * and sets @p problem to a sentence naming the array and what is wrong.
+   */
+  static bool CheckLabelArray(vtkImageData* image, vtkDataArray* array, std::string& problem);
+
+  /// Copies a checked label array into an engine grid (x fastest, as VTK stores points).
+  static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
+
+  /// A new vtkIntArray named @p name holding @p grid's labels.
+  static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
+
+  /// Starts collecting ErrorEvent messages of @p source (removes earlier observation).
+  void Watch(vtkObject* source);
+  /// Stops collecting and forgets messages.
+  void Reset();
+  /// Collected messages, joined by "; " (empty when none).
+  const std::string& GetMessages() const { return this->Messages; }
+  bool HasErrors() const { return !this->Messages.empty(); }
+
+protected:
+  vtkMSEngineBridge() = default;
+  ~vtkMSEngineBridge() override;
+
+private:
+  vtkMSEngineBridge(const vtkMSEngineBridge&) = delete;
+  void operator=(const vtkMSEngineBridge&) = delete;
+
+  void OnError(vtkObject* caller, unsigned long event, void* data);
+
+  vtkObject* Source = nullptr;
+  unsigned long Tag = 0;
+  std::string Messages;
+};
+
+#endif

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSLabelGridReader
+ * @brief Reads a discrete example model (a label grid) stored as VTK image data (.vti).
+ *
+ * The file must hold an integer array of labels (default name `Label`), as point data (one
+ * label per point: a point is a site of the model) or as cell data (one label per voxel; the
+ * output then has one point per input cell, at the cell centers). The output is vtkImageData
+ * whose point data holds exactly one array, a vtkIntArray named `Label`, and whose field data
+ * holds `ExampleFile` (the file name), so the source of a result can be traced.
+ *
+ * Dissertation §3.1: labels are integers; 2D examples have one layer in z.
+ *
+ * @warning A file claiming more than MaximumNumberOfSites sites is refused before any array is
+ * allocated.
+ *
+ * @sa vtkMSTransitionTables, vtkMSOpenVDBWriter
+ */
+#ifndef vtkMSLabelGridReader_h
+#define vtkMSLabelGridReader_h
+
+#include "ModelSynthIOModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for ivars
+
+#include <string> // for ivar
+
+class vtkXMLImageDataReader;
+class vtkMSEngineBridge;
+
+class MODELSYNTHIO_EXPORT vtkMSLabelGridReader : public vtkImageAlgorithm
+{
+public:
+  static vtkMSLabelGridReader* New();
+  vtkTypeMacro(vtkMSLabelGridReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The .vti file to read. No default.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /// Name of the integer label array in the file. Default "Label". The output array is
+  /// always named "Label".
+  vtkSetStdStringFromCharMacro(LabelArrayName);
+  vtkGetCharFromStdStringMacro(LabelArrayName);
+  ///@}
+
+  ///@{
+  /// The largest example accepted, in sites. Default 2^27 (134,217,728).
+  vtkSetClampMacro(MaximumNumberOfSites, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfSites, vtkIdType);
+  ///@}
+
+  /// True when @p name looks like a file this reader opens (extension .vti).
+  static int CanReadFile(const char* name);
+
+protected:
+  vtkMSLabelGridReader();
+  ~vtkMSLabelGridReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSLabelGridReader(const vtkMSLabelGridReader&) = delete;
+  void operator=(const vtkMSLabelGridReader&) = delete;
+
+  /// Reads the file's header into the internal reader and decides the label association.
+  bool ReadHeader();
+  void Fail(const std::string& problem);
+
+  std::string FileName;
+  std::string LabelArrayName = "Label";
+  vtkIdType MaximumNumberOfSites = vtkIdType(1) << 27;
+
+  vtkSmartPointer<vtkXMLImageDataReader> Reader;
+  vtkSmartPointer<vtkMSEngineBridge> Errors;
+  bool LabelsOnCells = false;
+};
+
+#endif

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSOpenVDBWriter
+ * @brief Writes vtkImageData arrays as OpenVDB grids (.vdb) for renderers (Blender, Houdini).
+ *
+ * Each point-data array becomes a grid of the same name: integer arrays become Int32Grid,
+ * float and double arrays FloatGrid, 3-component arrays Vec3SGrid; other arrays are skipped
+ * with a warning. Cell-data arrays are written the same way, positioned at the cell centers
+ * (with suffix `_cell` when a point array has the same name). The VDB transform maps index
+ * (i, j, k) of the image's extent to Origin + (i, j, k) * Spacing, so the grid sits where the
+ * image does. A 2D image becomes a one-voxel slab.
+ *
+ * Voxels equal to the background (EmptyLabel for the label array, 0 for the rest) stay
+ * inactive, so label volumes are sparse. WriteFloatLabels adds a float copy of the label grid
+ * (`<name>_float`) for tools that only read float grids (Debian's pyopenvdb, for one).
+ *
+ * Metadata: the file gets `generator` = "ModelSynth <version>", every single-valued string
+ * array of the input's field data (e.g. `ExampleFile` from the readers), and the pairs given
+ * with AddMetadata(). Each grid records `vtk_array` and `vtk_association` (point or cell).
+ *
+ * The file is written atomically: to a temporary file in the same folder, renamed when
+ * complete. A failed write reports an error and leaves no partial file.
+ *
+ * Under MPI (pvbatch --mpi) only piece 0 writes; the other ranks do nothing.
+ *
+ * @sa vtkMSOpenVDBReader
+ */
+#ifndef vtkMSOpenVDBWriter_h
+#define vtkMSOpenVDBWriter_h
+
+#include "ModelSynthIOModule.h" // for export macro
+#include "vtkWriter.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for ivars
+
+class vtkImageData;
+
+class MODELSYNTHIO_EXPORT vtkMSOpenVDBWriter : public vtkWriter
+{
+public:
+  static vtkMSOpenVDBWriter* New();
+  vtkTypeMacro(vtkMSOpenVDBWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The .vdb file to write. No default.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /// The name of the label array, whose background is EmptyLabel. Default "Label".
+  vtkSetStdStringFromCharMacro(LabelArrayName);
+  vtkGetCharFromStdStringMacro(LabelArrayName);
+  ///@}
+
+  ///@{
+  /// The empty label: the inactive background of the label grid. Default 0.
+  vtkSetMacro(EmptyLabel, int);
+  vtkGetMacro(EmptyLabel, int);
+  ///@}
+
+  ///@{
+  /// Also write the labels as a FloatGrid named `<LabelArrayName>_float`. Default off.
+  vtkSetMacro(WriteFloatLabels, bool);
+  vtkGetMacro(WriteFloatLabels, bool);
+  vtkBooleanMacro(WriteFloatLabels, bool);
+  ///@}
+
+  ///@{
+  /// The piece this process writes, and how many there are (set by ParaView under MPI).
+  /// Only piece 0 writes the file. Defaults 0 and 1.
+  vtkSetMacro(Piece, int);
+  vtkGetMacro(Piece, int);
+  vtkSetMacro(NumberOfPieces, int);
+  vtkGetMacro(NumberOfPieces, int);
+  ///@}
+
+  ///@{
+  /// File metadata added to every file written (key → string value).
+  void AddMetadata(const char* key, const char* value);
+  void ClearMetadata();
+  ///@}
+
+  /// Input as image data (convenience).
+  vtkImageData* GetImageDataInput();
+
+protected:
+  vtkMSOpenVDBWriter();
+  ~vtkMSOpenVDBWriter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+private:
+  vtkMSOpenVDBWriter(const vtkMSOpenVDBWriter&) = delete;
+  void operator=(const vtkMSOpenVDBWriter&) = delete;
+
+  std::string FileName;
+  std::string LabelArrayName = "Label";
+  int EmptyLabel = 0;
+  bool WriteFloatLabels = false;
+  int Piece = 0;
+  int NumberOfPieces = 1;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "msynth/AtomicFile.h"
+#include "msynth/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <dirent.h>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace
+{
+std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool AnyTemporaryLeftIn(const std::string& dir, const std::string& stem)
+{
+  DIR* d = opendir(dir.c_str());
+  bool found = false;
+  while (dirent* e = readdir(d))
+  {
+    const std::string name = e->d_name;
+    found |= name.rfind(stem + ".tmp-", 0) == 0;
+  }
+  closedir(d);
+  return found;
+}
+} // namespace
+
+TEST(AtomicFile, WritesAndReplaces)
+{
+  const std::string path = std::string(MSYNTH_TEST_TMP) + "/atomic.txt";
+  msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "first"; });
+  EXPECT_EQ(Slurp(path), "first");
+  msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "second"; });
+  EXPECT_EQ(Slurp(path), "second");
+}
+
+TEST(AtomicFile, FailureLeavesOldContentAndNoTemporary)
+{
+  const std::string path = std::string(MSYNTH_TEST_TMP) + "/atomic-fail.txt";
+  msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "kept"; });
+  EXPECT_THROW(msynth::WriteFileAtomically(path,
+                 [](std::ostream& out) {
+                   out << "half";
+                   throw msynth::Error("interrupted");
+                 }),
+    msynth::Error);
+  EXPECT_EQ(Slurp(path), "kept");
+  EXPECT_FALSE(AnyTemporaryLeftIn(MSYNTH_TEST_TMP, "atomic-fail.txt"));
+}
+
+TEST(AtomicFile, MissingFolderIsAClearError)
+{
+  const std::string path = std::string(MSYNTH_TEST_TMP) + "/no/such/folder/x.txt";
+  try
+  {
+    msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "x"; });
+    FAIL() << "expected an error";
+  }
+  catch (const msynth::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "msynth/Error.h"
+#include "msynth/VDBFile.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <fstream>
+#include <sstream>
+
+namespace vdb = msynth::vdb;
+
+namespace
+{
+std::string Tmp(const std::string& name)
+{
+  return std::string(MSYNTH_TEST_TMP) + "/" + name;
+}
+
+std::string ErrorOf(const std::function<void()>& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const msynth::Error& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+vdb::GridHeader Header(const std::string& name, vdb::ValueType type)
+{
+  vdb::GridHeader h;
+  h.Name = name;
+  h.Type = type;
+  h.IndexMin = { { -2, 5, 0 } };
+  h.Dims = { { 4, 3, 2 } };
+  h.Origin = { { 1.5, -2.0, 0.25 } };
+  h.Spacing = { { 0.5, 0.5, 2.0 } };
+  return h;
+}
+} // namespace
+
+TEST(VDBFile, RoundTripsLabelsFieldsAndMetadataExactly)
+{
+  std::vector<std::int32_t> labels(24, 0);
+  std::vector<float> field(24), vec(72);
+  for (int i = 0; i < 24; ++i)
+  {
+    labels[static_cast<std::size_t>(i)] = (i % 3 == 0) ? 0 : i * 7 - 40; // zeros are background
+    field[static_cast<std::size_t>(i)] = 0.125f * static_cast<float>(i) - 1.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      vec[static_cast<std::size_t>(3 * i + c)] = static_cast<float>(i * 10 + c);
+    }
+  }
+  vdb::DenseGridView l{ Header("Label", vdb::ValueType::Int32), labels.data() };
+  l.Header.Metadata["meaning"] = "labels";
+  vdb::DenseGridView f{ Header("Entropy", vdb::ValueType::Float), field.data() };
+  f.Header.GridClass = "fog volume";
+  vdb::DenseGridView v{ Header("Velocity", vdb::ValueType::Vec3Float), vec.data() };
+  const std::string path = Tmp("roundtrip.vdb");
+  vdb::WriteFile(path, { l, f, v }, { { "seed", "42" }, { "example", "tiny.vti" } });
+
+  vdb::MetadataMap fileMeta;
+  auto summaries = vdb::ListGrids(path, &fileMeta);
+  // OpenVDB does not keep the order grids were given in: compare by name.
+  auto byName = [](const auto& a, const auto& b) { return a.Name < b.Name; };
+  std::sort(summaries.begin(), summaries.end(), byName); // Entropy, Label, Velocity
+  ASSERT_EQ(summaries.size(), 3u);
+  EXPECT_EQ(fileMeta.at("seed"), "42");
+  EXPECT_EQ(fileMeta.at("example"), "tiny.vti");
+  EXPECT_EQ(fileMeta.at("generator").rfind("ModelSynth ", 0), 0u);
+  EXPECT_EQ(summaries[1].TypeName, "int32");
+  EXPECT_EQ(summaries[1].Metadata.at("meaning"), "labels");
+  EXPECT_EQ(summaries[0].GridClass, "fog volume");
+  EXPECT_EQ(summaries[2].TypeName, "vec3s");
+  // Sparse: only non-background labels are active (16 of 24).
+  EXPECT_EQ(summaries[1].ActiveVoxelCount, 16);
+
+  auto contents = vdb::ReadFile(path);
+  std::sort(contents.Grids.begin(), contents.Grids.end(),
+    [](const auto& a, const auto& b) { return a.Header.Name < b.Header.Name; });
+  ASSERT_EQ(contents.Grids.size(), 3u);
+  for (const auto& g : contents.Grids)
+  {
+    EXPECT_EQ(g.Header.IndexMin, (std::array<std::int32_t, 3>{ { -2, 5, 0 } }));
+    EXPECT_EQ(g.Header.Dims, (std::array<std::int64_t, 3>{ { 4, 3, 2 } }));
+    EXPECT_EQ(g.Header.Origin, (std::array<double, 3>{ { 1.5, -2.0, 0.25 } }));
+    EXPECT_EQ(g.Header.Spacing, (std::array<double, 3>{ { 0.5, 0.5, 2.0 } }));
+  }
+  EXPECT_EQ(contents.Grids[1].Ints, labels);
+  EXPECT_EQ(contents.Grids[0].Floats, field);
+  EXPECT_EQ(contents.Grids[0].Header.GridClass, "fog volume");
+  EXPECT_EQ(contents.Grids[2].Floats, vec);
+
+  vdb::ReadOptions only;
+  only.GridNames = { "Entropy" };
+  EXPECT_EQ(vdb::ReadFile(path, only).Grids.size(), 1u);
+  only.GridNames = { "Nope" };
+  EXPECT_NE(ErrorOf([&] { vdb::ReadFile(path, only); }).find("no grid named 'Nope'"), std::string::npos);
+}
+
+TEST(VDBFile, BackgroundAndEmptyBordersSurviveRoundTrip)
+{
+  // All-background grid with a non-zero background: the stored extent restores the box.
+  std::vector<std::int32_t> labels(8, 3);
+  vdb::DenseGridView l{ Header("Label", vdb::ValueType::Int32), labels.data() };
+  l.Header.Dims = { { 2, 2, 2 } };
+  l.Header.Background = 3;
+  const std::string path = Tmp("background.vdb");
+  vdb::WriteFile(path, { l }, {});
+  const auto g = vdb::ReadFile(path).Grids.at(0);
+  EXPECT_EQ(g.Ints, labels);
+  EXPECT_EQ(g.Header.Background, 3.0);
+  EXPECT_EQ(vdb::ListGrids(path).at(0).ActiveVoxelCount, 0);
+}
+
+TEST(VDBFile, RefusesExtentsOverTheVoxelLimit)
+{
+  std::vector<float> field(24, 1.0f);
+  const std::string path = Tmp("limit.vdb");
+  vdb::WriteFile(path, { { Header("f", vdb::ValueType::Float), field.data() } }, {});
+  vdb::ReadOptions small;
+  small.MaxVoxels = 23;
+  const std::string error = ErrorOf([&] { vdb::ReadFile(path, small); });
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("limit of 23 voxels"), std::string::npos) << error;
+}
+
+TEST(VDBFile, BadFilesGiveErrorsNamingTheFile)
+{
+  const std::string missing = Tmp("missing.vdb");
+  std::remove(missing.c_str());
+  EXPECT_NE(ErrorOf([&] { vdb::ReadFile(missing); }).find("'" + missing + "'"), std::string::npos);
+
+  const std::string text = Tmp("not-a-vdb.vdb");
+  std::ofstream(text) << "this is not an OpenVDB file\n";
+  const std::string e1 = ErrorOf([&] { vdb::ReadFile(text); });
+  EXPECT_NE(e1.find("'" + text + "'"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("not a readable OpenVDB file"), std::string::npos) << e1;
+
+  // A valid file cut short at several places: every cut is an error, never a crash.
+  std::vector<float> field(24);
+  for (std::size_t i = 0; i < field.size(); ++i)
+  {
+    field[i] = static_cast<float>(i) + 1.0f;
+  }
+  const std::string good = Tmp("good.vdb");
+  vdb::WriteFile(good, { { Header("f", vdb::ValueType::Float), field.data() } }, {});
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t cut = 0; cut < bytes.size(); cut += (cut < 64 ? 1 : 37))
+  {
+    const std::string truncated = Tmp("truncated.vdb");
+    std::ofstream(truncated, std::ios::binary) << bytes.substr(0, cut);
+    const std::string e = ErrorOf([&] { vdb::ReadFile(truncated); });
+    EXPECT_NE(e.find("'" + truncated + "'"), std::string::npos) << "cut at " << cut << ": " << e;
+  }
+}
+
+TEST(VDBFile, FailedWritesLeaveNoPartialFile)
+{
+  std::vector<float> field(24, 2.0f);
+  vdb::DenseGridView ok{ Header("f", vdb::ValueType::Float), field.data() };
+
+  // Unwritable destination: error naming it, nothing created.
+  const std::string nowhere = Tmp("no-such-folder/out.vdb");
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(nowhere, { ok }, {}); }).find(nowhere), std::string::npos);
+
+  // An invalid grid after a good one: the existing file is left untouched.
+  const std::string path = Tmp("kept.vdb");
+  vdb::WriteFile(path, { ok }, { { "version", "old" } });
+  vdb::DenseGridView bad = ok;
+  bad.Header.Name = "bad";
+  bad.Header.Spacing = { { 1.0, 0.0, 1.0 } };
+  const std::string e = ErrorOf([&] { vdb::WriteFile(path, { ok, bad }, { { "version", "new" } }); });
+  EXPECT_NE(e.find("spacing"), std::string::npos) << e;
+  vdb::MetadataMap meta;
+  vdb::ListGrids(path, &meta);
+  EXPECT_EQ(meta.at("version"), "old");
+
+  // Duplicate names are refused.
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, { ok, ok }, {}); }).find("two grids"), std::string::npos);
+}
