@@ -15,7 +15,9 @@
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -38,6 +40,8 @@ const char* const Usage = R"(usage:
   msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb
   msynth --help | --version
 
+Options: --verbose shows VTK's own diagnostics as well.
+
 EXAMPLE is a label grid in VTK image data (.vti) with an integer array 'Label'.
 DIR defaults to ./msynth-output.
 )";
@@ -50,12 +54,10 @@ struct UsageError
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm)
 {
-  vtkNew<vtkMSEngineBridge> errors;
-  errors->Watch(algorithm);
-  algorithm->Update();
-  if (errors->HasErrors())
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(algorithm, messages))
   {
-    throw std::runtime_error(errors->GetMessages());
+    throw std::runtime_error(messages);
   }
 }
 
@@ -193,7 +195,12 @@ int Main(const std::vector<std::string>& args)
   std::string out = "msynth-output";
   for (std::size_t i = 1; i < args.size(); ++i)
   {
-    if (args[i] == "--out")
+    if (args[i] == "--verbose")
+    {
+      vtkOutputWindow::GetInstance()->SetDisplayModeToDefault();
+      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_INFO);
+    }
+    else if (args[i] == "--out")
     {
       if (i + 1 >= args.size())
       {
@@ -225,6 +232,10 @@ int Main(const std::vector<std::string>& args)
 
 int main(int argc, char* argv[])
 {
+  // Our errors reach the user as one line each through observers; VTK's own pipeline chatter
+  // ("algorithm returned failure") is shown only with --verbose.
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   try
   {
     return Main(std::vector<std::string>(argv + 1, argv + argc));

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSEngineBridge.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -102,6 +105,22 @@ vtkIntArray* vtkMSEngineBridge::NewLabelArray(const msynth::LabelGrid& grid, con
   array->SetNumberOfTuples(grid.NumberOfSites());
   std::copy(grid.Data().begin(), grid.Data().end(), array->GetPointer(0));
   return array;
+}
+
+bool vtkMSEngineBridge::Execute(
+  vtkAlgorithm* algorithm, std::string& messages, bool informationOnly)
+{
+  vtkNew<vtkMSEngineBridge> errors;
+  errors->Watch(algorithm);
+  vtkExecutive* executive = algorithm->GetExecutive();
+  const int status = informationOnly ? executive->UpdateInformation() : executive->Update();
+  const bool ok = status != 0 && !errors->HasErrors();
+  messages = errors->GetMessages();
+  if (!ok && messages.empty())
+  {
+    messages = std::string(algorithm->GetClassName()) + " failed";
+  }
+  return ok;
 }
 
 void vtkMSEngineBridge::Watch(vtkObject* source)

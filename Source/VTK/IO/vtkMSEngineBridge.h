@@ -17,6 +17,7 @@
 
 #include <string>
 
+class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
 class vtkIntArray;
@@ -42,6 +43,14 @@ public:
 
   /// A new vtkIntArray named @p name holding @p grid's labels.
   static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
+
+  /**
+   * Runs @p algorithm's pipeline pass (UpdateInformation when @p informationOnly, else Update)
+   * and returns whether it succeeded, judged by the executive's return status (so it holds even
+   * when VTK's global warning display is off) and by any ErrorEvent. @p messages receives the
+   * collected error messages, or a generic sentence when the algorithm failed silently.
+   */
+  static bool Execute(vtkAlgorithm* algorithm, std::string& messages, bool informationOnly = false);
 
   /// Starts collecting ErrorEvent messages of @p source (removes earlier observation).
   void Watch(vtkObject* source);

@@ -23,7 +23,6 @@ vtkStandardNewMacro(vtkMSLabelGridReader);
 
 vtkMSLabelGridReader::vtkMSLabelGridReader()
   : Reader(vtkSmartPointer<vtkXMLImageDataReader>::New())
-  , Errors(vtkSmartPointer<vtkMSEngineBridge>::New())
 {
   this->SetNumberOfInputPorts(0);
 }
@@ -63,12 +62,8 @@ bool vtkMSLabelGridReader::ReadHeader()
     return false;
   }
   this->Reader->SetFileName(this->FileName.c_str());
-  this->Errors->Watch(this->Reader);
-  this->Reader->UpdateInformation();
-  const bool ok = !this->Errors->HasErrors();
-  const std::string messages = this->Errors->GetMessages();
-  this->Errors->Reset();
-  if (!ok)
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(this->Reader, messages, /*informationOnly=*/true))
   {
     this->Fail("not a readable VTK image data (.vti) file: " + messages);
     return false;
@@ -163,11 +158,8 @@ int vtkMSLabelGridReader::RequestData(
   {
     return 0;
   }
-  this->Errors->Watch(this->Reader);
-  this->Reader->Update();
-  const bool ok = !this->Errors->HasErrors();
-  const std::string messages = this->Errors->GetMessages();
-  this->Errors->Reset();
+  std::string messages;
+  const bool ok = vtkMSEngineBridge::Execute(this->Reader, messages);
   vtkImageData* image = this->Reader->GetOutput();
   if (!ok || !image)
   {

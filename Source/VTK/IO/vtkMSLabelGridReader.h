@@ -26,7 +26,6 @@
 #include <string> // for ivar
 
 class vtkXMLImageDataReader;
-class vtkMSEngineBridge;
 
 class MODELSYNTHIO_EXPORT vtkMSLabelGridReader : public vtkImageAlgorithm
 {
@@ -77,7 +76,6 @@ private:
   vtkIdType MaximumNumberOfSites = vtkIdType(1) << 27;
 
   vtkSmartPointer<vtkXMLImageDataReader> Reader;
-  vtkSmartPointer<vtkMSEngineBridge> Errors;
   bool LabelsOnCells = false;
 };
 

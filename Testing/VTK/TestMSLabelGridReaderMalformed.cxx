@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Every malformed example gives one clear error naming the file and the problem, and no output.
+#include "vtkMSLabelGridReader.h"
+
+#include "msynthTestUtilities.h"
+
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
+namespace
+{
+int ExpectError(const std::string& relative, const std::string& problem, vtkIdType maxSites = 0)
+{
+  const std::string path = msynth_test::DataFile(relative);
+  vtkNew<vtkMSLabelGridReader> reader;
+  if (maxSites > 0)
+  {
+    reader->SetMaximumNumberOfSites(maxSites);
+  }
+  vtkNew<msynth_test::ErrorObserver> errors;
+  errors->Observe(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  if (!errors->HasError("'" + path + "'") || !errors->HasError(problem))
+  {
+    std::cerr << relative << ": expected an error naming the file and '" << problem
+              << "', got:\n" << errors->Errors << "\n";
+    return EXIT_FAILURE;
+  }
+  MS_CHECK(reader->GetErrorCode() != vtkErrorCode::NoError);
+  MS_CHECK(reader->GetOutput()->GetNumberOfPoints() == 0);
+  return EXIT_SUCCESS;
+}
+} // namespace
+
+int TestMSLabelGridReaderMalformed(int, char*[])
+{
+  int rc = EXIT_SUCCESS;
+  rc |= ExpectError("Malformed/does-not-exist.vti", "no such file");
+  rc |= ExpectError("Malformed/not-xml.vti", "not a readable VTK image data");
+  rc |= ExpectError("Malformed/truncated.vti", "not a readable VTK image data");
+  rc |= ExpectError("Malformed/no-label-array.vti", "has no label array 'Label' (arrays present: Density)");
+  rc |= ExpectError("Malformed/float-labels.vti", "labels must be integers");
+  rc |= ExpectError("Malformed/two-component-labels.vti", "2 components");
+  rc |= ExpectError("Malformed/huge-extent.vti", "more than the maximum of 134217728 sites");
+  rc |= ExpectError("Malformed/too-few-values.vti", "could not be read");
+  rc |= ExpectError("Examples/Village.vti", "more than the maximum of 100 sites", 100);
+  return rc;
+}

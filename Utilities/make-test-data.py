@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Regenerates the bundled examples (Data/Examples) and malformed fixtures (Data/Malformed).
+
+Run with /usr/bin/python3 (ParaView's vtkmodules). The files are committed; rerun after changing
+this script. All files are ASCII VTK XML so that reviews can read them.
+"""
+import os
+import sys
+
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkFloatArray, vtkIntArray
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Data")
+
+EMPTY, GROUND, WALL, ROOF = 0, 1, 2, 3
+
+
+def write(image, path):
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(image)
+    w.SetDataModeToAscii()
+    w.SetFileName(path)
+    if not w.Write():
+        sys.exit("could not write " + path)
+
+
+def label_image(dims, fn, name="Label", array_type=vtkIntArray, components=1, spacing=(1, 1, 1)):
+    image = vtkImageData()
+    image.SetDimensions(*dims)
+    image.SetSpacing(*spacing)
+    a = array_type()
+    a.SetName(name)
+    a.SetNumberOfComponents(components)
+    a.SetNumberOfTuples(dims[0] * dims[1] * dims[2])
+    i = 0
+    for z in range(dims[2]):
+        for y in range(dims[1]):
+            for x in range(dims[0]):
+                for c in range(components):
+                    a.SetComponent(i, c, fn(x, y, z))
+                i += 1
+    image.GetPointData().AddArray(a)
+    return image
+
+
+def village(x, y, z):
+    """A 3D block: ground at z = 0, a 3x3 house of walls two storeys high, a roof over it."""
+    if z == 0:
+        return GROUND
+    inside = 2 <= x <= 4 and 2 <= y <= 4
+    if inside and z in (1, 2):
+        return WALL
+    if inside and z == 3:
+        return ROOF
+    return EMPTY
+
+
+def main():
+    examples = os.path.join(DATA, "Examples")
+    malformed = os.path.join(DATA, "Malformed")
+    os.makedirs(examples, exist_ok=True)
+    os.makedirs(malformed, exist_ok=True)
+
+    write(label_image((7, 7, 5), village), os.path.join(examples, "Village.vti"))
+    write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
+
+    # Labels as cell data (one label per voxel) must read the same as point data.
+    cells = vtkImageData()
+    cells.SetDimensions(4, 4, 2)
+    a = vtkIntArray()
+    a.SetName("Label")
+    for z in range(1):
+        for y in range(3):
+            for x in range(3):
+                a.InsertNextValue((x + y) % 2)
+    cells.GetCellData().AddArray(a)
+    write(cells, os.path.join(examples, "CheckerboardCells.vti"))
+
+    write(label_image((3, 3, 1), lambda x, y, z: 1.0, name="Density", array_type=vtkFloatArray),
+          os.path.join(malformed, "no-label-array.vti"))
+    write(label_image((3, 3, 1), lambda x, y, z: 0.5 * x, array_type=vtkDoubleArray),
+          os.path.join(malformed, "float-labels.vti"))
+    write(label_image((3, 3, 1), lambda x, y, z: x, components=2),
+          os.path.join(malformed, "two-component-labels.vti"))
+
+    good = open(os.path.join(examples, "Checkerboard.vti")).read()
+    with open(os.path.join(malformed, "truncated.vti"), "w") as f:
+        f.write(good[: len(good) // 2])
+    with open(os.path.join(malformed, "not-xml.vti"), "w") as f:
+        f.write("this is not a VTK file\n\x01\x02 binary junk\n")
+    with open(os.path.join(malformed, "huge-extent.vti"), "w") as f:
+        f.write(good.replace('WholeExtent="0 3 0 3 0 0"', 'WholeExtent="0 99999 0 99999 0 99999"')
+                    .replace('Extent="0 3 0 3 0 0"', 'Extent="0 99999 0 99999 0 99999"'))
+    with open(os.path.join(malformed, "too-few-values.vti"), "w") as f:
+        f.write(good.replace('WholeExtent="0 3 0 3 0 0"', 'WholeExtent="0 3 0 4 0 0"')
+                    .replace('Piece Extent="0 3 0 3 0 0"', 'Piece Extent="0 3 0 4 0 0"'))
+
+
+if __name__ == "__main__":
+    main()
