@@ -11,6 +11,8 @@
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
@@ -27,6 +29,29 @@ vtkMSTransitionTables::vtkMSTransitionTables()
 int vtkMSTransitionTables::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkMSTransitionTables::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  if (piece == 0)
+  {
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  }
+  else
+  {
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
   return 1;
 }
 
@@ -53,7 +78,20 @@ int vtkMSTransitionTables::RequestData(
     vtkErrorMacro(<< "No input image.");
     return 0;
   }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  {
+    return 1; // piece 0 computes the tables (see class documentation)
+  }
   vtkDataArray* array = this->GetInputArrayToProcess(0, inputVector);
+  if (!array)
+  {
+    // No (or an empty) selection, as when ParaView's domain has not seen the data yet: use the
+    // point array "Label", else the active scalars.
+    array = input->GetPointData()->GetArray("Label");
+    array = array ? array : input->GetPointData()->GetScalars();
+  }
   if (!array)
   {
     vtkErrorMacro(<< "The input has no label array (expected an integer point array, by "

@@ -6,7 +6,7 @@
  * along +x, +y, +z).
  *
  * Input: vtkImageData with an integer label array on its points (the input array to process;
- * default point array `Label`), as produced by vtkMSLabelGridReader.
+ * default point array `Label`, else the active scalars), as produced by vtkMSLabelGridReader.
  *
  * Output port 0, "Transitions": a vtkTable with one row per allowed pair, sorted by axis, then
  * From, then To: `Axis` (0, 1, 2), `Direction` ("+x", "+y", "+z"), `From` and `To` (label
@@ -18,6 +18,10 @@
  * Field data of both tables: `Labels` (the label values), `LabelCounts`, and `TransitionsX`,
  * `TransitionsY`, `TransitionsZ` (2-component int arrays of allowed (From, To) value pairs),
  * plus `ExampleFile` when the input carries it.
+ *
+ * In parallel (pvbatch --mpi) the analysis runs once: piece 0 asks for the whole example and
+ * computes the tables; the other pieces ask for nothing and output empty tables, so gathered
+ * results are not duplicated.
  *
  * @sa vtkMSLabelGridReader
  */
@@ -39,6 +43,7 @@ protected:
   ~vtkMSTransitionTables() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:

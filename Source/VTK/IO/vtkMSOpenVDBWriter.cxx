@@ -9,8 +9,10 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include "msynth/Error.h"
@@ -54,6 +56,30 @@ int vtkMSOpenVDBWriter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
+}
+
+vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    // Piece 0 writes the whole image; other pieces need no data.
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    if (this->Piece == 0)
+    {
+      int whole[6];
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    }
+    else
+    {
+      const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
+    }
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    return 1;
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
 vtkImageData* vtkMSOpenVDBWriter::GetImageDataInput()

@@ -21,7 +21,8 @@
  * The file is written atomically: to a temporary file in the same folder, renamed when
  * complete. A failed write reports an error and leaves no partial file.
  *
- * Under MPI (pvbatch --mpi) only piece 0 writes; the other ranks do nothing.
+ * Under MPI (pvbatch --mpi) piece 0 asks for the whole image and writes it; the other pieces
+ * ask for nothing and write nothing.
  *
  * @sa vtkMSOpenVDBReader
  */
@@ -91,6 +92,8 @@ protected:
   ~vtkMSOpenVDBWriter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   void WriteData() override;
 
 private:

@@ -1,0 +1,21 @@
+"""Run inside the ParaView GUI (paraview --script=...): load the plugin, build the pipeline,
+report the result to the file named by MSYNTH_GUI_REPORT, and quit."""
+import os
+
+from paraview.simple import *  # noqa: F401,F403
+
+report = os.environ["MSYNTH_GUI_REPORT"]
+try:
+    LoadPlugin(os.environ["MSYNTH_PLUGIN"], remote=False, ns=globals())
+    reader = ModelSynthLabelGridReader(FileName=os.path.join(os.environ["MSYNTH_DATA"], "Examples", "Village.vti"))
+    tables = ModelSynthTransitionTables(Input=reader)
+    tables.UpdatePipeline()
+    Show(reader)
+    Render()
+    rows = servermanager.Fetch(tables, idx=1).GetNumberOfRows()
+    result = "OK labels=%d" % rows
+except Exception as e:  # report any failure instead of leaving the GUI open
+    result = "ERROR %s" % e
+with open(report, "w") as f:
+    f.write(result)
+os._exit(0)

@@ -1,0 +1,91 @@
+"""pvbatch: load the plugin, run reader -> transition tables -> VDB writer through proxies, read
+the VDB back with the plugin's reader and check the values (also with OpenVDB's own Python
+reader). Runs serially and under `mpirun -np 2 pvbatch --mpi`."""
+import os
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403
+
+DATA = os.environ["MSYNTH_DATA"]
+TMP = os.environ["MSYNTH_TMP"]
+
+LoadPlugin(os.environ["MSYNTH_PLUGIN"], remote=False, ns=globals())
+
+# Under `pvbatch --mpi` only rank 0 runs this script; the other ranks serve it (RMIs), so the
+# script must not synchronise by itself (an explicit barrier would deadlock).
+controller = servermanager.vtkProcessModule.GetProcessModule().GetGlobalController()
+rank = controller.GetLocalProcessId() if controller else 0
+ranks = controller.GetNumberOfProcesses() if controller else 1
+
+
+def check(condition, message):
+    if not condition:
+        print("FAILED (rank %d): %s" % (rank, message), flush=True)
+        os._exit(1)  # mpirun then stops every rank; sys.exit could leave others at a barrier
+
+
+example = os.path.join(DATA, "Examples", "Village.vti")
+reader = ModelSynthLabelGridReader(FileName=example)
+tables = ModelSynthTransitionTables(Input=reader)
+tables.UpdatePipeline()
+
+# Fetch the tables to the client and recompute Eq. 3.2 from the fetched labels.
+image = servermanager.Fetch(reader)
+nx, ny, nz = image.GetDimensions()
+labels = image.GetPointData().GetArray("Label")
+check(labels is not None and labels.GetNumberOfTuples() == nx * ny * nz, "labels fetched")
+value = lambda x, y, z: int(labels.GetValue(x + nx * (y + ny * z)))
+expected = {}
+for z in range(nz):
+    for y in range(ny):
+        for x in range(nx):
+            for axis, (dx, dy, dz) in enumerate(((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+                if x + dx < nx and y + dy < ny and z + dz < nz:
+                    key = (axis, value(x, y, z), value(x + dx, y + dy, z + dz))
+                    expected[key] = expected.get(key, 0) + 1
+transitions = servermanager.Fetch(tables, idx=0)
+check(servermanager.Fetch(tables, idx=1).GetNumberOfRows() == 4, "four labels")
+# Counts, not just pairs: under MPI a row computed on two ranks would show up twice.
+got = {}
+for r in range(transitions.GetNumberOfRows()):
+    key = (transitions.GetValueByName(r, "Axis").ToInt(), transitions.GetValueByName(r, "From").ToInt(),
+           transitions.GetValueByName(r, "To").ToInt())
+    got[key] = got.get(key, 0) + transitions.GetValueByName(r, "Count").ToInt()
+check(got == expected, "transition counts equal Eq. 3.2 (%d vs %d pairs)" % (len(got), len(expected)))
+
+# Write through the writer proxy chosen by extension.
+suffix = "mpi" if ranks > 1 else "serial"
+path = os.path.join(TMP, "pvbatch-%s.vdb" % suffix)
+if os.path.exists(path):
+    os.remove(path)
+writer = CreateWriter(path, reader)
+check(writer.GetXMLName() == "MSOpenVDBWriter", "writer chosen for .vdb: " + writer.GetXMLName())
+writer.WriteFloatLabels = 1
+writer.UpdatePipeline()
+del writer
+check(os.path.exists(path), "VDB written")
+
+# Read back through the plugin's VDB reader and compare every label.
+back = ModelSynthOpenVDBReader(FileName=path)
+back_image = servermanager.Fetch(back)
+check(back_image.GetDimensions() == (nx, ny, nz), "dimensions round-trip")
+back_labels = back_image.GetPointData().GetArray("Label")
+check(back_labels is not None, "Label grid read back")
+for i in range(nx * ny * nz):
+    if back_labels.GetValue(i) != labels.GetValue(i):
+        check(False, "label %d differs" % i)
+
+# And with OpenVDB's own Python reader, from the float copy.
+import pyopenvdb  # noqa: E402
+
+grid = pyopenvdb.read(path, "Label_float")
+accessor = grid.getConstAccessor()
+for z in range(nz):
+    for y in range(ny):
+        for x in range(nx):
+            check(accessor.getValue((x, y, z)) == float(value(x, y, z)),
+                  "pyopenvdb value at %s" % ((x, y, z),))
+leftovers = [n for n in os.listdir(TMP) if n.startswith("pvbatch-%s.vdb.tmp" % suffix)]
+check(not leftovers, "no temporary files left: %s" % leftovers)
+
+print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -1,0 +1,55 @@
+"""Shared helpers of the Python tests: paths from ctest's environment, an error observer, and
+an independent recomputation of Eq. 3.2 with numpy."""
+import os
+
+import numpy as np
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING
+
+DATA = os.environ["MSYNTH_DATA"]
+TMP = os.environ["MSYNTH_TMP"]
+BIN = os.environ.get("MSYNTH_BIN", "")
+
+
+def data(relative):
+    return os.path.join(DATA, relative)
+
+
+def tmp(name):
+    return os.path.join(TMP, name)
+
+
+class ErrorObserver:
+    """Collects ErrorEvent messages of a VTK object."""
+
+    def __init__(self, obj):
+        self.messages = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(caller, event, calldata=None):
+            self.messages.append(str(calldata) if calldata is not None else "")
+
+        self._callback = on_error  # keep it alive as long as the observer
+        obj.AddObserver("ErrorEvent", on_error)
+
+    def text(self):
+        return "\n".join(self.messages)
+
+
+def labels_zyx(image, name="Label"):
+    """The label array of a vtkImageData as a numpy array indexed [z, y, x]."""
+    nx, ny, nz = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetArray(name)).reshape(nz, ny, nx)
+
+
+def brute_force_transitions(labels):
+    """{(axis, from, to): count} of Eq. 3.2, from a [z, y, x] numpy array (axis 0 = x)."""
+    pairs = {}
+    for axis, np_axis in ((0, 2), (1, 1), (2, 0)):
+        n = labels.shape[np_axis]
+        a = np.take(labels, range(0, n - 1), axis=np_axis).ravel()
+        b = np.take(labels, range(1, n), axis=np_axis).ravel()
+        for u, v in zip(a.tolist(), b.tolist()):
+            pairs[(axis, u, v)] = pairs.get((axis, u, v), 0) + 1
+    return pairs

@@ -1,0 +1,70 @@
+"""The VDB reader refuses what it cannot handle with clear errors: grids of other types, and
+extents that would need an enormous dense allocation (files made with OpenVDB's own Python)."""
+import os
+import unittest
+
+import pyopenvdb
+
+import modelsynth
+from msynth_testing import ErrorObserver, tmp
+
+
+def read(path, **options):
+    reader = modelsynth.vtkMSOpenVDBReader()
+    errors = ErrorObserver(reader)
+    reader.SetFileName(path)
+    for k, v in options.items():
+        getattr(reader, "Set" + k)(v)
+    reader.Update()
+    return reader.GetOutput(), errors.text()
+
+
+class VDBReaderTest(unittest.TestCase):
+    def test_unsupported_grid_type(self):
+        grid = pyopenvdb.BoolGrid()
+        grid.name = "flags"
+        grid.getAccessor().setValueOn((1, 2, 3), True)
+        path = tmp("bool.vdb")
+        pyopenvdb.write(path, grids=[grid])
+        out, errors = read(path)
+        self.assertIn(path, errors)
+        self.assertIn("value type 'bool'", errors)
+        self.assertEqual(out.GetNumberOfPoints(), 0)
+
+    def test_enormous_bounding_box_is_refused(self):
+        grid = pyopenvdb.FloatGrid()
+        grid.name = "far"
+        acc = grid.getAccessor()
+        acc.setValueOn((0, 0, 0), 1.0)
+        acc.setValueOn((100000, 100000, 100000), 2.0)  # 10^15 voxels dense
+        path = tmp("far.vdb")
+        pyopenvdb.write(path, grids=[grid])
+        out, errors = read(path)
+        self.assertIn("more than the limit", errors)
+        self.assertEqual(out.GetNumberOfPoints(), 0)
+
+    def test_foreign_file_uses_active_bounding_box(self):
+        grid = pyopenvdb.FloatGrid()
+        grid.name = "density"
+        acc = grid.getAccessor()
+        acc.setValueOn((2, 3, 4), 1.5)
+        acc.setValueOn((4, 3, 4), 2.5)
+        path = tmp("foreign.vdb")
+        pyopenvdb.write(path, grids=[grid])
+        out, errors = read(path)
+        self.assertEqual(errors, "")
+        self.assertEqual(out.GetExtent(), (2, 4, 3, 3, 4, 4))
+        a = out.GetPointData().GetArray("density")
+        self.assertEqual([a.GetValue(i) for i in range(3)], [1.5, 0.0, 2.5])
+
+    def test_not_a_vdb(self):
+        path = tmp("text.vdb")
+        with open(path, "w") as f:
+            f.write("hello\n")
+        _, errors = read(path)
+        self.assertIn("not a readable OpenVDB file", errors)
+        self.assertTrue(os.path.exists(path))
+
+
+if __name__ == "__main__":
+    unittest.main()
