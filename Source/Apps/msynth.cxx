@@ -81,21 +81,23 @@ Analysis Analyze(const std::string& example)
 
 void WriteCSV(const std::string& path, vtkTable* table)
 {
-  msynth::WriteFileAtomically(path, [table](std::ostream& out) {
-    for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
-    {
-      out << (c ? "," : "") << table->GetColumnName(c);
-    }
-    out << "\n";
-    for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+  msynth::WriteFileAtomically(path,
+    [table](std::ostream& out)
     {
       for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
       {
-        out << (c ? "," : "") << table->GetValue(r, c).ToString();
+        out << (c ? "," : "") << table->GetColumnName(c);
       }
       out << "\n";
-    }
-  });
+      for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+      {
+        for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
+        {
+          out << (c ? "," : "") << table->GetValue(r, c).ToString();
+        }
+        out << "\n";
+      }
+    });
 }
 
 int Info(const std::string& example)

@@ -18,7 +18,8 @@ inline msynth::LabelGrid City(std::int64_t n, std::int64_t nz)
     {
       g.Set(x, y, 0, 1);
       const bool lot = (x / 4 + y / 4) % 2 == 0 && x % 4 != 0 && y % 4 != 0;
-      const std::int64_t h = lot ? 1 + static_cast<std::int64_t>(rng() % static_cast<unsigned>(nz - 2)) : 0;
+      const std::int64_t h =
+        lot ? 1 + static_cast<std::int64_t>(rng() % static_cast<unsigned>(nz - 2)) : 0;
       for (std::int64_t z = 1; z <= h; ++z)
       {
         g.Set(x, y, z, 2 + static_cast<msynth::Label>(rng() % 8)); // wall variants

@@ -47,7 +47,8 @@ TEST(AtomicFile, FailureLeavesOldContentAndNoTemporary)
   const std::string path = std::string(MSYNTH_TEST_TMP) + "/atomic-fail.txt";
   msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "kept"; });
   EXPECT_THROW(msynth::WriteFileAtomically(path,
-                 [](std::ostream& out) {
+                 [](std::ostream& out)
+                 {
                    out << "half";
                    throw msynth::Error("interrupted");
                  }),

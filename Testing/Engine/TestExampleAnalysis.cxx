@@ -25,7 +25,8 @@ LabelGrid Grid2D(const std::vector<std::vector<Label>>& rowsTopToBottom)
   {
     for (std::int64_t x = 0; x < nx; ++x)
     {
-      g.Set(x, y, 0, rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
+      g.Set(x, y, 0,
+        rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
     }
   }
   return g;

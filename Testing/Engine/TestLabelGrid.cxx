@@ -29,8 +29,8 @@ TEST(LabelGrid, RejectsBadDimensions)
   EXPECT_THROW(LabelGrid(1, -3, 1), msynth::Error);
   // Too large, and a product that would overflow 64 bits: refused before allocating.
   EXPECT_THROW(LabelGrid(1 << 20, 1 << 20, 1), msynth::Error);
-  EXPECT_THROW(LabelGrid(std::int64_t(1) << 40, std::int64_t(1) << 40, std::int64_t(1) << 40),
-    msynth::Error);
+  EXPECT_THROW(
+    LabelGrid(std::int64_t(1) << 40, std::int64_t(1) << 40, std::int64_t(1) << 40), msynth::Error);
 }
 
 TEST(LabelGrid, RejectsMismatchedData)

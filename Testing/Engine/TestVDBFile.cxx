@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace vdb = msynth::vdb;
@@ -102,7 +102,8 @@ TEST(VDBFile, RoundTripsLabelsFieldsAndMetadataExactly)
   only.GridNames = { "Entropy" };
   EXPECT_EQ(vdb::ReadFile(path, only).Grids.size(), 1u);
   only.GridNames = { "Nope" };
-  EXPECT_NE(ErrorOf([&] { vdb::ReadFile(path, only); }).find("no grid named 'Nope'"), std::string::npos);
+  EXPECT_NE(
+    ErrorOf([&] { vdb::ReadFile(path, only); }).find("no grid named 'Nope'"), std::string::npos);
 }
 
 TEST(VDBFile, BackgroundAndEmptyBordersSurviveRoundTrip)
@@ -178,12 +179,20 @@ TEST(VDBFile, FailedWritesLeaveNoPartialFile)
   vdb::DenseGridView bad = ok;
   bad.Header.Name = "bad";
   bad.Header.Spacing = { { 1.0, 0.0, 1.0 } };
-  const std::string e = ErrorOf([&] { vdb::WriteFile(path, { ok, bad }, { { "version", "new" } }); });
+  const std::string e = ErrorOf(
+    [&] {
+      vdb::WriteFile(path, { ok, bad }, { { "version", "new" } });
+    });
   EXPECT_NE(e.find("spacing"), std::string::npos) << e;
   vdb::MetadataMap meta;
   vdb::ListGrids(path, &meta);
   EXPECT_EQ(meta.at("version"), "old");
 
   // Duplicate names are refused.
-  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, { ok, ok }, {}); }).find("two grids"), std::string::npos);
+  EXPECT_NE(ErrorOf(
+              [&] {
+                vdb::WriteFile(path, { ok, ok }, {});
+              })
+              .find("two grids"),
+    std::string::npos);
 }

@@ -25,8 +25,8 @@ int ExpectError(const std::string& relative, const std::string& problem, vtkIdTy
   reader->Update();
   if (!errors->HasError("'" + path + "'") || !errors->HasError(problem))
   {
-    std::cerr << relative << ": expected an error naming the file and '" << problem
-              << "', got:\n" << errors->Errors << "\n";
+    std::cerr << relative << ": expected an error naming the file and '" << problem << "', got:\n"
+              << errors->Errors << "\n";
     return EXIT_FAILURE;
   }
   MS_CHECK(reader->GetErrorCode() != vtkErrorCode::NoError);
@@ -41,7 +41,8 @@ int TestMSLabelGridReaderMalformed(int, char*[])
   rc |= ExpectError("Malformed/does-not-exist.vti", "no such file");
   rc |= ExpectError("Malformed/not-xml.vti", "not a readable VTK image data");
   rc |= ExpectError("Malformed/truncated.vti", "not a readable VTK image data");
-  rc |= ExpectError("Malformed/no-label-array.vti", "has no label array 'Label' (arrays present: Density)");
+  rc |= ExpectError(
+    "Malformed/no-label-array.vti", "has no label array 'Label' (arrays present: Density)");
   rc |= ExpectError("Malformed/float-labels.vti", "labels must be integers");
   rc |= ExpectError("Malformed/two-component-labels.vti", "2 components");
   rc |= ExpectError("Malformed/huge-extent.vti", "more than the maximum of 134217728 sites");

@@ -7,6 +7,7 @@
 
 #include "msynthTestUtilities.h"
 
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -14,7 +15,6 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkCellData.h"
 #include "vtkStringArray.h"
 
 #include <cstdio>

@@ -48,7 +48,8 @@ int TestMSTransitionTables(int, char*[])
           q[a] += 1;
           if (q[a] < dims[a])
           {
-            const int c = static_cast<int>(label->GetTuple1(q[0] + dims[0] * (q[1] + dims[1] * q[2])));
+            const int c =
+              static_cast<int>(label->GetTuple1(q[0] + dims[0] * (q[1] + dims[1] * q[2])));
             ++pairs[{ a, b, c }];
           }
         }
@@ -64,7 +65,8 @@ int TestMSTransitionTables(int, char*[])
     MS_CHECK(transitions->GetValueByName(row, "To").ToInt() == std::get<2>(kv.first));
     MS_CHECK(transitions->GetValueByName(row, "Count").ToLongLong() == kv.second);
     const char* dir[3] = { "+x", "+y", "+z" };
-    MS_CHECK(transitions->GetValueByName(row, "Direction").ToString() == dir[std::get<0>(kv.first)]);
+    MS_CHECK(
+      transitions->GetValueByName(row, "Direction").ToString() == dir[std::get<0>(kv.first)]);
     ++row;
   }
   // The village's ground is under walls, never above them.

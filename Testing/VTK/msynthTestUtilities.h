@@ -49,8 +49,15 @@ public:
     o->AddObserver(vtkCommand::ErrorEvent, this);
     o->AddObserver(vtkCommand::WarningEvent, this);
   }
-  void Clear() { this->Errors.clear(); this->Warnings.clear(); }
-  bool HasError(const std::string& part) const { return this->Errors.find(part) != std::string::npos; }
+  void Clear()
+  {
+    this->Errors.clear();
+    this->Warnings.clear();
+  }
+  bool HasError(const std::string& part) const
+  {
+    return this->Errors.find(part) != std::string::npos;
+  }
   std::string Errors;
   std::string Warnings;
 };
@@ -58,14 +65,14 @@ public:
 } // namespace msynth_test
 
 /// Test assertion: prints where it failed and returns EXIT_FAILURE from the test function.
-#define MS_CHECK(cond)                                                                            \
-  do                                                                                              \
-  {                                                                                               \
-    if (!(cond))                                                                                  \
-    {                                                                                             \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond "\n";                  \
-      return EXIT_FAILURE;                                                                        \
-    }                                                                                             \
+#define MS_CHECK(cond)                                                                             \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond "\n";                   \
+      return EXIT_FAILURE;                                                                         \
+    }                                                                                              \
   } while (false)
 
 #endif

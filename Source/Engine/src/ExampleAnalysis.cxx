@@ -58,7 +58,8 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
           }
           const std::int64_t i = example.Index(x, y, z);
           const auto from = static_cast<std::uint32_t>(site[static_cast<std::size_t>(i)]);
-          const auto to = static_cast<std::uint32_t>(site[static_cast<std::size_t>(i + stride[axis])]);
+          const auto to =
+            static_cast<std::uint32_t>(site[static_cast<std::size_t>(i + stride[axis])]);
           ++counts[(std::uint64_t(from) << 32) | to];
         }
       }
@@ -70,9 +71,9 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
       pairs.push_back(
         { static_cast<int>(kv.first >> 32), static_cast<int>(kv.first & 0xffffffffu), kv.second });
     }
-    std::sort(pairs.begin(), pairs.end(), [](const Transition& a, const Transition& b) {
-      return a.From != b.From ? a.From < b.From : a.To < b.To;
-    });
+    std::sort(pairs.begin(), pairs.end(),
+      [](const Transition& a, const Transition& b)
+      { return a.From != b.From ? a.From < b.From : a.To < b.To; });
   }
   return result;
 }
@@ -91,9 +92,8 @@ std::int64_t ExampleAnalysis::PairCount(int axis, int from, int to) const
 {
   const auto& pairs = this->Pairs[axis];
   const auto it = std::lower_bound(pairs.begin(), pairs.end(), Transition{ from, to, 0 },
-    [](const Transition& a, const Transition& b) {
-      return a.From != b.From ? a.From < b.From : a.To < b.To;
-    });
+    [](const Transition& a, const Transition& b)
+    { return a.From != b.From ? a.From < b.From : a.To < b.To; });
   if (it == pairs.end() || it->From != from || it->To != to)
   {
     return 0;

@@ -20,8 +20,7 @@ void LabelGrid::CheckDimensions(std::int64_t nx, std::int64_t ny, std::int64_t n
   if (nx > MaxSites || ny > MaxSites / nx || nz > MaxSites / (nx * ny))
   {
     throw Error("label grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " x " +
-      std::to_string(nz) + " sites exceeds the limit of " + std::to_string(MaxSites) +
-      " sites");
+      std::to_string(nz) + " sites exceeds the limit of " + std::to_string(MaxSites) + " sites");
   }
 }
 

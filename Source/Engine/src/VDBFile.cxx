@@ -175,7 +175,8 @@ openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
   if (lo && hi)
   {
     const openvdb::Vec3i a = lo->value(), b = hi->value();
-    return openvdb::CoordBBox(openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
+    return openvdb::CoordBBox(
+      openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
   }
   return grid.evalActiveVoxelBoundingBox();
 }
@@ -222,7 +223,8 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
     {
       if (r != c && m(r, c) != 0.0)
       {
-        throw Error("grid '" + h.Name + "' has a rotated or sheared transform; only "
+        throw Error("grid '" + h.Name +
+          "' has a rotated or sheared transform; only "
           "axis-aligned voxel grids map to image data");
       }
     }
@@ -233,8 +235,8 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
 
   const openvdb::GridClass cls = base->getGridClass();
   h.GridClass = cls == openvdb::GRID_LEVEL_SET ? "level set"
-    : cls == openvdb::GRID_FOG_VOLUME           ? "fog volume"
-                                                : "";
+    : cls == openvdb::GRID_FOG_VOLUME          ? "fog volume"
+                                               : "";
   h.Metadata = StringMetadataOf(*base);
 
   openvdb::CoordBBox box = ExtentOf(*base);
@@ -304,8 +306,8 @@ Archive LoadArchive(const std::string& path)
   char magic[8] = {};
   in.read(magic, 8);
   // OpenVDB files start with the 64-bit magic number 0x56444220 ("VDB ") in little endian.
-  if (!in || static_cast<unsigned char>(magic[0]) != 0x20 || magic[1] != 'B' ||
-    magic[2] != 'D' || magic[3] != 'V')
+  if (!in || static_cast<unsigned char>(magic[0]) != 0x20 || magic[1] != 'B' || magic[2] != 'D' ||
+    magic[3] != 'V')
   {
     throw Error::InFile(path, "is not a readable OpenVDB file (wrong magic number)");
   }
@@ -350,8 +352,8 @@ Archive LoadArchive(const std::string& path)
 // ---------------------------------------------------------------------------------------------
 // public API
 // ---------------------------------------------------------------------------------------------
-void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
-  const MetadataMap& metadata)
+void WriteFile(
+  const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata)
 {
   InitializeOpenVDB();
   if (path.empty())
@@ -383,7 +385,8 @@ void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
   {
     fileMeta.insertMeta(kv.first, openvdb::StringMetadata(kv.second));
   }
-  fileMeta.insertMeta("generator", openvdb::StringMetadata(std::string("ModelSynth ") + MSYNTH_VERSION));
+  fileMeta.insertMeta(
+    "generator", openvdb::StringMetadata(std::string("ModelSynth ") + MSYNTH_VERSION));
 
   const std::string tmp = TemporaryPathBeside(path);
   try

@@ -40,18 +40,7 @@ int vtkMSTransitionTables::RequestUpdateExtent(
   const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     : 0;
-  if (piece == 0)
-  {
-    int whole[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
-  }
-  else
-  {
-    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
-  }
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, piece);
   return 1;
 }
 
@@ -157,8 +146,10 @@ int vtkMSTransitionTables::RequestData(
   {
     label->InsertNextValue(values[static_cast<std::size_t>(b)]);
     index->InsertNextValue(b);
-    labelCount->InsertNextValue(static_cast<vtkIdType>(analysis.LabelCounts()[static_cast<std::size_t>(b)]));
-    frequency->InsertNextValue(static_cast<double>(analysis.LabelCounts()[static_cast<std::size_t>(b)]) / sites);
+    labelCount->InsertNextValue(
+      static_cast<vtkIdType>(analysis.LabelCounts()[static_cast<std::size_t>(b)]));
+    frequency->InsertNextValue(
+      static_cast<double>(analysis.LabelCounts()[static_cast<std::size_t>(b)]) / sites);
   }
   labels->AddColumn(label);
   labels->AddColumn(index);

@@ -3,12 +3,14 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
-#include "vtkExecutive.h"
-#include "vtkNew.h"
 #include "vtkDataArray.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkType.h"
 
 #include <cstdint>
@@ -121,6 +123,22 @@ bool vtkMSEngineBridge::Execute(
     messages = std::string(algorithm->GetClassName()) + " failed";
   }
   return ok;
+}
+
+void vtkMSEngineBridge::RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece)
+{
+  if (piece == 0)
+  {
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  }
+  else
+  {
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
 }
 
 void vtkMSEngineBridge::Watch(vtkObject* source)

@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 class vtkIntArray;
 
 class MODELSYNTHIO_EXPORT vtkMSEngineBridge : public vtkObject
@@ -51,6 +52,13 @@ public:
    * collected error messages, or a generic sentence when the algorithm failed silently.
    */
   static bool Execute(vtkAlgorithm* algorithm, std::string& messages, bool informationOnly = false);
+
+  /**
+   * Parallel policy of algorithms that need the whole input at once (analysis, writers): piece
+   * 0 asks @p inInfo for the whole extent, every other piece for an empty one, so the work is
+   * done once and gathered results are not duplicated.
+   */
+  static void RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece);
 
   /// Starts collecting ErrorEvent messages of @p source (removes earlier observation).
   void Watch(vtkObject* source);

@@ -89,8 +89,8 @@ bool vtkMSLabelGridReader::ReadHeader()
     {
       present += std::string(present.empty() ? "" : ", ") + cells->GetArrayName(i);
     }
-    this->Fail("has no label array '" + this->LabelArrayName + "' (arrays present: " +
-      (present.empty() ? std::string("none") : present) + ")");
+    this->Fail("has no label array '" + this->LabelArrayName +
+      "' (arrays present: " + (present.empty() ? std::string("none") : present) + ")");
     return false;
   }
   // Read only the label array.
@@ -136,8 +136,8 @@ int vtkMSLabelGridReader::RequestInformation(
     }
     if (n > this->MaximumNumberOfSites / sites)
     {
-      this->Fail("declares more than the maximum of " +
-        std::to_string(this->MaximumNumberOfSites) + " sites");
+      this->Fail("declares more than the maximum of " + std::to_string(this->MaximumNumberOfSites) +
+        " sites");
       return 0;
     }
     sites *= n;

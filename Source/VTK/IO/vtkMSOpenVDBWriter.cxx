@@ -65,18 +65,7 @@ vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
   {
     // Piece 0 writes the whole image; other pieces need no data.
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    if (this->Piece == 0)
-    {
-      int whole[6];
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
-    }
-    else
-    {
-      const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
-    }
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
     return 1;
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
@@ -134,7 +123,8 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
     {
       for (int c = 0; c < nc; ++c)
       {
-        values[static_cast<std::size_t>(i * nc + c)] = static_cast<float>(array->GetComponent(i, c));
+        values[static_cast<std::size_t>(i * nc + c)] =
+          static_cast<float>(array->GetComponent(i, c));
       }
     }
     view.Header.Type = nc == 1 ? msynth::vdb::ValueType::Float : msynth::vdb::ValueType::Vec3Float;
@@ -206,7 +196,8 @@ void vtkMSOpenVDBWriter::WriteData()
     std::vector<msynth::vdb::DenseGridView> views;
     std::string skipped;
     auto addAll = [&](vtkDataSetAttributes* data, const msynth::vdb::GridHeader& geometry,
-                    const char* association, bool cellData) {
+                    const char* association, bool cellData)
+    {
       for (int i = 0; i < data->GetNumberOfArrays(); ++i)
       {
         vtkDataArray* array = data->GetArray(i);
@@ -220,16 +211,16 @@ void vtkMSOpenVDBWriter::WriteData()
           name += "_cell";
         }
         const bool isLabel = !cellData && name == this->LabelArrayName;
-        if (!AddArray(array, name, geometry, association, isLabel ? this->EmptyLabel : 0.0,
-              false, buffers, views, skipped))
+        if (!AddArray(array, name, geometry, association, isLabel ? this->EmptyLabel : 0.0, false,
+              buffers, views, skipped))
         {
           vtkWarningMacro(<< "'" << this->FileName << "': " << skipped << "; skipped.");
           continue;
         }
         if (isLabel && this->WriteFloatLabels)
         {
-          AddArray(array, name + "_float", geometry, association, this->EmptyLabel, true,
-            buffers, views, skipped);
+          AddArray(array, name + "_float", geometry, association, this->EmptyLabel, true, buffers,
+            views, skipped);
         }
       }
     };

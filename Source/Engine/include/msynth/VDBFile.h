@@ -28,8 +28,8 @@ namespace vdb
 /// Value types ModelSynth writes and reads.
 enum class ValueType
 {
-  Int32,  ///< openvdb::Int32Grid (labels)
-  Float,  ///< openvdb::FloatGrid (scalar fields)
+  Int32,    ///< openvdb::Int32Grid (labels)
+  Float,    ///< openvdb::FloatGrid (scalar fields)
   Vec3Float ///< openvdb::Vec3SGrid (3-component fields)
 };
 
@@ -49,9 +49,9 @@ struct GridHeader
   std::array<std::int64_t, 3> Dims{ { 0, 0, 0 } };
   std::array<double, 3> Origin{ { 0.0, 0.0, 0.0 } };
   std::array<double, 3> Spacing{ { 1.0, 1.0, 1.0 } };
-  double Background = 0.0;  ///< value of inactive voxels (all components, for vectors)
-  std::string GridClass;    ///< "" (unknown), "fog volume" or "level set"
-  MetadataMap Metadata;     ///< extra string metadata stored on the grid
+  double Background = 0.0; ///< value of inactive voxels (all components, for vectors)
+  std::string GridClass;   ///< "" (unknown), "fog volume" or "level set"
+  MetadataMap Metadata;    ///< extra string metadata stored on the grid
 
   std::int64_t NumberOfVoxels() const { return this->Dims[0] * this->Dims[1] * this->Dims[2]; }
 };
@@ -68,8 +68,8 @@ struct DenseGridView
 struct DenseGrid
 {
   GridHeader Header;
-  std::vector<std::int32_t> Ints;  ///< Int32 values
-  std::vector<float> Floats;       ///< Float or Vec3Float values (3 per voxel)
+  std::vector<std::int32_t> Ints; ///< Int32 values
+  std::vector<float> Floats;      ///< Float or Vec3Float values (3 per voxel)
 };
 
 struct FileContents
@@ -95,8 +95,8 @@ struct GridSummary
  * @throw Error naming the file and the problem (bad grid, unwritable folder, I/O error).
  * @note The file metadata always gets `generator` = "ModelSynth <version>".
  */
-void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
-  const MetadataMap& metadata);
+void WriteFile(
+  const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata);
 
 /// Options for ReadFile.
 struct ReadOptions
