@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file DiscreteSynthesis.h
+ * @brief Discrete model synthesis (dissertation ch. 3): Algorithm 3.1 (the whole model at
+ * once) and Algorithm 3.4 (modify the model in overlapping blocks, from a trivial consistent
+ * start, rolling a block back when it fails).
+ *
+ * Both are one loop: a block as large as the output is Algorithm 3.1. Every returned model
+ * satisfies the adjacency constraint (Eq. 3.3); a failure of Algorithm 3.1 is reported as a
+ * failure with the site where the catalog became empty, never returned as a model.
+ *
+ * Determinism: each block attempt draws from its own generator derived from (seed, block,
+ * attempt), and blocks are visited in phases such that blocks of one phase never touch (not
+ * even through a neighbour layer). The result therefore depends only on the inputs and the
+ * seed, and blocks of one phase can later run concurrently with the same result.
+ */
+#include "msynth/AdjacencyRules.h"
+#include "msynth/LabelGrid.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+
+/// How a label is drawn from the catalog at a site.
+enum class LabelChoice
+{
+  Uniform,  ///< every possible label equally likely (the dissertation)
+  Frequency ///< weighted by the label's frequency in the example
+};
+
+/// The order in which sites of a block are assigned.
+enum class SiteOrder
+{
+  ScanLine,      ///< x fastest, then y, then z (the dissertation)
+  Random,        ///< a seeded random permutation
+  MinimumEntropy ///< the site with the fewest (entropy-weighted) choices first, ties at random
+};
+
+struct SynthesisOptions
+{
+  /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
+  std::array<std::int64_t, 3> Size{ { 1, 1, 1 } };
+  /// Block size m (Algorithm 3.4); 0 on an axis means the whole axis. All zero (or ≥ Size) is
+  /// Algorithm 3.1.
+  std::array<std::int64_t, 3> BlockSize{ { 0, 0, 0 } };
+  /// Overlap between consecutive blocks; -1 means half the block (the dissertation's choice).
+  std::array<std::int64_t, 3> Overlap{ { -1, -1, -1 } };
+  /// Attempts per block before the block is left as it was (Algorithm 3.1: attempts overall).
+  int AttemptsPerBlock = 10;
+  std::uint64_t Seed = 0;
+  LabelChoice Choice = LabelChoice::Uniform;
+  SiteOrder Order = SiteOrder::ScanLine;
+  /**
+   * Labels (values) fixed on the boundary layer of each face, in the order -x, +x, -y, +y, -z,
+   * +z (Fig. 3.11: ground along the bottom, empty elsewhere). Faces of axes of size 1 are
+   * ignored. Where faces meet, the first face in the order -z, +z, -y, +y, -x, +x wins.
+   */
+  std::array<std::optional<Label>, 6> Boundary;
+  /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
+  /// adjacent to itself along every axis, else the most frequent such label).
+  std::optional<Label> TrivialLabel;
+  /// Called after each block with the fraction done; returning false cancels the run.
+  std::function<bool(double)> Progress;
+};
+
+/// A block whose every attempt failed (the model keeps its previous labels there).
+struct BlockFailure
+{
+  std::int64_t Block = 0;
+  std::array<std::int64_t, 3> Origin{ { 0, 0, 0 } };
+  std::array<std::int64_t, 3> EmptySite{ { 0, 0,
+    0 } }; ///< where the last attempt's catalog emptied
+  int Attempts = 0;
+};
+
+struct SynthesisStatistics
+{
+  std::int64_t Blocks = 0;
+  std::int64_t BlocksAccepted = 0;
+  std::int64_t BlocksFailed = 0;
+  std::int64_t Attempts = 0;
+  std::int64_t Assignments = 0;
+  int Phases = 1;
+  double Seconds = 0.0;
+  std::vector<BlockFailure> Failures;
+  std::optional<Label> TrivialLabel; ///< the trivial start used (block mode)
+};
+
+struct SynthesisResult
+{
+  /// True when Model is a complete consistent model. In block mode a model is always returned
+  /// (failed blocks keep their previous, consistent labels; see Statistics.Failures).
+  bool Success = false;
+  std::string Message;
+  LabelGrid Model; ///< label values
+  /// Per site, the index of the last block that changed it (-1: never changed).
+  std::vector<std::int32_t> LastBlock;
+  SynthesisStatistics Statistics;
+};
+
+/**
+ * @brief Runs discrete model synthesis.
+ * @throw Error on invalid options: a size below 1, a boundary or trivial label the rules do
+ * not know, or block synthesis without a usable trivial start (then the message says why).
+ */
+SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+} // namespace msynth

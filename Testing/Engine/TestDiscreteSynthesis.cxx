@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Every model a test obtains is verified by CheckConsistency, which recomputes the allowed pairs
+// from the example grid and shares no code with the solver.
+#include "msynth/ConsistencyCheck.h"
+#include "msynth/DiscreteSynthesis.h"
+#include "msynth/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+using namespace msynth;
+
+namespace
+{
+LabelGrid Grid2D(const std::vector<std::vector<Label>>& rowsTopToBottom)
+{
+  const auto ny = static_cast<std::int64_t>(rowsTopToBottom.size());
+  const auto nx = static_cast<std::int64_t>(rowsTopToBottom[0].size());
+  LabelGrid g(nx, ny, 1);
+  for (std::int64_t y = 0; y < ny; ++y)
+    for (std::int64_t x = 0; x < nx; ++x)
+      g.Set(x, y, 0,
+        rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
+  return g;
+}
+
+/// A small 3D village: ground (1), two-storey houses of walls (2) with roofs (3), empty (0).
+LabelGrid Village()
+{
+  LabelGrid g(7, 7, 5, 0);
+  for (std::int64_t y = 0; y < 7; ++y)
+    for (std::int64_t x = 0; x < 7; ++x)
+    {
+      g.Set(x, y, 0, 1);
+      const bool inside = x >= 2 && x <= 4 && y >= 2 && y <= 4;
+      if (inside)
+      {
+        g.Set(x, y, 1, 2);
+        g.Set(x, y, 2, 2);
+        g.Set(x, y, 3, 3);
+      }
+    }
+  return g;
+}
+
+SynthesisResult SynthesizeFrom(const LabelGrid& example, SynthesisOptions options)
+{
+  return Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), options);
+}
+
+void ExpectConsistent(const LabelGrid& example, const SynthesisResult& r)
+{
+  ASSERT_TRUE(r.Success) << r.Message;
+  const ConsistencyReport report = CheckConsistency(example, r.Model);
+  EXPECT_TRUE(report.Consistent) << (report.First.empty() ? "" : report.First[0].Describe());
+  EXPECT_GT(report.PairsChecked, 0);
+}
+} // namespace
+
+TEST(DiscreteSynthesis, OnlyEmptyExampleHasExactlyOneModel)
+{
+  const LabelGrid e0(3, 3, 3, 0); // E0 of §3.2
+  for (std::uint64_t seed = 0; seed < 5; ++seed)
+  {
+    SynthesisOptions o;
+    o.Size = { { 6, 5, 4 } };
+    o.Seed = seed;
+    const auto r = SynthesizeFrom(e0, o);
+    ExpectConsistent(e0, r);
+    EXPECT_EQ(r.Model, LabelGrid(6, 5, 4, 0));
+  }
+}
+
+TEST(DiscreteSynthesis, CheckerboardHasExactlyTwoModels)
+{
+  const LabelGrid board = Grid2D({ { 0, 1, 0 }, { 1, 0, 1 }, { 0, 1, 0 } });
+  std::set<std::vector<Label>> models;
+  for (std::uint64_t seed = 0; seed < 40; ++seed)
+  {
+    for (SiteOrder order : { SiteOrder::ScanLine, SiteOrder::Random, SiteOrder::MinimumEntropy })
+    {
+      SynthesisOptions o;
+      o.Size = { { 7, 6, 1 } };
+      o.Seed = seed;
+      o.Order = order;
+      const auto r = SynthesizeFrom(board, o);
+      ExpectConsistent(board, r);
+      models.insert(r.Model.Data());
+    }
+  }
+  EXPECT_EQ(models.size(), 2u);
+}
+
+TEST(DiscreteSynthesis, SameSeedSameModelOtherSeedOtherModel)
+{
+  const LabelGrid v = Village();
+  SynthesisOptions o;
+  o.Size = { { 24, 20, 5 } };
+  o.BlockSize = { { 8, 8, 5 } };
+  o.Seed = 11;
+  const auto a = SynthesizeFrom(v, o), b = SynthesizeFrom(v, o);
+  ExpectConsistent(v, a);
+  EXPECT_EQ(a.Model, b.Model);
+  EXPECT_EQ(a.LastBlock, b.LastBlock);
+  o.Seed = 12;
+  const auto c = SynthesizeFrom(v, o);
+  ExpectConsistent(v, c);
+  EXPECT_NE(a.Model, c.Model);
+}
+
+TEST(DiscreteSynthesis, BlocksModifyATrivialStart)
+{
+  const LabelGrid v = Village();
+  for (SiteOrder order : { SiteOrder::ScanLine, SiteOrder::Random, SiteOrder::MinimumEntropy })
+  {
+    for (LabelChoice choice : { LabelChoice::Uniform, LabelChoice::Frequency })
+    {
+      SynthesisOptions o;
+      o.Size = { { 30, 26, 5 } };
+      o.BlockSize = { { 10, 10, 5 } };
+      o.Order = order;
+      o.Choice = choice;
+      o.Seed = 3;
+      o.Boundary[MinusZ] = 1; // ground along the bottom (Fig. 3.11)
+      const auto r = SynthesizeFrom(v, o);
+      ExpectConsistent(v, r);
+      EXPECT_EQ(r.Statistics.TrivialLabel, 0);
+      EXPECT_GT(r.Statistics.Blocks, 1);
+      EXPECT_EQ(r.Statistics.BlocksAccepted + r.Statistics.BlocksFailed, r.Statistics.Blocks);
+      // The bottom layer is ground everywhere, and some houses were built.
+      std::int64_t walls = 0;
+      for (std::int64_t y = 0; y < 26; ++y)
+        for (std::int64_t x = 0; x < 30; ++x)
+        {
+          EXPECT_EQ(r.Model.At(x, y, 0), 1);
+          for (std::int64_t z = 1; z < 5; ++z)
+            walls += r.Model.At(x, y, z) == 2;
+        }
+      EXPECT_GT(walls, 0);
+      bool changed = false;
+      for (auto b : r.LastBlock)
+        changed |= b >= 0;
+      EXPECT_TRUE(changed);
+    }
+  }
+}
+
+TEST(DiscreteSynthesis, NoTrivialStartIsAClearError)
+{
+  const LabelGrid board = Grid2D({ { 0, 1, 0 }, { 1, 0, 1 }, { 0, 1, 0 } });
+  SynthesisOptions o;
+  o.Size = { { 20, 20, 1 } };
+  o.BlockSize = { { 5, 5, 1 } };
+  try
+  {
+    SynthesizeFrom(board, o);
+    FAIL() << "expected an error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("no usable trivial start"), std::string::npos) << e.what();
+  }
+  // Boundary labels the example does not have, and bad options.
+  o.BlockSize = { { 0, 0, 0 } };
+  o.Boundary[MinusX] = 42;
+  EXPECT_THROW(SynthesizeFrom(board, o), Error);
+  o.Boundary[MinusX].reset();
+  o.Size = { { 0, 3, 1 } };
+  EXPECT_THROW(SynthesizeFrom(board, o), Error);
+}
+
+TEST(DiscreteSynthesis, RandomExamplesReturnOnlyConsistentModels)
+{
+  // Property test: random examples × seeds × modes. Every returned model passes the checker;
+  // every failure is reported as a failure with no model.
+  std::mt19937 rng(2024);
+  int successes = 0, failures = 0;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const std::int64_t nx = 2 + rng() % 5, ny = 2 + rng() % 5, nz = 1 + rng() % 3;
+    const int k = 2 + static_cast<int>(rng() % 4);
+    LabelGrid e(nx, ny, nz);
+    for (auto& v : e.Data())
+      v = static_cast<Label>(rng() % static_cast<unsigned>(k));
+    for (std::uint64_t seed = 0; seed < 4; ++seed)
+    {
+      SynthesisOptions o;
+      o.Size = { { 9, 8, nz == 1 ? 1 : 4 } };
+      o.Seed = seed;
+      o.AttemptsPerBlock = 1;
+      o.Order = static_cast<SiteOrder>(seed % 3);
+      const auto r = SynthesizeFrom(e, o);
+      if (r.Success)
+      {
+        ++successes;
+        ExpectConsistent(e, r);
+      }
+      else
+      {
+        ++failures;
+        EXPECT_EQ(r.Model.NumberOfSites(), 0) << "a failed run returned a model";
+        EXPECT_NE(r.Message.find("Algorithm 3.1"), std::string::npos);
+      }
+    }
+  }
+  EXPECT_GT(successes, 0);
+  EXPECT_GT(failures, 0); // random examples are often fallible: failures must be seen too
+}
+
+TEST(DiscreteSynthesis, ProgressCanCancel)
+{
+  const LabelGrid v = Village();
+  SynthesisOptions o;
+  o.Size = { { 30, 30, 5 } };
+  o.BlockSize = { { 6, 6, 5 } };
+  int calls = 0;
+  o.Progress = [&](double f)
+  {
+    EXPECT_GT(f, 0.0);
+    EXPECT_LE(f, 1.0);
+    return ++calls < 3;
+  };
+  const auto r = SynthesizeFrom(v, o);
+  EXPECT_FALSE(r.Success);
+  EXPECT_EQ(r.Message, "cancelled");
+  EXPECT_EQ(calls, 3);
+}
+
+TEST(ConsistencyCheck, FindsEveryViolation)
+{
+  const LabelGrid board = Grid2D({ { 0, 1 }, { 1, 0 } });
+  LabelGrid m = Grid2D({ { 0, 1, 0 }, { 1, 0, 1 } });
+  EXPECT_TRUE(CheckConsistency(board, m).Consistent);
+  m.Set(1, 0, 0, 1); // bottom row becomes 1 1 1, and the middle 1 sits under a 1
+  const auto report = CheckConsistency(board, m);
+  EXPECT_FALSE(report.Consistent);
+  EXPECT_EQ(report.Violations, 3); // (0,0)-(1,0) and (1,0)-(2,0) along x, (1,0)-(1,1) along y
+  EXPECT_NE(report.First[0].Describe().find("never occurs"), std::string::npos);
+}
