@@ -3,33 +3,46 @@
 //
 //   msynth info EXAMPLE                  labels, counts and transition tables (Eq. 3.2)
 //   msynth analyze EXAMPLE [--out DIR]   the analysis as CSV tables plus the example as .vdb
+//   msynth synthesize EXAMPLE --size NX NY NZ [options]   discrete model synthesis
+//   msynth check EXAMPLE MODEL.vti       verify the adjacency constraint (Eq. 3.1)
 //
 // Exit status: 0 on success, 1 when the work fails (bad input, unwritable output), 2 on a
 // usage error. Errors are one line on stderr naming the file and the problem.
+#include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSTransitionTables.h"
 
 #include "vtkAbstractArray.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include "msynth/AtomicFile.h"
+#include "msynth/ConsistencyCheck.h"
 
+#include <array>
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -38,9 +51,23 @@ namespace
 const char* const Usage = R"(usage:
   msynth info EXAMPLE                 print the example's labels and transition tables
   msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb
+  msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
+                                      discrete model synthesis: writes DIR/labels.vti,
+                                      DIR/model.vdb and DIR/statistics.json
+  msynth check EXAMPLE MODEL.vti      verify that MODEL satisfies the adjacency constraint
+                                      of EXAMPLE (exit 0) or list violations (exit 1)
   msynth --help | --version
 
-Options: --verbose shows VTK's own diagnostics as well.
+synthesize options:
+  --seed S            random seed (default 0); same inputs and seed give the same model
+  --block BX BY BZ    block size of Algorithm 3.4 (default: the whole model, Algorithm 3.1)
+  --attempts N        attempts per block (default 10)
+  --order ORDER       scanline (default), random or entropy (minimum entropy first)
+  --choice CHOICE     uniform (default) or frequency (labels weighted by the example)
+  --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
+  --empty LABEL       fix LABEL on every other face (usually the empty label 0)
+
+Other options: --verbose shows VTK's own diagnostics as well.
 
 EXAMPLE is a label grid in VTK image data (.vti) with an integer array 'Label'.
 DIR defaults to ./msynth-output.
@@ -176,6 +203,216 @@ int AnalyzeToFolder(const std::string& example, const std::string& dir)
   return 0;
 }
 
+/// @p text as a JSON string literal.
+std::string JsonString(const std::string& text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+  {
+    switch (c)
+    {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char buffer[8];
+          std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+          out += buffer;
+        }
+        else
+        {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+/// Writes @p image as VTK XML image data, atomically.
+void WriteImage(const std::string& path, vtkImageData* image)
+{
+  const std::string tmp = msynth::TemporaryPathBeside(path);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(writer, messages) || writer->GetErrorCode() != 0)
+  {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("'" + path + "': could not be written: " + messages);
+  }
+  msynth::CommitTemporaryFile(tmp, path);
+}
+
+/// A progress bar on stderr when it is a terminal.
+class ProgressBar
+{
+public:
+  explicit ProgressBar(vtkAlgorithm* algorithm)
+    : Enabled(::isatty(STDERR_FILENO) != 0)
+  {
+    if (this->Enabled)
+    {
+      algorithm->AddObserver(vtkCommand::ProgressEvent, this, &ProgressBar::OnProgress);
+    }
+  }
+  ~ProgressBar()
+  {
+    if (this->Enabled && this->Shown)
+    {
+      std::cerr << "\n";
+    }
+  }
+
+private:
+  void OnProgress(vtkObject*, unsigned long, void* data)
+  {
+    const double f = *static_cast<double*>(data);
+    const int width = 40, filled = static_cast<int>(f * width + 0.5);
+    std::cerr << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+              << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+              << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
+    this->Shown = true;
+  }
+  bool Enabled;
+  bool Shown = false;
+};
+
+struct SynthesizeArguments
+{
+  std::array<int, 3> Size{ { 0, 0, 0 } };
+  std::array<int, 3> Block{ { 0, 0, 0 } };
+  long long Seed = 0;
+  int Attempts = 10;
+  int Order = vtkMSDiscreteSynthesis::SCAN_LINE;
+  int Choice = vtkMSDiscreteSynthesis::UNIFORM;
+  bool HasGround = false, HasEmpty = false;
+  int Ground = 0, Empty = 0;
+};
+
+int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
+{
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->SetFileName(example.c_str());
+  Run(reader);
+  vtkNew<vtkMSDiscreteSynthesis> synthesis;
+  synthesis->SetInputConnection(reader->GetOutputPort());
+  synthesis->SetOutputSize(a.Size.data());
+  synthesis->SetBlockSize(a.Block.data());
+  synthesis->SetSeed(a.Seed);
+  synthesis->SetAttemptsPerBlock(a.Attempts);
+  synthesis->SetSiteOrder(a.Order);
+  synthesis->SetLabelChoice(a.Choice);
+  // Ground along the bottom: -z in 3D, -y for a 2D (single-layer) output.
+  const int bottom = a.Size[2] > 1 ? 4 : 2;
+  int use[6] = { 0, 0, 0, 0, 0, 0 }, labels[6] = { 0, 0, 0, 0, 0, 0 };
+  for (int f = 0; f < 6; ++f)
+  {
+    if (f == bottom && a.HasGround)
+    {
+      use[f] = 1;
+      labels[f] = a.Ground;
+    }
+    else if (f != bottom && a.HasEmpty)
+    {
+      use[f] = 1;
+      labels[f] = a.Empty;
+    }
+  }
+  synthesis->SetUseBoundary(use);
+  synthesis->SetBoundaryLabels(labels);
+  {
+    ProgressBar bar(synthesis);
+    Run(synthesis);
+  }
+  vtkImageData* model = synthesis->GetOutput();
+
+  MakeDirectory(dir);
+  // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json only.
+  vtkNew<vtkImageData> saved;
+  saved->ShallowCopy(model);
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(model->GetFieldData());
+  fields->RemoveArray("Seconds");
+  saved->SetFieldData(fields);
+  WriteImage(dir + "/labels.vti", saved);
+  vtkNew<vtkMSOpenVDBWriter> vdb;
+  vdb->SetInputData(model);
+  vdb->SetFileName((dir + "/model.vdb").c_str());
+  vdb->WriteFloatLabelsOn();
+  vdb->AddMetadata("msynth_command", "synthesize");
+  vdb->AddMetadata("seed", std::to_string(a.Seed).c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(vdb, messages))
+  {
+    throw std::runtime_error(messages);
+  }
+
+  // Statistics as JSON.
+  vtkFieldData* fd = model->GetFieldData();
+  auto number = [fd](const char* name)
+  {
+    vtkDataArray* array = fd->GetArray(name);
+    return array ? array->GetTuple1(0) : 0.0;
+  };
+  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
+  const std::string text = message ? message->GetValue(0) : "";
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"example\": " << JsonString(example) << ",\n  \"size\": [" << a.Size[0] << ", "
+          << a.Size[1] << ", " << a.Size[2] << "],\n  \"block\": [" << a.Block[0] << ", "
+          << a.Block[1] << ", " << a.Block[2] << "],\n  \"seed\": " << a.Seed << ",\n";
+      for (const char* name :
+        { "Blocks", "BlocksAccepted", "BlocksFailed", "Attempts", "Assignments" })
+      {
+        out << "  \"" << name << "\": " << static_cast<long long>(number(name)) << ",\n";
+      }
+      out << "  \"Seconds\": " << number("Seconds") << ",\n  \"Message\": " << JsonString(text)
+          << "\n}\n";
+    });
+  std::cout << text << "\n"
+            << "wrote " << dir << "/labels.vti, " << dir << "/model.vdb, " << dir
+            << "/statistics.json\n";
+  return 0;
+}
+
+int Check(const std::string& example, const std::string& modelPath)
+{
+  vtkNew<vtkMSLabelGridReader> e, m;
+  e->SetFileName(example.c_str());
+  m->SetFileName(modelPath.c_str());
+  Run(e);
+  Run(m);
+  auto grid = [](vtkImageData* image)
+  { return vtkMSEngineBridge::ToLabelGrid(image, image->GetPointData()->GetArray("Label")); };
+  const msynth::ConsistencyReport report =
+    msynth::CheckConsistency(grid(e->GetOutput()), grid(m->GetOutput()));
+  if (report.Consistent)
+  {
+    std::cout << "consistent: all " << report.PairsChecked << " adjacent pairs of " << modelPath
+              << " occur in " << example << "\n";
+    return 0;
+  }
+  std::cout << "inconsistent: " << report.Violations << " of " << report.PairsChecked
+            << " adjacent pairs never occur in " << example << "\n";
+  for (const auto& v : report.First)
+  {
+    std::cout << "  " << v.Describe() << "\n";
+  }
+  return 1;
+}
+
 int Main(const std::vector<std::string>& args)
 {
   if (args.empty())
@@ -195,8 +432,94 @@ int Main(const std::vector<std::string>& args)
   }
   std::vector<std::string> positional;
   std::string out = "msynth-output";
+  SynthesizeArguments synth;
+  bool sizeGiven = false;
+  auto integer = [&](std::size_t& i, const std::string& option)
+  {
+    if (i + 1 >= args.size())
+    {
+      throw UsageError{ option + " needs a value" };
+    }
+    const std::string& text = args[++i];
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0)
+    {
+      throw UsageError{ option + ": '" + text + "' is not an integer" };
+    }
+    return v;
+  };
+  auto triple = [&](std::size_t& i, const std::string& option, std::array<int, 3>& v, long long min)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const long long x = integer(i, option);
+      if (x < min || x > 1000000000)
+      {
+        throw UsageError{ option + " values must be between " + std::to_string(min) + " and 10^9" };
+      }
+      v[static_cast<std::size_t>(a)] = static_cast<int>(x);
+    }
+  };
   for (std::size_t i = 1; i < args.size(); ++i)
   {
+    if (args[i] == "--size")
+    {
+      triple(i, "--size", synth.Size, 1);
+      sizeGiven = true;
+      continue;
+    }
+    if (args[i] == "--block")
+    {
+      triple(i, "--block", synth.Block, 0);
+      continue;
+    }
+    if (args[i] == "--seed")
+    {
+      synth.Seed = integer(i, "--seed");
+      continue;
+    }
+    if (args[i] == "--attempts")
+    {
+      const long long n = integer(i, "--attempts");
+      if (n < 1 || n > 1000000)
+      {
+        throw UsageError{ "--attempts must be between 1 and 10^6" };
+      }
+      synth.Attempts = static_cast<int>(n);
+      continue;
+    }
+    if (args[i] == "--ground" || args[i] == "--empty")
+    {
+      const bool ground = args[i] == "--ground";
+      const long long label = integer(i, args[i]);
+      (ground ? synth.HasGround : synth.HasEmpty) = true;
+      (ground ? synth.Ground : synth.Empty) = static_cast<int>(label);
+      continue;
+    }
+    if (args[i] == "--order" || args[i] == "--choice")
+    {
+      const std::string option = args[i];
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ option + " needs a value" };
+      }
+      const std::string v = args[++i];
+      if (option == "--order" && (v == "scanline" || v == "random" || v == "entropy"))
+      {
+        synth.Order = v == "scanline" ? 0 : (v == "random" ? 1 : 2);
+      }
+      else if (option == "--choice" && (v == "uniform" || v == "frequency"))
+      {
+        synth.Choice = v == "uniform" ? 0 : 1;
+      }
+      else
+      {
+        throw UsageError{ option + ": unknown value '" + v + "'" };
+      }
+      continue;
+    }
     if (args[i] == "--verbose")
     {
       vtkOutputWindow::GetInstance()->SetDisplayModeToDefault();
@@ -218,6 +541,26 @@ int Main(const std::vector<std::string>& args)
     {
       positional.push_back(args[i]);
     }
+  }
+  if (command == "synthesize")
+  {
+    if (positional.size() != 1)
+    {
+      throw UsageError{ "synthesize takes exactly one EXAMPLE" };
+    }
+    if (!sizeGiven)
+    {
+      throw UsageError{ "synthesize needs --size NX NY NZ" };
+    }
+    return Synthesize(positional[0], synth, out);
+  }
+  if (command == "check")
+  {
+    if (positional.size() != 2)
+    {
+      throw UsageError{ "check takes EXAMPLE and MODEL.vti" };
+    }
+    return Check(positional[0], positional[1]);
   }
   if (command == "info" || command == "analyze")
   {

@@ -57,3 +57,9 @@ static void BM_SynthesizeBlocks(benchmark::State& state)
   RunSynthesis(state, o);
 }
 BENCHMARK(BM_SynthesizeBlocks)->Arg(32)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);
+// 10^7 sites: run explicitly (--benchmark_filter=BM_SynthesizeBlocksLarge), about a minute.
+static void BM_SynthesizeBlocksLarge(benchmark::State& state)
+{
+  BM_SynthesizeBlocks(state);
+}
+BENCHMARK(BM_SynthesizeBlocksLarge)->Arg(1000)->Iterations(1)->Unit(benchmark::kMillisecond);

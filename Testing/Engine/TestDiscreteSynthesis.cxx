@@ -123,7 +123,7 @@ TEST(DiscreteSynthesis, BlocksModifyATrivialStart)
       o.Order = order;
       o.Choice = choice;
       o.Seed = 3;
-      o.Boundary[MinusZ] = 1; // ground along the bottom (Fig. 3.11)
+      o.Boundary[FaceMinZ] = 1; // ground along the bottom (Fig. 3.11)
       const auto r = SynthesizeFrom(v, o);
       ExpectConsistent(v, r);
       EXPECT_EQ(r.Statistics.TrivialLabel, 0);
@@ -164,9 +164,9 @@ TEST(DiscreteSynthesis, NoTrivialStartIsAClearError)
   }
   // Boundary labels the example does not have, and bad options.
   o.BlockSize = { { 0, 0, 0 } };
-  o.Boundary[MinusX] = 42;
+  o.Boundary[FaceMinX] = 42;
   EXPECT_THROW(SynthesizeFrom(board, o), Error);
-  o.Boundary[MinusX].reset();
+  o.Boundary[FaceMinX].reset();
   o.Size = { { 0, 3, 1 } };
   EXPECT_THROW(SynthesizeFrom(board, o), Error);
 }

@@ -53,3 +53,14 @@ def brute_force_transitions(labels):
         for u, v in zip(a.tolist(), b.tolist()):
             pairs[(axis, u, v)] = pairs.get((axis, u, v), 0) + 1
     return pairs
+
+
+def violations(example, model):
+    """Adjacent pairs of `model` that never occur in `example` (Eq. 3.1), both [z, y, x] numpy
+    arrays. Independent of the solver: recomputed here from the example."""
+    allowed = set(brute_force_transitions(example))
+    found = []
+    for (axis, u, v), _ in brute_force_transitions(model).items():
+        if (axis, u, v) not in allowed:
+            found.append((axis, u, v))
+    return found

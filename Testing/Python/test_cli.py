@@ -1,11 +1,13 @@
 """The msynth command line: outputs, exit codes and one-line errors."""
 import csv
+import json
 import os
 import shutil
 import subprocess
 import unittest
 
-from msynth_testing import BIN, data, tmp
+import modelsynth
+from msynth_testing import BIN, data, labels_zyx, tmp, violations
 
 MSYNTH = os.path.join(BIN, "msynth")
 
@@ -51,6 +53,59 @@ class CommandLineTest(unittest.TestCase):
         r = run("analyze", data("Examples/Village.vti"), "--out", "/proc/forbidden")
         self.assertEqual(r.returncode, 1)
         self.assertIn("/proc/forbidden", r.stderr)
+
+    def test_synthesize_then_check(self):
+        out = tmp("cli-synth")
+        shutil.rmtree(out, ignore_errors=True)
+        example = data("Examples/Village.vti")
+        r = run("synthesize", example, "--size", "30", "24", "5", "--block", "10", "10", "5",
+                "--seed", "9", "--ground", "1", "--empty", "0", "--order", "entropy", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for name in ("labels.vti", "model.vdb", "statistics.json"):
+            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+        with open(os.path.join(out, "statistics.json")) as f:
+            stats = json.load(f)
+        self.assertEqual(stats["seed"], 9)
+        self.assertEqual(stats["BlocksAccepted"] + stats["BlocksFailed"], stats["Blocks"])
+        self.assertEqual(stats["size"], [30, 24, 5])
+
+        # The model read back is consistent (independent numpy check) and so says `check`.
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(os.path.join(out, "labels.vti"))
+        reader.Update()
+        ex = modelsynth.vtkMSLabelGridReader()
+        ex.SetFileName(example)
+        ex.Update()
+        self.assertEqual(violations(labels_zyx(ex.GetOutput()), labels_zyx(reader.GetOutput())), [])
+        r = run("check", example, os.path.join(out, "labels.vti"))
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("consistent", r.stdout)
+
+        # Against another example it is not: exit 1 with the violations listed.
+        r = run("check", data("Examples/Checkerboard.vti"), os.path.join(out, "labels.vti"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("never occurs in the example", r.stdout)
+
+        # Same seed, same file contents.
+        again = tmp("cli-synth-again")
+        shutil.rmtree(again, ignore_errors=True)
+        run("synthesize", example, "--size", "30", "24", "5", "--block", "10", "10", "5",
+            "--seed", "9", "--ground", "1", "--empty", "0", "--order", "entropy", "--out", again)
+        with open(os.path.join(out, "labels.vti"), "rb") as a, open(os.path.join(again, "labels.vti"), "rb") as b:
+            self.assertEqual(a.read(), b.read())
+
+    def test_synthesize_errors(self):
+        r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
+                "--block", "3", "3", "1", "--out", tmp("cli-fail"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("no usable trivial start", r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(tmp("cli-fail"), "labels.vti")))
+        self.assertEqual(run("synthesize", data("Examples/Village.vti")).returncode, 2)  # no --size
+        self.assertEqual(run("synthesize", data("Examples/Village.vti"), "--size", "4", "x", "4").returncode, 2)
+        self.assertEqual(run("synthesize", data("Examples/Village.vti"), "--size", "0", "4", "4").returncode, 2)
+        self.assertEqual(run("synthesize", data("Examples/Village.vti"), "--size", "4", "4", "4",
+                             "--order", "sideways").returncode, 2)
+        self.assertEqual(run("check", data("Examples/Village.vti")).returncode, 2)
 
     def test_usage_errors(self):
         self.assertEqual(run().returncode, 2)

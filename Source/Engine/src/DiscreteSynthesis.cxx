@@ -138,18 +138,18 @@ public:
   /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
   void ApplyBoundary()
   {
-    static const int precedence[6] = { MinusZ, PlusZ, MinusY, PlusY, MinusX, PlusX };
+    static const int precedence[6] = { FaceMinZ, FaceMaxZ, FaceMinY, FaceMaxY, FaceMinX, FaceMaxX };
     for (int f = 5; f >= 0; --f) // lowest precedence first, so higher ones overwrite
     {
       const int face = precedence[f];
       const auto& value = this->Options.Boundary[static_cast<std::size_t>(face)];
-      const int axis = AxisOf(face);
+      const int axis = face / 2;
       if (!value || this->N[axis] == 1)
       {
         continue;
       }
       const int b = this->LabelIndex(*value, "boundary");
-      const std::int64_t layer = (face & 1) ? 0 : this->N[axis] - 1;
+      const std::int64_t layer = (face % 2 == 0) ? 0 : this->N[axis] - 1;
       Coord p;
       for (p[2] = 0; p[2] < this->N[2]; ++p[2])
         for (p[1] = 0; p[1] < this->N[1]; ++p[1])

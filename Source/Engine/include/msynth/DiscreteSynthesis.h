@@ -28,6 +28,18 @@
 namespace msynth
 {
 
+/// The six faces of the output box, in the order of SynthesisOptions::Boundary (the order of
+/// VTK bounds: x min, x max, y min, y max, z min, z max).
+enum Face : int
+{
+  FaceMinX = 0,
+  FaceMaxX = 1,
+  FaceMinY = 2,
+  FaceMaxY = 3,
+  FaceMinZ = 4,
+  FaceMaxZ = 5
+};
+
 /// How a label is drawn from the catalog at a site.
 enum class LabelChoice
 {

@@ -1,0 +1,229 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSDiscreteSynthesis.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+
+#include "msynth/DiscreteSynthesis.h"
+
+vtkStandardNewMacro(vtkMSDiscreteSynthesis);
+
+vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
+{
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
+}
+
+int vtkMSDiscreteSynthesis::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkMSDiscreteSynthesis::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (this->OutputSize[a] < 1)
+    {
+      vtkErrorMacro(<< "OutputSize must be at least 1 on every axis, got " << this->OutputSize[0]
+                    << " " << this->OutputSize[1] << " " << this->OutputSize[2] << ".");
+      return 0;
+    }
+  }
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int extent[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
+    this->OutputSize[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+  if (inInfo->Has(vtkDataObject::SPACING()))
+  {
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  }
+  if (inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  }
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+  return 1;
+}
+
+int vtkMSDiscreteSynthesis::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The solver needs the whole example.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  return 1;
+}
+
+namespace
+{
+template <typename ArrayT, typename ValueT>
+void AddValue(vtkFieldData* fd, const char* name, ValueT value)
+{
+  vtkNew<ArrayT> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+} // namespace
+
+int vtkMSDiscreteSynthesis::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (!input)
+  {
+    vtkErrorMacro(<< "No input example.");
+    return 0;
+  }
+  vtkDataArray* labels = this->GetInputArrayToProcess(0, inputVector);
+  if (!labels)
+  {
+    labels = input->GetPointData()->GetArray("Label");
+    labels = labels ? labels : input->GetPointData()->GetScalars();
+  }
+  std::string problem;
+  if (!labels)
+  {
+    vtkErrorMacro(
+      << "The example has no label array (an integer point array, by default 'Label').");
+    return 0;
+  }
+  if (!vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+  {
+    vtkErrorMacro(<< "Bad example: " << problem);
+    return 0;
+  }
+
+  msynth::SynthesisOptions options;
+  for (int a = 0; a < 3; ++a)
+  {
+    options.Size[a] = this->OutputSize[a];
+    options.BlockSize[a] = this->BlockSize[a];
+    options.Overlap[a] = this->BlockOverlap[a];
+  }
+  options.AttemptsPerBlock = this->AttemptsPerBlock;
+  options.Seed = static_cast<std::uint64_t>(this->Seed);
+  options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
+  options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
+  for (int f = 0; f < 6; ++f)
+  {
+    if (this->UseBoundary[f])
+    {
+      options.Boundary[static_cast<std::size_t>(f)] = this->BoundaryLabels[f];
+    }
+  }
+  if (this->UseTrivialLabel)
+  {
+    options.TrivialLabel = this->TrivialLabel;
+  }
+  options.Progress = [this](double fraction)
+  {
+    this->UpdateProgress(fraction);
+    return !this->CheckAbort();
+  };
+
+  msynth::SynthesisResult result;
+  try
+  {
+    const auto analysis =
+      msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, labels));
+    result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  if (!result.Success)
+  {
+    if (result.Message != "cancelled")
+    {
+      vtkErrorMacro(<< result.Message);
+    }
+    return 0;
+  }
+
+  const int extent[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
+    this->OutputSize[2] - 1 };
+  output->SetExtent(const_cast<int*>(extent));
+  output->SetSpacing(input->GetSpacing());
+  output->SetOrigin(input->GetOrigin());
+  vtkSmartPointer<vtkIntArray> label;
+  label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
+  output->GetPointData()->SetScalars(label);
+  vtkNew<vtkIntArray> lastBlock;
+  lastBlock->SetName("LastBlock");
+  lastBlock->SetNumberOfTuples(static_cast<vtkIdType>(result.LastBlock.size()));
+  std::copy(result.LastBlock.begin(), result.LastBlock.end(), lastBlock->GetPointer(0));
+  output->GetPointData()->AddArray(lastBlock);
+
+  vtkFieldData* fd = output->GetFieldData();
+  const auto& s = result.Statistics;
+  AddValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
+  AddValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
+  AddValue<vtkIntArray>(fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
+  AddValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
+  AddValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
+  AddValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
+  AddValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);
+  AddValue<vtkStringArray>(fd, "Message", result.Message);
+  if (s.TrivialLabel)
+  {
+    AddValue<vtkIntArray>(fd, "TrivialLabel", *s.TrivialLabel);
+  }
+  vtkNew<vtkIntArray> origins, sites;
+  origins->SetName("FailedBlockOrigins");
+  origins->SetNumberOfComponents(3);
+  sites->SetName("FailedBlockSites");
+  sites->SetNumberOfComponents(3);
+  for (const auto& f : s.Failures)
+  {
+    const int o[3] = { static_cast<int>(f.Origin[0]), static_cast<int>(f.Origin[1]),
+      static_cast<int>(f.Origin[2]) };
+    const int e[3] = { static_cast<int>(f.EmptySite[0]), static_cast<int>(f.EmptySite[1]),
+      static_cast<int>(f.EmptySite[2]) };
+    origins->InsertNextTypedTuple(o);
+    sites->InsertNextTypedTuple(e);
+  }
+  fd->AddArray(origins);
+  fd->AddArray(sites);
+  if (vtkAbstractArray* file = input->GetFieldData()->GetAbstractArray("ExampleFile"))
+  {
+    fd->AddArray(file);
+  }
+  return 1;
+}
+
+void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
+     << this->OutputSize[2] << "\n";
+  os << indent << "BlockSize: " << this->BlockSize[0] << " " << this->BlockSize[1] << " "
+     << this->BlockSize[2] << "\n";
+  os << indent << "AttemptsPerBlock: " << this->AttemptsPerBlock << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "LabelChoice: " << this->LabelChoice << "\n";
+  os << indent << "SiteOrder: " << this->SiteOrder << "\n";
+}

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSDiscreteSynthesis
+ * @brief Discrete model synthesis (Merrell's dissertation ch. 3): a new label grid of any size
+ * whose every adjacent pair occurs in the example (the adjacency constraint, Eq. 3.3).
+ *
+ * Input: the example, vtkImageData with an integer point array of labels (default `Label`, else
+ * the active scalars), as produced by vtkMSLabelGridReader.
+ *
+ * Output: vtkImageData of OutputSize points, with the example's spacing and origin. Point data:
+ * `Label` (the model) and `LastBlock` (the block that last changed each site, -1 for never).
+ * Field data: the run statistics (`Seed`, `Blocks`, `BlocksAccepted`, `BlocksFailed`,
+ * `Attempts`, `Assignments`, `Seconds`, `Message`, `TrivialLabel` in block mode,
+ * `FailedBlockOrigins` and `FailedBlockSites` as 3-component arrays) and `ExampleFile`.
+ *
+ * BlockSize 0 on every axis (or at least OutputSize) runs Algorithm 3.1 on the whole model;
+ * smaller blocks run Algorithm 3.4, which modifies a trivial consistent start block by block
+ * and rolls a block back when it fails. A failed Algorithm 3.1 is an error and produces no
+ * model.
+ *
+ * Boundary labels (Fig. 3.11) fix the outer layer of chosen faces, in the order -x, +x, -y,
+ * +y, -z, +z: e.g. UseBoundary = (1,1,1,1,1,1) with BoundaryLabels = (0,0,0,0,g,0) puts ground
+ * g along the bottom and empty space around.
+ *
+ * The result depends only on the inputs and Seed.
+ *
+ * @sa vtkMSLabelGridReader, vtkMSTransitionTables
+ */
+#ifndef vtkMSDiscreteSynthesis_h
+#define vtkMSDiscreteSynthesis_h
+
+#include "ModelSynthFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class MODELSYNTHFILTERS_EXPORT vtkMSDiscreteSynthesis : public vtkImageAlgorithm
+{
+public:
+  static vtkMSDiscreteSynthesis* New();
+  vtkTypeMacro(vtkMSDiscreteSynthesis, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How labels are drawn from the catalog.
+  enum LabelChoices
+  {
+    UNIFORM = 0,  ///< every possible label equally likely (the dissertation)
+    FREQUENCY = 1 ///< weighted by the label's frequency in the example
+  };
+  /// The order in which sites are assigned.
+  enum SiteOrders
+  {
+    SCAN_LINE = 0,      ///< x fastest, then y, then z (the dissertation)
+    RANDOM = 1,         ///< a seeded random permutation
+    MINIMUM_ENTROPY = 2 ///< fewest choices first (as WaveFunctionCollapse)
+  };
+
+  ///@{
+  /// Output size in sites (n_z = 1 for 2D). Default 32 × 32 × 8.
+  vtkSetVector3Macro(OutputSize, int);
+  vtkGetVector3Macro(OutputSize, int);
+  ///@}
+
+  ///@{
+  /// Block size of Algorithm 3.4; 0 on an axis means the whole axis. Default 0 0 0 (whole
+  /// model, Algorithm 3.1).
+  vtkSetVector3Macro(BlockSize, int);
+  vtkGetVector3Macro(BlockSize, int);
+  ///@}
+
+  ///@{
+  /// Overlap of consecutive blocks; -1 means half a block. Default -1 -1 -1.
+  vtkSetVector3Macro(BlockOverlap, int);
+  vtkGetVector3Macro(BlockOverlap, int);
+  ///@}
+
+  ///@{
+  /// Attempts per block before it keeps its previous labels. Default 10.
+  vtkSetClampMacro(AttemptsPerBlock, int, 1, 1000000);
+  vtkGetMacro(AttemptsPerBlock, int);
+  ///@}
+
+  ///@{
+  /// Random seed (any value; used as 64 bits). Default 0.
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
+  ///@}
+
+  ///@{
+  /// LabelChoices value. Default UNIFORM.
+  vtkSetClampMacro(LabelChoice, int, UNIFORM, FREQUENCY);
+  vtkGetMacro(LabelChoice, int);
+  ///@}
+
+  ///@{
+  /// SiteOrders value. Default SCAN_LINE.
+  vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
+  vtkGetMacro(SiteOrder, int);
+  ///@}
+
+  ///@{
+  /// Which faces (-x, +x, -y, +y, -z, +z) have a fixed boundary label. Default none.
+  vtkSetVector6Macro(UseBoundary, int);
+  vtkGetVector6Macro(UseBoundary, int);
+  ///@}
+
+  ///@{
+  /// The label value fixed on each face where UseBoundary is set. Default 0.
+  vtkSetVector6Macro(BoundaryLabels, int);
+  vtkGetVector6Macro(BoundaryLabels, int);
+  ///@}
+
+  ///@{
+  /// Use TrivialLabel as the trivial start of block synthesis instead of choosing one
+  /// automatically (label 0 when it can tile space, else the most frequent such label).
+  vtkSetMacro(UseTrivialLabel, bool);
+  vtkGetMacro(UseTrivialLabel, bool);
+  vtkBooleanMacro(UseTrivialLabel, bool);
+  vtkSetMacro(TrivialLabel, int);
+  vtkGetMacro(TrivialLabel, int);
+  ///@}
+
+protected:
+  vtkMSDiscreteSynthesis();
+  ~vtkMSDiscreteSynthesis() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSDiscreteSynthesis(const vtkMSDiscreteSynthesis&) = delete;
+  void operator=(const vtkMSDiscreteSynthesis&) = delete;
+
+  int OutputSize[3] = { 32, 32, 8 };
+  int BlockSize[3] = { 0, 0, 0 };
+  int BlockOverlap[3] = { -1, -1, -1 };
+  int AttemptsPerBlock = 10;
+  vtkIdType Seed = 0;
+  int LabelChoice = UNIFORM;
+  int SiteOrder = SCAN_LINE;
+  int UseBoundary[6] = { 0, 0, 0, 0, 0, 0 };
+  int BoundaryLabels[6] = { 0, 0, 0, 0, 0, 0 };
+  bool UseTrivialLabel = false;
+  int TrivialLabel = 0;
+};
+
+#endif
