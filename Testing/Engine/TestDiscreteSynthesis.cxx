@@ -239,3 +239,51 @@ TEST(ConsistencyCheck, FindsEveryViolation)
   EXPECT_EQ(report.Violations, 3); // (0,0)-(1,0) and (1,0)-(2,0) along x, (1,0)-(1,1) along y
   EXPECT_NE(report.First[0].Describe().find("never occurs"), std::string::npos);
 }
+
+TEST(DiscreteSynthesis, CatalogSnapshotsShowTheCatalogShrinking)
+{
+  const LabelGrid v = Village();
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(v));
+  // Whole model (Algorithm 3.1): the catalog only shrinks from step to step.
+  SynthesisOptions o;
+  o.Size = { { 12, 10, 5 } };
+  o.Seed = 5;
+  o.SnapshotsPerBlock = 8;
+  std::vector<CatalogSnapshot> snaps;
+  o.OnSnapshot = [&](const CatalogSnapshot& s) { snaps.push_back(s); };
+  const auto r = Synthesize(rules, o);
+  ExpectConsistent(v, r);
+  ASSERT_EQ(static_cast<std::int64_t>(snaps.size()), CountSnapshots(o));
+  ASSERT_EQ(snaps.size(), 9u);
+  for (std::size_t i = 0; i < snaps.size(); ++i)
+  {
+    EXPECT_EQ(snaps[i].Step, static_cast<std::int64_t>(i));
+    ASSERT_EQ(snaps[i].CatalogSize.size(), 600u);
+  }
+  for (std::size_t s = 0; s < 600; ++s)
+  {
+    EXPECT_EQ(snaps.front().CatalogSize[s], rules.NumberOfLabels());
+    EXPECT_EQ(snaps.front().Labels[s], CatalogSnapshot::Undecided);
+    EXPECT_EQ(snaps.back().CatalogSize[s], 1);
+    EXPECT_EQ(snaps.back().Labels[s], r.Model.Data()[s]);
+    EXPECT_EQ(snaps.back().Entropy[s], 0.0f);
+    for (std::size_t i = 1; i < snaps.size(); ++i)
+    {
+      EXPECT_LE(snaps[i].CatalogSize[s], snaps[i - 1].CatalogSize[s]);
+    }
+  }
+  std::int64_t midUndecided = 0;
+  for (auto size : snaps[4].CatalogSize)
+    midUndecided += size > 1;
+  EXPECT_GT(midUndecided, 0); // the middle of the run is genuinely in between
+
+  // Blocks: exactly 1 + blocks × S snapshots, known before the run.
+  o.BlockSize = { { 6, 6, 5 } };
+  o.SnapshotsPerBlock = 2;
+  snaps.clear();
+  const auto rb = Synthesize(rules, o);
+  ExpectConsistent(v, rb);
+  EXPECT_EQ(static_cast<std::int64_t>(snaps.size()), 1 + CountBlocks(o) * 2);
+  EXPECT_EQ(CountBlocks(o), rb.Statistics.Blocks);
+  EXPECT_EQ(snaps.back().Labels, rb.Model.Data());
+}

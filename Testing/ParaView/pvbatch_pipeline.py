@@ -105,4 +105,17 @@ for z in range(mz):
                     pair = (axis, mvalue(x, y, z), mvalue(x + dx, y + dy, z + dz))
                     check(pair in expected, "model pair %s at %s occurs in the example" % (pair, (x, y, z)))
 
+# Catalog evolution as time steps: the animation scene sees them.
+synthesis.CatalogSnapshotsPerBlock = 2
+synthesis.UpdatePipelineInformation()
+steps = synthesis.TimestepValues
+blocks = 5 * 4  # 24 and 20 sites in blocks of 8 (overlap 4): 5 and 4 starts
+check(len(steps) == 1 + 2 * blocks, "time steps: %d" % len(steps))
+scene = GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+synthesis.UpdatePipeline(steps[len(steps) // 2])
+mid = servermanager.Fetch(synthesis)
+check(mid.GetPointData().GetArray("CatalogSize") is not None, "CatalogSize at a time step")
+check(mid.GetPointData().GetArray("Entropy") is not None, "Entropy at a time step")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -58,6 +58,52 @@ class SynthesisTest(unittest.TestCase):
         self.assertTrue(np.array_equal(labels_zyx(a), labels_zyx(b)))
         self.assertFalse(np.array_equal(labels_zyx(a), labels_zyx(c)))
 
+    def test_catalog_snapshots_as_time_steps(self):
+        from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
+
+        plain, _ = synthesize(self.reader.GetOutputPort(), OutputSize=(16, 14, 5), BlockSize=(8, 8, 5), Seed=21)
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetInputConnection(self.reader.GetOutputPort())
+        s.SetOutputSize(16, 14, 5)
+        s.SetBlockSize(8, 8, 5)
+        s.SetSeed(21)
+        s.SetCatalogSnapshotsPerBlock(3)
+        s.UpdateInformation()
+        info = s.GetOutputInformation(0)
+        steps = info.Get(SDDP.TIME_STEPS())
+        blocks = 3 * 3  # 16 and 14 sites in blocks of 8 with overlap 4: 3 starts per axis
+        self.assertEqual(len(steps), 1 + 3 * blocks)
+
+        def at(t):
+            s.UpdateTimeStep(t)
+            out = s.GetOutput()
+            return (labels_zyx(out), labels_zyx(out, "CatalogSize"), labels_zyx(out, "Entropy"),
+                    out.GetFieldData().GetArray("Step").GetValue(0))
+
+        first = at(0)
+        last = at(steps[-1])
+        middle = at(steps[len(steps) // 2])
+        self.assertEqual(first[3], 0)
+        self.assertEqual(last[3], len(steps) - 1)
+        # Block mode starts from the trivial model: everything decided, empty.
+        self.assertTrue((first[1] == 1).all() and (first[0] == 0).all())
+        # The last step is the model, identical to a run without snapshots.
+        self.assertTrue((last[1] == 1).all())
+        self.assertTrue(np.array_equal(last[0], labels_zyx(plain)))
+        self.assertEqual(violations(self.example, last[0]), [])
+        # Some step in between shows undecided sites with their catalog size and entropy.
+        undecided = None
+        for t in steps:
+            labels, size, entropy, _ = at(t)
+            if (size > 1).any():
+                undecided = (labels, size, entropy)
+                break
+        self.assertIsNotNone(undecided)
+        labels, size, entropy = undecided
+        self.assertTrue((labels[size > 1] == np.iinfo(np.int32).min).all())
+        self.assertTrue((entropy[size > 1] > 0).all() and (entropy[size == 1] == 0).all())
+        self.assertTrue(middle[1].min() >= 1)
+
     def test_whole_model_failure_is_an_error_not_a_model(self):
         # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y.
         example = vtkImageData()

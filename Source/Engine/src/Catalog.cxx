@@ -44,6 +44,7 @@ void Catalog::Reset(
     std::copy(full.begin(), full.end(), this->Bits.begin() + s * this->W);
   }
   this->Counts.assign(n, k);
+  this->DecidedSites = k == 1 ? static_cast<std::int64_t>(n) : 0;
   this->Queued.assign(n, 0);
   this->Stack.clear();
   this->ChangedSites.clear();
@@ -91,6 +92,8 @@ bool Catalog::Restrict(std::int64_t local, const std::uint64_t* mask)
   if (changed)
   {
     const int count = PopCount(d, this->W);
+    const int before = this->Counts[static_cast<std::size_t>(local)];
+    this->DecidedSites += (count == 1) - (before == 1);
     this->Counts[static_cast<std::size_t>(local)] = count;
     this->ChangedSites.push_back(local);
     this->Push(local);

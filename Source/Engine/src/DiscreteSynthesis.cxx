@@ -88,6 +88,22 @@ std::string Format(const Coord& c)
     ")";
 }
 
+/// Block size and step per axis from the options (Algorithm 3.5's m and the overlap).
+bool BlockGeometry(const SynthesisOptions& options, Coord& m, Coord& step)
+{
+  bool wholeModel = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t n = options.Size[a];
+    m[a] = options.BlockSize[a] <= 0 ? n : std::min(options.BlockSize[a], n);
+    wholeModel = wholeModel && m[a] == n;
+    std::int64_t overlap = options.Overlap[a] < 0 ? m[a] / 2 : options.Overlap[a];
+    overlap = std::min(overlap, m[a] - 1);
+    step[a] = m[a] - overlap;
+  }
+  return wholeModel;
+}
+
 /// The solver state shared by all blocks.
 class Solver
 {
@@ -110,6 +126,13 @@ public:
       const double w = this->Weight(b);
       this->WLogW[static_cast<std::size_t>(b)] = w * std::log(w);
     }
+    double sum = 0.0, sumWLogW = 0.0;
+    for (int b = 0; b < k; ++b)
+    {
+      sum += this->Weight(b);
+      sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+    }
+    this->FullEntropy = std::log(sum) - sumWLogW / sum;
   }
 
   double Weight(int b) const
@@ -248,6 +271,7 @@ public:
   {
     Catalog& cat = this->Cat;
     cat.Reset(block.Origin, block.Dims);
+    this->Pending.clear(); // snapshots of an earlier, failed attempt are dropped
     const Coord& o = block.Origin;
     const Coord& m = block.Dims;
     auto global = [&](std::int64_t local)
@@ -319,7 +343,10 @@ public:
       {
         ++assignments;
         cat.Assign(local, choose(local));
-        return cat.Propagate();
+        const std::int64_t emptied = cat.Propagate();
+        if (emptied < 0)
+          this->MaybeCapture(block, assignments);
+        return emptied;
       }
       return -1;
     };
@@ -427,9 +454,113 @@ public:
     return -1;
   }
 
+  // -------------------------------------------------------------------------------------------
+  // Catalog snapshots
+  bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
+
+  double Entropy(const Catalog& cat, std::int64_t local) const
+  {
+    double sum = 0.0, sumWLogW = 0.0;
+    const std::uint64_t* dom = cat.Domain(local);
+    for (int w = 0; w < this->Rules.Words(); ++w)
+      for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
+      {
+        const int b = w * 64 + __builtin_ctzll(bits);
+        sum += this->Weight(b);
+        sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+      }
+    return sum > 0.0 ? std::log(sum) - sumWLogW / sum : 0.0;
+  }
+
+  /// The whole model now: outside the active block, the model; inside, the catalog.
+  CatalogSnapshot Capture(const Block* active, std::int64_t assignments) const
+  {
+    CatalogSnapshot snap;
+    const std::size_t n = this->Model.size();
+    snap.CatalogSize.assign(n, 1);
+    snap.Entropy.assign(n, 0.0f);
+    snap.Labels.resize(n);
+    snap.Block = active ? active->Index : -1;
+    snap.Assignments = assignments;
+    const auto& values = this->Rules.LabelValues();
+    const int k = this->Rules.NumberOfLabels();
+    for (std::size_t s = 0; s < n; ++s)
+    {
+      const int b = this->Model[s];
+      snap.Labels[s] = b >= 0 ? values[static_cast<std::size_t>(b)] : CatalogSnapshot::Undecided;
+      if (b < 0)
+      {
+        snap.CatalogSize[s] = k; // never constrained yet (whole-model start)
+        snap.Entropy[s] = static_cast<float>(this->FullEntropy);
+      }
+    }
+    if (active)
+    {
+      const Catalog& cat = this->Cat;
+      for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+      {
+        const Coord c = cat.Coordinates(local);
+        const auto s = static_cast<std::size_t>(this->Index(
+          { { active->Origin[0] + c[0], active->Origin[1] + c[1], active->Origin[2] + c[2] } }));
+        const int count = cat.Count(local);
+        snap.CatalogSize[s] = count;
+        snap.Entropy[s] = static_cast<float>(this->Entropy(cat, local));
+        snap.Labels[s] = count == 1 ? values[static_cast<std::size_t>(cat.Single(local))]
+                                    : CatalogSnapshot::Undecided;
+      }
+    }
+    return snap;
+  }
+
+  /// During an attempt: capture when the block's decided fraction reaches the next milestone.
+  void MaybeCapture(const Block& block, std::int64_t assignments)
+  {
+    if (!this->Snapshots())
+      return;
+    const int per = this->Options.SnapshotsPerBlock;
+    // The last milestone (all decided) is the committed block, captured by CommitSnapshots.
+    if (static_cast<int>(this->Pending.size()) >= per - 1)
+      return;
+    const double fraction = double(this->Cat.Decided()) / double(this->Cat.NumberOfSites());
+    while (static_cast<int>(this->Pending.size()) < per - 1 &&
+      fraction >= double(this->Pending.size() + 1) / double(per))
+    {
+      this->Pending.push_back(this->Capture(&block, assignments));
+    }
+  }
+
+  /// After a block: emit its snapshots (padded to SnapshotsPerBlock with the final state).
+  void CommitSnapshots(std::int64_t assignments)
+  {
+    if (!this->Snapshots())
+      return;
+    CatalogSnapshot final = this->Capture(nullptr, assignments);
+    while (static_cast<int>(this->Pending.size()) < this->Options.SnapshotsPerBlock - 1)
+      this->Pending.push_back(final);
+    this->Pending.push_back(std::move(final));
+    for (auto& snap : this->Pending)
+    {
+      snap.Step = ++this->Steps;
+      this->Options.OnSnapshot(snap);
+    }
+    this->Pending.clear();
+  }
+
+  void StartSnapshots()
+  {
+    if (!this->Snapshots())
+      return;
+    CatalogSnapshot start = this->Capture(nullptr, 0);
+    start.Step = 0;
+    this->Options.OnSnapshot(start);
+  }
+
   const AdjacencyRules& Rules;
   const SynthesisOptions& Options;
   Catalog Cat;
+  std::vector<CatalogSnapshot> Pending; ///< snapshots of the current attempt
+  std::int64_t Steps = 0;
+  double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };
   std::vector<std::int32_t> Model; ///< label indices; -1 unassigned
   std::vector<std::int32_t> Fixed; ///< boundary label indices; -1 free
@@ -442,6 +573,24 @@ public:
 // ---------------------------------------------------------------------------------------------
 // public API
 // ---------------------------------------------------------------------------------------------
+std::int64_t CountBlocks(const SynthesisOptions& options)
+{
+  LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  Coord m, step;
+  BlockGeometry(options, m, step);
+  std::int64_t count = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    count *= static_cast<std::int64_t>(Starts(options.Size[a], m[a], step[a]).size());
+  }
+  return count;
+}
+
+std::int64_t CountSnapshots(const SynthesisOptions& options)
+{
+  return options.SnapshotsPerBlock > 0 ? 1 + CountBlocks(options) * options.SnapshotsPerBlock : 0;
+}
+
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
@@ -452,15 +601,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   Solver solver(rules, options);
   const Coord& n = solver.N;
   Coord m, step;
-  bool wholeModel = true;
-  for (int a = 0; a < 3; ++a)
-  {
-    m[a] = options.BlockSize[a] <= 0 ? n[a] : std::min(options.BlockSize[a], n[a]);
-    wholeModel = wholeModel && m[a] == n[a];
-    std::int64_t overlap = options.Overlap[a] < 0 ? m[a] / 2 : options.Overlap[a];
-    overlap = std::min(overlap, m[a] - 1);
-    step[a] = m[a] - overlap;
-  }
+  const bool wholeModel = BlockGeometry(options, m, step);
   solver.ApplyBoundary();
 
   SynthesisResult result;
@@ -472,6 +613,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   const std::vector<Block> blocks = PlanBlocks(n, m, step, stats.Phases);
   stats.Blocks = static_cast<std::int64_t>(blocks.size());
 
+  solver.StartSnapshots();
   bool cancelled = false;
   for (std::size_t i = 0; i < blocks.size() && !cancelled; ++i)
   {
@@ -487,6 +629,11 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
       if (empty < 0)
         break;
     }
+    if (empty >= 0)
+    {
+      solver.Pending.clear(); // the block keeps its previous labels: repeat that state
+    }
+    solver.CommitSnapshots(stats.Assignments);
     if (empty < 0)
     {
       ++stats.BlocksAccepted;

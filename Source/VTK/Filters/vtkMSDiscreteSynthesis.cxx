@@ -5,6 +5,7 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -17,12 +18,50 @@
 
 #include "msynth/DiscreteSynthesis.h"
 
+#include <algorithm>
+#include <cmath>
+
 vtkStandardNewMacro(vtkMSDiscreteSynthesis);
 
+/// The last run: its result and snapshots, and what it was computed from.
+struct vtkMSDiscreteSynthesis::Internals
+{
+  vtkMTimeType FilterTime = 0;
+  vtkMTimeType InputTime = 0;
+  vtkDataObject* Input = nullptr;
+  bool Valid = false;
+  msynth::SynthesisResult Result;
+  std::vector<msynth::CatalogSnapshot> Snapshots;
+};
+
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
+  : Internal(new Internals)
 {
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
 }
+
+vtkMSDiscreteSynthesis::~vtkMSDiscreteSynthesis()
+{
+  delete this->Internal;
+}
+
+namespace
+{
+/// The engine's options from the filter's sizes (shared by RequestInformation and RequestData).
+msynth::SynthesisOptions SizeOptions(
+  const int size[3], const int block[3], const int overlap[3], int perBlock)
+{
+  msynth::SynthesisOptions options;
+  for (int a = 0; a < 3; ++a)
+  {
+    options.Size[a] = size[a];
+    options.BlockSize[a] = block[a];
+    options.Overlap[a] = overlap[a];
+  }
+  options.SnapshotsPerBlock = perBlock;
+  return options;
+}
+} // namespace
 
 int vtkMSDiscreteSynthesis::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -59,6 +98,35 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (this->CatalogSnapshotsPerBlock > 0)
+  {
+    const msynth::SynthesisOptions options = SizeOptions(
+      this->OutputSize, this->BlockSize, this->BlockOverlap, this->CatalogSnapshotsPerBlock);
+    const std::int64_t steps = msynth::CountSnapshots(options);
+    const double bytes = double(steps) * double(options.Size[0]) * double(options.Size[1]) *
+      double(options.Size[2]) * 12.0;
+    if (bytes > double(this->MaximumSnapshotMemory))
+    {
+      vtkErrorMacro(<< steps << " catalog snapshots of " << options.Size[0] << " x "
+                    << options.Size[1] << " x " << options.Size[2] << " sites need "
+                    << bytes / 1048576.0 << " MiB, more than MaximumSnapshotMemory ("
+                    << this->MaximumSnapshotMemory / 1048576 << " MiB); use fewer snapshots "
+                    << "per block, larger blocks or a smaller output.");
+      return 0;
+    }
+    std::vector<double> times(static_cast<std::size_t>(steps));
+    for (std::size_t i = 0; i < times.size(); ++i)
+    {
+      times[i] = static_cast<double>(i);
+    }
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { 0.0, times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
   return 1;
 }
 
@@ -115,13 +183,8 @@ int vtkMSDiscreteSynthesis::RequestData(
     return 0;
   }
 
-  msynth::SynthesisOptions options;
-  for (int a = 0; a < 3; ++a)
-  {
-    options.Size[a] = this->OutputSize[a];
-    options.BlockSize[a] = this->BlockSize[a];
-    options.Overlap[a] = this->BlockOverlap[a];
-  }
+  msynth::SynthesisOptions options = SizeOptions(
+    this->OutputSize, this->BlockSize, this->BlockOverlap, this->CatalogSnapshotsPerBlock);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
   options.Seed = static_cast<std::uint64_t>(this->Seed);
   options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
@@ -143,18 +206,35 @@ int vtkMSDiscreteSynthesis::RequestData(
     return !this->CheckAbort();
   };
 
-  msynth::SynthesisResult result;
-  try
+  Internals& cache = *this->Internal;
+  const bool fresh = !cache.Valid || cache.FilterTime != this->GetMTime() || cache.Input != input ||
+    cache.InputTime != input->GetMTime();
+  if (fresh)
   {
-    const auto analysis =
-      msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, labels));
-    result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+    cache.Valid = false;
+    cache.Snapshots.clear();
+    if (options.SnapshotsPerBlock > 0)
+    {
+      options.OnSnapshot = [&cache](const msynth::CatalogSnapshot& snap)
+      { cache.Snapshots.push_back(snap); };
+    }
+    try
+    {
+      const auto analysis =
+        msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, labels));
+      cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what());
+      return 0;
+    }
+    cache.Valid = cache.Result.Success;
+    cache.FilterTime = this->GetMTime();
+    cache.Input = input;
+    cache.InputTime = input->GetMTime();
   }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
+  const msynth::SynthesisResult& result = cache.Result;
   if (!result.Success)
   {
     if (result.Message != "cancelled")
@@ -172,6 +252,40 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkSmartPointer<vtkIntArray> label;
   label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
   output->GetPointData()->SetScalars(label);
+  if (!cache.Snapshots.empty())
+  {
+    // The time step asked for (steps are 0, 1, 2, ...).
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    double t = static_cast<double>(cache.Snapshots.size() - 1);
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    }
+    const auto last = static_cast<double>(cache.Snapshots.size() - 1);
+    const auto step = static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
+    const msynth::CatalogSnapshot& snap = cache.Snapshots[step];
+    for (std::size_t i = 0; i < snap.Labels.size(); ++i)
+    {
+      label->SetValue(static_cast<vtkIdType>(i),
+        snap.Labels[i] == msynth::CatalogSnapshot::Undecided ? VTK_INT_MIN : snap.Labels[i]);
+    }
+    vtkNew<vtkIntArray> size;
+    size->SetName("CatalogSize");
+    size->SetNumberOfTuples(static_cast<vtkIdType>(snap.CatalogSize.size()));
+    std::copy(snap.CatalogSize.begin(), snap.CatalogSize.end(), size->GetPointer(0));
+    output->GetPointData()->AddArray(size);
+    vtkNew<vtkFloatArray> entropy;
+    entropy->SetName("Entropy");
+    entropy->SetNumberOfTuples(static_cast<vtkIdType>(snap.Entropy.size()));
+    std::copy(snap.Entropy.begin(), snap.Entropy.end(), entropy->GetPointer(0));
+    output->GetPointData()->AddArray(entropy);
+    AddValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    AddValue<vtkIdTypeArray>(
+      output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
+    AddValue<vtkIdTypeArray>(
+      output->GetFieldData(), "StepAssignments", static_cast<vtkIdType>(snap.Assignments));
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
+  }
   vtkNew<vtkIntArray> lastBlock;
   lastBlock->SetName("LastBlock");
   lastBlock->SetNumberOfTuples(static_cast<vtkIdType>(result.LastBlock.size()));

@@ -24,6 +24,14 @@
  *
  * The result depends only on the inputs and Seed.
  *
+ * Watching the solver: with CatalogSnapshotsPerBlock S > 0 the output has time steps
+ * 0 .. Blocks × S (known before the run from the sizes): step 0 is the start, then S steps per
+ * block taken as the block's sites get decided; the last step is the model. Each step adds the
+ * point arrays `CatalogSize` (labels still possible) and `Entropy` (of the weighted possible
+ * labels), and `Label` holds VTK_INT_MIN where a site is not decided yet (CatalogSize > 1).
+ * Field data adds `Step`, `ActiveBlock` and `StepAssignments`. The run is done once and cached;
+ * changing the time step only picks another snapshot.
+ *
  * @sa vtkMSLabelGridReader, vtkMSTransitionTables
  */
 #ifndef vtkMSDiscreteSynthesis_h
@@ -118,9 +126,21 @@ public:
   vtkGetMacro(TrivialLabel, int);
   ///@}
 
+  ///@{
+  /// Catalog snapshots per block, exposed as time steps (see above). Default 0 (none).
+  vtkSetClampMacro(CatalogSnapshotsPerBlock, int, 0, 100000);
+  vtkGetMacro(CatalogSnapshotsPerBlock, int);
+  ///@}
+
+  ///@{
+  /// Memory allowed for snapshots (sites × steps × 12 bytes). Default 2 GiB.
+  vtkSetClampMacro(MaximumSnapshotMemory, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumSnapshotMemory, vtkIdType);
+  ///@}
+
 protected:
   vtkMSDiscreteSynthesis();
-  ~vtkMSDiscreteSynthesis() override = default;
+  ~vtkMSDiscreteSynthesis() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -142,6 +162,11 @@ private:
   int BoundaryLabels[6] = { 0, 0, 0, 0, 0, 0 };
   bool UseTrivialLabel = false;
   int TrivialLabel = 0;
+  int CatalogSnapshotsPerBlock = 0;
+  vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
+
+  struct Internals;
+  Internals* Internal;
 };
 
 #endif

@@ -51,6 +51,8 @@ public:
   {
     return (this->Domain(local)[b >> 6] >> (b & 63)) & 1u;
   }
+  /// Sites with exactly one label left.
+  std::int64_t Decided() const { return this->DecidedSites; }
   /// The only label left at @p local (Count() must be 1).
   int Single(std::int64_t local) const;
 
@@ -87,6 +89,7 @@ private:
   std::vector<std::int64_t> ChangedSites;
   std::vector<std::uint64_t> Scratch;
   std::int64_t EmptySite = -1;
+  std::int64_t DecidedSites = 0;
 };
 
 } // namespace msynth

@@ -55,6 +55,21 @@ enum class SiteOrder
   MinimumEntropy ///< the site with the fewest (entropy-weighted) choices first, ties at random
 };
 
+/**
+ * The state of the catalog over the whole model at one moment, for watching the solver work.
+ * Sites outside the block being synthesized hold their current label (catalog size 1).
+ */
+struct CatalogSnapshot
+{
+  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
+  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
+  std::int64_t Assignments = 0;          ///< label choices made so far
+  std::vector<std::int32_t> CatalogSize; ///< labels still possible per site
+  std::vector<float> Entropy;            ///< entropy of the (weighted) possible labels per site
+  std::vector<Label> Labels;             ///< the label value where decided, else Undecided
+  static constexpr Label Undecided = -2147483647 - 1;
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -80,6 +95,14 @@ struct SynthesisOptions
   std::optional<Label> TrivialLabel;
   /// Called after each block with the fraction done; returning false cancels the run.
   std::function<bool(double)> Progress;
+  /**
+   * Catalog snapshots (time steps): one at the start, then SnapshotsPerBlock per block, taken
+   * when the fraction of decided sites of the block first reaches 1/S, 2/S, ..., 1 (the last is
+   * the committed block). A block that fails repeats its previous state, so there are always
+   * exactly 1 + Blocks × SnapshotsPerBlock snapshots (see CountSnapshots). 0: none.
+   */
+  int SnapshotsPerBlock = 0;
+  std::function<void(const CatalogSnapshot&)> OnSnapshot;
 };
 
 /// A block whose every attempt failed (the model keeps its previous labels there).
@@ -116,6 +139,12 @@ struct SynthesisResult
   std::vector<std::int32_t> LastBlock;
   SynthesisStatistics Statistics;
 };
+
+/// The number of blocks Synthesize will visit for these options (sizes only).
+std::int64_t CountBlocks(const SynthesisOptions& options);
+/// The number of snapshots Synthesize will report: 1 + CountBlocks × SnapshotsPerBlock (0 if
+/// SnapshotsPerBlock is 0).
+std::int64_t CountSnapshots(const SynthesisOptions& options);
 
 /**
  * @brief Runs discrete model synthesis.
