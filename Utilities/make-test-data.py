@@ -63,6 +63,7 @@ def main():
     os.makedirs(malformed, exist_ok=True)
 
     write(label_image((7, 7, 5), village), os.path.join(examples, "Village.vti"))
+    text_examples(examples, malformed)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
@@ -95,6 +96,41 @@ def main():
     with open(os.path.join(malformed, "too-few-values.vti"), "w") as f:
         f.write(good.replace('WholeExtent="0 3 0 3 0 0"', 'WholeExtent="0 3 0 4 0 0"')
                     .replace('Piece Extent="0 3 0 3 0 0"', 'Piece Extent="0 3 0 4 0 0"'))
+
+
+def write_text_model(path, dims, fn, objects=None):
+    """The original model-synthesis text format: 3 header lines, X Y Z, Z slices of X rows of Y."""
+    nx, ny, nz = dims
+    lines = ["ModelSynth test example", "written by Utilities/make-test-data.py", "labels: see <Objects>",
+             "%d %d %d" % dims]
+    for z in range(nz):
+        lines.append("")
+        for x in range(nx):
+            lines.append(" ".join(str(fn(x, y, z)) for y in range(ny)))
+    if objects:
+        lines += ["", "<Objects>"]
+        for label, names in objects:
+            lines.append(str(label))
+            lines += ["$" + n for n in names]
+            lines.append("#")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def text_examples(examples, malformed):
+    write_text_model(os.path.join(examples, "Village.txt"), (7, 7, 5), village,
+                     [(1, ["ground_tile"]), (2, ["wall", "window"]), (3, ["roof"])])
+    header = "a\nb\nc\n"
+    bad = {
+        "text-short-row.txt": header + "2 3 1\n1 1 1\n1 1\n",
+        "text-bad-dimensions.txt": header + "2 three 1\n",
+        "text-huge.txt": header + "100000 100000 100000\n0\n",
+        "text-missing-slice.txt": header + "1 2 2\n1 1\n",
+        "text-bad-objects.txt": header + "1 1 1\n4\n<Objects>\n4\nwall\n#\n",
+    }
+    for name, text in bad.items():
+        with open(os.path.join(malformed, name), "w") as f:
+            f.write(text)
 
 
 if __name__ == "__main__":

@@ -71,6 +71,18 @@ class PipelineTest(unittest.TestCase):
         self.assertTrue(np.array_equal(dense.transpose(2, 1, 0), original.astype(np.float32)))
         self.assertEqual(grid.activeVoxelCount(), int((original != 0).sum()))  # empty is background
 
+    def test_text_format_reads_like_vti(self):
+        # Both files were written from the same village by Utilities/make-test-data.py.
+        vti, _ = self.run_pipeline("Examples/Village.vti")
+        txt, tables = self.run_pipeline("Examples/Village.txt")
+        self.assertTrue(np.array_equal(labels_zyx(vti.GetOutput()), labels_zyx(txt.GetOutput())))
+        fd = txt.GetOutput().GetFieldData()
+        names = fd.GetAbstractArray("PieceNames")
+        labels = fd.GetArray("PieceLabels")
+        pieces = [(labels.GetValue(i), names.GetValue(i)) for i in range(names.GetNumberOfValues())]
+        self.assertEqual(pieces, [(1, "ground_tile"), (2, "wall"), (2, "window"), (3, "roof")])
+        self.assertEqual(tables.GetOutput(0).GetNumberOfRows(), 22)
+
     def test_malformed_examples_report_errors(self):
         cases = {
             "Malformed/no-label-array.vti": "has no label array 'Label'",

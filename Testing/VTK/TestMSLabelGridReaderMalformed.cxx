@@ -48,5 +48,12 @@ int TestMSLabelGridReaderMalformed(int, char*[])
   rc |= ExpectError("Malformed/huge-extent.vti", "more than the maximum of 134217728 sites");
   rc |= ExpectError("Malformed/too-few-values.vti", "could not be read");
   rc |= ExpectError("Examples/Village.vti", "more than the maximum of 100 sites", 100);
+  // The original program's text format: errors name the file and the line.
+  rc |= ExpectError("Malformed/text-short-row.txt", "line 6: row 1 of slice 0 has 2 values");
+  rc |= ExpectError("Malformed/text-bad-dimensions.txt", "line 4: 'three' is not an integer");
+  rc |= ExpectError("Malformed/text-huge.txt", "exceed the limit of 134217728 sites");
+  rc |= ExpectError("Malformed/text-missing-slice.txt", "the file ends in slice 1");
+  rc |= ExpectError("Malformed/text-bad-objects.txt", "starting with '$'");
+  rc |= ExpectError("Examples/Village.txt", "exceed the limit of 100 sites", 100);
   return rc;
 }

@@ -17,17 +17,51 @@
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataReader.h"
 
+#include "msynth/TextModel.h"
+
+#include <cctype>
+
 #include <sys/stat.h>
 
 vtkStandardNewMacro(vtkMSLabelGridReader);
 
+struct vtkMSLabelGridReader::Internals
+{
+  std::string Key; ///< file name, size and time of the cached text model
+  msynth::TextModel Text;
+};
+
+namespace
+{
+bool EndsWith(const std::string& s, const char* suffix)
+{
+  const std::string x(suffix);
+  if (s.size() < x.size())
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - x.size() + i])) != x[i])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
 vtkMSLabelGridReader::vtkMSLabelGridReader()
   : Reader(vtkSmartPointer<vtkXMLImageDataReader>::New())
+  , Internal(new Internals)
 {
   this->SetNumberOfInputPorts(0);
 }
 
-vtkMSLabelGridReader::~vtkMSLabelGridReader() = default;
+vtkMSLabelGridReader::~vtkMSLabelGridReader()
+{
+  delete this->Internal;
+}
 
 int vtkMSLabelGridReader::CanReadFile(const char* name)
 {
@@ -36,7 +70,32 @@ int vtkMSLabelGridReader::CanReadFile(const char* name)
     return 0;
   }
   const std::string s(name);
-  return s.size() > 4 && s.compare(s.size() - 4, 4, ".vti") == 0 ? 1 : 0;
+  return EndsWith(s, ".vti") || EndsWith(s, ".txt") ? 1 : 0;
+}
+
+bool vtkMSLabelGridReader::ReadText()
+{
+  struct stat info;
+  ::stat(this->FileName.c_str(), &info);
+  const std::string key = this->FileName + '\n' + std::to_string(info.st_size) + '\n' +
+    std::to_string(info.st_mtime) + '\n' + std::to_string(this->MaximumNumberOfSites);
+  if (key == this->Internal->Key)
+  {
+    return true;
+  }
+  this->Internal->Key.clear();
+  try
+  {
+    this->Internal->Text = msynth::ReadTextModelFile(this->FileName, this->MaximumNumberOfSites);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    return false;
+  }
+  this->Internal->Key = key;
+  return true;
 }
 
 void vtkMSLabelGridReader::Fail(const std::string& problem)
@@ -60,6 +119,11 @@ bool vtkMSLabelGridReader::ReadHeader()
     vtkErrorMacro(<< "'" << this->FileName << "': no such file.");
     this->SetErrorCode(vtkErrorCode::FileNotFoundError);
     return false;
+  }
+  this->IsText = EndsWith(this->FileName, ".txt");
+  if (this->IsText)
+  {
+    return this->ReadText();
   }
   this->Reader->SetFileName(this->FileName.c_str());
   std::string messages;
@@ -107,9 +171,22 @@ int vtkMSLabelGridReader::RequestInformation(
   {
     return 0;
   }
-  vtkInformation* fileInfo = this->Reader->GetOutputInformation(0);
   int extent[6];
   double origin[3], spacing[3];
+  if (this->IsText)
+  {
+    const auto& d = this->Internal->Text.Grid.Dimensions();
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    const int whole[6] = { 0, static_cast<int>(d[0]) - 1, 0, static_cast<int>(d[1]) - 1, 0,
+      static_cast<int>(d[2]) - 1 };
+    const double unit[3] = { 1, 1, 1 }, zero[3] = { 0, 0, 0 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), zero, 3);
+    outInfo->Set(vtkDataObject::SPACING(), unit, 3);
+    vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+    return 1;
+  }
+  vtkInformation* fileInfo = this->Reader->GetOutputInformation(0);
   fileInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
   fileInfo->Get(vtkDataObject::ORIGIN(), origin);
   fileInfo->Get(vtkDataObject::SPACING(), spacing);
@@ -157,6 +234,40 @@ int vtkMSLabelGridReader::RequestData(
   if (!this->ReadHeader())
   {
     return 0;
+  }
+  vtkNew<vtkStringArray> source;
+  source->SetName("ExampleFile");
+  source->InsertNextValue(this->FileName);
+  if (this->IsText)
+  {
+    const msynth::TextModel& text = this->Internal->Text;
+    const auto& d = text.Grid.Dimensions();
+    output->SetExtent(
+      0, static_cast<int>(d[0]) - 1, 0, static_cast<int>(d[1]) - 1, 0, static_cast<int>(d[2]) - 1);
+    output->SetOrigin(0, 0, 0);
+    output->SetSpacing(1, 1, 1);
+    vtkSmartPointer<vtkIntArray> labels;
+    labels.TakeReference(vtkMSEngineBridge::NewLabelArray(text.Grid, "Label"));
+    output->GetPointData()->SetScalars(labels);
+    output->GetFieldData()->AddArray(source);
+    vtkNew<vtkIntArray> pieceLabels;
+    pieceLabels->SetName("PieceLabels");
+    vtkNew<vtkStringArray> pieceNames;
+    pieceNames->SetName("PieceNames");
+    for (const auto& kv : text.Pieces)
+    {
+      for (const auto& name : kv.second)
+      {
+        pieceLabels->InsertNextValue(kv.first);
+        pieceNames->InsertNextValue(name);
+      }
+    }
+    if (pieceNames->GetNumberOfValues() > 0)
+    {
+      output->GetFieldData()->AddArray(pieceLabels);
+      output->GetFieldData()->AddArray(pieceNames);
+    }
+    return 1;
   }
   std::string messages;
   const bool ok = vtkMSEngineBridge::Execute(this->Reader, messages);
@@ -213,9 +324,6 @@ int vtkMSLabelGridReader::RequestData(
   }
   output->CopyStructure(sites);
   output->GetPointData()->SetScalars(out);
-  vtkNew<vtkStringArray> source;
-  source->SetName("ExampleFile");
-  source->InsertNextValue(this->FileName);
   output->GetFieldData()->AddArray(source);
   return 1;
 }

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkMSLabelGridReader
- * @brief Reads a discrete example model (a label grid) stored as VTK image data (.vti).
+ * @brief Reads a discrete example model (a label grid): VTK image data (.vti) or the text
+ * format of the original model-synthesis program (.txt, see msynth/TextModel.h).
  *
- * The file must hold an integer array of labels (default name `Label`), as point data (one
+ * A .vti file must hold an integer array of labels (default name `Label`), as point data (one
  * label per point: a point is a site of the model) or as cell data (one label per voxel; the
  * output then has one point per input cell, at the cell centers). The output is vtkImageData
  * whose point data holds exactly one array, a vtkIntArray named `Label`, and whose field data
  * holds `ExampleFile` (the file name), so the source of a result can be traced.
+ *
+ * A .txt file gives X Y Z and the labels slice by slice; its optional <Objects> section names
+ * the pieces of each label, returned as field data `PieceLabels` (int) and `PieceNames`
+ * (string), one entry per piece. Spacing 1, origin 0.
  *
  * Dissertation §3.1: labels are integers; 2D examples have one layer in z.
  *
@@ -53,7 +58,7 @@ public:
   vtkGetMacro(MaximumNumberOfSites, vtkIdType);
   ///@}
 
-  /// True when @p name looks like a file this reader opens (extension .vti).
+  /// True when @p name looks like a file this reader opens (extension .vti or .txt).
   static int CanReadFile(const char* name);
 
 protected:
@@ -69,6 +74,8 @@ private:
 
   /// Reads the file's header into the internal reader and decides the label association.
   bool ReadHeader();
+  /// Reads a text-format example (cached while the file is unchanged).
+  bool ReadText();
   void Fail(const std::string& problem);
 
   std::string FileName;
@@ -77,6 +84,10 @@ private:
 
   vtkSmartPointer<vtkXMLImageDataReader> Reader;
   bool LabelsOnCells = false;
+  bool IsText = false;
+
+  struct Internals;
+  Internals* Internal;
 };
 
 #endif
