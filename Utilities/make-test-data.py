@@ -64,6 +64,7 @@ def main():
 
     write(label_image((7, 7, 5), village), os.path.join(examples, "Village.vti"))
     text_examples(examples, malformed)
+    vox_examples(examples, malformed)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
@@ -131,6 +132,50 @@ def text_examples(examples, malformed):
     for name, text in bad.items():
         with open(os.path.join(malformed, name), "w") as f:
             f.write(text)
+
+
+def vox_bytes(dims, fn, palette=True, chunks=None):
+    """A MagicaVoxel file: MAIN { SIZE, XYZI, RGBA } (or the given child chunks)."""
+    import struct
+
+    def chunk(cid, content, children=b""):
+        return cid + struct.pack("<II", len(content), len(children)) + content + children
+
+    nx, ny, nz = dims
+    if chunks is None:
+        voxels = [(x, y, z, fn(x, y, z)) for z in range(nz) for y in range(ny) for x in range(nx)
+                  if fn(x, y, z) != 0]
+        chunks = chunk(b"SIZE", struct.pack("<III", nx, ny, nz))
+        chunks += chunk(b"XYZI", struct.pack("<I", len(voxels)) + b"".join(struct.pack("<BBBB", *v) for v in voxels))
+        if palette:
+            colours = b"".join(struct.pack("<BBBB", (37 * i) % 256, (91 * i) % 256, (53 * i) % 256, 255)
+                               for i in range(1, 257))
+            chunks += chunk(b"RGBA", colours)
+    return b"VOX " + struct.pack("<I", 150) + chunk(b"MAIN", b"", chunks)
+
+
+def vox_examples(examples, malformed):
+    import struct
+
+    with open(os.path.join(examples, "Village.vox"), "wb") as f:
+        f.write(vox_bytes((7, 7, 5), village))
+    good = vox_bytes((7, 7, 5), village)
+    bad = {
+        "vox-bad-magic.vox": b"VOXX" + good[4:],
+        "vox-truncated.vox": good[: len(good) // 2],
+        "vox-no-model.vox": b"VOX " + struct.pack("<I", 150) + b"MAIN" + struct.pack("<II", 0, 0),
+        "vox-voxel-outside.vox": vox_bytes((2, 2, 2), None, chunks=(
+            b"SIZE" + struct.pack("<IIIII", 12, 0, 2, 2, 2)
+            + b"XYZI" + struct.pack("<III", 8, 0, 1) + struct.pack("<BBBB", 5, 0, 0, 1))),
+        "vox-count-too-large.vox": vox_bytes((2, 2, 2), None, chunks=(
+            b"SIZE" + struct.pack("<IIIII", 12, 0, 2, 2, 2)
+            + b"XYZI" + struct.pack("<III", 8, 0, 1000000) + struct.pack("<BBBB", 0, 0, 0, 1))),
+        "vox-huge-size.vox": vox_bytes((2, 2, 2), None, chunks=(
+            b"SIZE" + struct.pack("<IIIII", 12, 0, 4000, 4000, 4000))),
+    }
+    for name, data in bad.items():
+        with open(os.path.join(malformed, name), "wb") as f:
+            f.write(data)
 
 
 if __name__ == "__main__":

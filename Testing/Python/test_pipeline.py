@@ -83,6 +83,15 @@ class PipelineTest(unittest.TestCase):
         self.assertEqual(pieces, [(1, "ground_tile"), (2, "wall"), (2, "window"), (3, "roof")])
         self.assertEqual(tables.GetOutput(0).GetNumberOfRows(), 22)
 
+    def test_magicavoxel_reads_like_vti(self):
+        vti, _ = self.run_pipeline("Examples/Village.vti")
+        vox, _ = self.run_pipeline("Examples/Village.vox")
+        self.assertTrue(np.array_equal(labels_zyx(vti.GetOutput()), labels_zyx(vox.GetOutput())))
+        palette = vox.GetOutput().GetFieldData().GetArray("PaletteRGBA")
+        self.assertEqual((palette.GetNumberOfTuples(), palette.GetNumberOfComponents()), (256, 4))
+        # Written by make-test-data.py: chunk entry i (palette index i + 1) is (37i, 91i, 53i, 255) mod 256.
+        self.assertEqual(palette.GetTuple4(3), ((37 * 3) % 256, (91 * 3) % 256, (53 * 3) % 256, 255))
+
     def test_malformed_examples_report_errors(self):
         cases = {
             "Malformed/no-label-array.vti": "has no label array 'Label'",

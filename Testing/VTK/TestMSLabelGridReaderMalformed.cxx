@@ -55,5 +55,13 @@ int TestMSLabelGridReaderMalformed(int, char*[])
   rc |= ExpectError("Malformed/text-missing-slice.txt", "the file ends in slice 1");
   rc |= ExpectError("Malformed/text-bad-objects.txt", "starting with '$'");
   rc |= ExpectError("Examples/Village.txt", "exceed the limit of 100 sites", 100);
+  // MagicaVoxel: every length and count is checked against the file.
+  rc |= ExpectError("Malformed/vox-bad-magic.vox", "does not start with 'VOX '");
+  rc |= ExpectError("Malformed/vox-truncated.vox", "more children than the file holds");
+  rc |= ExpectError("Malformed/vox-no-model.vox", "no model");
+  rc |= ExpectError("Malformed/vox-voxel-outside.vox", "voxel (5, 0, 0) lies outside");
+  rc |= ExpectError("Malformed/vox-count-too-large.vox", "declares 1000000 voxels but holds 1");
+  rc |= ExpectError("Malformed/vox-huge-size.vox", "outside 1..2048");
+  rc |= ExpectError("Examples/Village.vox", "exceeds the limit of 100 sites", 100);
   return rc;
 }

@@ -15,10 +15,13 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 
 #include "msynth/TextModel.h"
+#include "msynth/VoxModel.h"
 
+#include <array>
 #include <cctype>
 
 #include <sys/stat.h>
@@ -27,8 +30,9 @@ vtkStandardNewMacro(vtkMSLabelGridReader);
 
 struct vtkMSLabelGridReader::Internals
 {
-  std::string Key; ///< file name, size and time of the cached text model
-  msynth::TextModel Text;
+  std::string Key;        ///< file name, size and time of the cached model
+  msynth::TextModel Text; ///< .txt and .vox files (Grid; Pieces for .txt)
+  std::vector<std::array<std::uint8_t, 4>> Palette; ///< .vox files
 };
 
 namespace
@@ -70,7 +74,7 @@ int vtkMSLabelGridReader::CanReadFile(const char* name)
     return 0;
   }
   const std::string s(name);
-  return EndsWith(s, ".vti") || EndsWith(s, ".txt") ? 1 : 0;
+  return EndsWith(s, ".vti") || EndsWith(s, ".txt") || EndsWith(s, ".vox") ? 1 : 0;
 }
 
 bool vtkMSLabelGridReader::ReadText()
@@ -86,7 +90,23 @@ bool vtkMSLabelGridReader::ReadText()
   this->Internal->Key.clear();
   try
   {
-    this->Internal->Text = msynth::ReadTextModelFile(this->FileName, this->MaximumNumberOfSites);
+    this->Internal->Palette.clear();
+    if (EndsWith(this->FileName, ".vox"))
+    {
+      msynth::VoxModel vox = msynth::ReadVoxModelFile(this->FileName, this->MaximumNumberOfSites);
+      if (vox.NumberOfModels > 1)
+      {
+        vtkWarningMacro(<< "'" << this->FileName << "': holds " << vox.NumberOfModels
+                        << " models; only the first is read.");
+      }
+      this->Internal->Text = msynth::TextModel();
+      this->Internal->Text.Grid = std::move(vox.Grid);
+      this->Internal->Palette = std::move(vox.Palette);
+    }
+    else
+    {
+      this->Internal->Text = msynth::ReadTextModelFile(this->FileName, this->MaximumNumberOfSites);
+    }
   }
   catch (const std::exception& e)
   {
@@ -120,7 +140,7 @@ bool vtkMSLabelGridReader::ReadHeader()
     this->SetErrorCode(vtkErrorCode::FileNotFoundError);
     return false;
   }
-  this->IsText = EndsWith(this->FileName, ".txt");
+  this->IsText = EndsWith(this->FileName, ".txt") || EndsWith(this->FileName, ".vox");
   if (this->IsText)
   {
     return this->ReadText();
@@ -266,6 +286,17 @@ int vtkMSLabelGridReader::RequestData(
     {
       output->GetFieldData()->AddArray(pieceLabels);
       output->GetFieldData()->AddArray(pieceNames);
+    }
+    if (!this->Internal->Palette.empty())
+    {
+      vtkNew<vtkUnsignedCharArray> palette;
+      palette->SetName("PaletteRGBA");
+      palette->SetNumberOfComponents(4);
+      for (const auto& rgba : this->Internal->Palette)
+      {
+        palette->InsertNextTypedTuple(rgba.data());
+      }
+      output->GetFieldData()->AddArray(palette);
     }
     return 1;
   }

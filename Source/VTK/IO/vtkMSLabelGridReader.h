@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkMSLabelGridReader
- * @brief Reads a discrete example model (a label grid): VTK image data (.vti) or the text
- * format of the original model-synthesis program (.txt, see msynth/TextModel.h).
+ * @brief Reads a discrete example model (a label grid): VTK image data (.vti), the text
+ * format of the original model-synthesis program (.txt, see msynth/TextModel.h) or a
+ * MagicaVoxel model (.vox: palette index = label, empty = 0; field data `PaletteRGBA` holds
+ * the 256 palette colours; see msynth/VoxModel.h).
  *
  * A .vti file must hold an integer array of labels (default name `Label`), as point data (one
  * label per point: a point is a site of the model) or as cell data (one label per voxel; the
@@ -58,7 +60,7 @@ public:
   vtkGetMacro(MaximumNumberOfSites, vtkIdType);
   ///@}
 
-  /// True when @p name looks like a file this reader opens (extension .vti or .txt).
+  /// True when @p name looks like a file this reader opens (.vti, .txt or .vox).
   static int CanReadFile(const char* name);
 
 protected:
