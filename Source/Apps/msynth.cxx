@@ -10,6 +10,7 @@
 // usage error. Errors are one line on stderr naming the file and the problem.
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSTransitionTables.h"
@@ -25,11 +26,13 @@
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
 
 #include "msynth/AtomicFile.h"
 #include "msynth/ConsistencyCheck.h"
@@ -53,7 +56,7 @@ const char* const Usage = R"(usage:
   msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb
   msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
                                       discrete model synthesis: writes DIR/labels.vti,
-                                      DIR/model.vdb and DIR/statistics.json
+                                      DIR/mesh.vtp, DIR/model.vdb and DIR/statistics.json
   msynth check EXAMPLE MODEL.vti      verify that MODEL satisfies the adjacency constraint
                                       of EXAMPLE (exit 0) or list violations (exit 1)
   msynth --help | --version
@@ -66,6 +69,7 @@ synthesize options:
   --choice CHOICE     uniform (default) or frequency (labels weighted by the example)
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0)
+  --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
@@ -298,7 +302,26 @@ struct SynthesizeArguments
   int Choice = vtkMSDiscreteSynthesis::UNIFORM;
   bool HasGround = false, HasEmpty = false;
   int Ground = 0, Empty = 0;
+  std::string Pieces;
 };
+
+/// Writes @p mesh as VTK XML poly data, atomically.
+void WriteMesh(const std::string& path, vtkPolyData* mesh)
+{
+  const std::string tmp = msynth::TemporaryPathBeside(path);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(mesh);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(writer, messages) || writer->GetErrorCode() != 0)
+  {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("'" + path + "': could not be written: " + messages);
+  }
+  msynth::CommitTemporaryFile(tmp, path);
+}
 
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
@@ -346,6 +369,12 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   fields->RemoveArray("Seconds");
   saved->SetFieldData(fields);
   WriteImage(dir + "/labels.vti", saved);
+  vtkNew<vtkMSLabelGeometry> geometry;
+  geometry->SetInputData(model);
+  geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
+  geometry->SetPieceDirectory(a.Pieces.c_str());
+  Run(geometry);
+  WriteMesh(dir + "/mesh.vtp", geometry->GetOutput());
   vtkNew<vtkMSOpenVDBWriter> vdb;
   vdb->SetInputData(model);
   vdb->SetFileName((dir + "/model.vdb").c_str());
@@ -382,8 +411,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
           << "\n}\n";
     });
   std::cout << text << "\n"
-            << "wrote " << dir << "/labels.vti, " << dir << "/model.vdb, " << dir
-            << "/statistics.json\n";
+            << "wrote " << dir << "/labels.vti, " << dir << "/mesh.vtp, " << dir << "/model.vdb, "
+            << dir << "/statistics.json\n";
   return 0;
 }
 
@@ -496,6 +525,15 @@ int Main(const std::vector<std::string>& args)
       const long long label = integer(i, args[i]);
       (ground ? synth.HasGround : synth.HasEmpty) = true;
       (ground ? synth.Ground : synth.Empty) = static_cast<int>(label);
+      continue;
+    }
+    if (args[i] == "--pieces")
+    {
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ "--pieces needs a folder" };
+      }
+      synth.Pieces = args[++i];
       continue;
     }
     if (args[i] == "--order" || args[i] == "--choice")

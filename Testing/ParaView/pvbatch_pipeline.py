@@ -105,6 +105,10 @@ for z in range(mz):
                     pair = (axis, mvalue(x, y, z), mvalue(x + dx, y + dy, z + dz))
                     check(pair in expected, "model pair %s at %s occurs in the example" % (pair, (x, y, z)))
 
+# Geometry of the model through its proxy: closed voxel surfaces, one face per label change.
+mesh = servermanager.Fetch(ModelSynthLabelGeometry(Input=synthesis))
+check(mesh.GetNumberOfCells() > 0 and mesh.GetCellData().GetArray("Label") is not None, "mesh")
+
 # Catalog evolution as time steps: the animation scene sees them.
 synthesis.CatalogSnapshotsPerBlock = 2
 synthesis.UpdatePipelineInformation()

@@ -61,8 +61,14 @@ class CommandLineTest(unittest.TestCase):
         r = run("synthesize", example, "--size", "30", "24", "5", "--block", "10", "10", "5",
                 "--seed", "9", "--ground", "1", "--empty", "0", "--order", "entropy", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
-        for name in ("labels.vti", "model.vdb", "statistics.json"):
+        for name in ("labels.vti", "mesh.vtp", "model.vdb", "statistics.json"):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        mesh = vtkXMLPolyDataReader()
+        mesh.SetFileName(os.path.join(out, "mesh.vtp"))
+        mesh.Update()
+        self.assertGreater(mesh.GetOutput().GetNumberOfCells(), 0)
+        self.assertIsNotNone(mesh.GetOutput().GetCellData().GetArray("Label"))
         with open(os.path.join(out, "statistics.json")) as f:
             stats = json.load(f)
         self.assertEqual(stats["seed"], 9)

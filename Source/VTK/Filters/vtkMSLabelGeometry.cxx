@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSLabelGeometry.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkObjectFactory.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSTLReader.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include "msynth/VoxelSurface.h"
+
+#include <map>
+#include <set>
+#include <sys/stat.h>
+
+vtkStandardNewMacro(vtkMSLabelGeometry);
+
+int vtkMSLabelGeometry::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+namespace
+{
+bool IsFile(const std::string& path)
+{
+  struct stat info;
+  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+}
+
+/// Reads a piece mesh with the reader its extension calls for; nullptr and @p problem on error.
+vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& problem)
+{
+  vtkSmartPointer<vtkAlgorithm> reader;
+  const std::string ext = path.substr(path.rfind('.') + 1);
+  if (ext == "vtp")
+  {
+    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == "obj")
+  {
+    auto r = vtkSmartPointer<vtkOBJReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == "ply")
+  {
+    auto r = vtkSmartPointer<vtkPLYReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else
+  {
+    auto r = vtkSmartPointer<vtkSTLReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+  {
+    problem = "'" + path + "': could not be read: " + messages;
+    return nullptr;
+  }
+  auto* mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!mesh || mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
+  {
+    problem = "'" + path + "': holds no geometry";
+    return nullptr;
+  }
+  return mesh;
+}
+} // namespace
+
+int vtkMSLabelGeometry::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkDataArray* labels = input ? input->GetPointData()->GetArray("Label") : nullptr;
+  labels = labels ? labels : (input ? input->GetPointData()->GetScalars() : nullptr);
+  std::string problem;
+  if (!labels || !vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+  {
+    vtkErrorMacro(<< (labels ? problem : std::string("The input has no label array.")));
+    return 0;
+  }
+  msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(input, labels);
+  const double* spacing = input->GetSpacing();
+  const double* origin = input->GetOrigin();
+  int extent[6];
+  input->GetExtent(extent);
+  // World position of site (0, 0, 0) of the grid.
+  const std::array<double, 3> start{ { origin[0] + extent[0] * spacing[0],
+    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2] } };
+
+  // Pieces for the labels present.
+  std::map<msynth::Label, vtkSmartPointer<vtkPolyData>> pieces;
+  if (!this->PieceDirectory.empty())
+  {
+    struct stat info;
+    if (::stat(this->PieceDirectory.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+    {
+      vtkErrorMacro(<< "'" << this->PieceDirectory << "': no such folder of pieces.");
+      return 0;
+    }
+    const std::set<msynth::Label> present(grid.Data().begin(), grid.Data().end());
+    for (msynth::Label b : present)
+    {
+      if (b == this->EmptyLabel)
+        continue;
+      for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
+      {
+        const std::string path = this->PieceDirectory + "/" + std::to_string(b) + ext;
+        if (IsFile(path))
+        {
+          auto mesh = ReadPiece(path, problem);
+          if (!mesh)
+          {
+            vtkErrorMacro(<< problem);
+            return 0;
+          }
+          pieces[b] = mesh;
+          break;
+        }
+      }
+    }
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> cellLabels;
+  cellLabels->SetName("Label");
+
+  // Voxel surface of the labels without a piece (labels with one count as empty there).
+  msynth::LabelGrid voxels = grid;
+  for (auto& v : voxels.Data())
+    if (pieces.count(v))
+      v = this->EmptyLabel;
+  const msynth::VoxelSurface surface = msynth::ExtractVoxelSurface(
+    voxels, this->EmptyLabel, start, { { spacing[0], spacing[1], spacing[2] } });
+  for (const auto& p : surface.Points)
+    points->InsertNextPoint(p.data());
+  for (std::size_t q = 0; q < surface.Quads.size(); ++q)
+  {
+    const vtkIdType ids[4] = { surface.Quads[q][0], surface.Quads[q][1], surface.Quads[q][2],
+      surface.Quads[q][3] };
+    polys->InsertNextCell(4, ids);
+    cellLabels->InsertNextValue(surface.QuadLabels[q]);
+  }
+
+  // Pieces, placed at their sites.
+  const auto& n = grid.Dimensions();
+  vtkNew<vtkIdList> cell;
+  for (const auto& kv : pieces)
+  {
+    vtkPolyData* piece = kv.second;
+    vtkCellArray* cells = piece->GetPolys()->GetNumberOfCells() ? piece->GetPolys() : nullptr;
+    if (!cells)
+    {
+      vtkWarningMacro(<< "The piece of label " << kv.first << " has no polygons; skipped.");
+      continue;
+    }
+    for (std::int64_t z = 0; z < n[2]; ++z)
+      for (std::int64_t y = 0; y < n[1]; ++y)
+        for (std::int64_t x = 0; x < n[0]; ++x)
+        {
+          if (grid.At(x, y, z) != kv.first)
+            continue;
+          const vtkIdType base = points->GetNumberOfPoints();
+          const double center[3] = { start[0] + double(x) * spacing[0],
+            start[1] + double(y) * spacing[1], start[2] + double(z) * spacing[2] };
+          for (vtkIdType i = 0; i < piece->GetNumberOfPoints(); ++i)
+          {
+            double p[3];
+            piece->GetPoint(i, p);
+            points->InsertNextPoint(center[0] + p[0] * spacing[0], center[1] + p[1] * spacing[1],
+              center[2] + p[2] * spacing[2]);
+          }
+          for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+          {
+            cells->GetCellAtId(c, cell);
+            for (vtkIdType i = 0; i < cell->GetNumberOfIds(); ++i)
+              cell->SetId(i, cell->GetId(i) + base);
+            polys->InsertNextCell(cell);
+            cellLabels->InsertNextValue(kv.first);
+          }
+        }
+  }
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetCellData()->SetScalars(cellLabels);
+  return 1;
+}
+
+void vtkMSLabelGeometry::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "EmptyLabel: " << this->EmptyLabel << "\n";
+  os << indent << "PieceDirectory: " << this->PieceDirectory << "\n";
+}

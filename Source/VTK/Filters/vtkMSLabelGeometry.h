@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSLabelGeometry
+ * @brief Geometry of a label grid (an example or a synthesized model): the model pieces of each
+ * label placed at its sites, or, for labels without a piece, the voxel surface.
+ *
+ * Input: vtkImageData with the integer point array `Label` (else the active scalars).
+ *
+ * Pieces: PieceDirectory names a folder holding one mesh per label, named after the label value:
+ * `<label>.vtp`, `.obj`, `.ply` or `.stl` (e.g. `2.obj` for label 2). A piece is modelled in the
+ * unit cube [-0.5, 0.5]³ around its site and is scaled by the image spacing and moved to the
+ * site. Labels without a piece file, or all labels when PieceDirectory is empty, give the voxel
+ * surface: each site is a cube, with a face wherever it meets another label or the outside,
+ * oriented outward (each label's surface is closed).
+ *
+ * Output: vtkPolyData with the cell array `Label`. Sites with EmptyLabel produce nothing.
+ *
+ * @sa vtkMSDiscreteSynthesis, vtkMSLabelGridReader
+ */
+#ifndef vtkMSLabelGeometry_h
+#define vtkMSLabelGeometry_h
+
+#include "ModelSynthFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // for ivar
+
+class MODELSYNTHFILTERS_EXPORT vtkMSLabelGeometry : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMSLabelGeometry* New();
+  vtkTypeMacro(vtkMSLabelGeometry, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The label that produces no geometry. Default 0.
+  vtkSetMacro(EmptyLabel, int);
+  vtkGetMacro(EmptyLabel, int);
+  ///@}
+
+  ///@{
+  /// Folder of piece meshes named by label; empty for the voxel surface only. Default "".
+  vtkSetStdStringFromCharMacro(PieceDirectory);
+  vtkGetCharFromStdStringMacro(PieceDirectory);
+  ///@}
+
+protected:
+  vtkMSLabelGeometry() = default;
+  ~vtkMSLabelGeometry() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSLabelGeometry(const vtkMSLabelGeometry&) = delete;
+  void operator=(const vtkMSLabelGeometry&) = delete;
+
+  int EmptyLabel = 0;
+  std::string PieceDirectory;
+};
+
+#endif
