@@ -31,6 +31,7 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
@@ -70,6 +71,8 @@ synthesize options:
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0)
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
+  --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
+                      arrays Weight_<label> weight each label (0 forbids it there)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
@@ -303,6 +306,7 @@ struct SynthesizeArguments
   bool HasGround = false, HasEmpty = false;
   int Ground = 0, Empty = 0;
   std::string Pieces;
+  std::string Guide;
 };
 
 /// Writes @p mesh as VTK XML poly data, atomically.
@@ -354,6 +358,22 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   }
   synthesis->SetUseBoundary(use);
   synthesis->SetBoundaryLabels(labels);
+  vtkNew<vtkXMLImageDataReader> guide;
+  if (!a.Guide.empty())
+  {
+    struct stat info;
+    if (::stat(a.Guide.c_str(), &info) != 0)
+    {
+      throw std::runtime_error("'" + a.Guide + "': no such guide file");
+    }
+    guide->SetFileName(a.Guide.c_str());
+    std::string messages;
+    if (!vtkMSEngineBridge::Execute(guide, messages))
+    {
+      throw std::runtime_error("'" + a.Guide + "': not a readable guide volume: " + messages);
+    }
+    synthesis->SetGuideConnection(guide->GetOutputPort());
+  }
   {
     ProgressBar bar(synthesis);
     Run(synthesis);
@@ -527,13 +547,14 @@ int Main(const std::vector<std::string>& args)
       (ground ? synth.Ground : synth.Empty) = static_cast<int>(label);
       continue;
     }
-    if (args[i] == "--pieces")
+    if (args[i] == "--pieces" || args[i] == "--guide")
     {
       if (i + 1 >= args.size())
       {
-        throw UsageError{ "--pieces needs a folder" };
+        throw UsageError{ args[i] + " needs a value" };
       }
-      synth.Pieces = args[++i];
+      (args[i] == "--pieces" ? synth.Pieces : synth.Guide) = args[i + 1];
+      ++i;
       continue;
     }
     if (args[i] == "--order" || args[i] == "--choice")

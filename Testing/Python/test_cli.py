@@ -100,6 +100,38 @@ class CommandLineTest(unittest.TestCase):
         with open(os.path.join(out, "labels.vti"), "rb") as a, open(os.path.join(again, "labels.vti"), "rb") as b:
             self.assertEqual(a.read(), b.read())
 
+    def test_guide_option(self):
+        from vtkmodules.vtkCommonCore import vtkFloatArray
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+        guide = vtkImageData()
+        guide.SetDimensions(2, 1, 1)
+        for label in (2, 3):
+            w = vtkFloatArray()
+            w.SetName("Weight_%d" % label)
+            w.InsertNextValue(1.0)
+            w.InsertNextValue(0.0)  # no buildings in the right half
+            guide.GetPointData().AddArray(w)
+        path = tmp("guide.vti")
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(guide)
+        writer.SetFileName(path)
+        writer.Write()
+        out = tmp("cli-guide")
+        shutil.rmtree(out, ignore_errors=True)
+        r = run("synthesize", data("Examples/Village.vti"), "--size", "20", "10", "5", "--block",
+                "10", "10", "5", "--ground", "1", "--empty", "0", "--guide", path, "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(os.path.join(out, "labels.vti"))
+        reader.Update()
+        model = labels_zyx(reader.GetOutput())
+        self.assertFalse(((model[:, :, 10:] == 2) | (model[:, :, 10:] == 3)).any())
+        r = run("synthesize", data("Examples/Village.vti"), "--size", "4", "4", "4", "--guide",
+                tmp("no-guide.vti"), "--out", out)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("no such guide file", r.stderr)
+
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
                 "--block", "3", "3", "1", "--out", tmp("cli-fail"))

@@ -3,7 +3,7 @@ by an independent numpy recomputation of Eq. 3.1; failures are errors, never mod
 import unittest
 
 import numpy as np
-from vtkmodules.vtkCommonCore import vtkIntArray
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
 import modelsynth
@@ -103,6 +103,52 @@ class SynthesisTest(unittest.TestCase):
         self.assertTrue((labels[size > 1] == np.iinfo(np.int32).min).all())
         self.assertTrue((entropy[size > 1] > 0).all() and (entropy[size == 1] == 0).all())
         self.assertTrue(middle[1].min() >= 1)
+
+    def test_guide_volume_shapes_the_city(self):
+        # A guide (6 x 6 x 1 over the output) forbids walls and roofs outside an L shape.
+        guide = vtkImageData()
+        guide.SetDimensions(6, 6, 1)
+        inside = lambda i, j: i < 2 or j < 2
+        for label in (2, 3):
+            w = vtkFloatArray()
+            w.SetName("Weight_%d" % label)
+            for j in range(6):
+                for i in range(6):
+                    w.InsertNextValue(4.0 if inside(i, j) else 0.0)
+            guide.GetPointData().AddArray(w)
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetInputConnection(self.reader.GetOutputPort())
+        s.SetGuideData(guide)
+        s.SetOutputSize(30, 30, 5)
+        s.SetBlockSize(10, 10, 5)
+        s.SetSeed(4)
+        s.SetUseBoundary(1, 1, 1, 1, 1, 1)
+        s.SetBoundaryLabels(0, 0, 0, 0, 1, 0)
+        errors = ErrorObserver(s)
+        s.Update()
+        self.assertEqual(errors.text(), "")
+        model = labels_zyx(s.GetOutput())
+        self.assertEqual(violations(self.example, model), [])
+        z, y, x = np.nonzero((model == 2) | (model == 3))
+        self.assertGreater(len(x), 0)
+        # Site x reads guide cell floor((x + 1/2) * 6 / 30) = x // 5.
+        self.assertTrue(all(inside(i // 5, j // 5) for i, j in zip(x, y)))
+
+        bad = vtkImageData()
+        bad.SetDimensions(2, 2, 1)
+        w = vtkFloatArray()
+        w.SetName("Weight_0")
+        for _ in range(4):
+            w.InsertNextValue(0.0)
+        bad.GetPointData().AddArray(w)
+        s.SetGuideData(bad)
+        errors = ErrorObserver(s)
+        s.Update()
+        self.assertIn("the boundary label 0 has guide weight 0", errors.text())
+        s.SetUseBoundary(0, 0, 0, 0, 0, 0)
+        errors = ErrorObserver(s)
+        s.Update()
+        self.assertIn("trivial label 0 weight 0", errors.text())
 
     def test_whole_model_failure_is_an_error_not_a_model(self):
         # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y.

@@ -133,6 +133,83 @@ public:
       sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
     }
     this->FullEntropy = std::log(sum) - sumWLogW / sum;
+    if (options.Guide)
+    {
+      this->SetUpGuide(*options.Guide);
+    }
+  }
+
+  /// Dense guide weights [cell][label index] and, per cell, the mask of labels allowed there.
+  void SetUpGuide(const GuideVolume& guide)
+  {
+    const auto& d = guide.Dims;
+    if (d[0] < 1 || d[1] < 1 || d[2] < 1 || d[0] > (1 << 20) || d[1] > (1 << 20) ||
+      d[2] > (1 << 20))
+      throw Error("the guide volume's dimensions must be between 1 and 2^20");
+    const std::int64_t cells = d[0] * d[1] * d[2];
+    const int k = this->Rules.NumberOfLabels();
+    if (cells > (std::int64_t(1) << 28) / k)
+      throw Error("the guide volume is too large (cells × labels above 2^28)");
+    this->GuideWeights.assign(static_cast<std::size_t>(cells * k), 1.0f);
+    for (const auto& kv : guide.Weights)
+    {
+      const int b = this->Rules.IndexOf(kv.first);
+      if (b < 0)
+        throw Error("the guide gives weights for label " + std::to_string(kv.first) +
+          ", which does not occur in the example");
+      if (static_cast<std::int64_t>(kv.second.size()) != cells)
+        throw Error("the guide weights of label " + std::to_string(kv.first) + " have " +
+          std::to_string(kv.second.size()) + " values for " + std::to_string(cells) + " cells");
+      for (std::int64_t c = 0; c < cells; ++c)
+      {
+        const float w = kv.second[static_cast<std::size_t>(c)];
+        if (!(w >= 0.0f) || !std::isfinite(w))
+          throw Error("the guide weight of label " + std::to_string(kv.first) + " in cell " +
+            std::to_string(c) + " is negative or not finite");
+        this->GuideWeights[static_cast<std::size_t>(c * k + b)] = w;
+      }
+    }
+    const int words = this->Rules.Words();
+    this->GuideMasks.assign(static_cast<std::size_t>(cells * words), 0);
+    for (std::int64_t c = 0; c < cells; ++c)
+      for (int b = 0; b < k; ++b)
+        if (this->GuideWeights[static_cast<std::size_t>(c * k + b)] > 0.0f)
+          this->GuideMasks[static_cast<std::size_t>(c * words + b / 64)] |= std::uint64_t(1)
+            << (b % 64);
+    this->GuideDims = d;
+  }
+
+  bool HasGuide() const { return !this->GuideWeights.empty(); }
+
+  /// The guide cell of model site @p p.
+  std::int64_t GuideCell(const Coord& p) const
+  {
+    std::int64_t c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      // floor((p + 1/2) · D / N) in integers: (2p + 1) · D / (2N).
+      c[a] =
+        std::min(this->GuideDims[a] - 1, ((2 * p[a] + 1) * this->GuideDims[a]) / (2 * this->N[a]));
+    }
+    return c[0] + this->GuideDims[0] * (c[1] + this->GuideDims[1] * c[2]);
+  }
+  float GuideWeight(std::int64_t cell, int b) const
+  {
+    return this->GuideWeights[static_cast<std::size_t>(cell * this->Rules.NumberOfLabels() + b)];
+  }
+
+  /// The weight of label @p b at a site of guide cell @p cell (the base weight without a guide).
+  double SiteWeight(std::int64_t cell, int b) const
+  {
+    return this->HasGuide() ? this->Weight(b) * this->GuideWeight(cell, b) : this->Weight(b);
+  }
+
+  /// The guide cell of a site of the current catalog region.
+  std::int64_t GuideCellOfLocal(std::int64_t local) const
+  {
+    const Coord c = this->Cat.Coordinates(local);
+    const Coord& o = this->Cat.Origin();
+    return this->GuideCell({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } });
   }
 
   double Weight(int b) const
@@ -191,6 +268,20 @@ public:
         this->Model[s] = this->Fixed[s];
       }
     }
+    if (this->HasGuide())
+    {
+      Coord p;
+      for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+        for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+          for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+          {
+            const int b = this->Fixed[static_cast<std::size_t>(this->Index(p))];
+            if (b >= 0 && this->GuideWeight(this->GuideCell(p), b) == 0.0f)
+              throw Error("the boundary label " +
+                std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]) +
+                " has guide weight 0 at " + Format(p));
+          }
+    }
   }
 
   /// The trivial start of Algorithm 3.4 (lines 3-5), checked for consistency.
@@ -237,6 +328,21 @@ public:
       {
         this->Model[s] = t;
       }
+    }
+    // A failed block falls back to the trivial label, so the guide may not forbid it.
+    if (this->HasGuide())
+    {
+      Coord p;
+      for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+        for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+          for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+            if (this->Fixed[static_cast<std::size_t>(this->Index(p))] < 0 &&
+              this->GuideWeight(this->GuideCell(p), t) == 0.0f)
+              throw Error("the guide gives the trivial label " +
+                std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(t)]) +
+                " weight 0 at " + Format(p) +
+                ", but block synthesis falls back to it where a "
+                "block fails. Allow that label everywhere, or use whole-model synthesis");
     }
     // The start must satisfy Eq. 3.3, boundary labels included.
     Coord p;
@@ -297,6 +403,11 @@ public:
       else
       {
         free.push_back(local);
+        if (this->HasGuide() &&
+          !cat.Keep(local,
+            this->GuideMasks.data() +
+              static_cast<std::size_t>(this->GuideCell(p)) * this->Rules.Words()))
+          return fail(local);
       }
       for (int d = 0; d < NumberOfDirections; ++d)
       {
@@ -407,19 +518,7 @@ public:
       noise[static_cast<std::size_t>(local)] = 1e-6 * rng.Uniform();
       isFree[static_cast<std::size_t>(local)] = 1;
     }
-    auto entropy = [&](std::int64_t local)
-    {
-      double sum = 0.0, sumWLogW = 0.0;
-      const std::uint64_t* dom = cat.Domain(local);
-      for (int w = 0; w < this->Rules.Words(); ++w)
-        for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
-        {
-          const int b = w * 64 + __builtin_ctzll(bits);
-          sum += this->Weight(b);
-          sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
-        }
-      return sum > 0.0 ? std::log(sum) - sumWLogW / sum : 0.0;
-    };
+    auto entropy = [&](std::int64_t local) { return this->Entropy(cat, local); };
     std::priority_queue<Entry> heap;
     for (std::int64_t local : free)
     {
@@ -458,16 +557,29 @@ public:
   // Catalog snapshots
   bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
 
+  /// Entropy of the weighted labels still possible at @p local of the current catalog (the
+  /// guide's weights included).
   double Entropy(const Catalog& cat, std::int64_t local) const
   {
+    const bool guided = this->HasGuide();
+    const std::int64_t cell = guided ? this->GuideCellOfLocal(local) : 0;
     double sum = 0.0, sumWLogW = 0.0;
     const std::uint64_t* dom = cat.Domain(local);
     for (int w = 0; w < this->Rules.Words(); ++w)
       for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
       {
         const int b = w * 64 + __builtin_ctzll(bits);
-        sum += this->Weight(b);
-        sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+        if (guided)
+        {
+          const double weight = this->SiteWeight(cell, b);
+          sum += weight;
+          sumWLogW += weight > 0.0 ? weight * std::log(weight) : 0.0;
+        }
+        else
+        {
+          sum += this->Weight(b);
+          sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+        }
       }
     return sum > 0.0 ? std::log(sum) - sumWLogW / sum : 0.0;
   }
@@ -558,6 +670,9 @@ public:
   const AdjacencyRules& Rules;
   const SynthesisOptions& Options;
   Catalog Cat;
+  std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
+  std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
+  Coord GuideDims{ { 1, 1, 1 } };
   std::vector<CatalogSnapshot> Pending; ///< snapshots of the current attempt
   std::int64_t Steps = 0;
   double FullEntropy = 0.0;

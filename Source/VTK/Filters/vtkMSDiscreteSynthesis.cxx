@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 vtkStandardNewMacro(vtkMSDiscreteSynthesis);
 
@@ -29,6 +30,8 @@ struct vtkMSDiscreteSynthesis::Internals
   vtkMTimeType FilterTime = 0;
   vtkMTimeType InputTime = 0;
   vtkDataObject* Input = nullptr;
+  vtkDataObject* Guide = nullptr;
+  vtkMTimeType GuideTime = 0;
   bool Valid = false;
   msynth::SynthesisResult Result;
   std::vector<msynth::CatalogSnapshot> Snapshots;
@@ -37,6 +40,7 @@ struct vtkMSDiscreteSynthesis::Internals
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
   : Internal(new Internals)
 {
+  this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
 }
 
@@ -63,9 +67,13 @@ msynth::SynthesisOptions SizeOptions(
 }
 } // namespace
 
-int vtkMSDiscreteSynthesis::FillInputPortInformation(int, vtkInformation* info)
+int vtkMSDiscreteSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -133,12 +141,19 @@ int vtkMSDiscreteSynthesis::RequestInformation(
 int vtkMSDiscreteSynthesis::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  // The solver needs the whole example.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  // The solver needs the whole example and the whole guide.
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* inInfo = inputVector[port]->GetInformationObject(0);
+    if (!inInfo)
+    {
+      continue;
+    }
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  }
   return 1;
 }
 
@@ -200,6 +215,43 @@ int vtkMSDiscreteSynthesis::RequestData(
   {
     options.TrivialLabel = this->TrivialLabel;
   }
+  vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
+  if (guide)
+  {
+    msynth::GuideVolume volume;
+    int dims[3];
+    guide->GetDimensions(dims);
+    volume.Dims = { { dims[0], dims[1], dims[2] } };
+    vtkPointData* pd = guide->GetPointData();
+    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* array = pd->GetArray(i);
+      const std::string name = array && array->GetName() ? array->GetName() : "";
+      if (name.rfind("Weight_", 0) != 0)
+      {
+        continue;
+      }
+      char* end = nullptr;
+      const long value = std::strtol(name.c_str() + 7, &end, 10);
+      if (end == name.c_str() + 7 || *end != '\0' || array->GetNumberOfComponents() != 1)
+      {
+        vtkErrorMacro(<< "Guide array '" << name
+                      << "' must be named Weight_<label> with one component.");
+        return 0;
+      }
+      std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
+      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+      {
+        weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
+      }
+      volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
+    }
+    if (volume.Weights.empty())
+    {
+      vtkWarningMacro(<< "The guide has no point array named Weight_<label>; it has no effect.");
+    }
+    options.Guide = std::move(volume);
+  }
   options.Progress = [this](double fraction)
   {
     this->UpdateProgress(fraction);
@@ -207,8 +259,9 @@ int vtkMSDiscreteSynthesis::RequestData(
   };
 
   Internals& cache = *this->Internal;
+  const vtkMTimeType guideTime = guide ? guide->GetMTime() : 0;
   const bool fresh = !cache.Valid || cache.FilterTime != this->GetMTime() || cache.Input != input ||
-    cache.InputTime != input->GetMTime();
+    cache.InputTime != input->GetMTime() || cache.Guide != guide || cache.GuideTime != guideTime;
   if (fresh)
   {
     cache.Valid = false;
@@ -233,6 +286,8 @@ int vtkMSDiscreteSynthesis::RequestData(
     cache.FilterTime = this->GetMTime();
     cache.Input = input;
     cache.InputTime = input->GetMTime();
+    cache.Guide = guide;
+    cache.GuideTime = guideTime;
   }
   const msynth::SynthesisResult& result = cache.Result;
   if (!result.Success)

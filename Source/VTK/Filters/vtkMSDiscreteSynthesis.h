@@ -22,6 +22,11 @@
  * +y, -z, +z: e.g. UseBoundary = (1,1,1,1,1,1) with BoundaryLabels = (0,0,0,0,g,0) puts ground
  * g along the bottom and empty space around.
  *
+ * Large-scale constraints (§3.5.3): an optional second input, the guide, is vtkImageData
+ * stretched over the output box whose point arrays `Weight_<label>` (e.g. `Weight_2`) give
+ * each label's relative probability per guide point; 0 removes the label there. Labels without
+ * an array have weight 1.
+ *
  * The result depends only on the inputs and Seed.
  *
  * Watching the solver: with CatalogSnapshotsPerBlock S > 0 the output has time steps
@@ -97,6 +102,11 @@ public:
   vtkSetClampMacro(LabelChoice, int, UNIFORM, FREQUENCY);
   vtkGetMacro(LabelChoice, int);
   ///@}
+
+  ///@{
+  /// Sets the guide volume (input port 1); nullptr removes it.
+  void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetGuideData(vtkDataObject* guide) { this->SetInputData(1, guide); }
 
   ///@{
   /// SiteOrders value. Default SCAN_LINE.

@@ -59,6 +59,8 @@ public:
   /// Keeps only label @p b at @p local (an assignment, line 13 of Algorithm 3.1).
   /// Returns false when @p b was not possible there.
   bool Assign(std::int64_t local, int b);
+  /// Keeps at @p local only the labels of @p mask (Words() words). False if nothing is left.
+  bool Keep(std::int64_t local, const std::uint64_t* mask) { return this->Restrict(local, mask); }
   /// Keeps at @p local only labels allowed next to label @p b of a fixed site outside the
   /// region, reached from that site along direction @p d. Returns false if nothing is left.
   bool Constrain(std::int64_t local, int d, int b);

@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +71,20 @@ struct CatalogSnapshot
   static constexpr Label Undecided = -2147483647 - 1;
 };
 
+/**
+ * Large-scale constraints (dissertation §3.5.3): a guide grid stretched over the output box
+ * giving, per cell, a weight for each label (its relative probability there). Output site p
+ * reads cell floor((p + 1/2) · Dims / Size) on each axis. A weight of zero removes the label
+ * from the catalog at those sites, and the removal propagates; labels without weights have
+ * weight 1 everywhere.
+ */
+struct GuideVolume
+{
+  std::array<std::int64_t, 3> Dims{ { 1, 1, 1 } };
+  /// Label value → one weight per guide cell (x fastest), each ≥ 0 and finite.
+  std::map<Label, std::vector<float>> Weights;
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -93,6 +108,8 @@ struct SynthesisOptions
   /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
   /// adjacent to itself along every axis, else the most frequent such label).
   std::optional<Label> TrivialLabel;
+  /// Large-scale constraints; empty for none.
+  std::optional<GuideVolume> Guide;
   /// Called after each block with the fraction done; returning false cancels the run.
   std::function<bool(double)> Progress;
   /**
