@@ -71,6 +71,8 @@ synthesize options:
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0)
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
+  --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
+  --swap A:B          labels A and B are each other's mirror images (repeatable)
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
                       arrays Weight_<label> weight each label (0 forbids it there)
 
@@ -307,6 +309,8 @@ struct SynthesizeArguments
   int Ground = 0, Empty = 0;
   std::string Pieces;
   std::string Guide;
+  std::array<int, 3> Mirror{ { 0, 0, 0 } };
+  std::string Swaps;
 };
 
 /// Writes @p mesh as VTK XML poly data, atomically.
@@ -358,6 +362,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   }
   synthesis->SetUseBoundary(use);
   synthesis->SetBoundaryLabels(labels);
+  synthesis->SetMirror(a.Mirror.data());
+  synthesis->SetMirrorSwaps(a.Swaps.c_str());
   vtkNew<vtkXMLImageDataReader> guide;
   if (!a.Guide.empty())
   {
@@ -545,6 +551,31 @@ int Main(const std::vector<std::string>& args)
       const long long label = integer(i, args[i]);
       (ground ? synth.HasGround : synth.HasEmpty) = true;
       (ground ? synth.Ground : synth.Empty) = static_cast<int>(label);
+      continue;
+    }
+    if (args[i] == "--mirror" || args[i] == "--swap")
+    {
+      const std::string option = args[i];
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ option + " needs a value" };
+      }
+      const std::string v = args[++i];
+      if (option == "--mirror")
+      {
+        for (const char c : v)
+        {
+          if (c < 'x' || c > 'z')
+          {
+            throw UsageError{ "--mirror: '" + v + "' is not a set of axes x, y, z" };
+          }
+          synth.Mirror[static_cast<std::size_t>(c - 'x')] = 1;
+        }
+      }
+      else
+      {
+        synth.Swaps += (synth.Swaps.empty() ? "" : ",") + v;
+      }
       continue;
     }
     if (args[i] == "--pieces" || args[i] == "--guide")

@@ -150,6 +150,23 @@ class SynthesisTest(unittest.TestCase):
         s.Update()
         self.assertIn("trivial label 0 weight 0", errors.text())
 
+    def test_mirror_symmetry(self):
+        for size in ((21, 16, 5), (20, 17, 5)):
+            out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=size, BlockSize=(8, 8, 5),
+                                     Seed=6, Mirror=(1, 1, 0), UseBoundary=(1, 1, 1, 1, 1, 1),
+                                     BoundaryLabels=(0, 0, 0, 0, 1, 0))
+            self.assertEqual(errors, "")
+            model = labels_zyx(out)
+            self.assertEqual(violations(self.example, model), [])
+            self.assertTrue(np.array_equal(model, model[:, :, ::-1]), "symmetric in x")
+            self.assertTrue(np.array_equal(model, model[:, ::-1, :]), "symmetric in y")
+        _, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(10, 10, 5), Mirror=(1, 0, 0),
+                               MirrorSwaps="2:3")
+        self.assertIn("not symmetric under the mirror map along x", errors)
+        _, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(10, 10, 5), Mirror=(1, 0, 0),
+                               MirrorSwaps="2-3")
+        self.assertIn("is not a pair 'a:b'", errors)
+
     def test_whole_model_failure_is_an_error_not_a_model(self):
         # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y.
         example = vtkImageData()

@@ -104,14 +104,153 @@ bool BlockGeometry(const SynthesisOptions& options, Coord& m, Coord& step)
   return wholeModel;
 }
 
+/// Symmetric synthesis: what the half to synthesize is and how it maps onto the full model.
+struct MirrorPlan
+{
+  Coord Full{ { 1, 1, 1 } };
+  Coord Half{ { 1, 1, 1 } };
+  std::array<bool, 3> Axes{ { false, false, false } };
+  std::array<std::vector<int>, 3> F; ///< label index → index of its mirror image, per axis
+  std::array<std::vector<std::uint64_t>, 3> ColumnMask; ///< labels allowed on the last layer
+  SynthesisOptions HalfOptions;
+
+  /// Index of the mirror image of label index @p b over the axes whose bit is set in @p axes.
+  int Image(int b, int axes) const
+  {
+    for (int a = 0; a < 3; ++a)
+      if (axes & (1 << a))
+        b = this->F[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
+    return b;
+  }
+  /// The site of the full model that mirrors half-model site @p p over the axes of @p axes.
+  Coord ImageSite(const Coord& p, int axes) const
+  {
+    Coord q = p;
+    for (int a = 0; a < 3; ++a)
+      if (axes & (1 << a))
+        q[a] = this->Full[a] - 1 - p[a];
+    return q;
+  }
+  int AxisMask() const
+  {
+    return (this->Axes[0] ? 1 : 0) | (this->Axes[1] ? 2 : 0) | (this->Axes[2] ? 4 : 0);
+  }
+};
+
+bool AnyMirror(const SynthesisOptions& options)
+{
+  return options.Symmetry[0].Enabled || options.Symmetry[1].Enabled || options.Symmetry[2].Enabled;
+}
+
+/// Validates the symmetry options against the rules and plans the half to synthesize.
+MirrorPlan PlanMirror(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  MirrorPlan plan;
+  plan.Full = options.Size;
+  plan.HalfOptions = options;
+  const int k = rules.NumberOfLabels();
+  const auto& values = rules.LabelValues();
+  static const char* const axisName = "xyz";
+  for (int a = 0; a < 3; ++a)
+  {
+    const Mirror& mirror = options.Symmetry[static_cast<std::size_t>(a)];
+    plan.HalfOptions.Symmetry[static_cast<std::size_t>(a)].Enabled = false;
+    if (!mirror.Enabled)
+      continue;
+    const std::string axis(1, axisName[a]);
+    plan.Axes[static_cast<std::size_t>(a)] = true;
+    auto& f = plan.F[static_cast<std::size_t>(a)];
+    f.resize(static_cast<std::size_t>(k));
+    for (int b = 0; b < k; ++b)
+      f[static_cast<std::size_t>(b)] = b;
+    for (const auto& kv : mirror.Map)
+    {
+      const int from = rules.IndexOf(kv.first), to = rules.IndexOf(kv.second);
+      if (from < 0 || to < 0)
+        throw Error("the mirror map along " + axis + " names label " +
+          std::to_string(from < 0 ? kv.first : kv.second) +
+          ", which does not occur in the example");
+      f[static_cast<std::size_t>(from)] = to;
+    }
+    for (int b = 0; b < k; ++b)
+      if (f[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])] != b)
+        throw Error("the mirror map along " + axis + " is not its own inverse: label " +
+          std::to_string(values[static_cast<std::size_t>(b)]) + " maps to " +
+          std::to_string(values[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])]) +
+          ", which does not map back");
+    // The rules must be symmetric under f (else a mirrored model breaks them).
+    for (int axis2 = 0; axis2 < 3; ++axis2)
+      for (int b = 0; b < k; ++b)
+        for (int c = 0; c < k; ++c)
+        {
+          const int fb = f[static_cast<std::size_t>(b)], fc = f[static_cast<std::size_t>(c)];
+          const bool mirrored =
+            axis2 == a ? rules.Allowed(2 * axis2, fc, fb) : rules.Allowed(2 * axis2, fb, fc);
+          if (rules.Allowed(2 * axis2, b, c) != mirrored)
+            throw Error("the example is not symmetric under the mirror map along " + axis +
+              ": label " + std::to_string(values[static_cast<std::size_t>(b)]) + " before " +
+              std::to_string(values[static_cast<std::size_t>(c)]) + " along " + axisName[axis2] +
+              (rules.Allowed(2 * axis2, b, c) ? " occurs" : " does not occur") +
+              " but its mirror image " + (mirrored ? "does" : "does not"));
+        }
+    // The half, and the labels allowed on its last layer next to their own mirror image.
+    const std::int64_t n = options.Size[a];
+    plan.Half[a] = (n + 1) / 2;
+    auto& mask = plan.ColumnMask[static_cast<std::size_t>(a)];
+    mask.assign(static_cast<std::size_t>(rules.Words()), 0);
+    bool any = false;
+    for (int b = 0; b < k; ++b)
+    {
+      const bool ok = (n % 2 == 1) ? f[static_cast<std::size_t>(b)] == b
+                                   : rules.Allowed(2 * a, b, f[static_cast<std::size_t>(b)]);
+      if (ok || n == 1)
+      {
+        mask[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+        any = true;
+      }
+    }
+    if (!any)
+      throw Error("no label can lie on the mirror plane along " + axis +
+        (n % 2 == 1 ? " (an odd size puts sites on the plane, and no label is its own mirror image)"
+                    : " (no label may be followed by its mirror image)"));
+    // Boundary faces: the far face is the mirror image of the near one.
+    auto& near = plan.HalfOptions.Boundary[static_cast<std::size_t>(2 * a)];
+    auto& far = plan.HalfOptions.Boundary[static_cast<std::size_t>(2 * a + 1)];
+    if (near && far && rules.IndexOf(*near) >= 0 && rules.IndexOf(*far) >= 0 &&
+      f[static_cast<std::size_t>(rules.IndexOf(*near))] != rules.IndexOf(*far))
+      throw Error("with symmetry along " + axis +
+        ", the boundary label of the far face must be "
+        "the mirror image of the near face's");
+    if (!near && far)
+      near = values[static_cast<std::size_t>(
+        f[static_cast<std::size_t>(rules.IndexOf(*far) < 0 ? 0 : rules.IndexOf(*far))])];
+    far.reset();
+  }
+  for (int a = 0; a < 3; ++a)
+    if (!plan.Axes[static_cast<std::size_t>(a)])
+      plan.Half[a] = options.Size[a];
+  for (int a = 0; a < 3; ++a)
+    for (int c = a + 1; c < 3; ++c)
+      if (plan.Axes[static_cast<std::size_t>(a)] && plan.Axes[static_cast<std::size_t>(c)])
+        for (int b = 0; b < k; ++b)
+          if (plan.Image(plan.Image(b, 1 << a), 1 << c) !=
+            plan.Image(plan.Image(b, 1 << c), 1 << a))
+            throw Error(std::string("the mirror maps along ") + axisName[a] + " and " +
+              axisName[c] + " do not commute (label " +
+              std::to_string(values[static_cast<std::size_t>(b)]) + ")");
+  plan.HalfOptions.Size = plan.Half;
+  return plan;
+}
+
 /// The solver state shared by all blocks.
 class Solver
 {
 public:
-  Solver(const AdjacencyRules& rules, const SynthesisOptions& options)
+  Solver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan)
     : Rules(rules)
     , Options(options)
     , Cat(rules)
+    , Plan(plan)
   {
     this->N = options.Size;
     LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
@@ -181,6 +320,43 @@ public:
 
   bool HasGuide() const { return !this->GuideWeights.empty(); }
 
+  /// Unary constraints of a free site @p p: the guide (at the site and, with symmetry, at each
+  /// of its mirror images for the mirrored label) and the mirror planes' last layers.
+  bool KeepSiteConstraints(Catalog& cat, std::int64_t local, const Coord& p)
+  {
+    const int words = this->Rules.Words();
+    if (this->Plan)
+    {
+      for (int a = 0; a < 3; ++a)
+        if (this->Plan->Axes[static_cast<std::size_t>(a)] && p[a] == this->N[a] - 1 &&
+          !cat.Keep(local, this->Plan->ColumnMask[static_cast<std::size_t>(a)].data()))
+          return false;
+    }
+    if (!this->HasGuide())
+      return true;
+    if (!this->Plan)
+      return cat.Keep(
+        local, this->GuideMasks.data() + static_cast<std::size_t>(this->GuideCell(p)) * words);
+    // Label b is allowed when each image of the site allows the image of b.
+    std::vector<std::uint64_t>& mask = this->MaskScratch;
+    mask.assign(static_cast<std::size_t>(words), 0);
+    const int axes = this->Plan->AxisMask();
+    for (int b = 0; b < this->Rules.NumberOfLabels(); ++b)
+    {
+      bool ok = true;
+      for (int subset = 0; subset <= axes && ok; ++subset)
+      {
+        if ((subset & axes) != subset)
+          continue;
+        const std::int64_t cell = this->GuideCell(this->Plan->ImageSite(p, subset));
+        ok = this->GuideWeight(cell, this->Plan->Image(b, subset)) > 0.0f;
+      }
+      if (ok)
+        mask[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+    }
+    return cat.Keep(local, mask.data());
+  }
+
   /// The guide cell of model site @p p.
   std::int64_t GuideCell(const Coord& p) const
   {
@@ -188,8 +364,9 @@ public:
     for (int a = 0; a < 3; ++a)
     {
       // floor((p + 1/2) · D / N) in integers: (2p + 1) · D / (2N).
-      c[a] =
-        std::min(this->GuideDims[a] - 1, ((2 * p[a] + 1) * this->GuideDims[a]) / (2 * this->N[a]));
+      // The guide spans the full output, also when only a half is synthesized.
+      const std::int64_t n = this->Plan ? this->Plan->Full[a] : this->N[a];
+      c[a] = std::min(this->GuideDims[a] - 1, ((2 * p[a] + 1) * this->GuideDims[a]) / (2 * n));
     }
     return c[0] + this->GuideDims[0] * (c[1] + this->GuideDims[1] * c[2]);
   }
@@ -329,6 +506,18 @@ public:
         this->Model[s] = t;
       }
     }
+    // With symmetry, the trivial label must be allowed on the mirror planes.
+    if (this->Plan)
+      for (int a = 0; a < 3; ++a)
+        if (this->Plan->Axes[static_cast<std::size_t>(a)] &&
+          !((this->Plan
+                ->ColumnMask[static_cast<std::size_t>(a)][static_cast<std::size_t>(t / 64)] >>
+              (t % 64)) &
+            1u))
+          throw Error("the trivial label " +
+            std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(t)]) +
+            " cannot lie next to its own mirror image along " +
+            std::string("xyz").substr(static_cast<std::size_t>(a), 1));
     // A failed block falls back to the trivial label, so the guide may not forbid it.
     if (this->HasGuide())
     {
@@ -403,10 +592,7 @@ public:
       else
       {
         free.push_back(local);
-        if (this->HasGuide() &&
-          !cat.Keep(local,
-            this->GuideMasks.data() +
-              static_cast<std::size_t>(this->GuideCell(p)) * this->Rules.Words()))
+        if (!this->KeepSiteConstraints(cat, local, p))
           return fail(local);
       }
       for (int d = 0; d < NumberOfDirections; ++d)
@@ -670,6 +856,8 @@ public:
   const AdjacencyRules& Rules;
   const SynthesisOptions& Options;
   Catalog Cat;
+  const MirrorPlan* Plan; ///< symmetric synthesis of a half, or nullptr
+  std::vector<std::uint64_t> MaskScratch;
   std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
   Coord GuideDims{ { 1, 1, 1 } };
@@ -688,9 +876,13 @@ public:
 // ---------------------------------------------------------------------------------------------
 // public API
 // ---------------------------------------------------------------------------------------------
-std::int64_t CountBlocks(const SynthesisOptions& options)
+std::int64_t CountBlocks(const SynthesisOptions& requested)
 {
-  LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  LabelGrid::CheckDimensions(requested.Size[0], requested.Size[1], requested.Size[2]);
+  SynthesisOptions options = requested;
+  for (int a = 0; a < 3; ++a)
+    if (requested.Symmetry[static_cast<std::size_t>(a)].Enabled)
+      options.Size[a] = (requested.Size[a] + 1) / 2; // the synthesized half
   Coord m, step;
   BlockGeometry(options, m, step);
   std::int64_t count = 1;
@@ -706,14 +898,17 @@ std::int64_t CountSnapshots(const SynthesisOptions& options)
   return options.SnapshotsPerBlock > 0 ? 1 + CountBlocks(options) * options.SnapshotsPerBlock : 0;
 }
 
-SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
+namespace
+{
+SynthesisResult SynthesizeDirect(
+  const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan)
 {
   const auto start = std::chrono::steady_clock::now();
   if (options.AttemptsPerBlock < 1)
   {
     throw Error("attempts per block must be at least 1");
   }
-  Solver solver(rules, options);
+  Solver solver(rules, options, plan);
   const Coord& n = solver.N;
   Coord m, step;
   const bool wholeModel = BlockGeometry(options, m, step);
@@ -799,6 +994,88 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
       std::to_string(stats.Blocks) + " blocks synthesized, " + std::to_string(stats.BlocksFailed) +
       " left at their previous labels";
   return result;
+}
+
+} // namespace
+
+SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  if (!AnyMirror(options))
+  {
+    return SynthesizeDirect(rules, options, nullptr);
+  }
+  const MirrorPlan plan = PlanMirror(rules, options);
+  const auto& values = rules.LabelValues();
+  auto fold = [&](const Coord& q, Coord& p)
+  {
+    int axes = 0;
+    p = q;
+    for (int a = 0; a < 3; ++a)
+      if (plan.Axes[static_cast<std::size_t>(a)] && q[a] >= plan.Half[a])
+      {
+        p[a] = plan.Full[a] - 1 - q[a];
+        axes |= 1 << a;
+      }
+    return axes;
+  };
+  auto mirrorValue = [&](Label v, int axes)
+  {
+    if (v == CatalogSnapshot::Undecided)
+      return v;
+    return values[static_cast<std::size_t>(plan.Image(rules.IndexOf(v), axes))];
+  };
+  SynthesisOptions half = plan.HalfOptions;
+  if (options.OnSnapshot)
+  {
+    half.OnSnapshot = [&](const CatalogSnapshot& h)
+    {
+      CatalogSnapshot full;
+      full.Step = h.Step;
+      full.Block = h.Block;
+      full.Assignments = h.Assignments;
+      const auto n = static_cast<std::size_t>(plan.Full[0] * plan.Full[1] * plan.Full[2]);
+      full.CatalogSize.resize(n);
+      full.Entropy.resize(n);
+      full.Labels.resize(n);
+      Coord q, p;
+      std::size_t i = 0;
+      for (q[2] = 0; q[2] < plan.Full[2]; ++q[2])
+        for (q[1] = 0; q[1] < plan.Full[1]; ++q[1])
+          for (q[0] = 0; q[0] < plan.Full[0]; ++q[0], ++i)
+          {
+            const int axes = fold(q, p);
+            const auto j =
+              static_cast<std::size_t>(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
+            full.CatalogSize[i] = h.CatalogSize[j];
+            full.Entropy[i] = h.Entropy[j];
+            full.Labels[i] = mirrorValue(h.Labels[j], axes);
+          }
+      options.OnSnapshot(full);
+    };
+  }
+  SynthesisResult r = SynthesizeDirect(rules, half, &plan);
+  if (!r.Success)
+  {
+    return r;
+  }
+  // Mirror the half into the full model.
+  LabelGrid full(plan.Full[0], plan.Full[1], plan.Full[2]);
+  std::vector<std::int32_t> lastBlock(static_cast<std::size_t>(full.NumberOfSites()));
+  Coord q, p;
+  for (q[2] = 0; q[2] < plan.Full[2]; ++q[2])
+    for (q[1] = 0; q[1] < plan.Full[1]; ++q[1])
+      for (q[0] = 0; q[0] < plan.Full[0]; ++q[0])
+      {
+        const int axes = fold(q, p);
+        full.Set(q[0], q[1], q[2], mirrorValue(r.Model.At(p[0], p[1], p[2]), axes));
+        lastBlock[static_cast<std::size_t>(full.Index(q[0], q[1], q[2]))] =
+          r.LastBlock[static_cast<std::size_t>(r.Model.Index(p[0], p[1], p[2]))];
+      }
+  r.Model = std::move(full);
+  r.LastBlock = std::move(lastBlock);
+  r.Message += " (mirrored)";
+  return r;
 }
 
 } // namespace msynth

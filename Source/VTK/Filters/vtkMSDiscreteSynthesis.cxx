@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <sstream>
 
 vtkStandardNewMacro(vtkMSDiscreteSynthesis);
 
@@ -53,11 +55,12 @@ namespace
 {
 /// The engine's options from the filter's sizes (shared by RequestInformation and RequestData).
 msynth::SynthesisOptions SizeOptions(
-  const int size[3], const int block[3], const int overlap[3], int perBlock)
+  const int size[3], const int block[3], const int overlap[3], int perBlock, const int mirror[3])
 {
   msynth::SynthesisOptions options;
   for (int a = 0; a < 3; ++a)
   {
+    options.Symmetry[static_cast<std::size_t>(a)].Enabled = mirror[a] != 0;
     options.Size[a] = size[a];
     options.BlockSize[a] = block[a];
     options.Overlap[a] = overlap[a];
@@ -111,8 +114,8 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
   if (this->CatalogSnapshotsPerBlock > 0)
   {
-    const msynth::SynthesisOptions options = SizeOptions(
-      this->OutputSize, this->BlockSize, this->BlockOverlap, this->CatalogSnapshotsPerBlock);
+    const msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
+      this->BlockOverlap, this->CatalogSnapshotsPerBlock, this->Mirror);
     const std::int64_t steps = msynth::CountSnapshots(options);
     const double bytes = double(steps) * double(options.Size[0]) * double(options.Size[1]) *
       double(options.Size[2]) * 12.0;
@@ -198,8 +201,8 @@ int vtkMSDiscreteSynthesis::RequestData(
     return 0;
   }
 
-  msynth::SynthesisOptions options = SizeOptions(
-    this->OutputSize, this->BlockSize, this->BlockOverlap, this->CatalogSnapshotsPerBlock);
+  msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
+    this->BlockOverlap, this->CatalogSnapshotsPerBlock, this->Mirror);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
   options.Seed = static_cast<std::uint64_t>(this->Seed);
   options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
@@ -214,6 +217,33 @@ int vtkMSDiscreteSynthesis::RequestData(
   if (this->UseTrivialLabel)
   {
     options.TrivialLabel = this->TrivialLabel;
+  }
+  if (this->Mirror[0] || this->Mirror[1] || this->Mirror[2])
+  {
+    std::map<msynth::Label, msynth::Label> swaps;
+    std::string text = this->MirrorSwaps;
+    for (char& c : text)
+      c = c == ',' || c == ';' ? ' ' : c;
+    std::istringstream pairs(text);
+    std::string pair;
+    while (pairs >> pair)
+    {
+      int a = 0, b = 0;
+      char colon = 0, extra = 0;
+      std::istringstream one(pair);
+      if (!(one >> a >> colon >> b) || colon != ':' || (one >> extra))
+      {
+        vtkErrorMacro(<< "MirrorSwaps: '" << pair << "' is not a pair 'a:b' of labels.");
+        return 0;
+      }
+      swaps[a] = b;
+      swaps[b] = a;
+    }
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      options.Symmetry[static_cast<std::size_t>(axis)].Enabled = this->Mirror[axis] != 0;
+      options.Symmetry[static_cast<std::size_t>(axis)].Map = swaps;
+    }
   }
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
   if (guide)

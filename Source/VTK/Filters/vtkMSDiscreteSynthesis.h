@@ -22,6 +22,11 @@
  * +y, -z, +z: e.g. UseBoundary = (1,1,1,1,1,1) with BoundaryLabels = (0,0,0,0,g,0) puts ground
  * g along the bottom and empty space around.
  *
+ * Symmetry (§3.5.2): Mirror = (x, y, z) flags make the output symmetric about the middle plane
+ * of those axes, M(n − 1 − x) = f(M(x)); MirrorSwaps lists the labels that are each other's
+ * mirror images as "a:b,c:d" (each pair swaps; other labels are their own image). The example's
+ * rules must be symmetric under the map; otherwise the filter says which pair is not.
+ *
  * Large-scale constraints (§3.5.3): an optional second input, the guide, is vtkImageData
  * stretched over the output box whose point arrays `Weight_<label>` (e.g. `Weight_2`) give
  * each label's relative probability per guide point; 0 removes the label there. Labels without
@@ -44,6 +49,8 @@
 
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+
+#include <string> // for ivar
 
 class MODELSYNTHFILTERS_EXPORT vtkMSDiscreteSynthesis : public vtkImageAlgorithm
 {
@@ -137,6 +144,18 @@ public:
   ///@}
 
   ///@{
+  /// Axes (x, y, z) along which the output is mirror-symmetric. Default 0 0 0.
+  vtkSetVector3Macro(Mirror, int);
+  vtkGetVector3Macro(Mirror, int);
+  ///@}
+
+  ///@{
+  /// Label pairs that are mirror images, "a:b,c:d". Default "" (every label is its own image).
+  vtkSetStdStringFromCharMacro(MirrorSwaps);
+  vtkGetCharFromStdStringMacro(MirrorSwaps);
+  ///@}
+
+  ///@{
   /// Catalog snapshots per block, exposed as time steps (see above). Default 0 (none).
   vtkSetClampMacro(CatalogSnapshotsPerBlock, int, 0, 100000);
   vtkGetMacro(CatalogSnapshotsPerBlock, int);
@@ -173,6 +192,8 @@ private:
   bool UseTrivialLabel = false;
   int TrivialLabel = 0;
   int CatalogSnapshotsPerBlock = 0;
+  int Mirror[3] = { 0, 0, 0 };
+  std::string MirrorSwaps;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
 
   struct Internals;

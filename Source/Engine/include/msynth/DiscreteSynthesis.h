@@ -85,6 +85,19 @@ struct GuideVolume
   std::map<Label, std::vector<float>> Weights;
 };
 
+/**
+ * Reflection symmetry (dissertation §3.5.2) about the middle plane of an axis: the output
+ * satisfies M(n − 1 − x) = f(M(x)) along that axis, where f maps each label to its mirror image
+ * (labels not listed map to themselves). f must be an involution that preserves the example's
+ * rules (T_a[b, c] = T_a[f(c), f(b)] along the axis, T[b, c] = T[f(b), f(c)] across it), and the
+ * maps of several mirrored axes must commute. The lower half is synthesized and mirrored.
+ */
+struct Mirror
+{
+  bool Enabled = false;
+  std::map<Label, Label> Map;
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -108,6 +121,8 @@ struct SynthesisOptions
   /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
   /// adjacent to itself along every axis, else the most frequent such label).
   std::optional<Label> TrivialLabel;
+  /// Reflection symmetry per axis (x, y, z).
+  std::array<Mirror, 3> Symmetry;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
   /// Called after each block with the fraction done; returning false cancels the run.
