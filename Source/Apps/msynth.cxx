@@ -67,7 +67,8 @@ synthesize options:
   --block BX BY BZ    block size of Algorithm 3.4 (default: the whole model, Algorithm 3.1)
   --attempts N        attempts per block (default 10)
   --order ORDER       scanline (default), random or entropy (minimum entropy first)
-  --choice CHOICE     uniform (default) or frequency (labels weighted by the example)
+  --choice CHOICE     uniform (default), frequency (labels weighted by the example) or
+                      resemblance (favour labels whose 3x3x3 surroundings match the example)
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0)
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
@@ -600,9 +601,9 @@ int Main(const std::vector<std::string>& args)
       {
         synth.Order = v == "scanline" ? 0 : (v == "random" ? 1 : 2);
       }
-      else if (option == "--choice" && (v == "uniform" || v == "frequency"))
+      else if (option == "--choice" && (v == "uniform" || v == "frequency" || v == "resemblance"))
       {
-        synth.Choice = v == "uniform" ? 0 : 1;
+        synth.Choice = v == "uniform" ? 0 : (v == "frequency" ? 1 : 2);
       }
       else
       {

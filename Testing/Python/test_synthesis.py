@@ -150,6 +150,19 @@ class SynthesisTest(unittest.TestCase):
         s.Update()
         self.assertIn("trivial label 0 weight 0", errors.text())
 
+    def test_resemblance_choice(self):
+        # Through the VTK layer (the engine test measures the resemblance itself): consistent,
+        # not an empty model, and deterministic.
+        options = dict(OutputSize=(24, 24, 5), BlockSize=(12, 12, 5), Seed=1, LabelChoice=2,
+                       UseBoundary=(1, 1, 1, 1, 1, 1), BoundaryLabels=(0, 0, 0, 0, 1, 0))
+        a, errors = synthesize(self.reader.GetOutputPort(), **options)
+        b, _ = synthesize(self.reader.GetOutputPort(), **options)
+        self.assertEqual(errors, "")
+        model = labels_zyx(a)
+        self.assertEqual(violations(self.example, model), [])
+        self.assertGreater(int((model == 2).sum()), 0)
+        self.assertTrue(np.array_equal(model, labels_zyx(b)))
+
     def test_mirror_symmetry(self):
         for size in ((21, 16, 5), (20, 17, 5)):
             out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=size, BlockSize=(8, 8, 5),

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 namespace msynth
@@ -276,6 +277,111 @@ public:
     {
       this->SetUpGuide(*options.Guide);
     }
+    if (options.Choice == LabelChoice::Resemblance)
+    {
+      this->SetUpResemblance();
+    }
+  }
+
+  /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
+  void SetUpResemblance()
+  {
+    if (!this->Options.Example)
+      throw Error("resemblance-weighted label choice needs the example grid");
+    const int w = this->Options.ResemblanceWindow;
+    if (w < 0 || w > 8)
+      throw Error("the resemblance window half-width must be between 0 and 8");
+    const LabelGrid& e = *this->Options.Example;
+    this->ExampleIndex.resize(e.Data().size());
+    for (std::size_t i = 0; i < e.Data().size(); ++i)
+    {
+      const int b = this->Rules.IndexOf(e.Data()[i]);
+      if (b < 0)
+        throw Error("the example given for resemblance has label " + std::to_string(e.Data()[i]) +
+          ", which the rules do not know");
+      this->ExampleIndex[i] = b;
+    }
+    this->WindowOffsets.clear();
+    for (int z = -w; z <= w; ++z)
+      for (int y = -w; y <= w; ++y)
+        for (int x = -w; x <= w; ++x)
+          if (x || y || z)
+            this->WindowOffsets.push_back({ { x, y, z } });
+  }
+
+  /// The decided label index at model site @p q during the current block (-1: undecided).
+  int DecidedLabel(const Coord& q) const
+  {
+    const Coord& o = this->Cat.Origin();
+    const Coord& d = this->Cat.Dims();
+    if (q[0] >= o[0] && q[1] >= o[1] && q[2] >= o[2] && q[0] < o[0] + d[0] && q[1] < o[1] + d[1] &&
+      q[2] < o[2] + d[2])
+    {
+      const std::int64_t local = this->Cat.Local(q[0] - o[0], q[1] - o[1], q[2] - o[2]);
+      return this->Cat.Count(local) == 1 ? this->Cat.Single(local) : -1;
+    }
+    return this->Model[static_cast<std::size_t>(this->Index(q))];
+  }
+
+  /// L(k) of Eqs. 4-5 for every label of the catalog at @p local (written to @p weights):
+  /// the number of example sites holding k whose window is at the minimum distance d0.
+  void ResemblanceWeights(std::int64_t local, std::vector<double>& weights)
+  {
+    const LabelGrid& e = *this->Options.Example;
+    const auto& ed = e.Dimensions();
+    const Coord c = this->Cat.Coordinates(local);
+    const Coord& o = this->Cat.Origin();
+    const Coord v{ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } };
+    // The decided labels around v (the window of M').
+    std::vector<std::pair<std::size_t, int>> around; // (offset index, label)
+    for (std::size_t i = 0; i < this->WindowOffsets.size(); ++i)
+    {
+      const auto& q = this->WindowOffsets[i];
+      const Coord p{ { v[0] + q[0], v[1] + q[1], v[2] + q[2] } };
+      if (p[0] < 0 || p[1] < 0 || p[2] < 0 || p[0] >= this->N[0] || p[1] >= this->N[1] ||
+        p[2] >= this->N[2])
+        continue;
+      const int b = this->DecidedLabel(p);
+      if (b >= 0)
+        around.emplace_back(i, b);
+    }
+    // d(v', k) = |P_v'| - overlap(v') - [E(v') = k]; d0 = the minimum over v' and possible k.
+    const int k = this->Rules.NumberOfLabels();
+    std::int64_t d0 = std::numeric_limits<std::int64_t>::max();
+    std::vector<std::int64_t>& count = this->ResemblanceCounts;
+    count.assign(static_cast<std::size_t>(k), 0);
+    for (std::int64_t z = 0; z < ed[2]; ++z)
+      for (std::int64_t y = 0; y < ed[1]; ++y)
+        for (std::int64_t x = 0; x < ed[0]; ++x)
+        {
+          const int centre = this->ExampleIndex[static_cast<std::size_t>(e.Index(x, y, z))];
+          if (!this->Cat.Contains(local, centre))
+            continue; // (v, k) not in the catalog: L(k) = 0 (Eq. 5)
+          // Perceptual distance over the positions both windows define (inside E, decided in
+          // M): the pieces that differ. (Eqs. 2-3 read literally count every example piece the
+          // model lacks, which favours example windows clipped by its border and, there, empty
+          // space; see Documentation/architecture.md.)
+          std::int64_t d = 0;
+          for (const auto& a : around)
+          {
+            const auto& q = this->WindowOffsets[a.first];
+            const std::int64_t ex = x + q[0], ey = y + q[1], ez = z + q[2];
+            if (e.Contains(ex, ey, ez) &&
+              this->ExampleIndex[static_cast<std::size_t>(e.Index(ex, ey, ez))] != a.second)
+              ++d;
+          }
+          if (d < d0)
+          {
+            d0 = d;
+            std::fill(count.begin(), count.end(), 0);
+          }
+          if (d == d0)
+            ++count[static_cast<std::size_t>(centre)];
+        }
+    weights.assign(static_cast<std::size_t>(k), 0.0);
+    for (int b = 0; b < k; ++b)
+      weights[static_cast<std::size_t>(b)] =
+        static_cast<double>(count[static_cast<std::size_t>(b)]);
   }
 
   /// Dense guide weights [cell][label index] and, per cell, the mask of labels allowed there.
@@ -615,6 +721,31 @@ public:
     // Assign the free sites (lines 19-29), in the chosen order.
     auto choose = [&](std::int64_t local)
     {
+      if (this->Options.Choice == LabelChoice::Resemblance)
+      {
+        this->ResemblanceWeights(local, this->ChoiceWeights);
+        double weightSum = 0.0;
+        for (double x : this->ChoiceWeights)
+          weightSum += x;
+        if (weightSum > 0.0)
+        {
+          double r = rng.Uniform() * weightSum;
+          int last = -1;
+          for (int b = 0; b < this->Rules.NumberOfLabels(); ++b)
+          {
+            const double x = this->ChoiceWeights[static_cast<std::size_t>(b)];
+            if (x <= 0.0)
+              continue;
+            last = b;
+            r -= x;
+            if (r < 0.0)
+              return b;
+          }
+          return last;
+        }
+        // No example site matches any possible label (labels only reachable through
+        // propagation): fall back to the weighted choice below.
+      }
       double total = 0.0;
       const std::uint64_t* dom = cat.Domain(local);
       for (int w = 0; w < this->Rules.Words(); ++w)
@@ -856,7 +987,11 @@ public:
   const AdjacencyRules& Rules;
   const SynthesisOptions& Options;
   Catalog Cat;
-  const MirrorPlan* Plan; ///< symmetric synthesis of a half, or nullptr
+  const MirrorPlan* Plan;                        ///< symmetric synthesis of a half, or nullptr
+  std::vector<int> ExampleIndex;                 ///< resemblance: the example as label indices
+  std::vector<std::array<int, 3>> WindowOffsets; ///< resemblance: window offsets but the centre
+  std::vector<std::int64_t> ResemblanceCounts;
+  std::vector<double> ChoiceWeights;
   std::vector<std::uint64_t> MaskScratch;
   std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0

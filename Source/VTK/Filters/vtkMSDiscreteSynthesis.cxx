@@ -303,8 +303,10 @@ int vtkMSDiscreteSynthesis::RequestData(
     }
     try
     {
-      const auto analysis =
-        msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, labels));
+      const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
+      const auto analysis = msynth::ExampleAnalysis::FromExample(example);
+      options.Example = &example;
+      options.ResemblanceWindow = this->ResemblanceWindow;
       cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
     }
     catch (const std::exception& e)

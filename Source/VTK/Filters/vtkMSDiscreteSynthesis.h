@@ -62,8 +62,9 @@ public:
   /// How labels are drawn from the catalog.
   enum LabelChoices
   {
-    UNIFORM = 0,  ///< every possible label equally likely (the dissertation)
-    FREQUENCY = 1 ///< weighted by the label's frequency in the example
+    UNIFORM = 0,    ///< every possible label equally likely (the dissertation)
+    FREQUENCY = 1,  ///< weighted by the label's frequency in the example
+    RESEMBLANCE = 2 ///< weighted by how well the site's window matches the example (2007, Eqs. 2-6)
   };
   /// The order in which sites are assigned.
   enum SiteOrders
@@ -106,7 +107,7 @@ public:
 
   ///@{
   /// LabelChoices value. Default UNIFORM.
-  vtkSetClampMacro(LabelChoice, int, UNIFORM, FREQUENCY);
+  vtkSetClampMacro(LabelChoice, int, UNIFORM, RESEMBLANCE);
   vtkGetMacro(LabelChoice, int);
   ///@}
 
@@ -114,6 +115,12 @@ public:
   /// Sets the guide volume (input port 1); nullptr removes it.
   void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetGuideData(vtkDataObject* guide) { this->SetInputData(1, guide); }
+
+  ///@{
+  /// Half-width w of the resemblance window ((2w + 1)³ sites). Default 1.
+  vtkSetClampMacro(ResemblanceWindow, int, 0, 8);
+  vtkGetMacro(ResemblanceWindow, int);
+  ///@}
 
   ///@{
   /// SiteOrders value. Default SCAN_LINE.
@@ -192,6 +199,7 @@ private:
   bool UseTrivialLabel = false;
   int TrivialLabel = 0;
   int CatalogSnapshotsPerBlock = 0;
+  int ResemblanceWindow = 1;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;

@@ -44,8 +44,14 @@ enum Face : int
 /// How a label is drawn from the catalog at a site.
 enum class LabelChoice
 {
-  Uniform,  ///< every possible label equally likely (the dissertation)
-  Frequency ///< weighted by the label's frequency in the example
+  Uniform,   ///< every possible label equally likely (the dissertation)
+  Frequency, ///< weighted by the label's frequency in the example
+  /// Resemblance (2007 paper, Eqs. 2–6): label k is weighted by L(k), the number of example
+  /// sites holding k whose (2w+1)³ window is at the minimum perceptual distance d0 from the
+  /// model's window around the site. The distance counts the pieces that differ where both
+  /// windows have one (inside the example, decided in the model). Needs
+  /// SynthesisOptions::Example.
+  Resemblance
 };
 
 /// The order in which sites of a block are assigned.
@@ -111,6 +117,10 @@ struct SynthesisOptions
   int AttemptsPerBlock = 10;
   std::uint64_t Seed = 0;
   LabelChoice Choice = LabelChoice::Uniform;
+  /// The example grid, for LabelChoice::Resemblance (not owned; must outlive the call).
+  const LabelGrid* Example = nullptr;
+  /// Half-width w of the resemblance window (2w + 1 sites per axis). Default 1.
+  int ResemblanceWindow = 1;
   SiteOrder Order = SiteOrder::ScanLine;
   /**
    * Labels (values) fixed on the boundary layer of each face, in the order -x, +x, -y, +y, -z,
