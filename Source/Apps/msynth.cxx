@@ -246,12 +246,13 @@ std::string JsonString(const std::string& text)
   return out + "\"";
 }
 
-/// Writes @p image as VTK XML image data, atomically.
-void WriteImage(const std::string& path, vtkImageData* image)
+/// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically.
+template <typename WriterT, typename DataT>
+void WriteXML(const std::string& path, DataT* data)
 {
   const std::string tmp = msynth::TemporaryPathBeside(path);
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetInputData(image);
+  vtkNew<WriterT> writer;
+  writer->SetInputData(data);
   writer->SetFileName(tmp.c_str());
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();
@@ -313,24 +314,6 @@ struct SynthesizeArguments
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
   std::string Swaps;
 };
-
-/// Writes @p mesh as VTK XML poly data, atomically.
-void WriteMesh(const std::string& path, vtkPolyData* mesh)
-{
-  const std::string tmp = msynth::TemporaryPathBeside(path);
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(mesh);
-  writer->SetFileName(tmp.c_str());
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  std::string messages;
-  if (!vtkMSEngineBridge::Execute(writer, messages) || writer->GetErrorCode() != 0)
-  {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("'" + path + "': could not be written: " + messages);
-  }
-  msynth::CommitTemporaryFile(tmp, path);
-}
 
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
@@ -395,13 +378,13 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   fields->DeepCopy(model->GetFieldData());
   fields->RemoveArray("Seconds");
   saved->SetFieldData(fields);
-  WriteImage(dir + "/labels.vti", saved);
+  WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
   vtkNew<vtkMSLabelGeometry> geometry;
   geometry->SetInputData(model);
   geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
   geometry->SetPieceDirectory(a.Pieces.c_str());
   Run(geometry);
-  WriteMesh(dir + "/mesh.vtp", geometry->GetOutput());
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
   vtkNew<vtkMSOpenVDBWriter> vdb;
   vdb->SetInputData(model);
   vdb->SetFileName((dir + "/model.vdb").c_str());

@@ -63,3 +63,17 @@ static void BM_SynthesizeBlocksLarge(benchmark::State& state)
   BM_SynthesizeBlocks(state);
 }
 BENCHMARK(BM_SynthesizeBlocksLarge)->Arg(1000)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// Resemblance-weighted choice (2007 paper, Eqs. 2-6): each choice scans the example's windows.
+static void BM_SynthesizeResemblance(benchmark::State& state)
+{
+  static const msynth::LabelGrid example = msynth_bench::City100();
+  msynth::SynthesisOptions o;
+  const std::int64_t n = state.range(0);
+  o.Size = { { n, n, 10 } };
+  o.BlockSize = { { 20, 20, 10 } };
+  o.Choice = msynth::LabelChoice::Resemblance;
+  o.Example = &example;
+  RunSynthesis(state, o);
+}
+BENCHMARK(BM_SynthesizeResemblance)->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -5,6 +5,8 @@
 #include "msynth/DiscreteSynthesis.h"
 #include "msynth/Error.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,19 +18,10 @@
 
 using namespace msynth;
 
+using msynth_test::Grid2D;
+
 namespace
 {
-LabelGrid Grid2D(const std::vector<std::vector<Label>>& rowsTopToBottom)
-{
-  const auto ny = static_cast<std::int64_t>(rowsTopToBottom.size());
-  const auto nx = static_cast<std::int64_t>(rowsTopToBottom[0].size());
-  LabelGrid g(nx, ny, 1);
-  for (std::int64_t y = 0; y < ny; ++y)
-    for (std::int64_t x = 0; x < nx; ++x)
-      g.Set(x, y, 0,
-        rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
-  return g;
-}
 
 /// A small 3D village: ground (1), two-storey houses of walls (2) with roofs (3), empty (0).
 LabelGrid Village()

@@ -4,6 +4,8 @@
 #include "msynth/Error.h"
 #include "msynth/ExampleAnalysis.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -13,24 +15,10 @@ using msynth::ExampleAnalysis;
 using msynth::Label;
 using msynth::LabelGrid;
 
+using msynth_test::Grid2D;
+
 namespace
 {
-LabelGrid Grid2D(const std::vector<std::vector<Label>>& rowsTopToBottom)
-{
-  // Rows are written top (largest y) first, as in the dissertation's figures.
-  const auto ny = static_cast<std::int64_t>(rowsTopToBottom.size());
-  const auto nx = static_cast<std::int64_t>(rowsTopToBottom[0].size());
-  LabelGrid g(nx, ny, 1);
-  for (std::int64_t y = 0; y < ny; ++y)
-  {
-    for (std::int64_t x = 0; x < nx; ++x)
-    {
-      g.Set(x, y, 0,
-        rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
-    }
-  }
-  return g;
-}
 
 /// Brute force: the number of sites x with E(x) = b and E(x + d) = c.
 std::int64_t CountPairs(const LabelGrid& e, int axis, Label b, Label c)

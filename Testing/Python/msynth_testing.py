@@ -37,6 +37,21 @@ class ErrorObserver:
         return "\n".join(self.messages)
 
 
+def run_algorithm(algorithm, port=None, data=None, **options):
+    """Connects `port` (or `data`), calls Set<Name>(value) for every option, updates, and
+    returns (output, error text)."""
+    if port is not None:
+        algorithm.SetInputConnection(port)
+    if data is not None:
+        algorithm.SetInputData(data)
+    for name, value in options.items():
+        values = value if isinstance(value, (list, tuple)) else [value]
+        getattr(algorithm, "Set" + name)(*values)
+    errors = ErrorObserver(algorithm)
+    algorithm.Update()
+    return algorithm.GetOutput(), errors.text()
+
+
 def labels_zyx(image, name="Label"):
     """The label array of a vtkImageData as a numpy array indexed [z, y, x]."""
     nx, ny, nz = image.GetDimensions()

@@ -8,17 +8,11 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, labels_zyx, tmp
+from msynth_testing import data, labels_zyx, run_algorithm, tmp
 
 
 def geometry(port, **options):
-    g = modelsynth.vtkMSLabelGeometry()
-    g.SetInputConnection(port)
-    for name, value in options.items():
-        getattr(g, "Set" + name)(value)
-    errors = ErrorObserver(g)
-    g.Update()
-    return g.GetOutput(), errors.text()
+    return run_algorithm(modelsynth.vtkMSLabelGeometry(), port, **options)
 
 
 def expected_faces(labels, empty=0):

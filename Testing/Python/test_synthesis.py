@@ -7,21 +7,11 @@ from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, labels_zyx, violations
+from msynth_testing import ErrorObserver, data, labels_zyx, run_algorithm, violations
 
 
 def synthesize(example_port=None, example_data=None, **options):
-    s = modelsynth.vtkMSDiscreteSynthesis()
-    if example_port is not None:
-        s.SetInputConnection(example_port)
-    else:
-        s.SetInputData(example_data)
-    for name, value in options.items():
-        v = value if isinstance(value, (list, tuple)) else [value]
-        getattr(s, "Set" + name)(*v)
-    errors = ErrorObserver(s)
-    s.Update()
-    return s.GetOutput(), errors.text()
+    return run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), example_port, example_data, **options)
 
 
 class SynthesisTest(unittest.TestCase):

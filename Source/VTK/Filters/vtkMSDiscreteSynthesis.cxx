@@ -182,12 +182,9 @@ int vtkMSDiscreteSynthesis::RequestData(
     vtkErrorMacro(<< "No input example.");
     return 0;
   }
-  vtkDataArray* labels = this->GetInputArrayToProcess(0, inputVector);
-  if (!labels)
-  {
-    labels = input->GetPointData()->GetArray("Label");
-    labels = labels ? labels : input->GetPointData()->GetScalars();
-  }
+  // An empty selection (ParaView's domain before the data exists) falls back to "Label".
+  vtkDataArray* labels =
+    vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
   std::string problem;
   if (!labels)
   {

@@ -92,8 +92,7 @@ int vtkMSLabelGeometry::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkDataArray* labels = input ? input->GetPointData()->GetArray("Label") : nullptr;
-  labels = labels ? labels : (input ? input->GetPointData()->GetScalars() : nullptr);
+  vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(input, nullptr);
   std::string problem;
   if (!labels || !vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
   {

@@ -73,14 +73,10 @@ int vtkMSTransitionTables::RequestData(
   {
     return 1; // piece 0 computes the tables (see class documentation)
   }
-  vtkDataArray* array = this->GetInputArrayToProcess(0, inputVector);
-  if (!array)
-  {
-    // No (or an empty) selection, as when ParaView's domain has not seen the data yet: use the
-    // point array "Label", else the active scalars.
-    array = input->GetPointData()->GetArray("Label");
-    array = array ? array : input->GetPointData()->GetScalars();
-  }
+  // No (or an empty) selection, as when ParaView's domain has not seen the data yet: use the
+  // point array "Label", else the active scalars.
+  vtkDataArray* array =
+    vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
   if (!array)
   {
     vtkErrorMacro(<< "The input has no label array (expected an integer point array, by "

@@ -10,6 +10,7 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkType.h"
 
@@ -86,6 +87,16 @@ bool vtkMSEngineBridge::CheckLabelArray(
     return false;
   }
   return true;
+}
+
+vtkDataArray* vtkMSEngineBridge::FindLabelArray(vtkImageData* image, vtkDataArray* selected)
+{
+  if (selected || !image)
+  {
+    return selected;
+  }
+  vtkDataArray* labels = image->GetPointData()->GetArray("Label");
+  return labels ? labels : image->GetPointData()->GetScalars();
 }
 
 msynth::LabelGrid vtkMSEngineBridge::ToLabelGrid(vtkImageData* image, vtkDataArray* labels)

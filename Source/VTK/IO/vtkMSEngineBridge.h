@@ -39,6 +39,12 @@ public:
    */
   static bool CheckLabelArray(vtkImageData* image, vtkDataArray* array, std::string& problem);
 
+  /**
+   * The label array of @p image: @p selected (the filter's input array to process) when set,
+   * else the point array "Label", else the active point scalars; nullptr when there is none.
+   */
+  static vtkDataArray* FindLabelArray(vtkImageData* image, vtkDataArray* selected);
+
   /// Copies a checked label array into an engine grid (x fastest, as VTK stores points).
   static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
 
