@@ -66,6 +66,7 @@ synthesize options:
   --seed S            random seed (default 0); same inputs and seed give the same model
   --block BX BY BZ    block size of Algorithm 3.4 (default: the whole model, Algorithm 3.1)
   --attempts N        attempts per block (default 10)
+  --threads N         threads for block synthesis (default: one per core; same result)
   --order ORDER       scanline (default), random or entropy (minimum entropy first)
   --choice CHOICE     uniform (default), frequency (labels weighted by the example) or
                       resemblance (favour labels whose 3x3x3 surroundings match the example)
@@ -305,6 +306,7 @@ struct SynthesizeArguments
   std::array<int, 3> Block{ { 0, 0, 0 } };
   long long Seed = 0;
   int Attempts = 10;
+  int Threads = 0;
   int Order = vtkMSDiscreteSynthesis::SCAN_LINE;
   int Choice = vtkMSDiscreteSynthesis::UNIFORM;
   bool HasGround = false, HasEmpty = false;
@@ -326,6 +328,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   synthesis->SetBlockSize(a.Block.data());
   synthesis->SetSeed(a.Seed);
   synthesis->SetAttemptsPerBlock(a.Attempts);
+  synthesis->SetNumberOfThreads(a.Threads);
   synthesis->SetSiteOrder(a.Order);
   synthesis->SetLabelChoice(a.Choice);
   // Ground along the bottom: -z in 3D, -y for a 2D (single-layer) output.
@@ -517,6 +520,16 @@ int Main(const std::vector<std::string>& args)
     if (args[i] == "--seed")
     {
       synth.Seed = integer(i, "--seed");
+      continue;
+    }
+    if (args[i] == "--threads")
+    {
+      const long long t = integer(i, "--threads");
+      if (t < 0 || t > 1024)
+      {
+        throw UsageError{ "--threads must be between 0 and 1024" };
+      }
+      synth.Threads = static_cast<int>(t);
       continue;
     }
     if (args[i] == "--attempts")

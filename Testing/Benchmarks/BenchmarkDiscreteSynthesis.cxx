@@ -48,21 +48,33 @@ BENCHMARK(BM_SynthesizeWhole40x40x10)->Arg(0)->Arg(2)->Unit(benchmark::kMillisec
 
 // Issue 3 targets: 100×100×10 with 20×20 blocks under 1 s; sites from 10^4 to 10^7 at a flat
 // time per site (n × n × 10 with 20 × 20 × 10 blocks).
+// Second argument: threads (the model is the same for any count).
 static void BM_SynthesizeBlocks(benchmark::State& state)
 {
   msynth::SynthesisOptions o;
   const std::int64_t n = state.range(0);
   o.Size = { { n, n, 10 } };
   o.BlockSize = { { 20, 20, 10 } };
+  o.Threads = static_cast<int>(state.range(1));
   RunSynthesis(state, o);
 }
-BENCHMARK(BM_SynthesizeBlocks)->Arg(32)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SynthesizeBlocks)
+  ->Args({ 32, 1 })
+  ->Args({ 100, 1 })
+  ->Args({ 100, 2 })
+  ->Args({ 316, 1 })
+  ->Args({ 316, 2 })
+  ->Unit(benchmark::kMillisecond);
 // 10^7 sites: run explicitly (--benchmark_filter=BM_SynthesizeBlocksLarge), about a minute.
 static void BM_SynthesizeBlocksLarge(benchmark::State& state)
 {
   BM_SynthesizeBlocks(state);
 }
-BENCHMARK(BM_SynthesizeBlocksLarge)->Arg(1000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SynthesizeBlocksLarge)
+  ->Args({ 1000, 1 })
+  ->Args({ 1000, 2 })
+  ->Iterations(1)
+  ->Unit(benchmark::kMillisecond);
 
 // Resemblance-weighted choice (2007 paper, Eqs. 2-6): each choice scans the example's windows.
 static void BM_SynthesizeResemblance(benchmark::State& state)
@@ -74,6 +86,7 @@ static void BM_SynthesizeResemblance(benchmark::State& state)
   o.BlockSize = { { 20, 20, 10 } };
   o.Choice = msynth::LabelChoice::Resemblance;
   o.Example = &example;
+  o.Threads = 1;
   RunSynthesis(state, o);
 }
 BENCHMARK(BM_SynthesizeResemblance)->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);

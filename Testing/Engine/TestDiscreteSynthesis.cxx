@@ -531,3 +531,47 @@ TEST(DiscreteSynthesis, ResemblanceMakesModelsCloserToTheExample)
   o.Choice = LabelChoice::Resemblance;
   EXPECT_THROW(SynthesizeFrom(v, o), Error); // no example given
 }
+
+TEST(DiscreteSynthesis, SameModelWhateverTheThreadCount)
+{
+  const LabelGrid v = Village();
+  for (int mode = 0; mode < 4; ++mode)
+  {
+    SynthesisOptions o;
+    o.Size = { { 40, 36, 5 } };
+    o.BlockSize = { { 8, 8, 5 } };
+    o.Seed = 77;
+    o.Boundary[FaceMinZ] = 1;
+    if (mode == 1)
+    {
+      GuideVolume g;
+      g.Dims = { { 2, 1, 1 } };
+      g.Weights[2] = { 0.0f, 3.0f };
+      o.Guide = g;
+    }
+    if (mode == 2)
+    {
+      o.Choice = LabelChoice::Resemblance;
+      o.Example = &v;
+      o.Order = SiteOrder::MinimumEntropy;
+    }
+    if (mode == 3)
+      o.Symmetry[1].Enabled = true;
+    std::vector<SynthesisResult> results;
+    for (int threads : { 1, 2, 3 })
+    {
+      o.Threads = threads;
+      results.push_back(SynthesizeFrom(v, o));
+      ExpectConsistent(v, results.back());
+    }
+    EXPECT_EQ(results[1].Statistics.Threads, 2);
+    for (std::size_t i = 1; i < results.size(); ++i)
+    {
+      EXPECT_EQ(results[i].Model, results[0].Model) << "mode " << mode;
+      EXPECT_EQ(results[i].LastBlock, results[0].LastBlock);
+      EXPECT_EQ(results[i].Statistics.Attempts, results[0].Statistics.Attempts);
+      EXPECT_EQ(results[i].Statistics.Assignments, results[0].Statistics.Assignments);
+      EXPECT_EQ(results[i].Statistics.BlocksFailed, results[0].Statistics.BlocksFailed);
+    }
+  }
+}

@@ -6,10 +6,13 @@
 #include "msynth/Random.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <queue>
+#include <thread>
 
 namespace msynth
 {
@@ -243,22 +246,40 @@ MirrorPlan PlanMirror(const AdjacencyRules& rules, const SynthesisOptions& optio
   return plan;
 }
 
+/// The model being synthesized, shared by the solvers of all threads. Blocks of one phase
+/// never touch, so threads write disjoint sites.
+struct SharedModel
+{
+  std::vector<std::int32_t> Model;     ///< label indices; -1 unassigned
+  std::vector<std::int32_t> Fixed;     ///< boundary label indices; -1 free
+  std::vector<std::int32_t> LastBlock; ///< block that last changed each site
+};
+
 /// The solver state shared by all blocks.
 class Solver
 {
 public:
-  Solver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan)
+  /// A solver over @p shared; the first solver of a run sizes it, later ones (one per extra
+  /// thread) share it with their own catalog and scratch space.
+  Solver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan,
+    SharedModel& shared)
     : Rules(rules)
     , Options(options)
     , Cat(rules)
     , Plan(plan)
+    , Model(shared.Model)
+    , Fixed(shared.Fixed)
+    , LastBlock(shared.LastBlock)
   {
     this->N = options.Size;
     LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
     const auto sites = static_cast<std::size_t>(this->N[0] * this->N[1] * this->N[2]);
-    this->Model.assign(sites, -1);
-    this->Fixed.assign(sites, -1);
-    this->LastBlock.assign(sites, -1);
+    if (this->Model.empty())
+    {
+      this->Model.assign(sites, -1);
+      this->Fixed.assign(sites, -1);
+      this->LastBlock.assign(sites, -1);
+    }
     const int k = rules.NumberOfLabels();
     this->WLogW.resize(static_cast<std::size_t>(k));
     for (int b = 0; b < k; ++b)
@@ -1000,9 +1021,9 @@ public:
   std::int64_t Steps = 0;
   double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };
-  std::vector<std::int32_t> Model; ///< label indices; -1 unassigned
-  std::vector<std::int32_t> Fixed; ///< boundary label indices; -1 free
-  std::vector<std::int32_t> LastBlock;
+  std::vector<std::int32_t>& Model;     ///< label indices; -1 unassigned (shared)
+  std::vector<std::int32_t>& Fixed;     ///< boundary label indices; -1 free (shared)
+  std::vector<std::int32_t>& LastBlock; ///< block that last changed each site (shared)
   std::vector<double> WLogW;
 };
 
@@ -1043,7 +1064,8 @@ SynthesisResult SynthesizeDirect(
   {
     throw Error("attempts per block must be at least 1");
   }
-  Solver solver(rules, options, plan);
+  SharedModel shared;
+  Solver solver(rules, options, plan, shared);
   const Coord& n = solver.N;
   Coord m, step;
   const bool wholeModel = BlockGeometry(options, m, step);
@@ -1058,45 +1080,99 @@ SynthesisResult SynthesizeDirect(
   const std::vector<Block> blocks = PlanBlocks(n, m, step, stats.Phases);
   stats.Blocks = static_cast<std::int64_t>(blocks.size());
 
-  solver.StartSnapshots();
-  bool cancelled = false;
-  for (std::size_t i = 0; i < blocks.size() && !cancelled; ++i)
+  // One block: its attempts (lines 9-34 of Algorithm 3.4), each from its own generator.
+  struct Outcome
   {
-    const Block& block = blocks[i];
-    std::int64_t empty = -1;
-    int attempt = 0;
-    for (; attempt < options.AttemptsPerBlock; ++attempt)
+    std::int64_t Empty = -1;
+    int Attempts = 0;
+    std::int64_t Assignments = 0;
+  };
+  auto runBlock = [&options](Solver& worker, const Block& block)
+  {
+    Outcome out;
+    for (; out.Attempts < options.AttemptsPerBlock;)
     {
-      Random rng = Random::Derived(
-        options.Seed, static_cast<std::uint64_t>(block.Index), static_cast<std::uint64_t>(attempt));
-      ++stats.Attempts;
-      empty = solver.RunBlock(block, rng, stats.Assignments);
-      if (empty < 0)
+      Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(block.Index),
+        static_cast<std::uint64_t>(out.Attempts));
+      ++out.Attempts;
+      out.Empty = worker.RunBlock(block, rng, out.Assignments);
+      if (out.Empty < 0)
         break;
     }
-    if (empty >= 0)
-    {
-      solver.Pending.clear(); // the block keeps its previous labels: repeat that state
-    }
-    solver.CommitSnapshots(stats.Assignments);
-    if (empty < 0)
+    return out;
+  };
+  auto record = [&](const Block& block, const Outcome& out)
+  {
+    stats.Attempts += out.Attempts;
+    stats.Assignments += out.Assignments;
+    if (out.Empty < 0)
     {
       ++stats.BlocksAccepted;
+      return;
+    }
+    ++stats.BlocksFailed;
+    BlockFailure f;
+    f.Block = block.Index;
+    f.Origin = block.Origin;
+    f.EmptySite = { { out.Empty % n[0], (out.Empty / n[0]) % n[1], out.Empty / (n[0] * n[1]) } };
+    f.Attempts = out.Attempts;
+    stats.Failures.push_back(f);
+  };
+
+  // Threads: blocks of a phase never touch, so they run concurrently; each block's result
+  // depends only on the seed and its surroundings, which no block of its phase changes. The
+  // model is therefore the same for any number of threads. Snapshots need one thread.
+  unsigned threads = options.Threads > 0 ? static_cast<unsigned>(options.Threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  if (solver.Snapshots() || blocks.size() < 2)
+    threads = 1;
+  stats.Threads = static_cast<int>(threads);
+  std::vector<std::unique_ptr<Solver>> workers;
+  for (unsigned t = 1; t < threads; ++t)
+    workers.push_back(std::make_unique<Solver>(rules, options, plan, shared));
+
+  solver.StartSnapshots();
+  bool cancelled = false;
+  std::size_t done = 0;
+  for (std::size_t first = 0; first < blocks.size() && !cancelled;)
+  {
+    std::size_t last = first;
+    while (last < blocks.size() && blocks[last].Phase == blocks[first].Phase)
+      ++last;
+    std::vector<Outcome> outcomes(last - first);
+    if (threads == 1)
+    {
+      for (std::size_t i = first; i < last && !cancelled; ++i)
+      {
+        outcomes[i - first] = runBlock(solver, blocks[i]);
+        if (outcomes[i - first].Empty >= 0)
+          solver.Pending.clear(); // the block keeps its previous labels: repeat that state
+        solver.CommitSnapshots(stats.Assignments + outcomes[i - first].Assignments);
+        record(blocks[i], outcomes[i - first]);
+        ++done;
+        cancelled = options.Progress && !options.Progress(double(done) / double(blocks.size()));
+      }
     }
     else
     {
-      ++stats.BlocksFailed;
-      BlockFailure f;
-      f.Block = block.Index;
-      f.Origin = block.Origin;
-      f.EmptySite = { { empty % n[0], (empty / n[0]) % n[1], empty / (n[0] * n[1]) } };
-      f.Attempts = attempt;
-      stats.Failures.push_back(f);
+      std::atomic<std::size_t> next{ first };
+      std::vector<std::thread> pool;
+      auto work = [&](Solver& worker)
+      {
+        for (std::size_t i; (i = next++) < last;)
+          outcomes[i - first] = runBlock(worker, blocks[i]);
+      };
+      for (auto& w : workers)
+        pool.emplace_back(work, std::ref(*w));
+      work(solver);
+      for (auto& t : pool)
+        t.join();
+      for (std::size_t i = first; i < last; ++i)
+        record(blocks[i], outcomes[i - first]); // in block order: deterministic statistics
+      done += last - first;
+      cancelled = options.Progress && !options.Progress(double(done) / double(blocks.size()));
     }
-    if (options.Progress && !options.Progress(double(i + 1) / double(blocks.size())))
-    {
-      cancelled = true;
-    }
+    first = last;
   }
   stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -201,6 +201,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
     this->BlockOverlap, this->CatalogSnapshotsPerBlock, this->Mirror);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
+  options.Threads = this->NumberOfThreads;
   options.Seed = static_cast<std::uint64_t>(this->Seed);
   options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
   options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);

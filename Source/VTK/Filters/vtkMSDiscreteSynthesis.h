@@ -117,6 +117,13 @@ public:
   void SetGuideData(vtkDataObject* guide) { this->SetInputData(1, guide); }
 
   ///@{
+  /// Threads for block synthesis; 0 uses one per core. The model does not depend on it.
+  /// Default 0.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
   /// Half-width w of the resemblance window ((2w + 1)³ sites). Default 1.
   vtkSetClampMacro(ResemblanceWindow, int, 0, 8);
   vtkGetMacro(ResemblanceWindow, int);
@@ -200,6 +207,7 @@ private:
   int TrivialLabel = 0;
   int CatalogSnapshotsPerBlock = 0;
   int ResemblanceWindow = 1;
+  int NumberOfThreads = 0;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;

@@ -135,7 +135,11 @@ struct SynthesisOptions
   std::array<Mirror, 3> Symmetry;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
-  /// Called after each block with the fraction done; returning false cancels the run.
+  /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
+  /// model is the same for any number of threads. Runs with snapshots use one thread.
+  int Threads = 0;
+  /// Called after each block (one thread) or each phase (several) with the fraction done, on
+  /// the calling thread; returning false cancels the run.
   std::function<bool(double)> Progress;
   /**
    * Catalog snapshots (time steps): one at the start, then SnapshotsPerBlock per block, taken
@@ -165,6 +169,7 @@ struct SynthesisStatistics
   std::int64_t Attempts = 0;
   std::int64_t Assignments = 0;
   int Phases = 1;
+  int Threads = 1; ///< threads used
   double Seconds = 0.0;
   std::vector<BlockFailure> Failures;
   std::optional<Label> TrivialLabel; ///< the trivial start used (block mode)
