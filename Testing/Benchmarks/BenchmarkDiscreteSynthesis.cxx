@@ -2,6 +2,9 @@
 #include "BenchmarkFixtures.h"
 
 #include "msynth/DiscreteSynthesis.h"
+#include "msynth/Tileset.h"
+
+#include <sstream>
 
 #include <benchmark/benchmark.h>
 
@@ -90,3 +93,33 @@ static void BM_SynthesizeResemblance(benchmark::State& state)
   RunSynthesis(state, o);
 }
 BENCHMARK(BM_SynthesizeResemblance)->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// 2D tileset at 128 x 128 (issue 3 target: under 20 ms). A small set of 3 tiles (7 labels:
+// empty, a line and a corner in all orientations) until the published sets are bundled.
+static void BM_Tileset128(benchmark::State& state)
+{
+  static const char* const xml = R"(<set>
+    <tiles><tile name="empty" symmetry="X"/><tile name="line" symmetry="I"/>
+           <tile name="corner" symmetry="L"/></tiles>
+    <neighbors>
+      <neighbor left="empty" right="empty"/><neighbor left="line 1" right="empty"/>
+      <neighbor left="line" right="line"/><neighbor left="line" right="corner 1"/>
+      <neighbor left="corner" right="empty"/><neighbor left="corner 1" right="line"/>
+      <neighbor left="corner 1" right="corner"/><neighbor left="empty" right="corner"/>
+    </neighbors></set>)";
+  std::istringstream in(xml);
+  const msynth::AdjacencyRules rules = msynth::ReadTileset(in, "bench.xml").Rules();
+  msynth::SynthesisOptions o;
+  o.Size = { { 128, 128, 1 } };
+  o.Order = static_cast<msynth::SiteOrder>(state.range(0));
+  std::int64_t failed = 0, runs = 0;
+  for (auto _ : state)
+  {
+    o.Seed = static_cast<std::uint64_t>(runs++);
+    const auto r = msynth::Synthesize(rules, o);
+    failed += !r.Success;
+  }
+  state.counters["labels"] = rules.NumberOfLabels();
+  state.counters["failed_runs"] = static_cast<double>(failed) / static_cast<double>(runs);
+}
+BENCHMARK(BM_Tileset128)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
