@@ -65,6 +65,7 @@ def main():
     write(label_image((7, 7, 5), village), os.path.join(examples, "Village.vti"))
     text_examples(examples, malformed)
     vox_examples(examples, malformed)
+    tileset_example(DATA)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
@@ -176,6 +177,65 @@ def vox_examples(examples, malformed):
     for name, data in bad.items():
         with open(os.path.join(malformed, name), "wb") as f:
             f.write(data)
+
+
+LINES_XML = """<?xml version="1.0"?>
+<!-- Pipes: empty space, a straight line (I: orientation 0 is horizontal) and a corner
+     (L: orientation 0 joins the top and the right edge). Every rule joins matching edges;
+     ModelSynth expands each to all rotations and reflections. -->
+<set unique="False">
+  <tiles>
+    <tile name="empty" symmetry="X" weight="2.0"/>
+    <tile name="line" symmetry="I"/>
+    <tile name="corner" symmetry="L" weight="0.5"/>
+  </tiles>
+  <neighbors>
+    <neighbor left="empty" right="empty"/>
+    <neighbor left="line" right="line"/>
+    <neighbor left="line 1" right="line 1"/>
+    <neighbor left="line 1" right="empty"/>
+    <neighbor left="line" right="corner 1"/>
+    <neighbor left="corner" right="line"/>
+    <neighbor left="corner" right="corner 1"/>
+    <neighbor left="empty" right="corner"/>
+    <neighbor left="line 1" right="corner"/>
+  </neighbors>
+  <subsets>
+    <subset name="straight"><tile name="empty"/><tile name="line"/></subset>
+  </subsets>
+</set>
+"""
+
+
+def tileset_example(data):
+    """Data/Tilesets/Lines.xml and its 8 x 8 tile images in Data/Tilesets/Lines/."""
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+
+    folder = os.path.join(data, "Tilesets", "Lines")
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(data, "Tilesets", "Lines.xml"), "w") as f:
+        f.write(LINES_XML)
+    n = 8
+    background, pipe = (30, 30, 40, 255), (230, 200, 60, 255)
+    shapes = {
+        "empty": lambda i, j: False,
+        "line": lambda i, j: j in (3, 4),                                  # left to right
+        "corner": lambda i, j: (i in (3, 4) and j >= 3) or (j in (3, 4) and i >= 3),  # top, right
+    }
+    for name, inside in shapes.items():
+        image = vtkImageData()
+        image.SetDimensions(n, n, 1)
+        rgba = vtkUnsignedCharArray()
+        rgba.SetNumberOfComponents(4)
+        for j in range(n):          # rows bottom first
+            for i in range(n):
+                rgba.InsertNextTuple4(*(pipe if inside(i, j) else background))
+        image.GetPointData().SetScalars(rgba)
+        writer = vtkPNGWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(os.path.join(folder, name + ".png"))
+        writer.Write()
 
 
 if __name__ == "__main__":

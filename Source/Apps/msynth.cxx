@@ -13,6 +13,7 @@
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSOpenVDBWriter.h"
+#include "vtkMSTileImage.h"
 #include "vtkMSTransitionTables.h"
 
 #include "vtkAbstractArray.h"
@@ -25,6 +26,7 @@
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -37,6 +39,7 @@
 
 #include "msynth/AtomicFile.h"
 #include "msynth/ConsistencyCheck.h"
+#include "msynth/Tileset.h"
 
 #include <array>
 #include <cerrno>
@@ -75,12 +78,15 @@ synthesize options:
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
   --swap A:B          labels A and B are each other's mirror images (repeatable)
+  --subset NAME       with a tileset: use the tiles of its subset NAME
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
                       arrays Weight_<label> weight each label (0 forbids it there)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
-EXAMPLE is a label grid in VTK image data (.vti) with an integer array 'Label'.
+EXAMPLE is a label grid (.vti with an integer array 'Label', the original program's .txt
+format, or MagicaVoxel .vox) or a simple-tiled tileset (.xml; synthesize also writes
+DIR/picture.png from the tile images).
 DIR defaults to ./msynth-output.
 )";
 
@@ -88,6 +94,12 @@ struct UsageError
 {
   std::string What;
 };
+
+/// True when @p path names a simple-tiled tileset (.xml) rather than a label grid.
+bool IsTileset(const std::string& path)
+{
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".xml") == 0;
+}
 
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm)
@@ -136,6 +148,23 @@ void WriteCSV(const std::string& path, vtkTable* table)
         out << "\n";
       }
     });
+}
+
+int TilesetInfo(const std::string& path, const std::string& subset)
+{
+  const msynth::Tileset t = msynth::ReadTilesetFile(path, subset);
+  std::cout << "tileset: " << path << (t.Unique ? " (unique)" : "") << "\n"
+            << "tiles: " << t.Tiles.size() << "\n"
+            << "labels: " << t.NumberOfLabels() << "\n";
+  for (int b = 0; b < t.NumberOfLabels(); ++b)
+  {
+    const auto& tile = t.Tiles[static_cast<std::size_t>(t.LabelTile[static_cast<std::size_t>(b)])];
+    std::cout << "  label " << b << ": " << t.LabelName(b) << " (symmetry " << tile.Symmetry
+              << ", weight " << tile.Weight << ")\n";
+  }
+  std::cout << "transitions +x: " << t.Pairs[0].size() << "\n"
+            << "transitions +y: " << t.Pairs[1].size() << "\n";
+  return 0;
 }
 
 int Info(const std::string& example)
@@ -313,6 +342,7 @@ struct SynthesizeArguments
   int Ground = 0, Empty = 0;
   std::string Pieces;
   std::string Guide;
+  std::string Subset;
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
   std::string Swaps;
 };
@@ -320,10 +350,19 @@ struct SynthesizeArguments
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
   vtkNew<vtkMSLabelGridReader> reader;
-  reader->SetFileName(example.c_str());
-  Run(reader);
   vtkNew<vtkMSDiscreteSynthesis> synthesis;
-  synthesis->SetInputConnection(reader->GetOutputPort());
+  const bool tileset = IsTileset(example);
+  if (tileset)
+  {
+    synthesis->SetTilesetFile(example.c_str());
+    synthesis->SetTilesetSubset(a.Subset.c_str());
+  }
+  else
+  {
+    reader->SetFileName(example.c_str());
+    Run(reader);
+    synthesis->SetInputConnection(reader->GetOutputPort());
+  }
   synthesis->SetOutputSize(a.Size.data());
   synthesis->SetBlockSize(a.Block.data());
   synthesis->SetSeed(a.Seed);
@@ -388,6 +427,40 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   geometry->SetPieceDirectory(a.Pieces.c_str());
   Run(geometry);
   WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
+  std::string picture;
+  if (tileset)
+  {
+    // The picture, when the tileset's images are there.
+    vtkNew<vtkMSTileImage> tiles;
+    tiles->SetInputData(model);
+    tiles->SetTilesetFile(example.c_str());
+    tiles->SetTilesetSubset(a.Subset.c_str());
+    std::string messages;
+    if (vtkMSEngineBridge::Execute(tiles, messages))
+    {
+      const std::string path = dir + "/picture.png";
+      const std::string tmp = msynth::TemporaryPathBeside(path) + ".png";
+      vtkNew<vtkPNGWriter> png;
+      png->SetInputData(tiles->GetOutput());
+      png->SetFileName(tmp.c_str());
+      // vtkImageWriter needs Write() (not a bare pipeline update) to write PNG, not raw bytes.
+      vtkNew<vtkMSEngineBridge> errors;
+      errors->Watch(png);
+      png->Write();
+      messages = errors->GetMessages();
+      if (errors->HasErrors() || png->GetErrorCode() != 0)
+      {
+        std::remove(tmp.c_str());
+        throw std::runtime_error("'" + path + "': could not be written: " + messages);
+      }
+      msynth::CommitTemporaryFile(tmp, path);
+      picture = ", " + path;
+    }
+    else
+    {
+      std::cerr << "msynth: note: no picture: " << messages << "\n";
+    }
+  }
   vtkNew<vtkMSOpenVDBWriter> vdb;
   vdb->SetInputData(model);
   vdb->SetFileName((dir + "/model.vdb").c_str());
@@ -425,21 +498,29 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
     });
   std::cout << text << "\n"
             << "wrote " << dir << "/labels.vti, " << dir << "/mesh.vtp, " << dir << "/model.vdb, "
-            << dir << "/statistics.json\n";
+            << dir << "/statistics.json" << picture << "\n";
   return 0;
 }
 
-int Check(const std::string& example, const std::string& modelPath)
+int Check(const std::string& example, const std::string& modelPath, const std::string& subset)
 {
   vtkNew<vtkMSLabelGridReader> e, m;
-  e->SetFileName(example.c_str());
   m->SetFileName(modelPath.c_str());
-  Run(e);
   Run(m);
   auto grid = [](vtkImageData* image)
   { return vtkMSEngineBridge::ToLabelGrid(image, image->GetPointData()->GetArray("Label")); };
-  const msynth::ConsistencyReport report =
-    msynth::CheckConsistency(grid(e->GetOutput()), grid(m->GetOutput()));
+  msynth::ConsistencyReport report;
+  if (IsTileset(example))
+  {
+    report = msynth::CheckConsistency(
+      msynth::ReadTilesetFile(example, subset).Pairs, grid(m->GetOutput()));
+  }
+  else
+  {
+    e->SetFileName(example.c_str());
+    Run(e);
+    report = msynth::CheckConsistency(grid(e->GetOutput()), grid(m->GetOutput()));
+  }
   if (report.Consistent)
   {
     std::cout << "consistent: all " << report.PairsChecked << " adjacent pairs of " << modelPath
@@ -575,13 +656,14 @@ int Main(const std::vector<std::string>& args)
       }
       continue;
     }
-    if (args[i] == "--pieces" || args[i] == "--guide")
+    if (args[i] == "--pieces" || args[i] == "--guide" || args[i] == "--subset")
     {
       if (i + 1 >= args.size())
       {
         throw UsageError{ args[i] + " needs a value" };
       }
-      (args[i] == "--pieces" ? synth.Pieces : synth.Guide) = args[i + 1];
+      (args[i] == "--pieces" ? synth.Pieces : (args[i] == "--guide" ? synth.Guide : synth.Subset)) =
+        args[i + 1];
       ++i;
       continue;
     }
@@ -647,13 +729,17 @@ int Main(const std::vector<std::string>& args)
     {
       throw UsageError{ "check takes EXAMPLE and MODEL.vti" };
     }
-    return Check(positional[0], positional[1]);
+    return Check(positional[0], positional[1], synth.Subset);
   }
   if (command == "info" || command == "analyze")
   {
     if (positional.size() != 1)
     {
       throw UsageError{ command + " takes exactly one EXAMPLE" };
+    }
+    if (command == "info" && IsTileset(positional[0]))
+    {
+      return TilesetInfo(positional[0], synth.Subset);
     }
     return command == "info" ? Info(positional[0]) : AnalyzeToFolder(positional[0], out);
   }

@@ -125,4 +125,11 @@ mid = servermanager.Fetch(synthesis)
 check(mid.GetPointData().GetArray("CatalogSize") is not None, "CatalogSize at a time step")
 check(mid.GetPointData().GetArray("Entropy") is not None, "Entropy at a time step")
 
+# A tileset through its source proxy and the picture through the tile-image filter.
+tileset = os.path.join(DATA, "Tilesets", "Lines.xml")
+tiled = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[12, 9, 1], Seed=4)
+picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tileset))
+check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
+check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -132,6 +132,33 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("no such guide file", r.stderr)
 
+    def test_tileset(self):
+        tiles = data("Tilesets/Lines.xml")
+        r = run("info", tiles)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("labels: 7", r.stdout)
+        self.assertIn("label 6: corner 3", r.stdout)
+        out = tmp("cli-tiles")
+        shutil.rmtree(out, ignore_errors=True)
+        r = run("synthesize", tiles, "--size", "20", "14", "1", "--seed", "5", "--order", "entropy",
+                "--choice", "frequency", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        from vtkmodules.vtkIOImage import vtkPNGReader
+        png = vtkPNGReader()
+        png.SetFileName(os.path.join(out, "picture.png"))
+        png.Update()
+        self.assertEqual(png.GetOutput().GetDimensions(), (160, 112, 1))  # 8-pixel tiles
+        r = run("check", tiles, os.path.join(out, "labels.vti"))
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        # Subsets: only empty and straight lines (labels 0-2).
+        r = run("synthesize", tiles, "--size", "12", "12", "1", "--subset", "straight", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(os.path.join(out, "labels.vti"))
+        reader.Update()
+        self.assertLessEqual(int(labels_zyx(reader.GetOutput()).max()), 2)
+        self.assertEqual(run("check", tiles, os.path.join(out, "labels.vti"), "--subset", "straight").returncode, 0)
+
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
                 "--block", "3", "3", "1", "--out", tmp("cli-fail"))

@@ -8,7 +8,7 @@ import modelsynth
 class ImportTest(unittest.TestCase):
     def test_classes_are_exposed(self):
         for name in ("vtkMSLabelGridReader", "vtkMSTransitionTables", "vtkMSOpenVDBWriter",
-                     "vtkMSOpenVDBReader", "vtkMSDiscreteSynthesis", "vtkMSLabelGeometry"):
+                     "vtkMSOpenVDBReader", "vtkMSDiscreteSynthesis", "vtkMSLabelGeometry", "vtkMSTileImage"):
             self.assertTrue(hasattr(modelsynth, name), name)
             obj = getattr(modelsynth, name)()
             self.assertEqual(obj.GetClassName(), name)

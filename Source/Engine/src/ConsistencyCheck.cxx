@@ -12,7 +12,24 @@ std::string ConsistencyViolation::Describe() const
   static const char* const axes[3] = { "+x", "+y", "+z" };
   return "site (" + std::to_string(this->Site[0]) + ", " + std::to_string(this->Site[1]) + ", " +
     std::to_string(this->Site[2]) + "): label " + std::to_string(this->From) + " followed by " +
-    std::to_string(this->To) + " along " + axes[this->Axis] + " never occurs in the example";
+    std::to_string(this->To) + " along " + axes[this->Axis] +
+    " is not allowed (never occurs in the example)";
+}
+
+namespace
+{
+ConsistencyReport CheckPairs(const std::set<std::tuple<int, Label, Label>>& allowed,
+  const LabelGrid& model, std::size_t maxReported);
+} // namespace
+
+ConsistencyReport CheckConsistency(const std::array<std::vector<std::pair<int, int>>, 3>& pairs,
+  const LabelGrid& model, std::size_t maxReported)
+{
+  std::set<std::tuple<int, Label, Label>> allowed;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const auto& p : pairs[static_cast<std::size_t>(axis)])
+      allowed.emplace(axis, p.first, p.second);
+  return CheckPairs(allowed, model, maxReported);
 }
 
 ConsistencyReport CheckConsistency(
@@ -32,7 +49,14 @@ ConsistencyReport CheckConsistency(
         if (z + 1 < e[2])
           allowed.emplace(2, example.At(x, y, z), example.At(x, y, z + 1));
       }
+  return CheckPairs(allowed, model, maxReported);
+}
 
+namespace
+{
+ConsistencyReport CheckPairs(const std::set<std::tuple<int, Label, Label>>& allowed,
+  const LabelGrid& model, std::size_t maxReported)
+{
   ConsistencyReport report;
   const auto& m = model.Dimensions();
   for (std::int64_t z = 0; z < m[2]; ++z)
@@ -57,5 +81,6 @@ ConsistencyReport CheckConsistency(
       }
   return report;
 }
+} // namespace
 
 } // namespace msynth

@@ -17,12 +17,14 @@
 #include "vtkStringArray.h"
 
 #include "msynth/DiscreteSynthesis.h"
+#include "msynth/Tileset.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 vtkStandardNewMacro(vtkMSDiscreteSynthesis);
 
@@ -37,6 +39,7 @@ struct vtkMSDiscreteSynthesis::Internals
   bool Valid = false;
   msynth::SynthesisResult Result;
   std::vector<msynth::CatalogSnapshot> Snapshots;
+  msynth::Tileset Tiles; ///< the tileset of the last run, when TilesetFile is set
 };
 
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
@@ -73,10 +76,9 @@ msynth::SynthesisOptions SizeOptions(
 int vtkMSDiscreteSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  }
+  // The guide (port 1) is optional; so is the example (port 0) when a tileset gives the rules.
+  (void)port;
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
@@ -98,11 +100,11 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     this->OutputSize[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
-  if (inInfo->Has(vtkDataObject::SPACING()))
+  if (inInfo && inInfo->Has(vtkDataObject::SPACING()))
   {
     inInfo->Get(vtkDataObject::SPACING(), spacing);
   }
-  if (inInfo->Has(vtkDataObject::ORIGIN()))
+  if (inInfo && inInfo->Has(vtkDataObject::ORIGIN()))
   {
     inInfo->Get(vtkDataObject::ORIGIN(), origin);
   }
@@ -177,25 +179,29 @@ int vtkMSDiscreteSynthesis::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  if (!input)
+  const bool tileset = !this->TilesetFile.empty();
+  vtkDataArray* labels = nullptr;
+  if (!tileset)
   {
-    vtkErrorMacro(<< "No input example.");
-    return 0;
-  }
-  // An empty selection (ParaView's domain before the data exists) falls back to "Label".
-  vtkDataArray* labels =
-    vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
-  std::string problem;
-  if (!labels)
-  {
-    vtkErrorMacro(
-      << "The example has no label array (an integer point array, by default 'Label').");
-    return 0;
-  }
-  if (!vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
-  {
-    vtkErrorMacro(<< "Bad example: " << problem);
-    return 0;
+    if (!input)
+    {
+      vtkErrorMacro(<< "No input example (and no TilesetFile).");
+      return 0;
+    }
+    // An empty selection (ParaView's domain before the data exists) falls back to "Label".
+    labels = vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
+    std::string problem;
+    if (!labels)
+    {
+      vtkErrorMacro(
+        << "The example has no label array (an integer point array, by default 'Label').");
+      return 0;
+    }
+    if (!vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+    {
+      vtkErrorMacro(<< "Bad example: " << problem);
+      return 0;
+    }
   }
 
   msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
@@ -288,8 +294,9 @@ int vtkMSDiscreteSynthesis::RequestData(
 
   Internals& cache = *this->Internal;
   const vtkMTimeType guideTime = guide ? guide->GetMTime() : 0;
+  const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
   const bool fresh = !cache.Valid || cache.FilterTime != this->GetMTime() || cache.Input != input ||
-    cache.InputTime != input->GetMTime() || cache.Guide != guide || cache.GuideTime != guideTime;
+    cache.InputTime != inputTime || cache.Guide != guide || cache.GuideTime != guideTime;
   if (fresh)
   {
     cache.Valid = false;
@@ -301,11 +308,24 @@ int vtkMSDiscreteSynthesis::RequestData(
     }
     try
     {
-      const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
-      const auto analysis = msynth::ExampleAnalysis::FromExample(example);
-      options.Example = &example;
-      options.ResemblanceWindow = this->ResemblanceWindow;
-      cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+      if (tileset)
+      {
+        if (options.Choice == msynth::LabelChoice::Resemblance)
+        {
+          throw std::runtime_error(
+            "resemblance-weighted choice needs an example grid, not a tileset");
+        }
+        cache.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+        cache.Result = msynth::Synthesize(cache.Tiles.Rules(), options);
+      }
+      else
+      {
+        const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
+        const auto analysis = msynth::ExampleAnalysis::FromExample(example);
+        options.Example = &example;
+        options.ResemblanceWindow = this->ResemblanceWindow;
+        cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+      }
     }
     catch (const std::exception& e)
     {
@@ -315,7 +335,7 @@ int vtkMSDiscreteSynthesis::RequestData(
     cache.Valid = cache.Result.Success;
     cache.FilterTime = this->GetMTime();
     cache.Input = input;
-    cache.InputTime = input->GetMTime();
+    cache.InputTime = inputTime;
     cache.Guide = guide;
     cache.GuideTime = guideTime;
   }
@@ -332,8 +352,11 @@ int vtkMSDiscreteSynthesis::RequestData(
   const int extent[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
     this->OutputSize[2] - 1 };
   output->SetExtent(const_cast<int*>(extent));
-  output->SetSpacing(input->GetSpacing());
-  output->SetOrigin(input->GetOrigin());
+  if (input)
+  {
+    output->SetSpacing(input->GetSpacing());
+    output->SetOrigin(input->GetOrigin());
+  }
   vtkSmartPointer<vtkIntArray> label;
   label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
   output->GetPointData()->SetScalars(label);
@@ -407,7 +430,20 @@ int vtkMSDiscreteSynthesis::RequestData(
   }
   fd->AddArray(origins);
   fd->AddArray(sites);
-  if (vtkAbstractArray* file = input->GetFieldData()->GetAbstractArray("ExampleFile"))
+  if (tileset)
+  {
+    // Label i is orientation k of a tile: its name as the tileset's images are named.
+    vtkNew<vtkStringArray> names;
+    names->SetName("TileNames");
+    for (int b = 0; b < cache.Tiles.NumberOfLabels(); ++b)
+    {
+      names->InsertNextValue(cache.Tiles.LabelName(b));
+    }
+    fd->AddArray(names);
+    AddValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
+  }
+  if (vtkAbstractArray* file =
+        input ? input->GetFieldData()->GetAbstractArray("ExampleFile") : nullptr)
   {
     fd->AddArray(file);
   }

@@ -32,6 +32,10 @@
  * each label's relative probability per guide point; 0 removes the label there. Labels without
  * an array have weight 1.
  *
+ * Tilesets: with TilesetFile set (simple-tiled XML, msynth/Tileset.h) the rules come from the
+ * tileset and the example input is not needed; label i is an orientation of a tile, named in
+ * the field array `TileNames` ("tile k"). vtkMSTileImage composes the tiles' images.
+ *
  * The result depends only on the inputs and Seed.
  *
  * Watching the solver: with CatalogSnapshotsPerBlock S > 0 the output has time steps
@@ -115,6 +119,15 @@ public:
   /// Sets the guide volume (input port 1); nullptr removes it.
   void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetGuideData(vtkDataObject* guide) { this->SetInputData(1, guide); }
+
+  ///@{
+  /// A tileset (.xml) to take the rules from instead of the example, and the subset of its tiles
+  /// to use ("" for all). Default "".
+  vtkSetStdStringFromCharMacro(TilesetFile);
+  vtkGetCharFromStdStringMacro(TilesetFile);
+  vtkSetStdStringFromCharMacro(TilesetSubset);
+  vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
 
   ///@{
   /// Threads for block synthesis; 0 uses one per core. The model does not depend on it.
@@ -210,6 +223,8 @@ private:
   int NumberOfThreads = 0;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
+  std::string TilesetFile;
+  std::string TilesetSubset;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
 
   struct Internals;

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace msynth
@@ -36,5 +37,10 @@ struct ConsistencyReport
 /// Every adjacent pair (x, x + d) of @p model must occur in @p example (Eq. 3.1).
 ConsistencyReport CheckConsistency(
   const LabelGrid& example, const LabelGrid& model, std::size_t maxReported = 10);
+
+/// Every adjacent pair of @p model must be listed in @p allowed (per axis, (first, second)
+/// label pairs, e.g. a tileset's expanded neighbors).
+ConsistencyReport CheckConsistency(const std::array<std::vector<std::pair<int, int>>, 3>& allowed,
+  const LabelGrid& model, std::size_t maxReported = 10);
 
 } // namespace msynth

@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSTileImage.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPNGReader.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "msynth/Tileset.h"
+
+#include <algorithm>
+#include <sys/stat.h>
+#include <vector>
+
+vtkStandardNewMacro(vtkMSTileImage);
+
+int vtkMSTileImage::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+namespace
+{
+/// The image file of orientation @p k of @p tile, and its folder from the XML file's name.
+std::string TileImagePath(
+  const std::string& xml, const msynth::Tileset& tiles, const msynth::TilesetTile& tile, int k)
+{
+  const std::string::size_type dot = xml.rfind('.');
+  const std::string folder = xml.substr(0, dot == std::string::npos ? xml.size() : dot);
+  return folder + "/" + tile.Name + (tiles.Unique ? " " + std::to_string(k) : std::string()) +
+    ".png";
+}
+} // namespace
+
+int vtkMSTileImage::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // The pixel extent: the input's sites times the tile size, read from the first tile image's
+  // header (cheap). A bad tileset is reported here and again, in full, by RequestData.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int sites[6] = { 0, 0, 0, 0, 0, 0 };
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), sites);
+  int size = 1;
+  try
+  {
+    const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+    vtkNew<vtkPNGReader> reader;
+    reader->SetFileName(TileImagePath(this->TilesetFile, tiles, tiles.Tiles.front(), 0).c_str());
+    std::string messages;
+    if (vtkMSEngineBridge::Execute(reader, messages, /*informationOnly=*/true))
+    {
+      int e[6];
+      reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+      size = std::max(1, e[1] - e[0] + 1);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  const int extent[6] = { 0, (sites[1] - sites[0] + 1) * size - 1, 0,
+    (sites[3] - sites[2] + 1) * size - 1, 0, 0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  const double spacing[3] = { 1.0 / size, 1.0 / size, 1.0 };
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+int vtkMSTileImage::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // Output pixels are not input sites: always ask for all the sites.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  return 1;
+}
+
+namespace
+{
+/// A tile image as RGBA rows, bottom row first (VTK's order).
+struct Picture
+{
+  int Size = 0;
+  std::vector<unsigned char> RGBA; ///< Size × Size × 4
+  const unsigned char* At(int i, int j) const
+  {
+    return this->RGBA.data() +
+      4 * (static_cast<std::size_t>(j) * this->Size + static_cast<std::size_t>(i));
+  }
+};
+
+/// Orientation k+1 = orientation k turned 90° counter-clockwise (pixel (i, j) of the result is
+/// pixel (j, T-1-i) of the source, rows bottom first); 4-7 mirror 0-3 left-right.
+Picture Oriented(const Picture& p, int orientation)
+{
+  Picture out = p;
+  const int t = p.Size;
+  for (int r = 0; r < orientation % 4; ++r)
+  {
+    Picture turned = out;
+    for (int j = 0; j < t; ++j)
+      for (int i = 0; i < t; ++i)
+        std::copy(out.At(j, t - 1 - i), out.At(j, t - 1 - i) + 4,
+          turned.RGBA.begin() +
+            4 * (static_cast<std::size_t>(j) * t + static_cast<std::size_t>(i)));
+    out = turned;
+  }
+  if (orientation >= 4)
+  {
+    // Mirror of orientation k - 4: mirror the turned image.
+    Picture mirrored = out;
+    for (int j = 0; j < t; ++j)
+      for (int i = 0; i < t; ++i)
+        std::copy(out.At(t - 1 - i, j), out.At(t - 1 - i, j) + 4,
+          mirrored.RGBA.begin() +
+            4 * (static_cast<std::size_t>(j) * t + static_cast<std::size_t>(i)));
+    out = mirrored;
+  }
+  return out;
+}
+} // namespace
+
+int vtkMSTileImage::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(input, nullptr);
+  std::string problem;
+  if (!labels || !vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+  {
+    vtkErrorMacro(<< (labels ? problem : std::string("The input has no label array.")));
+    return 0;
+  }
+  msynth::Tileset tiles;
+  try
+  {
+    tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+
+  // One picture per label.
+  std::vector<Picture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
+  int size = 0;
+  for (int b = 0; b < tiles.NumberOfLabels(); ++b)
+  {
+    const auto& tile =
+      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
+    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
+    const std::string path = TileImagePath(this->TilesetFile, tiles, tile, k);
+    struct stat info;
+    if (::stat(path.c_str(), &info) != 0)
+    {
+      vtkErrorMacro(<< "'" << path << "': no such tile image (tile '" << tile.Name << "').");
+      return 0;
+    }
+    vtkNew<vtkPNGReader> reader;
+    reader->SetFileName(path.c_str());
+    std::string messages;
+    if (!vtkMSEngineBridge::Execute(reader, messages))
+    {
+      vtkErrorMacro(<< "'" << path << "': could not be read: " << messages);
+      return 0;
+    }
+    vtkImageData* image = reader->GetOutput();
+    int dims[3];
+    image->GetDimensions(dims);
+    vtkDataArray* scalars = image->GetPointData()->GetScalars();
+    if (dims[0] != dims[1] || dims[0] < 1 || !scalars)
+    {
+      vtkErrorMacro(<< "'" << path << "': tile images must be square (this one is " << dims[0]
+                    << " x " << dims[1] << ").");
+      return 0;
+    }
+    if (size && dims[0] != size)
+    {
+      vtkErrorMacro(<< "'" << path << "': is " << dims[0] << " pixels wide; the other tiles are "
+                    << size << ".");
+      return 0;
+    }
+    size = dims[0];
+    Picture p;
+    p.Size = size;
+    p.RGBA.resize(static_cast<std::size_t>(size) * size * 4);
+    const int nc = scalars->GetNumberOfComponents();
+    for (vtkIdType t = 0; t < static_cast<vtkIdType>(size) * size; ++t)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        // Grey (1, 2 components) and RGB (3) images: fill RGB from grey, alpha opaque.
+        double v = 255.0;
+        if (c < 3)
+          v = scalars->GetComponent(t, nc >= 3 ? c : 0);
+        else if (nc == 4 || nc == 2)
+          v = scalars->GetComponent(t, nc - 1);
+        p.RGBA[static_cast<std::size_t>(4 * t + c)] = static_cast<unsigned char>(v);
+      }
+    }
+    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
+  }
+
+  int dims[3];
+  input->GetDimensions(dims);
+  output->SetExtent(0, dims[0] * size - 1, 0, dims[1] * size - 1, 0, 0);
+  output->SetSpacing(1.0 / size, 1.0 / size, 1.0);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("RGBA");
+  rgba->SetNumberOfComponents(4);
+  const vtkIdType width = static_cast<vtkIdType>(dims[0]) * size;
+  rgba->SetNumberOfTuples(width * dims[1] * size);
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      const int b = static_cast<int>(labels->GetTuple1(x + static_cast<vtkIdType>(dims[0]) * y));
+      if (b < 0 || b >= tiles.NumberOfLabels())
+      {
+        vtkErrorMacro(<< "Label " << b << " at (" << x << ", " << y << ") is not a label of '"
+                      << this->TilesetFile << "'.");
+        return 0;
+      }
+      const Picture& p = pictures[static_cast<std::size_t>(b)];
+      for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i)
+          rgba->SetTypedTuple(
+            (static_cast<vtkIdType>(y) * size + j) * width + static_cast<vtkIdType>(x) * size + i,
+            p.At(i, j));
+    }
+  }
+  output->GetPointData()->SetScalars(rgba);
+  return 1;
+}
+
+void vtkMSTileImage::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TilesetFile: " << this->TilesetFile << "\n";
+  os << indent << "TilesetSubset: " << this->TilesetSubset << "\n";
+}

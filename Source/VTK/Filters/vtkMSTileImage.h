@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSTileImage
+ * @brief Composes the picture of a 2D tile model from the tileset's images.
+ *
+ * Input: vtkImageData of labels (`Label`, else the active scalars), as vtkMSDiscreteSynthesis
+ * produces with a TilesetFile; label i is orientation k of a tile (msynth/Tileset.h).
+ *
+ * Images are found as the format's published tilesets lay them out: a folder named like the
+ * XML file beside it (`Castle.xml` + `Castle/<tile>.png`), or one image per orientation
+ * (`Castle/<tile> <k>.png`) when the set is `unique`. Otherwise orientation k + 1 is
+ * orientation k turned 90° counter-clockwise, and orientations 4-7 mirror 0-3 left-right.
+ * All images must be square and of one size T.
+ *
+ * Output: vtkImageData of (nx·T) × (ny·T) pixels with the unsigned-char array `RGBA` (four
+ * components, the active scalars); site (x, y) covers pixels [xT, xT + T) × [yT, yT + T).
+ *
+ * @sa vtkMSDiscreteSynthesis
+ */
+#ifndef vtkMSTileImage_h
+#define vtkMSTileImage_h
+
+#include "ModelSynthFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // for ivars
+
+class MODELSYNTHFILTERS_EXPORT vtkMSTileImage : public vtkImageAlgorithm
+{
+public:
+  static vtkMSTileImage* New();
+  vtkTypeMacro(vtkMSTileImage, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The tileset (.xml) whose images to use, and its subset ("" for all tiles). No default.
+  vtkSetStdStringFromCharMacro(TilesetFile);
+  vtkGetCharFromStdStringMacro(TilesetFile);
+  vtkSetStdStringFromCharMacro(TilesetSubset);
+  vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
+
+protected:
+  vtkMSTileImage() = default;
+  ~vtkMSTileImage() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSTileImage(const vtkMSTileImage&) = delete;
+  void operator=(const vtkMSTileImage&) = delete;
+
+  std::string TilesetFile;
+  std::string TilesetSubset;
+};
+
+#endif
