@@ -79,6 +79,8 @@ synthesize options:
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
   --swap A:B          labels A and B are each other's mirror images (repeatable)
   --subset NAME       with a tileset: use the tiles of its subset NAME
+  --target L:F        soft constraint: aim for fraction F of label L (repeatable; needs --block)
+  --temperature T     temperature of the soft constraints' Metropolis acceptance (0.01)
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
                       arrays Weight_<label> weight each label (0 forbids it there)
 
@@ -343,6 +345,8 @@ struct SynthesizeArguments
   std::string Pieces;
   std::string Guide;
   std::string Subset;
+  std::string Targets;
+  double Temperature = 0.01;
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
   std::string Swaps;
 };
@@ -389,6 +393,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   synthesis->SetUseBoundary(use);
   synthesis->SetBoundaryLabels(labels);
   synthesis->SetMirror(a.Mirror.data());
+  synthesis->SetTargetFractions(a.Targets.c_str());
+  synthesis->SetSoftTemperature(a.Temperature);
   synthesis->SetMirrorSwaps(a.Swaps.c_str());
   vtkNew<vtkXMLImageDataReader> guide;
   if (!a.Guide.empty())
@@ -489,7 +495,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
           << a.Size[1] << ", " << a.Size[2] << "],\n  \"block\": [" << a.Block[0] << ", "
           << a.Block[1] << ", " << a.Block[2] << "],\n  \"seed\": " << a.Seed << ",\n";
       for (const char* name :
-        { "Blocks", "BlocksAccepted", "BlocksFailed", "Attempts", "Assignments" })
+        { "Blocks", "BlocksAccepted", "BlocksFailed", "BlocksRejected", "Attempts", "Assignments" })
       {
         out << "  \"" << name << "\": " << static_cast<long long>(number(name)) << ",\n";
       }
@@ -629,6 +635,29 @@ int Main(const std::vector<std::string>& args)
       const long long label = integer(i, args[i]);
       (ground ? synth.HasGround : synth.HasEmpty) = true;
       (ground ? synth.Ground : synth.Empty) = static_cast<int>(label);
+      continue;
+    }
+    if (args[i] == "--target" || args[i] == "--temperature")
+    {
+      const std::string option = args[i];
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ option + " needs a value" };
+      }
+      const std::string v = args[++i];
+      if (option == "--target")
+      {
+        synth.Targets += (synth.Targets.empty() ? "" : ",") + v;
+      }
+      else
+      {
+        char* end = nullptr;
+        synth.Temperature = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end || !(synth.Temperature > 0.0))
+        {
+          throw UsageError{ "--temperature: '" + v + "' is not a positive number" };
+        }
+      }
       continue;
     }
     if (args[i] == "--mirror" || args[i] == "--swap")

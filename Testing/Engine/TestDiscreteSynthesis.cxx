@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -574,4 +575,50 @@ TEST(DiscreteSynthesis, SameModelWhateverTheThreadCount)
       EXPECT_EQ(results[i].Statistics.BlocksFailed, results[0].Statistics.BlocksFailed);
     }
   }
+}
+
+TEST(DiscreteSynthesis, SoftConstraintsSteerLabelFractions)
+{
+  const LabelGrid v = Village();
+  auto wallFraction = [](const LabelGrid& m)
+  { return double(std::count(m.Data().begin(), m.Data().end(), 2)) / double(m.NumberOfSites()); };
+  SynthesisOptions o;
+  o.Size = { { 40, 40, 5 } };
+  o.BlockSize = { { 8, 8, 5 } };
+  o.Seed = 12;
+  o.Boundary[FaceMinZ] = 1;
+  const auto free = SynthesizeFrom(v, o);
+  ExpectConsistent(v, free);
+  o.Soft.Temperature = 0.05;
+  o.Soft.TargetFractions[2] = 0.30; // many walls
+  const auto more = SynthesizeFrom(v, o);
+  ExpectConsistent(v, more);
+  o.Soft.TargetFractions[2] = 0.0; // no walls
+  const auto fewer = SynthesizeFrom(v, o);
+  ExpectConsistent(v, fewer);
+  std::cout << "wall fraction: free " << wallFraction(free.Model) << ", target 0.30 "
+            << wallFraction(more.Model) << ", target 0 " << wallFraction(fewer.Model) << "\n";
+  EXPECT_GT(wallFraction(more.Model), wallFraction(free.Model));
+  EXPECT_LT(wallFraction(fewer.Model), wallFraction(free.Model));
+  EXPECT_GT(more.Statistics.BlocksRejected + fewer.Statistics.BlocksRejected, 0);
+  // Decisions are made in block order: the same model for any number of threads.
+  o.Soft.TargetFractions[2] = 0.30;
+  o.Threads = 1;
+  const auto one = SynthesizeFrom(v, o);
+  o.Threads = 2;
+  const auto two = SynthesizeFrom(v, o);
+  EXPECT_EQ(one.Model, two.Model);
+  EXPECT_EQ(one.Statistics.BlocksRejected, two.Statistics.BlocksRejected);
+  // A user fitness works too (larger is better: here, fewer roofs).
+  SynthesisOptions u = o;
+  u.Soft.TargetFractions.clear();
+  u.Soft.Fitness = [](const LabelGrid& m)
+  { return std::exp(-0.05 * double(std::count(m.Data().begin(), m.Data().end(), 3))); };
+  const auto fit = SynthesizeFrom(v, u);
+  ExpectConsistent(v, fit);
+  EXPECT_LT(std::count(fit.Model.Data().begin(), fit.Model.Data().end(), 3),
+    std::count(free.Model.Data().begin(), free.Model.Data().end(), 3));
+  // Whole-model synthesis has nothing to compare with.
+  o.BlockSize = { { 0, 0, 0 } };
+  EXPECT_THROW(SynthesizeFrom(v, o), Error);
 }

@@ -153,6 +153,24 @@ class SynthesisTest(unittest.TestCase):
         self.assertGreater(int((model == 2).sum()), 0)
         self.assertTrue(np.array_equal(model, labels_zyx(b)))
 
+    def test_soft_constraints(self):
+        base = dict(OutputSize=(32, 32, 5), BlockSize=(8, 8, 5), Seed=5,
+                    UseBoundary=(1, 1, 1, 1, 1, 1), BoundaryLabels=(0, 0, 0, 0, 1, 0))
+        free, errors = synthesize(self.reader.GetOutputPort(), **base)
+        self.assertEqual(errors, "")
+        steered, errors = synthesize(self.reader.GetOutputPort(), TargetFractions="2:0.3",
+                                     SoftTemperature=0.05, **base)
+        self.assertEqual(errors, "")
+        walls = lambda image: float((labels_zyx(image) == 2).mean())
+        self.assertGreater(walls(steered), walls(free))
+        self.assertEqual(violations(self.example, labels_zyx(steered)), [])
+        self.assertGreater(steered.GetFieldData().GetArray("BlocksRejected").GetValue(0), 0)
+        _, errors = synthesize(self.reader.GetOutputPort(), TargetFractions="2=0.3", **base)
+        self.assertIn("is not 'label:fraction'", errors)
+        whole = dict(base, BlockSize=(0, 0, 0))
+        _, errors = synthesize(self.reader.GetOutputPort(), TargetFractions="2:0.3", **whole)
+        self.assertIn("need block synthesis", errors)
+
     def test_mirror_symmetry(self):
         for size in ((21, 16, 5), (20, 17, 5)):
             out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=size, BlockSize=(8, 8, 5),

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <queue>
@@ -1086,10 +1087,29 @@ SynthesisResult SynthesizeDirect(
     std::int64_t Empty = -1;
     int Attempts = 0;
     std::int64_t Assignments = 0;
+    std::vector<std::int32_t> SavedModel, SavedLast; ///< the block before, for soft constraints
   };
-  auto runBlock = [&options](Solver& worker, const Block& block)
+  const bool soft = options.Soft.Active();
+  if (soft && wholeModel)
+    throw Error("soft constraints (Metropolis acceptance of block changes) need block synthesis");
+  auto forEachSite = [&](const Block& block, const std::function<void(std::size_t)>& visit)
+  {
+    Coord p;
+    for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
+      for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
+        for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
+          visit(static_cast<std::size_t>(solver.Index(p)));
+  };
+  auto runBlock = [&options, &forEachSite, soft, &shared](Solver& worker, const Block& block)
   {
     Outcome out;
+    if (soft)
+      forEachSite(block,
+        [&](std::size_t s)
+        {
+          out.SavedModel.push_back(shared.Model[s]);
+          out.SavedLast.push_back(shared.LastBlock[s]);
+        });
     for (; out.Attempts < options.AttemptsPerBlock;)
     {
       Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(block.Index),
@@ -1100,6 +1120,90 @@ SynthesisResult SynthesizeDirect(
         break;
     }
     return out;
+  };
+  // Soft constraints: label counts of the current model and the targets, by label index.
+  const int k = rules.NumberOfLabels();
+  std::vector<double> target(static_cast<std::size_t>(k), -1.0);
+  std::vector<std::int64_t> counts(static_cast<std::size_t>(k), 0);
+  double fitness = 0.0;
+  const double sites = static_cast<double>(shared.Model.size());
+  auto modelGrid = [&]()
+  {
+    std::vector<Label> values(shared.Model.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = rules.LabelValues()[static_cast<std::size_t>(shared.Model[i])];
+    return LabelGrid(n, std::move(values));
+  };
+  if (soft)
+  {
+    for (const auto& kv : options.Soft.TargetFractions)
+    {
+      const int b = rules.IndexOf(kv.first);
+      if (b < 0)
+        throw Error("the soft constraint names label " + std::to_string(kv.first) +
+          ", which does not occur in the example");
+      if (!(kv.second >= 0.0 && kv.second <= 1.0))
+        throw Error(
+          "the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
+      target[static_cast<std::size_t>(b)] = kv.second;
+    }
+    if (!(options.Soft.Temperature > 0.0) || !std::isfinite(options.Soft.Temperature))
+      throw Error("the soft constraints' temperature must be positive");
+    for (std::int32_t b : shared.Model)
+      ++counts[static_cast<std::size_t>(b)];
+    if (options.Soft.Fitness)
+      fitness = options.Soft.Fitness(modelGrid());
+  }
+  auto energy = [&](int b, std::int64_t count)
+  {
+    const double t = target[static_cast<std::size_t>(b)];
+    return t < 0.0 ? 0.0 : sites * (double(count) / sites - t) * (double(count) / sites - t);
+  };
+  // Keeps or rolls back a synthesized block (2007 paper §4.2); decided in block order.
+  auto decide = [&](const Block& block, const Outcome& out)
+  {
+    if (!soft || out.Empty >= 0)
+      return true;
+    std::vector<std::int64_t> delta(static_cast<std::size_t>(k), 0);
+    std::size_t i = 0;
+    forEachSite(block,
+      [&](std::size_t s)
+      {
+        --delta[static_cast<std::size_t>(out.SavedModel[i++])];
+        ++delta[static_cast<std::size_t>(shared.Model[s])];
+      });
+    double dE = 0.0;
+    for (int b = 0; b < k; ++b)
+      if (delta[static_cast<std::size_t>(b)] != 0)
+        dE += energy(b, counts[static_cast<std::size_t>(b)] + delta[static_cast<std::size_t>(b)]) -
+          energy(b, counts[static_cast<std::size_t>(b)]);
+    double ratio = std::exp(-dE / options.Soft.Temperature);
+    double newFitness = fitness;
+    if (options.Soft.Fitness)
+    {
+      newFitness = options.Soft.Fitness(modelGrid());
+      if (!(newFitness > 0.0) || !(fitness > 0.0))
+        throw Error("the soft constraints' fitness must be positive");
+      ratio *= newFitness / fitness;
+    }
+    Random rng =
+      Random::Derived(options.Seed, static_cast<std::uint64_t>(block.Index), 0x50f7ull << 32);
+    if (ratio >= 1.0 || rng.Uniform() < ratio)
+    {
+      for (int b = 0; b < k; ++b)
+        counts[static_cast<std::size_t>(b)] += delta[static_cast<std::size_t>(b)];
+      fitness = newFitness;
+      return true;
+    }
+    i = 0;
+    forEachSite(block,
+      [&](std::size_t s)
+      {
+        shared.Model[s] = out.SavedModel[i];
+        shared.LastBlock[s] = out.SavedLast[i++];
+      });
+    ++stats.BlocksRejected;
+    return false;
   };
   auto record = [&](const Block& block, const Outcome& out)
   {
@@ -1145,7 +1249,7 @@ SynthesisResult SynthesizeDirect(
       for (std::size_t i = first; i < last && !cancelled; ++i)
       {
         outcomes[i - first] = runBlock(solver, blocks[i]);
-        if (outcomes[i - first].Empty >= 0)
+        if (outcomes[i - first].Empty >= 0 || !decide(blocks[i], outcomes[i - first]))
           solver.Pending.clear(); // the block keeps its previous labels: repeat that state
         solver.CommitSnapshots(stats.Assignments + outcomes[i - first].Assignments);
         record(blocks[i], outcomes[i - first]);
@@ -1168,7 +1272,10 @@ SynthesisResult SynthesizeDirect(
       for (auto& t : pool)
         t.join();
       for (std::size_t i = first; i < last; ++i)
-        record(blocks[i], outcomes[i - first]); // in block order: deterministic statistics
+      {
+        decide(blocks[i], outcomes[i - first]); // in block order: deterministic
+        record(blocks[i], outcomes[i - first]);
+      }
       done += last - first;
       cancelled = options.Progress && !options.Progress(double(done) / double(blocks.size()));
     }
@@ -1203,7 +1310,10 @@ SynthesisResult SynthesizeDirect(
   result.Message = wholeModel ? "whole-model synthesis succeeded"
                               : std::to_string(stats.BlocksAccepted) + " of " +
       std::to_string(stats.Blocks) + " blocks synthesized, " + std::to_string(stats.BlocksFailed) +
-      " left at their previous labels";
+      " left at their previous labels" +
+      (stats.BlocksRejected
+          ? ", " + std::to_string(stats.BlocksRejected) + " rolled back by the soft constraints"
+          : std::string());
   return result;
 }
 

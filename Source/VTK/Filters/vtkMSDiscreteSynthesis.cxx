@@ -249,6 +249,28 @@ int vtkMSDiscreteSynthesis::RequestData(
       options.Symmetry[static_cast<std::size_t>(axis)].Map = swaps;
     }
   }
+  if (!this->TargetFractions.empty())
+  {
+    std::string text = this->TargetFractions;
+    for (char& c : text)
+      c = c == ',' || c == ';' ? ' ' : c;
+    std::istringstream pairs(text);
+    std::string pair;
+    while (pairs >> pair)
+    {
+      int label = 0;
+      double fraction = 0.0;
+      char colon = 0, extra = 0;
+      std::istringstream one(pair);
+      if (!(one >> label >> colon >> fraction) || colon != ':' || (one >> extra))
+      {
+        vtkErrorMacro(<< "TargetFractions: '" << pair << "' is not 'label:fraction'.");
+        return 0;
+      }
+      options.Soft.TargetFractions[label] = fraction;
+    }
+    options.Soft.Temperature = this->SoftTemperature;
+  }
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
   if (guide)
   {
@@ -406,6 +428,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   AddValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
   AddValue<vtkIntArray>(fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
   AddValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
+  AddValue<vtkIntArray>(fd, "BlocksRejected", static_cast<int>(s.BlocksRejected));
   AddValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
   AddValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
   AddValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);

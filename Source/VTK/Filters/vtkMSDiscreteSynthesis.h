@@ -27,6 +27,11 @@
  * mirror images as "a:b,c:d" (each pair swaps; other labels are their own image). The example's
  * rules must be symmetric under the map; otherwise the filter says which pair is not.
  *
+ * Soft constraints (Merrell 2007, §4.2): TargetFractions "label:fraction,..." keeps each
+ * block's change with the Metropolis probability min(1, exp(−ΔE / SoftTemperature)), where
+ * E = N · Σ (fraction − target)², so label fractions drift toward the targets. Block
+ * synthesis only; field data `BlocksRejected` counts the blocks rolled back.
+ *
  * Large-scale constraints (§3.5.3): an optional second input, the guide, is vtkImageData
  * stretched over the output box whose point arrays `Weight_<label>` (e.g. `Weight_2`) give
  * each label's relative probability per guide point; 0 removes the label there. Labels without
@@ -130,6 +135,15 @@ public:
   ///@}
 
   ///@{
+  /// Soft constraints: wanted label fractions, "label:fraction,..." ("" for none), and the
+  /// temperature of their Metropolis acceptance. Defaults "" and 0.01.
+  vtkSetStdStringFromCharMacro(TargetFractions);
+  vtkGetCharFromStdStringMacro(TargetFractions);
+  vtkSetClampMacro(SoftTemperature, double, 1e-9, 1e9);
+  vtkGetMacro(SoftTemperature, double);
+  ///@}
+
+  ///@{
   /// Threads for block synthesis; 0 uses one per core. The model does not depend on it.
   /// Default 0.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -224,6 +238,8 @@ private:
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
   std::string TilesetFile;
+  std::string TargetFractions;
+  double SoftTemperature = 0.01;
   std::string TilesetSubset;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
 

@@ -104,6 +104,23 @@ struct Mirror
   std::map<Label, Label> Map;
 };
 
+/**
+ * Soft constraints (2007 paper, §4.2): each block's change is kept with the Metropolis
+ * probability min(1, f(M') / f(M)), otherwise rolled back, so models that fit better are more
+ * likely. Built in: target fractions of labels, with f(M) = exp(−E / T) and
+ * E = N · Σ_b (fraction_b − target_b)² over the labels given (computed from label counts, so
+ * each decision is cheap). Optionally a user fitness f(M) > 0 (larger is better), evaluated on
+ * the whole model after every block. Needs block synthesis (Algorithm 3.1 has no previous model
+ * to compare with). Decisions are made in block order, so results do not depend on threads.
+ */
+struct SoftConstraint
+{
+  std::map<Label, double> TargetFractions;
+  double Temperature = 0.01;
+  std::function<double(const LabelGrid&)> Fitness;
+  bool Active() const { return !this->TargetFractions.empty() || static_cast<bool>(this->Fitness); }
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -133,6 +150,8 @@ struct SynthesisOptions
   std::optional<Label> TrivialLabel;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
+  /// Soft constraints; inactive by default.
+  SoftConstraint Soft;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
   /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
@@ -166,6 +185,7 @@ struct SynthesisStatistics
   std::int64_t Blocks = 0;
   std::int64_t BlocksAccepted = 0;
   std::int64_t BlocksFailed = 0;
+  std::int64_t BlocksRejected = 0; ///< synthesized but rolled back by the soft constraints
   std::int64_t Attempts = 0;
   std::int64_t Assignments = 0;
   int Phases = 1;
