@@ -11,29 +11,11 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
 import modelsynth
-from msynth_testing import labels_zyx, run_algorithm, tmp
+from msynth_testing import data, labels_zyx, run_algorithm, tmp
 
 T = 5  # tile size in pixels
 
-TILESET = """<?xml version="1.0"?>
-<set>
-  <tiles>
-    <tile name="empty" symmetry="X"/>
-    <tile name="line" symmetry="I" weight="2"/>
-    <tile name="corner" symmetry="L"/>
-  </tiles>
-  <neighbors>
-    <neighbor left="empty" right="empty"/>
-    <neighbor left="line 1" right="empty"/>
-    <neighbor left="line" right="line"/>
-    <neighbor left="line" right="corner 1"/>
-    <neighbor left="corner" right="empty"/>
-    <neighbor left="corner 1" right="line"/>
-    <neighbor left="corner 1" right="corner"/>
-    <neighbor left="empty" right="corner"/>
-  </neighbors>
-</set>
-"""
+TILE_NAMES = ("empty", "line", "corner")  # the tiles of the bundled Data/Tilesets/Lines.xml
 
 
 def tile_pixels(index):
@@ -70,9 +52,9 @@ class TilesetTest(unittest.TestCase):
         shutil.rmtree(folder, ignore_errors=True)
         os.makedirs(folder)
         cls.xml = folder + ".xml"
-        with open(cls.xml, "w") as f:
-            f.write(TILESET)
-        for index, name in enumerate(("empty", "line", "corner")):
+        # The bundled rules, with asymmetric images of our own so that turns and mirrors show.
+        shutil.copy(data("Tilesets/Lines.xml"), cls.xml)
+        for index, name in enumerate(TILE_NAMES):
             write_png(os.path.join(folder, name + ".png"), tile_pixels(index))
 
     def synthesize(self, **options):
@@ -116,8 +98,7 @@ class TilesetTest(unittest.TestCase):
         missing = tmp("tiny-set-missing")
         shutil.rmtree(missing, ignore_errors=True)
         os.makedirs(missing)
-        with open(missing + ".xml", "w") as f:
-            f.write(TILESET)
+        shutil.copy(data("Tilesets/Lines.xml"), missing + ".xml")
         picture, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(),
                                         TilesetFile=missing + ".xml")
         self.assertIn("no such tile image", errors)
