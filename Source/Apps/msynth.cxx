@@ -185,6 +185,17 @@ int Info(const std::string& example)
     std::cout << "  label " << labels->GetValueByName(r, "Label").ToString() << ": "
               << labels->GetValueByName(r, "Count").ToString() << " sites\n";
   }
+  vtkFieldData* fd = transitions->GetFieldData();
+  if (auto* verdict =
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray("InfallibilityExplanation")))
+  {
+    const bool proved = fd->GetArray("Infallible")->GetTuple1(0) != 0;
+    std::cout << "infallibility: " << (proved ? "proved infallible" : "not proved") << " ("
+              << verdict->GetValue(0) << ")\n"
+              << "recommendation: "
+              << vtkStringArray::SafeDownCast(fd->GetAbstractArray("Recommendation"))->GetValue(0)
+              << "\n";
+  }
   const char* names[3] = { "+x", "+y", "+z" };
   for (int axis = 0; axis < 3; ++axis)
   {

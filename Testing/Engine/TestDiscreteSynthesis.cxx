@@ -629,9 +629,9 @@ TEST(DiscreteSynthesis, FallibleExampleFailsWholeButSucceedsInBlocks)
   // succeeds. The thesis's Figs. 3.5 and 3.6 are not in the text we have; this example of the
   // same kind (a rigid object whose pieces constrain each other beyond immediate neighbours)
   // was found by a search over small examples and is kept here as a fixture.
-  const LabelGrid e = Grid2D({ { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 5, 1, 4, 0 },
-    { 0, 0, 0, 5, 7, 3, 4, 0 }, { 0, 3, 1, 6, 7, 6, 2, 0 }, { 0, 0, 0, 5, 7, 6, 3, 0 },
-    { 0, 0, 0, 0, 0, 0, 0, 0 } });
+  const LabelGrid e =
+    Grid2D({ { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 5, 1, 4, 0 }, { 0, 0, 0, 5, 7, 3, 4, 0 },
+      { 0, 3, 1, 6, 7, 6, 2, 0 }, { 0, 0, 0, 5, 7, 6, 3, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } });
   int wholeFailures = 0, wholeSuccesses = 0;
   for (std::uint64_t seed = 0; seed < 30; ++seed)
   {

@@ -41,6 +41,8 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("labels: 2", r.stdout)
         self.assertIn("transitions +x: 2", r.stdout)
+        self.assertIn("infallibility: proved infallible", r.stdout)
+        self.assertIn("infallibility: not proved", run("info", data("Examples/Village.vti")).stdout)
 
     def test_bad_input_exits_non_zero_with_one_line(self):
         path = data("Malformed/truncated.vti")

@@ -39,6 +39,17 @@ class PipelineTest(unittest.TestCase):
             self.assertEqual([lab.GetValueByName(r, "Count").ToLongLong() for r in range(lab.GetNumberOfRows())],
                              counts.tolist())
 
+    def test_infallibility_verdict(self):
+        _, board = self.run_pipeline("Examples/Checkerboard.vti")
+        fd = board.GetOutput(0).GetFieldData()
+        self.assertEqual(fd.GetArray("Infallible").GetValue(0), 1)
+        self.assertIn("Algorithm 3.1", fd.GetAbstractArray("Recommendation").GetValue(0))
+        _, village = self.run_pipeline("Examples/Village.vti")
+        fd = village.GetOutput(0).GetFieldData()
+        self.assertEqual(fd.GetArray("Infallible").GetValue(0), 0)
+        self.assertIn("no label fits", fd.GetAbstractArray("InfallibilityExplanation").GetValue(0))
+        self.assertIn("block synthesis", fd.GetAbstractArray("Recommendation").GetValue(0))
+
     def test_checkerboard_alternates(self):
         _, tables = self.run_pipeline("Examples/Checkerboard.vti")
         t = tables.GetOutput(0)

@@ -16,7 +16,9 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
+#include "msynth/AdjacencyRules.h"
 #include "msynth/ExampleAnalysis.h"
+#include "msynth/Infallibility.h"
 
 vtkStandardNewMacro(vtkMSTransitionTables);
 
@@ -159,9 +161,27 @@ int vtkMSTransitionTables::RequestData(
   auto labelCounts = NewColumn<vtkIdTypeArray>("LabelCounts");
   labelCounts->DeepCopy(labelCount);
   labelCounts->SetName("LabelCounts");
+  // Infallibility (§3.3.7) for outputs shaped like the example: 2D examples give 2D outputs.
+  int dims[3];
+  input->GetDimensions(dims);
+  const msynth::InfallibilityReport verdict =
+    msynth::AnalyzeInfallibility(msynth::AdjacencyRules::FromExample(analysis),
+      { { dims[0] > 1 ? 2 : 1, dims[1] > 1 ? 2 : 1, dims[2] > 1 ? 2 : 1 } });
+  vtkNew<vtkIntArray> infallible;
+  infallible->SetName("Infallible");
+  infallible->InsertNextValue(verdict.Proved ? 1 : 0);
+  vtkNew<vtkStringArray> explanation;
+  explanation->SetName("InfallibilityExplanation");
+  explanation->InsertNextValue(verdict.Explanation);
+  vtkNew<vtkStringArray> recommendation;
+  recommendation->SetName("Recommendation");
+  recommendation->InsertNextValue(verdict.Recommendation);
   for (vtkTable* table : { transitions, labels })
   {
     vtkFieldData* fd = table->GetFieldData();
+    fd->AddArray(infallible);
+    fd->AddArray(explanation);
+    fd->AddArray(recommendation);
     fd->AddArray(labelValues);
     fd->AddArray(labelCounts);
     for (const auto& p : pairs)
