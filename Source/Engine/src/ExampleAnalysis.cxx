@@ -16,7 +16,6 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
     throw Error("the example model is empty");
   }
   ExampleAnalysis result;
-  result.Dims = example.Dimensions();
 
   // Distinct labels, ascending.
   std::vector<Label> values = example.Data();
@@ -40,7 +39,7 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
   }
 
   // Eq. 3.2: count every (E(x'), E(x' + d)) pair with both sites inside E.
-  const auto& d = result.Dims;
+  const auto& d = example.Dimensions();
   const std::array<std::int64_t, 3> stride{ { 1, d[0], d[0] * d[1] } };
   for (int axis = 0; axis < 3; ++axis)
   {

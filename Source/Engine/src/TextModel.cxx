@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "msynth/TextModel.h"
 
-#include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
 
 #include <cerrno>
@@ -199,11 +198,6 @@ void WriteTextModel(std::ostream& out, const TextModel& model)
       out << "#\n";
     }
   }
-}
-
-void WriteTextModelFile(const std::string& path, const TextModel& model)
-{
-  WriteFileAtomically(path, [&](std::ostream& out) { WriteTextModel(out, model); });
 }
 
 } // namespace msynth

@@ -22,20 +22,6 @@ namespace msynth
 namespace vdb
 {
 
-const char* ValueTypeName(ValueType type)
-{
-  switch (type)
-  {
-    case ValueType::Int32:
-      return "int32";
-    case ValueType::Float:
-      return "float";
-    case ValueType::Vec3Float:
-      return "vec3s";
-  }
-  return "unknown";
-}
-
 int ComponentCount(ValueType type)
 {
   return type == ValueType::Vec3Float ? 3 : 1;

@@ -52,11 +52,8 @@ public:
   bool Allowed(int axis, int from, int to) const { return this->PairCount(axis, from, to) > 0; }
   /// How often label index @p to follows @p from along +axis in the example (0 if never).
   std::int64_t PairCount(int axis, int from, int to) const;
-  /// Dimensions of the analyzed example.
-  const std::array<std::int64_t, 3>& ExampleDimensions() const { return this->Dims; }
 
 private:
-  std::array<std::int64_t, 3> Dims{ { 0, 0, 0 } };
   std::vector<Label> LabelValues;
   std::vector<std::int64_t> Counts;
   std::array<std::vector<Transition>, 3> Pairs;

@@ -43,7 +43,5 @@ TextModel ReadTextModel(std::istream& in, const std::string& name, std::int64_t 
 TextModel ReadTextModelFile(const std::string& path, std::int64_t maxSites);
 /// Writes @p model in the same format (what ReadTextModel reads back identically).
 void WriteTextModel(std::ostream& out, const TextModel& model);
-/// Writes @p model to @p path atomically.
-void WriteTextModelFile(const std::string& path, const TextModel& model);
 
 } // namespace msynth

@@ -33,8 +33,6 @@ enum class ValueType
   Vec3Float ///< openvdb::Vec3SGrid (3-component fields)
 };
 
-/// Name of a value type as OpenVDB prints it ("int32", "float", "vec3s").
-const char* ValueTypeName(ValueType type);
 /// Components per voxel: 1, or 3 for Vec3Float.
 int ComponentCount(ValueType type);
 
