@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // msynth: ModelSynth's command line.
 //
-//   msynth info EXAMPLE                  labels, counts and transition tables (Eq. 3.2)
+//   msynth info EXAMPLE                  labels, counts and transition tables (Eq. 3.2);
+//                                        for EXAMPLE.obj|.vtp|.ply|.stl the neighbourhood
+//                                        labels of continuous synthesis
 //   msynth analyze EXAMPLE [--out DIR]   the analysis as CSV tables plus the example as .vdb
 //   msynth synthesize EXAMPLE --size NX NY NZ [options]   discrete model synthesis
 //   msynth check EXAMPLE MODEL.vti       verify the adjacency constraint (Eq. 3.1)
@@ -12,6 +14,8 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
+#include "vtkMSNeighbourhoodLabels.h"
+#include "vtkMSPolyhedralExampleReader.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSTileImage.h"
 #include "vtkMSTransitionTables.h"
@@ -56,7 +60,9 @@ namespace
 {
 
 const char* const Usage = R"(usage:
-  msynth info EXAMPLE                 print the example's labels and transition tables
+  msynth info EXAMPLE                 print the example's labels and transition tables;
+                                      for a polyhedral EXAMPLE (.obj, .vtp, .ply, .stl) its
+                                      neighbourhood labels (continuous model synthesis)
   msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb
   msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
                                       discrete model synthesis: writes DIR/labels.vti,
@@ -79,6 +85,7 @@ synthesize options:
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
   --swap A:B          labels A and B are each other's mirror images (repeatable)
   --subset NAME       with a tileset: use the tiles of its subset NAME
+  --types N=T,...     with an OBJ example: object (or base) name N has object type T
   --target L:F        soft constraint: aim for fraction F of label L (repeatable; needs --block)
   --temperature T     temperature of the soft constraints' Metropolis acceptance (0.01)
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
@@ -101,6 +108,12 @@ struct UsageError
 bool IsTileset(const std::string& path)
 {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".xml") == 0;
+}
+
+/// A polyhedral example of continuous model synthesis (.obj, .vtp, .ply, .stl).
+bool IsPolyhedral(const std::string& path)
+{
+  return vtkMSPolyhedralExampleReader::CanReadFile(path.c_str()) != 0;
 }
 
 /// Runs @p algorithm, turning its VTK errors into one exception message.
@@ -166,6 +179,36 @@ int TilesetInfo(const std::string& path, const std::string& subset)
   }
   std::cout << "transitions +x: " << t.Pairs[0].size() << "\n"
             << "transitions +y: " << t.Pairs[1].size() << "\n";
+  return 0;
+}
+
+/// `msynth info EXAMPLE.obj`: "labels: N", then one line per label with its kind and
+/// Boolean expression, then the plane families.
+int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
+{
+  vtkNew<vtkMSPolyhedralExampleReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetObjectTypes(objectTypes.c_str());
+  vtkNew<vtkMSNeighbourhoodLabels> labels;
+  labels->SetInputConnection(reader->GetOutputPort());
+  Run(labels);
+  vtkTable* table = labels->GetOutput(0);
+  std::cout << "labels: " << table->GetNumberOfRows() << "\n";
+  for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+  {
+    std::cout << "  " << table->GetValueByName(r, "Id").ToString() << " "
+              << table->GetValueByName(r, "Kind").ToString() << " "
+              << table->GetValueByName(r, "Expression").ToString() << "\n";
+  }
+  auto* normals = vtkDataArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("FamilyNormals"));
+  std::cout << "plane families: " << normals->GetNumberOfTuples() << "\n";
+  for (vtkIdType f = 0; f < normals->GetNumberOfTuples(); ++f)
+  {
+    double n[3];
+    normals->GetTuple(f, n);
+    std::cout << "  h" << f + 1 << ": normal (" << static_cast<long long>(n[0]) << ", "
+              << static_cast<long long>(n[1]) << ", " << static_cast<long long>(n[2]) << ")\n";
+  }
   return 0;
 }
 
@@ -356,6 +399,7 @@ struct SynthesizeArguments
   std::string Pieces;
   std::string Guide;
   std::string Subset;
+  std::string ObjectTypes;
   std::string Targets;
   double Temperature = 0.01;
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
@@ -696,6 +740,15 @@ int Main(const std::vector<std::string>& args)
       }
       continue;
     }
+    if (args[i] == "--types")
+    {
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ "--types needs NAME=TYPE[,NAME=TYPE...]" };
+      }
+      synth.ObjectTypes = args[++i];
+      continue;
+    }
     if (args[i] == "--pieces" || args[i] == "--guide" || args[i] == "--subset")
     {
       if (i + 1 >= args.size())
@@ -780,6 +833,10 @@ int Main(const std::vector<std::string>& args)
     if (command == "info" && IsTileset(positional[0]))
     {
       return TilesetInfo(positional[0], synth.Subset);
+    }
+    if (command == "info" && IsPolyhedral(positional[0]))
+    {
+      return PolyhedralInfo(positional[0], synth.ObjectTypes);
     }
     return command == "info" ? Info(positional[0]) : AnalyzeToFolder(positional[0], out);
   }

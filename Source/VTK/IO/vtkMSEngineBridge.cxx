@@ -2,6 +2,13 @@
 #include "vtkMSEngineBridge.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -14,8 +21,11 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkType.h"
 
+#include "msynth/Error.h"
+
 #include <cstdint>
 #include <limits>
+#include <map>
 
 vtkStandardNewMacro(vtkMSEngineBridge);
 
@@ -187,4 +197,113 @@ void vtkMSEngineBridge::OnError(vtkObject*, unsigned long, void* data)
     this->Messages += "; ";
   }
   this->Messages += message;
+}
+
+msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* polygons, const std::string& name)
+{
+  msynth::PolyhedralExample example;
+  example.Source = name;
+  if (!polygons || !polygons->GetPolys() || polygons->GetNumberOfPolys() == 0)
+  {
+    throw msynth::Error::InFile(name, "has no polygons");
+  }
+  const vtkIdType numberOfPoints = polygons->GetNumberOfPoints();
+  example.Points.resize(static_cast<std::size_t>(numberOfPoints));
+  for (vtkIdType i = 0; i < numberOfPoints; ++i)
+  {
+    double p[3];
+    polygons->GetPoint(i, p);
+    example.Points[i] = { p[0], p[1], p[2] };
+  }
+  // Polygons come after vertices and lines in cell order; only polygons are faces.
+  const vtkIdType firstPoly = polygons->GetNumberOfVerts() + polygons->GetNumberOfLines();
+  vtkDataArray* types = polygons->GetCellData()->GetArray("ObjectType");
+  vtkDataArray* ids = polygons->GetCellData()->GetArray("ObjectId");
+  std::vector<int> faceTypes;
+  std::vector<int> faceIds;
+  vtkNew<vtkIdList> cell;
+  auto iterator = vtk::TakeSmartPointer(polygons->GetPolys()->NewIterator());
+  vtkIdType index = firstPoly;
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++index)
+  {
+    iterator->GetCurrentCell(cell);
+    std::vector<int> face;
+    for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+    {
+      face.push_back(static_cast<int>(cell->GetId(k)));
+    }
+    example.Faces.push_back(std::move(face));
+    const double type = types ? types->GetComponent(index, 0) : 1.0;
+    if (!(type >= 1 && type <= 32767) || type != static_cast<int>(type))
+    {
+      throw msynth::Error::InFile(name, "polygon " + std::to_string(index - firstPoly) +
+        " has ObjectType " + std::to_string(type) + "; types are integers 1..32767");
+    }
+    faceTypes.push_back(static_cast<int>(type));
+    if (ids)
+    {
+      const double id = ids->GetComponent(index, 0);
+      if (!(id >= 0 && id < 1e9) || id != static_cast<int>(id))
+      {
+        throw msynth::Error::InFile(name, "polygon " + std::to_string(index - firstPoly) +
+          " has an invalid ObjectId");
+      }
+      faceIds.push_back(static_cast<int>(id));
+    }
+  }
+  if (!ids)
+  {
+    msynth::AssignObjectsByConnectivity(example, faceTypes);
+    return example;
+  }
+  // Renumber the given object ids densely, in order of appearance.
+  std::map<int, int> dense;
+  for (std::size_t f = 0; f < faceIds.size(); ++f)
+  {
+    auto it = dense.find(faceIds[f]);
+    if (it == dense.end())
+    {
+      it = dense.emplace(faceIds[f], example.NumberOfObjects()).first;
+      example.ObjectTypes.push_back(faceTypes[f]);
+      example.ObjectNames.push_back("object " + std::to_string(faceIds[f]));
+    }
+    else if (example.ObjectTypes[it->second] != faceTypes[f])
+    {
+      throw msynth::Error::InFile(name, "object " + std::to_string(faceIds[f]) +
+        " has polygons of different ObjectType");
+    }
+    example.FaceObject.push_back(it->second);
+  }
+  return example;
+}
+
+void vtkMSEngineBridge::FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(example.Points.size()));
+  for (std::size_t i = 0; i < example.Points.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), example.Points[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> types;
+  types->SetName("ObjectType");
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("ObjectId");
+  for (std::size_t f = 0; f < example.Faces.size(); ++f)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(example.Faces[f].size()));
+    for (int v : example.Faces[f])
+    {
+      polys->InsertCellPoint(v);
+    }
+    types->InsertNextValue(example.ObjectTypes[example.FaceObject[f]]);
+    ids->InsertNextValue(example.FaceObject[f]);
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetCellData()->AddArray(types);
+  output->GetCellData()->AddArray(ids);
 }

@@ -13,7 +13,8 @@
 #include "ModelSynthIOModule.h" // for export macro
 #include "vtkObject.h"
 
-#include "msynth/LabelGrid.h" // for msynth::LabelGrid
+#include "msynth/LabelGrid.h"         // for msynth::LabelGrid
+#include "msynth/PolyhedralExample.h" // for msynth::PolyhedralExample
 
 #include <string>
 
@@ -22,6 +23,7 @@ class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
+class vtkPolyData;
 
 class MODELSYNTHIO_EXPORT vtkMSEngineBridge : public vtkObject
 {
@@ -48,6 +50,14 @@ public:
   /// Copies a checked label array into an engine grid (x fastest, as VTK stores points).
   static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
 
+  /**
+   * A polyhedral example from polygons: cell array `ObjectType` gives each polygon's type
+   * (default 1), `ObjectId` its object (default: connected components per type). Not validated.
+   * @p name is used in messages. @throw msynth::Error when there are no polygons.
+   */
+  static msynth::PolyhedralExample ToPolyhedralExample(vtkPolyData* polygons, const std::string& name);
+  /// Polygons with cell arrays `ObjectType` and `ObjectId` (the inverse of the above).
+  static void FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output);
   /// A new vtkIntArray named @p name holding @p grid's labels.
   static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
 
