@@ -189,10 +189,11 @@ int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(path.c_str());
   reader->SetObjectTypes(objectTypes.c_str());
+  Run(reader); // so that the reader's own error (naming the file) is the one reported
   vtkNew<vtkMSNeighbourhoodLabels> labels;
   labels->SetInputConnection(reader->GetOutputPort());
   Run(labels);
-  vtkTable* table = labels->GetOutput(0);
+  vtkTable* table = labels->GetLabelTable();
   std::cout << "labels: " << table->GetNumberOfRows() << "\n";
   for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
   {

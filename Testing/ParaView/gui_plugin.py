@@ -13,7 +13,12 @@ try:
     Show(reader)
     Render()
     rows = servermanager.Fetch(tables, idx=1).GetNumberOfRows()
-    result = "OK labels=%d" % rows
+    cube = ModelSynthPolyhedralExampleReader(FileName=os.path.join(os.environ["MSYNTH_DATA"], "Continuous", "cube.obj"))
+    catalog = ModelSynthNeighbourhoodLabels(Input=cube)
+    Show(OutputPort(catalog, 1))
+    Render()
+    continuous = servermanager.Fetch(catalog, idx=0).GetNumberOfRows()
+    result = "OK labels=%d continuous=%d" % (rows, continuous)
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
 with open(report, "w") as f:

@@ -132,4 +132,16 @@ picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tiles
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
 check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
 
+# Continuous synthesis: the neighbourhood labels of a polyhedral example (dissertation 4.5.3).
+tetra = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "tetrahedron.obj"))
+catalog = ModelSynthNeighbourhoodLabels(Input=tetra)
+catalog.UpdatePipeline()
+rows = servermanager.Fetch(catalog, idx=0)
+check(rows.GetNumberOfRows() == 16, "tetrahedron: 16 labels, got %d" % rows.GetNumberOfRows())
+kinds = sorted(rows.GetValueByName(r, "Kind").ToString() for r in range(rows.GetNumberOfRows()))
+check(kinds.count("vertex") == 4 and kinds.count("edge") == 6 and kinds.count("face") == 4,
+      "label kinds %s" % kinds)
+marked = servermanager.Fetch(catalog, idx=1)
+check(marked.GetNumberOfPolys() == 4 and marked.GetNumberOfVerts() == 4, "marked tetrahedron")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -44,6 +44,28 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn("infallibility: proved infallible", r.stdout)
         self.assertIn("infallibility: not proved", run("info", data("Examples/Village.vti")).stdout)
 
+    def test_info_polyhedral(self):
+        r = run("info", data("Continuous/tetrahedron.obj"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.splitlines()
+        self.assertEqual(lines[0], "labels: 16")
+        self.assertEqual(lines[1].split(), ["0", "volume", "∅"])
+        self.assertEqual(lines[2].split(), ["1", "volume", "ℝ³"])
+        kinds = [line.split()[1] for line in lines[1:17]]
+        self.assertEqual((kinds.count("face"), kinds.count("edge"), kinds.count("vertex")), (4, 6, 4))
+        self.assertIn("plane families: 4", r.stdout)
+        r = run("info", data("Continuous/two-objects2d.obj"), "--types", "roof=3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("3·ℝ²", r.stdout)
+        bad = tmp("open-cli.obj")
+        with open(bad, "w") as f:
+            f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n")
+        r = run("info", bad)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("open-cli.obj", r.stderr)
+        self.assertIn("not closed", r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+
     def test_bad_input_exits_non_zero_with_one_line(self):
         path = data("Malformed/truncated.vti")
         r = run("info", path)

@@ -35,6 +35,16 @@ vtkMSNeighbourhoodLabels::vtkMSNeighbourhoodLabels()
 
 vtkMSNeighbourhoodLabels::~vtkMSNeighbourhoodLabels() = default;
 
+vtkTable* vtkMSNeighbourhoodLabels::GetLabelTable()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+vtkPolyData* vtkMSNeighbourhoodLabels::GetMarkedExample()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
 int vtkMSNeighbourhoodLabels::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");

@@ -27,12 +27,20 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkTableAlgorithm.h"
 
+class vtkPolyData;
+class vtkTable;
+
 class MODELSYNTHFILTERS_EXPORT vtkMSNeighbourhoodLabels : public vtkTableAlgorithm
 {
 public:
   static vtkMSNeighbourhoodLabels* New();
   vtkTypeMacro(vtkMSNeighbourhoodLabels, vtkTableAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Output 0, the catalog of labels.
+  vtkTable* GetLabelTable();
+  /// Output 1, the example marked with label ids.
+  vtkPolyData* GetMarkedExample();
 
   ///@{
   /// Faces whose normals differ by less than this angle (degrees) share a plane family.

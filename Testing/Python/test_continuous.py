@@ -1,0 +1,193 @@
+"""Continuous model synthesis, example analysis (issue 4) from plain vtkmodules Python: the
+polyhedral example reader and the neighbourhood-label filter, checked against the
+dissertation's counts and, for 2D examples, against an independent brute-force recomputation
+of every vertex figure (Eq. 4.22) by sampling directions around each point."""
+import math
+import os
+import unittest
+
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOGeometry import vtkSTLWriter
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+
+import modelsynth
+from msynth_testing import ErrorObserver, data, tmp
+
+
+def analyze(path, **options):
+    reader = modelsynth.vtkMSPolyhedralExampleReader()
+    reader.SetFileName(path)
+    for name, value in options.items():
+        getattr(reader, "Set" + name)(value)
+    labels = modelsynth.vtkMSNeighbourhoodLabels()
+    labels.SetInputConnection(reader.GetOutputPort())
+    errors = ErrorObserver(labels)
+    reader_errors = ErrorObserver(reader)
+    labels.Update()
+    return reader, labels, reader_errors.text() + errors.text()
+
+
+def read_obj_2d(path):
+    """Polygons per object of a 2D OBJ, parsed here independently: {object: [polygon]}."""
+    points, objects, current = [], {}, "object"
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w or w[0].startswith("#"):
+                continue
+            if w[0] == "v":
+                points.append((float(w[1]), float(w[2])))
+            elif w[0] in ("o", "g"):
+                current = " ".join(w[1:])
+            elif w[0] == "f":
+                objects.setdefault(current, []).append([points[int(t.split("/")[0]) - 1] for t in w[1:]])
+    return objects
+
+
+def inside(polygon, x, y):
+    result = False
+    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1]):
+        if (ay > y) != (by > y) and ax + (y - ay) * (bx - ax) / (by - ay) > x:
+            result = not result
+    return result
+
+
+def brute_force_labels(objects):
+    """Distinct vertex figures of a 2D example: the object index met in each of N directions
+    around every vertex and every piece of every edge (split where other vertices lie on it),
+    plus the exterior and each object's interior."""
+    names = sorted(objects)
+    polygons = [(names.index(n), poly) for n in names for poly in objects[n]]
+    vertices = sorted({p for _, poly in polygons for p in poly})
+    samples = list(vertices)
+    for _, poly in polygons:
+        for a, b in zip(poly, poly[1:] + poly[:1]):
+            ts = [0.0, 1.0]
+            for v in vertices:
+                cross = (b[0] - a[0]) * (v[1] - a[1]) - (b[1] - a[1]) * (v[0] - a[0])
+                if abs(cross) < 1e-12:
+                    t = ((v[0] - a[0]) * (b[0] - a[0]) + (v[1] - a[1]) * (b[1] - a[1])) / (
+                        (b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2)
+                    if 0 < t < 1:
+                        ts.append(t)
+            ts.sort()
+            for t0, t1 in zip(ts, ts[1:]):
+                t = (t0 + t1) / 2
+                samples.append((a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])))
+    n, eps = 720, 1e-6
+    figures = set()
+    for (x, y) in samples:
+        pattern = []
+        for k in range(n):
+            angle = 2 * math.pi * (k + 0.5) / n
+            px, py = x + eps * math.cos(angle), y + eps * math.sin(angle)
+            which = [obj for obj, poly in polygons if inside(poly, px, py)]
+            pattern.append(which[0] + 1 if which else 0)
+        figures.add(tuple(pattern))
+    figures.add(tuple([0] * n))
+    for obj in range(len(names)):
+        figures.add(tuple([obj + 1] * n))
+    return figures, samples
+
+
+class ContinuousAnalysisTest(unittest.TestCase):
+    def test_dissertation_counts(self):
+        for name, count in (("triangle2d.obj", 8), ("tetrahedron.obj", 16), ("cube.obj", 28)):
+            _, labels, errors = analyze(data(os.path.join("Continuous", name)))
+            self.assertEqual(errors, "")
+            self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), count, name)
+
+    def test_2d_labels_match_brute_force(self):
+        for name in ("triangle2d.obj", "concave2d.obj", "two-objects2d.obj"):
+            path = data(os.path.join("Continuous", name))
+            figures, _ = brute_force_labels(read_obj_2d(path))
+            _, labels, errors = analyze(path)
+            self.assertEqual(errors, "")
+            self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), len(figures), name)
+
+    def test_table_and_marked_example(self):
+        _, labels, _ = analyze(data("Continuous/l-prism.obj"))
+        table = labels.GetLabelTable()
+        rows = [{table.GetColumnName(c): table.GetValue(r, c).ToString()
+                 for c in range(table.GetNumberOfColumns())} for r in range(table.GetNumberOfRows())]
+        self.assertEqual(rows[0]["Expression"], "∅")
+        self.assertEqual(rows[1]["Expression"], "ℝ³")
+        reflex = [r for r in rows if r["Kind"] == "edge" and "∪" in r["Expression"]]
+        self.assertEqual(len(reflex), 1)
+        self.assertEqual(reflex[0]["HalfSpaces"], "2")
+        normals = table.GetFieldData().GetArray("FamilyNormals")
+        self.assertEqual(normals.GetNumberOfTuples(), 3)
+        marked = labels.GetMarkedExample()
+        self.assertEqual(marked.GetNumberOfPolys(), 8)
+        self.assertEqual(marked.GetNumberOfVerts(), 12)
+        self.assertEqual(marked.GetNumberOfLines(), 18)
+        ids = marked.GetCellData().GetArray("LabelId")
+        codim = marked.GetCellData().GetArray("Codimension")
+        for c in range(marked.GetNumberOfCells()):
+            label = int(ids.GetValue(c))
+            self.assertGreaterEqual(label, 0)
+            # A cell's label has the cell's own codimension (a face is a face, ...).
+            self.assertEqual(int(rows[label]["Codimension"]), int(codim.GetValue(c)))
+
+    def test_same_example_through_stl_and_vtp(self):
+        reader, labels, _ = analyze(data("Continuous/cube.obj"))
+        tri = vtkTriangleFilter()
+        tri.SetInputData(reader.GetOutput())
+        tri.Update()
+        stl = tmp("cube.stl")
+        w = vtkSTLWriter()
+        w.SetFileName(stl)
+        w.SetInputData(tri.GetOutput())
+        w.Write()
+        _, from_stl, errors = analyze(stl)
+        self.assertEqual(errors, "")
+        self.assertEqual(from_stl.GetLabelTable().GetNumberOfRows(), 28)
+        vtp = tmp("two-objects.vtp")
+        two, _, _ = analyze(data("Continuous/two-objects2d.obj"))
+        w = vtkXMLPolyDataWriter()
+        w.SetFileName(vtp)
+        w.SetInputData(two.GetOutput())
+        w.Write()
+        _, from_vtp, errors = analyze(vtp)
+        self.assertEqual(errors, "")
+        self.assertEqual(from_vtp.GetLabelTable().GetNumberOfRows(), 17)
+
+    def test_object_types_option(self):
+        # One type for both objects: the roof merges with the base, no two-type labels remain.
+        _, labels, errors = analyze(data("Continuous/two-objects2d.obj"), ObjectTypes="roof=1;base=1")
+        self.assertEqual(errors, "")
+        table = labels.GetLabelTable()
+        for r in range(table.GetNumberOfRows()):
+            self.assertNotIn("2", table.GetValueByName(r, "ObjectTypes").ToString().split())
+        _, labels, errors = analyze(data("Continuous/two-objects2d.obj"), ObjectTypes="roof")
+        self.assertIn("not name=type", errors)
+
+    def test_malformed_examples(self):
+        cases = {
+            "open.obj": ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n", "not closed"),
+            "flipped.obj": ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n",
+                            "inconsistent orientation"),
+            "badindex.obj": ("v 0 0 0\nf 1 2 3\n", "out of range"),
+            "garbage.obj": ("v a b c\n", "not a finite number"),
+            "empty.obj": ("", "contains no faces"),
+            "bowtie.obj": ("v 0 0 0\nv 3 2 0\nv 3 0 0\nv 0 1 0\nf 1 2 3 4\n", "intersects itself"),
+        }
+        for name, (text, problem) in cases.items():
+            path = tmp(name)
+            with open(path, "w") as f:
+                f.write(text)
+            reader, labels, errors = analyze(path)
+            self.assertIn(problem, errors, name)
+            self.assertIn(name, errors)
+            self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), 0)
+        _, _, errors = analyze(tmp("does-not-exist.obj"))
+        self.assertIn("no such file", errors)
+        with open(tmp("bad.stl"), "w") as f:
+            f.write("solid x\n facet normal 0 0 1\n")
+        _, _, errors = analyze(tmp("bad.stl"))
+        self.assertIn("bad.stl", errors)
+
+
+if __name__ == "__main__":
+    unittest.main()
