@@ -378,3 +378,27 @@ TEST(PolyhedralAnalysis, SnapDirection)
   EXPECT_GT(std::abs(v[1]), 1000);
   EXPECT_NEAR(std::atan2(double(v[1]), double(v[0])), 1.2566, 1e-6);
 }
+
+TEST(PolyhedralAnalysis, HouseWithOverhangingRoof)
+{
+  // Counted by hand: wall 1 + 6 faces (its top under the roof is a two-type face) + 12 edges +
+  // 8 vertices; roof 1 + 5 faces (eaves, gables, slopes) + 9 edges + 6 vertices; ∅.
+  const auto a = AnalyzeFile("house.obj");
+  EXPECT_EQ(a.Families().Size(), 5);
+  EXPECT_EQ(a.NumberOfLabels(), 49);
+  int mixed = 0;
+  for (const auto& l : a.Labels())
+  {
+    const auto t = l.Label.TypesPresent();
+    mixed += std::count(t.begin(), t.end(), 1) && std::count(t.begin(), t.end(), 2) ? 1 : 0;
+  }
+  EXPECT_EQ(mixed, 9); // the wall's top face, its 4 top edges and 4 top corners, under the roof
+  // The wall's top face is covered by the roof; the roof's bottom face is partly exposed
+  // (eaves), so it has several labels.
+  int several = 0;
+  for (int l : a.ElementLabel())
+  {
+    several += l < 0 ? 1 : 0;
+  }
+  EXPECT_EQ(several, 1);
+}

@@ -8,6 +8,7 @@ import unittest
 
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOGeometry import vtkSTLWriter
+from vtkmodules.vtkIOPLY import vtkPLYWriter
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 
@@ -143,6 +144,14 @@ class ContinuousAnalysisTest(unittest.TestCase):
         _, from_stl, errors = analyze(stl)
         self.assertEqual(errors, "")
         self.assertEqual(from_stl.GetLabelTable().GetNumberOfRows(), 28)
+        ply = tmp("cube.ply")
+        w = vtkPLYWriter()
+        w.SetFileName(ply)
+        w.SetInputData(reader.GetOutput())
+        w.Write()
+        _, from_ply, errors = analyze(ply)
+        self.assertEqual(errors, "")
+        self.assertEqual(from_ply.GetLabelTable().GetNumberOfRows(), 28)
         vtp = tmp("two-objects.vtp")
         two, _, _ = analyze(data("Continuous/two-objects2d.obj"))
         w = vtkXMLPolyDataWriter()

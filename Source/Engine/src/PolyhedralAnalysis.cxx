@@ -333,6 +333,7 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
     return it->second;
   };
   std::set<std::array<std::int64_t, 3>> seen;
+  std::vector<std::set<int>> labelsOfElement(analysis.Elements.size());
   auto sample = [&](FeatureKind kind, const Point3& at, const Point3& a, const Point3& b, int element) {
     if (!seen.insert(PositionKey(at, cell)).second)
     {
@@ -345,6 +346,18 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
     feature.Element = element;
     feature.Label = add(probe.LabelAt(at), 1);
     analysis.Samples.push_back(feature);
+    if (element >= 0)
+    {
+      // Every face through the sample has this label there (coplanar faces of other objects
+      // included), so a face partly covered by another object is known to have several.
+      for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
+      {
+        if (static_cast<int>(e) == element || probe.ElementContains(e, at))
+        {
+          labelsOfElement[e].insert(feature.Label);
+        }
+      }
+    }
   };
 
   // Volumes: the exterior and the interior of each object type.
@@ -501,19 +514,17 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
     analysis.IdOf.emplace(info.Label, static_cast<int>(i));
     analysis.Catalog.push_back(std::move(info));
   }
-  analysis.ElementLabels.assign(analysis.Elements.size(), -2);
   for (auto& feature : analysis.Samples)
   {
     feature.Label = idOf[feature.Label];
-    if (feature.Element >= 0)
-    {
-      int& l = analysis.ElementLabels[feature.Element];
-      l = (l == -2 || l == feature.Label) ? feature.Label : -1;
-    }
   }
-  for (auto& l : analysis.ElementLabels)
+  analysis.ElementLabels.assign(analysis.Elements.size(), -1);
+  for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
   {
-    l = l == -2 ? -1 : l;
+    if (labelsOfElement[e].size() == 1)
+    {
+      analysis.ElementLabels[e] = idOf[*labelsOfElement[e].begin()];
+    }
   }
   return analysis;
 }
