@@ -131,33 +131,24 @@ class ContinuousAnalysisTest(unittest.TestCase):
             # A cell's label has the cell's own codimension (a face is a face, ...).
             self.assertEqual(int(rows[label]["Codimension"]), int(codim.GetValue(c)))
 
-    def test_same_example_through_stl_and_vtp(self):
+    def test_same_example_through_stl_ply_and_vtp(self):
+        def write(writer, path, polydata):
+            writer.SetFileName(path)
+            writer.SetInputData(polydata)
+            writer.Write()
+            return path
+
         reader, labels, _ = analyze(data("Continuous/cube.obj"))
         tri = vtkTriangleFilter()
         tri.SetInputData(reader.GetOutput())
         tri.Update()
-        stl = tmp("cube.stl")
-        w = vtkSTLWriter()
-        w.SetFileName(stl)
-        w.SetInputData(tri.GetOutput())
-        w.Write()
-        _, from_stl, errors = analyze(stl)
-        self.assertEqual(errors, "")
-        self.assertEqual(from_stl.GetLabelTable().GetNumberOfRows(), 28)
-        ply = tmp("cube.ply")
-        w = vtkPLYWriter()
-        w.SetFileName(ply)
-        w.SetInputData(reader.GetOutput())
-        w.Write()
-        _, from_ply, errors = analyze(ply)
-        self.assertEqual(errors, "")
-        self.assertEqual(from_ply.GetLabelTable().GetNumberOfRows(), 28)
-        vtp = tmp("two-objects.vtp")
+        for path in (write(vtkSTLWriter(), tmp("cube.stl"), tri.GetOutput()),
+                     write(vtkPLYWriter(), tmp("cube.ply"), reader.GetOutput())):
+            _, again, errors = analyze(path)
+            self.assertEqual(errors, "", path)
+            self.assertEqual(again.GetLabelTable().GetNumberOfRows(), 28, path)
         two, _, _ = analyze(data("Continuous/two-objects2d.obj"))
-        w = vtkXMLPolyDataWriter()
-        w.SetFileName(vtp)
-        w.SetInputData(two.GetOutput())
-        w.Write()
+        vtp = write(vtkXMLPolyDataWriter(), tmp("two-objects.vtp"), two.GetOutput())
         _, from_vtp, errors = analyze(vtp)
         self.assertEqual(errors, "")
         self.assertEqual(from_vtp.GetLabelTable().GetNumberOfRows(), 17)

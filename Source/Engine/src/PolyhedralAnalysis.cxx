@@ -2,6 +2,7 @@
 #include "msynth/PolyhedralAnalysis.h"
 
 #include "msynth/Error.h"
+#include "Point3Math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,46 +12,27 @@
 namespace msynth
 {
 
+using point3::Add;
+using point3::Dot;
+using point3::Norm;
+using point3::Sub;
+using point3::Unit;
+
 namespace
 {
 
-Point3 Sub(const Point3& a, const Point3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
 
-Point3 Add(const Point3& a, const Point3& b, double s)
-{
-  return { a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2] };
-}
 
-Point3 CrossP(const Point3& a, const Point3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
 
-double DotP(const Point3& a, const Point3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
-double Norm(const Point3& a)
-{
-  return std::sqrt(DotP(a, a));
-}
 
-Point3 Unit(const Point3& a)
-{
-  const double n = Norm(a);
-  return { a[0] / n, a[1] / n, a[2] / n };
-}
 
 /// Distance from @p p to the segment [a, b].
 double SegmentDistance(const Point3& p, const Point3& a, const Point3& b)
 {
   const Point3 ab = Sub(b, a);
-  const double len2 = DotP(ab, ab);
-  double t = len2 > 0 ? DotP(Sub(p, a), ab) / len2 : 0.0;
+  const double len2 = Dot(ab, ab);
+  double t = len2 > 0 ? Dot(Sub(p, a), ab) / len2 : 0.0;
   t = std::clamp(t, 0.0, 1.0);
   return Norm(Sub(p, Add(a, ab, t)));
 }
@@ -91,8 +73,8 @@ IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInt
     {
       return false;
     }
-    const double sine = Norm(CrossP(w, u)) / n;
-    return DotP(w, u) > 0 && sine <= std::sin(angleTolerance);
+    const double sine = Norm(point3::Cross(w, u)) / n;
+    return Dot(w, u) > 0 && sine <= std::sin(angleTolerance);
   };
   auto reduced = [](IntVec3 v) {
     const std::int64_t g = Gcd64(Gcd64(v[0], v[1]), v[2]);
@@ -135,7 +117,7 @@ NeighbourhoodProbe::NeighbourhoodProbe(const PolyhedralExample& model, const Pla
     int family = -1;
     for (std::size_t f = 0; f < familyUnitNormals.size() && family < 0; ++f)
     {
-      if (std::abs(DotP(element.Normal, familyUnitNormals[f])) >= cosine)
+      if (std::abs(Dot(element.Normal, familyUnitNormals[f])) >= cosine)
       {
         family = static_cast<int>(f);
       }
@@ -187,7 +169,7 @@ bool NeighbourhoodProbe::ElementContains(std::size_t e, const Point3& p) const
     return SegmentDistance(p, pts[element.Points[0]], pts[element.Points[1]]) <= this->Tol;
   }
   const Point3& origin = pts[element.Points[0]];
-  if (std::abs(DotP(element.Normal, Sub(p, origin))) > this->Tol)
+  if (std::abs(Dot(element.Normal, Sub(p, origin))) > this->Tol)
   {
     return false;
   }
@@ -300,7 +282,7 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
       bool known = false;
       for (const auto& u : analysis.UnitNormals)
       {
-        known = known || std::abs(DotP(u, element.Normal)) >= cosine;
+        known = known || std::abs(Dot(u, element.Normal)) >= cosine;
       }
       if (!known)
       {
@@ -395,8 +377,8 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
         continue;
       }
       const Point3& origin = pts[other.Points[0]];
-      const double da = DotP(other.Normal, Sub(a, origin));
-      const double db = DotP(other.Normal, Sub(b, origin));
+      const double da = Dot(other.Normal, Sub(a, origin));
+      const double db = Dot(other.Normal, Sub(b, origin));
       if (std::abs(da) <= tol && std::abs(db) <= tol)
       {
         int drop = 0;
@@ -487,7 +469,7 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
         }
         sample(FeatureKind::Edge, middle, p, q, -1);
         // The face beside this piece.
-        const Point3 inward = Unit(CrossP(element.Normal, ab));
+        const Point3 inward = Unit(point3::Cross(element.Normal, ab));
         const Point3 inside = Add(middle, inward, probe.FaceOffset());
         sample(FeatureKind::Face, inside, inside, inside, static_cast<int>(e));
       }

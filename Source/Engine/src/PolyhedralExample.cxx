@@ -3,6 +3,7 @@
 
 #include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
+#include "Point3Math.h"
 
 #include <algorithm>
 #include <cctype>
@@ -14,23 +15,15 @@
 namespace msynth
 {
 
+using point3::Dot;
+using point3::Norm;
+using point3::Sub;
+
 namespace
 {
 
-Point3 Sub(const Point3& a, const Point3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
 
-double DotP(const Point3& a, const Point3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
-double Norm(const Point3& a)
-{
-  return std::sqrt(DotP(a, a));
-}
 
 /// Newell's normal of a polygon (length = twice its area).
 Point3 NewellNormal(const std::vector<Point3>& points, const std::vector<int>& face)
@@ -392,7 +385,7 @@ void Validate3D(PolyhedralExample& e)
     const Point3& origin = e.Points[face[0]];
     for (int v : face)
     {
-      const double off = std::abs(DotP(unit, Sub(e.Points[v], origin)));
+      const double off = std::abs(Dot(unit, Sub(e.Points[v], origin)));
       if (off > planarTolerance)
       {
         throw Error::InFile(e.Source, where + " is not planar: vertex " + std::to_string(v + 1) +
@@ -484,7 +477,7 @@ void Validate3D(PolyhedralExample& e)
     {
       if (e.FaceObject[f] == o)
       {
-        volume += DotP(e.Points[e.Faces[f][0]], NewellNormal(e.Points, e.Faces[f])) / 6.0;
+        volume += Dot(e.Points[e.Faces[f][0]], NewellNormal(e.Points, e.Faces[f])) / 6.0;
       }
     }
     if (std::abs(volume) <= 1e-12 * diagonal * diagonal * diagonal)
