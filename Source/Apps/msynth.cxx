@@ -63,7 +63,9 @@ const char* const Usage = R"(usage:
   msynth info EXAMPLE                 print the example's labels and transition tables;
                                       for a polyhedral EXAMPLE (.obj, .vtp, .ply, .stl) its
                                       neighbourhood labels (continuous model synthesis)
-  msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb
+  msynth analyze EXAMPLE [--out DIR]  write DIR/labels.csv, DIR/transitions.csv, DIR/example.vdb;
+                                      for a polyhedral EXAMPLE, DIR/labels.csv and
+                                      DIR/marked-example.vtp (label ids on its features)
   msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
                                       discrete model synthesis: writes DIR/labels.vti,
                                       DIR/mesh.vtp, DIR/model.vdb and DIR/statistics.json
@@ -184,15 +186,22 @@ int TilesetInfo(const std::string& path, const std::string& subset)
 
 /// `msynth info EXAMPLE.obj`: "labels: N", then one line per label with its kind and
 /// Boolean expression, then the plane families.
-int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
+/// Reads a polyhedral example and computes its neighbourhood labels (errors as exceptions).
+vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(const std::string& path, const std::string& objectTypes)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(path.c_str());
   reader->SetObjectTypes(objectTypes.c_str());
   Run(reader); // so that the reader's own error (naming the file) is the one reported
-  vtkNew<vtkMSNeighbourhoodLabels> labels;
+  auto labels = vtkSmartPointer<vtkMSNeighbourhoodLabels>::New();
   labels->SetInputConnection(reader->GetOutputPort());
   Run(labels);
+  return labels;
+}
+
+int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
+{
+  auto labels = PolyhedralLabels(path, objectTypes);
   vtkTable* table = labels->GetLabelTable();
   std::cout << "labels: " << table->GetNumberOfRows() << "\n";
   for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
@@ -350,6 +359,17 @@ void WriteXML(const std::string& path, DataT* data)
     throw std::runtime_error("'" + path + "': could not be written: " + messages);
   }
   msynth::CommitTemporaryFile(tmp, path);
+}
+
+/// `msynth analyze EXAMPLE.obj`: DIR/labels.csv (the catalog) and DIR/marked-example.vtp.
+int PolyhedralAnalyzeToFolder(const std::string& path, const std::string& objectTypes, const std::string& dir)
+{
+  auto labels = PolyhedralLabels(path, objectTypes);
+  MakeDirectory(dir);
+  WriteCSV(dir + "/labels.csv", labels->GetLabelTable());
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/marked-example.vtp", labels->GetMarkedExample());
+  std::cout << "wrote " << dir << "/labels.csv, " << dir << "/marked-example.vtp\n";
+  return 0;
 }
 
 /// A progress bar on stderr when it is a terminal.
@@ -835,9 +855,10 @@ int Main(const std::vector<std::string>& args)
     {
       return TilesetInfo(positional[0], synth.Subset);
     }
-    if (command == "info" && IsPolyhedral(positional[0]))
+    if (IsPolyhedral(positional[0]))
     {
-      return PolyhedralInfo(positional[0], synth.ObjectTypes);
+      return command == "info" ? PolyhedralInfo(positional[0], synth.ObjectTypes)
+                               : PolyhedralAnalyzeToFolder(positional[0], synth.ObjectTypes, out);
     }
     return command == "info" ? Info(positional[0]) : AnalyzeToFolder(positional[0], out);
   }

@@ -57,6 +57,14 @@ class CommandLineTest(unittest.TestCase):
         r = run("info", data("Continuous/two-objects2d.obj"), "--types", "roof=3")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("3·ℝ²", r.stdout)
+        out = tmp("analyze-house")
+        r = run("analyze", data("Continuous/house.obj"), "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "labels.csv"), encoding="utf-8") as f:
+            rows = f.read().splitlines()
+        self.assertEqual(rows[0].split(",")[:3], ["Id", "Kind", "Codimension"])
+        self.assertEqual(len(rows), 1 + 49)
+        self.assertTrue(os.path.getsize(os.path.join(out, "marked-example.vtp")) > 0)
         bad = tmp("open-cli.obj")
         with open(bad, "w") as f:
             f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n")
