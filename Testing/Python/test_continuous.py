@@ -6,6 +6,8 @@ import math
 import os
 import unittest
 
+import numpy as np
+
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOGeometry import vtkSTLWriter
 from vtkmodules.vtkIOPLY import vtkPLYWriter
@@ -92,6 +94,77 @@ def brute_force_labels(objects):
     return figures, samples
 
 
+def read_obj_3d(path):
+    """Points and {object: [polygon as point indices]} of a 3D OBJ, parsed independently."""
+    points, objects, current = [], {}, "object"
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w or w[0].startswith("#"):
+                continue
+            if w[0] == "v":
+                points.append([float(c) for c in w[1:4]])
+            elif w[0] in ("o", "g"):
+                current = " ".join(w[1:])
+            elif w[0] == "f":
+                objects.setdefault(current, []).append([int(t.split("/")[0]) - 1 for t in w[1:]])
+    return np.array(points), objects
+
+
+def winding_numbers(points, polygons, queries):
+    """Generalized winding number of closed polygon surfaces at many query points: the sum of
+    the signed solid angles of fan triangles (Van Oosterom-Strackee) over 4 pi; about 1 inside
+    and 0 outside, whatever the orientation of the input faces' triangulation."""
+    total = np.zeros(len(queries))
+    for poly in polygons:
+        for k in range(1, len(poly) - 1):
+            a, b, c = (points[poly[0]] - queries, points[poly[k]] - queries, points[poly[k + 1]] - queries)
+            la, lb, lc = (np.linalg.norm(v, axis=1) for v in (a, b, c))
+            det = np.einsum("ij,ij->i", a, np.cross(b, c))
+            div = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", a, c) * lb
+                   + np.einsum("ij,ij->i", b, c) * la)
+            total += 2 * np.arctan2(det, div)
+    return total / (4 * np.pi)
+
+
+def brute_force_labels_3d(path, directions=1500, eps=1e-4):
+    """Distinct vertex figures of a 3D example, sampled at every vertex, every edge midpoint and
+    beside every edge inside every face, in the same fixed set of directions (a Fibonacci
+    sphere), plus the exterior and each object's interior (one object type per OBJ object)."""
+    points, objects = read_obj_3d(path)
+    names = sorted(objects)
+    samples = [p for p in points]
+    for polygons in objects.values():
+        for poly in polygons:
+            a0, a1, a2 = (points[poly[i]] for i in range(3))
+            normal = np.cross(a1 - a0, a2 - a0)
+            normal /= np.linalg.norm(normal)
+            for i in range(len(poly)):
+                a, b = points[poly[i]], points[poly[(i + 1) % len(poly)]]
+                mid = (a + b) / 2
+                samples.append(mid)
+                inward = np.cross(normal, b - a)
+                inward /= np.linalg.norm(inward)
+                samples.append(mid + 1e-3 * inward)
+                samples.append(mid - 1e-3 * inward)
+    k = np.arange(directions) + 0.5
+    phi = np.arccos(1 - 2 * k / directions)
+    theta = np.pi * (1 + 5 ** 0.5) * k
+    dirs = np.stack([np.cos(theta) * np.sin(phi), np.sin(theta) * np.sin(phi), np.cos(phi)], axis=1)
+    figures = set()
+    for p in samples:
+        queries = p + eps * dirs
+        pattern = np.zeros(directions, dtype=int)
+        for index, name in enumerate(names):
+            inside = winding_numbers(points, objects[name], queries) > 0.5
+            pattern[inside] = index + 1
+        figures.add(tuple(pattern.tolist()))
+    figures.add(tuple([0] * directions))
+    for index in range(len(names)):
+        figures.add(tuple([index + 1] * directions))
+    return figures
+
+
 class ContinuousAnalysisTest(unittest.TestCase):
     def test_dissertation_counts(self):
         for name, count in (("triangle2d.obj", 8), ("tetrahedron.obj", 16), ("cube.obj", 28)):
@@ -106,6 +179,14 @@ class ContinuousAnalysisTest(unittest.TestCase):
             _, labels, errors = analyze(path)
             self.assertEqual(errors, "")
             self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), len(figures), name)
+
+    def test_3d_labels_match_brute_force(self):
+        # Every OBJ object here is its own object type, as in the bundled examples.
+        for name in ("cube.obj", "tetrahedron.obj", "l-prism.obj", "house.obj"):
+            path = data(os.path.join("Continuous", name))
+            _, labels, errors = analyze(path)
+            self.assertEqual(errors, "")
+            self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), len(brute_force_labels_3d(path)), name)
 
     def test_table_and_marked_example(self):
         _, labels, _ = analyze(data("Continuous/l-prism.obj"))
