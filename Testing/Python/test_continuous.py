@@ -31,8 +31,8 @@ def analyze(path, **options):
     return reader, labels, reader_errors.text() + errors.text()
 
 
-def read_obj_2d(path):
-    """Polygons per object of a 2D OBJ, parsed here independently: {object: [polygon]}."""
+def read_obj(path):
+    """Points and {object: [polygon as point indices]} of an OBJ, parsed here independently."""
     points, objects, current = [], {}, "object"
     with open(path) as f:
         for line in f:
@@ -40,12 +40,19 @@ def read_obj_2d(path):
             if not w or w[0].startswith("#"):
                 continue
             if w[0] == "v":
-                points.append((float(w[1]), float(w[2])))
+                points.append([float(c) for c in w[1:4]])
             elif w[0] in ("o", "g"):
                 current = " ".join(w[1:])
             elif w[0] == "f":
-                objects.setdefault(current, []).append([points[int(t.split("/")[0]) - 1] for t in w[1:]])
-    return objects
+                objects.setdefault(current, []).append([int(t.split("/")[0]) - 1 for t in w[1:]])
+    return points, objects
+
+
+def read_obj_2d(path):
+    """Polygons per object of a 2D OBJ (as (x, y) corners): {object: [polygon]}."""
+    points, objects = read_obj(path)
+    return {name: [[(points[i][0], points[i][1]) for i in poly] for poly in polys]
+            for name, polys in objects.items()}
 
 
 def inside(polygon, x, y):
@@ -94,23 +101,6 @@ def brute_force_labels(objects):
     return figures, samples
 
 
-def read_obj_3d(path):
-    """Points and {object: [polygon as point indices]} of a 3D OBJ, parsed independently."""
-    points, objects, current = [], {}, "object"
-    with open(path) as f:
-        for line in f:
-            w = line.split()
-            if not w or w[0].startswith("#"):
-                continue
-            if w[0] == "v":
-                points.append([float(c) for c in w[1:4]])
-            elif w[0] in ("o", "g"):
-                current = " ".join(w[1:])
-            elif w[0] == "f":
-                objects.setdefault(current, []).append([int(t.split("/")[0]) - 1 for t in w[1:]])
-    return np.array(points), objects
-
-
 def winding_numbers(points, polygons, queries):
     """Generalized winding number of closed polygon surfaces at many query points: the sum of
     the signed solid angles of fan triangles (Van Oosterom-Strackee) over 4 pi; about 1 inside
@@ -131,7 +121,8 @@ def brute_force_labels_3d(path, directions=1500, eps=1e-4):
     """Distinct vertex figures of a 3D example, sampled at every vertex, every edge midpoint and
     beside every edge inside every face, in the same fixed set of directions (a Fibonacci
     sphere), plus the exterior and each object's interior (one object type per OBJ object)."""
-    points, objects = read_obj_3d(path)
+    points, objects = read_obj(path)
+    points = np.array(points)
     names = sorted(objects)
     samples = [p for p in points]
     for polygons in objects.values():

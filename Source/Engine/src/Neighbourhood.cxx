@@ -100,14 +100,9 @@ PlaneFamilySet::PlaneFamilySet(std::vector<IntVec3> normals)
   }
 }
 
-int PlaneFamilySet::Side(int family, const WideVec3& d) const
-{
-  return Sign(Dot(Widen(this->Normals.at(family)), d));
-}
-
 int PlaneFamilySet::Side(int family, const IntVec3& d) const
 {
-  return this->Side(family, Widen(d));
+  return Sign(Dot(Widen(this->Normals.at(family)), Widen(d)));
 }
 
 int PlaneFamilySet::Rank(const std::vector<int>& families) const
@@ -354,21 +349,6 @@ NeighbourhoodLabel NeighbourhoodLabel::Evaluate(const PlaneFamilySet& set, const
   }
   out.Canonicalize();
   return out;
-}
-
-int NeighbourhoodLabel::TypeToward(const PlaneFamilySet& set, const IntVec3& d) const
-{
-  unsigned m = 0;
-  for (std::size_t j = 0; j < this->Families.size(); ++j)
-  {
-    const int side = set.Side(this->Families[j], d);
-    if (side == 0)
-    {
-      throw Error("TypeToward: the direction lies on plane h" + std::to_string(this->Families[j] + 1));
-    }
-    m |= side > 0 ? 1u << j : 0u;
-  }
-  return this->Types[m];
 }
 
 FeatureKind NeighbourhoodLabel::Kind(const PlaneFamilySet& set) const

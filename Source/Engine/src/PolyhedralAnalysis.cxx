@@ -203,15 +203,30 @@ bool NeighbourhoodProbe::ElementContains(std::size_t e, const Point3& p) const
   return inside;
 }
 
-std::vector<int> NeighbourhoodProbe::FamiliesThrough(const Point3& p) const
+std::vector<std::size_t> NeighbourhoodProbe::ElementsThrough(const Point3& p) const
 {
-  std::vector<int> families;
+  std::vector<std::size_t> elements;
   for (std::size_t e = 0; e < this->Elements.size(); ++e)
   {
     if (this->ElementContains(e, p))
     {
-      families.push_back(this->Family[e]);
+      elements.push_back(e);
     }
+  }
+  return elements;
+}
+
+std::vector<int> NeighbourhoodProbe::FamiliesThrough(const Point3& p) const
+{
+  return this->FamiliesOf(this->ElementsThrough(p));
+}
+
+std::vector<int> NeighbourhoodProbe::FamiliesOf(const std::vector<std::size_t>& elements) const
+{
+  std::vector<int> families;
+  for (std::size_t e : elements)
+  {
+    families.push_back(this->Family[e]);
   }
   std::sort(families.begin(), families.end());
   families.erase(std::unique(families.begin(), families.end()), families.end());
@@ -220,8 +235,13 @@ std::vector<int> NeighbourhoodProbe::FamiliesThrough(const Point3& p) const
 
 NeighbourhoodLabel NeighbourhoodProbe::LabelAt(const Point3& p) const
 {
+  return this->LabelAt(p, this->ElementsThrough(p));
+}
+
+NeighbourhoodLabel NeighbourhoodProbe::LabelAt(const Point3& p, const std::vector<std::size_t>& elements) const
+{
   const double distance = this->ProbeDistance();
-  return NeighbourhoodLabel::FromFunction(this->Set, this->FamiliesThrough(p),
+  return NeighbourhoodLabel::FromFunction(this->Set, this->FamiliesOf(elements),
     [&](const PlaneFamilySet::Cone& cone) {
       const int object = this->Classifier->ObjectAt(Add(p, cone.UnitDirection, distance));
       return object < 0 ? 0 : this->Model.ObjectTypes[object];
@@ -326,18 +346,17 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
     feature.A = a;
     feature.B = b;
     feature.Element = element;
-    feature.Label = add(probe.LabelAt(at), 1);
+    const auto through = probe.ElementsThrough(at);
+    feature.Label = add(probe.LabelAt(at, through), 1);
     analysis.Samples.push_back(feature);
     if (element >= 0)
     {
       // Every face through the sample has this label there (coplanar faces of other objects
       // included), so a face partly covered by another object is known to have several.
-      for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
+      labelsOfElement[element].insert(feature.Label);
+      for (std::size_t e : through)
       {
-        if (static_cast<int>(e) == element || probe.ElementContains(e, at))
-        {
-          labelsOfElement[e].insert(feature.Label);
-        }
+        labelsOfElement[e].insert(feature.Label);
       }
     }
   };
@@ -532,9 +551,5 @@ std::vector<int> PolyhedralAnalysis::AllowedLabels(std::vector<int> families) co
   return allowed;
 }
 
-bool PolyhedralAnalysis::Compatible(int from, int to, const IntVec3& d) const
-{
-  return CompatibleAlong(*this->Set, this->Label(from).Label, this->Label(to).Label, d);
-}
 
 } // namespace msynth

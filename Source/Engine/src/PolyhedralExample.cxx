@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "msynth/PolyhedralExample.h"
 
-#include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
 #include "Point3Math.h"
 
@@ -230,38 +229,6 @@ PolyhedralExample ReadOBJExample(std::istream& in, const std::string& name, cons
     throw Error::InFile(name, "contains no faces");
   }
   return example;
-}
-
-void WriteOBJExample(const PolyhedralExample& example, const std::string& path)
-{
-  std::ostringstream out;
-  out.precision(17);
-  out << "# ModelSynth polyhedral example\n";
-  for (const auto& p : example.Points)
-  {
-    out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-  }
-  for (int o = 0; o < example.NumberOfObjects(); ++o)
-  {
-    const int type = example.ObjectTypes[o];
-    auto named = example.TypeNames.find(type);
-    out << "o " << (named != example.TypeNames.end() ? named->second : std::to_string(type)) << '_'
-        << o << '\n';
-    for (std::size_t f = 0; f < example.Faces.size(); ++f)
-    {
-      if (example.FaceObject[f] != o)
-      {
-        continue;
-      }
-      out << 'f';
-      for (int v : example.Faces[f])
-      {
-        out << ' ' << v + 1;
-      }
-      out << '\n';
-    }
-  }
-  WriteFileAtomically(path, [&out](std::ostream& os) { os << out.str(); });
 }
 
 void AssignObjectsByConnectivity(PolyhedralExample& example, const std::vector<int>& faceTypes)

@@ -93,10 +93,7 @@ int vtkMSNeighbourhoodLabels::RequestData(
   vtkTable* table = vtkTable::GetData(outputVector, 0);
   vtkPolyData* marked = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  if (piece > 0 && (!input || input->GetNumberOfPolys() == 0))
+  if (vtkMSEngineBridge::UpdatePiece(outInfo) > 0 && (!input || input->GetNumberOfPolys() == 0))
   {
     return 1; // in parallel, the example lives on piece 0 and is analyzed there only
   }
@@ -183,13 +180,18 @@ int vtkMSNeighbourhoodLabels::RequestData(
       points->InsertNextPoint(p.data());
     }
     vtkNew<vtkCellArray> verts, lines, polys;
-    auto vertLabel = IntColumn("LabelId");
-    auto vertCodim = IntColumn("Codimension");
-    auto lineLabel = IntColumn("LabelId");
-    auto lineCodim = IntColumn("Codimension");
-    auto polyLabel = IntColumn("LabelId");
-    auto polyCodim = IntColumn("Codimension");
-    auto polyType = IntColumn("ObjectType");
+    // Cell values per kind; vtkPolyData orders its cells verts, lines, polys.
+    struct Values
+    {
+      std::vector<int> Label, Codimension, ObjectType;
+      void Add(int label, int codimension, int objectType)
+      {
+        this->Label.push_back(label);
+        this->Codimension.push_back(codimension);
+        this->ObjectType.push_back(objectType);
+      }
+    };
+    Values vertValues, lineValues, polyValues;
     for (const auto& feature : analysis.Features())
     {
       if (feature.Element >= 0 && !planar)
@@ -200,15 +202,13 @@ int vtkMSNeighbourhoodLabels::RequestData(
       if (feature.A == feature.B)
       {
         verts->InsertNextCell(1, &a);
-        vertLabel->InsertNextValue(feature.Label);
-        vertCodim->InsertNextValue(static_cast<int>(feature.Kind));
+        vertValues.Add(feature.Label, static_cast<int>(feature.Kind), -1);
       }
       else
       {
         const vtkIdType ids[2] = { a, points->InsertNextPoint(feature.B.data()) };
         lines->InsertNextCell(2, ids);
-        lineLabel->InsertNextValue(feature.Label);
-        lineCodim->InsertNextValue(static_cast<int>(feature.Kind));
+        lineValues.Add(feature.Label, static_cast<int>(feature.Kind), -1);
       }
     }
     for (std::size_t f = 0; f < example.Faces.size(); ++f)
@@ -219,16 +219,13 @@ int vtkMSNeighbourhoodLabels::RequestData(
         polys->InsertCellPoint(v);
       }
       const int type = example.ObjectTypes[example.FaceObject[f]];
-      polyType->InsertNextValue(type);
       if (planar)
       {
-        polyLabel->InsertNextValue(analysis.Find(msynth::NeighbourhoodLabel::Constant(type)));
-        polyCodim->InsertNextValue(0);
+        polyValues.Add(analysis.Find(msynth::NeighbourhoodLabel::Constant(type)), 0, type);
       }
       else
       {
-        polyLabel->InsertNextValue(analysis.ElementLabel()[f]);
-        polyCodim->InsertNextValue(1);
+        polyValues.Add(analysis.ElementLabel()[f], 1, type);
       }
     }
     marked->Initialize();
@@ -236,32 +233,20 @@ int vtkMSNeighbourhoodLabels::RequestData(
     marked->SetVerts(verts);
     marked->SetLines(lines);
     marked->SetPolys(polys);
-    // Cell order in vtkPolyData: verts, lines, polys.
-    auto label = IntColumn("LabelId");
-    auto codim = IntColumn("Codimension");
-    auto type = IntColumn("ObjectType");
-    for (auto* part : { vertLabel.Get(), lineLabel.Get(), polyLabel.Get() })
-    {
-      for (vtkIdType i = 0; i < part->GetNumberOfValues(); ++i)
+    auto column = [&](const char* arrayName, std::vector<int> Values::*member) {
+      auto array = IntColumn(arrayName);
+      for (const Values* part : { &vertValues, &lineValues, &polyValues })
       {
-        label->InsertNextValue(part->GetValue(i));
+        for (int v : part->*member)
+        {
+          array->InsertNextValue(v);
+        }
       }
-    }
-    for (auto* part : { vertCodim.Get(), lineCodim.Get(), polyCodim.Get() })
-    {
-      for (vtkIdType i = 0; i < part->GetNumberOfValues(); ++i)
-      {
-        codim->InsertNextValue(part->GetValue(i));
-      }
-    }
-    for (vtkIdType i = 0; i < verts->GetNumberOfCells() + lines->GetNumberOfCells(); ++i)
-    {
-      type->InsertNextValue(-1);
-    }
-    for (vtkIdType i = 0; i < polyType->GetNumberOfValues(); ++i)
-    {
-      type->InsertNextValue(polyType->GetValue(i));
-    }
+      return array;
+    };
+    auto label = column("LabelId", &Values::Label);
+    auto codim = column("Codimension", &Values::Codimension);
+    auto type = column("ObjectType", &Values::ObjectType);
     marked->GetCellData()->AddArray(label);
     marked->GetCellData()->AddArray(codim);
     marked->GetCellData()->AddArray(type);

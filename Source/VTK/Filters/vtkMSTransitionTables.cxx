@@ -39,10 +39,7 @@ int vtkMSTransitionTables::RequestUpdateExtent(
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, piece);
+  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, vtkMSEngineBridge::UpdatePiece(outInfo));
   return 1;
 }
 
@@ -70,8 +67,7 @@ int vtkMSTransitionTables::RequestData(
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  if (vtkMSEngineBridge::UpdatePiece(outInfo) > 0)
   {
     return 1; // piece 0 computes the tables (see class documentation)
   }

@@ -146,6 +146,13 @@ bool vtkMSEngineBridge::Execute(
   return ok;
 }
 
+int vtkMSEngineBridge::UpdatePiece(vtkInformation* outInfo)
+{
+  return outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+}
+
 void vtkMSEngineBridge::RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece)
 {
   if (piece == 0)

@@ -75,6 +75,8 @@ public:
    * done once and gathered results are not duplicated.
    */
   static void RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece);
+  /// The piece an output information object asks for (UPDATE_PIECE_NUMBER), 0 when unset.
+  static int UpdatePiece(vtkInformation* outInfo);
 
   /// Starts collecting ErrorEvent messages of @p source (removes earlier observation).
   void Watch(vtkObject* source);

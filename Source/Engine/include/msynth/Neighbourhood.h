@@ -46,7 +46,6 @@ public:
   const std::vector<IntVec3>& AllNormals() const { return this->Normals; }
 
   /// The sign of n_family·d, exactly.
-  int Side(int family, const WideVec3& d) const;
   int Side(int family, const IntVec3& d) const;
 
   /// One cone of the central arrangement of a family subset: its sign mask (bit j ⇔ σ_j = +
@@ -101,8 +100,6 @@ public:
   void Canonicalize();
   /// The label met when travelling from the point in direction @p d (§4.5.5), canonical.
   NeighbourhoodLabel Evaluate(const PlaneFamilySet& set, const IntVec3& d) const;
-  /// Object type in direction @p d from the point (d must not lie on one of the label's planes).
-  int TypeToward(const PlaneFamilySet& set, const IntVec3& d) const;
   FeatureKind Kind(const PlaneFamilySet& set) const;
   /// The object types present (ascending, 0 included when some cone is empty space).
   std::vector<int> TypesPresent() const;

@@ -47,6 +47,10 @@ public:
 
   /// The canonical label at @p p.
   NeighbourhoodLabel LabelAt(const Point3& p) const;
+  /// The canonical label at @p p given the boundary elements through it (ElementsThrough).
+  NeighbourhoodLabel LabelAt(const Point3& p, const std::vector<std::size_t>& elements) const;
+  /// The boundary elements through @p p (ascending).
+  std::vector<std::size_t> ElementsThrough(const Point3& p) const;
   /// The families of the boundary elements through @p p (sorted).
   std::vector<int> FamiliesThrough(const Point3& p) const;
   /// Whether boundary element @p element contains @p p (within Tolerance()).
@@ -68,6 +72,7 @@ private:
   std::unique_ptr<SolidClassifier> Classifier;
   double Tol = 0;
   double Offset = 0;
+  std::vector<int> FamiliesOf(const std::vector<std::size_t>& elements) const;
 };
 
 class PolyhedralAnalysis
@@ -122,8 +127,6 @@ public:
   /// The labels allowed at a site through planes of @p families (§4.5.2, §4.5.4): those whose
   /// families all pass through it.
   std::vector<int> AllowedLabels(std::vector<int> families) const;
-  /// Labels @p from and @p to may be joined by an edge of direction @p d (from → to).
-  bool Compatible(int from, int to, const IntVec3& d) const;
 
 private:
   bool IsPlanar = false;

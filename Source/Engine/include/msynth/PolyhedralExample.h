@@ -57,9 +57,6 @@ struct ObjectTypeOptions
 PolyhedralExample ReadOBJExample(const std::string& path, const ObjectTypeOptions& options = {});
 PolyhedralExample ReadOBJExample(std::istream& in, const std::string& name, const ObjectTypeOptions& options = {});
 
-/// Writes an example as OBJ (one `o` per object, named "<type name or type>_<index>").
-void WriteOBJExample(const PolyhedralExample& example, const std::string& path);
-
 /// Splits faces without object ids into objects: connected components (faces sharing an edge)
 /// per object type. @p faceTypes gives each face's type.
 void AssignObjectsByConnectivity(PolyhedralExample& example, const std::vector<int>& faceTypes);
