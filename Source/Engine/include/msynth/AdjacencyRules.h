@@ -8,6 +8,7 @@
  * an explicit list of allowed pairs (tilesets).
  */
 #include "msynth/ExampleAnalysis.h"
+#include "msynth/Propagation.h"
 
 #include <array>
 #include <cstdint>
@@ -44,7 +45,7 @@ inline std::array<int, 3> Offset(int d)
   return o;
 }
 
-class AdjacencyRules
+class AdjacencyRules : public CompatibilityRelation
 {
 public:
   /// Rules of Eq. 3.3 from an analyzed example; weights are the label frequencies.
@@ -59,50 +60,20 @@ public:
   static AdjacencyRules FromPairs(std::vector<Label> values, std::vector<double> weights,
     const std::array<std::vector<std::pair<int, int>>, 3>& pairs);
 
-  int NumberOfLabels() const { return this->K; }
-  /// 64-bit words per label set.
-  int Words() const { return this->W; }
   const std::vector<Label>& LabelValues() const { return this->Values; }
   const std::vector<double>& Weights() const { return this->LabelWeights; }
   /// Index of label value @p value, or -1.
   int IndexOf(Label value) const;
 
-  /// Labels allowed at x + d when x holds label index @p b (Words() words).
-  const std::uint64_t* Compatible(int d, int b) const
-  {
-    return this->Bits.data() + (static_cast<std::size_t>(d) * this->K + b) * this->W;
-  }
-  /// Labels allowed at x + d when every label is possible at x (union over b of Compatible).
-  const std::uint64_t* CompatibleWithAny(int d) const
-  {
-    return this->AnyBits.data() + static_cast<std::size_t>(d) * this->W;
-  }
-  /**
-   * Writes to @p out (Words() words) the labels allowed at x + d when x may hold any label of
-   * @p domain: the union of Compatible(d, b) over b in @p domain. With k ≤ 512 this reads
-   * precomputed unions of 8-label chunks (k/8 lookups); otherwise it walks the labels.
-   */
-  void UnionOf(int d, const std::uint64_t* domain, std::uint64_t* out) const;
-  bool Allowed(int d, int b, int c) const
-  {
-    return (this->Compatible(d, b)[c >> 6] >> (c & 63)) & 1u;
-  }
   /// True when label @p b may be next to itself along every axis whose output size is > 1.
   bool SelfAdjacent(int b, const std::array<std::int64_t, 3>& outputSize) const;
 
 private:
-  void Allocate(int k);
+  void Allocate(int k) { CompatibilityRelation::Allocate(k, NumberOfDirections); }
   void Allow(int axis, int b, int c);
-  void Finish();
 
-  int K = 0;
-  int W = 0;
   std::vector<Label> Values;
   std::vector<double> LabelWeights;
-  std::vector<std::uint64_t> Bits;    // [direction][label][word]
-  std::vector<std::uint64_t> AnyBits; // [direction][word]
-  /// [direction][chunk of 8 labels][byte value][word]; empty when k > 512 (24·k² bytes).
-  std::vector<std::uint64_t> ChunkUnions;
 };
 
 } // namespace msynth
