@@ -149,6 +149,7 @@ void LabelDomains::Reset(std::int64_t n, int k, std::vector<std::uint64_t> initi
   this->Queued.assign(static_cast<std::size_t>(n), 0);
   this->Queue.clear();
   this->ChangedSites.clear();
+  this->Trail.clear();
   this->Scratch.assign(static_cast<std::size_t>(this->W), 0);
 }
 
@@ -183,14 +184,22 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
 {
   std::uint64_t* d = this->Bits.data() + static_cast<std::size_t>(site) * this->W;
   bool changed = false;
-  for (int w = 0; w < this->W; ++w)
+  for (int w = 0; w < this->W && !changed; ++w)
   {
-    const std::uint64_t kept = d[w] & mask[w];
-    changed |= kept != d[w];
-    d[w] = kept;
+    changed = (d[w] & mask[w]) != d[w];
   }
   if (changed)
   {
+    if (this->Recording)
+    {
+      this->Trail.push_back(static_cast<std::uint64_t>(site));
+      this->Trail.push_back(static_cast<std::uint64_t>(this->Counts[static_cast<std::size_t>(site)]));
+      this->Trail.insert(this->Trail.end(), d, d + this->W);
+    }
+    for (int w = 0; w < this->W; ++w)
+    {
+      d[w] &= mask[w];
+    }
     const int count = PopCount(d, this->W);
     const int before = this->Counts[static_cast<std::size_t>(site)];
     this->DecidedSites += (count == 1) - (before == 1);
@@ -203,6 +212,30 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
     }
   }
   return this->Counts[static_cast<std::size_t>(site)] > 0;
+}
+
+void LabelDomains::Undo(std::size_t mark)
+{
+  const std::size_t entry = static_cast<std::size_t>(this->W) + 2;
+  while (this->Trail.size() > mark)
+  {
+    const std::size_t at = this->Trail.size() - entry;
+    const auto site = static_cast<std::int64_t>(this->Trail[at]);
+    const int count = static_cast<int>(this->Trail[at + 1]);
+    std::copy_n(this->Trail.data() + at + 2, this->W,
+      this->Bits.data() + static_cast<std::size_t>(site) * this->W);
+    const int now = this->Counts[static_cast<std::size_t>(site)];
+    this->DecidedSites += (count == 1) - (now == 1);
+    this->Counts[static_cast<std::size_t>(site)] = count;
+    this->ChangedSites.push_back(site);
+    this->Trail.resize(at);
+  }
+  for (std::int64_t q : this->Queue)
+  {
+    this->Queued[static_cast<std::size_t>(q)] = 0;
+  }
+  this->Queue.clear();
+  this->EmptySite = -1;
 }
 
 bool LabelDomains::Assign(std::int64_t site, int b)

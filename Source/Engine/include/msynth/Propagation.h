@@ -104,6 +104,19 @@ public:
   /// Keeps at @p site only the labels of @p mask (Words() words). False if nothing is left.
   bool Keep(std::int64_t site, const std::uint64_t* mask);
 
+  /**
+   * Undo support for search with backtracking: while recording, every change keeps the old set.
+   * Mark() names the current state; Undo(mark) restores it (and reports the restored sites as
+   * changed). Recording costs Words() + 2 words per change.
+   */
+  void Record(bool on)
+  {
+    this->Recording = on;
+    this->Trail.clear();
+  }
+  std::size_t Mark() const { return this->Trail.size(); }
+  void Undo(std::size_t mark);
+
   /// Sites whose sets changed since ClearChanged().
   const std::vector<std::int64_t>& Changed() const { return this->ChangedSites; }
   void ClearChanged() { this->ChangedSites.clear(); }
@@ -175,6 +188,8 @@ private:
   std::vector<std::uint64_t> Scratch;
   std::int64_t EmptySite = -1;
   std::int64_t DecidedSites = 0;
+  bool Recording = false;
+  std::vector<std::uint64_t> Trail; ///< [site, count, W old words] per recorded change
 };
 
 } // namespace msynth

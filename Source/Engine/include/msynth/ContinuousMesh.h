@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file ContinuousMesh.h
+ * @brief Mesh extraction from a labelled plane arrangement (dissertation §4.5.8; design notes
+ * §5) and the independent check of a synthesized model (Eq. 4.1).
+ *
+ * 3D: every face of the arrangement across which the object type changes becomes one convex
+ * polygon. Faces are traced around their boundary in the arrangement (the next edge at each
+ * vertex is the previous one in counter-clockwise order within the face's plane), so polygons
+ * keep every arrangement vertex on their boundary (some are straight-angle corners) and
+ * neighbouring polygons share whole edges: the mesh is closed and has no T-junctions.
+ * Coplanar neighbours are not merged. The normal points from InsideType to OutsideType; the
+ * inside is the non-empty side, or the smaller type between two objects. So the surface of type t
+ * is the polygons with InsideType t plus, reversed, those with OutsideType t: closed and
+ * consistently oriented per type.
+ *
+ * 2D: the faces of the line arrangement with a non-empty type, as counter-clockwise polygons
+ * (InsideType = the face's type; OutsideType is empty).
+ */
+#include "msynth/PlaneArrangement.h"
+#include "msynth/PolyhedralAnalysis.h"
+
+#include <map>
+#include <string>
+
+namespace msynth
+{
+
+struct ContinuousMesh
+{
+  bool Planar = false;
+  std::vector<Point3> Points;
+  std::vector<std::int64_t> PointVertex; ///< the arrangement vertex of each point
+  std::vector<std::vector<std::int32_t>> Polygons;
+  std::vector<std::int32_t> InsideType;
+  std::vector<std::int32_t> OutsideType; ///< 3D only
+};
+
+/// @throw Error when @p labels do not fit the arrangement (a face would leave the box).
+ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+  const std::vector<std::int32_t>& labels);
+
+/**
+ * The mesh as a polyhedral model: per object type, its closed surfaces (connected components)
+ * as objects, type names from @p typeNames.
+ */
+PolyhedralExample MeshToModel(const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames);
+
+struct ContinuousModelReport
+{
+  bool Valid = false;
+  std::string Problem;           ///< empty when valid
+  int DistinctLabels = 0;        ///< distinct neighbourhoods found on the model
+  std::int64_t SampledFeatures = 0;
+  int Objects = 0;
+};
+
+/**
+ * Checks a synthesized mesh without trusting the solver: the mesh must be a valid closed,
+ * outward-oriented polyhedral model (the example validation), and the example analysis run on
+ * it must find only neighbourhoods that are labels of @p example (vertices, edge pieces, faces).
+ */
+ContinuousModelReport CheckContinuousModel(
+  const PolyhedralAnalysis& example, const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames);
+
+} // namespace msynth

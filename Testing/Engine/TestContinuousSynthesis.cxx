@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Continuous model synthesis II (dissertation §4.5): the plane arrangement, the label solver and
+// mesh extraction, each output checked by the example analysis run on the output mesh.
+#include "msynth/ContinuousMesh.h"
+#include "msynth/ContinuousSynthesis.h"
+#include "msynth/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace msynth;
+
+namespace
+{
+
+struct Loaded
+{
+  PolyhedralExample Example;
+  PolyhedralAnalysis Analysis;
+};
+
+Loaded Load(const std::string& name)
+{
+  Loaded l;
+  l.Example = ReadOBJExample(std::string(MSYNTH_DATA) + "/Continuous/" + name);
+  ValidateExample(l.Example);
+  l.Analysis = PolyhedralAnalysis::Analyze(l.Example);
+  return l;
+}
+
+struct SynthesisRun
+{
+  ContinuousSynthesisResult Result;
+  ContinuousMesh Mesh;
+  ContinuousModelReport Report;
+  std::int64_t Vertices = 0;
+};
+
+SynthesisRun Synthesize(const Loaded& l, const Point3& size, double spacing, std::uint64_t seed, double block)
+{
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, size, spacing, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  ContinuousSynthesisOptions options;
+  options.Seed = seed;
+  options.BlockSize = block;
+  SynthesisRun r;
+  r.Vertices = arrangement.NumberOfVertices();
+  r.Result = SynthesizeContinuous(l.Analysis, arrangement, options);
+  EXPECT_EQ(CheckArrangementLabels(l.Analysis, arrangement, r.Result.Labels), "");
+  r.Mesh = ExtractMesh(l.Analysis, arrangement, r.Result.Labels);
+  r.Report = CheckContinuousModel(l.Analysis, r.Mesh, l.Example.TypeNames);
+  return r;
+}
+
+} // namespace
+
+TEST(PlaneArrangement, CubeGivesAGrid)
+{
+  const Loaded l = Load("cube.obj");
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 3, 3, 3 }, 0, {});
+  const PlaneArrangement a(l.Analysis.Families(), p);
+  EXPECT_EQ(a.NumberOfVertices(), 64);
+  EXPECT_EQ(a.NumberOfEdges(), 3 * 16 * 3);
+  EXPECT_EQ(a.NumberOfBoundaryEdges(), 6 * 16);
+  EXPECT_EQ(a.NumberOfDirections(), 6);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(a.Position(63)[static_cast<std::size_t>(c)], 3.0, 1e-12);
+  }
+}
+
+TEST(PlaneArrangement, TriangleIn2D)
+{
+  const Loaded l = Load("triangle2d.obj");
+  ASSERT_TRUE(l.Analysis.Planar());
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 8, 6, 0 }, 1, {});
+  const PlaneArrangement a(l.Analysis.Families(), p);
+  EXPECT_GT(a.NumberOfVertices(), 0);
+  EXPECT_EQ(a.NumberOfDirections(), 6);
+  // Every vertex lies on at least two lines, and neighbours lie on a common line.
+  for (std::int64_t v = 0; v < a.NumberOfVertices(); ++v)
+  {
+    EXPECT_GE(__builtin_popcountll(a.FamilyMask(v)), 2);
+    EXPECT_NEAR(a.Position(v)[2], 0.0, 0.0);
+  }
+}
+
+TEST(PlaneArrangement, FourPlanesThroughAPointGiveOneVertex)
+{
+  // Normals (1,0,0), (0,1,0), (0,0,1), (1,1,1): planes x+y+z = k pass through grid points.
+  const PlaneFamilySet set({ { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 1 } });
+  ArrangementParameters p;
+  p.BoxHigh = { 4, 4, 4 };
+  p.Offsets = { 0, 0, 0, 0 };
+  p.Spacings = { 1, 1, 1, 1 };
+  const PlaneArrangement a(set, p);
+  std::set<std::array<double, 3>> unique;
+  std::int64_t onFour = 0;
+  for (std::int64_t v = 0; v < a.NumberOfVertices(); ++v)
+  {
+    unique.insert(a.Position(v));
+    onFour += a.FamilyMask(v) == 15u;
+  }
+  EXPECT_EQ(static_cast<std::int64_t>(unique.size()), a.NumberOfVertices());
+  EXPECT_EQ(onFour, 125); // every grid point of the 5×5×5 grid is on a diagonal plane
+}
+
+TEST(PlaneArrangement, RefusesTooManyVertices)
+{
+  const Loaded l = Load("cube.obj");
+  ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 30, 30, 30 }, 0, {});
+  p.MaxVertices = 1000;
+  EXPECT_THROW(PlaneArrangement(l.Analysis.Families(), p), Error);
+  EXPECT_THROW(DefaultArrangementParameters(l.Example, l.Analysis, { -1, 3, 3 }, 0, {}), Error);
+}
+
+TEST(ContinuousSynthesis, CubeModelsPassTheCheck)
+{
+  const Loaded l = Load("cube.obj");
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+  {
+    const SynthesisRun r = Synthesize(l, { 6, 6, 4 }, 1, seed, 0);
+    ASSERT_TRUE(r.Result.Success) << r.Result.Message;
+    EXPECT_TRUE(r.Report.Valid) << r.Report.Problem;
+    EXPECT_GT(r.Mesh.Polygons.size(), 0u);
+    std::cout << "cube seed " << seed << ": " << r.Vertices << " vertices, " << r.Mesh.Polygons.size()
+              << " polygons, " << r.Report.Objects << " objects, " << r.Report.DistinctLabels << " labels, "
+              << r.Result.FailedAttempts << " failed attempts\n";
+  }
+}
+
+TEST(ContinuousSynthesis, ExamplesPassTheCheck)
+{
+  for (const char* name : { "triangle2d.obj", "two-objects2d.obj", "concave2d.obj", "tetrahedron.obj",
+         "l-prism.obj", "house.obj" })
+  {
+    const Loaded l = Load(name);
+    Point3 lo = l.Example.Points[0], hi = lo;
+    for (const auto& q : l.Example.Points)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[static_cast<std::size_t>(c)] = std::min(lo[static_cast<std::size_t>(c)], q[static_cast<std::size_t>(c)]);
+        hi[static_cast<std::size_t>(c)] = std::max(hi[static_cast<std::size_t>(c)], q[static_cast<std::size_t>(c)]);
+      }
+    }
+    const Point3 size{ 3 * (hi[0] - lo[0]), 3 * (hi[1] - lo[1]), l.Analysis.Planar() ? 0.0 : 2 * (hi[2] - lo[2]) };
+    const SynthesisRun r = Synthesize(l, size, 0, 7, 4);
+    ASSERT_TRUE(r.Result.Success) << name << ": " << r.Result.Message;
+    EXPECT_TRUE(r.Report.Valid) << name << ": " << r.Report.Problem;
+    std::cout << name << ": " << r.Vertices << " vertices, " << r.Mesh.Polygons.size() << " polygons, "
+              << r.Report.Objects << " objects, " << r.Report.DistinctLabels << " labels, "
+              << r.Result.FailedAttempts << " failed attempts, " << r.Result.FailedBlocks << " failed blocks\n";
+  }
+}
