@@ -507,6 +507,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
       {
         result.Labels[static_cast<std::size_t>(verts[static_cast<std::size_t>(i)])] = domains.Single(i);
       }
+      while (whole && options.Snapshots > 0 && options.OnSnapshot &&
+        static_cast<int>(pending.size()) < options.Snapshots)
+      {
+        pending.push_back(capture(b, &verts)); // decided by propagation before the last marks
+      }
       for (const auto& s : pending) // only the successful attempt's snapshots are kept
       {
         options.OnSnapshot(s);

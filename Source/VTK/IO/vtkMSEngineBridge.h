@@ -13,13 +13,17 @@
 #include "ModelSynthIOModule.h" // for export macro
 #include "vtkObject.h"
 
-#include "msynth/LabelGrid.h"         // for msynth::LabelGrid
-#include "msynth/PolyhedralExample.h" // for msynth::PolyhedralExample
+#include "msynth/LabelGrid.h"          // for msynth::LabelGrid
+#include "msynth/PlaneArrangement.h"   // for msynth::ArrangementParameters
+#include "msynth/PolyhedralAnalysis.h" // for msynth::PolyhedralAnalysis
+#include "msynth/PolyhedralExample.h"  // for msynth::PolyhedralExample
 
 #include <string>
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkDataObject;
+class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
@@ -58,6 +62,30 @@ public:
   static msynth::PolyhedralExample ToPolyhedralExample(vtkPolyData* polygons, const std::string& name);
   /// Polygons with cell arrays `ObjectType` and `ObjectId` (the inverse of the above).
   static void FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output);
+  /// The example's file name from field data `ExampleFile`, else "the input".
+  static std::string ExampleName(vtkDataObject* data);
+  /**
+   * Reads, validates and analyzes the polyhedral example @p polygons (continuous synthesis).
+   * @p angleToleranceDegrees and @p maximumSmallInteger are the analysis options.
+   * @throw msynth::Error naming the example on bad input.
+   */
+  static msynth::PolyhedralAnalysis AnalyzeExample(vtkPolyData* polygons, double angleToleranceDegrees,
+    int maximumSmallInteger, msynth::PolyhedralExample& example);
+
+  /// What a plane arrangement output carries so later stages rebuild it exactly.
+  struct ArrangementRecord
+  {
+    msynth::ArrangementParameters Parameters;
+    std::vector<msynth::IntVec3> Normals;
+    double AngleToleranceDegrees = 0.01;
+    int MaximumSmallInteger = 12;
+  };
+  /// Field data arrays ArrangementOrigin, ArrangementQuantum, ArrangementBox, FamilyNormals,
+  /// FamilyOffsets, FamilySpacings, Planar, AngleTolerance, MaximumSmallInteger.
+  static void StoreArrangement(const ArrangementRecord& record, vtkFieldData* fields);
+  /// @throw msynth::Error naming @p where and the missing or malformed array.
+  static ArrangementRecord LoadArrangement(vtkFieldData* fields, const std::string& where);
+
   /// A new vtkIntArray named @p name holding @p grid's labels.
   static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
 

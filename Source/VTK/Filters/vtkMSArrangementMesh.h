@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSArrangementMesh
+ * @brief Mesh extraction of continuous model synthesis (dissertation §4.5.8;
+ * msynth::ExtractMesh): the surface of a labelled plane arrangement.
+ *
+ * Input 0: the polyhedral example. Input 1: the output of vtkMSContinuousSynthesis (the
+ * arrangement with point array `Label`).
+ *
+ * Output, a vtkPolyData of convex polygons (coplanar neighbours are not merged; every
+ * arrangement vertex on a polygon's boundary is one of its corners, so the mesh has no
+ * T-junctions):
+ * - 3D: the faces where the object type changes, with cell arrays `InsideType` and
+ *   `OutsideType`; the normal points from inside to outside. The surface of type t is the
+ *   polygons with InsideType t and, reversed, those with OutsideType t: closed and oriented.
+ * - 2D: the faces of the line arrangement with an object, with cell array `ObjectType`.
+ * Point array `ArrangementVertex`.
+ *
+ * With CheckModel on, the output is verified without trusting the solver (the example
+ * analysis is run on it: msynth::CheckContinuousModel); the field data array `ModelCheck`
+ * says "valid" or names the problem, which is also an error. It costs more than synthesis.
+ *
+ * @sa vtkMSPlaneArrangement vtkMSContinuousSynthesis
+ */
+#ifndef vtkMSArrangementMesh_h
+#define vtkMSArrangementMesh_h
+
+#include "ModelSynthFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class MODELSYNTHFILTERS_EXPORT vtkMSArrangementMesh : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMSArrangementMesh* New();
+  vtkTypeMacro(vtkMSArrangementMesh, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The labelled arrangement input (port 1).
+  void SetArrangementConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+  ///@{
+  /// Verify the output against the example (see the class description). Default off.
+  vtkSetMacro(CheckModel, bool);
+  vtkGetMacro(CheckModel, bool);
+  vtkBooleanMacro(CheckModel, bool);
+  ///@}
+
+protected:
+  vtkMSArrangementMesh();
+  ~vtkMSArrangementMesh() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSArrangementMesh(const vtkMSArrangementMesh&) = delete;
+  void operator=(const vtkMSArrangementMesh&) = delete;
+
+  bool CheckModel = false;
+};
+
+#endif

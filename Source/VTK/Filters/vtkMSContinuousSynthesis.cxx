@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSContinuousSynthesis.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "msynth/ContinuousSynthesis.h"
+#include "msynth/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+struct vtkMSContinuousSynthesis::Cache
+{
+  vtkMTimeType FilterTime = 0;
+  vtkMTimeType ExampleTime = 0;
+  vtkMTimeType ArrangementTime = 0;
+  msynth::ContinuousSynthesisResult Result;
+  std::vector<msynth::ContinuousSnapshot> Snapshots;
+};
+
+vtkStandardNewMacro(vtkMSContinuousSynthesis);
+
+vtkMSContinuousSynthesis::vtkMSContinuousSynthesis()
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+vtkMSContinuousSynthesis::~vtkMSContinuousSynthesis() = default;
+
+void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "Attempts: " << this->Attempts << "\n";
+  os << indent << "SiteOrder: " << this->SiteOrder << "\n";
+  os << indent << "LabelChoice: " << this->LabelChoice << "\n";
+  os << indent << "NumberOfSnapshots: " << this->NumberOfSnapshots << "\n";
+}
+
+int vtkMSContinuousSynthesis::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkMSContinuousSynthesis::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (this->NumberOfSnapshots > 0)
+  {
+    std::vector<double> times(static_cast<std::size_t>(this->NumberOfSnapshots) + 1);
+    for (std::size_t i = 0; i < times.size(); ++i)
+    {
+      times[i] = static_cast<double>(i);
+    }
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { 0.0, times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  return 1;
+}
+
+namespace
+{
+template <class ArrayType, class Value>
+void AddValue(vtkFieldData* fields, const char* name, Value value)
+{
+  vtkNew<ArrayType> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fields->AddArray(a);
+}
+} // namespace
+
+int vtkMSContinuousSynthesis::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* example = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* arrangementData = vtkPolyData::GetData(inputVector[1], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!arrangementData)
+  {
+    vtkErrorMacro(<< "no arrangement input (port 1): connect the ModelSynth Plane Arrangement filter");
+    return 0;
+  }
+  if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
+    arrangementData->GetNumberOfPoints() == 0)
+  {
+    return 1; // in parallel, the arrangement lives on piece 0
+  }
+  if (!this->Cached)
+  {
+    this->Cached.reset(new Cache);
+  }
+  Cache& cache = *this->Cached;
+  try
+  {
+    const bool fresh = cache.FilterTime != this->GetMTime() || !example ||
+      cache.ExampleTime != example->GetMTime() || cache.ArrangementTime != arrangementData->GetMTime();
+    if (fresh)
+    {
+      const auto record = vtkMSEngineBridge::LoadArrangement(
+        arrangementData->GetFieldData(), vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
+      msynth::PolyhedralExample ex;
+      const auto analysis = vtkMSEngineBridge::AnalyzeExample(
+        example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
+      if (analysis.Families().AllNormals() != record.Normals)
+      {
+        throw msynth::Error(ex.Source + ": the arrangement was built from another example (its plane "
+                                        "families differ)");
+      }
+      const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
+      if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints())
+      {
+        throw msynth::Error(ex.Source + ": the arrangement input has " +
+          std::to_string(arrangementData->GetNumberOfPoints()) + " points but its parameters give " +
+          std::to_string(arrangement.NumberOfVertices()) + " vertices");
+      }
+      msynth::ContinuousSynthesisOptions options;
+      options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
+      options.BlockSize = this->BlockSize;
+      options.Attempts = this->Attempts;
+      options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
+      options.Choice = this->LabelChoice == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
+      options.Snapshots = this->NumberOfSnapshots;
+      cache.Snapshots.clear();
+      options.OnSnapshot = [&cache](const msynth::ContinuousSnapshot& s) { cache.Snapshots.push_back(s); };
+      options.Progress = [this](double f)
+      {
+        this->UpdateProgress(f);
+        return !this->GetAbortExecute();
+      };
+      cache.Result = msynth::SynthesizeContinuous(analysis, arrangement, options);
+      cache.FilterTime = this->GetMTime();
+      cache.ExampleTime = example->GetMTime();
+      cache.ArrangementTime = arrangementData->GetMTime();
+    }
+  }
+  catch (const msynth::Error& e)
+  {
+    cache.FilterTime = 0;
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  const auto& result = cache.Result;
+  if (!result.Success)
+  {
+    vtkErrorMacro(<< vtkMSEngineBridge::ExampleName(example) << ": " << result.Message);
+    return 0;
+  }
+  output->ShallowCopy(arrangementData);
+  const vtkIdType n = arrangementData->GetNumberOfPoints();
+  vtkNew<vtkIntArray> label;
+  label->SetName("Label");
+  label->SetNumberOfValues(n);
+  vtkNew<vtkIntArray> size;
+  size->SetName("CatalogSize");
+  size->SetNumberOfValues(n);
+  vtkNew<vtkFloatArray> entropy;
+  entropy->SetName("Entropy");
+  entropy->SetNumberOfValues(n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    label->SetValue(v, result.Labels[static_cast<std::size_t>(v)]);
+    size->SetValue(v, 1);
+    entropy->SetValue(v, 0.0f);
+  }
+  if (!cache.Snapshots.empty())
+  {
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    const auto last = static_cast<double>(cache.Snapshots.size() - 1);
+    double t = last;
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    }
+    const auto step = static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
+    const auto& snap = cache.Snapshots[step];
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      label->SetValue(v, snap.Labels[static_cast<std::size_t>(v)]);
+      size->SetValue(v, snap.CatalogSize[static_cast<std::size_t>(v)]);
+      entropy->SetValue(v, snap.Entropy[static_cast<std::size_t>(v)]);
+    }
+    AddValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    AddValue<vtkIdTypeArray>(output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
+  }
+  output->GetPointData()->AddArray(label);
+  output->GetPointData()->AddArray(size);
+  output->GetPointData()->AddArray(entropy);
+  output->GetPointData()->SetActiveScalars("Label");
+  vtkFieldData* fields = output->GetFieldData();
+  AddValue<vtkIntArray>(fields, "Success", 1);
+  AddValue<vtkIdTypeArray>(fields, "Blocks", static_cast<vtkIdType>(result.Blocks));
+  AddValue<vtkIdTypeArray>(fields, "Attempts", static_cast<vtkIdType>(result.Attempts));
+  AddValue<vtkIdTypeArray>(fields, "FailedAttempts", static_cast<vtkIdType>(result.FailedAttempts));
+  AddValue<vtkIdTypeArray>(fields, "FailedBlocks", static_cast<vtkIdType>(result.FailedBlocks));
+  AddValue<vtkIdTypeArray>(fields, "Backtracks", static_cast<vtkIdType>(result.Backtracks));
+  AddValue<vtkDoubleArray>(fields, "Seconds", result.Seconds);
+  AddValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  return 1;
+}
