@@ -10,11 +10,14 @@
 //
 // Exit status: 0 on success, 1 when the work fails (bad input, unwritable output), 2 on a
 // usage error. Errors are one line on stderr naming the file and the problem.
+#include "vtkMSArrangementMesh.h"
+#include "vtkMSContinuousSynthesis.h"
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSNeighbourhoodLabels.h"
+#include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSTileImage.h"
@@ -39,14 +42,21 @@
 #include "vtkVariant.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 
 #include "msynth/AtomicFile.h"
 #include "msynth/ConsistencyCheck.h"
+#include "msynth/Error.h"
+#include "msynth/ContinuousMesh.h"
 #include "msynth/Tileset.h"
 
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -69,8 +79,15 @@ const char* const Usage = R"(usage:
   msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
                                       discrete model synthesis: writes DIR/labels.vti,
                                       DIR/mesh.vtp, DIR/model.vdb and DIR/statistics.json
+  msynth synthesize EXAMPLE.obj --size SX SY SZ [--spacing S] [--seed S] [--out DIR]
+                                      continuous model synthesis in a box of SX x SY x SZ
+                                      example units (SZ ignored for a 2D example): writes
+                                      DIR/model.vtp, DIR/arrangement.vtp (labels and catalog
+                                      fields), DIR/model.vdb and DIR/statistics.json
   msynth check EXAMPLE MODEL.vti      verify that MODEL satisfies the adjacency constraint
                                       of EXAMPLE (exit 0) or list violations (exit 1)
+  msynth check EXAMPLE.obj MODEL.vtp  verify a continuous model: closed, oriented, and only
+                                      the example's neighbourhoods (Eq. 4.1)
   msynth --help | --version
 
 synthesize options:
@@ -92,6 +109,13 @@ synthesize options:
   --temperature T     temperature of the soft constraints' Metropolis acceptance (0.01)
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
                       arrays Weight_<label> weight each label (0 forbids it there)
+
+continuous (EXAMPLE.obj|.vtp|.ply|.stl) synthesize options:
+  --spacing S         smallest plane spacing (default: derived from the example's planes)
+  --blocks B          block edge in plane spacings (default 4; 0 = the whole model at once)
+  --attempts N, --order scanline|random|entropy (default entropy), --choice uniform|frequency,
+  --seed S, --types N=T,... as above; --voxel V sets the .vdb voxel size (default: a quarter
+  of the smallest plane spacing, at most 256 voxels along an axis)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
@@ -425,6 +449,12 @@ struct SynthesizeArguments
   double Temperature = 0.01;
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
   std::string Swaps;
+  // Continuous synthesis.
+  std::array<double, 3> RealSize{ { 0, 0, 0 } };
+  double Spacing = 0;
+  double Blocks = 4;
+  double Voxel = 0;
+  bool OrderGiven = false;
 };
 
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
@@ -584,6 +614,216 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   return 0;
 }
 
+/// The polygons of a continuous model (model.vtp) with their InsideType/OutsideType (3D) or
+/// ObjectType (2D) cell arrays.
+msynth::ContinuousMesh ReadModelMesh(vtkPolyData* model, const std::string& name)
+{
+  vtkDataArray* object = model->GetCellData()->GetArray("ObjectType");
+  vtkDataArray* inside = object ? object : model->GetCellData()->GetArray("InsideType");
+  vtkDataArray* outside = model->GetCellData()->GetArray("OutsideType");
+  if (!inside || (!object && !outside))
+  {
+    throw std::runtime_error("'" + name + "': not a continuous model: it needs cell arrays InsideType "
+                                          "and OutsideType (3D) or ObjectType (2D)");
+  }
+  std::vector<msynth::Point3> points(static_cast<std::size_t>(model->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < model->GetNumberOfPoints(); ++i)
+  {
+    model->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+  }
+  std::vector<std::vector<std::int32_t>> polygons;
+  std::vector<std::int32_t> in, out;
+  auto it = vtk::TakeSmartPointer(model->GetPolys()->NewIterator());
+  vtkIdType cell = model->GetNumberOfVerts() + model->GetNumberOfLines();
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    polygons.emplace_back(ids, ids + n);
+    in.push_back(static_cast<std::int32_t>(inside->GetTuple1(cell)));
+    if (!object)
+    {
+      out.push_back(static_cast<std::int32_t>(outside->GetTuple1(cell)));
+    }
+  }
+  try
+  {
+    return msynth::MeshFromPolygons(object != nullptr, std::move(points), std::move(polygons), std::move(in), std::move(out));
+  }
+  catch (const msynth::Error& e)
+  {
+    throw std::runtime_error("'" + name + "': " + e.what());
+  }
+}
+
+/// `msynth synthesize EXAMPLE.obj`: plane arrangement → label solver → mesh → files.
+int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
+{
+  vtkNew<vtkMSPolyhedralExampleReader> reader;
+  reader->SetFileName(example.c_str());
+  reader->SetObjectTypes(a.ObjectTypes.c_str());
+  Run(reader);
+  vtkNew<vtkMSPlaneArrangement> arrangement;
+  arrangement->SetInputConnection(reader->GetOutputPort());
+  arrangement->SetOutputSize(a.RealSize[0], a.RealSize[1], a.RealSize[2]);
+  arrangement->SetSpacing(a.Spacing);
+  vtkNew<vtkMSContinuousSynthesis> synthesis;
+  synthesis->SetInputConnection(0, reader->GetOutputPort());
+  synthesis->SetArrangementConnection(arrangement->GetOutputPort());
+  synthesis->SetSeed(static_cast<int>(a.Seed));
+  synthesis->SetBlockSize(a.Blocks);
+  synthesis->SetAttempts(a.Attempts);
+  synthesis->SetSiteOrder(a.OrderGiven ? a.Order : 2);
+  synthesis->SetLabelChoice(a.Choice == vtkMSDiscreteSynthesis::FREQUENCY ? 1 : 0);
+  vtkNew<vtkMSArrangementMesh> mesh;
+  mesh->SetInputConnection(0, reader->GetOutputPort());
+  mesh->SetArrangementConnection(synthesis->GetOutputPort());
+  Run(arrangement);
+  {
+    ProgressBar bar(synthesis);
+    Run(synthesis);
+  }
+  Run(mesh);
+  vtkPolyData* model = mesh->GetOutput();
+  vtkPolyData* labelled = synthesis->GetOutput();
+
+  MakeDirectory(dir);
+  vtkNew<vtkPolyData> saved; // reproducible for a seed: timing goes to statistics.json only
+  saved->ShallowCopy(labelled);
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(labelled->GetFieldData());
+  fields->RemoveArray("Seconds");
+  saved->SetFieldData(fields);
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
+
+  // The model as a label volume of object types for renderers.
+  const bool planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
+  double bounds[6];
+  labelled->GetBounds(bounds);
+  double smallest = 0;
+  if (auto* spacings = labelled->GetFieldData()->GetArray("FamilySpacings"))
+  {
+    auto* normals = labelled->GetFieldData()->GetArray("FamilyNormals");
+    const double quantum = labelled->GetFieldData()->GetArray("ArrangementQuantum")->GetTuple1(0);
+    for (vtkIdType f = 0; f < spacings->GetNumberOfTuples(); ++f)
+    {
+      const double* n = normals->GetTuple3(f);
+      const double world = spacings->GetTuple1(f) * quantum / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      smallest = f == 0 ? world : std::min(smallest, world);
+    }
+  }
+  const int axes = planar ? 2 : 3;
+  double extent = 0;
+  for (int c = 0; c < axes; ++c)
+  {
+    extent = std::max(extent, bounds[2 * c + 1] - bounds[2 * c]);
+  }
+  double voxel = a.Voxel > 0 ? a.Voxel : std::max(smallest / 4, extent / 256);
+  if (!(voxel > 0))
+  {
+    voxel = 1;
+  }
+  std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
+  for (int c = 0; c < axes; ++c)
+  {
+    dims[static_cast<std::size_t>(c)] =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
+  }
+  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) > 1e9)
+  {
+    throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
+  }
+  const auto engineMesh = ReadModelMesh(model, "model");
+  const msynth::LabelGrid volume = msynth::VoxelizeModel(engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+  image->SetSpacing(voxel, voxel, voxel);
+  image->SetOrigin(bounds[0] + voxel / 2, bounds[2] + voxel / 2, planar ? 0.0 : bounds[4] + voxel / 2);
+  vtkSmartPointer<vtkIntArray> types;
+  types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
+  image->GetPointData()->SetScalars(types);
+  vtkNew<vtkMSOpenVDBWriter> vdb;
+  vdb->SetInputData(image);
+  vdb->SetFileName((dir + "/model.vdb").c_str());
+  vdb->SetLabelArrayName("ObjectType");
+  vdb->WriteFloatLabelsOn();
+  vdb->AddMetadata("msynth_command", "synthesize");
+  vdb->AddMetadata("example", example.c_str());
+  vdb->AddMetadata("seed", std::to_string(a.Seed).c_str());
+  Run(vdb);
+
+  vtkFieldData* fd = labelled->GetFieldData();
+  auto number = [fd](const char* name)
+  {
+    vtkDataArray* array = fd->GetArray(name);
+    return array ? array->GetTuple1(0) : 0.0;
+  };
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"example\": " << JsonString(example) << ",\n  \"size\": [" << a.RealSize[0] << ", "
+          << a.RealSize[1] << ", " << a.RealSize[2] << "],\n  \"blocks\": " << a.Blocks
+          << ",\n  \"seed\": " << a.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
+          << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
+      for (const char* name : { "Blocks", "Attempts", "FailedAttempts", "FailedBlocks", "Backtracks" })
+      {
+        out << "  \"" << name << "\": " << static_cast<long long>(number(name)) << ",\n";
+      }
+      out << "  \"Seconds\": " << number("Seconds") << "\n}\n";
+    });
+  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, " << model->GetNumberOfPolys()
+            << " polygons, " << static_cast<long long>(number("FailedBlocks")) << " of "
+            << static_cast<long long>(number("Blocks")) << " blocks left unchanged\n"
+            << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir << "/model.vdb, "
+            << dir << "/statistics.json\n";
+  return 0;
+}
+
+/// `msynth check EXAMPLE.obj MODEL.vtp`: the independent check of a continuous model.
+int PolyhedralCheck(const std::string& example, const std::string& modelPath, const std::string& objectTypes)
+{
+  vtkNew<vtkMSPolyhedralExampleReader> reader;
+  reader->SetFileName(example.c_str());
+  reader->SetObjectTypes(objectTypes.c_str());
+  Run(reader);
+  struct stat info;
+  if (::stat(modelPath.c_str(), &info) != 0)
+  {
+    throw std::runtime_error("'" + modelPath + "': no such file");
+  }
+  vtkNew<vtkXMLPolyDataReader> modelReader;
+  modelReader->SetFileName(modelPath.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(modelReader, messages))
+  {
+    throw std::runtime_error("'" + modelPath + "': not a readable VTP model: " + messages);
+  }
+  msynth::PolyhedralExample ex;
+  msynth::PolyhedralAnalysis analysis;
+  try
+  {
+    double tolerance = 0.01;
+    analysis = vtkMSEngineBridge::AnalyzeExample(reader->GetOutput(), tolerance, 12, ex);
+  }
+  catch (const msynth::Error& e)
+  {
+    throw std::runtime_error(e.what());
+  }
+  const auto mesh = ReadModelMesh(modelReader->GetOutput(), modelPath);
+  const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
+  if (report.Valid)
+  {
+    std::cout << "valid: " << modelPath << " (" << mesh.Polygons.size() << " polygons, "
+              << report.Objects << " objects) has only neighbourhoods of " << example << " ("
+              << report.DistinctLabels << " distinct)\n";
+    return 0;
+  }
+  std::cout << "invalid: " << modelPath << ": " << report.Problem << "\n";
+  return 1;
+}
+
 int Check(const std::string& example, const std::string& modelPath, const std::string& subset)
 {
   vtkNew<vtkMSLabelGridReader> e, m;
@@ -639,6 +879,18 @@ int Main(const std::vector<std::string>& args)
   std::string out = "msynth-output";
   SynthesizeArguments synth;
   bool sizeGiven = false;
+  std::size_t sizeIndex = 0;
+  auto real = [](const std::string& text, const std::string& option)
+  {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v) || v < 0)
+    {
+      throw UsageError{ option + ": '" + text + "' is not a non-negative number" };
+    }
+    return v;
+  };
   auto integer = [&](std::size_t& i, const std::string& option)
   {
     if (i + 1 >= args.size())
@@ -671,8 +923,28 @@ int Main(const std::vector<std::string>& args)
   {
     if (args[i] == "--size")
     {
-      triple(i, "--size", synth.Size, 1);
+      if (i + 3 >= args.size())
+      {
+        throw UsageError{ "--size needs three values" };
+      }
+      sizeIndex = i;
+      for (int a = 0; a < 3; ++a)
+      {
+        synth.RealSize[static_cast<std::size_t>(a)] = real(args[i + 1 + static_cast<std::size_t>(a)], "--size");
+      }
+      i += 3;
       sizeGiven = true;
+      continue;
+    }
+    if (args[i] == "--spacing" || args[i] == "--blocks" || args[i] == "--voxel")
+    {
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ args[i] + " needs a value" };
+      }
+      const double v = real(args[i + 1], args[i]);
+      (args[i] == "--spacing" ? synth.Spacing : args[i] == "--blocks" ? synth.Blocks : synth.Voxel) = v;
+      ++i;
       continue;
     }
     if (args[i] == "--block")
@@ -792,6 +1064,7 @@ int Main(const std::vector<std::string>& args)
       if (option == "--order" && (v == "scanline" || v == "random" || v == "entropy"))
       {
         synth.Order = v == "scanline" ? 0 : (v == "random" ? 1 : 2);
+        synth.OrderGiven = true;
       }
       else if (option == "--choice" && (v == "uniform" || v == "frequency" || v == "resemblance"))
       {
@@ -835,6 +1108,11 @@ int Main(const std::vector<std::string>& args)
     {
       throw UsageError{ "synthesize needs --size NX NY NZ" };
     }
+    if (IsPolyhedral(positional[0]))
+    {
+      return PolyhedralSynthesize(positional[0], synth, out);
+    }
+    triple(sizeIndex, "--size", synth.Size, 1); // a label grid's size is in sites
     return Synthesize(positional[0], synth, out);
   }
   if (command == "check")
@@ -842,6 +1120,10 @@ int Main(const std::vector<std::string>& args)
     if (positional.size() != 2)
     {
       throw UsageError{ "check takes EXAMPLE and MODEL.vti" };
+    }
+    if (IsPolyhedral(positional[0]))
+    {
+      return PolyhedralCheck(positional[0], positional[1], synth.ObjectTypes);
     }
     return Check(positional[0], positional[1], synth.Subset);
   }

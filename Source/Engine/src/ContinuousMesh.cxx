@@ -444,4 +444,77 @@ ContinuousModelReport CheckContinuousModel(
   return report;
 }
 
+LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims)
+{
+  if (!(voxel > 0) || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
+    static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
+      static_cast<double>(LabelGrid::MaxSites))
+  {
+    throw Error("voxelization: the grid is empty or has too many voxels");
+  }
+  LabelGrid grid(dims[0], dims[1], dims[2], 0);
+  if (mesh.Polygons.empty())
+  {
+    return grid;
+  }
+  const PolyhedralExample model = MeshToModel(mesh, {});
+  const SolidClassifier classifier(model);
+  // Off-lattice nudges (fractions of a voxel) keep centres off the planes of the arrangement.
+  const double nudge[3] = { 0.0123456, 0.0234567, mesh.Planar ? 0.0 : 0.0345678 };
+  for (std::int64_t z = 0; z < dims[2]; ++z)
+  {
+    for (std::int64_t y = 0; y < dims[1]; ++y)
+    {
+      for (std::int64_t x = 0; x < dims[0]; ++x)
+      {
+        const Point3 p{ origin[0] + (static_cast<double>(x) + 0.5 + nudge[0]) * voxel,
+          origin[1] + (static_cast<double>(y) + 0.5 + nudge[1]) * voxel,
+          mesh.Planar ? 0.0 : origin[2] + (static_cast<double>(z) + 0.5 + nudge[2]) * voxel };
+        const int object = classifier.ObjectAt(p);
+        if (object >= 0)
+        {
+          grid.Set(x, y, z, model.ObjectTypes[static_cast<std::size_t>(object)]);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
+  std::vector<std::vector<std::int32_t>> polygons, std::vector<std::int32_t> insideType,
+  std::vector<std::int32_t> outsideType)
+{
+  ContinuousMesh mesh;
+  mesh.Planar = planar;
+  if (insideType.size() != polygons.size() || (!planar && outsideType.size() != polygons.size()))
+  {
+    throw Error("a model mesh needs one inside (and, in 3D, one outside) type per polygon");
+  }
+  for (const auto& poly : polygons)
+  {
+    if (poly.size() < 3)
+    {
+      throw Error("a model mesh polygon has fewer than three corners");
+    }
+    for (auto i : poly)
+    {
+      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+      {
+        throw Error("a model mesh polygon refers to a point that does not exist");
+      }
+    }
+  }
+  mesh.Points = std::move(points);
+  mesh.PointVertex.assign(mesh.Points.size(), -1);
+  mesh.Polygons = std::move(polygons);
+  mesh.InsideType = std::move(insideType);
+  if (!planar)
+  {
+    mesh.OutsideType = std::move(outsideType);
+  }
+  return mesh;
+}
+
 } // namespace msynth

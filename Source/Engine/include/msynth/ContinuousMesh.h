@@ -18,6 +18,7 @@
  * 2D: the faces of the line arrangement with a non-empty type, as counter-clockwise polygons
  * (InsideType = the face's type; OutsideType is empty).
  */
+#include "msynth/LabelGrid.h"
 #include "msynth/PlaneArrangement.h"
 #include "msynth/PolyhedralAnalysis.h"
 
@@ -46,6 +47,20 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
  * as objects, type names from @p typeNames.
  */
 PolyhedralExample MeshToModel(const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames);
+
+/**
+ * The object type at the centre of every voxel of a grid (x fastest; 0 = empty): a label volume
+ * of the model, e.g. for OpenVDB export. Voxel (i, j, k) is centred at origin + (i + ½, j + ½,
+ * k + ½)·voxel, nudged by a fixed fraction of a voxel off the arrangement's planes. Planar meshes
+ * give one layer at z = 0. @throw Error when @p dims hold more than LabelGrid::MaxSites sites.
+ */
+LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims);
+
+/// Rebuilds a mesh from polygons and their types (e.g. read back from model.vtp).
+ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
+  std::vector<std::vector<std::int32_t>> polygons, std::vector<std::int32_t> insideType,
+  std::vector<std::int32_t> outsideType);
 
 struct ContinuousModelReport
 {
