@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -154,4 +155,77 @@ TEST(ContinuousSynthesis, ExamplesPassTheCheck)
               << r.Report.Objects << " objects, " << r.Report.DistinctLabels << " labels, "
               << r.Result.FailedAttempts << " failed attempts, " << r.Result.FailedBlocks << " failed blocks\n";
   }
+}
+
+TEST(ContinuousSynthesis, SeededSnapshotsAndDeterminism)
+{
+  const Loaded l = Load("l-prism.obj");
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 6, 6, 3 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  for (double block : { 0.0, 2.0 })
+  {
+    std::vector<ContinuousSnapshot> snapshots;
+    ContinuousSynthesisOptions options;
+    options.Seed = 11;
+    options.BlockSize = block;
+    options.Snapshots = 5;
+    options.OnSnapshot = [&](const ContinuousSnapshot& s) { snapshots.push_back(s); };
+    const auto a = SynthesizeContinuous(l.Analysis, arrangement, options);
+    ASSERT_TRUE(a.Success) << a.Message;
+    ASSERT_EQ(snapshots.size(), 6u) << "block " << block;
+    for (std::size_t i = 0; i < snapshots.size(); ++i)
+    {
+      EXPECT_EQ(snapshots[i].Step, static_cast<std::int64_t>(i));
+      EXPECT_EQ(snapshots[i].CatalogSize.size(), static_cast<std::size_t>(arrangement.NumberOfVertices()));
+    }
+    // The start has choices; the end is the result.
+    EXPECT_GT(*std::max_element(snapshots[0].CatalogSize.begin(), snapshots[0].CatalogSize.end()), 1);
+    EXPECT_EQ(snapshots.back().Labels, a.Labels);
+    options.OnSnapshot = nullptr;
+    const auto b = SynthesizeContinuous(l.Analysis, arrangement, options);
+    EXPECT_EQ(a.Labels, b.Labels) << "same seed, same model";
+    options.Seed = 12;
+    const auto c = SynthesizeContinuous(l.Analysis, arrangement, options);
+    EXPECT_NE(a.Labels, c.Labels) << "another seed, another model";
+  }
+}
+
+TEST(ContinuousSynthesis, CheckRejectsABrokenModel)
+{
+  const Loaded l = Load("cube.obj");
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 4, 4, 4 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  ContinuousSynthesisOptions options;
+  options.Seed = 3;
+  const auto r = SynthesizeContinuous(l.Analysis, arrangement, options);
+  ASSERT_TRUE(r.Success);
+  ContinuousMesh mesh = ExtractMesh(l.Analysis, arrangement, r.Labels);
+  ASSERT_GT(mesh.Polygons.size(), 1u);
+  // A missing polygon leaves a hole; a flipped one breaks the orientation.
+  ContinuousMesh holed = mesh;
+  holed.Polygons.pop_back();
+  holed.InsideType.pop_back();
+  holed.OutsideType.pop_back();
+  EXPECT_FALSE(CheckContinuousModel(l.Analysis, holed, l.Example.TypeNames).Valid);
+  ContinuousMesh flipped = mesh;
+  for (auto& poly : flipped.Polygons)
+  {
+    std::reverse(poly.begin(), poly.end());
+  }
+  EXPECT_FALSE(CheckContinuousModel(l.Analysis, flipped, l.Example.TypeNames).Valid);
+  // Labels that disagree along an edge are caught by the label check.
+  std::vector<std::int32_t> labels = r.Labels;
+  const int inside = l.Analysis.Find(NeighbourhoodLabel::Constant(1));
+  ASSERT_GE(inside, 0);
+  std::int64_t centre = -1;
+  for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+  {
+    if (arrangement.Position(v) == Point3{ 2, 2, 2 })
+    {
+      centre = v;
+    }
+  }
+  ASSERT_GE(centre, 0);
+  labels[static_cast<std::size_t>(centre)] = labels[static_cast<std::size_t>(centre)] == inside ? 0 : inside;
+  EXPECT_NE(CheckArrangementLabels(l.Analysis, arrangement, labels), "");
 }

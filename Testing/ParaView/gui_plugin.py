@@ -18,7 +18,16 @@ try:
     Show(OutputPort(catalog, 1))
     Render()
     continuous = servermanager.Fetch(catalog, idx=0).GetNumberOfRows()
-    result = "OK labels=%d continuous=%d" % (rows, continuous)
+    # The continuous chain as a user clicks it together: arrangement, solver, mesh.
+    arrangement = ModelSynthPlaneArrangement(Input=cube, OutputSize=[4, 4, 3])
+    solver = ModelSynthContinuousSynthesis(Input=cube, Arrangement=arrangement, Seed=2)
+    mesh = ModelSynthArrangementMesh(Input=cube, Arrangement=solver, CheckModel=1)
+    Show(mesh)
+    Render()
+    model = servermanager.Fetch(mesh)
+    check = model.GetFieldData().GetAbstractArray("ModelCheck").GetValue(0)
+    result = "OK labels=%d continuous=%d model=%s" % (rows, continuous,
+                                                      check if model.GetNumberOfPolys() > 0 else "empty")
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
 with open(report, "w") as f:

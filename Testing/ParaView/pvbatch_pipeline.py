@@ -144,4 +144,24 @@ check(kinds.count("vertex") == 4 and kinds.count("edge") == 6 and kinds.count("f
 marked = servermanager.Fetch(catalog, idx=1)
 check(marked.GetNumberOfPolys() == 4 and marked.GetNumberOfVerts() == 4, "marked tetrahedron")
 
+# Continuous synthesis end to end: plane arrangement -> label solver -> mesh (verified by the
+# example analysis run on the output), and the catalog as time steps.
+cube = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "cube.obj"))
+arrangement = ModelSynthPlaneArrangement(Input=cube, OutputSize=[5, 4, 3])
+solver = ModelSynthContinuousSynthesis(Input=cube, Arrangement=arrangement, Seed=5, NumberOfSnapshots=4)
+mesh = ModelSynthArrangementMesh(Input=cube, Arrangement=solver, CheckModel=1)
+mesh.UpdatePipeline()
+vertices = servermanager.Fetch(arrangement)
+check(vertices.GetNumberOfPoints() == 6 * 5 * 4, "cube arrangement: a 6 x 5 x 4 grid, got %d"
+      % vertices.GetNumberOfPoints())
+model = servermanager.Fetch(mesh)
+check(model.GetNumberOfPolys() > 0, "the cube model has polygons")
+check(model.GetFieldData().GetAbstractArray("ModelCheck").GetValue(0) == "valid", "model check")
+check(len(solver.TimestepValues) == 5, "catalog time steps: %s" % (solver.TimestepValues,))
+solver.UpdatePipeline(0.0)
+start = servermanager.Fetch(solver)
+sizes = start.GetPointData().GetArray("CatalogSize")
+check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumberOfTuples())) > 1,
+      "the catalog at the start has several labels per vertex")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

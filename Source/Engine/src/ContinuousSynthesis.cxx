@@ -331,12 +331,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const auto capture = [&](std::int64_t block, const std::vector<std::int64_t>* active)
   {
     ContinuousSnapshot s;
-    s.Step = step++;
     s.Block = block;
     s.Assignments = result.Assignments;
     s.CatalogSize.assign(static_cast<std::size_t>(n), 1);
     s.Labels = result.Labels;
-    if (whole && block < 0)
+    if (block < 0) // the catalog before anything is chosen
     {
       for (std::int64_t v = 0; v < n; ++v)
       {
@@ -366,9 +365,14 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     }
     return s;
   };
+  const auto emit = [&](ContinuousSnapshot s)
+  {
+    s.Step = step++;
+    options.OnSnapshot(s);
+  };
   if (options.Snapshots > 0 && options.OnSnapshot)
   {
-    options.OnSnapshot(capture(-1, nullptr));
+    emit(capture(-1, nullptr));
   }
 
   std::string lastFailure;
@@ -409,6 +413,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     };
     bool solved = false;
     std::vector<ContinuousSnapshot> pending;
+    ContinuousSnapshot blockStart;
     for (int attempt = 0; attempt < options.Attempts && !solved; ++attempt)
     {
       ++result.Attempts;
@@ -437,6 +442,10 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
         }
       }
       std::int64_t empty = ok ? domains.Propagate(rules, neighbours) : 0;
+      if (!whole && options.Snapshots > 0 && options.OnSnapshot && empty < 0)
+      {
+        blockStart = capture(b, &verts); // the block's catalog, the rest of the model fixed
+      }
       std::int64_t assigned = 0;
       int taken = 0;
       std::vector<std::uint64_t> exclude(static_cast<std::size_t>(words));
@@ -514,7 +523,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
       }
       for (const auto& s : pending) // only the successful attempt's snapshots are kept
       {
-        options.OnSnapshot(s);
+        emit(s);
       }
     }
     if (!solved)
@@ -527,12 +536,22 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     }
     if (!whole && options.Snapshots > 0 && options.OnSnapshot)
     {
-      // Snapshot j after block ceil(j · blocks / S) - 1.
-      const std::int64_t before = (b * options.Snapshots) / blocks;
-      const std::int64_t after = ((b + 1) * options.Snapshots) / blocks;
-      for (std::int64_t j = before; j < after; ++j)
+      // Snapshots 1 .. S-1 show the catalog of block floor(j · blocks / S) after its first
+      // propagation; snapshot S the finished model.
+      for (std::int64_t j = 1; j < options.Snapshots; ++j)
       {
-        options.OnSnapshot(capture(b, nullptr));
+        if ((j * blocks) / options.Snapshots == b)
+        {
+          if (blockStart.CatalogSize.empty())
+          {
+            blockStart = capture(b, nullptr);
+          }
+          emit(blockStart);
+        }
+      }
+      if (b + 1 == blocks)
+      {
+        emit(capture(b, nullptr));
       }
     }
     if (options.Progress && !options.Progress(static_cast<double>(b + 1) / static_cast<double>(blocks)))
