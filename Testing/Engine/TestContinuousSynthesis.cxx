@@ -132,28 +132,61 @@ TEST(ContinuousSynthesis, CubeModelsPassTheCheck)
   }
 }
 
-TEST(ContinuousSynthesis, ExamplesPassTheCheck)
+TEST(ContinuousSynthesis, BundledExamplesPassTheCheck)
 {
-  for (const char* name : { "triangle2d.obj", "two-objects2d.obj", "concave2d.obj", "tetrahedron.obj",
-         "l-prism.obj", "house.obj" })
+  struct Case
   {
-    const Loaded l = Load(name);
-    Point3 lo = l.Example.Points[0], hi = lo;
-    for (const auto& q : l.Example.Points)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        lo[static_cast<std::size_t>(c)] = std::min(lo[static_cast<std::size_t>(c)], q[static_cast<std::size_t>(c)]);
-        hi[static_cast<std::size_t>(c)] = std::max(hi[static_cast<std::size_t>(c)], q[static_cast<std::size_t>(c)]);
-      }
-    }
-    const Point3 size{ 3 * (hi[0] - lo[0]), 3 * (hi[1] - lo[1]), l.Analysis.Planar() ? 0.0 : 2 * (hi[2] - lo[2]) };
-    const SynthesisRun r = Synthesize(l, size, 0, 7, 4);
-    ASSERT_TRUE(r.Result.Success) << name << ": " << r.Result.Message;
-    EXPECT_TRUE(r.Report.Valid) << name << ": " << r.Report.Problem;
-    std::cout << name << ": " << r.Vertices << " vertices, " << r.Mesh.Polygons.size() << " polygons, "
+    const char* Name;
+    Point3 Size;
+    double Spacing;
+  };
+  // Every bundled example (issue 5's list), in a box a few times its size.
+  const Case cases[] = { { "triangle2d.obj", { 16, 12, 0 }, 1 }, { "two-objects2d.obj", { 18, 12, 0 }, 0 },
+    { "concave2d.obj", { 12, 12, 0 }, 0 }, { "cube.obj", { 5, 5, 3 }, 0 }, { "box-building.obj", { 16, 12, 10 }, 1 },
+    { "l-prism.obj", { 8, 8, 3 }, 0 }, { "house.obj", { 18, 18, 8 }, 0 }, { "tetrahedron.obj", { 4, 4, 4 }, 0.5 },
+    { "pentagonal-prism.obj", { 14, 14, 6 }, 1 }, { "stairs.obj", { 8, 8, 6 }, 0 }, { "arch.obj", { 9, 5, 6 }, 0 } };
+  for (const Case& c : cases)
+  {
+    const Loaded l = Load(c.Name);
+    const SynthesisRun r = Synthesize(l, c.Size, c.Spacing, 7, 4);
+    ASSERT_TRUE(r.Result.Success) << c.Name << ": " << r.Result.Message;
+    EXPECT_TRUE(r.Report.Valid) << c.Name << ": " << r.Report.Problem;
+    EXPECT_GT(r.Mesh.Polygons.size(), 0u) << c.Name << ": an empty model proves nothing";
+    std::cout << c.Name << ": " << r.Vertices << " vertices, " << r.Mesh.Polygons.size() << " polygons, "
               << r.Report.Objects << " objects, " << r.Report.DistinctLabels << " labels, "
               << r.Result.FailedAttempts << " failed attempts, " << r.Result.FailedBlocks << " failed blocks\n";
+  }
+}
+
+TEST(ContinuousSynthesis, TetrahedraAreScaledCopies)
+{
+  // §4.6.4: a tetrahedron's only models are tetrahedra of several sizes (uniformly scaled
+  // copies): every object of the output has four faces with the example's four normals.
+  const Loaded l = Load("tetrahedron.obj");
+  const SynthesisRun r = Synthesize(l, { 5, 5, 5 }, 0.5, 3, 0);
+  ASSERT_TRUE(r.Result.Success) << r.Result.Message;
+  ASSERT_TRUE(r.Report.Valid) << r.Report.Problem;
+  const PolyhedralExample model = MeshToModel(r.Mesh, l.Example.TypeNames);
+  ASSERT_GT(model.NumberOfObjects(), 0);
+  for (int o = 0; o < model.NumberOfObjects(); ++o)
+  {
+    std::set<std::array<long, 3>> normals;
+    for (std::size_t f = 0; f < model.Faces.size(); ++f)
+    {
+      if (model.FaceObject[f] != o)
+      {
+        continue;
+      }
+      const auto& face = model.Faces[f];
+      const Point3& a = model.Points[static_cast<std::size_t>(face[0])];
+      const Point3& b = model.Points[static_cast<std::size_t>(face[1])];
+      const Point3& c = model.Points[static_cast<std::size_t>(face[2])];
+      const Point3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] }, v{ c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+      Point3 n{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      normals.insert({ std::lround(1000 * n[0] / len), std::lround(1000 * n[1] / len), std::lround(1000 * n[2] / len) });
+    }
+    EXPECT_EQ(normals.size(), 4u) << "object " << o;
   }
 }
 

@@ -215,20 +215,6 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
   // A power of two, so examples authored on binary fractions land on exact units.
   p.Quantum = std::ldexp(1.0, static_cast<int>(std::floor(std::log2(diag))) - 20);
   p.Origin = lo;
-  for (int c = 0; c < 3; ++c)
-  {
-    p.BoxLow[c] = 0;
-    if (c < dims)
-    {
-      const double units = std::floor(size[c] / p.Quantum + 0.5);
-      if (units > std::ldexp(1.0, 40))
-      {
-        throw Error(where + ": the output size is too large for exact coordinates (more than "
-                            "2^20 example diagonals)");
-      }
-      p.BoxHigh[c] = static_cast<std::int64_t>(units);
-    }
-  }
   const PlaneFamilySet& set = analysis.Families();
   const int m = set.Size();
   if (!spacings.empty() && static_cast<int>(spacings.size()) != m)
@@ -276,14 +262,17 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
     p.Spacings.push_back(std::max<std::int64_t>(1, std::llround(g)));
     world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
   }
-  if (!spacings.empty() || spacing > 0)
+  if (spacings.empty() && spacing > 0 && m > 0)
   {
-    const double smallest = *std::min_element(world.begin(), world.end());
+    // One factor for every family: scale the exact coordinates themselves, so the integer
+    // spacings and offsets, and every coincidence of planes, stay exactly as derived.
+    p.Quantum *= spacing / *std::min_element(world.begin(), world.end());
+  }
+  if (!spacings.empty())
+  {
     for (int f = 0; f < m; ++f)
     {
-      const double target = spacings.empty()
-        ? world[static_cast<std::size_t>(f)] * spacing / smallest
-        : spacings[static_cast<std::size_t>(f)];
+      const double target = spacings[static_cast<std::size_t>(f)];
       if (!(target > 0) || !std::isfinite(target))
       {
         throw Error(where + ": plane spacings must be positive and finite");
@@ -296,6 +285,20 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
         throw Error(where + ": a plane spacing is too large for exact coordinates");
       }
       p.Spacings[static_cast<std::size_t>(f)] = std::max<std::int64_t>(1, static_cast<std::int64_t>(units));
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    p.BoxLow[c] = 0;
+    if (c < dims)
+    {
+      const double units = std::floor(size[c] / p.Quantum + 0.5);
+      if (units > std::ldexp(1.0, 40))
+      {
+        throw Error(where + ": the output size is too large for exact coordinates (more than "
+                            "2^20 example diagonals)");
+      }
+      p.BoxHigh[c] = static_cast<std::int64_t>(units);
     }
   }
   for (int f = 0; f < m; ++f)

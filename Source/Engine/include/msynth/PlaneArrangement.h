@@ -46,8 +46,9 @@ struct ArrangementParameters
  * Parameters for an output box of @p size (world units, from the example's lowest corner) and
  * plane spacings derived from the example: per family, the largest spacing (approximate GCD)
  * that puts a plane on every example face of the family and on the example's extremes along its
- * normal. With @p spacing > 0 all spacings are scaled by one factor (keeping their ratios, so
- * planes that met in the example still meet) so that the smallest world spacing equals it.
+ * normal. With @p spacing > 0 the arrangement is scaled by one factor (exactly: the quantum is
+ * scaled, the integer spacings and offsets kept, so planes that met in the example still meet)
+ * so that the smallest world spacing equals it.
  * Per-family @p spacings (world units, one per family) override both when not empty.
  * @throw Error on a non-positive or non-finite size or spacing, or a box too large for exact
  * coordinates.
