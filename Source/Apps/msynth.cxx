@@ -664,6 +664,14 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   reader->SetFileName(example.c_str());
   reader->SetObjectTypes(a.ObjectTypes.c_str());
   Run(reader);
+  double exampleBounds[6];
+  reader->GetOutput()->GetBounds(exampleBounds);
+  const bool flat = exampleBounds[5] - exampleBounds[4] <= 0;
+  if (a.RealSize[0] <= 0 || a.RealSize[1] <= 0 || (!flat && a.RealSize[2] <= 0))
+  {
+    throw std::runtime_error("'" + example + "': --size must be positive along x, y" +
+      (flat ? std::string() : std::string(" and z")) + " (example units)");
+  }
   vtkNew<vtkMSPlaneArrangement> arrangement;
   arrangement->SetInputConnection(reader->GetOutputPort());
   arrangement->SetOutputSize(a.RealSize[0], a.RealSize[1], a.RealSize[2]);

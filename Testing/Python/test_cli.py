@@ -74,6 +74,55 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn("not closed", r.stderr)
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
 
+    def test_synthesize_polyhedral_then_check(self):
+        out = tmp("cli-continuous")
+        r = run("synthesize", data("Continuous/l-prism.obj"), "--size", "8", "6", "3", "--seed", "4",
+                "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for name in ("model.vtp", "arrangement.vtp", "model.vdb", "statistics.json"):
+            self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+        with open(os.path.join(out, "statistics.json")) as f:
+            stats = json.load(f)
+        self.assertGreater(stats["Polygons"], 0)
+        self.assertEqual(stats["seed"], 4)
+        r = run("check", data("Continuous/l-prism.obj"), os.path.join(out, "model.vtp"))
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("valid", r.stdout)
+        # Same seed, same files (timing is only in statistics.json).
+        again = tmp("cli-continuous-again")
+        run("synthesize", data("Continuous/l-prism.obj"), "--size", "8", "6", "3", "--seed", "4", "--out", again)
+        for name in ("model.vtp", "arrangement.vtp"):
+            with open(os.path.join(out, name), "rb") as a, open(os.path.join(again, name), "rb") as b:
+                self.assertEqual(a.read(), b.read(), name)
+        # A model with a polygon removed is not closed: check says so and exits 1.
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(out, "model.vtp"))
+        reader.Update()
+        model = reader.GetOutput()
+        model.BuildCells()
+        model.DeleteCell(0)
+        model.RemoveDeletedCells()
+        broken = tmp("cli-continuous-broken.vtp")
+        writer = vtkXMLPolyDataWriter()
+        writer.SetInputData(model)
+        writer.SetFileName(broken)
+        writer.Write()
+        r = run("check", data("Continuous/l-prism.obj"), broken)
+        self.assertEqual(r.returncode, 1, r.stdout)
+        self.assertIn("invalid", r.stdout)
+        # 2D: SZ is ignored.
+        r = run("synthesize", data("Continuous/triangle2d.obj"), "--size", "12", "9", "0", "--spacing", "1",
+                "--out", tmp("cli-continuous-2d"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        # Usage errors exit 2; a box too small for any plane still works (an empty model).
+        self.assertEqual(run("synthesize", data("Continuous/cube.obj"), "--size", "4", "x", "4").returncode, 2)
+        self.assertEqual(run("synthesize", data("Continuous/cube.obj"), "--size", "4", "4", "4",
+                             "--spacing", "-1").returncode, 2)
+        r = run("synthesize", data("Continuous/cube.obj"), "--size", "0", "4", "4", "--out", tmp("cli-c0"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("cube.obj", r.stderr)
+
     def test_bad_input_exits_non_zero_with_one_line(self):
         path = data("Malformed/truncated.vti")
         r = run("info", path)

@@ -1,0 +1,285 @@
+"""Continuous model synthesis II (issue 5) from plain vtkmodules Python: the chain example reader
+-> plane arrangement -> label solver -> mesh extraction, and every synthesized model checked
+here without the C++ code: the vertex figure (the object type met in many directions) at every
+vertex, edge and face of the output is recomputed by point-in-polygon tests (2D) or generalized
+winding numbers (3D) and must be a figure of the example computed the same way (Eq. 4.1); each
+object type's surface must be closed and consistently oriented."""
+import math
+import unittest
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+
+import modelsynth
+from msynth_testing import ErrorObserver, data
+
+N2D, EPS2D = 720, 1e-6
+K = np.arange(500) + 0.5
+PHI = np.arccos(1 - 2 * K / len(K))
+THETA = np.pi * (1 + 5 ** 0.5) * K
+DIRS3D = np.stack([np.cos(THETA) * np.sin(PHI), np.sin(THETA) * np.sin(PHI), np.cos(PHI)], axis=1)
+ANGLES = 2 * np.pi * (np.arange(N2D) + 0.5) / N2D
+DIRS2D = np.stack([np.cos(ANGLES), np.sin(ANGLES)], axis=1)
+
+
+def chain(example, size, seed=1, spacing=0.0, snapshots=0, block=4.0):
+    reader = modelsynth.vtkMSPolyhedralExampleReader()
+    reader.SetFileName(data("Continuous/" + example))
+    arrangement = modelsynth.vtkMSPlaneArrangement()
+    arrangement.SetInputConnection(reader.GetOutputPort())
+    arrangement.SetOutputSize(*size)
+    arrangement.SetSpacing(spacing)
+    solver = modelsynth.vtkMSContinuousSynthesis()
+    solver.SetInputConnection(0, reader.GetOutputPort())
+    solver.SetArrangementConnection(arrangement.GetOutputPort())
+    solver.SetSeed(seed)
+    solver.SetBlockSize(block)
+    solver.SetNumberOfSnapshots(snapshots)
+    mesh = modelsynth.vtkMSArrangementMesh()
+    mesh.SetInputConnection(0, reader.GetOutputPort())
+    mesh.SetArrangementConnection(solver.GetOutputPort())
+    errors = [ErrorObserver(a) for a in (reader, arrangement, solver, mesh)]
+    mesh.Update()
+    return reader, arrangement, solver, mesh, "\n".join(e.text() for e in errors if e.text())
+
+
+def polygons_of(poly):
+    """Points (n x 3) and polygons (lists of point ids) of a vtkPolyData's polys."""
+    points = vtk_to_numpy(poly.GetPoints().GetData()).astype(float)
+    ids = vtk_to_numpy(poly.GetPolys().GetConnectivityArray())
+    offsets = vtk_to_numpy(poly.GetPolys().GetOffsetsArray())
+    return points, [ids[offsets[i]:offsets[i + 1]].tolist() for i in range(len(offsets) - 1)]
+
+
+def typed_surfaces(poly):
+    """{type: [polygon]} with polygons oriented outward from that type (3D) or the filled
+    faces of each type (2D)."""
+    points, polys = polygons_of(poly)
+    cells = poly.GetCellData()
+    out = {}
+    if cells.GetArray("ObjectType") is not None:
+        types = vtk_to_numpy(cells.GetArray("ObjectType"))
+        for p, t in zip(polys, types):
+            out.setdefault(int(t), []).append(p)
+        return points, out
+    inside = vtk_to_numpy(cells.GetArray("InsideType"))
+    outside = vtk_to_numpy(cells.GetArray("OutsideType"))
+    for p, a, b in zip(polys, inside, outside):
+        if a > 0:
+            out.setdefault(int(a), []).append(p)
+        if b > 0:
+            out.setdefault(int(b), []).append(p[::-1])
+    return points, out
+
+
+def read_example(name):
+    """The example's points and {type: [polygon]}, types as the reader numbers them, from the
+    OBJ text (objects 'o name'; the reader gives each distinct base name a type in order)."""
+    points, surfaces, current, names = [], {}, None, []
+    for line in open(data("Continuous/" + name)):
+        w = line.split()
+        if not w or w[0].startswith("#"):
+            continue
+        if w[0] in ("o", "g"):
+            base = w[1].rstrip("0123456789").rstrip("._-") or w[1]
+            if base not in names:
+                names.append(base)
+            current = names.index(base) + 1
+        elif w[0] == "v":
+            points.append([float(x) for x in w[1:4]])
+        elif w[0] == "f":
+            surfaces.setdefault(current or 1, []).append([int(x.split("/")[0]) - 1 for x in w[1:]])
+    return np.array(points), surfaces
+
+
+def inside_2d(polygon, q):
+    """Crossing test of many query points q (n x 2) against one polygon (m x 2)."""
+    result = np.zeros(len(q), dtype=bool)
+    for a, b in zip(polygon, np.roll(polygon, -1, axis=0)):
+        crosses = (a[1] > q[:, 1]) != (b[1] > q[:, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = a[0] + (q[:, 1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])
+        result ^= crosses & (x > q[:, 0])
+    return result
+
+
+def winding(points, polygons, q):
+    """Generalized winding number of closed polygon surfaces at query points (Van Oosterom-
+    Strackee solid angles of fan triangles)."""
+    total = np.zeros(len(q))
+    for poly in polygons:
+        for k in range(1, len(poly) - 1):
+            a, b, c = points[poly[0]] - q, points[poly[k]] - q, points[poly[k + 1]] - q
+            la, lb, lc = (np.linalg.norm(v, axis=1) for v in (a, b, c))
+            det = np.einsum("ij,ij->i", a, np.cross(b, c))
+            div = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", a, c) * lb
+                   + np.einsum("ij,ij->i", b, c) * la)
+            total += 2 * np.arctan2(det, div)
+    return total / (4 * np.pi)
+
+
+def samples(points, surfaces, planar):
+    """Every vertex, every piece of every edge (split where other vertices lie on it: another
+    object may touch part of it) at its midpoint and, in 3D, beside it inside each face."""
+    out = [p for p in points]
+    for polys in surfaces.values():
+        for poly in polys:
+            corners = points[poly]
+            normal = np.cross(corners[1] - corners[0], corners[2] - corners[0]) if not planar else None
+            for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+                ab = b - a
+                t = (points - a) @ ab / (ab @ ab)
+                off = np.linalg.norm(points - (a + np.outer(t, ab)), axis=1)
+                cuts = sorted({0.0, 1.0} | {float(x) for x in t[(off < 1e-9) & (t > 1e-9) & (t < 1 - 1e-9)]})
+                for t0, t1 in zip(cuts, cuts[1:]):
+                    mid = a + (t0 + t1) / 2 * ab
+                    out.append(mid)
+                    if not planar:
+                        inward = np.cross(normal, ab)
+                        inward /= np.linalg.norm(inward)
+                        out.extend([mid + 1e-3 * inward, mid - 1e-3 * inward])
+    return out
+
+
+def figures(points, surfaces, planar, at):
+    """The set of vertex figures (type per direction) at the sample points `at`."""
+    found = set()
+    for p in at:
+        if planar:
+            q = p[:2] + EPS2D * DIRS2D
+            pattern = np.zeros(len(q), dtype=int)
+            for t, polys in surfaces.items():
+                for poly in polys:
+                    pattern[inside_2d(points[poly][:, :2], q)] = t
+        else:
+            q = p + 1e-4 * DIRS3D
+            pattern = np.zeros(len(q), dtype=int)
+            for t, polys in surfaces.items():
+                pattern[winding(points, polys, q) > 0.5] = t
+        found.add(tuple(pattern.tolist()))
+    return found
+
+
+def closed_and_oriented(surfaces):
+    """Every directed edge of a type's surface is matched by exactly one reversed edge."""
+    for polys in surfaces.values():
+        directed = {}
+        for poly in polys:
+            for a, b in zip(poly, poly[1:] + poly[:1]):
+                directed[(a, b)] = directed.get((a, b), 0) + 1
+        for (a, b), n in directed.items():
+            if n != 1 or directed.get((b, a), 0) != 1:
+                return False
+    return True
+
+
+class ContinuousSynthesisTest(unittest.TestCase):
+    def check_model(self, example, size, planar, **options):
+        _, arrangement, solver, mesh, errors = chain(example, size, **options)
+        self.assertEqual(errors, "")
+        model = mesh.GetOutput()
+        self.assertGreater(model.GetNumberOfPolys(), 0, example)
+        points, surfaces = typed_surfaces(model)
+        if not planar:
+            self.assertTrue(closed_and_oriented(surfaces), example + ": closed and oriented")
+        ex_points, ex_surfaces = read_example(example)
+        allowed = figures(ex_points, ex_surfaces, planar, samples(ex_points, ex_surfaces, planar))
+        # The exterior and each type's interior are figures too.
+        n = N2D if planar else len(DIRS3D)
+        allowed |= {tuple([t] * n) for t in [0] + list(ex_surfaces)}
+        found = figures(points, surfaces, planar, samples(points, surfaces, planar))
+        self.assertTrue(found <= allowed, "%s: %d of %d output figures are not the example's"
+                        % (example, len(found - allowed), len(found)))
+        self.assertGreater(len(found), 3)
+        return arrangement, solver, model
+
+    def test_2d_triangle(self):
+        self.check_model("triangle2d.obj", (10, 8, 0), True, spacing=1.0)
+
+    def test_2d_two_objects(self):
+        self.check_model("two-objects2d.obj", (12, 8, 0), True)
+
+    def test_3d_cube(self):
+        arrangement, solver, model = self.check_model("cube.obj", (4, 3, 3), False, seed=2)
+        grid = arrangement.GetOutput()
+        self.assertEqual(grid.GetNumberOfPoints(), 5 * 4 * 4)
+        self.assertEqual(grid.GetNumberOfLines(), 4 * 4 * 4 + 5 * 3 * 4 + 5 * 4 * 3)
+        for name in ("Families", "NumberOfFamilies", "CatalogSize"):
+            self.assertIsNotNone(grid.GetPointData().GetArray(name), name)
+        labelled = solver.GetOutput()
+        for name in ("Label", "CatalogSize", "Entropy"):
+            self.assertIsNotNone(labelled.GetPointData().GetArray(name), name)
+        self.assertEqual(labelled.GetFieldData().GetArray("Success").GetValue(0), 1)
+        # The checker itself can fail: a hole, or a box where the example has none.
+        points, surfaces = typed_surfaces(model)
+        holed = {t: polys[1:] for t, polys in surfaces.items()}
+        self.assertFalse(closed_and_oriented(holed))
+        ex_points, ex_surfaces = read_example("cube.obj")
+        allowed = figures(ex_points, ex_surfaces, False, samples(ex_points, ex_surfaces, False))
+        stairs_points, stairs = read_example("stairs.obj")
+        self.assertFalse(figures(stairs_points, stairs, False, samples(stairs_points, stairs, False)) <= allowed)
+
+    def test_3d_stairs(self):
+        self.check_model("stairs.obj", (6, 4, 4), False, seed=4)
+
+    def test_same_seed_same_model(self):
+        labels = []
+        for seed in (3, 3, 4):
+            _, _, solver, _, errors = chain("l-prism.obj", (6, 6, 2), seed=seed)
+            self.assertEqual(errors, "")
+            labels.append(vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("Label")).copy())
+        self.assertTrue(np.array_equal(labels[0], labels[1]))
+        self.assertFalse(np.array_equal(labels[0], labels[2]))
+
+    def test_catalog_time_steps(self):
+        _, _, solver, _, errors = chain("cube.obj", (4, 4, 3), snapshots=3)
+        self.assertEqual(errors, "")
+        info = solver.GetOutputInformation(0)
+        steps = info.Get(vtkStreamingDemandDrivenPipeline.TIME_STEPS())
+        self.assertEqual(list(steps), [0.0, 1.0, 2.0, 3.0])
+        solver.UpdateTimeStep(0.0)
+        start = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
+        self.assertGreater(start.max(), 1)
+        solver.UpdateTimeStep(3.0)
+        end = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
+        self.assertEqual(end.max(), 1)
+
+    def test_bad_inputs(self):
+        # An arrangement input that is not one (no parameters in its field data).
+        reader = modelsynth.vtkMSPolyhedralExampleReader()
+        reader.SetFileName(data("Continuous/cube.obj"))
+        solver = modelsynth.vtkMSContinuousSynthesis()
+        solver.SetInputConnection(0, reader.GetOutputPort())
+        solver.SetInputData(1, vtkPolyData())
+        errors = ErrorObserver(solver)
+        solver.Update()
+        self.assertIn("ArrangementOrigin", errors.text())
+        # An arrangement of another example.
+        other = modelsynth.vtkMSPolyhedralExampleReader()
+        other.SetFileName(data("Continuous/tetrahedron.obj"))
+        arrangement = modelsynth.vtkMSPlaneArrangement()
+        arrangement.SetInputConnection(other.GetOutputPort())
+        solver.SetArrangementConnection(arrangement.GetOutputPort())
+        errors = ErrorObserver(solver)
+        solver.Update()
+        self.assertIn("another example", errors.text())
+        # A mesh from an arrangement without labels.
+        arrangement.SetInputConnection(reader.GetOutputPort())
+        mesh = modelsynth.vtkMSArrangementMesh()
+        mesh.SetInputConnection(0, reader.GetOutputPort())
+        mesh.SetArrangementConnection(arrangement.GetOutputPort())
+        errors = ErrorObserver(mesh)
+        mesh.Update()
+        self.assertIn("'Label'", errors.text())
+        # A box too large for the vertex limit.
+        arrangement.SetOutputSize(100, 100, 100)
+        arrangement.SetMaximumVertices(1000)
+        errors = ErrorObserver(arrangement)
+        arrangement.Update()
+        self.assertIn("vertices", errors.text())
+
+
+if __name__ == "__main__":
+    unittest.main()
