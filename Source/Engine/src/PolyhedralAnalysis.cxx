@@ -2,6 +2,7 @@
 #include "msynth/PolyhedralAnalysis.h"
 
 #include "msynth/Error.h"
+#include "BoxGrid.h"
 #include "Point3Math.h"
 
 #include <algorithm>
@@ -148,6 +149,8 @@ NeighbourhoodProbe::NeighbourhoodProbe(const PolyhedralExample& model, const Pla
   }
   this->Offset = std::min(1e-3 * diagonal, 0.05 * shortest);
   this->Classifier = std::make_unique<SolidClassifier>(model);
+
+  this->Grid = std::make_unique<BoxGrid>(this->Boxes, this->Tol);
 }
 
 NeighbourhoodProbe::~NeighbourhoodProbe() = default;
@@ -206,7 +209,7 @@ bool NeighbourhoodProbe::ElementContains(std::size_t e, const Point3& p) const
 std::vector<std::size_t> NeighbourhoodProbe::ElementsThrough(const Point3& p) const
 {
   std::vector<std::size_t> elements;
-  for (std::size_t e = 0; e < this->Elements.size(); ++e)
+  for (std::uint32_t e : this->Grid->Candidates(p))
   {
     if (this->ElementContains(e, p))
     {
@@ -372,6 +375,21 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
   const bool planar = example.Planar;
   const bool severalObjects = example.NumberOfObjects() > 1;
   std::map<std::pair<int, int>, std::vector<double>> breaks; // by (low, high) point index
+  std::vector<std::array<Point3, 2>> elementBoxes;
+  for (const auto& element : analysis.Elements)
+  {
+    std::array<Point3, 2> box{ pts[element.Points[0]], pts[element.Points[0]] };
+    for (int v : element.Points)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        box[0][c] = std::min(box[0][c], pts[v][c]);
+        box[1][c] = std::max(box[1][c], pts[v][c]);
+      }
+    }
+    elementBoxes.push_back(box);
+  }
+  const BoxGrid elementGrid(elementBoxes, tol);
   auto breaksOf = [&](int lo, int hi, int object) -> const std::vector<double>& {
     auto it = breaks.find({ lo, hi });
     if (it != breaks.end())
@@ -382,7 +400,12 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(const PolyhedralExample& example,
     const Point3& b = pts[hi];
     const double length = Norm(Sub(b, a));
     std::vector<double> ts;
-    for (std::size_t g = 0; severalObjects && g < analysis.Elements.size(); ++g)
+    const Point3 segmentLow{ std::min(a[0], b[0]), std::min(a[1], b[1]), std::min(a[2], b[2]) };
+    const Point3 segmentHigh{ std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]) };
+    // Only elements whose box (grown by the tolerance) meets the segment's can split it.
+    const std::vector<std::uint32_t> near =
+      severalObjects ? elementGrid.Overlapping(segmentLow, segmentHigh) : std::vector<std::uint32_t>();
+    for (const std::uint32_t g : near)
     {
       const auto& other = analysis.Elements[g];
       if (other.Object == object)

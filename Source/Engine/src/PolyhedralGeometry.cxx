@@ -5,6 +5,8 @@
 
 #include "msynth/Error.h"
 
+#include "BoxGrid.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
@@ -73,6 +75,7 @@ struct SolidClassifier::Internal
 {
   bool Planar = false;
   std::vector<std::array<Point3, 2>> Boxes; ///< per object, to skip far objects quickly
+  BoxGrid Grid;                             ///< objects whose box may hold a point
   // 3D
   std::vector<std::unique_ptr<Mesh>> Meshes;
   std::vector<std::unique_ptr<Side>> Sides;
@@ -98,6 +101,7 @@ SolidClassifier::SolidClassifier(const PolyhedralExample& example)
       }
     }
   }
+  this->Impl->Grid = BoxGrid(this->Impl->Boxes, 0.0);
   if (example.Planar)
   {
     this->Impl->Segments.resize(example.NumberOfObjects());
@@ -143,7 +147,7 @@ int SolidClassifier::ObjectAt(const Point3& p) const
   };
   if (this->Impl->Planar)
   {
-    for (std::size_t o = 0; o < this->Impl->Segments.size(); ++o)
+    for (std::size_t o : this->Impl->Grid.Candidates(p))
     {
       if (far(o))
       {
@@ -166,7 +170,7 @@ int SolidClassifier::ObjectAt(const Point3& p) const
     return found;
   }
   const Kernel::Point_3 q(p[0], p[1], p[2]);
-  for (std::size_t o = 0; o < this->Impl->Sides.size(); ++o)
+  for (std::size_t o : this->Impl->Grid.Candidates(p))
   {
     if (far(o))
     {

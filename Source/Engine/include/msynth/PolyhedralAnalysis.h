@@ -37,6 +37,8 @@ IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInt
 /// Recomputes neighbourhood labels at points of any polyhedral model whose faces lie in the
 /// given plane families: the example's analysis uses it, and so can a verification of a
 /// synthesized model (the continuous adjacency constraint, Eq. 4.1, checked directly).
+class BoxGrid;
+
 class NeighbourhoodProbe
 {
 public:
@@ -69,6 +71,7 @@ private:
   std::vector<BoundaryElement> Elements;
   std::vector<int> Family;
   std::vector<std::array<Point3, 2>> Boxes;
+  std::unique_ptr<BoxGrid> Grid; ///< the elements whose box may hold a point
   std::unique_ptr<SolidClassifier> Classifier;
   double Tol = 0;
   double Offset = 0;
