@@ -79,3 +79,20 @@ def violations(example, model):
         if (axis, u, v) not in allowed:
             found.append((axis, u, v))
     return found
+
+
+def winding_numbers(points, polygons, queries):
+    """Generalized winding number of closed polygon surfaces at many query points: the sum of
+    the signed solid angles of fan triangles (Van Oosterom-Strackee) over 4 pi; about 1 inside
+    and 0 outside, whatever the orientation of the input faces' triangulation."""
+    total = np.zeros(len(queries))
+    for poly in polygons:
+        for k in range(1, len(poly) - 1):
+            a, b, c = (points[poly[0]] - queries, points[poly[k]] - queries, points[poly[k + 1]] - queries)
+            la, lb, lc = (np.linalg.norm(v, axis=1) for v in (a, b, c))
+            det = np.einsum("ij,ij->i", a, np.cross(b, c))
+            div = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", a, c) * lb
+                   + np.einsum("ij,ij->i", b, c) * la)
+            total += 2 * np.arctan2(det, div)
+    return total / (4 * np.pi)
+

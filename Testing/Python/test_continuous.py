@@ -15,7 +15,7 @@ from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, tmp
+from msynth_testing import ErrorObserver, data, tmp, winding_numbers
 
 
 def analyze(path, **options):
@@ -99,22 +99,6 @@ def brute_force_labels(objects):
     for obj in range(len(names)):
         figures.add(tuple([obj + 1] * n))
     return figures, samples
-
-
-def winding_numbers(points, polygons, queries):
-    """Generalized winding number of closed polygon surfaces at many query points: the sum of
-    the signed solid angles of fan triangles (Van Oosterom-Strackee) over 4 pi; about 1 inside
-    and 0 outside, whatever the orientation of the input faces' triangulation."""
-    total = np.zeros(len(queries))
-    for poly in polygons:
-        for k in range(1, len(poly) - 1):
-            a, b, c = (points[poly[0]] - queries, points[poly[k]] - queries, points[poly[k + 1]] - queries)
-            la, lb, lc = (np.linalg.norm(v, axis=1) for v in (a, b, c))
-            det = np.einsum("ij,ij->i", a, np.cross(b, c))
-            div = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", a, c) * lb
-                   + np.einsum("ij,ij->i", b, c) * la)
-            total += 2 * np.arctan2(det, div)
-    return total / (4 * np.pi)
 
 
 def brute_force_labels_3d(path, directions=1500, eps=1e-4):

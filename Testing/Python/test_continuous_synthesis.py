@@ -13,7 +13,7 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 import modelsynth
-from msynth_testing import ErrorObserver, data
+from msynth_testing import ErrorObserver, data, winding_numbers
 
 N2D, EPS2D = 720, 1e-6
 K = np.arange(500) + 0.5
@@ -105,21 +105,6 @@ def inside_2d(polygon, q):
     return result
 
 
-def winding(points, polygons, q):
-    """Generalized winding number of closed polygon surfaces at query points (Van Oosterom-
-    Strackee solid angles of fan triangles)."""
-    total = np.zeros(len(q))
-    for poly in polygons:
-        for k in range(1, len(poly) - 1):
-            a, b, c = points[poly[0]] - q, points[poly[k]] - q, points[poly[k + 1]] - q
-            la, lb, lc = (np.linalg.norm(v, axis=1) for v in (a, b, c))
-            det = np.einsum("ij,ij->i", a, np.cross(b, c))
-            div = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", a, c) * lb
-                   + np.einsum("ij,ij->i", b, c) * la)
-            total += 2 * np.arctan2(det, div)
-    return total / (4 * np.pi)
-
-
 def samples(points, surfaces, planar):
     """Every vertex, every piece of every edge (split where other vertices lie on it: another
     object may touch part of it) at its midpoint and, in 3D, beside it inside each face."""
@@ -157,7 +142,7 @@ def figures(points, surfaces, planar, at):
             q = p + 1e-4 * DIRS3D
             pattern = np.zeros(len(q), dtype=int)
             for t, polys in surfaces.items():
-                pattern[winding(points, polys, q) > 0.5] = t
+                pattern[winding_numbers(points, polys, q) > 0.5] = t
         found.add(tuple(pattern.tolist()))
     return found
 

@@ -60,21 +60,8 @@ int vtkMSContinuousSynthesis::FillInputPortInformation(int, vtkInformation* info
 int vtkMSContinuousSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-  if (this->NumberOfSnapshots > 0)
-  {
-    std::vector<double> times(static_cast<std::size_t>(this->NumberOfSnapshots) + 1);
-    for (std::size_t i = 0; i < times.size(); ++i)
-    {
-      times[i] = static_cast<double>(i);
-    }
-    outInfo->Set(
-      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-    const double range[2] = { 0.0, times.back() };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
-  }
+  vtkMSEngineBridge::SetTimeSteps(outputVector->GetInformationObject(0),
+    this->NumberOfSnapshots > 0 ? static_cast<std::size_t>(this->NumberOfSnapshots) + 1 : 0);
   return 1;
 }
 
@@ -185,14 +172,8 @@ int vtkMSContinuousSynthesis::RequestData(
   }
   if (!cache.Snapshots.empty())
   {
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    const auto last = static_cast<double>(cache.Snapshots.size() - 1);
-    double t = last;
-    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-    {
-      t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    }
-    const auto step = static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
+    const std::size_t step =
+      vtkMSEngineBridge::RequestedStep(outputVector->GetInformationObject(0), cache.Snapshots.size());
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {

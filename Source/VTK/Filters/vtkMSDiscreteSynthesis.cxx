@@ -112,8 +112,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
 
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  vtkMSEngineBridge::SetTimeSteps(outInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)
   {
     const msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
@@ -130,15 +129,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
                     << "per block, larger blocks or a smaller output.");
       return 0;
     }
-    std::vector<double> times(static_cast<std::size_t>(steps));
-    for (std::size_t i = 0; i < times.size(); ++i)
-    {
-      times[i] = static_cast<double>(i);
-    }
-    outInfo->Set(
-      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-    const double range[2] = { 0.0, times.back() };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    vtkMSEngineBridge::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
   }
   return 1;
 }
@@ -385,14 +376,8 @@ int vtkMSDiscreteSynthesis::RequestData(
   if (!cache.Snapshots.empty())
   {
     // The time step asked for (steps are 0, 1, 2, ...).
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    double t = static_cast<double>(cache.Snapshots.size() - 1);
-    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-    {
-      t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    }
-    const auto last = static_cast<double>(cache.Snapshots.size() - 1);
-    const auto step = static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
+    const std::size_t step =
+      vtkMSEngineBridge::RequestedStep(outputVector->GetInformationObject(0), cache.Snapshots.size());
     const msynth::CatalogSnapshot& snap = cache.Snapshots[step];
     for (std::size_t i = 0; i < snap.Labels.size(); ++i)
     {

@@ -27,7 +27,9 @@
 
 #include "msynth/Error.h"
 
+#include <cmath>
 #include <cstdint>
+#include <vector>
 #include <limits>
 #include <map>
 
@@ -439,5 +441,34 @@ vtkMSEngineBridge::ArrangementRecord vtkMSEngineBridge::LoadArrangement(
     throw msynth::Error(where + ": the arrangement's quantum is not positive");
   }
   return r;
+}
+
+void vtkMSEngineBridge::SetTimeSteps(vtkInformation* outInfo, std::size_t count)
+{
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (count == 0)
+  {
+    return;
+  }
+  std::vector<double> times(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    times[i] = static_cast<double>(i);
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(count));
+  const double range[2] = { 0.0, times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+}
+
+std::size_t vtkMSEngineBridge::RequestedStep(vtkInformation* outInfo, std::size_t count)
+{
+  const auto last = static_cast<double>(count - 1);
+  double t = last;
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+  return static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
 }
 

@@ -105,6 +105,11 @@ public:
   static void RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece);
   /// The piece an output information object asks for (UPDATE_PIECE_NUMBER), 0 when unset.
   static int UpdatePiece(vtkInformation* outInfo);
+  /// Announces time steps 0, 1, ..., @p count − 1 on @p outInfo (removes them when 0).
+  static void SetTimeSteps(vtkInformation* outInfo, std::size_t count);
+  /// The step of 0 ... @p count − 1 that @p outInfo asks for (UPDATE_TIME_STEP rounded and
+  /// clamped), the last one when it asks for none. @p count must be > 0.
+  static std::size_t RequestedStep(vtkInformation* outInfo, std::size_t count);
 
   /// Starts collecting ErrorEvent messages of @p source (removes earlier observation).
   void Watch(vtkObject* source);
