@@ -83,7 +83,8 @@ const char* const Usage = R"(usage:
                                       continuous model synthesis in a box of SX x SY x SZ
                                       example units (SZ ignored for a 2D example): writes
                                       DIR/model.vtp, DIR/arrangement.vtp (labels and catalog
-                                      fields), DIR/model.vdb and DIR/statistics.json
+                                      fields), DIR/model.vdb (level sets surface and
+                                      surface_TYPE, fog volume density) and DIR/statistics.json
   msynth check EXAMPLE MODEL.vti      verify that MODEL satisfies the adjacency constraint
                                       of EXAMPLE (exit 0) or list violations (exit 1)
   msynth check EXAMPLE.obj MODEL.vtp  verify a continuous model: closed, oriented, and only
@@ -115,7 +116,7 @@ continuous (EXAMPLE.obj|.vtp|.ply|.stl) synthesize options:
   --blocks B          block edge in plane spacings (default 4; 0 = the whole model at once)
   --attempts N, --order scanline|random|entropy (default entropy), --choice uniform|frequency,
   --seed S, --types N=T,... as above; --voxel V sets the .vdb voxel size (default: a quarter
-  of the smallest plane spacing, at most 256 voxels along an axis)
+  of the smallest plane spacing, at least 1/256 of the model's extent)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
@@ -706,7 +707,8 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
   WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
 
-  // The model as a label volume of object types for renderers.
+  // For renderers: a 3D model as level sets per object type and a fog volume; a 2D (or
+  // empty) model as a slab of object types.
   const bool planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
   double bounds[6];
   labelled->GetBounds(bounds);
@@ -743,23 +745,34 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   {
     throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
   }
-  const auto engineMesh = ReadModelMesh(model, "model");
-  const msynth::LabelGrid volume = msynth::VoxelizeModel(engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
-  image->SetSpacing(voxel, voxel, voxel);
-  image->SetOrigin(bounds[0] + voxel / 2, bounds[2] + voxel / 2, planar ? 0.0 : bounds[4] + voxel / 2);
-  vtkSmartPointer<vtkIntArray> types;
-  types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
-  image->GetPointData()->SetScalars(types);
   vtkNew<vtkMSOpenVDBWriter> vdb;
-  vdb->SetInputData(image);
+  vtkNew<vtkImageData> image;
+  if (!planar && model->GetNumberOfPolys() > 0)
+  {
+    vdb->SetInputData(model);
+    vdb->SetVoxelSize(voxel);
+  }
+  else
+  {
+    const auto engineMesh = ReadModelMesh(model, "model");
+    const msynth::LabelGrid volume =
+      msynth::VoxelizeModel(engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
+    image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+    image->SetSpacing(voxel, voxel, voxel);
+    image->SetOrigin(bounds[0] + voxel / 2, bounds[2] + voxel / 2, planar ? 0.0 : bounds[4] + voxel / 2);
+    vtkSmartPointer<vtkIntArray> types;
+    types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
+    image->GetPointData()->SetScalars(types);
+    vdb->SetInputData(image);
+    vdb->SetLabelArrayName("ObjectType");
+    vdb->WriteFloatLabelsOn();
+  }
   vdb->SetFileName((dir + "/model.vdb").c_str());
-  vdb->SetLabelArrayName("ObjectType");
-  vdb->WriteFloatLabelsOn();
   vdb->AddMetadata("msynth_command", "synthesize");
   vdb->AddMetadata("example", example.c_str());
   vdb->AddMetadata("seed", std::to_string(a.Seed).c_str());
+  vdb->AddMetadata("block_spacings", std::to_string(a.Blocks).c_str());
+  vdb->AddMetadata("plane_spacing", a.Spacing > 0 ? std::to_string(a.Spacing).c_str() : "derived");
   Run(vdb);
 
   vtkFieldData* fd = labelled->GetFieldData();

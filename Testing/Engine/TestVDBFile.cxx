@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -195,4 +196,77 @@ TEST(VDBFile, FailedWritesLeaveNoPartialFile)
               })
               .find("two grids"),
     std::string::npos);
+}
+
+namespace
+{
+/// Value of a dense grid at the voxel nearest to world point @p p.
+float ValueAt(const vdb::DenseGrid& g, const std::array<double, 3>& p)
+{
+  std::array<std::int64_t, 3> i{};
+  for (int a = 0; a < 3; ++a)
+  {
+    i[static_cast<std::size_t>(a)] =
+      std::llround((p[static_cast<std::size_t>(a)] - g.Header.Origin[static_cast<std::size_t>(a)]) /
+        g.Header.Spacing[static_cast<std::size_t>(a)]) -
+      g.Header.IndexMin[static_cast<std::size_t>(a)];
+    if (i[static_cast<std::size_t>(a)] < 0 || i[static_cast<std::size_t>(a)] >= g.Header.Dims[static_cast<std::size_t>(a)])
+    {
+      return g.Header.Background; // outside the stored extent: the background
+    }
+  }
+  return g.Floats[static_cast<std::size_t>(i[0] + g.Header.Dims[0] * (i[1] + g.Header.Dims[1] * i[2]))];
+}
+} // namespace
+
+TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
+{
+  // A 2 x 2 x 2 box (outward quads) and an L-shaped prism, as two surfaces.
+  const std::vector<std::array<double, 3>> points{ { 0, 0, 0 }, { 2, 0, 0 }, { 2, 2, 0 }, { 0, 2, 0 },
+    { 0, 0, 2 }, { 2, 0, 2 }, { 2, 2, 2 }, { 0, 2, 2 } };
+  const std::vector<std::vector<std::int32_t>> box{ { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 },
+    { 1, 2, 6, 5 }, { 2, 3, 7, 6 }, { 3, 0, 4, 7 } };
+  vdb::MeshGridView surface;
+  surface.Name = "surface";
+  surface.Points = &points;
+  surface.Polygons = &box;
+  surface.VoxelSize = 0.1;
+  surface.HalfWidth = 3;
+  surface.FogName = "density";
+  surface.Metadata["object_type"] = "all";
+  const std::string path = Tmp("levelset.vdb");
+  vdb::WriteFile(path, {}, { surface }, { { "example", "box" } });
+
+  vdb::MetadataMap fileMeta;
+  const auto grids = vdb::ListGrids(path, &fileMeta);
+  ASSERT_EQ(grids.size(), 2u);
+  EXPECT_EQ(grids[0].Name, "surface");
+  EXPECT_EQ(grids[0].GridClass, "level set");
+  EXPECT_EQ(grids[0].Metadata.at("object_type"), "all");
+  EXPECT_EQ(grids[1].Name, "density");
+  EXPECT_EQ(grids[1].GridClass, "fog volume");
+  EXPECT_EQ(fileMeta.at("example"), "box");
+
+  const auto contents = vdb::ReadFile(path);
+  const vdb::DenseGrid& sdf = contents.Grids[0];
+  const vdb::DenseGrid& fog = contents.Grids[1];
+  // Signed distance: negative inside, positive outside, about the distance near the surface.
+  EXPECT_LT(ValueAt(sdf, { 1, 1, 1 }), 0.0f);      // deep inside (an inactive interior tile)
+  EXPECT_NEAR(ValueAt(sdf, { 0.1, 1, 1 }), -0.1f, 0.02f);
+  EXPECT_NEAR(ValueAt(sdf, { -0.2, 1, 1 }), 0.2f, 0.02f);
+  EXPECT_NEAR(ValueAt(sdf, { 1, 1, 2.2 }), 0.2f, 0.02f);
+  EXPECT_GT(ValueAt(sdf, { 3, 3, 3 }), 0.0f);      // far outside: the positive background
+  // Fog: 1 inside, 0 outside.
+  EXPECT_NEAR(ValueAt(fog, { 1, 1, 1 }), 1.0f, 1e-6f);
+  EXPECT_NEAR(ValueAt(fog, { -0.5, 1, 1 }), 0.0f, 1e-6f);
+
+  // Bad meshes are refused before anything is written.
+  std::remove(path.c_str());
+  std::vector<std::vector<std::int32_t>> bad{ { 0, 1, 99 } };
+  surface.Polygons = &bad;
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("out of range"), std::string::npos);
+  surface.Polygons = &box;
+  surface.VoxelSize = 0;
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("voxel size"), std::string::npos);
+  EXPECT_FALSE(std::ifstream(path).good());
 }

@@ -5,6 +5,8 @@ vertex, edge and face of the output is recomputed by point-in-polygon tests (2D)
 winding numbers (3D) and must be a figure of the example computed the same way (Eq. 4.1); each
 object type's surface must be closed and consistently oriented."""
 import math
+import os
+import subprocess
 import unittest
 
 import numpy as np
@@ -13,7 +15,7 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, winding_numbers
+from msynth_testing import ErrorObserver, data, tmp, winding_numbers
 
 N2D, EPS2D = 720, 1e-6
 K = np.arange(500) + 0.5
@@ -230,6 +232,51 @@ class ContinuousSynthesisTest(unittest.TestCase):
         solver.UpdateTimeStep(3.0)
         end = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
         self.assertEqual(end.max(), 1)
+
+    def test_model_to_openvdb_level_sets(self):
+        # The mesh goes straight to the VDB writer: level sets per type and a fog volume, signs
+        # checked against winding numbers of the mesh at sampled voxels.
+        _, _, _, mesh, errors = chain("box-building.obj", (12, 9, 8), seed=6, spacing=1.0)
+        self.assertEqual(errors, "")
+        path = tmp("continuous-model.vdb")
+        writer = modelsynth.vtkMSOpenVDBWriter()
+        writer.SetInputConnection(mesh.GetOutputPort())
+        writer.SetFileName(path)
+        writer.SetVoxelSize(0.25)
+        writer_errors = ErrorObserver(writer)
+        writer.Write()
+        self.assertEqual(writer_errors.text(), "")
+        listing = subprocess.run(["vdb_print", "-l", "-m", path], capture_output=True, text=True).stdout
+        for grid, kind in (("surface", "level set"), ("surface_building", "level set"),
+                           ("surface_roof", "level set"), ("density", "fog volume")):
+            block = listing.split("Name: " + grid + "\n")[1].split("Name: ")[0]
+            self.assertIn("class: " + kind, block, grid)
+        reader = modelsynth.vtkMSOpenVDBReader()
+        reader.SetFileName(path)
+        reader.Update()
+        volume = reader.GetOutput()
+        points, surfaces = typed_surfaces(mesh.GetOutput())
+        union = [p for p in polygons_of(mesh.GetOutput())[1]]
+        outside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("OutsideType"))
+        union = [p for p, o in zip(union, outside) if o == 0]
+        sdf = vtk_to_numpy(volume.GetPointData().GetArray("surface"))
+        fog = vtk_to_numpy(volume.GetPointData().GetArray("density"))
+        rng = np.random.default_rng(1)
+        ids = rng.choice(volume.GetNumberOfPoints(), 400, replace=False)
+        where = np.array([volume.GetPoint(int(i)) for i in ids])
+        inside = winding_numbers(points, union, where) > 0.5
+        far = np.abs(sdf[ids]) > 0.3  # more than a voxel from the surface
+        self.assertGreater(far.sum(), 100)
+        self.assertTrue(np.all((sdf[ids] < 0)[far] == inside[far]), "level-set signs")
+        self.assertTrue(np.all((fog[ids] > 0.5)[far] == inside[far]), "fog inside, none outside")
+        # A flat 2D model has no level set: a clear error, no file.
+        _, _, _, flat, errors = chain("triangle2d.obj", (8, 6, 0), spacing=1.0)
+        writer.SetInputConnection(flat.GetOutputPort())
+        writer.SetFileName(tmp("flat.vdb"))
+        writer_errors = ErrorObserver(writer)
+        writer.Write()
+        self.assertIn("flat", writer_errors.text())
+        self.assertFalse(os.path.exists(tmp("flat.vdb")))
 
     def test_bad_inputs(self):
         # An arrangement input that is not one (no parameters in its field data).

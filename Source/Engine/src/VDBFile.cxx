@@ -10,6 +10,8 @@
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
+#include <openvdb/tools/LevelSetUtil.h>
+#include <openvdb/tools/MeshToVolume.h>
 
 #include <algorithm>
 #include <cmath>
@@ -341,6 +343,81 @@ Archive LoadArchive(const std::string& path)
 void WriteFile(
   const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata)
 {
+  WriteFile(path, grids, {}, metadata);
+}
+
+namespace
+{
+/// The level set (and fog volume) of one mesh.
+void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
+{
+  if (!mesh.Points || !mesh.Polygons)
+  {
+    throw Error("mesh grid '" + mesh.Name + "' has no points or polygons");
+  }
+  if (!(mesh.VoxelSize > 0) || !std::isfinite(mesh.VoxelSize))
+  {
+    throw Error("mesh grid '" + mesh.Name + "': the voxel size must be positive");
+  }
+  if (!(mesh.HalfWidth >= 1) || !std::isfinite(mesh.HalfWidth))
+  {
+    throw Error("mesh grid '" + mesh.Name + "': the band half width must be at least one voxel");
+  }
+  std::vector<openvdb::Vec3s> points;
+  points.reserve(mesh.Points->size());
+  for (const auto& p : *mesh.Points)
+  {
+    points.emplace_back(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+  }
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  const auto n = static_cast<std::int64_t>(points.size());
+  for (const auto& poly : *mesh.Polygons)
+  {
+    for (auto i : poly)
+    {
+      if (i < 0 || i >= n)
+      {
+        throw Error("mesh grid '" + mesh.Name + "' has a polygon with a point index out of range");
+      }
+    }
+    // The sign comes from OpenVDB's inside/outside flood fill, not from the winding.
+    if (poly.size() == 4)
+    {
+      quads.emplace_back(poly[0], poly[1], poly[2], poly[3]);
+    }
+    else
+    {
+      for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      {
+        triangles.emplace_back(poly[0], poly[k], poly[k + 1]);
+      }
+    }
+  }
+  const auto transform = openvdb::math::Transform::createLinearTransform(mesh.VoxelSize);
+  openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(
+    *transform, points, triangles, quads, static_cast<float>(mesh.HalfWidth));
+  grid->setName(mesh.Name);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  for (const auto& kv : mesh.Metadata)
+  {
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  out.push_back(grid);
+  if (!mesh.FogName.empty())
+  {
+    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
+    openvdb::tools::sdfToFogVolume(*fog);
+    fog->setName(mesh.FogName);
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    out.push_back(fog);
+  }
+}
+} // namespace
+
+void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+  const std::vector<MeshGridView>& meshes, const MetadataMap& metadata)
+{
   InitializeOpenVDB();
   if (path.empty())
   {
@@ -359,6 +436,20 @@ void WriteFile(
         }
       }
       vdbGrids.push_back(MakeGrid(view));
+    }
+    for (const auto& mesh : meshes)
+    {
+      MakeMeshGrids(mesh, vdbGrids);
+    }
+    for (std::size_t i = 0; i < vdbGrids.size(); ++i)
+    {
+      for (std::size_t j = 0; j < i; ++j)
+      {
+        if (vdbGrids[i]->getName() == vdbGrids[j]->getName())
+        {
+          throw Error("two grids are named '" + vdbGrids[i]->getName() + "'");
+        }
+      }
     }
   }
   catch (const std::exception& e)

@@ -129,6 +129,20 @@ int vtkMSArrangementMesh::RequestData(
     file->SetName("ExampleFile");
     file->InsertNextValue(ex.Source);
     output->GetFieldData()->AddArray(file);
+    // Object type names by type id (0: empty), e.g. for the VDB writer's surface_<type>.
+    vtkNew<vtkStringArray> typeNames;
+    typeNames->SetName("TypeNames");
+    const int maxType = ex.TypeNames.empty() ? 0 : ex.TypeNames.rbegin()->first;
+    typeNames->SetNumberOfValues(maxType + 1);
+    typeNames->SetValue(0, "empty");
+    for (const auto& [type, name] : ex.TypeNames)
+    {
+      if (type > 0)
+      {
+        typeNames->SetValue(type, name);
+      }
+    }
+    output->GetFieldData()->AddArray(typeNames);
     if (this->CheckModel)
     {
       const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);

@@ -14,7 +14,8 @@
  *   `OutsideType`; the normal points from inside to outside. The surface of type t is the
  *   polygons with InsideType t and, reversed, those with OutsideType t: closed and oriented.
  * - 2D: the faces of the line arrangement with an object, with cell array `ObjectType`.
- * Point array `ArrangementVertex`.
+ * Point array `ArrangementVertex`; field data `ExampleFile` and `TypeNames` (the object type
+ * names by type id, 0 = "empty").
  *
  * With CheckModel on, the output is verified without trusting the solver (the example
  * analysis is run on it: msynth::CheckContinuousModel); the field data array `ModelCheck`

@@ -220,6 +220,16 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
   {
     throw msynth::Error::InFile(name, "has no polygons");
   }
+  // Readable type names, as the example reader stores them (TypeIds[i] is named TypeNames[i]).
+  auto* typeIds = vtkDataArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("TypeIds"));
+  auto* typeNames = vtkStringArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("TypeNames"));
+  if (typeIds && typeNames && typeIds->GetNumberOfValues() == typeNames->GetNumberOfValues())
+  {
+    for (vtkIdType i = 0; i < typeIds->GetNumberOfValues(); ++i)
+    {
+      example.TypeNames[static_cast<int>(typeIds->GetTuple1(i))] = typeNames->GetValue(i);
+    }
+  }
   const vtkIdType numberOfPoints = polygons->GetNumberOfPoints();
   example.Points.resize(static_cast<std::size_t>(numberOfPoints));
   for (vtkIdType i = 0; i < numberOfPoints; ++i)

@@ -3,6 +3,8 @@
 
 #include "vtkMSEngineBridge.h"
 
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -12,13 +14,17 @@
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include "msynth/Error.h"
 #include "msynth/VDBFile.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <map>
 #include <limits>
 #include <list>
 #include <vector>
@@ -54,7 +60,9 @@ void vtkMSOpenVDBWriter::ClearMetadata()
 
 int vtkMSOpenVDBWriter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
 }
 
@@ -63,9 +71,17 @@ vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
 {
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
-    // Piece 0 writes the whole image; other pieces need no data.
+    // Piece 0 writes the whole input; other pieces need no data.
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
+    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
+    }
+    else if (this->Piece == 0)
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    }
     return 1;
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
@@ -139,6 +155,24 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
   views.push_back(std::move(view));
   return true;
 }
+/// File metadata: every single-valued string array of @p field, then the pairs given.
+msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::MetadataMap& extra)
+{
+  msynth::vdb::MetadataMap metadata;
+  for (int i = 0; field && i < field->GetNumberOfArrays(); ++i)
+  {
+    auto* strings = vtkStringArray::SafeDownCast(field->GetAbstractArray(i));
+    if (strings && strings->GetName() && strings->GetNumberOfValues() == 1)
+    {
+      metadata[strings->GetName()] = strings->GetValue(0);
+    }
+  }
+  for (const auto& kv : extra)
+  {
+    metadata[kv.first] = kv.second;
+  }
+  return metadata;
+}
 } // namespace
 
 void vtkMSOpenVDBWriter::WriteData()
@@ -154,10 +188,15 @@ void vtkMSOpenVDBWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
+  if (auto* mesh = vtkPolyData::SafeDownCast(this->GetInput()))
+  {
+    this->WriteMesh(mesh);
+    return;
+  }
   vtkImageData* input = this->GetImageDataInput();
   if (!input)
   {
-    vtkErrorMacro(<< "'" << this->FileName << "': not written: the input is not image data.");
+    vtkErrorMacro(<< "'" << this->FileName << "': not written: the input is neither image data nor a mesh.");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
@@ -231,35 +270,114 @@ void vtkMSOpenVDBWriter::WriteData()
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
 
-    msynth::vdb::MetadataMap metadata;
-    vtkFieldData* field = input->GetFieldData();
-    for (int i = 0; field && i < field->GetNumberOfArrays(); ++i)
-    {
-      auto* strings = vtkStringArray::SafeDownCast(field->GetAbstractArray(i));
-      if (strings && strings->GetName() && strings->GetNumberOfValues() == 1)
-      {
-        metadata[strings->GetName()] = strings->GetValue(0);
-      }
-    }
-    for (const auto& kv : this->Internal->Metadata)
-    {
-      metadata[kv.first] = kv.second;
-    }
-    msynth::vdb::WriteFile(this->FileName, views, metadata);
+    msynth::vdb::WriteFile(this->FileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {
-    const std::string what = e.what();
-    // Engine errors about the file already start with its name.
-    if (what.rfind("'" + this->FileName + "'", 0) == 0)
+    this->ReportFailure(e.what());
+  }
+}
+
+void vtkMSOpenVDBWriter::ReportFailure(const std::string& what)
+{
+  // Engine errors about the file already start with its name.
+  if (what.rfind("'" + this->FileName + "'", 0) == 0)
+  {
+    vtkErrorMacro(<< what);
+  }
+  else
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "': not written: " << what);
+  }
+  this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+}
+
+void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
+{
+  try
+  {
+    if (input->GetNumberOfPolys() == 0)
     {
-      vtkErrorMacro(<< what);
+      throw msynth::Error("the mesh has no polygons");
     }
-    else
+    double bounds[6];
+    input->GetBounds(bounds);
+    const double extent = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+    if (bounds[1] - bounds[0] <= 0 || bounds[3] - bounds[2] <= 0 || bounds[5] - bounds[4] <= 0)
     {
-      vtkErrorMacro(<< "'" << this->FileName << "': not written: " << what);
+      throw msynth::Error("the mesh is flat (a 2D model encloses no volume); level sets need closed 3D surfaces");
     }
-    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+    const double voxel = this->VoxelSize > 0 ? this->VoxelSize : extent / 256.0;
+    std::vector<std::array<double, 3>> points(static_cast<std::size_t>(input->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+    {
+      input->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+    }
+    vtkDataArray* inside = input->GetCellData()->GetArray("InsideType");
+    vtkDataArray* outside = input->GetCellData()->GetArray("OutsideType");
+    const bool typed = inside && outside;
+    auto* names = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TypeNames"));
+    // Polygons per grid: the whole model (interfaces with empty space), and per type.
+    std::map<int, std::vector<std::vector<std::int32_t>>> perType;
+    std::vector<std::vector<std::int32_t>> all;
+    const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    vtkIdType cell = firstPoly;
+    auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+    for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cell)
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      polys->GetCurrentCell(n, ids);
+      std::vector<std::int32_t> poly(ids, ids + n);
+      if (!typed)
+      {
+        all.push_back(poly);
+        continue;
+      }
+      const int in = static_cast<int>(inside->GetTuple1(cell));
+      const int out = static_cast<int>(outside->GetTuple1(cell));
+      if (out == 0)
+      {
+        all.push_back(poly);
+      }
+      if (in > 0)
+      {
+        perType[in].push_back(poly);
+      }
+      if (out > 0)
+      {
+        perType[out].emplace_back(poly.rbegin(), poly.rend());
+      }
+    }
+    std::vector<msynth::vdb::MeshGridView> meshes;
+    msynth::vdb::MeshGridView whole;
+    whole.Name = "surface";
+    whole.Points = &points;
+    whole.Polygons = &all;
+    whole.VoxelSize = voxel;
+    whole.HalfWidth = this->BandWidth;
+    whole.FogName = this->WriteFog ? "density" : "";
+    meshes.push_back(whole);
+    for (const auto& [type, polygons] : perType)
+    {
+      msynth::vdb::MeshGridView view = whole;
+      std::string name = std::to_string(type);
+      if (names && type >= 0 && type < names->GetNumberOfValues() && !names->GetValue(type).empty())
+      {
+        name = names->GetValue(type);
+      }
+      view.Name = "surface_" + name;
+      view.Polygons = &polygons;
+      view.FogName.clear();
+      view.Metadata["object_type"] = std::to_string(type);
+      view.Metadata["object_type_name"] = name;
+      meshes.push_back(view);
+    }
+    msynth::vdb::WriteFile(this->FileName, {}, meshes, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+  }
+  catch (const std::exception& e)
+  {
+    this->ReportFailure(e.what());
   }
 }
 
@@ -270,5 +388,8 @@ void vtkMSOpenVDBWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LabelArrayName: " << this->LabelArrayName << "\n";
   os << indent << "EmptyLabel: " << this->EmptyLabel << "\n";
   os << indent << "WriteFloatLabels: " << this->WriteFloatLabels << "\n";
+  os << indent << "VoxelSize: " << this->VoxelSize << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "WriteFog: " << this->WriteFog << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";
 }

@@ -21,7 +21,15 @@
  * The file is written atomically: to a temporary file in the same folder, renamed when
  * complete. A failed write reports an error and leaves no partial file.
  *
- * Under MPI (pvbatch --mpi) piece 0 asks for the whole image and writes it; the other pieces
+ * **Meshes** (vtkPolyData of closed, outward polygon surfaces) become narrow-band level sets
+ * (`GRID_CLASS` level set, negative inside; OpenVDB's mesh-to-volume) with a voxel size of
+ * VoxelSize (0: the longest extent / 256) and a band of BandWidth voxels on each side:
+ * `surface` for the whole model, and for a continuous synthesis model (cell arrays
+ * `InsideType`, `OutsideType` from vtkMSArrangementMesh) also `surface_<type>` per object type
+ * (the type's name from the field data array `TypeNames` when present). With WriteFog, the fog
+ * volume `density` of `surface` too, for volume renderers. Flat (2D) meshes are refused.
+ *
+ * Under MPI (pvbatch --mpi) piece 0 asks for the whole input and writes it; the other pieces
  * ask for nothing and write nothing.
  *
  * @sa vtkMSOpenVDBReader
@@ -36,6 +44,7 @@
 #include <string> // for ivars
 
 class vtkImageData;
+class vtkPolyData;
 
 class MODELSYNTHIO_EXPORT vtkMSOpenVDBWriter : public vtkWriter
 {
@@ -70,6 +79,25 @@ public:
   ///@}
 
   ///@{
+  /// Meshes: the voxel size in world units (0: the mesh's longest extent / 256). Default 0.
+  vtkSetClampMacro(VoxelSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(VoxelSize, double);
+  ///@}
+
+  ///@{
+  /// Meshes: the narrow band's half width in voxels. Default 3.
+  vtkSetClampMacro(BandWidth, double, 1.0, 1000.0);
+  vtkGetMacro(BandWidth, double);
+  ///@}
+
+  ///@{
+  /// Meshes: also write the fog volume `density`. Default on.
+  vtkSetMacro(WriteFog, bool);
+  vtkGetMacro(WriteFog, bool);
+  vtkBooleanMacro(WriteFog, bool);
+  ///@}
+
+  ///@{
   /// The piece this process writes, and how many there are (set by ParaView under MPI).
   /// Only piece 0 writes the file. Defaults 0 and 1.
   vtkSetMacro(Piece, int);
@@ -95,6 +123,10 @@ protected:
   vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void WriteData() override;
+  /// The polydata branch of WriteData.
+  void WriteMesh(vtkPolyData* input);
+  /// Reports a failed write (once, naming the file) and sets the error code.
+  void ReportFailure(const std::string& what);
 
 private:
   vtkMSOpenVDBWriter(const vtkMSOpenVDBWriter&) = delete;
@@ -104,6 +136,9 @@ private:
   std::string LabelArrayName = "Label";
   int EmptyLabel = 0;
   bool WriteFloatLabels = false;
+  double VoxelSize = 0;
+  double BandWidth = 3;
+  bool WriteFog = true;
   int Piece = 0;
   int NumberOfPieces = 1;
 

@@ -62,6 +62,24 @@ struct DenseGridView
   const void* Values = nullptr;
 };
 
+/**
+ * A closed, outward-oriented polygon surface to write as a narrow-band level set
+ * (`GRID_CLASS` "level set": signed distance, negative inside), and optionally as a fog volume
+ * (`GRID_CLASS` "fog volume": density 1 inside, falling to 0 across the band) for volume
+ * renderers. Polygons are convex (triangles and quads pass as they are, larger polygons are
+ * fanned). The caller keeps Points and Polygons alive during the write.
+ */
+struct MeshGridView
+{
+  std::string Name;                                   ///< e.g. "surface" or "surface_roof"
+  const std::vector<std::array<double, 3>>* Points = nullptr;
+  const std::vector<std::vector<std::int32_t>>* Polygons = nullptr;
+  double VoxelSize = 1.0;                             ///< world units, > 0
+  double HalfWidth = 3.0;                             ///< narrow band half width, in voxels (≥ 1)
+  std::string FogName;                                ///< also a fog volume of this name when set
+  MetadataMap Metadata;                               ///< extra string metadata on the grid(s)
+};
+
 /// A grid read from a file.
 struct DenseGrid
 {
@@ -95,6 +113,10 @@ struct GridSummary
  */
 void WriteFile(
   const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata);
+/// The same with level sets (and fog volumes) of meshes as well. @throw Error also on a mesh
+/// with a bad point index, a non-positive voxel size or a band narrower than one voxel.
+void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+  const std::vector<MeshGridView>& meshes, const MetadataMap& metadata);
 
 /// Options for ReadFile.
 struct ReadOptions
