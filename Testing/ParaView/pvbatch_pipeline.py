@@ -164,4 +164,19 @@ sizes = start.GetPointData().GetArray("CatalogSize")
 check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumberOfTuples())) > 1,
       "the catalog at the start has several labels per vertex")
 
+# OpenVDB from the continuous chain: the mesh as level sets, the catalog as a sequence.
+folder = os.path.join(TMP, "pvbatch-vdb-%s" % suffix)
+os.makedirs(folder, exist_ok=True)
+for name in os.listdir(folder):
+    os.remove(os.path.join(folder, name))
+SaveData(os.path.join(folder, "model.vdb"), proxy=mesh, VoxelSize=0.1)
+SaveData(os.path.join(folder, "catalog.vdb"), proxy=solver, WriteTimeSteps=1, VoxelSize=0.5)
+files = sorted(os.listdir(folder))
+check(files == ["catalog_0001.vdb", "catalog_0002.vdb", "catalog_0003.vdb", "catalog_0004.vdb",
+                "catalog_0005.vdb", "model.vdb"], "VDB files %s" % files)
+surface = servermanager.Fetch(ModelSynthOpenVDBReader(FileName=os.path.join(folder, "model.vdb"),
+                                                      GridName="surface"))
+values = surface.GetPointData().GetArray("surface")
+check(values is not None and values.GetRange()[0] < 0 < values.GetRange()[1], "a signed level set")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -278,6 +278,40 @@ class ContinuousSynthesisTest(unittest.TestCase):
         self.assertIn("flat", writer_errors.text())
         self.assertFalse(os.path.exists(tmp("flat.vdb")))
 
+    def test_catalog_sequence_and_arrangement_fields_to_openvdb(self):
+        # The labelled arrangement's point fields resampled to voxels (nearest vertex), one
+        # numbered file per catalog time step.
+        _, _, solver, _, errors = chain("cube.obj", (4, 3, 3), snapshots=3)
+        self.assertEqual(errors, "")
+        folder = tmp("catalog-sequence")
+        os.makedirs(folder, exist_ok=True)
+        for name in os.listdir(folder):
+            os.remove(os.path.join(folder, name))
+        writer = modelsynth.vtkMSOpenVDBWriter()
+        writer.SetInputConnection(solver.GetOutputPort())
+        writer.SetFileName(os.path.join(folder, "catalog.vdb"))
+        writer.SetVoxelSize(0.5)
+        writer.WriteTimeStepsOn()
+        self.assertEqual(writer.Write(), 1)
+        self.assertEqual(sorted(os.listdir(folder)), ["catalog_%04d.vdb" % i for i in (1, 2, 3, 4)])
+        sizes = []
+        for i in (1, 4):
+            reader = modelsynth.vtkMSOpenVDBReader()
+            reader.SetFileName(os.path.join(folder, "catalog_%04d.vdb" % i))
+            reader.Update()
+            image = reader.GetOutput()
+            sizes.append(vtk_to_numpy(image.GetPointData().GetArray("CatalogSize")))
+            self.assertEqual(image.GetPointData().GetArray("Label").GetDataType(), 6)  # VTK_INT
+        solver.UpdateTimeStep(0.0)
+        start = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
+        self.assertEqual(sizes[0].max(), start.max())   # the start: many labels per vertex
+        self.assertEqual(sizes[1].max(), 1)             # the end: decided everywhere
+        # The voxel at a vertex holds that vertex's value (nearest-vertex resampling).
+        listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(folder, "catalog_0004.vdb")],
+                                 capture_output=True, text=True).stdout
+        self.assertIn("Name: Label", listing)
+        self.assertIn("Tree_int32", listing)
+
     def test_bad_inputs(self):
         # An arrangement input that is not one (no parameters in its field data).
         reader = modelsynth.vtkMSPolyhedralExampleReader()

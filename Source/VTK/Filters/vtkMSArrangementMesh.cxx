@@ -62,7 +62,12 @@ int vtkMSArrangementMesh::RequestData(
   {
     const std::string where = vtkMSEngineBridge::ExampleName(labelled);
     const auto record = vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
-    vtkDataArray* labelArray = labelled->GetPointData()->GetArray("Label");
+    // The finished model (ModelLabel when the solver shows catalog time steps, else Label).
+    vtkDataArray* labelArray = labelled->GetPointData()->GetArray("ModelLabel");
+    if (!labelArray)
+    {
+      labelArray = labelled->GetPointData()->GetArray("Label");
+    }
     if (!labelArray || labelArray->GetNumberOfComponents() != 1 ||
       labelArray->GetNumberOfTuples() != labelled->GetNumberOfPoints() ||
       !vtkMSEngineBridge::IsIntegerArray(labelArray))

@@ -5,7 +5,8 @@
  * msynth::ExtractMesh): the surface of a labelled plane arrangement.
  *
  * Input 0: the polyhedral example. Input 1: the output of vtkMSContinuousSynthesis (the
- * arrangement with point array `Label`).
+ * arrangement with point array `Label`, or `ModelLabel` when it has catalog time steps, so the
+ * mesh is the finished model at every time).
  *
  * Output, a vtkPolyData of convex polygons (coplanar neighbours are not merged; every
  * arrangement vertex on a polygon's boundary is one of its corners, so the mesh has no

@@ -186,6 +186,19 @@ int vtkMSContinuousSynthesis::RequestData(
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   }
   output->GetPointData()->AddArray(label);
+  if (!cache.Snapshots.empty())
+  {
+    // The finished model at every time step, so that mesh extraction downstream does not
+    // depend on the time shown.
+    vtkNew<vtkIntArray> model;
+    model->SetName("ModelLabel");
+    model->SetNumberOfValues(n);
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      model->SetValue(v, result.Labels[static_cast<std::size_t>(v)]);
+    }
+    output->GetPointData()->AddArray(model);
+  }
   output->GetPointData()->AddArray(size);
   output->GetPointData()->AddArray(entropy);
   output->GetPointData()->SetActiveScalars("Label");

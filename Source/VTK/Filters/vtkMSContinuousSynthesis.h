@@ -11,7 +11,8 @@
  * listed by vtkMSNeighbourhoodLabels), `CatalogSize` and `Entropy`, and the run statistics as
  * field data (`Success`, `Blocks`, `Attempts`, `FailedAttempts`, `FailedBlocks`, `Backtracks`,
  * `Seconds`, `Seed`). With NumberOfSnapshots S > 0 the output has S + 1 time steps: the catalog
- * at the start and at S even fractions of the work, so ParaView can animate it shrinking.
+ * at the start and at S even fractions of the work, so ParaView can animate it shrinking;
+ * `Label` is then −1 where undecided and `ModelLabel` holds the finished model at every step.
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.

@@ -12,8 +12,13 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPointInterpolator.h"
+#include "vtkSmartPointer.h"
+#include "vtkVoronoiKernel.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -23,6 +28,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <map>
 #include <limits>
@@ -73,6 +80,10 @@ vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
   {
     // Piece 0 writes the whole input; other pieces need no data.
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    if (this->WritingSequence)
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), this->CurrentTime);
+    }
     if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
     {
       vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
@@ -182,18 +193,35 @@ void vtkMSOpenVDBWriter::WriteData()
   {
     return; // only the first piece writes (see class documentation)
   }
+  if (!this->WritingSequence)
+  {
+    this->CurrentFileName = this->FileName;
+  }
   if (this->FileName.empty())
   {
     vtkErrorMacro(<< "No file name was given.");
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
-  if (auto* mesh = vtkPolyData::SafeDownCast(this->GetInput()))
+  vtkSmartPointer<vtkImageData> resampled;
+  if (auto* poly = vtkPolyData::SafeDownCast(this->GetInput()))
   {
-    this->WriteMesh(mesh);
-    return;
+    if (poly->GetNumberOfPolys() > 0)
+    {
+      this->WriteMesh(poly);
+      return;
+    }
+    try
+    {
+      resampled = this->ResamplePoints(poly);
+    }
+    catch (const std::exception& e)
+    {
+      this->ReportFailure(e.what());
+      return;
+    }
   }
-  vtkImageData* input = this->GetImageDataInput();
+  vtkImageData* input = resampled ? resampled.GetPointer() : this->GetImageDataInput();
   if (!input)
   {
     vtkErrorMacro(<< "'" << this->FileName << "': not written: the input is neither image data nor a mesh.");
@@ -270,7 +298,7 @@ void vtkMSOpenVDBWriter::WriteData()
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
 
-    msynth::vdb::WriteFile(this->FileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+    msynth::vdb::WriteFile(this->CurrentFileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {
@@ -281,15 +309,80 @@ void vtkMSOpenVDBWriter::WriteData()
 void vtkMSOpenVDBWriter::ReportFailure(const std::string& what)
 {
   // Engine errors about the file already start with its name.
-  if (what.rfind("'" + this->FileName + "'", 0) == 0)
+  const std::string& file = this->CurrentFileName.empty() ? this->FileName : this->CurrentFileName;
+  if (what.rfind("'" + file + "'", 0) == 0)
   {
     vtkErrorMacro(<< what);
   }
   else
   {
-    vtkErrorMacro(<< "'" << this->FileName << "': not written: " << what);
+    vtkErrorMacro(<< "'" << file << "': not written: " << what);
   }
   this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+}
+
+vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* input)
+{
+  if (input->GetNumberOfPoints() == 0)
+  {
+    throw msynth::Error("the input has no points and no polygons");
+  }
+  double bounds[6];
+  input->GetBounds(bounds);
+  const double extent = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double voxel = this->VoxelSize > 0 ? this->VoxelSize : (extent > 0 ? extent / 128.0 : 1.0);
+  int dims[3];
+  double total = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double n = std::floor((bounds[2 * a + 1] - bounds[2 * a]) / voxel + 1e-9) + 1;
+    total *= n;
+    dims[a] = static_cast<int>(std::min(n, 1e9));
+  }
+  if (total > double(std::int64_t(1) << 28))
+  {
+    throw msynth::Error("resampling the points at voxel size " + std::to_string(voxel) + " needs " +
+      std::to_string(static_cast<long long>(total)) + " voxels (more than 2^28); use a larger VoxelSize");
+  }
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(dims);
+  grid->SetOrigin(bounds[0], bounds[2], bounds[4]);
+  grid->SetSpacing(voxel, voxel, voxel);
+  // Each voxel takes the values of the nearest point (a Voronoi kernel): labels stay labels.
+  vtkNew<vtkPointInterpolator> interpolator;
+  interpolator->SetInputData(grid);
+  interpolator->SetSourceData(input);
+  vtkNew<vtkVoronoiKernel> nearest;
+  interpolator->SetKernel(nearest);
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(interpolator, messages))
+  {
+    throw msynth::Error("resampling the points failed: " + messages);
+  }
+  vtkSmartPointer<vtkImageData> out = vtkImageData::SafeDownCast(interpolator->GetOutputDataObject(0));
+  vtkNew<vtkImageData> copy;
+  copy->ShallowCopy(out);
+  copy->GetFieldData()->ShallowCopy(input->GetFieldData());
+  // The interpolator gives floats; integer arrays (labels, counts) are integers again, exactly.
+  vtkPointData* values = copy->GetPointData();
+  for (int i = 0; i < values->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* sampled = values->GetArray(i);
+    vtkDataArray* original = sampled && sampled->GetName() ? input->GetPointData()->GetArray(sampled->GetName()) : nullptr;
+    if (!original || !vtkMSEngineBridge::IsIntegerArray(original) || original->GetNumberOfComponents() != 1)
+    {
+      continue;
+    }
+    vtkNew<vtkIntArray> integers;
+    integers->SetName(sampled->GetName());
+    integers->SetNumberOfValues(sampled->GetNumberOfTuples());
+    for (vtkIdType t = 0; t < sampled->GetNumberOfTuples(); ++t)
+    {
+      integers->SetValue(t, static_cast<int>(std::llround(sampled->GetTuple1(t))));
+    }
+    values->AddArray(integers); // replaces the float array of the same name
+  }
+  return vtkSmartPointer<vtkImageData>(copy.GetPointer());
 }
 
 void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
@@ -373,12 +466,56 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
       view.Metadata["object_type_name"] = name;
       meshes.push_back(view);
     }
-    msynth::vdb::WriteFile(this->FileName, {}, meshes, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+    msynth::vdb::WriteFile(this->CurrentFileName, {}, meshes, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {
     this->ReportFailure(e.what());
   }
+}
+
+std::string vtkMSOpenVDBWriter::SequenceFileName(int index) const
+{
+  std::string stem = this->FileName, extension = ".vdb";
+  const std::size_t dot = stem.rfind('.');
+  const std::size_t slash = stem.rfind('/');
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+  {
+    extension = stem.substr(dot);
+    stem = stem.substr(0, dot);
+  }
+  char number[16];
+  std::snprintf(number, sizeof(number), "_%04d", index + 1);
+  return stem + number + extension;
+}
+
+int vtkMSOpenVDBWriter::Write()
+{
+  this->CurrentFileName = this->FileName;
+  if (!this->WriteTimeSteps || !this->GetInputAlgorithm())
+  {
+    return this->Superclass::Write();
+  }
+  this->GetInputAlgorithm()->UpdateInformation();
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  {
+    return this->Superclass::Write(); // no time steps: one file
+  }
+  const int steps = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double* times = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const std::vector<double> copy(times, times + steps);
+  this->WritingSequence = true;
+  int ok = 1;
+  for (int i = 0; i < steps && ok; ++i)
+  {
+    this->CurrentFileName = this->SequenceFileName(i);
+    this->CurrentTime = copy[static_cast<std::size_t>(i)];
+    ok = this->Superclass::Write(); // asks the input for CurrentTime (ProcessRequest)
+  }
+  this->WritingSequence = false;
+  this->CurrentFileName = this->FileName;
+  return ok;
 }
 
 void vtkMSOpenVDBWriter::PrintSelf(ostream& os, vtkIndent indent)
@@ -391,5 +528,6 @@ void vtkMSOpenVDBWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";
   os << indent << "WriteFog: " << this->WriteFog << "\n";
+  os << indent << "WriteTimeSteps: " << this->WriteTimeSteps << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";
 }

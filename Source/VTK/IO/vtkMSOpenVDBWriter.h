@@ -29,6 +29,16 @@
  * (the type's name from the field data array `TypeNames` when present). With WriteFog, the fog
  * volume `density` of `surface` too, for volume renderers. Flat (2D) meshes are refused.
  *
+ * **Points without polygons** (the vertices of a plane arrangement, e.g. the output of
+ * vtkMSContinuousSynthesis with `Label`, `CatalogSize`, `Entropy`) are resampled to a grid of
+ * VoxelSize (0: the longest extent / 128), every voxel taking the values of the nearest point,
+ * and written as image data is.
+ *
+ * **Sequences:** with WriteTimeSteps and an input that has time steps (e.g. the catalog
+ * snapshots of the solver filters), Write() writes one file per step, numbered from 1 with four
+ * digits before the extension (`catalog.vdb` → `catalog_0001.vdb`, `catalog_0002.vdb`, …), as
+ * Blender and Houdini load sequences. Each file is written atomically.
+ *
  * Under MPI (pvbatch --mpi) piece 0 asks for the whole input and writes it; the other pieces
  * ask for nothing and write nothing.
  *
@@ -39,6 +49,8 @@
 
 #include "ModelSynthIOModule.h" // for export macro
 #include "vtkWriter.h"
+
+#include "vtkSmartPointer.h" // for the resampled image
 
 #include <memory> // for std::unique_ptr
 #include <string> // for ivars
@@ -98,6 +110,18 @@ public:
   ///@}
 
   ///@{
+  /// Write every time step of the input to its own numbered file (see above). Default off.
+  vtkSetMacro(WriteTimeSteps, bool);
+  vtkGetMacro(WriteTimeSteps, bool);
+  vtkBooleanMacro(WriteTimeSteps, bool);
+  ///@}
+
+  /// Writes the file, or with WriteTimeSteps the sequence. Returns 1 on success.
+  int Write() override;
+  /// The file written for step @p index (0-based) of a sequence: `<stem>_<index + 1>.vdb`.
+  std::string SequenceFileName(int index) const;
+
+  ///@{
   /// The piece this process writes, and how many there are (set by ParaView under MPI).
   /// Only piece 0 writes the file. Defaults 0 and 1.
   vtkSetMacro(Piece, int);
@@ -125,6 +149,9 @@ protected:
   void WriteData() override;
   /// The polydata branch of WriteData.
   void WriteMesh(vtkPolyData* input);
+  /// Points without polygons (a plane arrangement): their point arrays sampled on a grid of
+  /// VoxelSize (0: the longest extent / 128), each voxel from the nearest point.
+  vtkSmartPointer<vtkImageData> ResamplePoints(vtkPolyData* input);
   /// Reports a failed write (once, naming the file) and sets the error code.
   void ReportFailure(const std::string& what);
 
@@ -139,6 +166,10 @@ private:
   double VoxelSize = 0;
   double BandWidth = 3;
   bool WriteFog = true;
+  bool WriteTimeSteps = false;
+  std::string CurrentFileName; ///< the file being written (FileName, or a sequence member)
+  bool WritingSequence = false;
+  double CurrentTime = 0; ///< the time step being written in a sequence
   int Piece = 0;
   int NumberOfPieces = 1;
 
