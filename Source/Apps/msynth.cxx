@@ -117,6 +117,8 @@ continuous (EXAMPLE.obj|.vtp|.ply|.stl) synthesize options:
   --attempts N, --order scanline|random|entropy (default entropy), --choice uniform|frequency,
   --seed S, --types N=T,... as above; --voxel V sets the .vdb voxel size (default: a quarter
   of the smallest plane spacing, at least 1/256 of the model's extent)
+  --snapshots N       also write the catalog at the start, N-1 moments and the end as the
+                      sequence DIR/catalog_0001.vdb ... (CatalogSize, Entropy, Label per voxel)
 
 Other options: --verbose shows VTK's own diagnostics as well.
 
@@ -456,6 +458,7 @@ struct SynthesizeArguments
   double Blocks = 4;
   double Voxel = 0;
   bool OrderGiven = false;
+  int Snapshots = 0;
 };
 
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
@@ -685,6 +688,7 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   synthesis->SetAttempts(a.Attempts);
   synthesis->SetSiteOrder(a.OrderGiven ? a.Order : 2);
   synthesis->SetLabelChoice(a.Choice == vtkMSDiscreteSynthesis::FREQUENCY ? 1 : 0);
+  synthesis->SetNumberOfSnapshots(a.Snapshots);
   vtkNew<vtkMSArrangementMesh> mesh;
   mesh->SetInputConnection(0, reader->GetOutputPort());
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
@@ -774,6 +778,24 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   vdb->AddMetadata("block_spacings", std::to_string(a.Blocks).c_str());
   vdb->AddMetadata("plane_spacing", a.Spacing > 0 ? std::to_string(a.Spacing).c_str() : "derived");
   Run(vdb);
+  std::string sequence;
+  if (a.Snapshots > 0)
+  {
+    // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
+    vtkNew<vtkMSOpenVDBWriter> catalog;
+    catalog->SetInputConnection(synthesis->GetOutputPort());
+    catalog->SetFileName((dir + "/catalog.vdb").c_str());
+    catalog->SetVoxelSize(a.Voxel > 0 ? a.Voxel : std::max(smallest / 2, extent / 128));
+    catalog->WriteTimeStepsOn();
+    catalog->AddMetadata("example", example.c_str());
+    vtkNew<vtkMSEngineBridge> errors;
+    errors->Watch(catalog);
+    if (!catalog->Write() || errors->HasErrors())
+    {
+      throw std::runtime_error(errors->GetMessages());
+    }
+    sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" + std::to_string(10000 + a.Snapshots + 1).substr(1) + ".vdb";
+  }
 
   vtkFieldData* fd = labelled->GetFieldData();
   auto number = [fd](const char* name)
@@ -798,7 +820,7 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
             << " polygons, " << static_cast<long long>(number("FailedBlocks")) << " of "
             << static_cast<long long>(number("Blocks")) << " blocks left unchanged\n"
             << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir << "/model.vdb, "
-            << dir << "/statistics.json\n";
+            << dir << "/statistics.json" << sequence << "\n";
   return 0;
 }
 
@@ -955,6 +977,16 @@ int Main(const std::vector<std::string>& args)
       }
       i += 3;
       sizeGiven = true;
+      continue;
+    }
+    if (args[i] == "--snapshots")
+    {
+      const long long n = integer(i, "--snapshots");
+      if (n < 0 || n > 9998)
+      {
+        throw UsageError{ "--snapshots must be between 0 and 9998" };
+      }
+      synth.Snapshots = static_cast<int>(n);
       continue;
     }
     if (args[i] == "--spacing" || args[i] == "--blocks" || args[i] == "--voxel")

@@ -77,10 +77,19 @@ class CommandLineTest(unittest.TestCase):
     def test_synthesize_polyhedral_then_check(self):
         out = tmp("cli-continuous")
         r = run("synthesize", data("Continuous/l-prism.obj"), "--size", "8", "6", "3", "--seed", "4",
-                "--out", out)
+                "--snapshots", "2", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
-        for name in ("model.vtp", "arrangement.vtp", "model.vdb", "statistics.json"):
+        for name in ("model.vtp", "arrangement.vtp", "model.vdb", "statistics.json", "catalog_0001.vdb",
+                     "catalog_0002.vdb", "catalog_0003.vdb"):
             self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+        self.assertFalse(os.path.exists(os.path.join(out, "catalog_0004.vdb")))
+        listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(out, "model.vdb")],
+                                 capture_output=True, text=True).stdout
+        for grid in ("surface", "surface_block", "density"):
+            self.assertIn("Name: " + grid + "\n", listing)
+        self.assertIn("class: level set", listing)
+        self.assertIn("class: fog volume", listing)
+        self.assertIn("seed: 4", listing)
         with open(os.path.join(out, "statistics.json")) as f:
             stats = json.load(f)
         self.assertGreater(stats["Polygons"], 0)

@@ -306,6 +306,20 @@ class ContinuousSynthesisTest(unittest.TestCase):
         start = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
         self.assertEqual(sizes[0].max(), start.max())   # the start: many labels per vertex
         self.assertEqual(sizes[1].max(), 1)             # the end: decided everywhere
+        # Every step: the voxel centred on each arrangement vertex (integer coordinates, voxels
+        # of 0.5 from the lowest vertex) holds that vertex's catalog size at that step.
+        for step in range(4):
+            solver.UpdateTimeStep(float(step))
+            labelled = solver.GetOutput()
+            expected = vtk_to_numpy(labelled.GetPointData().GetArray("CatalogSize"))
+            reader = modelsynth.vtkMSOpenVDBReader()
+            reader.SetFileName(os.path.join(folder, "catalog_%04d.vdb" % (step + 1)))
+            reader.Update()
+            image = reader.GetOutput()
+            got = vtk_to_numpy(image.GetPointData().GetArray("CatalogSize"))
+            for v in range(labelled.GetNumberOfPoints()):
+                voxel = image.FindPoint(labelled.GetPoint(v))
+                self.assertEqual(got[voxel], expected[v], "step %d vertex %d" % (step, v))
         # The voxel at a vertex holds that vertex's value (nearest-vertex resampling).
         listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(folder, "catalog_0004.vdb")],
                                  capture_output=True, text=True).stdout

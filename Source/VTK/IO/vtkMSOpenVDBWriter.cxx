@@ -3,6 +3,7 @@
 
 #include "vtkMSEngineBridge.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -18,6 +19,7 @@
 #include "vtkPointData.h"
 #include "vtkPointInterpolator.h"
 #include "vtkSmartPointer.h"
+#include "vtkVariant.h"
 #include "vtkVoronoiKernel.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -166,16 +168,27 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
   views.push_back(std::move(view));
   return true;
 }
-/// File metadata: every single-valued string array of @p field, then the pairs given.
+/// File metadata: every single-valued array of @p field (strings such as ExampleFile, numbers
+/// such as the solver's Seed and statistics; not Seconds, so equal runs give equal files), then
+/// the pairs given.
 msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::MetadataMap& extra)
 {
   msynth::vdb::MetadataMap metadata;
   for (int i = 0; field && i < field->GetNumberOfArrays(); ++i)
   {
-    auto* strings = vtkStringArray::SafeDownCast(field->GetAbstractArray(i));
-    if (strings && strings->GetName() && strings->GetNumberOfValues() == 1)
+    vtkAbstractArray* array = field->GetAbstractArray(i);
+    if (!array || !array->GetName() || array->GetNumberOfValues() != 1 ||
+      std::string(array->GetName()) == "Seconds")
+    {
+      continue;
+    }
+    if (auto* strings = vtkStringArray::SafeDownCast(array))
     {
       metadata[strings->GetName()] = strings->GetValue(0);
+    }
+    else if (auto* numbers = vtkDataArray::SafeDownCast(array))
+    {
+      metadata[numbers->GetName()] = array->GetVariantValue(0).ToString();
     }
   }
   for (const auto& kv : extra)

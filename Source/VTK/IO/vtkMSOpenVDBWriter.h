@@ -14,9 +14,10 @@
  * inactive, so label volumes are sparse. WriteFloatLabels adds a float copy of the label grid
  * (`<name>_float`) for tools that only read float grids (Debian's pyopenvdb, for one).
  *
- * Metadata: the file gets `generator` = "ModelSynth <version>", every single-valued string
- * array of the input's field data (e.g. `ExampleFile` from the readers), and the pairs given
- * with AddMetadata(). Each grid records `vtk_array` and `vtk_association` (point or cell).
+ * Metadata: the file gets `generator` = "ModelSynth <version>", every single-valued array of
+ * the input's field data as a string (e.g. `ExampleFile` from the readers, the solvers' `Seed`
+ * and run statistics; not `Seconds`, so equal runs give equal files), and the pairs given with
+ * AddMetadata(). Each grid records `vtk_array` and `vtk_association` (point or cell).
  *
  * The file is written atomically: to a temporary file in the same folder, renamed when
  * complete. A failed write reports an error and leaves no partial file.
