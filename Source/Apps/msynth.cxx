@@ -110,6 +110,8 @@ synthesize options:
   --temperature T     temperature of the soft constraints' Metropolis acceptance (0.01)
   --guide GUIDE.vti   large-scale constraints: image data over the output box whose point
                       arrays Weight_<label> weight each label (0 forbids it there)
+  --snapshots N       catalog snapshots per block, also written as the sequence
+                      DIR/catalog_0001.vdb ... (Label, CatalogSize, Entropy per site)
 
 continuous (EXAMPLE.obj|.vtp|.ply|.stl) synthesize options:
   --spacing S         smallest plane spacing (default: derived from the example's planes)
@@ -506,6 +508,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   synthesis->SetTargetFractions(a.Targets.c_str());
   synthesis->SetSoftTemperature(a.Temperature);
   synthesis->SetMirrorSwaps(a.Swaps.c_str());
+  synthesis->SetCatalogSnapshotsPerBlock(a.Snapshots);
   vtkNew<vtkXMLImageDataReader> guide;
   if (!a.Guide.empty())
   {
@@ -587,6 +590,22 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   if (!vtkMSEngineBridge::Execute(vdb, messages))
   {
     throw std::runtime_error(messages);
+  }
+  if (a.Snapshots > 0)
+  {
+    // The catalog at every snapshot: DIR/catalog_0001.vdb, ... (Label, CatalogSize, Entropy).
+    vtkNew<vtkMSOpenVDBWriter> catalog;
+    catalog->SetInputConnection(synthesis->GetOutputPort());
+    catalog->SetFileName((dir + "/catalog.vdb").c_str());
+    catalog->WriteTimeStepsOn();
+    catalog->AddMetadata("seed", std::to_string(a.Seed).c_str());
+    vtkNew<vtkMSEngineBridge> errors;
+    errors->Watch(catalog);
+    if (!catalog->Write() || errors->HasErrors())
+    {
+      throw std::runtime_error(errors->GetMessages());
+    }
+    picture += ", " + dir + "/catalog_0001.vdb ...";
   }
 
   // Statistics as JSON.

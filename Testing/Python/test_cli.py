@@ -74,6 +74,22 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn("not closed", r.stderr)
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
 
+    def test_discrete_catalog_sequence(self):
+        out = tmp("cli-discrete-sequence")
+        if os.path.isdir(out):
+            for name in os.listdir(out):
+                os.remove(os.path.join(out, name))
+        r = run("synthesize", data("Examples/Village.vti"), "--size", "20", "20", "5", "--block", "10", "10", "5",
+                "--snapshots", "1", "--seed", "2", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        steps = sorted(n for n in os.listdir(out) if n.startswith("catalog_"))
+        self.assertEqual(steps, ["catalog_%04d.vdb" % i for i in range(1, 11)])  # start + 9 blocks
+        listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(out, steps[0])], capture_output=True,
+                                 text=True).stdout
+        for grid in ("Label", "CatalogSize", "Entropy"):
+            self.assertIn("Name: " + grid + "\n", listing)
+        self.assertIn("seed: 2", listing)
+
     def test_synthesize_polyhedral_then_check(self):
         out = tmp("cli-continuous")
         r = run("synthesize", data("Continuous/l-prism.obj"), "--size", "8", "6", "3", "--seed", "4",
