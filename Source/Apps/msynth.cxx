@@ -530,6 +530,17 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
     Run(synthesis);
   }
   vtkImageData* model = synthesis->GetOutput();
+  if (!tileset)
+  {
+    // Piece names of the example's labels (text format <Objects>) go with the model.
+    for (const char* name : { "PieceLabels", "PieceNames" })
+    {
+      if (vtkAbstractArray* names = reader->GetOutput()->GetFieldData()->GetAbstractArray(name))
+      {
+        model->GetFieldData()->AddArray(names);
+      }
+    }
+  }
 
   MakeDirectory(dir);
   // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json only.

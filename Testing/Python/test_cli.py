@@ -89,6 +89,13 @@ class CommandLineTest(unittest.TestCase):
         for grid in ("Label", "CatalogSize", "Entropy"):
             self.assertIn("Name: " + grid + "\n", listing)
         self.assertIn("seed: 2", listing)
+        # The text format's piece names travel to the .vdb as label_names.
+        named = tmp("cli-discrete-named")
+        r = run("synthesize", data("Examples/Village.txt"), "--size", "8", "8", "5", "--out", named)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(named, "model.vdb")], capture_output=True,
+                                 text=True).stdout
+        self.assertIn("label_names: 1:ground_tile;2:wall;2:window;3:roof", listing)
 
     def test_synthesize_polyhedral_then_check(self):
         out = tmp("cli-continuous")
@@ -106,6 +113,7 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn("class: level set", listing)
         self.assertIn("class: fog volume", listing)
         self.assertIn("seed: 4", listing)
+        self.assertIn("object_type_names: 1:block", listing)
         with open(os.path.join(out, "statistics.json")) as f:
             stats = json.load(f)
         self.assertGreater(stats["Polygons"], 0)

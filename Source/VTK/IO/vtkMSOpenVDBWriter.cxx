@@ -191,6 +191,27 @@ msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::Me
       metadata[numbers->GetName()] = array->GetVariantValue(0).ToString();
     }
   }
+  // Names by id: the label grid reader's pieces (PieceLabels, PieceNames) and the object
+  // types of continuous models (TypeIds, TypeNames), as "id:name;id:name".
+  const std::pair<const char*, const char*> named[] = { { "PieceLabels", "PieceNames" },
+    { "TypeIds", "TypeNames" } };
+  const char* keys[] = { "label_names", "object_type_names" };
+  for (int k = 0; k < 2 && field; ++k)
+  {
+    auto* ids = vtkDataArray::SafeDownCast(field->GetAbstractArray(named[k].first));
+    auto* names = vtkStringArray::SafeDownCast(field->GetAbstractArray(named[k].second));
+    if (ids && names && ids->GetNumberOfValues() == names->GetNumberOfValues() && names->GetNumberOfValues() > 0)
+    {
+      std::string text;
+      for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
+      {
+        text += (i ? ";" : "") + std::to_string(static_cast<long long>(ids->GetTuple1(i))) + ":" + names->GetValue(i);
+      }
+      metadata[keys[k]] = text;
+      metadata.erase(named[k].first); // the single-valued case was added above
+      metadata.erase(named[k].second);
+    }
+  }
   for (const auto& kv : extra)
   {
     metadata[kv.first] = kv.second;
