@@ -113,7 +113,7 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn("class: level set", listing)
         self.assertIn("class: fog volume", listing)
         self.assertIn("seed: 4", listing)
-        self.assertIn("object_type_names: 1:block", listing)
+        self.assertIn("object_type_names: 0:empty;1:block", listing)
         with open(os.path.join(out, "statistics.json")) as f:
             stats = json.load(f)
         self.assertGreater(stats["Polygons"], 0)

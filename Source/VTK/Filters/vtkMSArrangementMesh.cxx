@@ -147,7 +147,14 @@ int vtkMSArrangementMesh::RequestData(
         typeNames->SetValue(type, name);
       }
     }
+    vtkNew<vtkIntArray> typeIds; // paired with TypeNames, as the example reader does
+    typeIds->SetName("TypeIds");
+    for (int t = 0; t <= maxType; ++t)
+    {
+      typeIds->InsertNextValue(t);
+    }
     output->GetFieldData()->AddArray(typeNames);
+    output->GetFieldData()->AddArray(typeIds);
     if (this->CheckModel)
     {
       const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
