@@ -101,7 +101,8 @@ synthesize options:
                       resemblance (favour labels whose 3x3x3 surroundings match the example)
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0)
-  --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels)
+  --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels);
+                      with a tileset also DIR/<tile>.obj, turned for each orientation
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
   --swap A:B          labels A and B are each other's mirror images (repeatable)
   --subset NAME       with a tileset: use the tiles of its subset NAME
@@ -555,6 +556,11 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   geometry->SetInputData(model);
   geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
   geometry->SetPieceDirectory(a.Pieces.c_str());
+  if (tileset)
+  {
+    geometry->SetTilesetFile(example.c_str()); // pieces may be named by tile and turned
+    geometry->SetTilesetSubset(a.Subset.c_str());
+  }
   Run(geometry);
   WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
   std::string picture;

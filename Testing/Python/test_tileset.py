@@ -84,6 +84,52 @@ class TilesetTest(unittest.TestCase):
                 block = rgba[y * T:(y + 1) * T, x * T:(x + 1) * T]
                 self.assertTrue(np.array_equal(block, expected), "site %s label %d" % ((x, y), b))
 
+    def test_pieces_turned_by_orientation(self):
+        # A tileset of one F tile (8 orientations) and a model holding labels 0..7 in a row; the
+        # piece f.obj is an off-centre box, so each orientation's turn and mirror shows in where
+        # its box lands, recomputed here; mirrored boxes must stay outward (positive volume).
+        folder = tmp("f-pieces")
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        xml = os.path.join(folder, "fset.xml")
+        with open(xml, "w") as f:
+            f.write('<set><tiles><tile name="f" symmetry="F"/></tiles>'
+                    '<neighbors><neighbor left="f" right="f"/></neighbors></set>')
+        lo, hi = (0.1, 0.0, -0.1), (0.4, 0.1, 0.1)
+        corners = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+        with open(os.path.join(folder, "f.obj"), "w") as f:
+            for c in corners:
+                f.write("v %g %g %g\n" % c)
+            for face in ((1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (2, 4, 8, 6), (4, 3, 7, 8), (3, 1, 5, 7)):
+                f.write("f %d %d %d %d\n" % face)
+        model = vtkImageData()
+        model.SetDimensions(8, 1, 1)
+        labels = numpy_to_vtk(np.arange(8, dtype=np.int32), deep=True)
+        labels.SetName("Label")
+        model.GetPointData().SetScalars(labels)
+        geometry = modelsynth.vtkMSLabelGeometry()
+        out, errors = run_algorithm(geometry, data=model, PieceDirectory=folder, TilesetFile=xml,
+                                    EmptyLabel=-1)
+        self.assertEqual(errors, "")
+        points = vtk_to_numpy(out.GetPoints().GetData())
+        ids = vtk_to_numpy(out.GetPolys().GetConnectivityArray())
+        offsets = vtk_to_numpy(out.GetPolys().GetOffsetsArray())
+        cell_labels = vtk_to_numpy(out.GetCellData().GetArray("Label"))
+        for k in range(8):
+            polys = [ids[offsets[c]:offsets[c + 1]] for c in range(len(offsets) - 1) if cell_labels[c] == k]
+            self.assertEqual(len(polys), 6, "orientation %d" % k)
+            used = np.unique(np.concatenate(polys))
+            centre = points[used].mean(axis=0) - (k, 0, 0)
+            x, y = 0.25, 0.05
+            for _ in range(k % 4):
+                x, y = -y, x
+            if k >= 4:
+                x = -x
+            self.assertTrue(np.allclose(centre[:2], (x, y)), "orientation %d: %s" % (k, centre))
+            volume = sum(np.dot(points[p[0]], np.cross(points[p[i]], points[p[i + 1]]))
+                         for p in polys for i in range(1, len(p) - 1)) / 6
+            self.assertGreater(volume, 0, "orientation %d stays outward" % k)
+
     def test_errors(self):
         _, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=tmp("none.xml"),
                                   OutputSize=(4, 4, 1))

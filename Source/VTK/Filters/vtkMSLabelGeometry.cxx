@@ -4,6 +4,7 @@
 #include "vtkMSEngineBridge.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
@@ -20,7 +21,12 @@
 #include "vtkSmartPointer.h"
 #include "vtkXMLPolyDataReader.h"
 
+#include "msynth/Error.h"
+#include "msynth/Tileset.h"
 #include "msynth/VoxelSurface.h"
+
+#include <algorithm>
+#include <vector>
 
 #include <map>
 #include <set>
@@ -43,6 +49,50 @@ bool IsFile(const std::string& path)
 }
 
 /// Reads a piece mesh with the reader its extension calls for; nullptr and @p problem on error.
+/// @p piece turned to tile orientation @p orientation: (orientation mod 4) quarter turns
+/// counter-clockwise about +z, then, for 4–7, mirrored left-right with its polygons reversed.
+vtkSmartPointer<vtkPolyData> Turned(vtkPolyData* piece, int orientation)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(piece->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < piece->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    piece->GetPoint(i, p);
+    for (int r = 0; r < orientation % 4; ++r)
+    {
+      const double x = p[0];
+      p[0] = -p[1];
+      p[1] = x;
+    }
+    if (orientation >= 4)
+    {
+      p[0] = -p[0];
+    }
+    points->SetPoint(i, p);
+  }
+  vtkNew<vtkCellArray> polys;
+  auto it = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
+  std::vector<vtkIdType> ids;
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* cell;
+    it->GetCurrentCell(n, cell);
+    ids.assign(cell, cell + n);
+    if (orientation >= 4)
+    {
+      std::reverse(ids.begin(), ids.end());
+    }
+    polys->InsertNextCell(n, ids.data());
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->SetPoints(points);
+  out->SetPolys(polys);
+  return out;
+}
+
 vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& problem)
 {
   vtkSmartPointer<vtkAlgorithm> reader;
@@ -118,24 +168,56 @@ int vtkMSLabelGeometry::RequestData(
       vtkErrorMacro(<< "'" << this->PieceDirectory << "': no such folder of pieces.");
       return 0;
     }
+    msynth::Tileset tileset;
+    if (!this->TilesetFile.empty())
+    {
+      try
+      {
+        tileset = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      }
+      catch (const msynth::Error& e)
+      {
+        vtkErrorMacro(<< e.what());
+        return 0;
+      }
+    }
     const std::set<msynth::Label> present(grid.Data().begin(), grid.Data().end());
     for (msynth::Label b : present)
     {
       if (b == this->EmptyLabel)
         continue;
-      for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
+      // Candidate names, each with the orientation to turn it by (0: as it is).
+      std::vector<std::pair<std::string, int>> names{ { std::to_string(b), 0 } };
+      if (!this->TilesetFile.empty())
       {
-        const std::string path = this->PieceDirectory + "/" + std::to_string(b) + ext;
-        if (IsFile(path))
+        if (b < 0 || b >= tileset.NumberOfLabels())
         {
-          auto mesh = ReadPiece(path, problem);
-          if (!mesh)
+          vtkErrorMacro(<< "label " << b << " is not a label of the tileset '" << this->TilesetFile << "' ("
+                        << tileset.NumberOfLabels() << " labels)");
+          return 0;
+        }
+        const auto& tile = tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
+        const int k = tileset.LabelOrientation[static_cast<std::size_t>(b)];
+        names.emplace_back(tile.Name + " " + std::to_string(k), 0);
+        names.emplace_back(tile.Name, k);
+      }
+      bool found = false;
+      for (const auto& [name, turn] : names)
+      {
+        for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
+        {
+          const std::string path = this->PieceDirectory + "/" + name + ext;
+          if (!found && IsFile(path))
           {
-            vtkErrorMacro(<< problem);
-            return 0;
+            auto mesh = ReadPiece(path, problem);
+            if (!mesh)
+            {
+              vtkErrorMacro(<< problem);
+              return 0;
+            }
+            pieces[b] = turn ? Turned(mesh, turn) : mesh;
+            found = true;
           }
-          pieces[b] = mesh;
-          break;
         }
       }
     }
@@ -213,4 +295,6 @@ void vtkMSLabelGeometry::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EmptyLabel: " << this->EmptyLabel << "\n";
   os << indent << "PieceDirectory: " << this->PieceDirectory << "\n";
+  os << indent << "TilesetFile: " << this->TilesetFile << "\n";
+  os << indent << "TilesetSubset: " << this->TilesetSubset << "\n";
 }

@@ -13,6 +13,13 @@
  * surface: each site is a cube, with a face wherever it meets another label or the outside,
  * oriented outward (each label's surface is closed).
  *
+ * Tilesets: with TilesetFile (the model of vtkMSDiscreteSynthesis in tileset mode, where label
+ * i is orientation k of a tile), a label's piece may also be named after its tile: `<tile>.obj`
+ * (etc.) is turned for each orientation as the tile images are: orientation k is k quarter turns
+ * counter-clockwise about +z, and orientations 4–7 mirror 0–3 left-right (x → −x, polygons
+ * reversed so they stay outward). `<tile> <k>.obj` gives orientation k as it is. Lookup order
+ * per label: `<label>.ext`, `<tile> <k>.ext`, `<tile>.ext` (turned).
+ *
  * Output: vtkPolyData with the cell array `Label`. Sites with EmptyLabel produce nothing.
  *
  * @sa vtkMSDiscreteSynthesis, vtkMSLabelGridReader
@@ -44,6 +51,15 @@ public:
   vtkGetCharFromStdStringMacro(PieceDirectory);
   ///@}
 
+  ///@{
+  /// The tileset whose model this is (its labels are tile orientations); empty for none.
+  vtkSetStdStringFromCharMacro(TilesetFile);
+  vtkGetCharFromStdStringMacro(TilesetFile);
+  /// The tileset's subset the model was made with (label numbering depends on it).
+  vtkSetStdStringFromCharMacro(TilesetSubset);
+  vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
+
 protected:
   vtkMSLabelGeometry() = default;
   ~vtkMSLabelGeometry() override = default;
@@ -57,6 +73,8 @@ private:
 
   int EmptyLabel = 0;
   std::string PieceDirectory;
+  std::string TilesetFile;
+  std::string TilesetSubset;
 };
 
 #endif
