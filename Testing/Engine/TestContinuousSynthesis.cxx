@@ -144,7 +144,8 @@ TEST(ContinuousSynthesis, BundledExamplesPassTheCheck)
   const Case cases[] = { { "triangle2d.obj", { 16, 12, 0 }, 1 }, { "two-objects2d.obj", { 18, 12, 0 }, 0 },
     { "concave2d.obj", { 12, 12, 0 }, 0 }, { "cube.obj", { 5, 5, 3 }, 0 }, { "box-building.obj", { 16, 12, 10 }, 1 },
     { "l-prism.obj", { 8, 8, 3 }, 0 }, { "house.obj", { 18, 18, 8 }, 0 }, { "tetrahedron.obj", { 4, 4, 4 }, 0.5 },
-    { "pentagonal-prism.obj", { 14, 14, 6 }, 1 }, { "stairs.obj", { 8, 8, 6 }, 0 }, { "arch.obj", { 9, 5, 6 }, 0 } };
+    { "pentagonal-prism.obj", { 14, 14, 6 }, 1 }, { "stairs.obj", { 8, 8, 6 }, 0 }, { "arch.obj", { 9, 5, 6 }, 0 },
+    { "cottage.obj", { 6, 6, 6 }, 0 } };
   for (const Case& c : cases)
   {
     const Loaded l = Load(c.Name);
