@@ -263,7 +263,7 @@ public:
   }
 
   /// The next undecided vertex, or -1.
-  std::int64_t Next(const LabelDomains&) const
+  std::int64_t Next() const
   {
     return this->Pending.empty() ? -1 : std::get<2>(*this->Pending.begin());
   }
@@ -460,7 +460,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
       domains.Record(true);
       while (empty < 0)
       {
-        const std::int64_t i = queue.Next(domains);
+        const std::int64_t i = queue.Next();
         if (i < 0)
         {
           break;

@@ -784,18 +784,6 @@ std::vector<int> PlaneArrangement::FamiliesThrough(std::int64_t v) const
   return out;
 }
 
-std::int64_t PlaneArrangement::Neighbour(std::int64_t v, int d) const
-{
-  for (const Link* l = this->LinksBegin(v); l != this->LinksEnd(v); ++l)
-  {
-    if (l->Direction == d)
-    {
-      return l->Vertex;
-    }
-  }
-  return -2;
-}
-
 std::size_t PlaneArrangement::MemoryBytes() const
 {
   return this->Positions.capacity() * sizeof(Point3) + this->Masks.capacity() * sizeof(std::uint64_t) +

@@ -65,18 +65,6 @@ int vtkMSContinuousSynthesis::RequestInformation(
   return 1;
 }
 
-namespace
-{
-template <class ArrayType, class Value>
-void AddValue(vtkFieldData* fields, const char* name, Value value)
-{
-  vtkNew<ArrayType> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fields->AddArray(a);
-}
-} // namespace
-
 int vtkMSContinuousSynthesis::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -181,8 +169,8 @@ int vtkMSContinuousSynthesis::RequestData(
       size->SetValue(v, snap.CatalogSize[static_cast<std::size_t>(v)]);
       entropy->SetValue(v, snap.Entropy[static_cast<std::size_t>(v)]);
     }
-    AddValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
-    AddValue<vtkIdTypeArray>(output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   }
   output->GetPointData()->AddArray(label);
@@ -203,13 +191,13 @@ int vtkMSContinuousSynthesis::RequestData(
   output->GetPointData()->AddArray(entropy);
   output->GetPointData()->SetActiveScalars("Label");
   vtkFieldData* fields = output->GetFieldData();
-  AddValue<vtkIntArray>(fields, "Success", 1);
-  AddValue<vtkIdTypeArray>(fields, "Blocks", static_cast<vtkIdType>(result.Blocks));
-  AddValue<vtkIdTypeArray>(fields, "Attempts", static_cast<vtkIdType>(result.Attempts));
-  AddValue<vtkIdTypeArray>(fields, "FailedAttempts", static_cast<vtkIdType>(result.FailedAttempts));
-  AddValue<vtkIdTypeArray>(fields, "FailedBlocks", static_cast<vtkIdType>(result.FailedBlocks));
-  AddValue<vtkIdTypeArray>(fields, "Backtracks", static_cast<vtkIdType>(result.Backtracks));
-  AddValue<vtkDoubleArray>(fields, "Seconds", result.Seconds);
-  AddValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fields, "Success", 1);
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Blocks", static_cast<vtkIdType>(result.Blocks));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Attempts", static_cast<vtkIdType>(result.Attempts));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "FailedAttempts", static_cast<vtkIdType>(result.FailedAttempts));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "FailedBlocks", static_cast<vtkIdType>(result.FailedBlocks));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Backtracks", static_cast<vtkIdType>(result.Backtracks));
+  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fields, "Seconds", result.Seconds);
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
   return 1;
 }

@@ -153,18 +153,6 @@ int vtkMSDiscreteSynthesis::RequestUpdateExtent(
   return 1;
 }
 
-namespace
-{
-template <typename ArrayT, typename ValueT>
-void AddValue(vtkFieldData* fd, const char* name, ValueT value)
-{
-  vtkNew<ArrayT> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-} // namespace
-
 int vtkMSDiscreteSynthesis::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -394,10 +382,10 @@ int vtkMSDiscreteSynthesis::RequestData(
     entropy->SetNumberOfTuples(static_cast<vtkIdType>(snap.Entropy.size()));
     std::copy(snap.Entropy.begin(), snap.Entropy.end(), entropy->GetPointer(0));
     output->GetPointData()->AddArray(entropy);
-    AddValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
-    AddValue<vtkIdTypeArray>(
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
       output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
-    AddValue<vtkIdTypeArray>(
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
       output->GetFieldData(), "StepAssignments", static_cast<vtkIdType>(snap.Assignments));
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   }
@@ -409,18 +397,18 @@ int vtkMSDiscreteSynthesis::RequestData(
 
   vtkFieldData* fd = output->GetFieldData();
   const auto& s = result.Statistics;
-  AddValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
-  AddValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
-  AddValue<vtkIntArray>(fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
-  AddValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
-  AddValue<vtkIntArray>(fd, "BlocksRejected", static_cast<int>(s.BlocksRejected));
-  AddValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
-  AddValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
-  AddValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);
-  AddValue<vtkStringArray>(fd, "Message", result.Message);
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksRejected", static_cast<int>(s.BlocksRejected));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
+  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
+  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);
+  vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "Message", result.Message);
   if (s.TrivialLabel)
   {
-    AddValue<vtkIntArray>(fd, "TrivialLabel", *s.TrivialLabel);
+    vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "TrivialLabel", *s.TrivialLabel);
   }
   vtkNew<vtkIntArray> origins, sites;
   origins->SetName("FailedBlockOrigins");
@@ -448,7 +436,7 @@ int vtkMSDiscreteSynthesis::RequestData(
       names->InsertNextValue(cache.Tiles.LabelName(b));
     }
     fd->AddArray(names);
-    AddValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
+    vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
   }
   if (vtkAbstractArray* file =
         input ? input->GetFieldData()->GetAbstractArray("ExampleFile") : nullptr)

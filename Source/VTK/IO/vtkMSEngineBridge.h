@@ -11,6 +11,8 @@
 #define vtkMSEngineBridge_h
 
 #include "ModelSynthIOModule.h" // for export macro
+#include "vtkFieldData.h" // for AddFieldValue
+#include "vtkNew.h"       // for AddFieldValue
 #include "vtkObject.h"
 
 #include "msynth/LabelGrid.h"          // for msynth::LabelGrid
@@ -23,7 +25,6 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataObject;
-class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
@@ -62,6 +63,16 @@ public:
   static msynth::PolyhedralExample ToPolyhedralExample(vtkPolyData* polygons, const std::string& name);
   /// Polygons with cell arrays `ObjectType` and `ObjectId` (the inverse of the above).
   static void FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output);
+  /// Adds the one-value array @p name of type @p ArrayT (e.g. vtkIdTypeArray) to @p fields.
+  template <class ArrayT, class ValueT>
+  static void AddFieldValue(vtkFieldData* fields, const char* name, ValueT value)
+  {
+    vtkNew<ArrayT> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fields->AddArray(a);
+  }
+
   /// The example's file name from field data `ExampleFile`, else "the input".
   static std::string ExampleName(vtkDataObject* data);
   /**

@@ -86,9 +86,6 @@ public:
 
   const Link* LinksBegin(std::int64_t v) const { return this->Links.data() + this->LinkStart[static_cast<std::size_t>(v)]; }
   const Link* LinksEnd(std::int64_t v) const { return this->Links.data() + this->LinkStart[static_cast<std::size_t>(v) + 1]; }
-  /// Neighbour of @p v along direction class @p d: a vertex, -1 outside the box, -2 when no
-  /// line of the arrangement runs through @p v along @p d.
-  std::int64_t Neighbour(std::int64_t v, int d) const;
 
   /// Edges between two vertices (each once), and edges leaving the box.
   std::int64_t NumberOfEdges() const { return this->InnerEdges; }
