@@ -654,49 +654,6 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   return 0;
 }
 
-/// The polygons of a continuous model (model.vtp) with their InsideType/OutsideType (3D) or
-/// ObjectType (2D) cell arrays.
-msynth::ContinuousMesh ReadModelMesh(vtkPolyData* model, const std::string& name)
-{
-  vtkDataArray* object = model->GetCellData()->GetArray("ObjectType");
-  vtkDataArray* inside = object ? object : model->GetCellData()->GetArray("InsideType");
-  vtkDataArray* outside = model->GetCellData()->GetArray("OutsideType");
-  if (!inside || (!object && !outside))
-  {
-    throw std::runtime_error("'" + name + "': not a continuous model: it needs cell arrays InsideType "
-                                          "and OutsideType (3D) or ObjectType (2D)");
-  }
-  std::vector<msynth::Point3> points(static_cast<std::size_t>(model->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < model->GetNumberOfPoints(); ++i)
-  {
-    model->GetPoint(i, points[static_cast<std::size_t>(i)].data());
-  }
-  std::vector<std::vector<std::int32_t>> polygons;
-  std::vector<std::int32_t> in, out;
-  auto it = vtk::TakeSmartPointer(model->GetPolys()->NewIterator());
-  vtkIdType cell = model->GetNumberOfVerts() + model->GetNumberOfLines();
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
-  {
-    vtkIdType n;
-    const vtkIdType* ids;
-    it->GetCurrentCell(n, ids);
-    polygons.emplace_back(ids, ids + n);
-    in.push_back(static_cast<std::int32_t>(inside->GetTuple1(cell)));
-    if (!object)
-    {
-      out.push_back(static_cast<std::int32_t>(outside->GetTuple1(cell)));
-    }
-  }
-  try
-  {
-    return msynth::MeshFromPolygons(object != nullptr, std::move(points), std::move(polygons), std::move(in), std::move(out));
-  }
-  catch (const msynth::Error& e)
-  {
-    throw std::runtime_error("'" + name + "': " + e.what());
-  }
-}
-
 /// `msynth synthesize EXAMPLE.obj`: plane arrangement → label solver → mesh → files.
 int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
@@ -794,7 +751,7 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   }
   else
   {
-    const auto engineMesh = ReadModelMesh(model, "model");
+    const auto engineMesh = vtkMSEngineBridge::ToContinuousMesh(model, "model");
     const msynth::LabelGrid volume =
       msynth::VoxelizeModel(engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
     image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
@@ -890,7 +847,7 @@ int PolyhedralCheck(const std::string& example, const std::string& modelPath, co
   {
     throw std::runtime_error(e.what());
   }
-  const auto mesh = ReadModelMesh(modelReader->GetOutput(), modelPath);
+  const auto mesh = vtkMSEngineBridge::ToContinuousMesh(modelReader->GetOutput(), modelPath);
   const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
   if (report.Valid)
   {

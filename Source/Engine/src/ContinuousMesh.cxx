@@ -257,6 +257,24 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
   return mesh;
 }
 
+std::map<int, std::vector<std::vector<std::int32_t>>> SurfacesByType(const ContinuousMesh& mesh)
+{
+  std::map<int, std::vector<std::vector<std::int32_t>>> out;
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    const auto& poly = mesh.Polygons[f];
+    if (mesh.InsideType[f] > 0)
+    {
+      out[mesh.InsideType[f]].push_back(poly);
+    }
+    if (!mesh.Planar && mesh.OutsideType[f] > 0)
+    {
+      out[mesh.OutsideType[f]].emplace_back(poly.rbegin(), poly.rend());
+    }
+  }
+  return out;
+}
+
 PolyhedralExample MeshToModel(const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
 {
   PolyhedralExample model;
@@ -264,18 +282,12 @@ PolyhedralExample MeshToModel(const ContinuousMesh& mesh, const std::map<int, st
   model.Source = "synthesized model";
   model.TypeNames = typeNames;
   std::vector<int> faceType;
-  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  for (auto& [type, polygons] : SurfacesByType(mesh))
   {
-    const auto& poly = mesh.Polygons[f];
-    if (mesh.InsideType[f] > 0)
+    for (auto& poly : polygons)
     {
       model.Faces.emplace_back(poly.begin(), poly.end());
-      faceType.push_back(mesh.InsideType[f]);
-    }
-    if (!mesh.Planar && mesh.OutsideType[f] > 0)
-    {
-      model.Faces.emplace_back(poly.rbegin(), poly.rend());
-      faceType.push_back(mesh.OutsideType[f]);
+      faceType.push_back(type);
     }
   }
   // Objects: faces of one type joined through shared edges.

@@ -482,3 +482,44 @@ std::size_t vtkMSEngineBridge::RequestedStep(vtkInformation* outInfo, std::size_
   return static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
 }
 
+msynth::ContinuousMesh vtkMSEngineBridge::ToContinuousMesh(vtkPolyData* model, const std::string& name)
+{
+  vtkDataArray* object = model->GetCellData()->GetArray("ObjectType");
+  vtkDataArray* inside = object ? object : model->GetCellData()->GetArray("InsideType");
+  vtkDataArray* outside = model->GetCellData()->GetArray("OutsideType");
+  if (!inside || (!object && !outside))
+  {
+    throw msynth::Error::InFile(name, "not a continuous model: it needs cell arrays InsideType "
+                                      "and OutsideType (3D) or ObjectType (2D)");
+  }
+  std::vector<msynth::Point3> points(static_cast<std::size_t>(model->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < model->GetNumberOfPoints(); ++i)
+  {
+    model->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+  }
+  std::vector<std::vector<std::int32_t>> polygons;
+  std::vector<std::int32_t> in, out;
+  auto it = vtk::TakeSmartPointer(model->GetPolys()->NewIterator());
+  vtkIdType cell = model->GetNumberOfVerts() + model->GetNumberOfLines();
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    polygons.emplace_back(ids, ids + n);
+    in.push_back(static_cast<std::int32_t>(inside->GetTuple1(cell)));
+    if (!object)
+    {
+      out.push_back(static_cast<std::int32_t>(outside->GetTuple1(cell)));
+    }
+  }
+  try
+  {
+    return msynth::MeshFromPolygons(
+      object != nullptr, std::move(points), std::move(polygons), std::move(in), std::move(out));
+  }
+  catch (const msynth::Error& e)
+  {
+    throw msynth::Error::InFile(name, e.what());
+  }
+}

@@ -15,6 +15,7 @@
 #include "vtkNew.h"       // for AddFieldValue
 #include "vtkObject.h"
 
+#include "msynth/ContinuousMesh.h"     // for msynth::ContinuousMesh
 #include "msynth/LabelGrid.h"          // for msynth::LabelGrid
 #include "msynth/PlaneArrangement.h"   // for msynth::ArrangementParameters
 #include "msynth/PolyhedralAnalysis.h" // for msynth::PolyhedralAnalysis
@@ -61,6 +62,12 @@ public:
    * @p name is used in messages. @throw msynth::Error when there are no polygons.
    */
   static msynth::PolyhedralExample ToPolyhedralExample(vtkPolyData* polygons, const std::string& name);
+  /**
+   * A synthesized continuous model (vtkMSArrangementMesh's output, or model.vtp read back): its
+   * polygons with the cell arrays InsideType and OutsideType (3D) or ObjectType (2D).
+   * @throw msynth::Error naming @p name when the arrays are missing or a polygon is bad.
+   */
+  static msynth::ContinuousMesh ToContinuousMesh(vtkPolyData* model, const std::string& name);
   /// Polygons with cell arrays `ObjectType` and `ObjectId` (the inverse of the above).
   static void FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output);
   /// Adds the one-value array @p name of type @p ArrayT (e.g. vtkIdTypeArray) to @p fields.

@@ -435,45 +435,38 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
       throw msynth::Error("the mesh is flat (a 2D model encloses no volume); level sets need closed 3D surfaces");
     }
     const double voxel = this->VoxelSize > 0 ? this->VoxelSize : extent / 256.0;
-    std::vector<std::array<double, 3>> points(static_cast<std::size_t>(input->GetNumberOfPoints()));
-    for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-    {
-      input->GetPoint(i, points[static_cast<std::size_t>(i)].data());
-    }
-    vtkDataArray* inside = input->GetCellData()->GetArray("InsideType");
-    vtkDataArray* outside = input->GetCellData()->GetArray("OutsideType");
-    const bool typed = inside && outside;
     auto* names = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TypeNames"));
-    // Polygons per grid: the whole model (interfaces with empty space), and per type.
-    std::map<int, std::vector<std::vector<std::int32_t>>> perType;
+    // Polygons per grid: the whole model (its interfaces with empty space), and per type.
+    std::vector<std::array<double, 3>> points;
     std::vector<std::vector<std::int32_t>> all;
-    const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    vtkIdType cell = firstPoly;
-    auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-    for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cell)
+    std::map<int, std::vector<std::vector<std::int32_t>>> perType;
+    if (input->GetCellData()->GetArray("InsideType") && input->GetCellData()->GetArray("OutsideType"))
     {
-      vtkIdType n;
-      const vtkIdType* ids;
-      polys->GetCurrentCell(n, ids);
-      std::vector<std::int32_t> poly(ids, ids + n);
-      if (!typed)
+      msynth::ContinuousMesh model = vtkMSEngineBridge::ToContinuousMesh(input, this->CurrentFileName);
+      perType = msynth::SurfacesByType(model);
+      for (std::size_t f = 0; f < model.Polygons.size(); ++f)
       {
-        all.push_back(poly);
-        continue;
+        if (model.OutsideType[f] == 0)
+        {
+          all.push_back(std::move(model.Polygons[f]));
+        }
       }
-      const int in = static_cast<int>(inside->GetTuple1(cell));
-      const int out = static_cast<int>(outside->GetTuple1(cell));
-      if (out == 0)
+      points = std::move(model.Points);
+    }
+    else
+    {
+      points.resize(static_cast<std::size_t>(input->GetNumberOfPoints()));
+      for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
       {
-        all.push_back(poly);
+        input->GetPoint(i, points[static_cast<std::size_t>(i)].data());
       }
-      if (in > 0)
+      auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+      for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
       {
-        perType[in].push_back(poly);
-      }
-      if (out > 0)
-      {
-        perType[out].emplace_back(poly.rbegin(), poly.rend());
+        vtkIdType n;
+        const vtkIdType* ids;
+        polys->GetCurrentCell(n, ids);
+        all.emplace_back(ids, ids + n);
       }
     }
     std::vector<msynth::vdb::MeshGridView> meshes;

@@ -43,6 +43,12 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
   const std::vector<std::int32_t>& labels);
 
 /**
+ * Each object type's closed surface: in 3D the polygons with InsideType t as they are and those
+ * with OutsideType t reversed; in 2D the faces of type t. Empty space (type 0) is left out.
+ */
+std::map<int, std::vector<std::vector<std::int32_t>>> SurfacesByType(const ContinuousMesh& mesh);
+
+/**
  * The mesh as a polyhedral model: per object type, its closed surfaces (connected components)
  * as objects, type names from @p typeNames.
  */
