@@ -464,6 +464,25 @@ struct SynthesizeArguments
   int Snapshots = 0;
 };
 
+/// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
+/// 0: the writer's default) with file metadata @p key = @p value.
+void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel, const char* key,
+  const std::string& value)
+{
+  vtkNew<vtkMSOpenVDBWriter> catalog;
+  catalog->SetInputConnection(source->GetOutputPort());
+  catalog->SetFileName((dir + "/catalog.vdb").c_str());
+  catalog->SetVoxelSize(voxel);
+  catalog->WriteTimeStepsOn();
+  catalog->AddMetadata(key, value.c_str());
+  vtkNew<vtkMSEngineBridge> errors;
+  errors->Watch(catalog);
+  if (!catalog->Write() || errors->HasErrors())
+  {
+    throw std::runtime_error(errors->GetMessages());
+  }
+}
+
 int Synthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
   vtkNew<vtkMSLabelGridReader> reader;
@@ -611,17 +630,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   if (a.Snapshots > 0)
   {
     // The catalog at every snapshot: DIR/catalog_0001.vdb, ... (Label, CatalogSize, Entropy).
-    vtkNew<vtkMSOpenVDBWriter> catalog;
-    catalog->SetInputConnection(synthesis->GetOutputPort());
-    catalog->SetFileName((dir + "/catalog.vdb").c_str());
-    catalog->WriteTimeStepsOn();
-    catalog->AddMetadata("seed", std::to_string(a.Seed).c_str());
-    vtkNew<vtkMSEngineBridge> errors;
-    errors->Watch(catalog);
-    if (!catalog->Write() || errors->HasErrors())
-    {
-      throw std::runtime_error(errors->GetMessages());
-    }
+    WriteCatalogSequence(synthesis, dir, 0, "seed", std::to_string(a.Seed));
     picture += ", " + dir + "/catalog_0001.vdb ...";
   }
 
@@ -709,17 +718,13 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   const bool planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
   double bounds[6];
   labelled->GetBounds(bounds);
+  const auto record = vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), example);
+  const msynth::PlaneFamilySet families(record.Normals);
   double smallest = 0;
-  if (auto* spacings = labelled->GetFieldData()->GetArray("FamilySpacings"))
+  for (int f = 0; f < families.Size(); ++f)
   {
-    auto* normals = labelled->GetFieldData()->GetArray("FamilyNormals");
-    const double quantum = labelled->GetFieldData()->GetArray("ArrangementQuantum")->GetTuple1(0);
-    for (vtkIdType f = 0; f < spacings->GetNumberOfTuples(); ++f)
-    {
-      const double* n = normals->GetTuple3(f);
-      const double world = spacings->GetTuple1(f) * quantum / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      smallest = f == 0 ? world : std::min(smallest, world);
-    }
+    const double world = record.Parameters.Spacing(families, f);
+    smallest = f == 0 ? world : std::min(smallest, world);
   }
   const int axes = planar ? 2 : 3;
   double extent = 0;
@@ -775,18 +780,8 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   if (a.Snapshots > 0)
   {
     // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
-    vtkNew<vtkMSOpenVDBWriter> catalog;
-    catalog->SetInputConnection(synthesis->GetOutputPort());
-    catalog->SetFileName((dir + "/catalog.vdb").c_str());
-    catalog->SetVoxelSize(a.Voxel > 0 ? a.Voxel : std::max(smallest / 2, extent / 128));
-    catalog->WriteTimeStepsOn();
-    catalog->AddMetadata("example", example.c_str());
-    vtkNew<vtkMSEngineBridge> errors;
-    errors->Watch(catalog);
-    if (!catalog->Write() || errors->HasErrors())
-    {
-      throw std::runtime_error(errors->GetMessages());
-    }
+    WriteCatalogSequence(
+      synthesis, dir, a.Voxel > 0 ? a.Voxel : std::max(smallest / 2, extent / 128), "example", example);
     sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" + std::to_string(10000 + a.Snapshots + 1).substr(1) + ".vdb";
   }
 
