@@ -111,18 +111,19 @@ void CompatibilityRelation::UnionOf(int d, const std::uint64_t* domain, std::uin
 
 void LabelDomains::Reset(std::int64_t n, int k)
 {
-  const int w = (k + 63) / 64;
-  std::vector<std::uint64_t> full(static_cast<std::size_t>(w), ~std::uint64_t(0));
-  if (k % 64)
-  {
-    full.back() = (std::uint64_t(1) << (k % 64)) - 1;
-  }
-  std::vector<std::uint64_t> bits(static_cast<std::size_t>(n) * w);
+  // Every label possible: all bits below k set, written in place (blocks reset often).
+  this->K = k;
+  this->W = (k + 63) / 64;
+  this->Bits.resize(static_cast<std::size_t>(n) * this->W);
   for (std::size_t s = 0; s < static_cast<std::size_t>(n); ++s)
   {
-    std::copy(full.begin(), full.end(), bits.begin() + static_cast<std::ptrdiff_t>(s * w));
+    for (int w = 0; w < this->W; ++w)
+    {
+      const bool last = w == this->W - 1 && k % 64;
+      this->Bits[s * this->W + w] = last ? (std::uint64_t(1) << (k % 64)) - 1 : ~std::uint64_t(0);
+    }
   }
-  this->Reset(n, k, std::move(bits));
+  this->Start(n);
 }
 
 void LabelDomains::Reset(std::int64_t n, int k, std::vector<std::uint64_t> initial)
@@ -134,6 +135,11 @@ void LabelDomains::Reset(std::int64_t n, int k, std::vector<std::uint64_t> initi
     throw Error("label domains: initial sets have the wrong size");
   }
   this->Bits = std::move(initial);
+  this->Start(n);
+}
+
+void LabelDomains::Start(std::int64_t n)
+{
   this->Counts.resize(static_cast<std::size_t>(n));
   this->DecidedSites = 0;
   this->EmptySite = -1;

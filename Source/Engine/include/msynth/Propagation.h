@@ -175,6 +175,8 @@ public:
   }
 
 private:
+  /// Counts, queue and trail for @p n sites whose sets are in Bits.
+  void Start(std::int64_t n);
   bool Restrict(std::int64_t site, const std::uint64_t* mask);
   void Push(std::int64_t site);
 
