@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "msynth/DiscreteSynthesis.h"
 
+#include "SymmetryPlan.h"
+
 #include "msynth/Catalog.h"
 #include "msynth/Error.h"
 #include "msynth/Random.h"
@@ -263,17 +265,20 @@ public:
   /// A solver over @p shared; the first solver of a run sizes it, later ones (one per extra
   /// thread) share it with their own catalog and scratch space.
   Solver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan,
-    SharedModel& shared)
+    const detail::SymmetryPlan* seams, SharedModel& shared)
     : Rules(rules)
     , Options(options)
     , Cat(rules)
     , Plan(plan)
+    , Seams(seams)
     , Model(shared.Model)
     , Fixed(shared.Fixed)
     , LastBlock(shared.LastBlock)
   {
     this->N = options.Size;
     LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
+    if (seams)
+      this->Cat.SetArcs(seams->Relation.get(), &seams->Arcs);
     const auto sites = static_cast<std::size_t>(this->N[0] * this->N[1] * this->N[2]);
     if (this->Model.empty())
     {
@@ -453,6 +458,10 @@ public:
   bool KeepSiteConstraints(Catalog& cat, std::int64_t local, const Coord& p)
   {
     const int words = this->Rules.Words();
+    if (this->Seams) // its masks hold the seams' unary constraints and the guide at every image
+      return !this->Seams->HasMasks() ||
+        cat.Keep(local,
+          this->Seams->SiteMasks.data() + static_cast<std::size_t>(this->Index(p)) * words);
     if (this->Plan)
     {
       for (int a = 0; a < 3; ++a)
@@ -493,7 +502,8 @@ public:
     {
       // floor((p + 1/2) · D / N) in integers: (2p + 1) · D / (2N).
       // The guide spans the full output, also when only a half is synthesized.
-      const std::int64_t n = this->Plan ? this->Plan->Full[a] : this->N[a];
+      const std::int64_t n =
+        this->Plan ? this->Plan->Full[a] : (this->Seams ? this->Seams->Full[a] : this->N[a]);
       c[a] = std::min(this->GuideDims[a] - 1, ((2 * p[a] + 1) * this->GuideDims[a]) / (2 * n));
     }
     return c[0] + this->GuideDims[0] * (c[1] + this->GuideDims[1] * c[2]);
@@ -685,7 +695,40 @@ public:
                 ", which the example never does");
             }
           }
+    if (this->Seams)
+      this->CheckStartAgainstSeams(t);
     return t;
+  }
+
+  /// The trivial start must also satisfy the symmetry's seams and unary constraints.
+  void CheckStartAgainstSeams(int t) const
+  {
+    const auto& v = this->Rules.LabelValues();
+    const SiteArcs& arcs = this->Seams->Arcs;
+    const int words = this->Rules.Words();
+    for (std::size_t s = 0; s < this->Model.size(); ++s)
+    {
+      const int b = this->Model[s];
+      const std::uint64_t* mask = this->Seams->HasMasks()
+        ? this->Seams->SiteMasks.data() + s * static_cast<std::size_t>(words)
+        : nullptr;
+      bool ok = !mask || ((mask[b / 64] >> (b % 64)) & 1u);
+      for (std::int64_t i = arcs.Start[s]; ok && i < arcs.Start[s + 1]; ++i)
+        ok = this->Seams->Relation->Allowed(arcs.Class[static_cast<std::size_t>(i)], b,
+          this->Model[static_cast<std::size_t>(arcs.Target[static_cast<std::size_t>(i)])]);
+      if (!ok)
+        throw Error("no usable trivial start: a model of label " +
+          std::to_string(v[static_cast<std::size_t>(t)]) +
+          " (with the boundary labels) does not meet its own symmetric copies at " +
+          Format(this->Coordinates(static_cast<std::int64_t>(s))) +
+          "; the trivial label must be its own image under the symmetry's label map");
+    }
+  }
+
+  Coord Coordinates(std::int64_t index) const
+  {
+    return { { index % this->N[0], (index / this->N[0]) % this->N[1],
+      index / (this->N[0] * this->N[1]) } };
   }
 
   /// One attempt at a block (lines 9-29 of Algorithm 3.4). Returns -1 on success, else the
@@ -734,6 +777,25 @@ public:
         const int label = this->Model[static_cast<std::size_t>(this->Index(q))];
         if (label >= 0 && !cat.Constrain(local, Opposite(d), label))
           return fail(local);
+      }
+      if (this->Seams) // seams to sites outside the block
+      {
+        const SiteArcs& arcs = this->Seams->Arcs;
+        const std::int64_t g = this->Index(p);
+        for (std::int64_t i = arcs.Start[static_cast<std::size_t>(g)];
+             i < arcs.Start[static_cast<std::size_t>(g + 1)]; ++i)
+        {
+          const std::int64_t t = arcs.Target[static_cast<std::size_t>(i)];
+          const Coord q{ { t % this->N[0], (t / this->N[0]) % this->N[1],
+            t / (this->N[0] * this->N[1]) } };
+          if (q[0] >= o[0] && q[1] >= o[1] && q[2] >= o[2] && q[0] < o[0] + m[0] &&
+            q[1] < o[1] + m[1] && q[2] < o[2] + m[2])
+            continue; // inside the block: propagated by the catalog
+          const int label = this->Model[static_cast<std::size_t>(t)];
+          if (label >= 0 &&
+            !cat.Constrain(local, arcs.Class[static_cast<std::size_t>(i)] ^ 1, label))
+            return fail(local);
+        }
       }
     }
     std::int64_t empty = cat.Propagate();
@@ -1010,6 +1072,7 @@ public:
   const SynthesisOptions& Options;
   Catalog Cat;
   const MirrorPlan* Plan;                        ///< symmetric synthesis of a half, or nullptr
+  const detail::SymmetryPlan* Seams;             ///< translation/rotation: a domain, or nullptr
   std::vector<int> ExampleIndex;                 ///< resemblance: the example as label indices
   std::vector<std::array<int, 3>> WindowOffsets; ///< resemblance: window offsets but the centre
   std::vector<std::int64_t> ResemblanceCounts;
@@ -1038,8 +1101,16 @@ std::int64_t CountBlocks(const SynthesisOptions& requested)
   LabelGrid::CheckDimensions(requested.Size[0], requested.Size[1], requested.Size[2]);
   SynthesisOptions options = requested;
   for (int a = 0; a < 3; ++a)
+  {
     if (requested.Symmetry[static_cast<std::size_t>(a)].Enabled)
       options.Size[a] = (requested.Size[a] + 1) / 2; // the synthesized half
+    const Translation& t = requested.Translate[static_cast<std::size_t>(a)];
+    if (t.Enabled && t.Period > 0 && t.Period < requested.Size[a])
+      options.Size[a] = t.Period; // one period
+  }
+  if (requested.Rotate.Enabled)
+    for (int a = 0; a < 2; ++a)
+      options.Size[a] = (requested.Size[a] + 1) / 2; // a quadrant
   Coord m, step;
   BlockGeometry(options, m, step);
   std::int64_t count = 1;
@@ -1057,8 +1128,8 @@ std::int64_t CountSnapshots(const SynthesisOptions& options)
 
 namespace
 {
-SynthesisResult SynthesizeDirect(
-  const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan)
+SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOptions& options,
+  const MirrorPlan* plan, const detail::SymmetryPlan* seams)
 {
   const auto start = std::chrono::steady_clock::now();
   if (options.AttemptsPerBlock < 1)
@@ -1066,7 +1137,7 @@ SynthesisResult SynthesizeDirect(
     throw Error("attempts per block must be at least 1");
   }
   SharedModel shared;
-  Solver solver(rules, options, plan, shared);
+  Solver solver(rules, options, plan, seams, shared);
   const Coord& n = solver.N;
   Coord m, step;
   const bool wholeModel = BlockGeometry(options, m, step);
@@ -1228,12 +1299,12 @@ SynthesisResult SynthesizeDirect(
   // model is therefore the same for any number of threads. Snapshots need one thread.
   unsigned threads = options.Threads > 0 ? static_cast<unsigned>(options.Threads)
                                          : std::max(1u, std::thread::hardware_concurrency());
-  if (solver.Snapshots() || blocks.size() < 2)
-    threads = 1;
+  if (solver.Snapshots() || blocks.size() < 2 || (seams && !seams->Arcs.Empty()))
+    threads = 1; // seams link blocks of one phase
   stats.Threads = static_cast<int>(threads);
   std::vector<std::unique_ptr<Solver>> workers;
   for (unsigned t = 1; t < threads; ++t)
-    workers.push_back(std::make_unique<Solver>(rules, options, plan, shared));
+    workers.push_back(std::make_unique<Solver>(rules, options, plan, seams, shared));
 
   solver.StartSnapshots();
   bool cancelled = false;
@@ -1317,14 +1388,80 @@ SynthesisResult SynthesizeDirect(
   return result;
 }
 
+/// Translation or rotation symmetry: synthesizes the plan's domain with its seams, then repeats
+/// (turns) it over the output with the labels mapped.
+SynthesisResult SynthesizeSeamSymmetric(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  const auto plan = detail::PlanSymmetry(rules, options);
+  const auto& values = rules.LabelValues();
+  const Coord& full = plan->Full;
+  const auto n = static_cast<std::size_t>(full[0] * full[1] * full[2]);
+  SynthesisOptions domain = plan->DomainOptions;
+  if (options.OnSnapshot)
+  {
+    domain.OnSnapshot = [&](const CatalogSnapshot& d)
+    {
+      CatalogSnapshot out;
+      out.Step = d.Step;
+      out.Block = d.Block;
+      out.Assignments = d.Assignments;
+      out.CatalogSize.resize(n);
+      out.Entropy.resize(n);
+      out.Labels.resize(n);
+      Coord q;
+      std::size_t i = 0;
+      for (q[2] = 0; q[2] < full[2]; ++q[2])
+        for (q[1] = 0; q[1] < full[1]; ++q[1])
+          for (q[0] = 0; q[0] < full[0]; ++q[0], ++i)
+          {
+            const auto j = static_cast<std::size_t>(plan->Source(q));
+            out.CatalogSize[i] = d.CatalogSize[j];
+            out.Entropy[i] = d.Entropy[j];
+            const Label v = d.Labels[j];
+            out.Labels[i] = v == CatalogSnapshot::Undecided
+              ? v
+              : values[static_cast<std::size_t>(plan->Image(q, rules.IndexOf(v)))];
+          }
+      options.OnSnapshot(out);
+    };
+  }
+  SynthesisResult r = SynthesizeDirect(rules, domain, nullptr, plan.get());
+  if (!r.Success)
+    return r;
+  LabelGrid model(full[0], full[1], full[2]);
+  std::vector<std::int32_t> lastBlock(n);
+  Coord q;
+  for (q[2] = 0; q[2] < full[2]; ++q[2])
+    for (q[1] = 0; q[1] < full[1]; ++q[1])
+      for (q[0] = 0; q[0] < full[0]; ++q[0])
+      {
+        const std::int64_t j = plan->Source(q);
+        const Coord p{ { j % plan->Domain[0], (j / plan->Domain[0]) % plan->Domain[1],
+          j / (plan->Domain[0] * plan->Domain[1]) } };
+        model.Set(q[0], q[1], q[2],
+          values[static_cast<std::size_t>(
+            plan->Image(q, rules.IndexOf(r.Model.At(p[0], p[1], p[2]))))]);
+        lastBlock[static_cast<std::size_t>(model.Index(q[0], q[1], q[2]))] =
+          r.LastBlock[static_cast<std::size_t>(j)];
+      }
+  r.Model = std::move(model);
+  r.LastBlock = std::move(lastBlock);
+  r.Message += plan->Rotate ? " (turned copies of a quadrant)" : " (repeated periods)";
+  return r;
+}
+
 } // namespace
 
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  if (AnyMirror(options) && detail::AnySeamSymmetry(options))
+    throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
   if (!AnyMirror(options))
   {
-    return SynthesizeDirect(rules, options, nullptr);
+    return detail::AnySeamSymmetry(options) ? SynthesizeSeamSymmetric(rules, options)
+                                    : SynthesizeDirect(rules, options, nullptr, nullptr);
   }
   const MirrorPlan plan = PlanMirror(rules, options);
   const auto& values = rules.LabelValues();
@@ -1375,7 +1512,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
       options.OnSnapshot(full);
     };
   }
-  SynthesisResult r = SynthesizeDirect(rules, half, &plan);
+  SynthesisResult r = SynthesizeDirect(rules, half, &plan, nullptr);
   if (!r.Success)
   {
     return r;

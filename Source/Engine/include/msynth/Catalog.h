@@ -22,13 +22,39 @@
 namespace msynth
 {
 
+/**
+ * Extra constraints between sites that are not axis neighbours (the seams of translation and
+ * rotation symmetry, dissertation §3.5.2), over a box of sites indexed x fastest: site s is
+ * linked to Target[i] for Start[s] <= i < Start[s + 1], with direction class Class[i] (>= 6) of
+ * the relation given to Catalog::SetArcs. Every arc is stored in both directions, the second
+ * with class Class ^ 1.
+ */
+struct SiteArcs
+{
+  std::array<std::int64_t, 3> Dims{ { 0, 0, 0 } };
+  std::vector<std::int64_t> Start;
+  std::vector<std::int64_t> Target;
+  std::vector<int> Class;
+  bool Empty() const { return this->Target.empty(); }
+};
+
 class Catalog : public LabelDomains
 {
 public:
   explicit Catalog(const AdjacencyRules& rules)
     : Rules(rules)
+    , Relation(&rules)
   {
   }
+
+  /// Adds @p arcs (not owned) to the neighbourhood; @p relation (not owned) has the six axis
+  /// classes of the rules and the arcs' classes.
+  void SetArcs(const CompatibilityRelation* relation, const SiteArcs* arcs)
+  {
+    this->Relation = relation;
+    this->Arcs = arcs;
+  }
+  const CompatibilityRelation& Relations() const { return *this->Relation; }
 
   /// Makes the region the box [origin, origin + dims) with every label possible everywhere.
   void Reset(const std::array<std::int64_t, 3>& origin, const std::array<std::int64_t, 3>& dims);
@@ -43,10 +69,10 @@ public:
   std::array<std::int64_t, 3> Coordinates(std::int64_t local) const;
 
   /// Keeps at @p local only labels allowed next to label @p b of a fixed site outside the
-  /// region, reached from that site along direction @p d. Returns false if nothing is left.
+  /// region, reached from that site along direction @p d (an axis direction or an arc class). Returns false if nothing is left.
   bool Constrain(std::int64_t local, int d, int b)
   {
-    return this->Keep(local, this->Rules.Compatible(d, b));
+    return this->Keep(local, this->Relation->Compatible(d, b));
   }
 
   /**
@@ -57,6 +83,8 @@ public:
 
 private:
   const AdjacencyRules& Rules;
+  const CompatibilityRelation* Relation;
+  const SiteArcs* Arcs = nullptr;
   std::array<std::int64_t, 3> RegionOrigin{ { 0, 0, 0 } };
   std::array<std::int64_t, 3> RegionDims{ { 0, 0, 0 } };
 };

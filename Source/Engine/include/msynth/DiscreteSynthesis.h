@@ -105,6 +105,37 @@ struct Mirror
 };
 
 /**
+ * Translation symmetry (dissertation §3.5.2) along one axis: M(x + P) = f(M(x)) for a period P,
+ * and the model continues across each period: T[M(P − 1), f(M(0))] along the axis. With
+ * P = the output size and f the identity the output tiles seamlessly (a periodic model). f maps
+ * each label to its image one period on (labels not listed map to themselves); it must be a
+ * permutation of the labels that preserves the example's rules along every axis
+ * (T[b, c] = T[f(b), f(c)]), and the maps of several translated axes must commute. One period
+ * is synthesized, with the seam as extra constraints, and repeated.
+ */
+struct Translation
+{
+  bool Enabled = false;
+  std::int64_t Period = 0; ///< P; 0 means the output size (a tileable model)
+  std::map<Label, Label> Map;
+};
+
+/**
+ * Rotation symmetry (dissertation §3.5.2) by 90° about the vertical axis through the centre of
+ * the output (which must be square in x and y): M(n − 1 − y, x, z) = f(M(x, y, z)), the model
+ * turned a quarter counter-clockwise is f of itself. f maps each label to its image turned a
+ * quarter counter-clockwise (a tileset's orientation k to k + 1); f⁴ must be the identity and f
+ * must carry the rules along x to those along y: T_x[b, c] = T_y[f(b), f(c)],
+ * T_y[b, c] = T_x[f(c), f(b)], T_z[b, c] = T_z[f(b), f(c)]. A quadrant is synthesized, with the
+ * seams to its turned copies as extra constraints, and turned into the other three.
+ */
+struct Rotation
+{
+  bool Enabled = false;
+  std::map<Label, Label> Map;
+};
+
+/**
  * Soft constraints (2007 paper, §4.2): each block's change is kept with the Metropolis
  * probability min(1, f(M') / f(M)), otherwise rolled back, so models that fit better are more
  * likely. Built in: target fractions of labels, with f(M) = exp(−E / T) and
@@ -150,12 +181,17 @@ struct SynthesisOptions
   std::optional<Label> TrivialLabel;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
+  /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.
+  std::array<Translation, 3> Translate;
+  /// Rotation symmetry about the vertical axis; cannot be combined with mirrors or translation.
+  Rotation Rotate;
   /// Soft constraints; inactive by default.
   SoftConstraint Soft;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
   /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
-  /// model is the same for any number of threads. Runs with snapshots use one thread.
+  /// model is the same for any number of threads. Runs with snapshots, and runs with translation
+  /// or rotation symmetry (whose seams link distant blocks), use one thread.
   int Threads = 0;
   /// Called after each block (one thread) or each phase (several) with the fraction done, on
   /// the calling thread; returning false cancels the run.
