@@ -100,11 +100,19 @@ synthesize options:
   --choice CHOICE     uniform (default), frequency (labels weighted by the example) or
                       resemblance (favour labels whose 3x3x3 surroundings match the example)
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
-  --empty LABEL       fix LABEL on every other face (usually the empty label 0)
+  --empty LABEL       fix LABEL on every other face (usually the empty label 0) but those
+                      of translated axes
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels);
                       with a tileset also DIR/<tile>.obj, turned for each orientation
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
   --swap A:B          labels A and B are each other's mirror images (repeatable)
+  --translate AXES    make the output repeat along AXES (x, y, z or e.g. xy); with the
+                      default period (the output size) it tiles seamlessly
+  --period PX PY PZ   periods of the translated axes (0: the output size)
+  --shift A:B         label A's image one period on is B (repeatable; default: itself)
+  --rotate            make the output look the same turned 90 degrees about the vertical
+                      (needs a square output in x and y)
+  --turn A:B          label A turned 90 degrees counter-clockwise is B (repeatable)
   --subset NAME       with a tileset: use the tiles of its subset NAME
   --types N=T,...     with an OBJ example: object (or base) name N has object type T
   --target L:F        soft constraint: aim for fraction F of label L (repeatable; needs --block)
@@ -455,6 +463,11 @@ struct SynthesizeArguments
   double Temperature = 0.01;
   std::array<int, 3> Mirror{ { 0, 0, 0 } };
   std::string Swaps;
+  std::array<int, 3> Translate{ { 0, 0, 0 } };
+  std::array<int, 3> Period{ { 0, 0, 0 } };
+  std::string Shifts;
+  bool Rotate = false;
+  std::string Turns;
   // Continuous synthesis.
   std::array<double, 3> RealSize{ { 0, 0, 0 } };
   double Spacing = 0;
@@ -516,8 +529,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
       use[f] = 1;
       labels[f] = a.Ground;
     }
-    else if (f != bottom && a.HasEmpty)
-    {
+    else if (f != bottom && a.HasEmpty && !a.Translate[static_cast<std::size_t>(f / 2)])
+    { // a translated axis has no faces: the model repeats across them
       use[f] = 1;
       labels[f] = a.Empty;
     }
@@ -528,6 +541,11 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   synthesis->SetTargetFractions(a.Targets.c_str());
   synthesis->SetSoftTemperature(a.Temperature);
   synthesis->SetMirrorSwaps(a.Swaps.c_str());
+  synthesis->SetTranslate(a.Translate.data());
+  synthesis->SetTranslationPeriod(a.Period.data());
+  synthesis->SetTranslationMap(a.Shifts.c_str());
+  synthesis->SetRotate(a.Rotate);
+  synthesis->SetRotationMap(a.Turns.c_str());
   synthesis->SetCatalogSnapshotsPerBlock(a.Snapshots);
   vtkNew<vtkXMLImageDataReader> guide;
   if (!a.Guide.empty())
@@ -1049,7 +1067,32 @@ int Main(const std::vector<std::string>& args)
       }
       continue;
     }
-    if (args[i] == "--mirror" || args[i] == "--swap")
+    if (args[i] == "--rotate")
+    {
+      synth.Rotate = true;
+      continue;
+    }
+    if (args[i] == "--period")
+    {
+      if (i + 3 >= args.size())
+      {
+        throw UsageError{ "--period needs three values" };
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        const std::string v = args[++i];
+        char* end = nullptr;
+        const long p = std::strtol(v.c_str(), &end, 10);
+        if (end == v.c_str() || *end || p < 0 || p > (1L << 30))
+        {
+          throw UsageError{ "--period: '" + v + "' is not a period (0 or a positive integer)" };
+        }
+        synth.Period[static_cast<std::size_t>(a)] = static_cast<int>(p);
+      }
+      continue;
+    }
+    if (args[i] == "--mirror" || args[i] == "--swap" || args[i] == "--translate" ||
+      args[i] == "--shift" || args[i] == "--turn")
     {
       const std::string option = args[i];
       if (i + 1 >= args.size())
@@ -1057,20 +1100,23 @@ int Main(const std::vector<std::string>& args)
         throw UsageError{ option + " needs a value" };
       }
       const std::string v = args[++i];
-      if (option == "--mirror")
+      if (option == "--mirror" || option == "--translate")
       {
         for (const char c : v)
         {
           if (c < 'x' || c > 'z')
           {
-            throw UsageError{ "--mirror: '" + v + "' is not a set of axes x, y, z" };
+            throw UsageError{ option + ": '" + v + "' is not a set of axes x, y, z" };
           }
-          synth.Mirror[static_cast<std::size_t>(c - 'x')] = 1;
+          (option == "--mirror" ? synth.Mirror : synth.Translate)[static_cast<std::size_t>(
+            c - 'x')] = 1;
         }
       }
       else
       {
-        synth.Swaps += (synth.Swaps.empty() ? "" : ",") + v;
+        std::string& list =
+          option == "--swap" ? synth.Swaps : (option == "--shift" ? synth.Shifts : synth.Turns);
+        list += (list.empty() ? "" : ",") + v;
       }
       continue;
     }

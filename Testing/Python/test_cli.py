@@ -6,6 +6,8 @@ import shutil
 import subprocess
 import unittest
 
+import numpy as np
+
 import modelsynth
 from msynth_testing import BIN, data, labels_zyx, tmp, violations
 
@@ -278,6 +280,36 @@ class CommandLineTest(unittest.TestCase):
         reader.Update()
         self.assertLessEqual(int(labels_zyx(reader.GetOutput()).max()), 2)
         self.assertEqual(run("check", tiles, os.path.join(out, "labels.vti"), "--subset", "straight").returncode, 0)
+
+    def test_symmetry_options(self):
+        example = data("Examples/Village.vti")
+        ex = modelsynth.vtkMSLabelGridReader()
+        ex.SetFileName(example)
+        ex.Update()
+        for name, options, check in (
+                ("tile", ("--translate", "xy", "--ground", "1", "--empty", "0"),
+                 lambda m: violations(labels_zyx(ex.GetOutput()), np.tile(m, (1, 2, 2))) == []),
+                ("period", ("--translate", "x", "--period", "5", "0", "0"),
+                 lambda m: (m[:, :, 5:] == m[:, :, :-5]).all()),
+                ("rotate", ("--rotate", "--ground", "1", "--empty", "0"),
+                 lambda m: (m.transpose(0, 2, 1)[:, ::-1, :] == m).all())):
+            out = tmp("cli-sym-" + name)
+            shutil.rmtree(out, ignore_errors=True)
+            r = run("synthesize", example, "--size", "16", "16", "5", "--block", "8", "8", "5",
+                    "--seed", "4", "--out", out, *options)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            reader = modelsynth.vtkMSLabelGridReader()
+            reader.SetFileName(os.path.join(out, "labels.vti"))
+            reader.Update()
+            model = labels_zyx(reader.GetOutput())
+            self.assertEqual(violations(labels_zyx(ex.GetOutput()), model), [], name)
+            self.assertTrue(check(model), name)
+            self.assertEqual(run("check", example, os.path.join(out, "labels.vti")).returncode, 0)
+        r = run("synthesize", example, "--size", "16", "12", "5", "--rotate", "--out", tmp("cli-sym-bad"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("square", r.stderr)
+        self.assertEqual(run("synthesize", example, "--size", "8", "8", "5", "--period", "1", "x", "0").returncode, 2)
+        self.assertEqual(run("synthesize", example, "--size", "8", "8", "5", "--translate", "w").returncode, 2)
 
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",

@@ -188,6 +188,47 @@ class SynthesisTest(unittest.TestCase):
                                MirrorSwaps="2-3")
         self.assertIn("is not a pair 'a:b'", errors)
 
+    def test_translation_symmetry(self):
+        # Tileable in x and y: the output repeated 2 x 2 is still consistent (numpy check).
+        out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(24, 20, 5), BlockSize=(8, 8, 5),
+                                 Seed=2, Translate=(1, 1, 0), UseBoundary=(0, 0, 0, 0, 1, 0),
+                                 BoundaryLabels=(0, 0, 0, 0, 1, 0))
+        self.assertEqual(errors, "")
+        model = labels_zyx(out)
+        self.assertEqual(violations(self.example, model), [])
+        self.assertEqual(violations(self.example, np.tile(model, (1, 2, 2))), [], "tiles seamlessly")
+        self.assertTrue((model[0] == 1).all())
+        self.assertGreater(int((model == 2).sum()), 0)
+        # A period of 7 along x: M(x + 7) = M(x).
+        out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(24, 20, 5), BlockSize=(8, 8, 5),
+                                 Seed=3, Translate=(1, 0, 0), TranslationPeriod=(7, 0, 0))
+        self.assertEqual(errors, "")
+        model = labels_zyx(out)
+        self.assertEqual(violations(self.example, model), [])
+        self.assertTrue(np.array_equal(model[:, :, 7:], model[:, :, :-7]))
+        _, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(10, 10, 5), Translate=(1, 0, 0),
+                               TranslationMap="2-3")
+        self.assertIn("TranslationMap: '2-3' is not a pair", errors)
+        _, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(10, 10, 5), Translate=(1, 0, 0),
+                               Mirror=(0, 1, 0))
+        self.assertIn("cannot be combined", errors)
+
+    def test_rotation_symmetry(self):
+        # The village's rules look the same turned a quarter, so every label is its own image.
+        for n in (20, 21):
+            out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(n, n, 5), BlockSize=(6, 6, 5),
+                                     Seed=5, Rotate=1, UseBoundary=(0, 0, 0, 0, 1, 0),
+                                     BoundaryLabels=(0, 0, 0, 0, 1, 0))
+            self.assertEqual(errors, "")
+            model = labels_zyx(out)
+            self.assertEqual(violations(self.example, model), [])
+            y, x = np.indices((n, n))
+            # M(n - 1 - y, x) = M(x, y): the site turned a quarter counter-clockwise holds the same.
+            self.assertTrue(np.array_equal(model[:, x, n - 1 - y], model), "turned copy differs")
+            self.assertGreater(int((model == 2).sum()), 0)
+        _, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(20, 16, 5), Rotate=1)
+        self.assertIn("square in x and y", errors)
+
     def test_whole_model_failure_is_an_error_not_a_model(self):
         # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y.
         example = vtkImageData()

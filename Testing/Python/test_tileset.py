@@ -84,6 +84,36 @@ class TilesetTest(unittest.TestCase):
                 block = rgba[y * T:(y + 1) * T, x * T:(x + 1) * T]
                 self.assertTrue(np.array_equal(block, expected), "site %s label %d" % ((x, y), b))
 
+    def test_rotation_symmetry_turns_the_picture(self):
+        # With Rotate and no RotationMap each tile turns to its next orientation, so the picture
+        # composed from the tile images, turned a quarter, is the same picture. The images are
+        # as symmetric as their tiles' classes say (empty X: any turn; line I: a half turn) and
+        # otherwise asymmetric (corner L), so a wrong turn direction shows.
+        folder = tmp("turn-set")
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        xml = folder + ".xml"
+        shutil.copy(data("Tilesets/Lines.xml"), xml)
+        empty, line, corner = (tile_pixels(i) for i in range(3))
+        turns = [np.rot90(empty, k) for k in range(4)]
+        write_png(os.path.join(folder, "empty.png"), np.maximum.reduce(turns))
+        write_png(os.path.join(folder, "line.png"), np.maximum(line, np.rot90(line, 2)))
+        write_png(os.path.join(folder, "corner.png"), corner)
+        for n, block in ((8, (0, 0, 0)), (9, (4, 4, 1))):
+            s = modelsynth.vtkMSDiscreteSynthesis()
+            out, errors = run_algorithm(s, TilesetFile=xml, OutputSize=(n, n, 1), Seed=4, Rotate=1,
+                                        BlockSize=block)
+            self.assertEqual(errors, "")
+            self.assertGreater(len(np.unique(labels_zyx(out))), 2)
+            picture, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(), TilesetFile=xml)
+            self.assertEqual(errors, "")
+            rgba = vtk_to_numpy(picture.GetPointData().GetArray("RGBA")).reshape(n * T, n * T, 4)
+            self.assertTrue(np.array_equal(np.rot90(rgba), rgba), "the picture is not turn-symmetric")
+        # An explicit map that is not a quarter turn of the rules is refused.
+        _, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=xml, OutputSize=(8, 8, 1),
+                                  Rotate=1, RotationMap="3:3,4:4,5:6,6:5")
+        self.assertIn("not preserved by a quarter turn", errors)
+
     def test_pieces_turned_by_orientation(self):
         # A tileset of one F tile (8 orientations) and a model holding labels 0..7 in a row; the
         # piece f.obj is an off-centre box, so each orientation's turn and mirror shows in where

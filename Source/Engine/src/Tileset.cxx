@@ -267,6 +267,20 @@ std::string Tileset::LabelName(int label) const
     : t.Name + " " + std::to_string(this->LabelOrientation[static_cast<std::size_t>(label)]);
 }
 
+std::map<Label, Label> Tileset::TurnMap() const
+{
+  std::map<Label, Label> map;
+  for (int label = 0; label < this->NumberOfLabels(); ++label)
+  {
+    const TilesetTile& t =
+      this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+    map[label] = t.FirstLabel +
+      TransformOrientation(
+        t.Symmetry, this->LabelOrientation[static_cast<std::size_t>(label)], false);
+  }
+  return map;
+}
+
 AdjacencyRules Tileset::Rules() const
 {
   std::vector<Label> values;

@@ -56,19 +56,22 @@ vtkMSDiscreteSynthesis::~vtkMSDiscreteSynthesis()
 
 namespace
 {
-/// The engine's options from the filter's sizes (shared by RequestInformation and RequestData).
-msynth::SynthesisOptions SizeOptions(
-  const int size[3], const int block[3], const int overlap[3], int perBlock, const int mirror[3])
+/// The engine's options from the filter's sizes and symmetries (shared by RequestInformation,
+/// which counts the time steps, and RequestData).
+msynth::SynthesisOptions SizeOptions(vtkMSDiscreteSynthesis* self)
 {
   msynth::SynthesisOptions options;
   for (int a = 0; a < 3; ++a)
   {
-    options.Symmetry[static_cast<std::size_t>(a)].Enabled = mirror[a] != 0;
-    options.Size[a] = size[a];
-    options.BlockSize[a] = block[a];
-    options.Overlap[a] = overlap[a];
+    options.Symmetry[static_cast<std::size_t>(a)].Enabled = self->GetMirror()[a] != 0;
+    options.Translate[static_cast<std::size_t>(a)].Enabled = self->GetTranslate()[a] != 0;
+    options.Translate[static_cast<std::size_t>(a)].Period = self->GetTranslationPeriod()[a];
+    options.Size[a] = self->GetOutputSize()[a];
+    options.BlockSize[a] = self->GetBlockSize()[a];
+    options.Overlap[a] = self->GetBlockOverlap()[a];
   }
-  options.SnapshotsPerBlock = perBlock;
+  options.Rotate.Enabled = self->GetRotate();
+  options.SnapshotsPerBlock = self->GetCatalogSnapshotsPerBlock();
   return options;
 }
 } // namespace
@@ -115,8 +118,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   vtkMSEngineBridge::SetTimeSteps(outInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)
   {
-    const msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
-      this->BlockOverlap, this->CatalogSnapshotsPerBlock, this->Mirror);
+    const msynth::SynthesisOptions options = SizeOptions(this);
     const std::int64_t steps = msynth::CountSnapshots(options);
     const double bytes = double(steps) * double(options.Size[0]) * double(options.Size[1]) *
       double(options.Size[2]) * 12.0;
@@ -183,8 +185,7 @@ int vtkMSDiscreteSynthesis::RequestData(
     }
   }
 
-  msynth::SynthesisOptions options = SizeOptions(this->OutputSize, this->BlockSize,
-    this->BlockOverlap, this->CatalogSnapshotsPerBlock, this->Mirror);
+  msynth::SynthesisOptions options = SizeOptions(this);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
   options.Threads = this->NumberOfThreads;
   options.Seed = static_cast<std::uint64_t>(this->Seed);
@@ -201,10 +202,11 @@ int vtkMSDiscreteSynthesis::RequestData(
   {
     options.TrivialLabel = this->TrivialLabel;
   }
-  if (this->Mirror[0] || this->Mirror[1] || this->Mirror[2])
+  // Label maps "a:b,c:d" of the symmetries.
+  auto readMap = [this](const std::string& property, const std::string& value, bool both,
+                   std::map<msynth::Label, msynth::Label>& map)
   {
-    std::map<msynth::Label, msynth::Label> swaps;
-    std::string text = this->MirrorSwaps;
+    std::string text = value;
     for (char& c : text)
       c = c == ',' || c == ';' ? ' ' : c;
     std::istringstream pairs(text);
@@ -216,17 +218,44 @@ int vtkMSDiscreteSynthesis::RequestData(
       std::istringstream one(pair);
       if (!(one >> a >> colon >> b) || colon != ':' || (one >> extra))
       {
-        vtkErrorMacro(<< "MirrorSwaps: '" << pair << "' is not a pair 'a:b' of labels.");
-        return 0;
+        vtkErrorMacro(<< property << ": '" << pair << "' is not a pair 'a:b' of labels.");
+        return false;
       }
-      swaps[a] = b;
-      swaps[b] = a;
+      map[a] = b;
+      if (both)
+        map[b] = a;
     }
+    return true;
+  };
+  if (this->Mirror[0] || this->Mirror[1] || this->Mirror[2])
+  {
+    std::map<msynth::Label, msynth::Label> swaps;
+    if (!readMap("MirrorSwaps", this->MirrorSwaps, true, swaps))
+      return 0;
     for (int axis = 0; axis < 3; ++axis)
     {
       options.Symmetry[static_cast<std::size_t>(axis)].Enabled = this->Mirror[axis] != 0;
       options.Symmetry[static_cast<std::size_t>(axis)].Map = swaps;
     }
+  }
+  if (this->Translate[0] || this->Translate[1] || this->Translate[2])
+  {
+    std::map<msynth::Label, msynth::Label> shift;
+    if (!readMap("TranslationMap", this->TranslationMap, false, shift))
+      return 0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      auto& t = options.Translate[static_cast<std::size_t>(axis)];
+      t.Enabled = this->Translate[axis] != 0;
+      t.Period = this->TranslationPeriod[axis];
+      t.Map = shift;
+    }
+  }
+  if (this->Rotate)
+  {
+    options.Rotate.Enabled = true;
+    if (!readMap("RotationMap", this->RotationMap, false, options.Rotate.Map))
+      return 0;
   }
   if (!this->TargetFractions.empty())
   {
@@ -317,6 +346,10 @@ int vtkMSDiscreteSynthesis::RequestData(
             "resemblance-weighted choice needs an example grid, not a tileset");
         }
         cache.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+        if (options.Rotate.Enabled && options.Rotate.Map.empty())
+        {
+          options.Rotate.Map = cache.Tiles.TurnMap(); // each tile turns to its next orientation
+        }
         cache.Result = msynth::Synthesize(cache.Tiles.Rules(), options);
       }
       else
@@ -457,4 +490,11 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
+  os << indent << "Mirror: " << this->Mirror[0] << " " << this->Mirror[1] << " " << this->Mirror[2]
+     << "\n";
+  os << indent << "Translate: " << this->Translate[0] << " " << this->Translate[1] << " "
+     << this->Translate[2] << " (period " << this->TranslationPeriod[0] << " "
+     << this->TranslationPeriod[1] << " " << this->TranslationPeriod[2] << ", map '"
+     << this->TranslationMap << "')\n";
+  os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
 }

@@ -26,6 +26,13 @@
  * of those axes, M(n − 1 − x) = f(M(x)); MirrorSwaps lists the labels that are each other's
  * mirror images as "a:b,c:d" (each pair swaps; other labels are their own image). The example's
  * rules must be symmetric under the map; otherwise the filter says which pair is not.
+ * Translate = (x, y, z) flags repeat the output along those axes with TranslationPeriod
+ * (0: the output size, which makes the output tile seamlessly), M(x + P) = f(M(x)) with f given
+ * by TranslationMap "a:b,c:d" (a's image one period on is b; others map to themselves).
+ * Rotate turns a quadrant into the other three: the output turned 90° counter-clockwise about
+ * the vertical is f of itself, with f given by RotationMap (e.g. a tileset's orientations
+ * "1:2,2:3,3:4,4:1"); the output must be square in x and y. These cannot be combined with each
+ * other or with Mirror.
  *
  * Soft constraints (Merrell 2007, §4.2): TargetFractions "label:fraction,..." keeps each
  * block's change with the Metropolis probability min(1, exp(−ΔE / SoftTemperature)), where
@@ -197,6 +204,38 @@ public:
   ///@}
 
   ///@{
+  /// Axes (x, y, z) along which the output repeats (translation symmetry). Default 0 0 0.
+  vtkSetVector3Macro(Translate, int);
+  vtkGetVector3Macro(Translate, int);
+  ///@}
+
+  ///@{
+  /// The period per translated axis; 0 means the output size (a tileable output). Default 0 0 0.
+  vtkSetVector3Macro(TranslationPeriod, int);
+  vtkGetVector3Macro(TranslationPeriod, int);
+  ///@}
+
+  ///@{
+  /// Each label's image one period on, "a:b,c:d". Default "" (every label is its own image).
+  vtkSetStdStringFromCharMacro(TranslationMap);
+  vtkGetCharFromStdStringMacro(TranslationMap);
+  ///@}
+
+  ///@{
+  /// Rotation symmetry by 90° about the vertical through the centre. Default off.
+  vtkSetMacro(Rotate, bool);
+  vtkGetMacro(Rotate, bool);
+  vtkBooleanMacro(Rotate, bool);
+  ///@}
+
+  ///@{
+  /// Each label's image turned 90° counter-clockwise, "a:b,c:d". Default "": every label is its
+  /// own image, or with a tileset, each tile's next orientation.
+  vtkSetStdStringFromCharMacro(RotationMap);
+  vtkGetCharFromStdStringMacro(RotationMap);
+  ///@}
+
+  ///@{
   /// Catalog snapshots per block, exposed as time steps (see above). Default 0 (none).
   vtkSetClampMacro(CatalogSnapshotsPerBlock, int, 0, 100000);
   vtkGetMacro(CatalogSnapshotsPerBlock, int);
@@ -237,6 +276,11 @@ private:
   int NumberOfThreads = 0;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
+  int Translate[3] = { 0, 0, 0 };
+  int TranslationPeriod[3] = { 0, 0, 0 };
+  std::string TranslationMap;
+  bool Rotate = false;
+  std::string RotationMap;
   std::string TilesetFile;
   std::string TargetFractions;
   double SoftTemperature = 0.01;

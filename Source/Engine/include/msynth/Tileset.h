@@ -21,6 +21,7 @@
 
 #include <array>
 #include <istream>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,9 @@ struct Tileset
   int NumberOfLabels() const { return static_cast<int>(this->LabelTile.size()); }
   /// The label name as the format's published sets name images: "tile k" (or "tile").
   std::string LabelName(int label) const;
+  /// Each label's image turned 90° counter-clockwise (the same tile's next orientation): the
+  /// label map of rotation symmetry (Rotation::Map) for outputs of this tileset.
+  std::map<Label, Label> TurnMap() const;
   /// Adjacency rules (label values 0..n-1, weights from the tiles) for 2D synthesis.
   AdjacencyRules Rules() const;
 };
