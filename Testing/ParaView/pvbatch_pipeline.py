@@ -132,6 +132,28 @@ picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tiles
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
 check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
 
+# Symmetry (§3.5.2) through the proxies: a tileable village, and a tile picture that looks the
+# same turned a quarter (each tile turns to its next orientation).
+synthesis.CatalogSnapshotsPerBlock = 0
+synthesis.Translate = [1, 1, 0]
+synthesis.UseBoundary = [0, 0, 0, 0, 1, 0]
+periodic = servermanager.Fetch(synthesis).GetPointData().GetArray("Label")
+at = lambda x, y, z: int(periodic.GetValue(x + 24 * (y + 20 * z)))
+wrapped = set()
+for z in range(5):
+    for y in range(20):
+        for x in range(24):
+            wrapped.add((0, at(x, y, z), at((x + 1) % 24, y, z)))
+            wrapped.add((1, at(x, y, z), at(x, (y + 1) % 20, z)))
+check(not (wrapped - set(expected)), "the periodic village tiles: %s" % sorted(wrapped - set(expected))[:3])
+synthesis.Translate = [0, 0, 0]
+turned = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[10, 10, 1], Seed=4, Rotate=1)
+tiles = servermanager.Fetch(turned).GetPointData().GetArray("Label")
+tile = lambda x, y: int(tiles.GetValue(x + 10 * y))
+turn = {0: 0, 1: 2, 2: 1, 3: 4, 4: 5, 5: 6, 6: 3}  # Lines.xml: empty, line 0-1, corner 0-3
+check(all(tile(9 - y, x) == turn[tile(x, y)] for y in range(10) for x in range(10)),
+      "the tile model turned a quarter is its own image")
+
 # Continuous synthesis: the neighbourhood labels of a polyhedral example (dissertation 4.5.3).
 tetra = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "tetrahedron.obj"))
 catalog = ModelSynthNeighbourhoodLabels(Input=tetra)
