@@ -798,6 +798,7 @@ public:
         }
       }
     }
+    cat.QueueAll(); // the catalog of Statement 3.6 from the start, not every label
     std::int64_t empty = cat.Propagate();
     if (empty >= 0)
       return fail(empty);

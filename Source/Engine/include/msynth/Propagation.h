@@ -117,6 +117,17 @@ public:
   std::size_t Mark() const { return this->Trail.size(); }
   void Undo(std::size_t mark);
 
+  /**
+   * Queues every site for the next Propagate(), which then makes the sets arc consistent from
+   * scratch (a label without support at a neighbour is removed even before any assignment: the
+   * catalog C of Statement 3.6, not merely all labels).
+   */
+  void QueueAll()
+  {
+    for (std::int64_t s = 0; s < this->NumberOfSites(); ++s)
+      this->Push(s);
+  }
+
   /// Sites whose sets changed since ClearChanged().
   const std::vector<std::int64_t>& Changed() const { return this->ChangedSites; }
   void ClearChanged() { this->ChangedSites.clear(); }
