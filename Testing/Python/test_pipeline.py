@@ -50,6 +50,27 @@ class PipelineTest(unittest.TestCase):
         self.assertIn("no label fits", fd.GetAbstractArray("InfallibilityExplanation").GetValue(0))
         self.assertIn("block synthesis", fd.GetAbstractArray("Recommendation").GetValue(0))
 
+    def test_infallibility_with_a_wider_region(self):
+        # A 2D example the 2x2 condition cannot prove but 3x2 regions of Algorithm 3.6 can.
+        from vtkmodules.vtkCommonCore import vtkIntArray
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        rows = [[0, 0, 0, 0, 0], [0, 0, 3, 2, 0], [0, 3, 2, 2, 0], [0, 1, 2, 3, 0], [0, 0, 0, 0, 0]]
+        image = vtkImageData()
+        image.SetDimensions(5, 5, 1)
+        labels = vtkIntArray()
+        labels.SetName("Label")
+        for row in reversed(rows):  # y up: the last row written is the bottom one
+            for v in row:
+                labels.InsertNextValue(v)
+        image.GetPointData().SetScalars(labels)
+        tables = modelsynth.vtkMSTransitionTables()
+        tables.SetInputData(image)
+        tables.Update()
+        fd = tables.GetOutput(0).GetFieldData()
+        self.assertEqual(fd.GetArray("Infallible").GetValue(0), 1, fd.GetAbstractArray("InfallibilityExplanation").GetValue(0))
+        self.assertEqual(fd.GetArray("InfallibilityRegion").GetTuple3(0), (3.0, 2.0, 2.0))
+        self.assertIn("3x2", fd.GetAbstractArray("InfallibilityExplanation").GetValue(0))
+
     def test_checkerboard_alternates(self):
         _, tables = self.run_pipeline("Examples/Checkerboard.vti")
         t = tables.GetOutput(0)

@@ -3,6 +3,7 @@
 
 #include "msynth/Error.h"
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <unordered_set>
@@ -384,7 +385,8 @@ InfallibilityReport AnalyzeInfallibility(const AdjacencyRules& rules,
       const int ry = area / rx;
       if (rx * ry != area || ry < 2 || ry > maxRegion)
         continue;
-      InfallibilityReport larger = AnalyzeRegion2D(rules, axes, rx, ry, maxConfigurations);
+      InfallibilityReport larger = AnalyzeRegion2D(
+        rules, axes, rx, ry, std::min<std::int64_t>(maxConfigurations, 1000000));
       if (larger.Proved)
         return larger;
       report = larger;

@@ -172,12 +172,17 @@ int vtkMSTransitionTables::RequestData(
   vtkNew<vtkStringArray> recommendation;
   recommendation->SetName("Recommendation");
   recommendation->InsertNextValue(verdict.Recommendation);
+  vtkNew<vtkIntArray> region; // the region size of the proof (or of the last region tried)
+  region->SetName("InfallibilityRegion");
+  region->SetNumberOfComponents(3);
+  region->InsertNextTypedTuple(verdict.Region.data());
   for (vtkTable* table : { transitions, labels })
   {
     vtkFieldData* fd = table->GetFieldData();
     fd->AddArray(infallible);
     fd->AddArray(explanation);
     fd->AddArray(recommendation);
+    fd->AddArray(region);
     fd->AddArray(labelValues);
     fd->AddArray(labelCounts);
     for (const auto& p : pairs)

@@ -18,8 +18,9 @@
  * Field data of both tables: `Labels` (the label values), `LabelCounts`, and `TransitionsX`,
  * `TransitionsY`, `TransitionsZ` (2-component int arrays of allowed (From, To) value pairs),
  * plus `ExampleFile` when the input carries it, and the infallibility analysis (§3.3.7,
- * msynth/Infallibility.h): `Infallible` (1 when proved), `InfallibilityExplanation` and
- * `Recommendation` (whole-model or block synthesis).
+ * msynth/Infallibility.h): `Infallible` (1 when proved), `InfallibilityExplanation`,
+ * `Recommendation` (whole-model or block synthesis) and `InfallibilityRegion` (the region size
+ * of Algorithm 3.6 that proved it: 2x2(x2), or up to 3x3 for 2D examples).
  *
  * In parallel (pvbatch --mpi) the analysis runs once: piece 0 asks for the whole example and
  * computes the tables; the other pieces ask for nothing and output empty tables, so gathered
