@@ -9,9 +9,11 @@ namespace msynth
 
 std::string ConsistencyViolation::Describe() const
 {
-  static const char* const axes[3] = { "+x", "+y", "+z" };
+  static const char* const axes[4] = { "+x", "+y", "+z", "+t (the next frame)" };
   return "site (" + std::to_string(this->Site[0]) + ", " + std::to_string(this->Site[1]) + ", " +
-    std::to_string(this->Site[2]) + "): label " + std::to_string(this->From) + " followed by " +
+    std::to_string(this->Site[2]) + ")" +
+    (this->Time >= 0 ? " of frame " + std::to_string(this->Time) : std::string()) + ": label " +
+    std::to_string(this->From) + " followed by " +
     std::to_string(this->To) + " along " + axes[this->Axis] +
     " is not allowed (never occurs in the example)";
 }

@@ -20,7 +20,8 @@ namespace msynth
 struct ConsistencyViolation
 {
   std::array<std::int64_t, 3> Site{ { 0, 0, 0 } }; ///< x, the first site of the pair
-  int Axis = 0;                                    ///< the pair is (x, x + axis)
+  int Axis = 0;                                    ///< the pair is (x, x + axis); 3: time
+  std::int64_t Time = -1;                          ///< the frame of a time-varying model
   Label From = 0;
   Label To = 0;
   std::string Describe() const;
