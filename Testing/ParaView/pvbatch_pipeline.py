@@ -154,6 +154,52 @@ turn = {0: 0, 1: 2, 2: 1, 3: 4, 4: 5, 5: 6, 6: 3}  # Lines.xml: empty, line 0-1,
 check(all(tile(9 - y, x) == turn[tile(x, y)] for y in range(10) for x in range(10)),
       "the tile model turned a quarter is its own image")
 
+# Time-varying synthesis (dissertation 3.5.4) from a file series: the rolling ball of Fig. 3.27,
+# one .vti per frame, read as time steps; every output frame is fetched and checked here.
+from vtkmodules.vtkCommonCore import vtkIntArray  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter  # noqa: E402
+
+series = []
+ball = {}  # (t, x) -> label: 1 emerging, 2 leaving
+for t in range(8):
+    frame = vtkImageData()
+    frame.SetDimensions(6, 1, 1)
+    values = vtkIntArray()
+    values.SetName("Label")
+    for x in range(6):
+        v = 1 if x == t else (2 if x == t - 1 else 0)
+        ball[(t, x)] = v
+        values.InsertNextValue(v)
+    frame.GetPointData().SetScalars(values)
+    path = os.path.join(TMP, "pvbatch-ball-%s_%d.vti" % (suffix, t))
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(frame)
+    writer.SetFileName(path)
+    writer.Write()
+    series.append(path)
+frames_reader = XMLImageDataReader(FileName=series)
+animated = ModelSynthTimeVaryingSynthesis(Input=frames_reader, OutputSize=[16, 1, 1], NumberOfFrames=12,
+                                          Seed=2)
+animated.UpdatePipelineInformation()
+check(len(animated.TimestepValues) == 12, "12 output frames, got %s" % (animated.TimestepValues,))
+allowed = set()
+for t in range(8):
+    for x in range(6):
+        if x + 1 < 6:
+            allowed.add((0, ball[(t, x)], ball[(t, x + 1)]))
+        if t + 1 < 8:
+            allowed.add((3, ball[(t, x)], ball[(t + 1, x)]))
+movie = []
+for t in range(12):
+    animated.UpdatePipeline(float(t))
+    frame = servermanager.Fetch(animated).GetPointData().GetArray("Label")
+    movie.append([int(frame.GetValue(x)) for x in range(16)])
+seen = {(0, row[x], row[x + 1]) for row in movie for x in range(15)}
+seen |= {(3, movie[t][x], movie[t + 1][x]) for t in range(11) for x in range(16)}
+check(seen <= allowed, "every pair in space and time occurs in the example: %s" % sorted(seen - allowed)[:3])
+check(any(1 in row for row in movie), "some ball rolls")
+
 # Continuous synthesis: the neighbourhood labels of a polyhedral example (dissertation 4.5.3).
 tetra = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "tetrahedron.obj"))
 catalog = ModelSynthNeighbourhoodLabels(Input=tetra)

@@ -1,0 +1,236 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSTimeVaryingSynthesis.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "msynth/TimeVarying.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <exception>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMSTimeVaryingSynthesis);
+
+/// The last result, reused while neither the filter nor the example frames change.
+struct vtkMSTimeVaryingSynthesis::Cache
+{
+  vtkMTimeType FilterTime = 0;
+  std::vector<msynth::LabelGrid> Example;
+  msynth::TimeVaryingResult Result;
+};
+
+vtkMSTimeVaryingSynthesis::vtkMSTimeVaryingSynthesis()
+  : Cached(new Cache)
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+vtkMSTimeVaryingSynthesis::~vtkMSTimeVaryingSynthesis() = default;
+
+vtkImageData* vtkMSTimeVaryingSynthesis::GetOutput()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+int vtkMSTimeVaryingSynthesis::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkMSTimeVaryingSynthesis::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkImageData");
+  return 1;
+}
+
+int vtkMSTimeVaryingSynthesis::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int whole[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
+    this->OutputSize[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo && inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  if (inInfo && inInfo->Has(vtkDataObject::ORIGIN()))
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+  vtkMSEngineBridge::SetTimeSteps(outInfo, static_cast<std::size_t>(this->NumberOfFrames));
+  outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkMSTimeVaryingSynthesis::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(
+    inInfo, vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)));
+  // Every frame of the example (one request when its frames are z slices or it has no time).
+  std::vector<double> times{ 0.0 };
+  const auto key = vtkStreamingDemandDrivenPipeline::TIME_STEPS();
+  if (!this->ExampleTimeFromZ && inInfo->Has(key) && inInfo->Length(key) > 0)
+  {
+    times.assign(inInfo->Get(key), inInfo->Get(key) + inInfo->Length(key));
+  }
+  else if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  {
+    times = { inInfo->Get(key)[0] };
+  }
+  inInfo->Set(vtkMultiTimeStepAlgorithm::UPDATE_TIME_STEPS(), times.data(),
+    static_cast<int>(times.size()));
+  return 1;
+}
+
+vtkTypeBool vtkMSTimeVaryingSynthesis::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  vtkInformation* inInfo = inputVector && inputVector[0] ? inputVector[0]->GetInformationObject(0) : nullptr;
+  if (inInfo && request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    // Later passes skip RequestUpdateExtent and would copy the output's extent upstream.
+    vtkMSEngineBridge::RequestWholeExtentOnPieceZero(
+      inInfo, vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)));
+  }
+  return result;
+}
+
+int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
+  const std::vector<vtkSmartPointer<vtkDataObject>>& inputs, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (vtkMSEngineBridge::UpdatePiece(outInfo) != 0)
+  {
+    output->Initialize(); // piece 0 holds the model
+    return 1;
+  }
+  // The example frames.
+  std::vector<msynth::LabelGrid> frames;
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+  {
+    vtkImageData* image = vtkImageData::SafeDownCast(inputs[i]);
+    vtkDataArray* labels = image ? vtkMSEngineBridge::FindLabelArray(image, nullptr) : nullptr;
+    std::string problem = "the example has no label array (point array 'Label' or scalars)";
+    if (!labels || !vtkMSEngineBridge::CheckLabelArray(image, labels, problem))
+    {
+      vtkErrorMacro(<< "Bad example frame " << i << ": " << problem);
+      return 0;
+    }
+    msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(image, labels);
+    if (!this->ExampleTimeFromZ)
+    {
+      frames.push_back(std::move(grid));
+      continue;
+    }
+    const auto& d = grid.Dimensions();
+    for (std::int64_t z = 0; z < d[2]; ++z)
+    {
+      msynth::LabelGrid slice(d[0], d[1], 1);
+      for (std::int64_t y = 0; y < d[1]; ++y)
+        for (std::int64_t x = 0; x < d[0]; ++x)
+          slice.Set(x, y, 0, grid.At(x, y, z));
+      frames.push_back(std::move(slice));
+    }
+  }
+  Cache& cache = *this->Cached;
+  if (cache.FilterTime != this->GetMTime() || cache.Example != frames || !cache.Result.Success)
+  {
+    msynth::TimeVaryingOptions options;
+    options.Size = { { this->OutputSize[0], this->OutputSize[1], this->OutputSize[2],
+      this->NumberOfFrames } };
+    options.BlockSize = { { this->BlockSize[0], this->BlockSize[1], this->BlockSize[2],
+      this->BlockSize[3] } };
+    options.AttemptsPerBlock = this->AttemptsPerBlock;
+    options.Seed = static_cast<std::uint64_t>(this->Seed);
+    options.Choice = this->LabelChoice == FREQUENCY ? msynth::LabelChoice::Frequency
+                                                    : msynth::LabelChoice::Uniform;
+    options.Order =
+      this->SiteOrder == RANDOM ? msynth::SiteOrder::Random : msynth::SiteOrder::ScanLine;
+    options.Loop = this->Loop;
+    options.Progress = [this](double done)
+    {
+      this->UpdateProgress(done);
+      return !this->GetAbortExecute();
+    };
+    try
+    {
+      msynth::TimeVaryingGrid example;
+      example.Frames = frames;
+      cache.Result =
+        msynth::SynthesizeTimeVarying(msynth::TimeVaryingRules::FromExample(example), options);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what());
+      return 0;
+    }
+    cache.Example = std::move(frames);
+    cache.FilterTime = this->GetMTime();
+  }
+  const msynth::TimeVaryingResult& result = cache.Result;
+  if (!result.Success)
+  {
+    vtkErrorMacro(<< result.Message);
+    return 0;
+  }
+  const std::size_t step =
+    vtkMSEngineBridge::RequestedStep(outInfo, result.Model.Frames.size());
+  const msynth::LabelGrid& frame = result.Model.Frames[step];
+  output->SetExtent(0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
+    this->OutputSize[2] - 1);
+  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+  outInfo->Get(vtkDataObject::SPACING(), spacing);
+  outInfo->Get(vtkDataObject::ORIGIN(), origin);
+  output->SetSpacing(spacing);
+  output->SetOrigin(origin);
+  vtkIntArray* labels = vtkMSEngineBridge::NewLabelArray(frame, "Label");
+  output->GetPointData()->SetScalars(labels);
+  labels->Delete();
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
+  vtkFieldData* fd = output->GetFieldData();
+  const msynth::SynthesisStatistics& s = result.Statistics;
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frame", static_cast<int>(step));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frames", this->NumberOfFrames);
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Loop", this->Loop ? 1 : 0);
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "ExampleFrames",
+    static_cast<int>(cache.Example.size()));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(
+    fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Seed", static_cast<int>(this->Seed));
+  return 1;
+}
+
+void vtkMSTimeVaryingSynthesis::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
+     << this->OutputSize[2] << "\n";
+  os << indent << "NumberOfFrames: " << this->NumberOfFrames << "\n";
+  os << indent << "BlockSize: " << this->BlockSize[0] << " " << this->BlockSize[1] << " "
+     << this->BlockSize[2] << " " << this->BlockSize[3] << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Loop: " << this->Loop << "\n";
+  os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";
+}
