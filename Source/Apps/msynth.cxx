@@ -52,6 +52,7 @@
 #include "msynth/ConsistencyCheck.h"
 #include "msynth/Error.h"
 #include "msynth/ContinuousMesh.h"
+#include "msynth/TimeVarying.h"
 #include "msynth/Tileset.h"
 
 #include <array>
@@ -60,6 +61,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <sys/stat.h>
@@ -85,6 +87,14 @@ const char* const Usage = R"(usage:
                                       DIR/model.vtp, DIR/arrangement.vtp (labels and catalog
                                       fields), DIR/model.vdb (level sets surface and
                                       surface_TYPE, fog volume density) and DIR/statistics.json
+  msynth animate EXAMPLE... --size NX NY NZ --frames N [--loop] [--block BX BY BZ
+                [--block-frames BT]] [--seed S] [--out DIR]
+                                      time-varying synthesis (dissertation 3.5.4): one EXAMPLE
+                                      image whose z slices are the frames, or one file per
+                                      frame; writes DIR/frame_0000.vti ... (a series ParaView
+                                      opens as time steps), DIR/model_0001.vdb ... and
+                                      DIR/statistics.json; --loop joins the last frame to the
+                                      first
   msynth check EXAMPLE MODEL.vti      verify that MODEL satisfies the adjacency constraint
                                       of EXAMPLE (exit 0) or list violations (exit 1)
   msynth check EXAMPLE.obj MODEL.vtp  verify a continuous model: closed, oriented, and only
@@ -475,6 +485,10 @@ struct SynthesizeArguments
   double Voxel = 0;
   bool OrderGiven = false;
   int Snapshots = 0;
+  // Time-varying synthesis.
+  int Frames = 0;
+  int BlockFrames = 0;
+  bool Loop = false;
 };
 
 /// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
@@ -873,6 +887,124 @@ int PolyhedralCheck(const std::string& example, const std::string& modelPath, co
   return 1;
 }
 
+/**
+ * `msynth animate EXAMPLE...`: time-varying synthesis (§3.5.4). One example file: its z slices
+ * are the frames; several: one frame each, in order. Writes DIR/frame_0000.vti, ... (a series
+ * ParaView opens as time steps), DIR/model_0001.vdb, ... and DIR/statistics.json, after checking
+ * the model against the example frames.
+ */
+int Animate(const std::vector<std::string>& examples, const SynthesizeArguments& a, const std::string& dir)
+{
+  msynth::TimeVaryingGrid example;
+  for (const auto& path : examples)
+  {
+    vtkNew<vtkMSLabelGridReader> reader;
+    reader->SetFileName(path.c_str());
+    Run(reader);
+    vtkImageData* image = reader->GetOutput();
+    std::string problem = "no label array";
+    vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(image, nullptr);
+    if (!labels || !vtkMSEngineBridge::CheckLabelArray(image, labels, problem))
+    {
+      throw std::runtime_error("'" + path + "': " + problem);
+    }
+    msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(image, labels);
+    if (examples.size() > 1)
+    {
+      example.Frames.push_back(std::move(grid));
+      continue;
+    }
+    const auto& d = grid.Dimensions();
+    for (std::int64_t z = 0; z < d[2]; ++z)
+    {
+      msynth::LabelGrid slice(d[0], d[1], 1);
+      for (std::int64_t y = 0; y < d[1]; ++y)
+        for (std::int64_t x = 0; x < d[0]; ++x)
+          slice.Set(x, y, 0, grid.At(x, y, z));
+      example.Frames.push_back(std::move(slice));
+    }
+  }
+  msynth::TimeVaryingOptions options;
+  options.Size = { { a.Size[0], a.Size[1], a.Size[2], a.Frames } };
+  options.BlockSize = { { a.Block[0], a.Block[1], a.Block[2], a.BlockFrames } };
+  options.AttemptsPerBlock = a.Attempts;
+  options.Seed = a.Seed;
+  options.Loop = a.Loop;
+  options.Choice = a.Choice == vtkMSDiscreteSynthesis::FREQUENCY ? msynth::LabelChoice::Frequency
+                                                                 : msynth::LabelChoice::Uniform;
+  if (a.Choice == vtkMSDiscreteSynthesis::RESEMBLANCE)
+  {
+    throw UsageError{ "animate chooses labels uniformly or by frequency" };
+  }
+  if (a.Order == vtkMSDiscreteSynthesis::MINIMUM_ENTROPY)
+  {
+    throw UsageError{ "animate assigns sites in scan-line or random order" };
+  }
+  options.Order = a.Order == vtkMSDiscreteSynthesis::RANDOM ? msynth::SiteOrder::Random
+                                                           : msynth::SiteOrder::ScanLine;
+  const auto rules = msynth::TimeVaryingRules::FromExample(example);
+  const msynth::TimeVaryingResult result = msynth::SynthesizeTimeVarying(rules, options);
+  if (!result.Success)
+  {
+    throw std::runtime_error(result.Message);
+  }
+  const msynth::ConsistencyReport report = msynth::CheckTimeVarying(example, result.Model, a.Loop);
+  if (!report.Consistent)
+  {
+    throw std::runtime_error("the synthesized animation breaks the example's rules: " +
+      report.First[0].Describe());
+  }
+  MakeDirectory(dir);
+  for (std::size_t t = 0; t < result.Model.Frames.size(); ++t)
+  {
+    const msynth::LabelGrid& frame = result.Model.Frames[t];
+    vtkNew<vtkImageData> image;
+    const auto& d = frame.Dimensions();
+    image->SetDimensions(static_cast<int>(d[0]), static_cast<int>(d[1]), static_cast<int>(d[2]));
+    vtkSmartPointer<vtkIntArray> labels;
+    labels.TakeReference(vtkMSEngineBridge::NewLabelArray(frame, "Label"));
+    image->GetPointData()->SetScalars(labels);
+    char name[32];
+    std::snprintf(name, sizeof(name), "/frame_%04zu.vti", t);
+    WriteXML<vtkXMLImageDataWriter>(dir + name, image.GetPointer());
+    vtkNew<vtkMSOpenVDBWriter> vdb;
+    vdb->SetInputData(image);
+    std::snprintf(name, sizeof(name), "/model_%04zu.vdb", t + 1);
+    vdb->SetFileName((dir + name).c_str());
+    vdb->AddMetadata("msynth_command", "animate");
+    vdb->AddMetadata("frame", std::to_string(t).c_str());
+    std::string messages;
+    if (!vtkMSEngineBridge::Execute(vdb, messages))
+    {
+      throw std::runtime_error(messages);
+    }
+  }
+  const msynth::SynthesisStatistics& st = result.Statistics;
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"examples\": [";
+      for (std::size_t i = 0; i < examples.size(); ++i)
+        out << (i ? ", " : "") << JsonString(examples[i]);
+      out << "],\n  \"exampleFrames\": " << example.Frames.size() << ",\n  \"size\": ["
+          << a.Size[0] << ", " << a.Size[1] << ", " << a.Size[2] << "],\n  \"frames\": "
+          << a.Frames << ",\n  \"loop\": " << (a.Loop ? "true" : "false")
+          << ",\n  \"seed\": " << a.Seed << ",\n  \"Blocks\": " << st.Blocks
+          << ",\n  \"BlocksAccepted\": " << st.BlocksAccepted
+          << ",\n  \"BlocksFailed\": " << st.BlocksFailed << ",\n  \"Attempts\": "
+          << st.Attempts << ",\n  \"Assignments\": " << st.Assignments
+          << ",\n  \"Seconds\": " << st.Seconds << ",\n  \"Message\": "
+          << JsonString(result.Message) << "\n}\n";
+    });
+  std::cout << result.Message << "\n"
+            << "consistent: all " << report.PairsChecked
+            << " pairs of neighbours in space and time occur in the example\n"
+            << "wrote " << dir << "/frame_0000.vti ... frame_" << std::setw(4) << std::setfill('0')
+            << (result.Model.Frames.size() - 1) << ".vti, " << dir << "/model_0001.vdb ..., " << dir
+            << "/statistics.json\n";
+  return 0;
+}
+
 int Check(const std::string& example, const std::string& modelPath, const std::string& subset)
 {
   vtkNew<vtkMSLabelGridReader> e, m;
@@ -983,6 +1115,23 @@ int Main(const std::vector<std::string>& args)
       }
       i += 3;
       sizeGiven = true;
+      continue;
+    }
+    if (args[i] == "--frames" || args[i] == "--block-frames")
+    {
+      const std::string option = args[i];
+      const long long n = integer(i, option);
+      if (n < (option == "--frames" ? 1 : 0) || n > 1000000)
+      {
+        throw UsageError{ option + " must be between " + (option == "--frames" ? "1" : "0") +
+          " and 10^6" };
+      }
+      (option == "--frames" ? synth.Frames : synth.BlockFrames) = static_cast<int>(n);
+      continue;
+    }
+    if (args[i] == "--loop")
+    {
+      synth.Loop = true;
       continue;
     }
     if (args[i] == "--snapshots")
@@ -1201,6 +1350,19 @@ int Main(const std::vector<std::string>& args)
     }
     triple(sizeIndex, "--size", synth.Size, 1); // a label grid's size is in sites
     return Synthesize(positional[0], synth, out);
+  }
+  if (command == "animate")
+  {
+    if (positional.empty())
+    {
+      throw UsageError{ "animate takes one EXAMPLE (z slices as frames) or one file per frame" };
+    }
+    if (!sizeGiven || synth.Frames < 1)
+    {
+      throw UsageError{ "animate needs --size NX NY NZ and --frames N" };
+    }
+    triple(sizeIndex, "--size", synth.Size, 1);
+    return Animate(positional, synth, out);
   }
   if (command == "check")
   {

@@ -311,6 +311,64 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(run("synthesize", example, "--size", "8", "8", "5", "--period", "1", "x", "0").returncode, 2)
         self.assertEqual(run("synthesize", example, "--size", "8", "8", "5", "--translate", "w").returncode, 2)
 
+    def test_animate(self):
+        # The rolling ball of Fig. 3.27: one image whose z slices are frames, or one file per frame.
+        from vtkmodules.vtkCommonCore import vtkIntArray
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+        def write(path, frames):
+            image = vtkImageData()
+            image.SetDimensions(6, 1, len(frames))
+            labels = vtkIntArray()
+            labels.SetName("Label")
+            for row in frames:
+                for v in row:
+                    labels.InsertNextValue(int(v))
+            image.GetPointData().SetScalars(labels)
+            writer = vtkXMLImageDataWriter()
+            writer.SetInputData(image)
+            writer.SetFileName(path)
+            writer.Write()
+
+        ball = [[1 if x == t else (2 if x == t - 1 else 0) for x in range(6)] for t in range(8)]
+        allowed = {(0, r[x], r[x + 1]) for r in ball for x in range(5)}
+        allowed |= {(1, ball[t][x], ball[t + 1][x]) for t in range(7) for x in range(6)}
+        write(tmp("ball.vti"), ball)
+        singles = []
+        for t, row in enumerate(ball):
+            singles.append(tmp("ball-frame-%d.vti" % t))
+            write(singles[-1], [row])
+        for name, examples, extra in (("z", [tmp("ball.vti")], ["--loop"]),
+                                      ("files", singles, ["--block", "6", "1", "1", "--block-frames", "5"])):
+            out = tmp("cli-animate-" + name)
+            shutil.rmtree(out, ignore_errors=True)
+            r = run("animate", *examples, "--size", "16", "1", "1", "--frames", "12", "--seed", "3",
+                    "--out", out, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("consistent", r.stdout)
+            movie = []
+            for t in range(12):
+                reader = modelsynth.vtkMSLabelGridReader()
+                reader.SetFileName(os.path.join(out, "frame_%04d.vti" % t))
+                reader.Update()
+                movie.append(labels_zyx(reader.GetOutput())[0, 0].tolist())
+                self.assertTrue(os.path.isfile(os.path.join(out, "model_%04d.vdb" % (t + 1))))
+            if name == "z":
+                movie_wrapped = movie + movie[:1]
+            else:
+                movie_wrapped = movie
+            seen = {(0, r[x], r[x + 1]) for r in movie for x in range(15)}
+            seen |= {(1, movie_wrapped[t][x], movie_wrapped[t + 1][x])
+                     for t in range(len(movie_wrapped) - 1) for x in range(16)}
+            self.assertEqual(seen - allowed, set(), name)
+            with open(os.path.join(out, "statistics.json")) as f:
+                self.assertEqual(json.load(f)["exampleFrames"], 8)
+        self.assertEqual(run("animate", tmp("ball.vti"), "--size", "4", "1", "1").returncode, 2)  # no --frames
+        r = run("animate", tmp("ball.vti"), singles[0], "--size", "4", "1", "1", "--frames", "3")
+        self.assertEqual(r.returncode, 1)  # frames of different sizes
+        self.assertIn("frame 1", r.stderr)
+
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
                 "--block", "3", "3", "1", "--out", tmp("cli-fail"))
