@@ -123,3 +123,16 @@ static void BM_Tileset128(benchmark::State& state)
   state.counters["failed_runs"] = static_cast<double>(failed) / static_cast<double>(runs);
 }
 BENCHMARK(BM_Tileset128)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// Symmetry (§3.5.2): 100×100×10 in 20×20×10 blocks, tileable in x and y (range 1: translation
+// with period = size) — the seams link distant blocks, so one thread; compare with
+// BM_SynthesizeBlocks/100/1.
+static void BM_SynthesizeTileable(benchmark::State& state)
+{
+  msynth::SynthesisOptions o;
+  o.Size = { { 100, 100, 10 } };
+  o.BlockSize = { { 20, 20, 10 } };
+  o.Translate[0].Enabled = o.Translate[1].Enabled = true;
+  RunSynthesis(state, o);
+}
+BENCHMARK(BM_SynthesizeTileable)->Unit(benchmark::kMillisecond);
