@@ -11,11 +11,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <random>
 #include <set>
+#include <thread>
 
 using namespace msynth;
 
@@ -658,4 +661,99 @@ TEST(DiscreteSynthesis, FallibleExampleFailsWholeButSucceedsInBlocks)
   }
   EXPECT_GT(wholeFailures, 0);  // Algorithm 3.1 fails for some seeds ...
   EXPECT_GT(wholeSuccesses, 0); // ... not all: the example is consistent at this size
+}
+
+namespace
+{
+/// An all-gather among threads standing in for MPI ranks: each call blocks until every rank
+/// has contributed, then returns all contributions in rank order.
+class ThreadAllGather
+{
+public:
+  explicit ThreadAllGather(int ranks)
+    : Ranks(ranks)
+    , Slots(static_cast<std::size_t>(ranks))
+  {
+  }
+  std::vector<std::vector<char>> operator()(int rank, const std::vector<char>& mine)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    const std::int64_t generation = this->Generation;
+    this->Slots[static_cast<std::size_t>(rank)] = mine;
+    if (++this->Arrived == this->Ranks)
+    {
+      this->Result = this->Slots;
+      this->Arrived = 0;
+      ++this->Generation;
+      this->Changed.notify_all();
+    }
+    else
+      this->Changed.wait(lock, [&] { return this->Generation != generation; });
+    return this->Result;
+  }
+
+private:
+  int Ranks;
+  int Arrived = 0;
+  std::int64_t Generation = 0;
+  std::vector<std::vector<char>> Slots, Result;
+  std::mutex Mutex;
+  std::condition_variable Changed;
+};
+} // namespace
+
+TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
+{
+  // Three "processes" (threads with an all-gather, as MPI ranks under pvbatch) each run a third
+  // of every phase and exchange the results: every one ends with the one-process model, also
+  // with soft constraints and a guide.
+  const LabelGrid e = Grid2D({ { 0, 0, 0, 0, 0, 0 }, { 0, 1, 2, 0, 0, 0 }, { 0, 3, 3, 0, 5, 0 },
+    { 0, 3, 4, 4, 4, 0 }, { 0, 0, 0, 0, 0, 0 } });
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(e));
+  for (int variant = 0; variant < 3; ++variant)
+  {
+    SynthesisOptions o;
+    o.Size = { { 40, 36, 1 } };
+    o.BlockSize = { { 8, 8, 1 } };
+    o.Seed = 12;
+    o.Threads = 1;
+    if (variant == 1)
+      o.Soft.TargetFractions[3] = 0.3;
+    if (variant == 2)
+    {
+      GuideVolume g;
+      g.Dims = { { 2, 1, 1 } };
+      g.Weights[4] = { 0.0f, 1.0f };
+      o.Guide = g;
+    }
+    const auto single = Synthesize(rules, o);
+    ASSERT_TRUE(single.Success) << single.Message;
+    const int ranks = 3;
+    ThreadAllGather gather(ranks);
+    std::vector<SynthesisResult> results(static_cast<std::size_t>(ranks));
+    std::vector<std::thread> pool;
+    for (int r = 0; r < ranks; ++r)
+      pool.emplace_back(
+        [&, r]
+        {
+          SynthesisOptions mine = o;
+          mine.Exchange.Rank = r;
+          mine.Exchange.Processes = ranks;
+          mine.Exchange.AllGather = [&gather, r](const std::vector<char>& bytes)
+          { return gather(r, bytes); };
+          results[static_cast<std::size_t>(r)] = Synthesize(rules, mine);
+        });
+    for (auto& t : pool)
+      t.join();
+    for (const auto& r : results)
+    {
+      ASSERT_TRUE(r.Success) << r.Message;
+      EXPECT_EQ(r.Model, single.Model) << "variant " << variant;
+      EXPECT_EQ(r.LastBlock, single.LastBlock);
+      EXPECT_EQ(r.Statistics.Processes, ranks);
+      EXPECT_EQ(r.Statistics.Attempts, single.Statistics.Attempts);
+      EXPECT_EQ(r.Statistics.BlocksRejected, single.Statistics.BlocksRejected);
+      ExpectConsistent(e, r);
+    }
+  }
 }

@@ -107,6 +107,15 @@ model = servermanager.Fetch(synthesis)
 check(model.GetDimensions() == (24, 20, 5), "synthesized size")
 unknown = set(pair_counts(model)) - set(expected)
 check(not unknown, "every model pair occurs in the example (Eq. 3.1): %s" % sorted(unknown)[:3])
+# Under MPI the blocks of each phase are spread over the ranks; the model is the one-process one.
+processes = model.GetFieldData().GetArray("Processes").GetValue(0)
+check(processes == ranks, "blocks spread over %d processes, expected %d" % (processes, ranks))
+synthesis.DistributeBlocks = 0
+alone = servermanager.Fetch(synthesis)
+same = all(alone.GetPointData().GetArray("Label").GetValue(i) == model.GetPointData().GetArray("Label").GetValue(i)
+           for i in range(24 * 20 * 5))
+check(same, "the distributed model equals the one-process model")
+synthesis.DistributeBlocks = 1
 
 # Geometry of the model through its proxy: closed voxel surfaces, one face per label change.
 mesh = servermanager.Fetch(ModelSynthLabelGeometry(Input=synthesis))

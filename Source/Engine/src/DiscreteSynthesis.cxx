@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -1303,12 +1304,105 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   if (solver.Snapshots() || blocks.size() < 2 || (seams && !seams->Arcs.Empty()))
     threads = 1; // seams link blocks of one phase
   stats.Threads = static_cast<int>(threads);
+  // Processes: each runs its share of a phase, then all exchange the blocks' labels.
+  const bool distributed = options.Exchange.Active() && !solver.Snapshots() &&
+    !(seams && !seams->Arcs.Empty());
+  const std::size_t processes =
+    distributed ? static_cast<std::size_t>(options.Exchange.Processes) : 1;
+  const std::size_t rank = distributed ? static_cast<std::size_t>(options.Exchange.Rank) : 0;
+  if (distributed && (options.Exchange.Rank < 0 || options.Exchange.Rank >= options.Exchange.Processes))
+    throw Error("block exchange: rank " + std::to_string(options.Exchange.Rank) + " of " +
+      std::to_string(options.Exchange.Processes) + " processes");
+  stats.Processes = static_cast<int>(processes);
   std::vector<std::unique_ptr<Solver>> workers;
   for (unsigned t = 1; t < threads; ++t)
     workers.push_back(std::make_unique<Solver>(rules, options, plan, seams, shared));
 
+  // The all-gather of a phase: per block run here, its outcome and its sites' labels; the
+  // blocks run elsewhere are written into the model (their previous labels saved first for the
+  // soft constraints). Returns whether any process was cancelled.
+  auto exchange = [&](std::size_t first, std::size_t last, const std::vector<std::size_t>& mine,
+                    std::vector<Outcome>& outcomes, bool cancelledHere)
+  {
+    std::vector<char> bytes;
+    auto put = [&bytes](std::int64_t v)
+    {
+      char b[8];
+      std::memcpy(b, &v, 8);
+      bytes.insert(bytes.end(), b, b + 8);
+    };
+    put(cancelledHere ? 1 : 0);
+    for (std::size_t i : mine)
+    {
+      const Outcome& out = outcomes[i - first];
+      put(static_cast<std::int64_t>(i));
+      put(out.Empty);
+      put(out.Attempts);
+      put(out.Assignments);
+      forEachSite(blocks[i],
+        [&](std::size_t site)
+        {
+          put(shared.Model[site]);
+          put(shared.LastBlock[site]);
+        });
+    }
+    const auto all = options.Exchange.AllGather(bytes);
+    if (all.size() != processes)
+      throw Error("block exchange: expected results from " + std::to_string(processes) +
+        " processes, got " + std::to_string(all.size()));
+    bool anyCancelled = false;
+    for (std::size_t p = 0; p < all.size(); ++p)
+    {
+      const std::vector<char>& in = all[p];
+      std::size_t at = 0;
+      auto get = [&]()
+      {
+        if (at + 8 > in.size())
+          throw Error("block exchange: a truncated result from process " + std::to_string(p));
+        std::int64_t v;
+        std::memcpy(&v, in.data() + at, 8);
+        at += 8;
+        return v;
+      };
+      anyCancelled = get() != 0 || anyCancelled;
+      while (at < in.size())
+      {
+        const auto i = static_cast<std::size_t>(get());
+        if (i < first || i >= last)
+          throw Error("block exchange: process " + std::to_string(p) +
+            " sent a block of another phase");
+        Outcome& out = outcomes[i - first];
+        out.Empty = get();
+        out.Attempts = static_cast<int>(get());
+        out.Assignments = get();
+        const bool remote = p != rank;
+        if (remote && soft)
+        {
+          out.SavedModel.clear();
+          out.SavedLast.clear();
+        }
+        forEachSite(blocks[i],
+          [&](std::size_t site)
+          {
+            const auto label = static_cast<std::int32_t>(get());
+            const auto lastBlock = static_cast<std::int32_t>(get());
+            if (!remote)
+              return;
+            if (soft)
+            {
+              out.SavedModel.push_back(shared.Model[site]);
+              out.SavedLast.push_back(shared.LastBlock[site]);
+            }
+            shared.Model[site] = label;
+            shared.LastBlock[site] = lastBlock;
+          });
+      }
+    }
+    return anyCancelled;
+  };
+
   solver.StartSnapshots();
-  bool cancelled = false;
+  bool cancelled = false, cancelRequested = false;
   std::size_t done = 0;
   for (std::size_t first = 0; first < blocks.size() && !cancelled;)
   {
@@ -1316,7 +1410,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     while (last < blocks.size() && blocks[last].Phase == blocks[first].Phase)
       ++last;
     std::vector<Outcome> outcomes(last - first);
-    if (threads == 1)
+    if (threads == 1 && !distributed)
     {
       for (std::size_t i = first; i < last && !cancelled; ++i)
       {
@@ -1331,25 +1425,37 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     }
     else
     {
-      std::atomic<std::size_t> next{ first };
+      // This process's blocks of the phase (all of them without distribution).
+      std::vector<std::size_t> mine;
+      for (std::size_t i = first; i < last; ++i)
+        if ((i - first) % processes == rank)
+          mine.push_back(i);
+      std::atomic<std::size_t> next{ 0 };
       std::vector<std::thread> pool;
       auto work = [&](Solver& worker)
       {
-        for (std::size_t i; (i = next++) < last;)
-          outcomes[i - first] = runBlock(worker, blocks[i]);
+        for (std::size_t j; (j = next++) < mine.size();)
+          outcomes[mine[j] - first] = runBlock(worker, blocks[mine[j]]);
       };
       for (auto& w : workers)
         pool.emplace_back(work, std::ref(*w));
       work(solver);
       for (auto& t : pool)
         t.join();
+      if (distributed) // every process stops at the same phase
+        cancelled = exchange(first, last, mine, outcomes, cancelRequested);
       for (std::size_t i = first; i < last; ++i)
       {
         decide(blocks[i], outcomes[i - first]); // in block order: deterministic
         record(blocks[i], outcomes[i - first]);
       }
       done += last - first;
-      cancelled = options.Progress && !options.Progress(double(done) / double(blocks.size()));
+      const bool stop =
+        options.Progress && !options.Progress(double(done) / double(blocks.size()));
+      if (distributed)
+        cancelRequested = cancelRequested || stop;
+      else
+        cancelled = stop;
     }
     first = last;
   }

@@ -11,6 +11,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -188,6 +189,32 @@ int vtkMSDiscreteSynthesis::RequestData(
   msynth::SynthesisOptions options = SizeOptions(this);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
   options.Threads = this->NumberOfThreads;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (this->DistributeBlocks && controller && controller->GetNumberOfProcesses() > 1)
+  {
+    options.Exchange.Rank = controller->GetLocalProcessId();
+    options.Exchange.Processes = controller->GetNumberOfProcesses();
+    options.Exchange.AllGather = [controller](const std::vector<char>& mine)
+    {
+      // The lengths first, then the bytes of every rank.
+      const int ranks = controller->GetNumberOfProcesses();
+      vtkIdType length = static_cast<vtkIdType>(mine.size());
+      std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
+      controller->AllGather(&length, lengths.data(), 1);
+      vtkIdType total = 0;
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+      {
+        offsets[r] = total;
+        total += lengths[r];
+      }
+      std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+      controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+      std::vector<std::vector<char>> parts(lengths.size());
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+        parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
+      return parts;
+    };
+  }
   options.Seed = static_cast<std::uint64_t>(this->Seed);
   options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
   options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
@@ -436,6 +463,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksRejected", static_cast<int>(s.BlocksRejected));
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
+  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Processes", s.Processes);
   vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
   vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);
   vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "Message", result.Message);
@@ -496,5 +524,6 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
      << this->Translate[2] << " (period " << this->TranslationPeriod[0] << " "
      << this->TranslationPeriod[1] << " " << this->TranslationPeriod[2] << ", map '"
      << this->TranslationMap << "')\n";
+  os << indent << "DistributeBlocks: " << this->DistributeBlocks << "\n";
   os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
 }

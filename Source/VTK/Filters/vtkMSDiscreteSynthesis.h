@@ -158,6 +158,16 @@ public:
   ///@}
 
   ///@{
+  /// Under MPI (pvbatch --mpi), spread the blocks of each phase over the ranks and exchange
+  /// the results (the model is the same as on one process; every rank outputs it). Runs with
+  /// catalog snapshots or translation/rotation symmetry run every block on every rank.
+  /// Default on.
+  vtkSetMacro(DistributeBlocks, bool);
+  vtkGetMacro(DistributeBlocks, bool);
+  vtkBooleanMacro(DistributeBlocks, bool);
+  ///@}
+
+  ///@{
   /// Half-width w of the resemblance window ((2w + 1)³ sites). Default 1.
   vtkSetClampMacro(ResemblanceWindow, int, 0, 8);
   vtkGetMacro(ResemblanceWindow, int);
@@ -274,6 +284,7 @@ private:
   int CatalogSnapshotsPerBlock = 0;
   int ResemblanceWindow = 1;
   int NumberOfThreads = 0;
+  bool DistributeBlocks = true;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
   int Translate[3] = { 0, 0, 0 };

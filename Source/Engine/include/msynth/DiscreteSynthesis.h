@@ -152,6 +152,23 @@ struct SoftConstraint
   bool Active() const { return !this->TargetFractions.empty() || static_cast<bool>(this->Fitness); }
 };
 
+/**
+ * Distribution of block synthesis over processes (e.g. MPI ranks under pvbatch). Blocks of a
+ * phase never touch, so each process runs its share of every phase (position in the phase
+ * modulo Processes = Rank), and AllGather exchanges the results: it receives this process's
+ * bytes and must return every process's bytes, in rank order (an all-gather). Each process
+ * then holds the whole model, identical to a one-process run. Every process must call
+ * Synthesize with the same inputs. Runs with snapshots or with translation/rotation seams run
+ * every block on every process instead.
+ */
+struct BlockExchange
+{
+  int Rank = 0;
+  int Processes = 1;
+  std::function<std::vector<std::vector<char>>(const std::vector<char>&)> AllGather;
+  bool Active() const { return this->Processes > 1 && static_cast<bool>(this->AllGather); }
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -193,6 +210,8 @@ struct SynthesisOptions
   /// model is the same for any number of threads. Runs with snapshots, and runs with translation
   /// or rotation symmetry (whose seams link distant blocks), use one thread.
   int Threads = 0;
+  /// Blocks spread over processes; inactive by default.
+  BlockExchange Exchange;
   /// Called after each block (one thread) or each phase (several) with the fraction done, on
   /// the calling thread; returning false cancels the run.
   std::function<bool(double)> Progress;
@@ -225,7 +244,8 @@ struct SynthesisStatistics
   std::int64_t Attempts = 0;
   std::int64_t Assignments = 0;
   int Phases = 1;
-  int Threads = 1; ///< threads used
+  int Threads = 1;   ///< threads used
+  int Processes = 1; ///< processes the blocks were spread over
   double Seconds = 0.0;
   std::vector<BlockFailure> Failures;
   std::optional<Label> TrivialLabel; ///< the trivial start used (block mode)
