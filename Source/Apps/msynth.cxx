@@ -914,15 +914,7 @@ int Animate(const std::vector<std::string>& examples, const SynthesizeArguments&
       example.Frames.push_back(std::move(grid));
       continue;
     }
-    const auto& d = grid.Dimensions();
-    for (std::int64_t z = 0; z < d[2]; ++z)
-    {
-      msynth::LabelGrid slice(d[0], d[1], 1);
-      for (std::int64_t y = 0; y < d[1]; ++y)
-        for (std::int64_t x = 0; x < d[0]; ++x)
-          slice.Set(x, y, 0, grid.At(x, y, z));
-      example.Frames.push_back(std::move(slice));
-    }
+    example = msynth::TimeVaryingGrid::FromSlices(grid);
   }
   msynth::TimeVaryingOptions options;
   options.Size = { { a.Size[0], a.Size[1], a.Size[2], a.Frames } };

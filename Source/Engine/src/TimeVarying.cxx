@@ -42,6 +42,21 @@ Coord4 TimeVaryingGrid::Dimensions() const
   return { { d[0], d[1], d[2], static_cast<std::int64_t>(this->Frames.size()) } };
 }
 
+TimeVaryingGrid TimeVaryingGrid::FromSlices(const LabelGrid& grid)
+{
+  TimeVaryingGrid out;
+  const auto& d = grid.Dimensions();
+  for (std::int64_t z = 0; z < d[2]; ++z)
+  {
+    LabelGrid slice(d[0], d[1], 1);
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+        slice.Set(x, y, 0, grid.At(x, y, z));
+    out.Frames.push_back(std::move(slice));
+  }
+  return out;
+}
+
 TimeVaryingRules TimeVaryingRules::FromExample(const TimeVaryingGrid& example)
 {
   const Coord4 n = example.Dimensions();

@@ -141,15 +141,8 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
       frames.push_back(std::move(grid));
       continue;
     }
-    const auto& d = grid.Dimensions();
-    for (std::int64_t z = 0; z < d[2]; ++z)
-    {
-      msynth::LabelGrid slice(d[0], d[1], 1);
-      for (std::int64_t y = 0; y < d[1]; ++y)
-        for (std::int64_t x = 0; x < d[0]; ++x)
-          slice.Set(x, y, 0, grid.At(x, y, z));
+    for (auto& slice : msynth::TimeVaryingGrid::FromSlices(grid).Frames)
       frames.push_back(std::move(slice));
-    }
   }
   Cache& cache = *this->Cached;
   if (cache.FilterTime != this->GetMTime() || cache.Example != frames || !cache.Result.Success)

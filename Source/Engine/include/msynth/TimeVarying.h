@@ -35,6 +35,8 @@ struct TimeVaryingGrid
   std::vector<LabelGrid> Frames;
   /// nx, ny, nz, nt. @throw Error when there are no frames or their sizes differ.
   Coord4 Dimensions() const;
+  /// The z slices of @p grid as frames (a 2D model over time stored as one volume).
+  static TimeVaryingGrid FromSlices(const LabelGrid& grid);
 };
 
 /// The rules of a time-varying example: directions +x, -x, +y, -y, +z, -z, +t, -t.
