@@ -11,6 +11,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -152,6 +153,9 @@ int vtkMSDiscreteSynthesis::RequestUpdateExtent(
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
     inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    // Every rank (pvbatch --mpi) gets all of it, so all can share the blocks.
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   }
   return 1;
 }
@@ -189,32 +193,6 @@ int vtkMSDiscreteSynthesis::RequestData(
   msynth::SynthesisOptions options = SizeOptions(this);
   options.AttemptsPerBlock = this->AttemptsPerBlock;
   options.Threads = this->NumberOfThreads;
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (this->DistributeBlocks && controller && controller->GetNumberOfProcesses() > 1)
-  {
-    options.Exchange.Rank = controller->GetLocalProcessId();
-    options.Exchange.Processes = controller->GetNumberOfProcesses();
-    options.Exchange.AllGather = [controller](const std::vector<char>& mine)
-    {
-      // The lengths first, then the bytes of every rank.
-      const int ranks = controller->GetNumberOfProcesses();
-      vtkIdType length = static_cast<vtkIdType>(mine.size());
-      std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
-      controller->AllGather(&length, lengths.data(), 1);
-      vtkIdType total = 0;
-      for (std::size_t r = 0; r < lengths.size(); ++r)
-      {
-        offsets[r] = total;
-        total += lengths[r];
-      }
-      std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
-      controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
-      std::vector<std::vector<char>> parts(lengths.size());
-      for (std::size_t r = 0; r < lengths.size(); ++r)
-        parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
-      return parts;
-    };
-  }
   options.Seed = static_cast<std::uint64_t>(this->Seed);
   options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
   options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
@@ -354,6 +332,63 @@ int vtkMSDiscreteSynthesis::RequestData(
   const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
   const bool fresh = !cache.Valid || cache.FilterTime != this->GetMTime() || cache.Input != input ||
     cache.InputTime != inputTime || cache.Guide != guide || cache.GuideTime != guideTime;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  // Under MPI every rank reads the whole example (RequestUpdateExtent) and runs this; the
+  // blocks are spread only when every rank is about to synthesize from the same example, which
+  // the ranks first agree on (a fingerprint of the example and the sizes), so no rank waits for
+  // one that will not exchange.
+  bool distribute = false;
+  if (this->DistributeBlocks && controller && controller->GetNumberOfProcesses() > 1)
+  {
+    vtkIdType fingerprint = 0;
+    if (fresh)
+    {
+      std::uint64_t h = 1469598103934665603ull;
+      auto mix = [&h](std::uint64_t v)
+      {
+        h ^= v;
+        h *= 1099511628211ull;
+      };
+      for (char c : this->TilesetFile)
+        mix(static_cast<unsigned char>(c));
+      if (labels)
+        for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+          mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
+      for (int a = 0; a < 3; ++a)
+        mix(static_cast<std::uint64_t>(options.Size[a]) * 31 + static_cast<std::uint64_t>(options.BlockSize[a]));
+      mix(options.Seed);
+      fingerprint = static_cast<vtkIdType>(h >> 2) | 1; // never 0: 0 means "not synthesizing"
+    }
+    vtkIdType low = 0, high = 0;
+    controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
+    controller->AllReduce(&fingerprint, &high, 1, vtkCommunicator::MAX_OP);
+    distribute = low != 0 && low == high;
+  }
+  if (distribute)
+  {
+    options.Exchange.Rank = controller->GetLocalProcessId();
+    options.Exchange.Processes = controller->GetNumberOfProcesses();
+    options.Exchange.AllGather = [controller](const std::vector<char>& mine)
+    {
+      // The lengths first, then the bytes of every rank.
+      const int ranks = controller->GetNumberOfProcesses();
+      vtkIdType length = static_cast<vtkIdType>(mine.size());
+      std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
+      controller->AllGather(&length, lengths.data(), 1);
+      vtkIdType total = 0;
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+      {
+        offsets[r] = total;
+        total += lengths[r];
+      }
+      std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+      controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+      std::vector<std::vector<char>> parts(lengths.size());
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+        parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
+      return parts;
+    };
+  }
   if (fresh)
   {
     cache.Valid = false;
