@@ -99,23 +99,9 @@ int vtkMSDiscreteSynthesis::RequestInformation(
       return 0;
     }
   }
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int extent[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
-    this->OutputSize[2] - 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
-  if (inInfo && inInfo->Has(vtkDataObject::SPACING()))
-  {
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-  }
-  if (inInfo && inInfo->Has(vtkDataObject::ORIGIN()))
-  {
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
-  }
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+  vtkMSEngineBridge::SetOutputLabelGrid(
+    inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
 
   vtkMSEngineBridge::SetTimeSteps(outInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)

@@ -60,18 +60,8 @@ int vtkMSTimeVaryingSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int whole[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
-    this->OutputSize[2] - 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo && inInfo->Has(vtkDataObject::SPACING()))
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-  if (inInfo && inInfo->Has(vtkDataObject::ORIGIN()))
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+  vtkMSEngineBridge::SetOutputLabelGrid(
+    inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
   vtkMSEngineBridge::SetTimeSteps(outInfo, static_cast<std::size_t>(this->NumberOfFrames));
   outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;

@@ -453,6 +453,25 @@ vtkMSEngineBridge::ArrangementRecord vtkMSEngineBridge::LoadArrangement(
   return r;
 }
 
+void vtkMSEngineBridge::SetOutputLabelGrid(
+  vtkInformation* inInfo, vtkInformation* outInfo, const int size[3])
+{
+  const int extent[6] = { 0, size[0] - 1, 0, size[1] - 1, 0, size[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+  if (inInfo && inInfo->Has(vtkDataObject::SPACING()))
+  {
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  }
+  if (inInfo && inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  }
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_INT, 1);
+}
+
 void vtkMSEngineBridge::SetTimeSteps(vtkInformation* outInfo, std::size_t count)
 {
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());

@@ -123,6 +123,11 @@ public:
   static void RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece);
   /// The piece an output information object asks for (UPDATE_PIECE_NUMBER), 0 when unset.
   static int UpdatePiece(vtkInformation* outInfo);
+  /**
+   * Announces a label image of @p size sites on @p outInfo: its whole extent, the spacing and
+   * origin of the example described by @p inInfo (1 and 0 without one), and Int labels.
+   */
+  static void SetOutputLabelGrid(vtkInformation* inInfo, vtkInformation* outInfo, const int size[3]);
   /// Announces time steps 0, 1, ..., @p count − 1 on @p outInfo (removes them when 0).
   static void SetTimeSteps(vtkInformation* outInfo, std::size_t count);
   /// The step of 0 ... @p count − 1 that @p outInfo asks for (UPDATE_TIME_STEP rounded and
