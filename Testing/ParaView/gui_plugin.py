@@ -26,8 +26,18 @@ try:
     Render()
     model = servermanager.Fetch(mesh)
     check = model.GetFieldData().GetAbstractArray("ModelCheck").GetValue(0)
-    result = "OK labels=%d continuous=%d model=%s" % (rows, continuous,
-                                                      check if model.GetNumberOfPolys() > 0 else "empty")
+    # A rotation-symmetric discrete model and an animation (the village's z layers as frames),
+    # shown as a user would.
+    turned = ModelSynthDiscreteSynthesis(Input=reader, OutputSize=[16, 16, 5], BlockSize=[8, 8, 5], Rotate=1)
+    Show(turned)
+    Render()
+    movie = ModelSynthTimeVaryingSynthesis(Input=reader, OutputSize=[12, 12, 1], NumberOfFrames=6,
+                                          ExampleTimeFromZ=1, BlockSize=[6, 6, 1, 3])
+    Show(movie)
+    Render()
+    frames = len(movie.TimestepValues)
+    result = "OK labels=%d continuous=%d model=%s frames=%d" % (
+        rows, continuous, check if model.GetNumberOfPolys() > 0 else "empty", frames)
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
 with open(report, "w") as f:

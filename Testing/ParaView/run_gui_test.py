@@ -17,4 +17,4 @@ if not os.path.exists(report):
     sys.exit("the GUI script wrote no report")
 text = open(report).read()
 print(text)
-sys.exit(0 if text == "OK labels=4 continuous=28 model=valid" else 1)
+sys.exit(0 if text == "OK labels=4 continuous=28 model=valid frames=6" else 1)
