@@ -34,7 +34,8 @@ try:
     movie = ModelSynthTimeVaryingSynthesis(Input=reader, OutputSize=[12, 12, 1], NumberOfFrames=6,
                                           ExampleTimeFromZ=1, BlockSize=[6, 6, 1, 3])
     Show(movie)
-    Render()
+    Render()  # (GetAnimationScene().UpdateAnimationUsingDataTimeSteps() from a --script never
+    # returns in this GUI, even for ParaView's own TimeSource; pvbatch tests the scene instead)
     frames = len(movie.TimestepValues)
     result = "OK labels=%d continuous=%d model=%s frames=%d" % (
         rows, continuous, check if model.GetNumberOfPolys() > 0 else "empty", frames)
