@@ -1495,6 +1495,79 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   return result;
 }
 
+/**
+ * A part of the output (a mirrored half; a period or a quadrant) spread over the whole output:
+ * output site q shows part site Source(q) (linear index, x fastest) with its label value mapped
+ * by Image(q, value).
+ */
+struct Unfolding
+{
+  Coord Full{ { 1, 1, 1 } };
+  std::function<std::size_t(const Coord&)> Source;
+  std::function<Label(const Coord&, Label)> Image;
+
+  template <class Visit>
+  void ForEach(Visit&& visit) const
+  {
+    Coord q;
+    std::size_t i = 0;
+    for (q[2] = 0; q[2] < this->Full[2]; ++q[2])
+      for (q[1] = 0; q[1] < this->Full[1]; ++q[1])
+        for (q[0] = 0; q[0] < this->Full[0]; ++q[0], ++i)
+          visit(i, q, this->Source(q));
+  }
+
+  CatalogSnapshot Snapshot(const CatalogSnapshot& part) const
+  {
+    CatalogSnapshot out;
+    out.Step = part.Step;
+    out.Block = part.Block;
+    out.Assignments = part.Assignments;
+    const auto n = static_cast<std::size_t>(this->Full[0] * this->Full[1] * this->Full[2]);
+    out.CatalogSize.resize(n);
+    out.Entropy.resize(n);
+    out.Labels.resize(n);
+    this->ForEach(
+      [&](std::size_t i, const Coord& q, std::size_t j)
+      {
+        out.CatalogSize[i] = part.CatalogSize[j];
+        out.Entropy[i] = part.Entropy[j];
+        const Label v = part.Labels[j];
+        out.Labels[i] = v == CatalogSnapshot::Undecided ? v : this->Image(q, v);
+      });
+    return out;
+  }
+
+  /// Replaces the part's model and LastBlock in @p r by the whole output's.
+  void Apply(SynthesisResult& r) const
+  {
+    LabelGrid model(this->Full[0], this->Full[1], this->Full[2]);
+    std::vector<std::int32_t> lastBlock(static_cast<std::size_t>(model.NumberOfSites()));
+    this->ForEach(
+      [&](std::size_t i, const Coord& q, std::size_t j)
+      {
+        model.Data()[i] = this->Image(q, r.Model.Data()[j]);
+        lastBlock[i] = r.LastBlock[j];
+      });
+    r.Model = std::move(model);
+    r.LastBlock = std::move(lastBlock);
+  }
+};
+
+/// Synthesizes @p part (the options of a half, period or quadrant) and spreads it by
+/// @p unfolding; the snapshots @p options asks for are spread too.
+SynthesisResult SynthesizePart(const AdjacencyRules& rules, const SynthesisOptions& options,
+  SynthesisOptions part, const MirrorPlan* mirror, const detail::SymmetryPlan* seams,
+  const Unfolding& unfolding)
+{
+  if (options.OnSnapshot)
+    part.OnSnapshot = [&](const CatalogSnapshot& s) { options.OnSnapshot(unfolding.Snapshot(s)); };
+  SynthesisResult r = SynthesizeDirect(rules, part, mirror, seams);
+  if (r.Success)
+    unfolding.Apply(r);
+  return r;
+}
+
 /// Translation or rotation symmetry: synthesizes the plan's domain with its seams, then repeats
 /// (turns) it over the output with the labels mapped.
 SynthesisResult SynthesizeSeamSymmetric(
@@ -1502,59 +1575,15 @@ SynthesisResult SynthesizeSeamSymmetric(
 {
   const auto plan = detail::PlanSymmetry(rules, options);
   const auto& values = rules.LabelValues();
-  const Coord& full = plan->Full;
-  const auto n = static_cast<std::size_t>(full[0] * full[1] * full[2]);
-  SynthesisOptions domain = plan->DomainOptions;
-  if (options.OnSnapshot)
-  {
-    domain.OnSnapshot = [&](const CatalogSnapshot& d)
-    {
-      CatalogSnapshot out;
-      out.Step = d.Step;
-      out.Block = d.Block;
-      out.Assignments = d.Assignments;
-      out.CatalogSize.resize(n);
-      out.Entropy.resize(n);
-      out.Labels.resize(n);
-      Coord q;
-      std::size_t i = 0;
-      for (q[2] = 0; q[2] < full[2]; ++q[2])
-        for (q[1] = 0; q[1] < full[1]; ++q[1])
-          for (q[0] = 0; q[0] < full[0]; ++q[0], ++i)
-          {
-            const auto j = static_cast<std::size_t>(plan->Source(q));
-            out.CatalogSize[i] = d.CatalogSize[j];
-            out.Entropy[i] = d.Entropy[j];
-            const Label v = d.Labels[j];
-            out.Labels[i] = v == CatalogSnapshot::Undecided
-              ? v
-              : values[static_cast<std::size_t>(plan->Image(q, rules.IndexOf(v)))];
-          }
-      options.OnSnapshot(out);
-    };
-  }
-  SynthesisResult r = SynthesizeDirect(rules, domain, nullptr, plan.get());
-  if (!r.Success)
-    return r;
-  LabelGrid model(full[0], full[1], full[2]);
-  std::vector<std::int32_t> lastBlock(n);
-  Coord q;
-  for (q[2] = 0; q[2] < full[2]; ++q[2])
-    for (q[1] = 0; q[1] < full[1]; ++q[1])
-      for (q[0] = 0; q[0] < full[0]; ++q[0])
-      {
-        const std::int64_t j = plan->Source(q);
-        const Coord p{ { j % plan->Domain[0], (j / plan->Domain[0]) % plan->Domain[1],
-          j / (plan->Domain[0] * plan->Domain[1]) } };
-        model.Set(q[0], q[1], q[2],
-          values[static_cast<std::size_t>(
-            plan->Image(q, rules.IndexOf(r.Model.At(p[0], p[1], p[2]))))]);
-        lastBlock[static_cast<std::size_t>(model.Index(q[0], q[1], q[2]))] =
-          r.LastBlock[static_cast<std::size_t>(j)];
-      }
-  r.Model = std::move(model);
-  r.LastBlock = std::move(lastBlock);
-  r.Message += plan->Rotate ? " (turned copies of a quadrant)" : " (repeated periods)";
+  Unfolding unfolding;
+  unfolding.Full = plan->Full;
+  unfolding.Source = [&plan](const Coord& q) { return static_cast<std::size_t>(plan->Source(q)); };
+  unfolding.Image = [&](const Coord& q, Label v)
+  { return values[static_cast<std::size_t>(plan->Image(q, rules.IndexOf(v)))]; };
+  SynthesisResult r =
+    SynthesizePart(rules, options, plan->DomainOptions, nullptr, plan.get(), unfolding);
+  if (r.Success)
+    r.Message += plan->Rotate ? " (turned copies of a quadrant)" : " (repeated periods)";
   return r;
 }
 
@@ -1572,7 +1601,8 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   }
   const MirrorPlan plan = PlanMirror(rules, options);
   const auto& values = rules.LabelValues();
-  auto fold = [&](const Coord& q, Coord& p)
+  // Output site q folds onto half site p, mirrored over the axes where q lies past the middle.
+  auto fold = [&plan](const Coord& q, Coord& p)
   {
     int axes = 0;
     p = q;
@@ -1584,61 +1614,24 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
       }
     return axes;
   };
-  auto mirrorValue = [&](Label v, int axes)
+  Unfolding unfolding;
+  unfolding.Full = plan.Full;
+  unfolding.Source = [&](const Coord& q)
   {
-    if (v == CatalogSnapshot::Undecided)
-      return v;
-    return values[static_cast<std::size_t>(plan.Image(rules.IndexOf(v), axes))];
+    Coord p;
+    fold(q, p);
+    return static_cast<std::size_t>(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
   };
-  SynthesisOptions half = plan.HalfOptions;
-  if (options.OnSnapshot)
+  unfolding.Image = [&](const Coord& q, Label v)
   {
-    half.OnSnapshot = [&](const CatalogSnapshot& h)
-    {
-      CatalogSnapshot full;
-      full.Step = h.Step;
-      full.Block = h.Block;
-      full.Assignments = h.Assignments;
-      const auto n = static_cast<std::size_t>(plan.Full[0] * plan.Full[1] * plan.Full[2]);
-      full.CatalogSize.resize(n);
-      full.Entropy.resize(n);
-      full.Labels.resize(n);
-      Coord q, p;
-      std::size_t i = 0;
-      for (q[2] = 0; q[2] < plan.Full[2]; ++q[2])
-        for (q[1] = 0; q[1] < plan.Full[1]; ++q[1])
-          for (q[0] = 0; q[0] < plan.Full[0]; ++q[0], ++i)
-          {
-            const int axes = fold(q, p);
-            const auto j =
-              static_cast<std::size_t>(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
-            full.CatalogSize[i] = h.CatalogSize[j];
-            full.Entropy[i] = h.Entropy[j];
-            full.Labels[i] = mirrorValue(h.Labels[j], axes);
-          }
-      options.OnSnapshot(full);
-    };
-  }
-  SynthesisResult r = SynthesizeDirect(rules, half, &plan, nullptr);
+    Coord p;
+    return values[static_cast<std::size_t>(plan.Image(rules.IndexOf(v), fold(q, p)))];
+  };
+  SynthesisResult r = SynthesizePart(rules, options, plan.HalfOptions, &plan, nullptr, unfolding);
   if (!r.Success)
   {
     return r;
   }
-  // Mirror the half into the full model.
-  LabelGrid full(plan.Full[0], plan.Full[1], plan.Full[2]);
-  std::vector<std::int32_t> lastBlock(static_cast<std::size_t>(full.NumberOfSites()));
-  Coord q, p;
-  for (q[2] = 0; q[2] < plan.Full[2]; ++q[2])
-    for (q[1] = 0; q[1] < plan.Full[1]; ++q[1])
-      for (q[0] = 0; q[0] < plan.Full[0]; ++q[0])
-      {
-        const int axes = fold(q, p);
-        full.Set(q[0], q[1], q[2], mirrorValue(r.Model.At(p[0], p[1], p[2]), axes));
-        lastBlock[static_cast<std::size_t>(full.Index(q[0], q[1], q[2]))] =
-          r.LastBlock[static_cast<std::size_t>(r.Model.Index(p[0], p[1], p[2]))];
-      }
-  r.Model = std::move(full);
-  r.LastBlock = std::move(lastBlock);
   r.Message += " (mirrored)";
   return r;
 }
