@@ -449,7 +449,6 @@ public:
         if (this->GuideWeights[static_cast<std::size_t>(c * k + b)] > 0.0f)
           this->GuideMasks[static_cast<std::size_t>(c * words + b / 64)] |= std::uint64_t(1)
             << (b % 64);
-    this->GuideDims = d;
   }
 
   bool HasGuide() const { return !this->GuideWeights.empty(); }
@@ -498,16 +497,9 @@ public:
   /// The guide cell of model site @p p.
   std::int64_t GuideCell(const Coord& p) const
   {
-    std::int64_t c[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      // floor((p + 1/2) · D / N) in integers: (2p + 1) · D / (2N).
-      // The guide spans the full output, also when only a half is synthesized.
-      const std::int64_t n =
-        this->Plan ? this->Plan->Full[a] : (this->Seams ? this->Seams->Full[a] : this->N[a]);
-      c[a] = std::min(this->GuideDims[a] - 1, ((2 * p[a] + 1) * this->GuideDims[a]) / (2 * n));
-    }
-    return c[0] + this->GuideDims[0] * (c[1] + this->GuideDims[1] * c[2]);
+    // The guide spans the full output, also when only a part of it is synthesized.
+    return this->Options.Guide->CellOf(
+      p, this->Plan ? this->Plan->Full : (this->Seams ? this->Seams->Full : this->N));
   }
   float GuideWeight(std::int64_t cell, int b) const
   {
@@ -832,22 +824,8 @@ public:
         // No example site matches any possible label (labels only reachable through
         // propagation): fall back to the weighted choice below.
       }
-      double total = 0.0;
-      const std::uint64_t* dom = cat.Domain(local);
-      for (int w = 0; w < this->Rules.Words(); ++w)
-        for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
-          total += this->Weight(w * 64 + __builtin_ctzll(bits));
-      double r = rng.Uniform() * total;
-      int last = -1;
-      for (int w = 0; w < this->Rules.Words(); ++w)
-        for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
-        {
-          last = w * 64 + __builtin_ctzll(bits);
-          r -= this->Weight(last);
-          if (r < 0.0)
-            return last;
-        }
-      return last; // rounding: the last possible label
+      return DrawLabel(cat.Domain(local), this->Rules.Words(),
+        [this](int b) { return this->Weight(b); }, rng.Uniform());
     };
     auto assign = [&](std::int64_t local) -> std::int64_t
     {
@@ -1082,7 +1060,6 @@ public:
   std::vector<std::uint64_t> MaskScratch;
   std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
-  Coord GuideDims{ { 1, 1, 1 } };
   std::vector<CatalogSnapshot> Pending; ///< snapshots of the current attempt
   std::int64_t Steps = 0;
   double FullEntropy = 0.0;

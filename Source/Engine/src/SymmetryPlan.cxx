@@ -395,11 +395,7 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
         for (q[1] = 0; q[1] < plan->Full[1]; ++q[1])
           for (q[0] = 0; q[0] < plan->Full[0]; ++q[0])
           {
-            std::int64_t c[3];
-            for (int a = 0; a < 3; ++a)
-              c[a] =
-                std::min(g.Dims[a] - 1, ((2 * q[a] + 1) * g.Dims[a]) / (2 * plan->Full[a]));
-            const std::int64_t cell = c[0] + g.Dims[0] * (c[1] + g.Dims[1] * c[2]);
+            const std::int64_t cell = g.CellOf(q, plan->Full);
             keepOnly(plan->Source(q),
               [&](int b)
               {

@@ -312,27 +312,14 @@ TimeVaryingResult SynthesizeTimeVarying(
           }
           if (domains.Count(local) == 1)
             continue;
-          double sum = 0.0;
-          const std::uint64_t* dom = domains.Domain(local);
-          auto weight = [&](int b)
-          {
-            return options.Choice == LabelChoice::Frequency
-              ? rules.Weights()[static_cast<std::size_t>(b)]
-              : 1.0;
-          };
-          for (int w = 0; w < words; ++w)
-            for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
-              sum += weight(w * 64 + __builtin_ctzll(bits));
-          double r = rng.Uniform() * sum;
-          int pick = -1;
-          for (int w = 0; w < words && (pick < 0 || r >= 0.0); ++w)
-            for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
+          const int pick = DrawLabel(domains.Domain(local), words,
+            [&](int b)
             {
-              pick = w * 64 + __builtin_ctzll(bits);
-              r -= weight(pick);
-              if (r < 0.0)
-                break;
-            }
+              return options.Choice == LabelChoice::Frequency
+                ? rules.Weights()[static_cast<std::size_t>(b)]
+                : 1.0;
+            },
+            rng.Uniform());
           ++stats.Assignments;
           domains.Assign(local, pick);
           empty = domains.Propagate(rules, forEach);

@@ -18,6 +18,7 @@
 #include "msynth/AdjacencyRules.h"
 #include "msynth/LabelGrid.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -89,6 +90,16 @@ struct GuideVolume
   std::array<std::int64_t, 3> Dims{ { 1, 1, 1 } };
   /// Label value → one weight per guide cell (x fastest), each ≥ 0 and finite.
   std::map<Label, std::vector<float>> Weights;
+
+  /// The cell (x fastest) holding site @p p of an output of @p size sites:
+  /// floor((p + 1/2) · Dims / size) per axis, in integers.
+  std::int64_t CellOf(const std::array<std::int64_t, 3>& p, const std::array<std::int64_t, 3>& size) const
+  {
+    std::int64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::min(this->Dims[a] - 1, ((2 * p[a] + 1) * this->Dims[a]) / (2 * size[a]));
+    return c[0] + this->Dims[0] * (c[1] + this->Dims[1] * c[2]);
+  }
 };
 
 /**
