@@ -902,13 +902,12 @@ int Animate(const std::vector<std::string>& examples, const SynthesizeArguments&
     reader->SetFileName(path.c_str());
     Run(reader);
     vtkImageData* image = reader->GetOutput();
-    std::string problem = "no label array";
-    vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(image, nullptr);
-    if (!labels || !vtkMSEngineBridge::CheckLabelArray(image, labels, problem))
+    msynth::LabelGrid grid;
+    std::string problem;
+    if (!vtkMSEngineBridge::ReadLabels(image, nullptr, grid, problem))
     {
       throw std::runtime_error("'" + path + "': " + problem);
     }
-    msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(image, labels);
     if (examples.size() > 1)
     {
       example.Frames.push_back(std::move(grid));

@@ -142,14 +142,13 @@ int vtkMSLabelGeometry::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(input, nullptr);
+  msynth::LabelGrid grid;
   std::string problem;
-  if (!labels || !vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+  if (!vtkMSEngineBridge::ReadLabels(input, nullptr, grid, problem))
   {
-    vtkErrorMacro(<< (labels ? problem : std::string("The input has no label array.")));
+    vtkErrorMacro(<< "Bad input: " << problem);
     return 0;
   }
-  msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(input, labels);
   const double* spacing = input->GetSpacing();
   const double* origin = input->GetOrigin();
   int extent[6];

@@ -117,15 +117,14 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   std::vector<msynth::LabelGrid> frames;
   for (std::size_t i = 0; i < inputs.size(); ++i)
   {
-    vtkImageData* image = vtkImageData::SafeDownCast(inputs[i]);
-    vtkDataArray* labels = image ? vtkMSEngineBridge::FindLabelArray(image, nullptr) : nullptr;
-    std::string problem = "the example has no label array (point array 'Label' or scalars)";
-    if (!labels || !vtkMSEngineBridge::CheckLabelArray(image, labels, problem))
+    msynth::LabelGrid grid;
+    std::string problem;
+    if (!vtkMSEngineBridge::ReadLabels(
+          vtkImageData::SafeDownCast(inputs[i]), nullptr, grid, problem))
     {
       vtkErrorMacro(<< "Bad example frame " << i << ": " << problem);
       return 0;
     }
-    msynth::LabelGrid grid = vtkMSEngineBridge::ToLabelGrid(image, labels);
     if (!this->ExampleTimeFromZ)
     {
       frames.push_back(std::move(grid));

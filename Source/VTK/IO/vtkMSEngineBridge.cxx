@@ -115,6 +115,23 @@ vtkDataArray* vtkMSEngineBridge::FindLabelArray(vtkImageData* image, vtkDataArra
   return labels ? labels : image->GetPointData()->GetScalars();
 }
 
+bool vtkMSEngineBridge::ReadLabels(
+  vtkImageData* image, vtkDataArray* selected, msynth::LabelGrid& grid, std::string& problem)
+{
+  vtkDataArray* labels = image ? FindLabelArray(image, selected) : nullptr;
+  if (!labels)
+  {
+    problem = "the image has no label array (point array 'Label' or the active scalars)";
+    return false;
+  }
+  if (!CheckLabelArray(image, labels, problem))
+  {
+    return false;
+  }
+  grid = ToLabelGrid(image, labels);
+  return true;
+}
+
 msynth::LabelGrid vtkMSEngineBridge::ToLabelGrid(vtkImageData* image, vtkDataArray* labels)
 {
   int dims[3];

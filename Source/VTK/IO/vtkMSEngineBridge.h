@@ -57,6 +57,13 @@ public:
   static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
 
   /**
+   * FindLabelArray, CheckLabelArray and ToLabelGrid in one: @p image's labels (@p selected when
+   * set) as a grid. False, with @p problem set to a sentence, when there is no usable array.
+   */
+  static bool ReadLabels(
+    vtkImageData* image, vtkDataArray* selected, msynth::LabelGrid& grid, std::string& problem);
+
+  /**
    * A polyhedral example from polygons: cell array `ObjectType` gives each polygon's type
    * (default 1), `ObjectId` its object (default: connected components per type). Not validated.
    * @p name is used in messages. @throw msynth::Error when there are no polygons.
