@@ -441,7 +441,6 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
           }
         }
       }
-      domains.QueueAll(); // arc consistent from the start (Statement 3.6)
       std::int64_t empty = ok ? domains.Propagate(rules, neighbours) : 0;
       if (!whole && options.Snapshots > 0 && options.OnSnapshot && empty < 0)
       {

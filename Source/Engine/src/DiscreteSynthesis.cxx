@@ -791,7 +791,6 @@ public:
         }
       }
     }
-    cat.QueueAll(); // the catalog of Statement 3.6 from the start, not every label
     std::int64_t empty = cat.Propagate();
     if (empty >= 0)
       return fail(empty);

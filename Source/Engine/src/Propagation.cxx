@@ -154,6 +154,7 @@ void LabelDomains::Start(std::int64_t n)
   }
   this->Queued.assign(static_cast<std::size_t>(n), 0);
   this->Queue.clear();
+  this->FromScratch = true;
   this->ChangedSites.clear();
   this->Trail.clear();
   this->Scratch.assign(static_cast<std::size_t>(this->W), 0);

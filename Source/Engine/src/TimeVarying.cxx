@@ -293,7 +293,6 @@ TimeVaryingResult SynthesizeTimeVarying(
       std::int64_t empty = -1;
       if (ok)
       {
-        domains.QueueAll();
         empty = domains.Propagate(rules, forEach);
       }
       if (ok && empty < 0)

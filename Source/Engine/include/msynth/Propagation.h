@@ -143,23 +143,13 @@ public:
   std::size_t Mark() const { return this->Trail.size(); }
   void Undo(std::size_t mark);
 
-  /**
-   * Queues every site for the next Propagate(), which then makes the sets arc consistent from
-   * scratch (a label without support at a neighbour is removed even before any assignment: the
-   * catalog C of Statement 3.6, not merely all labels).
-   */
-  void QueueAll()
-  {
-    for (std::int64_t s = 0; s < this->NumberOfSites(); ++s)
-      this->Push(s);
-  }
-
   /// Sites whose sets changed since ClearChanged().
   const std::vector<std::int64_t>& Changed() const { return this->ChangedSites; }
   void ClearChanged() { this->ChangedSites.clear(); }
 
   /**
-   * Propagates every change since the last call (Algorithm 3.2's loop, first in first out).
+   * Propagates every change since the last call (Algorithm 3.2's loop, first in first out); the
+   * first call after Reset revises every site.
    * @p forEachNeighbour(v, visit) calls visit(u, d) for each neighbour u reached from v along
    * direction class d of @p rules; visit returns false to stop (a set became empty).
    * Returns -1 when every set is non-empty, else a site whose set became empty.
@@ -167,6 +157,15 @@ public:
   template <class ForEachNeighbour>
   std::int64_t Propagate(const CompatibilityRelation& rules, ForEachNeighbour&& forEachNeighbour)
   {
+    if (this->FromScratch)
+    {
+      // The first pass after Reset revises every site, not only the changed ones, so the sets
+      // become arc consistent from the start (the catalog C of Statement 3.6): a label without
+      // support at a neighbour goes before any choice. Changed sites keep their place first.
+      this->FromScratch = false;
+      for (std::int64_t s = 0; s < this->NumberOfSites(); ++s)
+        this->Push(s);
+    }
     std::vector<std::uint64_t>& allowed = this->Scratch;
     std::size_t head = 0;
     while (head < this->Queue.size() && this->EmptySite < 0)
@@ -228,6 +227,7 @@ private:
   std::int64_t EmptySite = -1;
   std::int64_t DecidedSites = 0;
   bool Recording = false;
+  bool FromScratch = false; ///< set by Reset: the next Propagate revises every site
   std::vector<std::uint64_t> Trail; ///< [site, count, W old words] per recorded change
 };
 
