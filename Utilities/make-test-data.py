@@ -100,23 +100,24 @@ def main():
                     .replace('Piece Extent="0 3 0 3 0 0"', 'Piece Extent="0 3 0 4 0 0"'))
 
 
-def write_text_model(path, dims, fn, objects=None):
-    """The original model-synthesis text format: 3 header lines, X Y Z, Z slices of X rows of Y."""
+def write_text_model(path, dims, fn, objects=None, scene="Blender Scenes/village.blend"):
+    """The original model-synthesis text format as that program writes it: 3 header lines,
+    X Y Z, a blank line, each slice as X rows of Y values ("%2d ") and a blank line, then the
+    <Objects> trailer: the scene line, then one entry per label 1, 2, ... (a free-text line,
+    '$'-prefixed piece names, '#')."""
     nx, ny, nz = dims
-    lines = ["ModelSynth test example", "written by Utilities/make-test-data.py", "labels: see <Objects>",
-             "%d %d %d" % dims]
+    text = ("ModelSynth test example.  Do not insert or delete lines from this file.\n\n"
+            "x, y, and z extents\n%d %d %d\n\n" % dims)
     for z in range(nz):
-        lines.append("")
         for x in range(nx):
-            lines.append(" ".join(str(fn(x, y, z)) for y in range(ny)))
+            text += "".join("%2d " % fn(x, y, z) for y in range(ny)) + "\n"
+        text += "\n"
     if objects:
-        lines += ["", "<Objects>"]
+        text += "<Objects>\n" + scene + "\n"
         for label, names in objects:
-            lines.append(str(label))
-            lines += ["$" + n for n in names]
-            lines.append("#")
+            text += "".join(l + "\n" for l in [str(label)] + ["$" + n for n in names] + ["#"])
     with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
+        f.write(text)
 
 
 def text_examples(examples, malformed):
@@ -124,11 +125,11 @@ def text_examples(examples, malformed):
                      [(1, ["ground_tile"]), (2, ["wall", "window"]), (3, ["roof"])])
     header = "a\nb\nc\n"
     bad = {
-        "text-short-row.txt": header + "2 3 1\n1 1 1\n1 1\n",
+        "text-short-row.txt": header + "2 3 1\n1 1 1\n1 1\n<Objects>\nscene\n",
         "text-bad-dimensions.txt": header + "2 three 1\n",
         "text-huge.txt": header + "100000 100000 100000\n0\n",
         "text-missing-slice.txt": header + "1 2 2\n1 1\n",
-        "text-bad-objects.txt": header + "1 1 1\n4\n<Objects>\n4\nwall\n#\n",
+        "text-bad-objects.txt": header + "1 1 1\n4\n<Objects>\nscene\n4\nwall\n#\n",
     }
     for name, text in bad.items():
         with open(os.path.join(malformed, name), "w") as f:

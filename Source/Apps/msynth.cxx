@@ -20,6 +20,7 @@
 #include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
 #include "vtkMSOpenVDBWriter.h"
+#include "vtkMSTextModelWriter.h"
 #include "vtkMSTileImage.h"
 #include "vtkMSTransitionTables.h"
 
@@ -582,17 +583,6 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
     Run(synthesis);
   }
   vtkImageData* model = synthesis->GetOutput();
-  if (!tileset)
-  {
-    // Piece names of the example's labels (text format <Objects>) go with the model.
-    for (const char* name : { "PieceLabels", "PieceNames" })
-    {
-      if (vtkAbstractArray* names = reader->GetOutput()->GetFieldData()->GetAbstractArray(name))
-      {
-        model->GetFieldData()->AddArray(names);
-      }
-    }
-  }
 
   MakeDirectory(dir);
   // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json only.
@@ -603,6 +593,20 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   fields->RemoveArray("Seconds");
   saved->SetFieldData(fields);
   WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
+  std::string textModel;
+  if (example.size() > 4 && example.compare(example.size() - 4, 4, ".txt") == 0)
+  {
+    // The original program's format with the example's <Objects> trailer, for its loaders.
+    vtkNew<vtkMSTextModelWriter> text;
+    text->SetInputData(model);
+    text->SetFileName((dir + "/model.txt").c_str());
+    std::string messages;
+    if (!vtkMSEngineBridge::Execute(text, messages))
+    {
+      throw std::runtime_error(messages);
+    }
+    textModel = dir + "/model.txt, ";
+  }
   vtkNew<vtkMSLabelGeometry> geometry;
   geometry->SetInputData(model);
   geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
@@ -690,7 +694,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
           << "\n}\n";
     });
   std::cout << text << "\n"
-            << "wrote " << dir << "/labels.vti, " << dir << "/mesh.vtp, " << dir << "/model.vdb, "
+            << "wrote " << dir << "/labels.vti, " << textModel << dir << "/mesh.vtp, " << dir
+            << "/model.vdb, "
             << dir << "/statistics.json" << picture << "\n";
   return 0;
 }

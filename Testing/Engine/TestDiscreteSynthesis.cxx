@@ -239,6 +239,14 @@ TEST(ConsistencyCheck, FindsEveryViolation)
   EXPECT_FALSE(report.Consistent);
   EXPECT_EQ(report.Violations, 3); // (0,0)-(1,0) and (1,0)-(2,0) along x, (1,0)-(1,1) along y
   EXPECT_NE(report.First[0].Describe().find("never occurs"), std::string::npos);
+  // The printed lines name each pair as it is: no frame in a model without frames.
+  ASSERT_EQ(report.First.size(), 3u);
+  EXPECT_EQ(report.First[0].Describe(), "site (0, 0, 0): label 1 followed by 1 along +x is not "
+                                        "allowed (never occurs in the example)");
+  EXPECT_EQ(report.First[1].Describe(), "site (1, 0, 0): label 1 followed by 1 along +x is not "
+                                        "allowed (never occurs in the example)");
+  EXPECT_EQ(report.First[2].Describe(), "site (1, 0, 0): label 1 followed by 1 along +y is not "
+                                        "allowed (never occurs in the example)");
 }
 
 TEST(DiscreteSynthesis, CatalogSnapshotsShowTheCatalogShrinking)
@@ -333,6 +341,40 @@ TEST(DiscreteSynthesis, GuideZeroWeightsExcludeLabels)
         }
     EXPECT_GT(built, 0) << (blocks ? "blocks" : "whole model");
   }
+}
+
+TEST(DiscreteSynthesis, GuideWeightsSetTheLabelFractions)
+{
+  // Two labels that may sit next to each other in any way: with a guide weighting label 0 by
+  // 0.9 and label 1 by 0.1, about 90 % of the sites are 0, in every site order and choice.
+  LabelGrid example(4, 4, 1, 0);
+  for (std::int64_t y = 0; y < 4; ++y)
+    for (std::int64_t x = 0; x < 4; ++x)
+      example.Set(x, y, 0, ((x / 2) + (y / 2)) % 2);
+  for (SiteOrder order : { SiteOrder::ScanLine, SiteOrder::Random, SiteOrder::MinimumEntropy })
+    for (LabelChoice choice : { LabelChoice::Uniform, LabelChoice::Frequency })
+      for (bool blocks : { false, true })
+      {
+        SynthesisOptions o;
+        o.Size = { { 60, 60, 1 } };
+        if (blocks)
+          o.BlockSize = { { 20, 20, 1 } };
+        o.Order = order;
+        o.Choice = choice;
+        o.Seed = 5;
+        GuideVolume g;
+        g.Weights[0] = { 0.9f };
+        g.Weights[1] = { 0.1f };
+        o.Guide = g;
+        const auto r = SynthesizeFrom(example, o);
+        ExpectConsistent(example, r);
+        std::int64_t zeros = 0;
+        for (Label b : r.Model.Data())
+          zeros += b == 0;
+        const double fraction = static_cast<double>(zeros) / 3600.0;
+        EXPECT_NEAR(fraction, 0.9, 0.04) << "order " << static_cast<int>(order) << ", choice "
+                                         << static_cast<int>(choice) << (blocks ? ", blocks" : "");
+      }
 }
 
 TEST(DiscreteSynthesis, GuideErrors)

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -174,12 +177,171 @@ TEST(Tileset, MalformedTilesetsNameTheLineAndProblem)
               .find("tile 'b', which is not defined"),
     std::string::npos);
   EXPECT_NE(ErrorOf("<set><tiles><tile name=\"a\" symmetry=\"I\"/></tiles><neighbors><neighbor "
-                    "left=\"a 2\" right=\"a\"/></neighbors></set>")
-              .find("has no orientation 2"),
+                    "left=\"a 8\" right=\"a\"/></neighbors></set>")
+              .find("'a 8': the number after a tile name is one of the 8 rotations and reflections, "
+                    "0 to 7"),
+    std::string::npos);
+  EXPECT_NE(ErrorOf("<set size=\"0\"><tiles><tile name=\"a\"/></tiles></set>")
+              .find("<set size=\"0\">: the tile size is a whole number of pixels"),
     std::string::npos);
   EXPECT_NE(ErrorOf(Tiny, "nope").find("no subset named 'nope'"), std::string::npos);
   EXPECT_NE(ErrorOf("<set><tiles><tile name=\"a\" weight=\"1></tiles></set>")
               .find("unterminated attribute"),
     std::string::npos);
   EXPECT_THROW(ReadTilesetFile("/no/such.xml"), Error);
+}
+
+TEST(Tileset, NeighborNumbersAreDihedralElementsAsWaveFunctionCollapseReadsThem)
+{
+  // WaveFunctionCollapse's action[first][k] for each class, written out by hand from its
+  // rotation a and reflection b: k = 0..3 are a^k(0), k = 4..7 are b(a^(k-4)(0)).
+  const std::pair<char, std::array<int, 8>> expected[] = {
+    { 'X', { { 0, 0, 0, 0, 0, 0, 0, 0 } } },
+    { 'I', { { 0, 1, 0, 1, 0, 1, 0, 1 } } },
+    { '\\', { { 0, 1, 0, 1, 1, 0, 1, 0 } } },
+    { 'L', { { 0, 1, 2, 3, 1, 0, 3, 2 } } },
+    { 'T', { { 0, 1, 2, 3, 0, 3, 2, 1 } } },
+    { 'F', { { 0, 1, 2, 3, 4, 5, 6, 7 } } },
+  };
+  for (const auto& [symmetry, orientation] : expected)
+    for (int k = 0; k < 8; ++k)
+    {
+      EXPECT_EQ(DihedralAction(symmetry, 0, k), orientation[static_cast<std::size_t>(k)])
+        << symmetry << " " << k;
+      // "a k" left of an X tile: exactly the pairs of "a <orientation>" left of it.
+      const std::string head = std::string("<set><tiles><tile name=\"a\" symmetry=\"") +
+        (symmetry == '\\' ? "\\" : std::string(1, symmetry)) +
+        "\"/><tile name=\"e\"/></tiles><neighbors><neighbor left=\"a ";
+      const std::string tail = "\" right=\"e\"/></neighbors></set>";
+      const Tileset byElement = Read(head + std::to_string(k) + tail);
+      const Tileset byOrientation =
+        Read(head + std::to_string(orientation[static_cast<std::size_t>(k)]) + tail);
+      EXPECT_EQ(byElement.Pairs, byOrientation.Pairs) << symmetry << " " << k;
+      const int e = byElement.Tiles[1].FirstLabel;
+      const std::set<std::pair<int, int>> x(byElement.Pairs[0].begin(), byElement.Pairs[0].end());
+      EXPECT_TRUE(x.count({ orientation[static_cast<std::size_t>(k)], e })) << symmetry << " " << k;
+    }
+  // The published sets' "b_i 3" for a tile of class I: orientation 1, not an error.
+  const Tileset t = Read("<set><tiles><tile name=\"b_i\" symmetry=\"I\"/><tile name=\"b\"/></tiles>"
+                         "<neighbors><neighbor left=\"b_i 3\" right=\"b\"/></neighbors></set>");
+  EXPECT_TRUE(std::count(t.Pairs[0].begin(), t.Pairs[0].end(), std::make_pair(1, 2)) == 1);
+}
+
+TEST(Tileset, ImagesAreFoundInBothPublishedLayouts)
+{
+  EXPECT_EQ(TilesetImageFolder("tilesets/Castle.xml"), "tilesets/Castle");
+  EXPECT_EQ(TilesetImageFolder("/a/b.c/Summer.xml"), "/a/b.c/Summer");
+  EXPECT_EQ(TilesetImageFolder("samples/Circles/data.xml"), "samples/Circles");
+  EXPECT_EQ(TilesetImageFolder("data.xml"), ".");
+  const Tileset t = Read("<set size=\"3\" unique=\"True\"><tiles><tile name=\"a\" symmetry=\"L\"/>"
+                         "</tiles></set>");
+  EXPECT_EQ(t.TileSize, 3);
+  EXPECT_TRUE(t.Unique);
+  EXPECT_EQ(TileImageFile("/no/Set.xml", t, t.Tiles[0], 2), "/no/Set/a 2.png");
+}
+
+namespace
+{
+/// WaveFunctionCollapse's own construction of the propagator (SimpleTiledModel), written out
+/// independently of ReadTileset: per class a rotation a and a reflection b, action[t][k], and
+/// four entries per direction for each neighbor rule. Returns the pairs along x (left, right)
+/// and y (lower, upper), with WFC's image y (downwards) turned to ours (upwards).
+std::array<std::set<std::pair<int, int>>, 2> WfcPairs(const std::vector<char>& classes,
+  const std::vector<std::array<int, 4>>& rules) // (left tile, left k, right tile, right k)
+{
+  std::vector<std::array<int, 8>> action;
+  std::vector<int> first;
+  for (char c : classes)
+  {
+    std::function<int(int)> a = [](int i) { return i; }, b = a;
+    int cardinality = 1;
+    if (c == 'L')
+    {
+      cardinality = 4;
+      a = [](int i) { return (i + 1) % 4; };
+      b = [](int i) { return i % 2 == 0 ? i + 1 : i - 1; };
+    }
+    else if (c == 'T')
+    {
+      cardinality = 4;
+      a = [](int i) { return (i + 1) % 4; };
+      b = [](int i) { return i % 2 == 0 ? i : 4 - i; };
+    }
+    else if (c == 'I')
+    {
+      cardinality = 2;
+      a = [](int i) { return 1 - i; };
+    }
+    else if (c == '\\')
+    {
+      cardinality = 2;
+      a = [](int i) { return 1 - i; };
+      b = [](int i) { return 1 - i; };
+    }
+    else if (c == 'F')
+    {
+      cardinality = 8;
+      a = [](int i) { return i < 4 ? (i + 1) % 4 : 4 + (i - 1) % 4; };
+      b = [](int i) { return i < 4 ? i + 4 : i - 4; };
+    }
+    const int base = static_cast<int>(action.size());
+    first.push_back(base);
+    for (int t = 0; t < cardinality; ++t)
+      action.push_back({ { base + t, base + a(t), base + a(a(t)), base + a(a(a(t))),
+        base + b(t), base + b(a(t)), base + b(a(a(t))), base + b(a(a(a(t)))) } });
+  }
+  const auto act = [&](int t, int k) { return action[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)]; };
+  std::array<std::set<std::pair<int, int>>, 2> pairs;
+  for (const auto& r : rules)
+  {
+    const int L = act(first[static_cast<std::size_t>(r[0])], r[1]), D = act(L, 1);
+    const int R = act(first[static_cast<std::size_t>(r[2])], r[3]), U = act(R, 1);
+    // propagator[0][A][B]: B may stand left of A; propagator[1][A][B]: B may stand below A.
+    pairs[0].insert({ L, R });
+    pairs[0].insert({ act(L, 6), act(R, 6) });
+    pairs[0].insert({ act(R, 4), act(L, 4) });
+    pairs[0].insert({ act(R, 2), act(L, 2) });
+    pairs[1].insert({ D, U });
+    pairs[1].insert({ act(U, 6), act(D, 6) });
+    pairs[1].insert({ act(D, 4), act(U, 4) });
+    pairs[1].insert({ act(U, 2), act(D, 2) });
+  }
+  return pairs;
+}
+} // namespace
+
+TEST(Tileset, PairsEqualWaveFunctionCollapsesPropagator)
+{
+  const std::vector<char> classes = { 'X', 'I', '\\', 'L', 'T', 'F' };
+  std::uint64_t state = 12345;
+  const auto next = [&state](int n)
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<int>((state >> 33) % static_cast<std::uint64_t>(n));
+  };
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    std::string xml = "<set><tiles>";
+    for (std::size_t i = 0; i < classes.size(); ++i)
+      xml += "<tile name=\"t" + std::to_string(i) + "\" symmetry=\"" +
+        (classes[i] == '\\' ? std::string("\\") : std::string(1, classes[i])) + "\"/>";
+    xml += "</tiles><neighbors>";
+    std::vector<std::array<int, 4>> rules;
+    for (int r = 0; r < 1 + trial % 5; ++r)
+    {
+      const std::array<int, 4> rule{ { next(6), next(8), next(6), next(8) } };
+      rules.push_back(rule);
+      xml += "<neighbor left=\"t" + std::to_string(rule[0]) + " " + std::to_string(rule[1]) +
+        "\" right=\"t" + std::to_string(rule[2]) + " " + std::to_string(rule[3]) + "\"/>";
+    }
+    xml += "</neighbors></set>";
+    const Tileset t = Read(xml);
+    const auto expected = WfcPairs(classes, rules);
+    for (std::size_t axis = 0; axis < 2; ++axis)
+    {
+      const std::set<std::pair<int, int>> got(t.Pairs[axis].begin(), t.Pairs[axis].end());
+      EXPECT_EQ(got, expected[axis])
+        << "axis " << axis << " of " << xml;
+    }
+  }
 }

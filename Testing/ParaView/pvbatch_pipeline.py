@@ -107,6 +107,18 @@ model = servermanager.Fetch(synthesis)
 check(model.GetDimensions() == (24, 20, 5), "synthesized size")
 unknown = set(pair_counts(model)) - set(expected)
 check(not unknown, "every model pair occurs in the example (Eq. 3.1): %s" % sorted(unknown)[:3])
+# The model in the original program's text format, through the plugin's writer proxy.
+text_path = os.path.join(TMP, "pvbatch-%s-model.txt" % suffix)
+text_writer = servermanager.writers.ModelSynthTextModelWriter(Input=synthesis, FileName=text_path)
+text_writer.UpdatePipeline()
+del text_writer
+with open(text_path) as f:
+    words = f.read().split("\n", 3)[3].split()
+mlabels = model.GetPointData().GetArray("Label")
+check(words[:3] == ["24", "20", "5"], "text model dimensions")
+check([int(w) for w in words[3:]] == [int(mlabels.GetValue(x + 24 * (y + 20 * z)))
+                                      for z in range(5) for x in range(24) for y in range(20)],
+      "text model values for z, for x, for y")
 # Under MPI the blocks of each phase are spread over the ranks; the model is the one-process one.
 processes = model.GetFieldData().GetArray("Processes").GetValue(0)
 check(processes == ranks, "blocks spread over %d processes, expected %d" % (processes, ranks))

@@ -98,6 +98,22 @@ class CommandLineTest(unittest.TestCase):
         listing = subprocess.run(["vdb_print", "-l", "-m", os.path.join(named, "model.vdb")], capture_output=True,
                                  text=True).stdout
         self.assertIn("label_names: 1:ground_tile;2:wall;2:window;3:roof", listing)
+        # ... and the model in the original program's format, as it writes its outputs, with the
+        # example's <Objects> trailer unchanged (its Blender and 3ds Max loaders read it).
+        with open(os.path.join(named, "model.txt")) as f:
+            text = f.read()
+        with open(data("Examples/Village.txt")) as f:
+            original = f.read()
+        self.assertIn("\nx, y, and z extents\n8 8 5\n\n", text)
+        self.assertTrue(text.endswith(original[original.index("<Objects>"):]))
+        # Read independently as that program does (numbers after the header, for z, x, y).
+        words = text.split("\n", 3)[3].split()
+        values = np.array([int(w) for w in words[3:3 + 8 * 8 * 5]]).reshape(5, 8, 8)  # z, x, y
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(os.path.join(named, "labels.vti"))
+        reader.Update()
+        self.assertTrue(np.array_equal(values.transpose(0, 2, 1), labels_zyx(reader.GetOutput())))
+        self.assertEqual(words[3 + 8 * 8 * 5], "<Objects>")
 
     def test_synthesize_polyhedral_then_check(self):
         out = tmp("cli-continuous")
@@ -213,6 +229,17 @@ class CommandLineTest(unittest.TestCase):
         r = run("check", data("Examples/Checkerboard.vti"), os.path.join(out, "labels.vti"))
         self.assertEqual(r.returncode, 1)
         self.assertIn("never occurs in the example", r.stdout)
+        # Each printed violation names its pair as it is (a 2 x 2 model "0 0 / 0 1" in the
+        # original text format, against the checkerboard).
+        bad = tmp("cli-bad-model.txt")
+        with open(bad, "w") as f:
+            f.write("a\nb\nc\n2 2 1\n0 0\n0 1\n")
+        r = run("check", data("Examples/Checkerboard.vti"), bad)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stdout.splitlines()[1:], [
+            "  site (0, 0, 0): label 0 followed by 0 along +x is not allowed (never occurs in the example)",
+            "  site (0, 0, 0): label 0 followed by 0 along +y is not allowed (never occurs in the example)",
+        ])
 
         # Same seed, same file contents.
         again = tmp("cli-synth-again")

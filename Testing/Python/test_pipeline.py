@@ -115,6 +115,40 @@ class PipelineTest(unittest.TestCase):
         self.assertEqual(pieces, [(1, "ground_tile"), (2, "wall"), (2, "window"), (3, "roof")])
         self.assertEqual(tables.GetOutput(0).GetNumberOfRows(), 22)
 
+    def test_text_model_writer_keeps_the_objects_trailer(self):
+        # reader (.txt) -> synthesis -> text writer: the original program's layout, the example's
+        # <Objects> section unchanged, and the values of the model read independently here.
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(data("Examples/Village.txt"))
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetInputConnection(reader.GetOutputPort())
+        synthesis.SetOutputSize(9, 8, 5)
+        synthesis.SetSeed(4)
+        writer = modelsynth.vtkMSTextModelWriter()
+        writer.SetInputConnection(synthesis.GetOutputPort())
+        path = tmp("village-model.txt")
+        writer.SetFileName(path)
+        errors = ErrorObserver(writer)
+        self.assertEqual(writer.Write(), 1)
+        self.assertEqual(errors.text(), "")
+        with open(path) as f:
+            text = f.read()
+        with open(data("Examples/Village.txt")) as f:
+            original = f.read()
+        lines = text.split("\n")
+        self.assertEqual(lines[2], "x, y, and z extents")
+        self.assertEqual(lines[3], "9 8 5")
+        self.assertEqual(lines[4], "")
+        self.assertEqual(lines[5], "".join("%2d " % v for v in labels_zyx(synthesis.GetOutput())[0, :, 0]))
+        self.assertTrue(text.endswith(original[original.index("<Objects>"):]))
+        values = np.array([int(w) for w in "\n".join(lines[4:]).split()[:9 * 8 * 5]]).reshape(5, 9, 8)
+        self.assertTrue(np.array_equal(values.transpose(0, 2, 1), labels_zyx(synthesis.GetOutput())))
+        # A failed write names the file and leaves nothing.
+        writer.SetFileName(tmp("no-such-folder") + "/x/model.txt")
+        errors = ErrorObserver(writer)
+        writer.Write()
+        self.assertIn("no-such-folder/x/model.txt", errors.text())
+
     def test_magicavoxel_reads_like_vti(self):
         vti, _ = self.run_pipeline("Examples/Village.vti")
         vox, _ = self.run_pipeline("Examples/Village.vox")

@@ -160,6 +160,69 @@ class TilesetTest(unittest.TestCase):
                          for p in polys for i in range(1, len(p) - 1)) / 6
             self.assertGreater(volume, 0, "orientation %d stays outward" % k)
 
+    def test_older_layout_unique_images_bmp_and_dihedral_numbers(self):
+        # The older published layout: NAME/data.xml with the images beside it, a unique set (one
+        # image per orientation, "tile k.png"), <set size>, a .bmp image, and rule numbers that
+        # are dihedral elements 0-7 rather than orientations ("b_i 3" of an I tile).
+        from vtkmodules.vtkIOImage import vtkBMPWriter
+        folder = tmp("old-layout-set")
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        xml = os.path.join(folder, "data.xml")
+        with open(xml, "w") as f:
+            f.write('<set size="%d" unique="True"><tiles><tile name="b" symmetry="X"/>'
+                    '<tile name="b_i" symmetry="I"/></tiles><neighbors>'
+                    '<neighbor left="b" right="b"/><neighbor left="b_i 3" right="b"/>'
+                    '<neighbor left="b_i 2" right="b_i 6"/></neighbors></set>' % T)
+        images = {"b 0": tile_pixels(0), "b_i 0": tile_pixels(1), "b_i 1": tile_pixels(2)}
+        for name, pixels in images.items():
+            if name == "b_i 1":  # as a BMP (RGB: opaque)
+                image = vtkImageData()
+                image.SetDimensions(T, T, 1)
+                array = numpy_to_vtk(pixels[:, :, :3].reshape(-1, 3), deep=True)
+                image.GetPointData().SetScalars(array)
+                writer = vtkBMPWriter()
+                writer.SetInputData(image)
+                writer.SetFileName(os.path.join(folder, name + ".bmp"))
+                writer.Write()
+            else:
+                write_png(os.path.join(folder, name + ".png"), pixels)
+        # WaveFunctionCollapse's rules by hand: b_i 3 = b_i 2 turned = orientation 1 (vertical)
+        # beside b; b_i 2 = orientation 0 left of b_i 6 = orientation 0 (mirrored: the same).
+        # A horizontal and a vertical line cannot cross, so seeds differ in which appears.
+        allowed_x = {(0, 0), (2, 0), (0, 2), (1, 1)}
+        allowed_y = {(0, 0), (1, 0), (0, 1), (2, 2)}
+        by_label = [images["b 0"], images["b_i 0"], images["b_i 1"].copy()]
+        by_label[2][:, :, 3] = 255
+        used = set()
+        for seed in range(8):
+            s = modelsynth.vtkMSDiscreteSynthesis()
+            out, errors = run_algorithm(s, TilesetFile=xml, OutputSize=(9, 7, 1), Seed=seed)
+            self.assertEqual(errors, "")
+            labels = labels_zyx(out)[0]
+            used |= set(int(b) for b in np.unique(labels))
+            for y in range(7):
+                for x in range(9):
+                    if x + 1 < 9:
+                        self.assertIn((labels[y, x], labels[y, x + 1]), allowed_x)
+                    if y + 1 < 7:
+                        self.assertIn((labels[y, x], labels[y + 1, x]), allowed_y)
+            picture, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(), TilesetFile=xml)
+            self.assertEqual(errors, "")
+            rgba = vtk_to_numpy(picture.GetPointData().GetArray("RGBA")).reshape(7 * T, 9 * T, 4)
+            for y in range(7):
+                for x in range(9):
+                    block = rgba[y * T:(y + 1) * T, x * T:(x + 1) * T]
+                    self.assertTrue(np.array_equal(block, by_label[labels[y, x]]), (seed, x, y))
+        self.assertEqual(used, {0, 1, 2})
+        # <set size> must match the images.
+        with open(xml) as f:
+            text = f.read()
+        with open(xml, "w") as f:
+            f.write(text.replace('size="%d"' % T, 'size="%d"' % (T + 1)))
+        _, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(), TilesetFile=xml)
+        self.assertIn("<set size> says %d" % (T + 1), errors)
+
     def test_errors(self):
         _, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=tmp("none.xml"),
                                   OutputSize=(4, 4, 1))

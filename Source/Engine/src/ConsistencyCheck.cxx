@@ -77,7 +77,14 @@ ConsistencyReport CheckPairs(const std::set<std::tuple<int, Label, Label>>& allo
             report.Consistent = false;
             ++report.Violations;
             if (report.First.size() < maxReported)
-              report.First.push_back({ { { x, y, z } }, axis, b, c });
+            {
+              ConsistencyViolation v;
+              v.Site = { { x, y, z } };
+              v.Axis = axis;
+              v.From = b;
+              v.To = c;
+              report.First.push_back(v);
+            }
           }
         }
       }

@@ -798,12 +798,18 @@ public:
     // Assign the free sites (lines 19-29), in the chosen order.
     auto choose = [&](std::int64_t local)
     {
+      // The guide's weights of this site's region multiply the choice's (D§3.5.3).
+      const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
       if (this->Options.Choice == LabelChoice::Resemblance)
       {
         this->ResemblanceWeights(local, this->ChoiceWeights);
         double weightSum = 0.0;
-        for (double x : this->ChoiceWeights)
-          weightSum += x;
+        for (std::size_t b = 0; b < this->ChoiceWeights.size(); ++b)
+        {
+          if (this->HasGuide())
+            this->ChoiceWeights[b] *= this->GuideWeight(cell, static_cast<int>(b));
+          weightSum += this->ChoiceWeights[b];
+        }
         if (weightSum > 0.0)
         {
           double r = rng.Uniform() * weightSum;
@@ -824,7 +830,7 @@ public:
         // propagation): fall back to the weighted choice below.
       }
       return DrawLabel(cat.Domain(local), this->Rules.Words(),
-        [this](int b) { return this->Weight(b); }, rng.Uniform());
+        [this, cell](int b) { return this->SiteWeight(cell, b); }, rng.Uniform());
     };
     auto assign = [&](std::int64_t local) -> std::int64_t
     {

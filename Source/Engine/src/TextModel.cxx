@@ -5,7 +5,6 @@
 
 #include <cerrno>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -14,152 +13,248 @@ namespace msynth
 {
 namespace
 {
-class LineReader
+/// The largest trailer kept (the original examples' are a few kilobytes).
+constexpr std::size_t MaximumTrailerBytes = std::size_t(64) << 20;
+
+bool IsSpace(int c)
+{
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/// Reads the file as the original program does: lines for the header, then white-space
+/// separated tokens, then the rest verbatim; counts lines for messages.
+class Scanner
 {
 public:
-  LineReader(std::istream& in, const std::string& name)
-    : In(in)
+  Scanner(std::istream& in, const std::string& name)
+    : Buffer(in.rdbuf())
     , Name(name)
   {
   }
-  bool Next(std::string& line)
-  {
-    if (!std::getline(this->In, line))
-      return false;
-    ++this->Number;
-    if (!line.empty() && line.back() == '\r')
-      line.pop_back(); // files written on Windows
-    return true;
-  }
-  /// The next line that is not blank; false at the end of the input.
-  bool NextNonBlank(std::string& line)
-  {
-    while (this->Next(line))
-      if (line.find_first_not_of(" \t") != std::string::npos)
-        return true;
-    return false;
-  }
   [[noreturn]] void Fail(const std::string& problem) const
   {
-    throw Error("'" + this->Name + "', line " + std::to_string(this->Number) + ": " + problem);
+    throw Error("'" + this->Name + "', line " + std::to_string(this->Line) + ": " + problem);
   }
-  std::int64_t Line() const { return this->Number; }
+  /// The next line without its end ('\r' of files written on Windows dropped); false at the end.
+  bool NextLine(std::string& line)
+  {
+    line.clear();
+    int c = this->Get();
+    if (c == EOF)
+      return false;
+    while (c != EOF && c != '\n')
+    {
+      if (line.size() < 4096) // a header line is free text: keep a sane amount of it
+        line += static_cast<char>(c);
+      c = this->Get();
+    }
+    if (!line.empty() && line.back() == '\r')
+      line.pop_back();
+    return true;
+  }
+  /// The next white-space separated token; false at the end of the input.
+  bool NextToken(std::string& token)
+  {
+    this->SkipSpace();
+    token.clear();
+    int c = this->Peek();
+    if (c == EOF)
+      return false;
+    while (c != EOF && !IsSpace(c))
+    {
+      if (token.size() < 64)
+        token += static_cast<char>(c);
+      this->Get();
+      c = this->Peek();
+    }
+    return true;
+  }
+  void SkipSpace()
+  {
+    while (IsSpace(this->Peek()))
+      this->Get();
+  }
+  /// Everything that is left, verbatim.
+  std::string Rest()
+  {
+    std::string rest;
+    for (int c = this->Get(); c != EOF; c = this->Get())
+    {
+      if (rest.size() >= MaximumTrailerBytes)
+        this->Fail("the text after the last value is larger than 64 MiB");
+      rest += static_cast<char>(c);
+    }
+    return rest;
+  }
+  std::int64_t CurrentLine() const { return this->Line; }
 
 private:
-  std::istream& In;
+  int Peek() { return this->Buffer ? this->Buffer->sgetc() : EOF; }
+  int Get()
+  {
+    if (!this->Buffer)
+      return EOF;
+    const int c = this->Buffer->sbumpc();
+    if (c == '\n')
+      ++this->Line;
+    return c == EOF ? EOF : static_cast<unsigned char>(c);
+  }
+  std::streambuf* Buffer;
   const std::string& Name;
-  std::int64_t Number = 0;
+  std::int64_t Line = 1;
 };
 
-/// Whitespace-separated integers of @p line; fails on anything else or out-of-range values.
-std::vector<long long> Integers(const std::string& line, const LineReader& reader)
+/// @p token as a 32-bit integer; fails naming it otherwise.
+long long Integer(const std::string& token, const Scanner& scanner)
 {
-  std::vector<long long> values;
-  const char* p = line.c_str();
-  while (*p)
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(token.c_str(), &end, 10);
+  if (end == token.c_str() || *end)
   {
-    while (*p == ' ' || *p == '\t')
-      ++p;
-    if (!*p)
-      break;
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(p, &end, 10);
-    if (end == p || (*end && *end != ' ' && *end != '\t'))
-    {
-      std::string token(p, static_cast<std::size_t>(std::strcspn(p, " \t")));
-      reader.Fail("'" + token + "' is not an integer");
-    }
-    if (errno == ERANGE || v < std::numeric_limits<Label>::min() ||
-      v > std::numeric_limits<Label>::max())
-      reader.Fail("value out of the 32-bit range");
-    values.push_back(v);
-    p = end;
+    std::string shown;
+    for (char ch : token)
+      shown += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+    scanner.Fail("'" + shown + "' is not an integer");
   }
-  return values;
+  if (errno == ERANGE || v < std::numeric_limits<Label>::min() ||
+    v > std::numeric_limits<Label>::max())
+    scanner.Fail("value out of the 32-bit range");
+  return v;
+}
+
+std::string Trimmed(const std::string& s)
+{
+  const auto a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
 }
 } // namespace
 
+std::array<std::string, 3> GeneratedTextModelHeader()
+{
+  return { { "Model generated using ModelSynth (Paul Merrell's model synthesis algorithm).  Do not "
+             "insert or delete lines from this file.",
+    "", "x, y, and z extents" } };
+}
+
+void SetTextModelTrailer(TextModel& model, const std::string& trailer, std::int64_t firstLine)
+{
+  model.Trailer = trailer;
+  model.HasObjects = false;
+  model.Scene.clear();
+  model.Objects.clear();
+  model.Pieces.clear();
+  model.ObjectsProblem.clear();
+
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(trailer);
+    std::string line;
+    while (std::getline(in, line))
+      lines.push_back(line);
+  }
+  if (lines.empty() || Trimmed(lines[0]) != "<Objects>")
+    return; // free text: kept, nothing to read from it
+  model.HasObjects = true;
+  if (lines.size() > 1)
+    model.Scene = Trimmed(lines[1]);
+  std::size_t i = 2;
+  const auto problem = [&](std::size_t at, const std::string& what)
+  {
+    model.ObjectsProblem = "line " + std::to_string(firstLine + static_cast<std::int64_t>(at)) +
+      ": " + what + "; the <Objects> section is kept as text, without pieces";
+    model.Objects.clear();
+  };
+  while (i < lines.size())
+  {
+    if (Trimmed(lines[i]).empty())
+    {
+      ++i;
+      continue;
+    }
+    TextObjectEntry entry;
+    entry.Text = Trimmed(lines[i++]);
+    const std::size_t label = model.Objects.size() + 1;
+    for (; i < lines.size(); ++i)
+    {
+      const std::string t = Trimmed(lines[i]);
+      if (t.empty())
+        continue;
+      if (t[0] == '#')
+        break;
+      if (t[0] != '$')
+      {
+        problem(i,
+          "expected a piece name starting with '$' or '#' to end the entry of label " +
+            std::to_string(label));
+        return;
+      }
+      // A name runs to the first blank (it may contain '$' itself, as in "$backa$").
+      const std::string name = t.substr(1, t.find_first_of(" \t") - 1);
+      if (name.empty())
+      {
+        problem(i, "a '$' without a piece name in the entry of label " + std::to_string(label));
+        return;
+      }
+      entry.Pieces.push_back(name);
+    }
+    ++i; // past '#' (or the end: a last entry may end with the file)
+    if (label > static_cast<std::size_t>(std::numeric_limits<Label>::max()))
+    {
+      problem(i, "more entries than labels");
+      return;
+    }
+    model.Objects.push_back(std::move(entry));
+  }
+  for (std::size_t e = 0; e < model.Objects.size(); ++e)
+    if (!model.Objects[e].Pieces.empty())
+      model.Pieces[static_cast<Label>(e + 1)] = model.Objects[e].Pieces;
+}
+
 TextModel ReadTextModel(std::istream& in, const std::string& name, std::int64_t maxSites)
 {
-  LineReader reader(in, name);
+  Scanner scanner(in, name);
   TextModel model;
-  std::string line;
   for (auto& h : model.Header)
   {
-    if (!reader.Next(line))
-      reader.Fail("the file ends inside its three header lines");
-    h = line;
+    if (!scanner.NextLine(h))
+      scanner.Fail("the file ends inside its three header lines");
   }
-  if (!reader.NextNonBlank(line))
-    reader.Fail("the file ends before the dimensions line 'X Y Z'");
-  const std::vector<long long> dims = Integers(line, reader);
-  if (dims.size() != 3)
-    reader.Fail(
-      "expected the dimensions 'X Y Z', found " + std::to_string(dims.size()) + " numbers");
+  std::string token;
+  long long dims[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!scanner.NextToken(token))
+      scanner.Fail("the file ends before the dimensions 'X Y Z' (found " + std::to_string(k) +
+        " of 3 numbers)");
+    dims[k] = Integer(token, scanner);
+  }
   for (long long d : dims)
     if (d < 1)
-      reader.Fail("dimensions must be at least 1");
+      scanner.Fail("dimensions must be at least 1");
   if (dims[0] > maxSites || dims[1] > maxSites / dims[0] ||
     dims[2] > maxSites / (dims[0] * dims[1]))
-    reader.Fail("dimensions " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+    scanner.Fail("dimensions " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
       std::to_string(dims[2]) + " exceed the limit of " + std::to_string(maxSites) + " sites");
   const std::int64_t nx = dims[0], ny = dims[1], nz = dims[2];
   model.Grid = LabelGrid(nx, ny, nz);
 
+  const std::int64_t perSlice = nx * ny;
   for (std::int64_t z = 0; z < nz; ++z)
-  {
     for (std::int64_t x = 0; x < nx; ++x)
-    {
-      // Rows of a slice are consecutive; blank lines may only separate slices.
-      const bool ok = x == 0 ? reader.NextNonBlank(line) : reader.Next(line);
-      if (!ok)
-        reader.Fail("the file ends in slice " + std::to_string(z) + " (expected " +
-          std::to_string(nz) + " slices of " + std::to_string(nx) + " rows)");
-      const std::vector<long long> row = Integers(line, reader);
-      if (static_cast<std::int64_t>(row.size()) != ny)
-        reader.Fail("row " + std::to_string(x) + " of slice " + std::to_string(z) + " has " +
-          std::to_string(row.size()) + " values, expected Y = " + std::to_string(ny));
       for (std::int64_t y = 0; y < ny; ++y)
-        model.Grid.Set(x, y, z, static_cast<Label>(row[static_cast<std::size_t>(y)]));
-    }
-  }
-
-  // Optional <Objects> section.
-  if (!reader.NextNonBlank(line))
-    return model;
-  const auto trimmed = [](const std::string& s)
-  {
-    const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
-    return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-  };
-  if (trimmed(line) != "<Objects>")
-    reader.Fail("unexpected content after the last slice (expected '<Objects>' or the end)");
-  while (reader.NextNonBlank(line))
-  {
-    const std::vector<long long> label = Integers(line, reader);
-    if (label.size() != 1)
-      reader.Fail("expected a label number to start an object entry");
-    auto& names = model.Pieces[static_cast<Label>(label[0])];
-    bool closed = false;
-    while (reader.Next(line))
-    {
-      const std::string t = trimmed(line);
-      if (t == "#")
       {
-        closed = true;
-        break;
+        if (!scanner.NextToken(token))
+          scanner.Fail("the file ends in slice " + std::to_string(z) + " after " +
+            std::to_string(x * ny + y) + " of its " + std::to_string(perSlice) +
+            " values (expected " + std::to_string(nz) + " slices of " + std::to_string(nx) +
+            " rows of " + std::to_string(ny) + " values)");
+        model.Grid.Set(x, y, z, static_cast<Label>(Integer(token, scanner)));
       }
-      if (t.empty())
-        continue;
-      if (t[0] != '$')
-        reader.Fail("expected a piece name starting with '$' or '#' to end label " +
-          std::to_string(label[0]));
-      names.push_back(t.substr(1));
-    }
-    if (!closed)
-      reader.Fail("the object entry of label " + std::to_string(label[0]) + " has no closing '#'");
-  }
+
+  scanner.SkipSpace();
+  const std::int64_t trailerLine = scanner.CurrentLine();
+  SetTextModelTrailer(model, scanner.Rest(), trailerLine);
   return model;
 }
 
@@ -176,28 +271,21 @@ void WriteTextModel(std::ostream& out, const TextModel& model)
   for (const auto& h : model.Header)
     out << h << "\n";
   const auto& d = model.Grid.Dimensions();
-  out << d[0] << " " << d[1] << " " << d[2] << "\n";
+  out << d[0] << " " << d[1] << " " << d[2] << "\n\n";
   for (std::int64_t z = 0; z < d[2]; ++z)
   {
-    out << "\n";
     for (std::int64_t x = 0; x < d[0]; ++x)
     {
       for (std::int64_t y = 0; y < d[1]; ++y)
-        out << (y ? " " : "") << model.Grid.At(x, y, z);
+      {
+        const Label v = model.Grid.At(x, y, z);
+        out << (v >= 0 && v < 10 ? " " : "") << v << " ";
+      }
       out << "\n";
     }
+    out << "\n";
   }
-  if (!model.Pieces.empty())
-  {
-    out << "\n<Objects>\n";
-    for (const auto& kv : model.Pieces)
-    {
-      out << kv.first << "\n";
-      for (const auto& n : kv.second)
-        out << "$" << n << "\n";
-      out << "#\n";
-    }
-  }
+  out << model.Trailer;
 }
 
 } // namespace msynth

@@ -258,6 +258,35 @@ int TransformOrientation(char symmetry, int i, bool mirror)
   }
 }
 
+int DihedralAction(char symmetry, int orientation, int element)
+{
+  int o = orientation;
+  for (int r = 0; r < element % 4; ++r)
+    o = TransformOrientation(symmetry, o, false);
+  return element >= 4 ? TransformOrientation(symmetry, o, true) : o;
+}
+
+std::string TilesetImageFolder(const std::string& xmlPath)
+{
+  const std::string::size_type slash = xmlPath.rfind('/');
+  const std::string base = slash == std::string::npos ? xmlPath : xmlPath.substr(slash + 1);
+  if (base == "data.xml") // the older layout: NAME/data.xml with the images beside it
+    return slash == std::string::npos ? std::string(".") : xmlPath.substr(0, slash);
+  const std::string::size_type dot = base.rfind('.');
+  return xmlPath.substr(0, xmlPath.size() - (dot == std::string::npos ? 0 : base.size() - dot));
+}
+
+std::string TileImageFile(
+  const std::string& xmlPath, const Tileset& set, const TilesetTile& tile, int orientation)
+{
+  const std::string stem = TilesetImageFolder(xmlPath) + "/" + tile.Name +
+    (set.Unique ? " " + std::to_string(orientation) : std::string());
+  for (const char* ext : { ".png", ".bmp" })
+    if (std::ifstream(stem + ext).good())
+      return stem + ext;
+  return stem + ".png";
+}
+
 std::string Tileset::LabelName(int label) const
 {
   const TilesetTile& t =
@@ -311,6 +340,15 @@ Tileset ReadTileset(std::istream& in, const std::string& name, const std::string
     for (auto& ch : u)
       ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     set.Unique = u == "true";
+  }
+  if (const std::string* size = root.Attribute("size"))
+  {
+    char* end = nullptr;
+    const long v = std::strtol(size->c_str(), &end, 10);
+    if (end == size->c_str() || *end || v < 1 || v > 4096)
+      xml.Fail("<set size=\"" + *size + "\">: the tile size is a whole number of pixels, 1 to 4096",
+        root.Line);
+    set.TileSize = static_cast<int>(v);
   }
   // The tiles of the chosen subset.
   std::set<std::string> allowed;
@@ -391,6 +429,10 @@ Tileset ReadTileset(std::istream& in, const std::string& name, const std::string
       xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
     if (!extra.empty())
       xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
+    if (orientation < 0 || orientation > 7)
+      xml.Fail("'" + *ref + "': the number after a tile name is one of the 8 rotations and "
+                            "reflections, 0 to 7",
+        n.Line);
     tileIndex = -1;
     for (std::size_t i = 0; i < set.Tiles.size(); ++i)
       if (set.Tiles[i].Name == tileName)
@@ -404,11 +446,10 @@ Tileset ReadTileset(std::istream& in, const std::string& name, const std::string
         xml.Fail("a <neighbor> names tile '" + tileName + "', which is not defined", n.Line);
       return false; // defined but outside the chosen subset
     }
-    const TilesetTile& t = set.Tiles[static_cast<std::size_t>(tileIndex)];
-    if (orientation < 0 || orientation >= t.Orientations)
-      xml.Fail("tile '" + tileName + "' (symmetry " + std::string(1, t.Symmetry) +
-          ") has no orientation " + std::to_string(orientation),
-        n.Line);
+    // As WaveFunctionCollapse reads it (action[first][k]): element k of the dihedral group
+    // (identity, three quarter turns, then the four mirrored) applied to orientation 0.
+    orientation = DihedralAction(
+      set.Tiles[static_cast<std::size_t>(tileIndex)].Symmetry, 0, orientation);
     return true;
   };
   std::array<std::set<std::pair<int, int>>, 3> pairs;

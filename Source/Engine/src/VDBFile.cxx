@@ -5,6 +5,7 @@
 
 #include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
+#include "msynth/Memory.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
@@ -156,6 +157,12 @@ MetadataMap StringMetadataOf(const openvdb::MetaMap& meta)
 }
 
 /// Index-space extent to read: our stored extent, else the active voxel bounding box.
+/// The largest index coordinate accepted in a box: far from the 32-bit ends, so OpenVDB's
+/// own box arithmetic (max + 1, dimensions) cannot overflow.
+constexpr std::int64_t MaximumIndex = std::int64_t(1) << 30;
+
+/// The extent a grid stands for: our writer's stored index box (metadata, which a file may
+/// get wrong: checked), else the active voxels' bounding box.
 openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
 {
   auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(IndexMinKey);
@@ -163,10 +170,25 @@ openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
   if (lo && hi)
   {
     const openvdb::Vec3i a = lo->value(), b = hi->value();
+    for (int k = 0; k < 3; ++k)
+    {
+      // 64-bit arithmetic: the values are the file's, not ours.
+      const std::int64_t from = a[k], to = b[k];
+      if (from > to || from < -MaximumIndex || to > MaximumIndex)
+        throw Error("grid '" + grid.getName() + "' stores the index box (" +
+          std::to_string(a.x()) + ", " + std::to_string(a.y()) + ", " + std::to_string(a.z()) +
+          ") - (" + std::to_string(b.x()) + ", " + std::to_string(b.y()) + ", " +
+          std::to_string(b.z()) + "), which is empty or outside +-2^30");
+    }
     return openvdb::CoordBBox(
       openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
   }
-  return grid.evalActiveVoxelBoundingBox();
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if (!box.empty())
+    for (int k = 0; k < 3; ++k)
+      if (box.min()[k] < -MaximumIndex || box.max()[k] > MaximumIndex)
+        throw Error("grid '" + grid.getName() + "' has active voxels outside +-2^30");
+  return box;
 }
 
 template <typename GridT, typename ValueT>
@@ -233,9 +255,9 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
     // A grid with no active voxel and no stored extent: one background voxel.
     box = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
   }
-  const openvdb::Coord dim = box.dim();
   h.IndexMin = { { box.min().x(), box.min().y(), box.min().z() } };
-  h.Dims = { { dim.x(), dim.y(), dim.z() } };
+  for (int k = 0; k < 3; ++k)
+    h.Dims[static_cast<std::size_t>(k)] = std::int64_t(box.max()[k]) - box.min()[k] + 1;
   const std::int64_t limit = options.MaxVoxels;
   if (h.Dims[0] > limit || h.Dims[1] > limit / h.Dims[0] ||
     h.Dims[2] > limit / (h.Dims[0] * h.Dims[1]))
@@ -245,6 +267,9 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
       " voxels, more than the limit of " + std::to_string(limit) + " voxels");
   }
   const auto n = static_cast<std::size_t>(h.NumberOfVoxels());
+  CheckMemory(n * (h.Type == ValueType::Vec3Float ? 12 : 4),
+    "reading grid '" + h.Name + "' (" + std::to_string(h.Dims[0]) + " x " +
+      std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) + " voxels)");
   switch (h.Type)
   {
     case ValueType::Int32:

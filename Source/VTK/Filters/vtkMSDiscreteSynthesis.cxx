@@ -520,10 +520,14 @@ int vtkMSDiscreteSynthesis::RequestData(
     fd->AddArray(names);
     vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
   }
-  if (vtkAbstractArray* file =
-        input ? input->GetFieldData()->GetAbstractArray("ExampleFile") : nullptr)
+  // What the example says of its labels goes with the model: its file, the text format's
+  // piece names and trailer (for vtkMSTextModelWriter and the OpenVDB label_names).
+  for (const char* name : { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer" })
   {
-    fd->AddArray(file);
+    if (vtkAbstractArray* array = input ? input->GetFieldData()->GetAbstractArray(name) : nullptr)
+    {
+      fd->AddArray(array);
+    }
   }
   return 1;
 }

@@ -8,7 +8,9 @@
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkBMPReader.h"
 #include "vtkPNGReader.h"
+#include "vtkSmartPointer.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
@@ -29,14 +31,16 @@ int vtkMSTileImage::FillInputPortInformation(int, vtkInformation* info)
 
 namespace
 {
-/// The image file of orientation @p k of @p tile, and its folder from the XML file's name.
-std::string TileImagePath(
-  const std::string& xml, const msynth::Tileset& tiles, const msynth::TilesetTile& tile, int k)
+/// A reader for a tile image: PNG, or BMP as older published sets have them.
+vtkSmartPointer<vtkImageReader2> TileImageReader(const std::string& path)
 {
-  const std::string::size_type dot = xml.rfind('.');
-  const std::string folder = xml.substr(0, dot == std::string::npos ? xml.size() : dot);
-  return folder + "/" + tile.Name + (tiles.Unique ? " " + std::to_string(k) : std::string()) +
-    ".png";
+  vtkSmartPointer<vtkImageReader2> reader;
+  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".bmp") == 0)
+    reader = vtkSmartPointer<vtkBMPReader>::New();
+  else
+    reader = vtkSmartPointer<vtkPNGReader>::New();
+  reader->SetFileName(path.c_str());
+  return reader;
 }
 } // namespace
 
@@ -53,8 +57,8 @@ int vtkMSTileImage::RequestInformation(
   try
   {
     const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-    vtkNew<vtkPNGReader> reader;
-    reader->SetFileName(TileImagePath(this->TilesetFile, tiles, tiles.Tiles.front(), 0).c_str());
+    vtkSmartPointer<vtkImageReader2> reader = TileImageReader(
+      msynth::TileImageFile(this->TilesetFile, tiles, tiles.Tiles.front(), 0));
     std::string messages;
     if (vtkMSEngineBridge::Execute(reader, messages, /*informationOnly=*/true))
     {
@@ -164,15 +168,14 @@ int vtkMSTileImage::RequestData(
     const auto& tile =
       tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
     const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
-    const std::string path = TileImagePath(this->TilesetFile, tiles, tile, k);
+    const std::string path = msynth::TileImageFile(this->TilesetFile, tiles, tile, k);
     struct stat info;
     if (::stat(path.c_str(), &info) != 0)
     {
       vtkErrorMacro(<< "'" << path << "': no such tile image (tile '" << tile.Name << "').");
       return 0;
     }
-    vtkNew<vtkPNGReader> reader;
-    reader->SetFileName(path.c_str());
+    vtkSmartPointer<vtkImageReader2> reader = TileImageReader(path);
     std::string messages;
     if (!vtkMSEngineBridge::Execute(reader, messages))
     {
@@ -187,6 +190,12 @@ int vtkMSTileImage::RequestData(
     {
       vtkErrorMacro(<< "'" << path << "': tile images must be square (this one is " << dims[0]
                     << " x " << dims[1] << ").");
+      return 0;
+    }
+    if (tiles.TileSize && dims[0] != tiles.TileSize)
+    {
+      vtkErrorMacro(<< "'" << path << "': is " << dims[0] << " pixels wide; the tileset's <set size> says "
+                    << tiles.TileSize << ".");
       return 0;
     }
     if (size && dims[0] != size)

@@ -7,10 +7,11 @@
  * produces with a TilesetFile; label i is orientation k of a tile (msynth/Tileset.h).
  *
  * Images are found as the format's published tilesets lay them out: a folder named like the
- * XML file beside it (`Castle.xml` + `Castle/<tile>.png`), or one image per orientation
- * (`Castle/<tile> <k>.png`) when the set is `unique`. Otherwise orientation k + 1 is
+ * XML file beside it (`Castle.xml` + `Castle/<tile>.png`) or, in the older layout, beside
+ * `Castle/data.xml`; one image per orientation (`<tile> <k>.png`) when the set is `unique`;
+ * `.bmp` where no `.png` exists (msynth::TileImageFile). Otherwise orientation k + 1 is
  * orientation k turned 90° counter-clockwise, and orientations 4-7 mirror 0-3 left-right.
- * All images must be square and of one size T.
+ * All images must be square and of one size T (the set's `size` attribute when it has one).
  *
  * Output: vtkImageData of (nx·T) × (ny·T) pixels with the unsigned-char array `RGBA` (four
  * components, the active scalars); site (x, y) covers pixels [xT, xT + T) × [yT, yT + T).

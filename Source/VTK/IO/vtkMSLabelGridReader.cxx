@@ -106,6 +106,10 @@ bool vtkMSLabelGridReader::ReadText()
     else
     {
       this->Internal->Text = msynth::ReadTextModelFile(this->FileName, this->MaximumNumberOfSites);
+      if (!this->Internal->Text.ObjectsProblem.empty())
+      {
+        vtkWarningMacro(<< "'" << this->FileName << "', " << this->Internal->Text.ObjectsProblem);
+      }
     }
   }
   catch (const std::exception& e)
@@ -286,6 +290,15 @@ int vtkMSLabelGridReader::RequestData(
     {
       output->GetFieldData()->AddArray(pieceLabels);
       output->GetFieldData()->AddArray(pieceNames);
+    }
+    if (!text.Trailer.empty())
+    {
+      // The text after the last value (the <Objects> section), written back unchanged by
+      // vtkMSTextModelWriter so the original program's loaders find the scene and pieces.
+      vtkNew<vtkStringArray> trailer;
+      trailer->SetName("TextModelTrailer");
+      trailer->InsertNextValue(text.Trailer);
+      output->GetFieldData()->AddArray(trailer);
     }
     if (!this->Internal->Palette.empty())
     {

@@ -13,9 +13,11 @@
  * Each tile has a symmetry class that fixes how many distinct orientations it has: X (1),
  * I (2), \ (2), L (4), T (4), F (8). Orientation k + 1 is orientation k turned 90°
  * counter-clockwise; orientations 4-7 (class F) are 0-3 mirrored left-right. Every orientation
- * of every tile is one label. A neighbor entry "A i" left of "B j" (orientation 0 when omitted)
- * holds in all 8 rotations and reflections of that two-tile configuration, which gives the
- * allowed pairs along x (left → right) and y (bottom → top).
+ * of every tile is one label. A neighbor entry "A i" left of "B j" names A and B each in the
+ * orientation reached from orientation 0 by dihedral element i (j), 0-7 (DihedralAction; 0
+ * when omitted), and holds in all 8 rotations and reflections of that two-tile configuration,
+ * which gives the allowed pairs along x (left → right) and y (bottom → top). `<set size>` and
+ * `unique`, `<subsets>` and tile `weight` are read too.
  */
 #include "msynth/AdjacencyRules.h"
 
@@ -41,6 +43,7 @@ struct TilesetTile
 struct Tileset
 {
   bool Unique = false; ///< one image per orientation (else per tile, rotated)
+  int TileSize = 0;    ///< `<set size="...">`: the tile images' width in pixels (0: not given)
   std::vector<TilesetTile> Tiles;
   std::vector<int> LabelTile;                            ///< per label: index into Tiles
   std::vector<int> LabelOrientation;                     ///< per label: orientation
@@ -59,8 +62,25 @@ struct Tileset
 /// Orientation reached from @p orientation of a tile of class @p symmetry by turning it 90°
 /// counter-clockwise (@p mirror false) or mirroring it left-right (@p mirror true).
 int TransformOrientation(char symmetry, int orientation, bool mirror);
+/**
+ * The orientation reached from @p orientation by element @p element (0-7) of the dihedral
+ * group, numbered as WaveFunctionCollapse numbers it: 0 the identity, 1-3 one to three quarter
+ * turns counter-clockwise, 4-7 those followed by the left-right mirror. "tile k" in a neighbor
+ * rule means DihedralAction(symmetry, 0, k), so "b_i 3" (class I) is orientation 1.
+ */
+int DihedralAction(char symmetry, int orientation, int element);
 /// Number of distinct orientations of class @p symmetry (1, 2, 4 or 8), 0 for an unknown class.
 int OrientationCount(char symmetry);
+
+/**
+ * The folder of a tileset's images, in either layout the published sets use: `NAME.xml` beside
+ * a folder `NAME/`, or the older `NAME/data.xml` with the images beside it.
+ */
+std::string TilesetImageFolder(const std::string& xmlPath);
+/// The image of @p orientation of @p tile (`tile.png`, or `tile k.png` in a unique set; `.bmp`
+/// when only that exists, as older sets have it).
+std::string TileImageFile(
+  const std::string& xmlPath, const Tileset& set, const TilesetTile& tile, int orientation);
 
 /**
  * Reads a tileset; @p name is used in error messages, @p subset selects a <subset> ("" for all
