@@ -27,6 +27,7 @@
 #include "vtkAbstractArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -52,6 +53,7 @@
 #include "msynth/AtomicFile.h"
 #include "msynth/ConsistencyCheck.h"
 #include "msynth/Error.h"
+#include "msynth/OutputFolder.h"
 #include "msynth/ContinuousMesh.h"
 #include "msynth/TimeVarying.h"
 #include "msynth/Tileset.h"
@@ -59,12 +61,17 @@
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <iomanip>
 #include <iostream>
+#include <pthread.h>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -336,6 +343,50 @@ void MakeDirectory(const std::string& dir)
   }
 }
 
+/// @p text with every occurrence of @p from replaced by @p to.
+std::string Replaced(std::string text, const std::string& from, const std::string& to)
+{
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+  {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+/**
+ * Runs @p command with a staging folder inside @p out and publishes its files together when it
+ * succeeds (msynth::OutputFolder): a failed or interrupted run leaves @p out as it was. What the
+ * command prints names the final files, and is printed once they are there.
+ */
+int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command)
+{
+  msynth::OutputFolder folder(out);
+  std::ostringstream said;
+  std::streambuf* console = std::cout.rdbuf(said.rdbuf());
+  int status = 1;
+  try
+  {
+    status = command(folder.Stage());
+  }
+  catch (const UsageError&)
+  {
+    std::cout.rdbuf(console);
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    std::cout.rdbuf(console);
+    throw std::runtime_error(Replaced(e.what(), folder.Stage(), folder.Final()));
+  }
+  std::cout.rdbuf(console);
+  if (status == 0)
+  {
+    folder.Publish();
+  }
+  std::cout << Replaced(said.str(), folder.Stage(), folder.Final()) << std::flush;
+  return status;
+}
+
 int AnalyzeToFolder(const std::string& example, const std::string& dir)
 {
   Analysis a = Analyze(example);
@@ -402,10 +453,15 @@ void WriteXML(const std::string& path, DataT* data)
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();
   std::string messages;
+  errno = 0;
   if (!vtkMSEngineBridge::Execute(writer, messages) || writer->GetErrorCode() != 0)
   {
+    // The system's reason when there is one (no space left on device, file too large).
+    const std::string reason = errno ? std::strerror(errno)
+      : writer->GetErrorCode()      ? vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())
+                                    : messages;
     std::remove(tmp.c_str());
-    throw std::runtime_error("'" + path + "': could not be written: " + messages);
+    throw std::runtime_error("'" + path + "': could not be written: " + reason);
   }
   msynth::CommitTemporaryFile(tmp, path);
 }
@@ -1342,10 +1398,12 @@ int Main(const std::vector<std::string>& args)
     }
     if (IsPolyhedral(positional[0]))
     {
-      return PolyhedralSynthesize(positional[0], synth, out);
+      return IntoFolder(
+        out, [&](const std::string& dir) { return PolyhedralSynthesize(positional[0], synth, dir); });
     }
     triple(sizeIndex, "--size", synth.Size, 1); // a label grid's size is in sites
-    return Synthesize(positional[0], synth, out);
+    return IntoFolder(
+      out, [&](const std::string& dir) { return Synthesize(positional[0], synth, dir); });
   }
   if (command == "animate")
   {
@@ -1358,7 +1416,8 @@ int Main(const std::vector<std::string>& args)
       throw UsageError{ "animate needs --size NX NY NZ and --frames N" };
     }
     triple(sizeIndex, "--size", synth.Size, 1);
-    return Animate(positional, synth, out);
+    return IntoFolder(
+      out, [&](const std::string& dir) { return Animate(positional, synth, dir); });
   }
   if (command == "check")
   {
@@ -1385,17 +1444,54 @@ int Main(const std::vector<std::string>& args)
     if (IsPolyhedral(positional[0]))
     {
       return command == "info" ? PolyhedralInfo(positional[0], synth.ObjectTypes)
-                               : PolyhedralAnalyzeToFolder(positional[0], synth.ObjectTypes, out);
+                               : IntoFolder(out,
+                                   [&](const std::string& dir) {
+                                     return PolyhedralAnalyzeToFolder(
+                                       positional[0], synth.ObjectTypes, dir);
+                                   });
     }
-    return command == "info" ? Info(positional[0]) : AnalyzeToFolder(positional[0], out);
+    return command == "info"
+      ? Info(positional[0])
+      : IntoFolder(out, [&](const std::string& dir) { return AnalyzeToFolder(positional[0], dir); });
   }
   throw UsageError{ "unknown command '" + command + "'" };
+}
+
+/**
+ * SIGINT and SIGTERM (and SIGHUP) are taken by one thread: it discards the staging folders of
+ * the run, says so in one line and ends the process with 128 + the signal's number, whatever
+ * stage the run is in. The signals are blocked in every other thread (they inherit the mask).
+ */
+void HandleInterruptions()
+{
+  static sigset_t signals;
+  sigemptyset(&signals);
+  for (int sig : { SIGINT, SIGTERM, SIGHUP })
+  {
+    sigaddset(&signals, sig);
+  }
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  std::thread(
+    []()
+    {
+      int sig = 0;
+      while (sigwait(&signals, &sig) != 0)
+      {
+      }
+      msynth::OutputFolder::DiscardAll();
+      const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
+      std::fprintf(stderr, "\nmsynth: interrupted (%s); no outputs were written\n", name);
+      std::fflush(stderr);
+      std::_Exit(128 + sig);
+    })
+    .detach();
 }
 
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  HandleInterruptions();
   // Our errors reach the user as one line each through observers; VTK's own pipeline chatter
   // ("algorithm returned failure") is shown only with --verbose.
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();

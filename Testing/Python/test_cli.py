@@ -2,8 +2,11 @@
 import csv
 import json
 import os
+import resource
 import shutil
+import signal
 import subprocess
+import time
 import unittest
 
 import numpy as np
@@ -191,6 +194,72 @@ class CommandLineTest(unittest.TestCase):
         r = run("analyze", data("Examples/Village.vti"), "--out", "/proc/forbidden")
         self.assertEqual(r.returncode, 1)
         self.assertIn("/proc/forbidden", r.stderr)
+
+    def test_outputs_appear_all_at_once_or_not_at_all(self):
+        out = tmp("cli-all-or-nothing")
+        shutil.rmtree(out, ignore_errors=True)
+        args = ("synthesize", data("Examples/Village.vti"), "--block", "10", "10", "5", "--out", out)
+        r = run(*args, "--size", "20", "20", "5", "--snapshots", "2", "--seed", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("wrote %s/labels.vti" % out, r.stdout)  # the final names, not the staging
+        self.assertIn("catalog_0019.vdb", os.listdir(out))
+
+        def snapshot():
+            files = {}
+            for name in os.listdir(out):
+                with open(os.path.join(out, name), "rb") as f:
+                    files[name] = f.read()
+            return files
+
+        # A second run without snapshots replaces the whole set: no catalog of the first stays.
+        r = run(*args, "--size", "20", "20", "5", "--seed", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        visible = sorted(n for n in os.listdir(out) if not n.startswith("."))
+        self.assertEqual(visible, ["labels.vti", "mesh.vtp", "model.vdb", "statistics.json"])
+        before = snapshot()
+        # Interrupted at any moment (synthesis, writing, publishing): exit 130/143 with one line
+        # and the earlier set untouched, or exit 0 with a complete new set; never a mixture, and
+        # no staging folder or temporary file left.
+        for delay, sig in ((0.3, signal.SIGINT), (0.8, signal.SIGTERM), (1.5, signal.SIGINT),
+                           (2.5, signal.SIGTERM), (4.0, signal.SIGINT)):
+            p = subprocess.Popen([MSYNTH, *args, "--size", "120", "120", "5", "--seed", "3"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            time.sleep(delay)
+            p.send_signal(sig)
+            stdout, stderr = p.communicate(timeout=60)
+            names = os.listdir(out)
+            self.assertFalse([n for n in names if ".tmp-" in n or n.startswith(".msynth-stage")], names)
+            if p.returncode == 0:
+                before = snapshot()
+                self.assertIn("statistics.json", before)
+                with open(os.path.join(out, "statistics.json")) as f:
+                    self.assertEqual(json.load(f)["seed"], 3)
+            else:
+                self.assertEqual(p.returncode, 128 + sig, stderr)
+                self.assertEqual(stderr.strip().splitlines()[-1],
+                                 "msynth: interrupted (%s); no outputs were written" % sig.name)
+                self.assertEqual(snapshot(), before, "interrupted after %.1f s" % delay)
+
+    def test_a_failed_write_leaves_nothing(self):
+        # Files may not grow past 4 KB (as on a full disk, a write fails): exit 1 naming the file
+        # and the problem, and no folder, file or temporary file is left.
+        out = tmp("cli-full")
+        shutil.rmtree(out, ignore_errors=True)
+
+        def limit():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+
+        for args in (("analyze", data("Examples/Village.vti")),
+                     ("synthesize", data("Examples/Village.vti"), "--size", "30", "30", "5")):
+            r = subprocess.run([MSYNTH, *args, "--out", out], capture_output=True, text=True,
+                               timeout=120, preexec_fn=limit)
+            self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn("could not be written: File too large", r.stderr)
+            self.assertIn("'" + out + "/", r.stderr)
+            self.assertNotIn(".msynth-stage", r.stderr)
+            self.assertFalse(os.path.exists(out), os.listdir(out) if os.path.exists(out) else "")
 
     def test_synthesize_then_check(self):
         out = tmp("cli-synth")

@@ -32,29 +32,35 @@ void CommitTemporaryFile(const std::string& temporary, const std::string& path)
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write)
 {
   const std::string tmp = TemporaryPathBeside(path);
+  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+  if (!out)
   {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-    {
-      throw Error::InFile(path, std::string("could not be written: ") + std::strerror(errno));
-    }
-    try
-    {
-      write(out);
-      out.flush();
-    }
-    catch (...)
-    {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
-    if (!out)
-    {
-      out.close();
-      std::remove(tmp.c_str());
-      throw Error::InFile(path, "could not be written: I/O error");
-    }
+    throw Error::InFile(path, std::string("could not be written: ") + std::strerror(errno));
+  }
+  // Every write is checked (a full disk shows in the stream's state and errno), and so is the
+  // close, which writes what is still buffered.
+  errno = 0;
+  try
+  {
+    write(out);
+    out.flush();
+  }
+  catch (...)
+  {
+    out.close();
+    std::remove(tmp.c_str());
+    throw;
+  }
+  int error = out ? 0 : (errno ? errno : EIO);
+  out.close();
+  if (!error && out.fail())
+  {
+    error = errno ? errno : EIO;
+  }
+  if (error)
+  {
+    std::remove(tmp.c_str());
+    throw Error::InFile(path, std::string("could not be written: ") + std::strerror(error));
   }
   CommitTemporaryFile(tmp, path);
 }

@@ -286,9 +286,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const std::int64_t n = arrangement.NumberOfVertices();
   const int k = rules.NumberOfLabels();
   const int words = rules.Words();
-  if (!(options.BlockSize >= 0) || !std::isfinite(options.BlockSize))
+  if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))
   {
-    throw Error("continuous synthesis: the block size must be zero (whole model) or positive");
+    throw Error("continuous synthesis: the block size is measured in plane spacings and must be "
+                "0 (the whole model at once) or at least 1, not " +
+      std::to_string(options.BlockSize));
   }
   if (options.Attempts < 1)
   {

@@ -5,6 +5,7 @@
 
 #include "msynth/Catalog.h"
 #include "msynth/Error.h"
+#include "msynth/Memory.h"
 #include "msynth/Random.h"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <queue>
+#include <system_error>
 #include <thread>
 
 namespace msynth
@@ -1281,8 +1283,10 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   // Threads: blocks of a phase never touch, so they run concurrently; each block's result
   // depends only on the seed and its surroundings, which no block of its phase changes. The
   // model is therefore the same for any number of threads. Snapshots need one thread.
-  unsigned threads = options.Threads > 0 ? static_cast<unsigned>(options.Threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
+  // More threads than cores only costs memory (a solver each): clamp to the cores.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  unsigned threads =
+    options.Threads > 0 ? std::min(static_cast<unsigned>(options.Threads), cores) : cores;
   if (solver.Snapshots() || blocks.size() < 2 || (seams && !seams->Arcs.Empty()))
     threads = 1; // seams link blocks of one phase
   stats.Threads = static_cast<int>(threads);
@@ -1420,7 +1424,16 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
           outcomes[mine[j] - first] = runBlock(worker, blocks[mine[j]]);
       };
       for (auto& w : workers)
-        pool.emplace_back(work, std::ref(*w));
+      {
+        try
+        {
+          pool.emplace_back(work, std::ref(*w));
+        }
+        catch (const std::system_error&)
+        {
+          break; // no more threads to be had: the others and this one share the blocks
+        }
+      }
       work(solver);
       for (auto& t : pool)
         t.join();
@@ -1571,9 +1584,35 @@ SynthesisResult SynthesizeSeamSymmetric(
 
 } // namespace
 
+namespace
+{
+/// Refuses, before anything is allocated, a model whose memory would exceed what is available:
+/// per site the model, the last-block record and the caller's copies (about 24 bytes), plus a
+/// catalog (two bit sets of the labels and bookkeeping) over each block being solved at once.
+void CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o)
+{
+  std::uint64_t sites = 1, blockSites = 1;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const auto n = static_cast<std::uint64_t>(o.Size[a]);
+    sites *= n;
+    const auto m = static_cast<std::uint64_t>(o.BlockSize[a]);
+    blockSites *= (m == 0 || m > n) ? n : m;
+  }
+  const auto perCatalogSite = static_cast<std::uint64_t>(rules.Words()) * 16 + 24;
+  const std::uint64_t catalogs =
+    blockSites * (blockSites < sites ? std::max(1u, std::thread::hardware_concurrency()) : 1u);
+  CheckMemory(sites * 24 + catalogs * perCatalogSite,
+    "a " + std::to_string(o.Size[0]) + " x " + std::to_string(o.Size[1]) + " x " +
+      std::to_string(o.Size[2]) + " model of " + std::to_string(rules.NumberOfLabels()) +
+      " labels");
+}
+} // namespace
+
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  CheckSynthesisMemory(rules, options);
   if (AnyMirror(options) && detail::AnySeamSymmetry(options))
     throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
   if (!AnyMirror(options))

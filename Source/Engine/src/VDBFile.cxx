@@ -300,6 +300,22 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
   return out;
 }
 
+/// Writes grids exactly as openvdb::io::File does (Archive::write to a seekable stream), but to
+/// a stream the caller owns and checks: io::File never looks at its stream's state, so a full
+/// disk would go unnoticed.
+class CheckedArchive : public openvdb::io::Archive
+{
+public:
+  openvdb::io::Archive::Ptr copy() const override
+  {
+    return openvdb::io::Archive::Ptr(new CheckedArchive(*this));
+  }
+  void Write(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& meta) const
+  {
+    this->write(out, grids, /*seekable=*/true, meta);
+  }
+};
+
 /// A whole VDB file in memory: its metadata and grids.
 struct Archive
 {
@@ -490,19 +506,23 @@ void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
   fileMeta.insertMeta(
     "generator", openvdb::StringMetadata(std::string("ModelSynth ") + MSYNTH_VERSION));
 
-  const std::string tmp = TemporaryPathBeside(path);
-  try
-  {
-    openvdb::io::File file(tmp);
-    file.write(vdbGrids, fileMeta);
-    file.close();
-  }
-  catch (const std::exception& e)
-  {
-    std::remove(tmp.c_str());
-    throw Error::InFile(path, std::string("could not be written: ") + e.what());
-  }
-  CommitTemporaryFile(tmp, path);
+  // Written as io::File writes (a seekable archive), through a checked stream of ours.
+  WriteFileAtomically(path,
+    [&](std::ostream& out)
+    {
+      try
+      {
+        CheckedArchive().Write(out, vdbGrids, fileMeta);
+      }
+      catch (const Error&)
+      {
+        throw;
+      }
+      catch (const std::exception& e)
+      {
+        throw Error::InFile(path, std::string("could not be written: ") + e.what());
+      }
+    });
 }
 
 FileContents ReadFile(const std::string& path, const ReadOptions& options)

@@ -129,7 +129,14 @@ int vtkMSContinuousSynthesis::RequestData(
       cache.ArrangementTime = arrangementData->GetMTime();
     }
   }
-  catch (const msynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    cache.FilterTime = 0;
+    vtkErrorMacro(<< "Synthesis needs more memory than is available (arrangement of "
+                  << arrangementData->GetNumberOfPoints() << " vertices).");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     cache.FilterTime = 0;
     vtkErrorMacro(<< e.what());

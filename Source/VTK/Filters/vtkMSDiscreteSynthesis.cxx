@@ -409,6 +409,12 @@ int vtkMSDiscreteSynthesis::RequestData(
         cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
       }
     }
+    catch (const std::bad_alloc&)
+    {
+      vtkErrorMacro(<< "A " << this->OutputSize[0] << " x " << this->OutputSize[1] << " x "
+                    << this->OutputSize[2] << " model needs more memory than is available.");
+      return 0;
+    }
     catch (const std::exception& e)
     {
       vtkErrorMacro(<< e.what());

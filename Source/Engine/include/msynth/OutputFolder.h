@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file OutputFolder.h
+ * @brief A run's outputs appear together or not at all.
+ *
+ * The files of a run are written into a staging folder inside the output folder
+ * (`DIR/.msynth-stage-PID-N`), then published together: under a lock on the folder (so two
+ * runs into one folder publish one after the other, never interleaved), each file is renamed
+ * over its final name, and the files an earlier run listed in `DIR/.msynth-outputs` that this
+ * run did not write (a longer snapshot sequence, a picture) are removed, so the folder holds
+ * exactly one run's set. A run that fails or is interrupted discards its staging folder and
+ * leaves the folder as it was.
+ */
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+
+class OutputFolder
+{
+public:
+  /// Creates @p dir when missing (its parent must exist) and a staging folder inside it.
+  /// @throw Error naming @p dir when it is not a folder or not writable.
+  explicit OutputFolder(const std::string& dir);
+  /// Discards the staging folder unless Publish() succeeded (and the folder too, when this
+  /// object created it and it is empty).
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  /// Where the run writes its files.
+  const std::string& Stage() const { return this->StagePath; }
+  /// The output folder.
+  const std::string& Final() const { return this->Dir; }
+  /// Moves every staged file into the folder (see above). @throw Error on failure.
+  void Publish();
+
+  /// Removes the staging folders of every OutputFolder not yet published; for a signal-handling
+  /// thread that then ends the process (not for signal handlers themselves).
+  static void DiscardAll();
+
+private:
+  std::string Dir;
+  std::string StagePath;
+  bool Published = false;
+  bool Created = false; ///< the folder did not exist: removed again if nothing is published
+};
+
+/// Removes @p path and, if it is a folder, everything in it. Errors are ignored.
+void RemoveTree(const std::string& path);
+
+} // namespace msynth
