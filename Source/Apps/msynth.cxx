@@ -35,12 +35,12 @@
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
-#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVariant.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -53,6 +53,7 @@
 #include "msynth/AtomicFile.h"
 #include "msynth/ConsistencyCheck.h"
 #include "msynth/Error.h"
+#include "msynth/Image.h"
 #include "msynth/OutputFolder.h"
 #include "msynth/ContinuousMesh.h"
 #include "msynth/TimeVarying.h"
@@ -683,29 +684,35 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
     tiles->SetTilesetFile(example.c_str());
     tiles->SetTilesetSubset(a.Subset.c_str());
     std::string messages;
+    struct stat folder;
     if (vtkMSEngineBridge::Execute(tiles, messages))
     {
-      const std::string path = dir + "/picture.png";
-      const std::string tmp = msynth::TemporaryPathBeside(path) + ".png";
-      vtkNew<vtkPNGWriter> png;
-      png->SetInputData(tiles->GetOutput());
-      png->SetFileName(tmp.c_str());
-      // vtkImageWriter needs Write() (not a bare pipeline update) to write PNG, not raw bytes.
-      vtkNew<vtkMSEngineBridge> errors;
-      errors->Watch(png);
-      png->Write();
-      messages = errors->GetMessages();
-      if (errors->HasErrors() || png->GetErrorCode() != 0)
+      // Written with libpng at fast compression: a large picture is written in proportion to
+      // its synthesis.
+      vtkImageData* rgba = tiles->GetOutput();
+      int dims[3];
+      rgba->GetDimensions(dims);
+      msynth::RgbaImage image;
+      image.Width = dims[0];
+      image.Height = dims[1];
+      image.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+      auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
+      for (int y = 0; y < dims[1]; ++y) // VTK's rows are bottom first, the PNG's top first
       {
-        std::remove(tmp.c_str());
-        throw std::runtime_error("'" + path + "': could not be written: " + messages);
+        std::copy(pixels->GetPointer(4 * static_cast<vtkIdType>(y) * dims[0]),
+          pixels->GetPointer(4 * static_cast<vtkIdType>(y + 1) * dims[0]),
+          image.Pixels.begin() + 4 * static_cast<std::ptrdiff_t>(dims[1] - 1 - y) * dims[0]);
       }
-      msynth::CommitTemporaryFile(tmp, path);
-      picture = ", " + path;
+      msynth::WritePng(dir + "/picture.png", image);
+      picture = ", " + dir + "/picture.png";
+    }
+    else if (::stat(msynth::TilesetImageFolder(example).c_str(), &folder) != 0)
+    {
+      std::cerr << "msynth: note: no picture: the tileset has no folder of tile images\n";
     }
     else
     {
-      std::cerr << "msynth: note: no picture: " << messages << "\n";
+      throw std::runtime_error(messages);
     }
   }
   vtkNew<vtkMSOpenVDBWriter> vdb;

@@ -240,7 +240,7 @@ class TilesetTest(unittest.TestCase):
         shutil.copy(data("Tilesets/Lines.xml"), missing + ".xml")
         picture, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(),
                                         TilesetFile=missing + ".xml")
-        self.assertIn("no such tile image", errors)
+        self.assertIn("empty.png': no such image file", errors)
 
 
 if __name__ == "__main__":

@@ -8,17 +8,14 @@
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkBMPReader.h"
-#include "vtkPNGReader.h"
-#include "vtkSmartPointer.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "msynth/Image.h"
 #include "msynth/Tileset.h"
 
 #include <algorithm>
-#include <sys/stat.h>
 #include <vector>
 
 vtkStandardNewMacro(vtkMSTileImage);
@@ -28,21 +25,6 @@ int vtkMSTileImage::FillInputPortInformation(int, vtkInformation* info)
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
 }
-
-namespace
-{
-/// A reader for a tile image: PNG, or BMP as older published sets have them.
-vtkSmartPointer<vtkImageReader2> TileImageReader(const std::string& path)
-{
-  vtkSmartPointer<vtkImageReader2> reader;
-  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".bmp") == 0)
-    reader = vtkSmartPointer<vtkBMPReader>::New();
-  else
-    reader = vtkSmartPointer<vtkPNGReader>::New();
-  reader->SetFileName(path.c_str());
-  return reader;
-}
-} // namespace
 
 int vtkMSTileImage::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -57,15 +39,9 @@ int vtkMSTileImage::RequestInformation(
   try
   {
     const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-    vtkSmartPointer<vtkImageReader2> reader = TileImageReader(
-      msynth::TileImageFile(this->TilesetFile, tiles, tiles.Tiles.front(), 0));
-    std::string messages;
-    if (vtkMSEngineBridge::Execute(reader, messages, /*informationOnly=*/true))
-    {
-      int e[6];
-      reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
-      size = std::max(1, e[1] - e[0] + 1);
-    }
+    size = std::max(1,
+      msynth::ReadImage(msynth::TileImageFile(this->TilesetFile, tiles, tiles.Tiles.front(), 0))
+        .Width);
   }
   catch (const std::exception& e)
   {
@@ -169,58 +145,42 @@ int vtkMSTileImage::RequestData(
       tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
     const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
     const std::string path = msynth::TileImageFile(this->TilesetFile, tiles, tile, k);
-    struct stat info;
-    if (::stat(path.c_str(), &info) != 0)
+    msynth::RgbaImage image;
+    try
     {
-      vtkErrorMacro(<< "'" << path << "': no such tile image (tile '" << tile.Name << "').");
+      image = msynth::ReadImage(path);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what() << " (tile '" << tile.Name << "')");
       return 0;
     }
-    vtkSmartPointer<vtkImageReader2> reader = TileImageReader(path);
-    std::string messages;
-    if (!vtkMSEngineBridge::Execute(reader, messages))
+    if (image.Width != image.Height)
     {
-      vtkErrorMacro(<< "'" << path << "': could not be read: " << messages);
+      vtkErrorMacro(<< "'" << path << "': tile images must be square (this one is " << image.Width
+                    << " x " << image.Height << ").");
       return 0;
     }
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    if (dims[0] != dims[1] || dims[0] < 1 || !scalars)
+    if (tiles.TileSize && image.Width != tiles.TileSize)
     {
-      vtkErrorMacro(<< "'" << path << "': tile images must be square (this one is " << dims[0]
-                    << " x " << dims[1] << ").");
+      vtkErrorMacro(<< "'" << path << "': is " << image.Width
+                    << " pixels wide; the tileset's <set size> says " << tiles.TileSize << ".");
       return 0;
     }
-    if (tiles.TileSize && dims[0] != tiles.TileSize)
+    if (size && image.Width != size)
     {
-      vtkErrorMacro(<< "'" << path << "': is " << dims[0] << " pixels wide; the tileset's <set size> says "
-                    << tiles.TileSize << ".");
-      return 0;
-    }
-    if (size && dims[0] != size)
-    {
-      vtkErrorMacro(<< "'" << path << "': is " << dims[0] << " pixels wide; the other tiles are "
+      vtkErrorMacro(<< "'" << path << "': is " << image.Width << " pixels wide; the other tiles are "
                     << size << ".");
       return 0;
     }
-    size = dims[0];
+    size = image.Width;
     Picture p;
     p.Size = size;
     p.RGBA.resize(static_cast<std::size_t>(size) * size * 4);
-    const int nc = scalars->GetNumberOfComponents();
-    for (vtkIdType t = 0; t < static_cast<vtkIdType>(size) * size; ++t)
+    for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
     {
-      for (int c = 0; c < 4; ++c)
-      {
-        // Grey (1, 2 components) and RGB (3) images: fill RGB from grey, alpha opaque.
-        double v = 255.0;
-        if (c < 3)
-          v = scalars->GetComponent(t, nc >= 3 ? c : 0);
-        else if (nc == 4 || nc == 2)
-          v = scalars->GetComponent(t, nc - 1);
-        p.RGBA[static_cast<std::size_t>(4 * t + c)] = static_cast<unsigned char>(v);
-      }
+      std::copy(image.At(0, size - 1 - j), image.At(0, size - 1 - j) + 4 * size,
+        p.RGBA.begin() + 4 * static_cast<std::ptrdiff_t>(j) * size);
     }
     pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
   }

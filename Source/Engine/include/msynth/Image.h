@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file Image.h
+ * @brief RGBA pictures: tile images and image samples read, pictures written.
+ *
+ * PNG goes through libpng's own checks (chunk CRCs, the compressed stream), so a truncated or
+ * corrupted file is an error naming the file, never a crash; BMP (the older published tilesets)
+ * is read here with every size checked against the file. Sizes are checked before allocating.
+ */
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+
+struct RgbaImage
+{
+  int Width = 0;
+  int Height = 0;
+  std::vector<std::uint8_t> Pixels; ///< Width × Height × 4 bytes, rows from the top
+
+  const std::uint8_t* At(int x, int y) const
+  {
+    return this->Pixels.data() + 4 * (static_cast<std::size_t>(y) * this->Width + x);
+  }
+};
+
+/// The largest picture read: 2^26 pixels (256 MB of RGBA), and 65536 pixels per side.
+constexpr std::int64_t MaximumImagePixels = std::int64_t(1) << 26;
+
+/// Reads a PNG file. @throw Error naming @p path for anything unreadable.
+RgbaImage ReadPng(const std::string& path);
+/// Reads an uncompressed BMP (8-bit paletted, 24- or 32-bit). @throw Error naming @p path.
+RgbaImage ReadBmp(const std::string& path);
+/// ReadPng or ReadBmp by the file's extension (PNG for any other).
+RgbaImage ReadImage(const std::string& path);
+
+/**
+ * Writes @p image as an 8-bit RGBA (RGB when every pixel is opaque) PNG, atomically;
+ * @p compression 0-9 as zlib's levels (1: fast, the default for large pictures).
+ * @throw Error naming @p path on failure.
+ */
+void WritePng(const std::string& path, const RgbaImage& image, int compression = 1);
+
+} // namespace msynth
