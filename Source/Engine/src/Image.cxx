@@ -20,7 +20,8 @@ void CheckSize(const std::string& path, std::int64_t width, std::int64_t height)
 {
   if (width < 1 || height < 1 || width > 65536 || height > 65536 ||
     width * height > MaximumImagePixels)
-    throw Error::InFile(path, "is " + std::to_string(width) + " x " + std::to_string(height) +
+    throw Error::InFile(path,
+      "is " + std::to_string(width) + " x " + std::to_string(height) +
         " pixels; pictures of 1 to 65536 pixels a side and at most " +
         std::to_string(MaximumImagePixels) + " pixels are read");
   CheckMemory(static_cast<std::uint64_t>(width * height) * 4, "reading '" + path + "'");
@@ -98,26 +99,31 @@ RgbaImage ReadBmp(const std::string& path)
     throw Error::InFile(path, "is not a readable BMP image (no 'BM' signature)");
   const std::uint32_t offset = Little(b, 10, 4), header = Little(b, 14, 4);
   if (header < 40 || 14 + static_cast<std::uint64_t>(header) > b.size())
-    throw Error::InFile(path, "is not a BMP image this reader knows (header of " +
-        std::to_string(header) + " bytes)");
+    throw Error::InFile(path,
+      "is not a BMP image this reader knows (header of " + std::to_string(header) + " bytes)");
   const auto width = static_cast<std::int32_t>(Little(b, 18, 4));
   const auto rawHeight = static_cast<std::int32_t>(Little(b, 22, 4));
-  const std::uint32_t planes = Little(b, 26, 2), bits = Little(b, 28, 2), compression = Little(b, 30, 4);
+  const std::uint32_t planes = Little(b, 26, 2), bits = Little(b, 28, 2),
+                      compression = Little(b, 30, 4);
   const bool topDown = rawHeight < 0;
   const std::int64_t height = topDown ? -std::int64_t(rawHeight) : rawHeight;
-  if (planes != 1 || (bits != 8 && bits != 24 && bits != 32) || (compression != 0 && compression != 3))
-    throw Error::InFile(path, "is a BMP image of " + std::to_string(bits) + " bits per pixel, compression " +
+  if (planes != 1 || (bits != 8 && bits != 24 && bits != 32) ||
+    (compression != 0 && compression != 3))
+    throw Error::InFile(path,
+      "is a BMP image of " + std::to_string(bits) + " bits per pixel, compression " +
         std::to_string(compression) + "; uncompressed 8-, 24- and 32-bit images are read");
   CheckSize(path, width, height);
   const std::uint64_t stride = ((static_cast<std::uint64_t>(width) * bits + 31) / 32) * 4;
   if (offset > b.size() || stride * static_cast<std::uint64_t>(height) > b.size() - offset)
-    throw Error::InFile(path, "is truncated (its pixels need " +
+    throw Error::InFile(path,
+      "is truncated (its pixels need " +
         std::to_string(stride * static_cast<std::uint64_t>(height)) + " bytes after byte " +
         std::to_string(offset) + ")");
   std::uint32_t colours = bits == 8 ? Little(b, 46, 4) : 0;
   if (bits == 8 && colours == 0)
     colours = 256;
-  if (bits == 8 && (colours > 256 || 14 + static_cast<std::uint64_t>(header) + 4 * colours > offset))
+  if (bits == 8 &&
+    (colours > 256 || 14 + static_cast<std::uint64_t>(header) + 4 * colours > offset))
     throw Error::InFile(path, "has a colour table that does not fit before its pixels");
   RgbaImage image;
   image.Width = width;
@@ -126,7 +132,8 @@ RgbaImage ReadBmp(const std::string& path)
   for (std::int64_t row = 0; row < height; ++row)
   {
     const std::uint8_t* src = b.data() + offset + stride * static_cast<std::uint64_t>(row);
-    const std::int64_t y = topDown ? row : height - 1 - row; // bottom-up unless the height is negative
+    const std::int64_t y =
+      topDown ? row : height - 1 - row; // bottom-up unless the height is negative
     std::uint8_t* dst = image.Pixels.data() + static_cast<std::size_t>(y * width * 4);
     for (std::int32_t x = 0; x < width; ++x)
     {
@@ -135,8 +142,9 @@ RgbaImage ReadBmp(const std::string& path)
       if (bits == 8)
       {
         if (src[x] >= colours)
-          throw Error::InFile(path, "uses colour " + std::to_string(src[x]) +
-              ", beyond its table of " + std::to_string(colours));
+          throw Error::InFile(path,
+            "uses colour " + std::to_string(src[x]) + ", beyond its table of " +
+              std::to_string(colours));
         p = b.data() + 14 + header + 4 * static_cast<std::size_t>(src[x]);
       }
       else
@@ -170,8 +178,8 @@ void FlushStream(png_structp p)
 }
 
 /// The libpng calls in a frame of their own, holding no C++ object, for its longjmp on error.
-bool Encode(png_structp png, png_infop info, const RgbaImage& image, bool opaque,
-  std::uint8_t* row, std::ostream* out, int compression)
+bool Encode(png_structp png, png_infop info, const RgbaImage& image, bool opaque, std::uint8_t* row,
+  std::ostream* out, int compression)
 {
   if (setjmp(png_jmpbuf(png)))
     return false;

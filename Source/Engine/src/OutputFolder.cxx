@@ -62,7 +62,8 @@ public:
     : Fd(::open((dir + "/" + LockName).c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644))
   {
     if (this->Fd < 0)
-      throw Error::InFile(dir, std::string("cannot be locked for writing: ") + std::strerror(errno));
+      throw Error::InFile(
+        dir, std::string("cannot be locked for writing: ") + std::strerror(errno));
     while (::flock(this->Fd, LOCK_EX) != 0 && errno == EINTR)
     {
     }
@@ -111,8 +112,8 @@ OutputFolder::OutputFolder(const std::string& dir)
     throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
   }
   static std::atomic<unsigned> counter{ 0 };
-  this->StagePath = this->Dir + "/.msynth-stage-" + std::to_string(::getpid()) + "-" +
-    std::to_string(counter++);
+  this->StagePath =
+    this->Dir + "/.msynth-stage-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   std::lock_guard<std::mutex> lock(RegistryMutex());
   if (::mkdir(this->StagePath.c_str(), 0755) != 0)
   {
@@ -152,8 +153,8 @@ void OutputFolder::Publish()
   }
   for (const auto& name : written)
     if (std::rename((this->StagePath + "/" + name).c_str(), (this->Dir + "/" + name).c_str()) != 0)
-      throw Error::InFile(this->Dir + "/" + name, std::string("could not be published: ") +
-          std::strerror(errno));
+      throw Error::InFile(
+        this->Dir + "/" + name, std::string("could not be published: ") + std::strerror(errno));
   for (const auto& name : stale)
     ::unlink((this->Dir + "/" + name).c_str());
   WriteFileAtomically(this->Dir + "/" + ManifestName,

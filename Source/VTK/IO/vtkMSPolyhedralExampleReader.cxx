@@ -9,12 +9,11 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPLYReader.h"
 #include "vtkPolyData.h"
-#include "vtkSTLReader.h"
 #include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 
+#include "msynth/MeshFormats.h"
 #include "msynth/Error.h"
 
 #include <cctype>
@@ -122,35 +121,25 @@ int vtkMSPolyhedralExampleReader::RequestData(
     {
       example = msynth::ReadOBJExample(this->FileName, ParseObjectTypes(this->ObjectTypes));
     }
-    else if (ext == "vtp" || ext == "ply" || ext == "stl")
+    else if (ext == "ply")
     {
-      vtkSmartPointer<vtkAlgorithm> reader;
-      if (ext == "vtp")
-      {
-        auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-        r->SetFileName(this->FileName.c_str());
-        reader = r;
-      }
-      else if (ext == "ply")
-      {
-        auto r = vtkSmartPointer<vtkPLYReader>::New();
-        r->SetFileName(this->FileName.c_str());
-        reader = r;
-      }
-      else
-      {
-        auto r = vtkSmartPointer<vtkSTLReader>::New();
-        r->SetFileName(this->FileName.c_str());
-        reader = r;
-      }
+      example = msynth::ReadPLYExample(this->FileName); // hardened: counts checked first
+    }
+    else if (ext == "stl")
+    {
+      example = msynth::ReadSTLExample(this->FileName);
+    }
+    else if (ext == "vtp")
+    {
+      vtkNew<vtkXMLPolyDataReader> reader;
+      reader->SetFileName(this->FileName.c_str());
       std::string messages;
       if (!vtkMSEngineBridge::Execute(reader, messages))
       {
-        vtkErrorMacro(<< "'" << this->FileName << "': cannot be read as ." << ext << " (" << messages << ")");
+        vtkErrorMacro(<< "'" << this->FileName << "': cannot be read as .vtp (" << messages << ")");
         return 0;
       }
-      example = vtkMSEngineBridge::ToPolyhedralExample(
-        vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0)), this->FileName);
+      example = vtkMSEngineBridge::ToPolyhedralExample(reader->GetOutput(), this->FileName);
     }
     else
     {
