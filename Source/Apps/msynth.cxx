@@ -57,6 +57,7 @@
 #include "msynth/OutputFolder.h"
 #include "msynth/ContinuousMesh.h"
 #include "msynth/TimeVarying.h"
+#include "msynth/VTKXMLCheck.h"
 #include "msynth/Tileset.h"
 
 #include <array>
@@ -627,6 +628,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
     {
       throw std::runtime_error("'" + a.Guide + "': no such guide file");
     }
+    msynth::CheckVTKXMLFile(a.Guide); // what VTK's reader trusts, first
     guide->SetFileName(a.Guide.c_str());
     std::string messages;
     if (!vtkMSEngineBridge::Execute(guide, messages))
@@ -924,6 +926,7 @@ int PolyhedralCheck(const std::string& example, const std::string& modelPath, co
   {
     throw std::runtime_error("'" + modelPath + "': no such file");
   }
+  msynth::CheckVTKXMLFile(modelPath);
   vtkNew<vtkXMLPolyDataReader> modelReader;
   modelReader->SetFileName(modelPath.c_str());
   std::string messages;

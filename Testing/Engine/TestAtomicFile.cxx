@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <cstdio>
 #include <dirent.h>
+#include <sys/resource.h>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -69,4 +72,35 @@ TEST(AtomicFile, MissingFolderIsAClearError)
   {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
+}
+
+TEST(AtomicFile, AFullDiskIsSeenAndLeavesNothing)
+{
+  // Files may not grow past 4 KB (writes past it fail as on a full disk): the failure is seen,
+  // named with the system's reason, and nothing is left.
+  const std::string path = std::string(MSYNTH_TEST_TMP) + "/full-disk.txt";
+  std::remove(path.c_str());
+  struct sigaction ignore = {}, old = {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGXFSZ, &ignore, &old);
+  rlimit before{};
+  getrlimit(RLIMIT_FSIZE, &before);
+  rlimit small = before;
+  small.rlim_cur = 4096;
+  setrlimit(RLIMIT_FSIZE, &small);
+  std::string what;
+  try
+  {
+    msynth::WriteFileAtomically(path, [](std::ostream& out) { out << std::string(100000, 'x'); });
+  }
+  catch (const msynth::Error& e)
+  {
+    what = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &before);
+  sigaction(SIGXFSZ, &old, nullptr);
+  EXPECT_NE(what.find("'" + path + "': could not be written: File too large"), std::string::npos)
+    << what;
+  EXPECT_FALSE(std::ifstream(path).good());
+  EXPECT_FALSE(AnyTemporaryLeftIn(MSYNTH_TEST_TMP, "full-disk.txt"));
 }

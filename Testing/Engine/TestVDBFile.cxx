@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <csignal>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -196,6 +200,34 @@ TEST(VDBFile, FailedWritesLeaveNoPartialFile)
               })
               .find("two grids"),
     std::string::npos);
+}
+
+TEST(VDBFile, AFullDiskIsSeenAndLeavesNothing)
+{
+  // Files may not grow past 4 KB (RLIMIT_FSIZE; writes past it fail as on a full disk): a
+  // 40 KB grid's write fails naming the file and the system's reason, and leaves nothing.
+  std::vector<float> noise(20 * 20 * 20);
+  for (std::size_t i = 0; i < noise.size(); ++i)
+    noise[i] = static_cast<float>((i * 2654435761u) % 1000) + 0.5f;
+  vdb::GridHeader h = Header("noise", vdb::ValueType::Float);
+  h.Dims = { { 20, 20, 20 } };
+  const vdb::DenseGridView view{ h, noise.data() };
+  const std::string path = Tmp("full-disk.vdb");
+  std::remove(path.c_str());
+  struct sigaction ignore = {}, old = {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGXFSZ, &ignore, &old);
+  rlimit before{};
+  getrlimit(RLIMIT_FSIZE, &before);
+  rlimit small = before;
+  small.rlim_cur = 4096;
+  setrlimit(RLIMIT_FSIZE, &small);
+  const std::string e = ErrorOf([&] { vdb::WriteFile(path, { view }, {}); });
+  setrlimit(RLIMIT_FSIZE, &before);
+  sigaction(SIGXFSZ, &old, nullptr);
+  EXPECT_NE(e.find("'" + path + "': could not be written: File too large"), std::string::npos) << e;
+  std::ifstream left(path);
+  EXPECT_FALSE(left.good());
 }
 
 namespace

@@ -159,9 +159,24 @@ bool vtkMSEngineBridge::Execute(
   vtkNew<vtkMSEngineBridge> errors;
   errors->Watch(algorithm);
   vtkExecutive* executive = algorithm->GetExecutive();
-  const int status = informationOnly ? executive->UpdateInformation() : executive->Update();
-  const bool ok = status != 0 && !errors->HasErrors();
-  messages = errors->GetMessages();
+  int status = 0;
+  std::string thrown;
+  try
+  {
+    // A third-party reader may throw (std::bad_alloc for a size read from a damaged file):
+    // that is a failed update, not the end of the process.
+    status = informationOnly ? executive->UpdateInformation() : executive->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    thrown = std::string(algorithm->GetClassName()) + " ran out of memory (a damaged file?)";
+  }
+  catch (const std::exception& e)
+  {
+    thrown = std::string(algorithm->GetClassName()) + " failed: " + e.what();
+  }
+  const bool ok = status != 0 && !errors->HasErrors() && thrown.empty();
+  messages = errors->GetMessages() + thrown;
   if (!ok && messages.empty())
   {
     messages = std::string(algorithm->GetClassName()) + " failed";

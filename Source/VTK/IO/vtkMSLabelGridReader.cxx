@@ -19,6 +19,7 @@
 #include "vtkXMLImageDataReader.h"
 
 #include "msynth/TextModel.h"
+#include "msynth/VTKXMLCheck.h"
 #include "msynth/VoxModel.h"
 
 #include <array>
@@ -33,6 +34,7 @@ struct vtkMSLabelGridReader::Internals
   std::string Key;        ///< file name, size and time of the cached model
   msynth::TextModel Text; ///< .txt and .vox files (Grid; Pieces for .txt)
   std::vector<std::array<std::uint8_t, 4>> Palette; ///< .vox files
+  std::string CheckedKey; ///< file name, size and time of the last .vti that passed the check
 };
 
 namespace
@@ -148,6 +150,26 @@ bool vtkMSLabelGridReader::ReadHeader()
   if (this->IsText)
   {
     return this->ReadText();
+  }
+  // What VTK's XML reader trusts is checked first (msynth/VTKXMLCheck.h): it crashes on some
+  // damaged files instead of failing.
+  const std::string key = this->FileName + '\n' + std::to_string(info.st_size) + '\n' +
+    std::to_string(info.st_mtime);
+  if (key != this->Internal->CheckedKey)
+  {
+    try
+    {
+      msynth::CheckVTKXMLFile(this->FileName);
+    }
+    catch (const std::exception& e)
+    {
+      // "'path': problem" -> "'path': not a readable VTK image data (.vti) file: problem"
+      const std::string what = e.what(), prefix = "'" + this->FileName + "': ";
+      this->Fail("not a readable VTK image data (.vti) file: " +
+        (what.compare(0, prefix.size(), prefix) == 0 ? what.substr(prefix.size()) : what));
+      return false;
+    }
+    this->Internal->CheckedKey = key;
   }
   this->Reader->SetFileName(this->FileName.c_str());
   std::string messages;

@@ -14,6 +14,7 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include "msynth/MeshFormats.h"
+#include "msynth/VTKXMLCheck.h"
 #include "msynth/Error.h"
 
 #include <cctype>
@@ -131,6 +132,7 @@ int vtkMSPolyhedralExampleReader::RequestData(
     }
     else if (ext == "vtp")
     {
+      msynth::CheckVTKXMLFile(this->FileName); // what VTK's reader trusts, first
       vtkNew<vtkXMLPolyDataReader> reader;
       reader->SetFileName(this->FileName.c_str());
       std::string messages;
