@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <sstream>
 
 namespace vdb = msynth::vdb;
@@ -200,6 +201,39 @@ TEST(VDBFile, FailedWritesLeaveNoPartialFile)
               })
               .find("two grids"),
     std::string::npos);
+}
+
+TEST(VDBFile, DamagedFilesNeverCrashTheReader)
+{
+  // Four bytes set to 0xff anywhere in one of our own files (a negative chunk size made
+  // OpenVDB overflow its buffer): the file is read, or refused naming it; the library reads in
+  // a child process, so even its crash is only an error here.
+  std::vector<std::int32_t> labels(16 * 16 * 4);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    labels[i] = static_cast<std::int32_t>((i * 7) % 5);
+  vdb::GridHeader h = Header("Label", vdb::ValueType::Int32);
+  h.Dims = { { 16, 16, 4 } };
+  const std::string good = Tmp("good.vdb");
+  vdb::WriteFile(good, { vdb::DenseGridView{ h, labels.data() } }, {});
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  int refused = 0;
+  for (std::size_t i = 0; i + 4 <= bytes.size(); i += 131) // a fork each: about 160 reads
+  {
+    std::string bad = bytes;
+    for (std::size_t k = 0; k < 4; ++k)
+      bad[i + k] = static_cast<char>(0xff);
+    const std::string path = Tmp("damaged.vdb");
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bad;
+    const std::string e = ErrorOf([&] { vdb::ReadFile(path); });
+    if (!e.empty())
+    {
+      ++refused;
+      EXPECT_NE(e.find("'" + path + "'"), std::string::npos) << e;
+    }
+  }
+  EXPECT_GT(refused, 0);
 }
 
 TEST(VDBFile, AFullDiskIsSeenAndLeavesNothing)

@@ -79,6 +79,33 @@ protected:
     }
     return traits_type::not_eof(c);
   }
+  std::streamsize xsputn(const char* data, std::streamsize n) override
+  {
+    const std::streamsize room = this->epptr() - this->pptr();
+    if (n <= room)
+    {
+      std::memcpy(this->pptr(), data, static_cast<std::size_t>(n));
+      this->pbump(static_cast<int>(n));
+      return n;
+    }
+    if (!this->Drain())
+      return 0;
+    if (n < static_cast<std::streamsize>(this->Buffer.size()))
+      return this->xsputn(data, n);
+    // Large pieces go straight to the file.
+    std::size_t done = 0;
+    while (done < static_cast<std::size_t>(n) && !this->Failed)
+    {
+      const ssize_t k = ::write(this->Fd, data + done, static_cast<std::size_t>(n) - done);
+      if (k < 0 && errno == EINTR)
+        continue;
+      if (k <= 0)
+        this->Failed = k < 0 ? errno : EIO;
+      else
+        done += static_cast<std::size_t>(k);
+    }
+    return this->Failed ? 0 : n;
+  }
   int sync() override { return this->Drain() ? 0 : -1; }
   pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override
   {

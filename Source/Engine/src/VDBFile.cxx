@@ -7,18 +7,26 @@
 #include "msynth/Error.h"
 #include "msynth/Memory.h"
 
+#include <csignal>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <functional>
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <type_traits>
 
 namespace msynth
 {
@@ -74,12 +82,36 @@ typename GridT::Ptr DenseToGrid(const DenseGridView& view, const ValueT& backgro
   const openvdb::Coord hi(static_cast<openvdb::Int32>(h.IndexMin[0] + h.Dims[0] - 1),
     static_cast<openvdb::Int32>(h.IndexMin[1] + h.Dims[1] - 1),
     static_cast<openvdb::Int32>(h.IndexMin[2] + h.Dims[2] - 1));
-  // copyFromDense only reads the dense buffer; the Dense class just lacks a const flavour.
-  openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(
-    openvdb::CoordBBox(lo, hi), const_cast<ValueT*>(static_cast<const ValueT*>(view.Values)));
   typename GridT::Ptr grid = GridT::create(background);
-  // Tolerance zero: exactly the voxels equal to the background become inactive.
-  openvdb::tools::copyFromDense(dense, *grid, openvdb::zeroVal<ValueT>());
+  const ValueT* values = static_cast<const ValueT*>(view.Values);
+  bool extreme = false; // copyFromDense compares as a - b, which must not overflow
+  if constexpr (std::is_integral<ValueT>::value)
+  {
+    const auto far = [](ValueT v) { return v < -(ValueT(1) << 29) || v > (ValueT(1) << 29); };
+    extreme = far(background);
+    for (std::int64_t i = 0, n = h.NumberOfVoxels(); i < n && !extreme; ++i)
+      extreme = far(values[i]);
+  }
+  if (extreme)
+  {
+    // Exactly the voxels unequal to the background become active, one by one (labels such as
+    // the catalog's undecided INT_MIN would overflow copyFromDense's comparison).
+    auto accessor = grid->getAccessor();
+    std::size_t i = 0;
+    for (openvdb::Int32 z = lo.z(); z <= hi.z(); ++z)
+      for (openvdb::Int32 y = lo.y(); y <= hi.y(); ++y)
+        for (openvdb::Int32 x = lo.x(); x <= hi.x(); ++x, ++i)
+          if (values[i] != background)
+            accessor.setValueOn(openvdb::Coord(x, y, z), values[i]);
+  }
+  else
+  {
+    // copyFromDense only reads the dense buffer; the Dense class just lacks a const flavour.
+    openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(
+      openvdb::CoordBBox(lo, hi), const_cast<ValueT*>(values));
+    // Tolerance zero: exactly the voxels equal to the background become inactive.
+    openvdb::tools::copyFromDense(dense, *grid, openvdb::zeroVal<ValueT>());
+  }
   grid->insertMeta(IndexMinKey, openvdb::Vec3IMetadata(openvdb::Vec3i(lo.x(), lo.y(), lo.z())));
   grid->insertMeta(IndexMaxKey, openvdb::Vec3IMetadata(openvdb::Vec3i(hi.x(), hi.y(), hi.z())));
   return grid;
@@ -195,7 +227,7 @@ template <typename GridT, typename ValueT>
 void GridToDense(const GridT& grid, const openvdb::CoordBBox& box, ValueT* out)
 {
   openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(box, out);
-  openvdb::tools::copyToDense(grid, dense);
+  openvdb::tools::copyToDense(grid, dense, /*serial=*/true); // no TBB in the reading child
 }
 
 DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& options)
@@ -525,7 +557,9 @@ void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
     });
 }
 
-FileContents ReadFile(const std::string& path, const ReadOptions& options)
+namespace
+{
+FileContents ReadFileHere(const std::string& path, const ReadOptions& options)
 {
   InitializeOpenVDB();
   const Archive archive = LoadArchive(path);
@@ -564,7 +598,7 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
   return contents;
 }
 
-std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
+std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fileMetadata)
 {
   InitializeOpenVDB();
   const Archive archive = LoadArchive(path);
@@ -582,6 +616,379 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
     s.Metadata = StringMetadataOf(*g);
     s.ActiveVoxelCount = static_cast<std::int64_t>(g->activeVoxelCount());
     result.push_back(std::move(s));
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading in a child process. OpenVDB trusts sizes in the file (a negative Blosc chunk size
+// overflows its buffer), so the library reads in a forked child; only our own serialization of
+// the result crosses back, checked as untrusted data. A crash or overflow ends the child, and
+// the parent reports the file as corrupt.
+
+/// Appends values to a byte string (the child's side).
+struct Packer
+{
+  std::string Bytes;
+  void Raw(const void* p, std::size_t n) { this->Bytes.append(static_cast<const char*>(p), n); }
+  void U64(std::uint64_t v) { this->Raw(&v, 8); }
+  void F64(double v) { this->Raw(&v, 8); }
+  void Str(const std::string& v)
+  {
+    this->U64(v.size());
+    this->Raw(v.data(), v.size());
+  }
+  void Map(const MetadataMap& m)
+  {
+    this->U64(m.size());
+    for (const auto& kv : m)
+    {
+      this->Str(kv.first);
+      this->Str(kv.second);
+    }
+  }
+};
+
+/// Reads them back with every size checked (the parent's side).
+struct Unpacker
+{
+  const std::string& Bytes;
+  const std::string& Path;
+  std::size_t Pos = 0;
+  void Raw(void* p, std::size_t n)
+  {
+    if (n > this->Bytes.size() - this->Pos)
+      throw Error::InFile(this->Path, "could not be read (the reading process sent too little)");
+    std::memcpy(p, this->Bytes.data() + this->Pos, n);
+    this->Pos += n;
+  }
+  std::uint64_t U64(std::uint64_t limit = std::numeric_limits<std::uint64_t>::max())
+  {
+    std::uint64_t v = 0;
+    this->Raw(&v, 8);
+    if (v > limit)
+      throw Error::InFile(this->Path, "could not be read (a size out of range from the reading process)");
+    return v;
+  }
+  double F64()
+  {
+    double v = 0;
+    this->Raw(&v, 8);
+    return v;
+  }
+  std::string Str()
+  {
+    std::string v(static_cast<std::size_t>(this->U64(this->Bytes.size() - this->Pos)), '\0');
+    this->Raw(&v[0], v.size());
+    return v;
+  }
+  MetadataMap Map()
+  {
+    MetadataMap m;
+    for (std::uint64_t n = this->U64(this->Bytes.size()); n > 0; --n)
+    {
+      std::string key = this->Str();
+      m[key] = this->Str();
+    }
+    return m;
+  }
+};
+
+void PackHeader(Packer& p, const GridHeader& h)
+{
+  p.Str(h.Name);
+  p.U64(static_cast<std::uint64_t>(h.Type));
+  for (int a = 0; a < 3; ++a)
+  {
+    p.U64(static_cast<std::uint64_t>(static_cast<std::int64_t>(h.IndexMin[static_cast<std::size_t>(a)])));
+    p.U64(static_cast<std::uint64_t>(h.Dims[static_cast<std::size_t>(a)]));
+    p.F64(h.Origin[static_cast<std::size_t>(a)]);
+    p.F64(h.Spacing[static_cast<std::size_t>(a)]);
+  }
+  p.F64(h.Background);
+  p.Str(h.GridClass);
+  p.Map(h.Metadata);
+}
+
+GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels)
+{
+  GridHeader h;
+  h.Name = u.Str();
+  h.Type = static_cast<ValueType>(u.U64(2));
+  for (int a = 0; a < 3; ++a)
+  {
+    h.IndexMin[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
+    h.Dims[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
+    h.Origin[static_cast<std::size_t>(a)] = u.F64();
+    h.Spacing[static_cast<std::size_t>(a)] = u.F64();
+  }
+  h.Background = u.F64();
+  h.GridClass = u.Str();
+  h.Metadata = u.Map();
+  if (h.Dims[0] * h.Dims[1] > maxVoxels || h.NumberOfVoxels() > maxVoxels)
+    throw Error::InFile(u.Path, "could not be read (a grid out of range from the reading process)");
+  return h;
+}
+
+/// Writes all of @p n bytes at @p data to @p fd (the child's side).
+void WriteAll(int fd, const void* data, std::size_t n)
+{
+  const char* p = static_cast<const char*>(data);
+  while (n > 0)
+  {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR)
+      continue;
+    if (k <= 0)
+      ::_exit(1); // the parent stopped listening
+    p += k;
+    n -= static_cast<std::size_t>(k);
+  }
+}
+
+/// Reads exactly what the parent asks for from the child's pipe.
+class PipeReader
+{
+public:
+  PipeReader(int fd, const std::string& path)
+    : Fd(fd)
+    , Path(path)
+  {
+  }
+  /// Up to @p n bytes; fewer only at the end of the pipe.
+  std::size_t Some(void* data, std::size_t n)
+  {
+    char* p = static_cast<char*>(data);
+    std::size_t done = 0;
+    while (done < n)
+    {
+      const ssize_t k = ::read(this->Fd, p + done, n - done);
+      if (k < 0 && errno == EINTR)
+        continue;
+      if (k <= 0)
+        break;
+      done += static_cast<std::size_t>(k);
+    }
+    return done;
+  }
+  void Exact(void* data, std::size_t n)
+  {
+    if (this->Some(data, n) != n)
+      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
+  }
+  std::uint64_t U64()
+  {
+    std::uint64_t v = 0;
+    this->Exact(&v, 8);
+    return v;
+  }
+
+private:
+  int Fd;
+  const std::string& Path;
+};
+
+/**
+ * Runs @p child in a forked child that writes to the given pipe ('O' and its data, or 'E' and
+ * a message), and @p parent on the parent's end, which reads that data. A crash of the child,
+ * or data that do not follow the protocol, is an Error naming @p path.
+ */
+template <typename Result>
+Result Isolated(const std::string& path, const std::function<void(int)>& child,
+  const std::function<Result(PipeReader&)>& parent)
+{
+  int fds[2];
+  if (::pipe(fds) != 0)
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0)
+  {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  }
+  if (pid == 0)
+  {
+    ::close(fds[0]);
+    std::string message;
+    try
+    {
+      // One thread in the child: the parent's TBB workers do not exist here.
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      child(fds[1]);
+      ::_exit(0);
+    }
+    catch (const std::bad_alloc&)
+    {
+      message = Error::InFile(path, "needs more memory than is available").what();
+    }
+    catch (const std::exception& e)
+    {
+      message = e.what();
+    }
+    WriteAll(fds[1], "E", 1);
+    WriteAll(fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  PipeReader reader(fds[0], path);
+  const auto finish = [&](bool kill)
+  {
+    if (kill)
+      ::kill(pid, SIGKILL);
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    {
+    }
+    return status;
+  };
+  const auto crashed = [&](int status)
+  {
+    return Error::InFile(path, WIFSIGNALED(status)
+        ? "is corrupt: the OpenVDB library crashed reading it (signal " +
+          std::to_string(WTERMSIG(status)) + ")"
+        : std::string("is corrupt: the OpenVDB library failed reading it"));
+  };
+  char kind = 0;
+  if (reader.Some(&kind, 1) != 1 || (kind != 'O' && kind != 'E'))
+    throw crashed(finish(false));
+  if (kind == 'E')
+  {
+    std::string message(4096, '\0');
+    message.resize(reader.Some(&message[0], message.size()));
+    finish(false);
+    throw Error(message);
+  }
+  try
+  {
+    Result result = parent(reader);
+    char extra = 0;
+    const bool more = reader.Some(&extra, 1) != 0;
+    const int status = finish(more);
+    if (more || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      throw crashed(status);
+    return result;
+  }
+  catch (const Error&)
+  {
+    const int status = finish(true);
+    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL)
+      throw crashed(status);
+    throw;
+  }
+}
+} // namespace
+
+FileContents ReadFile(const std::string& path, const ReadOptions& options)
+{
+  InitializeOpenVDB();
+  return Isolated<FileContents>(
+    path,
+    [&](int fd)
+    {
+      const FileContents contents = ReadFileHere(path, options);
+      // The headers first (sizes included), then each grid's values as they are in memory.
+      Packer p;
+      p.Map(contents.Metadata);
+      p.U64(contents.Grids.size());
+      for (const auto& g : contents.Grids)
+      {
+        PackHeader(p, g.Header);
+        p.U64(g.Ints.size());
+        p.U64(g.Floats.size());
+      }
+      WriteAll(fd, "O", 1);
+      const std::uint64_t n = p.Bytes.size();
+      WriteAll(fd, &n, 8);
+      WriteAll(fd, p.Bytes.data(), p.Bytes.size());
+      for (const auto& g : contents.Grids)
+      {
+        WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+    },
+    [&](PipeReader& reader)
+    {
+      const std::uint64_t n = reader.U64();
+      if (n > (std::uint64_t(64) << 20))
+        throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
+      std::string headers(static_cast<std::size_t>(n), '\0');
+      reader.Exact(&headers[0], headers.size());
+      Unpacker u{ headers, path };
+      FileContents contents;
+      contents.Metadata = u.Map();
+      for (std::uint64_t count = u.U64(100000); count > 0; --count)
+      {
+        DenseGrid g;
+        g.Header = UnpackHeader(u, options.MaxVoxels);
+        const auto voxels = static_cast<std::uint64_t>(g.Header.NumberOfVoxels());
+        const std::uint64_t ints = u.U64(voxels), floats = u.U64(3 * voxels);
+        const std::uint64_t expected = voxels * static_cast<std::uint64_t>(ComponentCount(g.Header.Type));
+        if ((g.Header.Type == ValueType::Int32 ? ints : floats) != expected || (ints && floats))
+          throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
+        CheckMemory((ints + floats) * 4, "reading grid '" + g.Header.Name + "' of '" + path + "'");
+        contents.Grids.push_back(std::move(g));
+        contents.Grids.back().Ints.resize(static_cast<std::size_t>(ints));
+        contents.Grids.back().Floats.resize(static_cast<std::size_t>(floats));
+      }
+      for (auto& g : contents.Grids)
+      {
+        reader.Exact(g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        reader.Exact(g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+      return contents;
+    });
+}
+
+std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
+{
+  InitializeOpenVDB();
+  const std::string payload = Isolated<std::string>(
+    path,
+    [&](int fd)
+    {
+      MetadataMap meta;
+      const std::vector<GridSummary> grids = ListGridsHere(path, &meta);
+      Packer p;
+      p.Map(meta);
+      p.U64(grids.size());
+      for (const auto& g : grids)
+      {
+        p.Str(g.Name);
+        p.Str(g.TypeName);
+        p.Str(g.GridClass);
+        p.Map(g.Metadata);
+        p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
+      }
+      WriteAll(fd, "O", 1);
+      const std::uint64_t n = p.Bytes.size();
+      WriteAll(fd, &n, 8);
+      WriteAll(fd, p.Bytes.data(), p.Bytes.size());
+    },
+    [&](PipeReader& reader)
+    {
+      const std::uint64_t n = reader.U64();
+      if (n > (std::uint64_t(64) << 20))
+        throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
+      std::string bytes(static_cast<std::size_t>(n), '\0');
+      reader.Exact(&bytes[0], bytes.size());
+      return bytes;
+    });
+  Unpacker u{ payload, path };
+  MetadataMap meta = u.Map();
+  if (fileMetadata)
+    *fileMetadata = meta;
+  std::vector<GridSummary> result;
+  for (std::uint64_t n = u.U64(100000); n > 0; --n)
+  {
+    GridSummary g;
+    g.Name = u.Str();
+    g.TypeName = u.Str();
+    g.GridClass = u.Str();
+    g.Metadata = u.Map();
+    g.ActiveVoxelCount = static_cast<std::int64_t>(u.U64());
+    result.push_back(std::move(g));
   }
   return result;
 }
