@@ -61,6 +61,7 @@
 #include "msynth/Tileset.h"
 
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -1472,6 +1473,10 @@ int Main(const std::vector<std::string>& args)
  * the run, says so in one line and ends the process with 128 + the signal's number, whatever
  * stage the run is in. The signals are blocked in every other thread (they inherit the mask).
  */
+/// main()'s exit status once it is known (-1 before): a signal arriving after the work is
+/// done ends the process with that status, silently, and discards nothing.
+std::atomic<int> FinalStatus{ -1 };
+
 void HandleInterruptions()
 {
   static sigset_t signals;
@@ -1488,7 +1493,15 @@ void HandleInterruptions()
       while (sigwait(&signals, &sig) != 0)
       {
       }
-      msynth::OutputFolder::DiscardAll();
+      if (FinalStatus >= 0)
+      {
+        std::_Exit(FinalStatus);
+      }
+      int published = 0;
+      if (msynth::OutputFolder::DiscardAll(&published) == 0 && published > 0)
+      {
+        std::_Exit(0); // the run's outputs are complete: only its last words are lost
+      }
       const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
       std::fprintf(stderr, "\nmsynth: interrupted (%s); no outputs were written\n", name);
       std::fflush(stderr);
@@ -1506,18 +1519,22 @@ int main(int argc, char* argv[])
   // ("algorithm returned failure") is shown only with --verbose.
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  int status = 1;
   try
   {
-    return Main(std::vector<std::string>(argv + 1, argv + argc));
+    status = Main(std::vector<std::string>(argv + 1, argv + argc));
   }
   catch (const UsageError& e)
   {
     std::cerr << "msynth: " << e.What << "\n" << Usage;
-    return 2;
+    status = 2;
   }
   catch (const std::exception& e)
   {
     std::cerr << "msynth: error: " << e.what() << "\n";
-    return 1;
+    status = 1;
   }
+  std::cout.flush();
+  FinalStatus = status;
+  return status;
 }

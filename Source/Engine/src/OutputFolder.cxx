@@ -25,16 +25,23 @@ namespace
 constexpr const char* ManifestName = ".msynth-outputs";
 constexpr const char* LockName = ".msynth-lock";
 
-/// The staging folders not yet published or discarded (for DiscardAll).
+/// The staging folders not yet published or discarded (for DiscardAll). Never destroyed: a
+/// signal-handling thread may call DiscardAll while the process exits.
 std::mutex& RegistryMutex()
 {
-  static std::mutex m;
-  return m;
+  static std::mutex* m = new std::mutex;
+  return *m;
 }
 std::set<std::string>& Registry()
 {
-  static std::set<std::string> r;
-  return r;
+  static std::set<std::string>* r = new std::set<std::string>;
+  return *r;
+}
+/// Folders published by this process (under RegistryMutex).
+int& PublishedCount()
+{
+  static int n = 0;
+  return n;
 }
 
 std::vector<std::string> Entries(const std::string& dir)
@@ -166,14 +173,19 @@ void OutputFolder::Publish()
   Registry().erase(this->StagePath);
   ::rmdir(this->StagePath.c_str());
   this->Published = true;
+  ++PublishedCount();
 }
 
-void OutputFolder::DiscardAll()
+int OutputFolder::DiscardAll(int* published)
 {
   std::lock_guard<std::mutex> lock(RegistryMutex());
+  const int discarded = static_cast<int>(Registry().size());
   for (const auto& stage : Registry())
     RemoveTree(stage);
   Registry().clear();
+  if (published)
+    *published = PublishedCount();
+  return discarded;
 }
 
 } // namespace msynth

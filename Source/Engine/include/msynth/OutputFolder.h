@@ -38,8 +38,9 @@ public:
   void Publish();
 
   /// Removes the staging folders of every OutputFolder not yet published; for a signal-handling
-  /// thread that then ends the process (not for signal handlers themselves).
-  static void DiscardAll();
+  /// thread that then ends the process (not for signal handlers themselves). Returns how many
+  /// it removed; @p published gets how many folders this process has published.
+  static int DiscardAll(int* published = nullptr);
 
 private:
   std::string Dir;
