@@ -21,6 +21,8 @@ packages=(
   libgtest-dev googletest libbenchmark-dev python3-numpy
   # Rendering without a display
   xvfb xauth
+  # Fuzzing (Utilities/fuzz.sh): clang with libFuzzer, and the format libraries the engine reads
+  clang libclang-rt-14-dev liblz4-dev liblzma-dev zlib1g-dev libpng-dev
 )
 
 missing=()

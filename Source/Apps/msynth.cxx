@@ -177,6 +177,51 @@ bool IsPolyhedral(const std::string& path)
   return vtkMSPolyhedralExampleReader::CanReadFile(path.c_str()) != 0;
 }
 
+/**
+ * An input file given on the command line: it must be a regular file (not a folder, a pipe or
+ * a device) of a kind msynth reads. @throw std::runtime_error saying which.
+ */
+void CheckInputFile(const std::string& path, bool model = false)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    throw std::runtime_error("'" + path + "': no such file");
+  }
+  if (S_ISDIR(info.st_mode))
+  {
+    throw std::runtime_error("'" + path + "': is a folder, not a file");
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    throw std::runtime_error("'" + path + "': is not a regular file (a pipe, socket or device)");
+  }
+  const std::string::size_type dot = path.rfind('.');
+  std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos
+    ? std::string()
+    : path.substr(dot);
+  for (auto& c : ext)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  static const char* const known[] = { ".vti", ".txt", ".vox", ".xml", ".obj", ".vtp", ".ply",
+    ".stl" };
+  bool ok = false;
+  for (const char* k : known)
+  {
+    ok |= ext == k;
+  }
+  if (!ok)
+  {
+    throw std::runtime_error("'" + path + "': " +
+      (ext.empty() ? std::string("has no extension")
+                   : "has the unknown extension '" + msynth::Printable(ext) + "'") +
+      (model ? "; models are .vti, .txt, .vox or .vtp files"
+             : "; examples are label grids (.vti, .txt, .vox), tilesets (.xml) or polyhedra "
+               "(.obj, .vtp, .ply, .stl)"));
+  }
+}
+
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm)
 {
@@ -1397,6 +1442,10 @@ int Main(const std::vector<std::string>& args)
       positional.push_back(args[i]);
     }
   }
+  for (std::size_t i = 0; i < positional.size(); ++i)
+  {
+    CheckInputFile(positional[i], command == "check" && i == 1);
+  }
   if (command == "synthesize")
   {
     if (positional.size() != 1)
@@ -1531,7 +1580,7 @@ int main(int argc, char* argv[])
   }
   catch (const std::exception& e)
   {
-    std::cerr << "msynth: error: " << e.what() << "\n";
+    std::cerr << "msynth: error: " << msynth::Printable(e.what()) << "\n";
     status = 1;
   }
   std::cout.flush();

@@ -189,6 +189,29 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertIn(path, r.stderr)
+        # A folder, a pipe, an unknown extension; a file whose bad bytes are terminal escapes.
+        folder = tmp("a-folder.vti")
+        os.makedirs(folder, exist_ok=True)
+        fifo = tmp("a-pipe.vti")
+        if not os.path.exists(fifo):
+            os.mkfifo(fifo)
+        other = tmp("notes.abc")
+        with open(other, "w") as f:
+            f.write("x")
+        escape = tmp("escape.txt")
+        with open(escape, "w") as f:
+            f.write("a\nb\nc\n1 1 1\n\x1b[31mred\x07\n")
+        for path, problem in ((folder, "is a folder, not a file"),
+                              (fifo, "is not a regular file (a pipe, socket or device)"),
+                              (other, "has the unknown extension '.abc'; examples are label grids "
+                                       "(.vti, .txt, .vox), tilesets (.xml) or polyhedra (.obj, .vtp, .ply, .stl)"),
+                              (escape, "'?[31mred?' is not an integer")):
+            for command in (("info", path), ("synthesize", path, "--size", "4", "4", "1")):
+                r = run(*command)
+                self.assertEqual(r.returncode, 1, command)
+                self.assertEqual(r.stderr, "msynth: error: '%s'%s%s\n" % (
+                    path, ", line 5: " if path == escape else ": ", problem), command)
+                self.assertNotIn("\x1b", r.stderr)
 
     def test_unwritable_output(self):
         r = run("analyze", data("Examples/Village.vti"), "--out", "/proc/forbidden")

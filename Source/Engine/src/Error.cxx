@@ -4,8 +4,17 @@
 namespace msynth
 {
 
+std::string Printable(const std::string& text)
+{
+  std::string out = text;
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = '?';
+  return out;
+}
+
 Error::Error(const std::string& what)
-  : std::runtime_error(what)
+  : std::runtime_error(Printable(what))
 {
 }
 

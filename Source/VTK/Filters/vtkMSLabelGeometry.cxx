@@ -13,16 +13,16 @@
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
-#include "vtkPLYReader.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "msynth/Error.h"
+#include "msynth/MeshFormats.h"
 #include "msynth/Tileset.h"
+#include "msynth/VTKXMLCheck.h"
 #include "msynth/VoxelSurface.h"
 
 #include <algorithm>
@@ -109,17 +109,34 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
     r->SetFileName(path.c_str());
     reader = r;
   }
-  else if (ext == "ply")
-  {
-    auto r = vtkSmartPointer<vtkPLYReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
-  }
   else
   {
-    auto r = vtkSmartPointer<vtkSTLReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    // PLY and STL through the engine's checked readers (VTK's crash on damaged files).
+    try
+    {
+      const msynth::PolyhedralExample piece =
+        ext == "ply" ? msynth::ReadPLYExample(path) : msynth::ReadSTLExample(path);
+      auto mesh = vtkSmartPointer<vtkPolyData>::New();
+      vtkMSEngineBridge::FromPolyhedralExample(piece, mesh);
+      return mesh;
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+      return nullptr;
+    }
+  }
+  if (ext == "vtp")
+  {
+    try
+    {
+      msynth::CheckVTKXMLFile(path);
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+      return nullptr;
+    }
   }
   std::string messages;
   if (!vtkMSEngineBridge::Execute(reader, messages))

@@ -11,9 +11,14 @@
 namespace msynth
 {
 
+/// @p text with control characters (from a damaged file, say) shown as '?': messages are one
+/// line and never carry terminal escapes.
+std::string Printable(const std::string& text);
+
 class Error : public std::runtime_error
 {
 public:
+  /// The message is made Printable.
   explicit Error(const std::string& what);
   /// An error about a file: the message starts with the file's name.
   static Error InFile(const std::string& path, const std::string& problem);
