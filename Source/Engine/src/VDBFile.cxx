@@ -8,6 +8,7 @@
 #include "msynth/Memory.h"
 
 #include <csignal>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cerrno>
@@ -794,8 +795,8 @@ private:
  * or data that do not follow the protocol, is an Error naming @p path.
  */
 template <typename Result>
-Result Isolated(const std::string& path, const std::function<void(int)>& child,
-  const std::function<Result(PipeReader&)>& parent)
+Result Isolated(const std::string& path, std::uint64_t memoryBudget,
+  const std::function<void(int)>& child, const std::function<Result(PipeReader&)>& parent)
 {
   int fds[2];
   if (::pipe(fds) != 0)
@@ -813,8 +814,22 @@ Result Isolated(const std::string& path, const std::function<void(int)>& child,
     std::string message;
     try
     {
-      // One thread in the child: the parent's TBB workers do not exist here.
+      // One thread in the child: the parent's TBB workers do not exist here. Its address
+      // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
       tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      std::ifstream statm("/proc/self/statm");
+      std::uint64_t pages = 0;
+      if (statm >> pages)
+      {
+        rlimit limit{};
+        ::getrlimit(RLIMIT_AS, &limit);
+        const std::uint64_t cap = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE)) + memoryBudget;
+        if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
+        {
+          limit.rlim_cur = static_cast<rlim_t>(cap);
+          ::setrlimit(RLIMIT_AS, &limit);
+        }
+      }
       child(fds[1]);
       ::_exit(0);
     }
@@ -883,8 +898,11 @@ Result Isolated(const std::string& path, const std::function<void(int)>& child,
 FileContents ReadFile(const std::string& path, const ReadOptions& options)
 {
   InitializeOpenVDB();
+  // The dense grids, the tree they come from and OpenVDB's buffers.
+  const std::uint64_t budget =
+    static_cast<std::uint64_t>(options.MaxVoxels) * 36 + (std::uint64_t(1) << 30);
   return Isolated<FileContents>(
-    path,
+    path, budget,
     [&](int fd)
     {
       const FileContents contents = ReadFileHere(path, options);
@@ -945,7 +963,7 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
 {
   InitializeOpenVDB();
   const std::string payload = Isolated<std::string>(
-    path,
+    path, std::uint64_t(8) << 30,
     [&](int fd)
     {
       MetadataMap meta;
