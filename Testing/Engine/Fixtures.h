@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Example grids shared by the engine tests.
+// Example grids and helpers shared by the engine tests.
 #pragma once
 #include "msynth/LabelGrid.h"
 
+#include <csignal>
+#include <sys/resource.h>
 #include <vector>
 
 namespace msynth_test
@@ -19,4 +21,32 @@ inline msynth::LabelGrid Grid2D(const std::vector<std::vector<msynth::Label>>& r
         rowsTopToBottom[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)]);
   return g;
 }
+
+/// While alive, files may not grow past @p bytes (RLIMIT_FSIZE; SIGXFSZ ignored): writes past
+/// it fail as they do on a full disk.
+class FileSizeLimit
+{
+public:
+  explicit FileSizeLimit(rlim_t bytes)
+  {
+    struct sigaction ignore = {};
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGXFSZ, &ignore, &this->OldAction);
+    getrlimit(RLIMIT_FSIZE, &this->OldLimit);
+    rlimit small = this->OldLimit;
+    small.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &small);
+  }
+  ~FileSizeLimit()
+  {
+    setrlimit(RLIMIT_FSIZE, &this->OldLimit);
+    sigaction(SIGXFSZ, &this->OldAction, nullptr);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+private:
+  struct sigaction OldAction = {};
+  rlimit OldLimit{};
+};
 } // namespace msynth_test

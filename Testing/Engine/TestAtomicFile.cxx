@@ -2,12 +2,12 @@
 #include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
-#include <csignal>
 #include <cstdio>
 #include <dirent.h>
-#include <sys/resource.h>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -80,25 +80,16 @@ TEST(AtomicFile, AFullDiskIsSeenAndLeavesNothing)
   // named with the system's reason, and nothing is left.
   const std::string path = std::string(MSYNTH_TEST_TMP) + "/full-disk.txt";
   std::remove(path.c_str());
-  struct sigaction ignore = {}, old = {};
-  ignore.sa_handler = SIG_IGN;
-  sigaction(SIGXFSZ, &ignore, &old);
-  rlimit before{};
-  getrlimit(RLIMIT_FSIZE, &before);
-  rlimit small = before;
-  small.rlim_cur = 4096;
-  setrlimit(RLIMIT_FSIZE, &small);
   std::string what;
   try
   {
+    const msynth_test::FileSizeLimit limit(4096);
     msynth::WriteFileAtomically(path, [](std::ostream& out) { out << std::string(100000, 'x'); });
   }
   catch (const msynth::Error& e)
   {
     what = e.what();
   }
-  setrlimit(RLIMIT_FSIZE, &before);
-  sigaction(SIGXFSZ, &old, nullptr);
   EXPECT_NE(what.find("'" + path + "': could not be written: File too large"), std::string::npos)
     << what;
   EXPECT_FALSE(std::ifstream(path).good());

@@ -2,6 +2,8 @@
 #include "msynth/Error.h"
 #include "msynth/VDBFile.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -248,17 +250,11 @@ TEST(VDBFile, AFullDiskIsSeenAndLeavesNothing)
   const vdb::DenseGridView view{ h, noise.data() };
   const std::string path = Tmp("full-disk.vdb");
   std::remove(path.c_str());
-  struct sigaction ignore = {}, old = {};
-  ignore.sa_handler = SIG_IGN;
-  sigaction(SIGXFSZ, &ignore, &old);
-  rlimit before{};
-  getrlimit(RLIMIT_FSIZE, &before);
-  rlimit small = before;
-  small.rlim_cur = 4096;
-  setrlimit(RLIMIT_FSIZE, &small);
-  const std::string e = ErrorOf([&] { vdb::WriteFile(path, { view }, {}); });
-  setrlimit(RLIMIT_FSIZE, &before);
-  sigaction(SIGXFSZ, &old, nullptr);
+  std::string e;
+  {
+    const msynth_test::FileSizeLimit limit(4096);
+    e = ErrorOf([&] { vdb::WriteFile(path, { view }, {}); });
+  }
   EXPECT_NE(e.find("'" + path + "': could not be written: File too large"), std::string::npos) << e;
   std::ifstream left(path);
   EXPECT_FALSE(left.good());

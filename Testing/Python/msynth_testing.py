@@ -37,6 +37,15 @@ class ErrorObserver:
         return "\n".join(self.messages)
 
 
+def fresh_folder(name):
+    """An empty folder of the test output area (made anew)."""
+    import shutil
+    folder = tmp(name)
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    return folder
+
+
 def run_algorithm(algorithm, port=None, data=None, **options):
     """Connects `port` (or `data`), calls Set<Name>(value) for every option, updates, and
     returns (output, error text)."""

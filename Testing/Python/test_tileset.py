@@ -11,7 +11,7 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
 import modelsynth
-from msynth_testing import data, labels_zyx, run_algorithm, tmp
+from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, tmp
 
 T = 5  # tile size in pixels
 
@@ -48,9 +48,7 @@ def oriented(pixels, k):
 class TilesetTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        folder = tmp("tiny-set")
-        shutil.rmtree(folder, ignore_errors=True)
-        os.makedirs(folder)
+        folder = fresh_folder("tiny-set")
         cls.xml = folder + ".xml"
         # The bundled rules, with asymmetric images of our own so that turns and mirrors show.
         shutil.copy(data("Tilesets/Lines.xml"), cls.xml)
@@ -89,9 +87,7 @@ class TilesetTest(unittest.TestCase):
         # composed from the tile images, turned a quarter, is the same picture. The images are
         # as symmetric as their tiles' classes say (empty X: any turn; line I: a half turn) and
         # otherwise asymmetric (corner L), so a wrong turn direction shows.
-        folder = tmp("turn-set")
-        shutil.rmtree(folder, ignore_errors=True)
-        os.makedirs(folder)
+        folder = fresh_folder("turn-set")
         xml = folder + ".xml"
         shutil.copy(data("Tilesets/Lines.xml"), xml)
         empty, line, corner = (tile_pixels(i) for i in range(3))
@@ -118,9 +114,7 @@ class TilesetTest(unittest.TestCase):
         # A tileset of one F tile (8 orientations) and a model holding labels 0..7 in a row; the
         # piece f.obj is an off-centre box, so each orientation's turn and mirror shows in where
         # its box lands, recomputed here; mirrored boxes must stay outward (positive volume).
-        folder = tmp("f-pieces")
-        shutil.rmtree(folder, ignore_errors=True)
-        os.makedirs(folder)
+        folder = fresh_folder("f-pieces")
         xml = os.path.join(folder, "fset.xml")
         with open(xml, "w") as f:
             f.write('<set><tiles><tile name="f" symmetry="F"/></tiles>'
@@ -165,9 +159,7 @@ class TilesetTest(unittest.TestCase):
         # image per orientation, "tile k.png"), <set size>, a .bmp image, and rule numbers that
         # are dihedral elements 0-7 rather than orientations ("b_i 3" of an I tile).
         from vtkmodules.vtkIOImage import vtkBMPWriter
-        folder = tmp("old-layout-set")
-        shutil.rmtree(folder, ignore_errors=True)
-        os.makedirs(folder)
+        folder = fresh_folder("old-layout-set")
         xml = os.path.join(folder, "data.xml")
         with open(xml, "w") as f:
             f.write('<set size="%d" unique="True"><tiles><tile name="b" symmetry="X"/>'
