@@ -20,7 +20,7 @@
 #include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
 #include "vtkMSOpenVDBWriter.h"
-#include "vtkMSTextModelWriter.h"
+#include "vtkMSLabelGridWriter.h"
 #include "vtkMSTileImage.h"
 #include "vtkMSTransitionTables.h"
 
@@ -699,18 +699,20 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   saved->SetFieldData(fields);
   WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
   std::string textModel;
-  if (example.size() > 4 && example.compare(example.size() - 4, 4, ".txt") == 0)
+  const std::string ext = example.size() > 4 ? example.substr(example.size() - 4) : "";
+  if (ext == ".txt" || ext == ".vox")
   {
-    // The original program's format with the example's <Objects> trailer, for its loaders.
-    vtkNew<vtkMSTextModelWriter> text;
-    text->SetInputData(model);
-    text->SetFileName((dir + "/model.txt").c_str());
+    // The example's own format: the original program's text with the example's <Objects>
+    // trailer (for its loaders), or MagicaVoxel with the example's palette.
+    vtkNew<vtkMSLabelGridWriter> same;
+    same->SetInputData(model);
+    same->SetFileName((dir + "/model" + ext).c_str());
     std::string messages;
-    if (!vtkMSEngineBridge::Execute(text, messages))
+    if (!vtkMSEngineBridge::Execute(same, messages))
     {
       throw std::runtime_error(messages);
     }
-    textModel = dir + "/model.txt, ";
+    textModel = dir + "/model" + ext + ", ";
   }
   vtkNew<vtkMSLabelGeometry> geometry;
   geometry->SetInputData(model);

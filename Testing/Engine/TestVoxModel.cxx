@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <random>
 
 using namespace msynth;
@@ -95,4 +97,46 @@ TEST(VoxModel, EveryTruncationAndCorruptionIsAnErrorNeverACrash)
   }
   EXPECT_THROW(ReadVoxModel(good, "small.vox", 11), Error); // 12 sites over a limit of 11
   EXPECT_THROW(ReadVoxModelFile("/no/such.vox", 100), Error);
+}
+
+TEST(VoxModel, WrittenModelsReadBackWithTheirPalette)
+{
+  msynth::VoxModel m;
+  m.Grid = msynth::LabelGrid(5, 4, 3, 0);
+  for (std::int64_t z = 0; z < 3; ++z)
+    for (std::int64_t y = 0; y < 4; ++y)
+      for (std::int64_t x = 0; x < 5; ++x)
+        m.Grid.Set(x, y, z, static_cast<msynth::Label>((x * 7 + y * 3 + z * 51) % 256));
+  m.Palette.resize(256);
+  for (std::size_t i = 0; i < 256; ++i)
+    m.Palette[i] = { { static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(255 - i),
+      static_cast<std::uint8_t>(i * 3), 255 } };
+  std::ostringstream out;
+  msynth::WriteVoxModel(out, m, "m.vox");
+  const std::string bytes = out.str();
+  const msynth::VoxModel back =
+    msynth::ReadVoxModel(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), "m.vox", 1000);
+  EXPECT_EQ(back.Grid, m.Grid);
+  for (std::size_t i = 1; i < 256; ++i) // index 0 is empty space, not a colour
+    EXPECT_EQ(back.Palette[i], m.Palette[i]) << i;
+  // Without a palette MagicaVoxel's default is used (no RGBA chunk).
+  m.Palette.clear();
+  std::ostringstream plain;
+  msynth::WriteVoxModel(plain, m, "m.vox");
+  EXPECT_EQ(plain.str().find("RGBA"), std::string::npos);
+  // What MagicaVoxel cannot hold is an error naming the file.
+  m.Grid.Set(1, 1, 1, 300);
+  std::ostringstream bad;
+  EXPECT_THROW(msynth::WriteVoxModel(bad, m, "m.vox"), msynth::Error);
+  msynth::VoxModel big;
+  big.Grid = msynth::LabelGrid(257, 1, 1, 1);
+  try
+  {
+    msynth::WriteVoxModel(bad, big, "big.vox");
+    ADD_FAILURE() << "a 257-voxel model was written";
+  }
+  catch (const msynth::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("'big.vox': cannot hold a 257 x 1 x 1 model"), std::string::npos);
+  }
 }

@@ -109,7 +109,7 @@ unknown = set(pair_counts(model)) - set(expected)
 check(not unknown, "every model pair occurs in the example (Eq. 3.1): %s" % sorted(unknown)[:3])
 # The model in the original program's text format, through the plugin's writer proxy.
 text_path = os.path.join(TMP, "pvbatch-%s-model.txt" % suffix)
-text_writer = servermanager.writers.ModelSynthTextModelWriter(Input=synthesis, FileName=text_path)
+text_writer = servermanager.writers.ModelSynthLabelGridWriter(Input=synthesis, FileName=text_path)
 text_writer.UpdatePipeline()
 del text_writer
 with open(text_path) as f:

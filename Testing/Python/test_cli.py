@@ -117,6 +117,31 @@ class CommandLineTest(unittest.TestCase):
         reader.Update()
         self.assertTrue(np.array_equal(values.transpose(0, 2, 1), labels_zyx(reader.GetOutput())))
         self.assertEqual(words[3 + 8 * 8 * 5], "<Objects>")
+        # A .vox example gives model.vox with the example's palette, read back independently:
+        # MagicaVoxel's chunks (SIZE, XYZI: x, y, z, index per voxel; RGBA) parsed here.
+        vox = tmp("cli-discrete-vox")
+        r = run("synthesize", data("Examples/Village.vox"), "--size", "9", "7", "5", "--seed", "5", "--out", vox)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(vox, "model.vox"), "rb") as f:
+            raw = f.read()
+        self.assertEqual(raw[:4], b"VOX ")
+        at = raw.index(b"SIZE") + 12
+        size = np.frombuffer(raw[at:at + 12], dtype="<u4").tolist()
+        self.assertEqual(size, [9, 7, 5])
+        at = raw.index(b"XYZI") + 12
+        count = int(np.frombuffer(raw[at:at + 4], dtype="<u4")[0])
+        voxels = np.frombuffer(raw[at + 4:at + 4 + 4 * count], dtype=np.uint8).reshape(-1, 4)
+        dense = np.zeros((5, 7, 9), dtype=np.int32)
+        dense[voxels[:, 2], voxels[:, 1], voxels[:, 0]] = voxels[:, 3]
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(os.path.join(vox, "labels.vti"))
+        reader.Update()
+        self.assertTrue(np.array_equal(dense, labels_zyx(reader.GetOutput())))
+        with open(data("Examples/Village.vox"), "rb") as f:
+            original = f.read()
+        at = original.index(b"RGBA") + 12
+        # Entries 1..255 (the chunk's 256th entry names no usable index).
+        self.assertEqual(raw[raw.index(b"RGBA") + 12:][:1020], original[at:at + 1020])
 
     def test_synthesize_polyhedral_then_check(self):
         out = tmp("cli-continuous")

@@ -124,7 +124,7 @@ class PipelineTest(unittest.TestCase):
         synthesis.SetInputConnection(reader.GetOutputPort())
         synthesis.SetOutputSize(9, 8, 5)
         synthesis.SetSeed(4)
-        writer = modelsynth.vtkMSTextModelWriter()
+        writer = modelsynth.vtkMSLabelGridWriter()
         writer.SetInputConnection(synthesis.GetOutputPort())
         path = tmp("village-model.txt")
         writer.SetFileName(path)

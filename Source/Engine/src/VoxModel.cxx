@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "msynth/VoxModel.h"
 
+#include "msynth/AtomicFile.h"
 #include "msynth/Error.h"
 
 #include <cstring>
@@ -215,6 +216,71 @@ VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites)
   if (!in)
     throw Error::InFile(path, "could not be read");
   return ReadVoxModel(bytes, path, maxSites);
+}
+
+void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& name)
+{
+  const auto& d = model.Grid.Dimensions();
+  if (d[0] > 256 || d[1] > 256 || d[2] > 256)
+    throw Error::InFile(name, "cannot hold a " + std::to_string(d[0]) + " x " +
+        std::to_string(d[1]) + " x " + std::to_string(d[2]) +
+        " model: MagicaVoxel models are at most 256 voxels a side");
+  std::vector<std::uint8_t> voxels;
+  for (std::int64_t z = 0; z < d[2]; ++z)
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+      {
+        const Label b = model.Grid.At(x, y, z);
+        if (b == 0)
+          continue;
+        if (b < 0 || b > 255)
+          throw Error::InFile(name, "cannot hold label " + std::to_string(b) + " at (" +
+              std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
+              "): MagicaVoxel labels are palette indices 1..255");
+        for (std::int64_t v : { x, y, z, std::int64_t(b) })
+          voxels.push_back(static_cast<std::uint8_t>(v));
+      }
+  const auto u32 = [&out](std::uint32_t v)
+  {
+    const char b[4] = { static_cast<char>(v & 255), static_cast<char>((v >> 8) & 255),
+      static_cast<char>((v >> 16) & 255), static_cast<char>(v >> 24) };
+    out.write(b, 4);
+  };
+  const bool palette = model.Palette.size() == 256;
+  const std::uint32_t sizeChunk = 12 + 12, xyziChunk = 12 + 4 + static_cast<std::uint32_t>(voxels.size()),
+                      rgbaChunk = palette ? 12 + 1024 : 0;
+  out.write("VOX ", 4);
+  u32(150);
+  out.write("MAIN", 4);
+  u32(0);
+  u32(sizeChunk + xyziChunk + rgbaChunk);
+  out.write("SIZE", 4);
+  u32(12);
+  u32(0);
+  for (std::int64_t n : d)
+    u32(static_cast<std::uint32_t>(n));
+  out.write("XYZI", 4);
+  u32(4 + static_cast<std::uint32_t>(voxels.size()));
+  u32(0);
+  u32(static_cast<std::uint32_t>(voxels.size() / 4));
+  out.write(reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
+  if (palette)
+  {
+    // Entry i of the chunk is palette index i + 1.
+    out.write("RGBA", 4);
+    u32(1024);
+    u32(0);
+    for (std::size_t i = 1; i <= 256; ++i)
+    {
+      const auto& c = i < 256 ? model.Palette[i] : std::array<std::uint8_t, 4>{ { 0, 0, 0, 0 } };
+      out.write(reinterpret_cast<const char*>(c.data()), 4);
+    }
+  }
+}
+
+void WriteVoxModelFile(const std::string& path, const VoxModel& model)
+{
+  WriteFileAtomically(path, [&](std::ostream& out) { WriteVoxModel(out, model, path); });
 }
 
 } // namespace msynth

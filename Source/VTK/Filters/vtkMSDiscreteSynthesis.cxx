@@ -527,8 +527,9 @@ int vtkMSDiscreteSynthesis::RequestData(
     vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
   }
   // What the example says of its labels goes with the model: its file, the text format's
-  // piece names and trailer (for vtkMSTextModelWriter and the OpenVDB label_names).
-  for (const char* name : { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer" })
+  // piece names and trailer, a .vox palette (for vtkMSLabelGridWriter, the OpenVDB label_names).
+  for (const char* name :
+    { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
   {
     if (vtkAbstractArray* array = input ? input->GetFieldData()->GetAbstractArray(name) : nullptr)
     {

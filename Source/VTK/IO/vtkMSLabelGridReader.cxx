@@ -316,7 +316,7 @@ int vtkMSLabelGridReader::RequestData(
     if (!text.Trailer.empty())
     {
       // The text after the last value (the <Objects> section), written back unchanged by
-      // vtkMSTextModelWriter so the original program's loaders find the scene and pieces.
+      // vtkMSLabelGridWriter so the original program's loaders find the scene and pieces.
       vtkNew<vtkStringArray> trailer;
       trailer->SetName("TextModelTrailer");
       trailer->InsertNextValue(text.Trailer);

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -34,5 +35,14 @@ VoxModel ReadVoxModel(
   const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites);
 /// Reads the file @p path (at most 256 MiB). @throw Error naming the file and the problem.
 VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites);
+
+/**
+ * Writes @p model as MagicaVoxel writes a one-model file (version 150: MAIN with SIZE, XYZI and,
+ * when the palette has 256 entries, RGBA; label 0 is empty). MagicaVoxel models are at most 256
+ * voxels a side and hold palette indices 1..255. @throw Error naming @p name otherwise.
+ */
+void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& name);
+/// WriteVoxModel into @p path, atomically. @throw Error naming the file.
+void WriteVoxModelFile(const std::string& path, const VoxModel& model);
 
 } // namespace msynth

@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSLabelGridWriter.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkStringArray.h"
+
+#include "msynth/AtomicFile.h"
+#include "msynth/TextModel.h"
+#include "msynth/VoxModel.h"
+
+vtkStandardNewMacro(vtkMSLabelGridWriter);
+
+void vtkMSLabelGridWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Trailer: " << this->Trailer.size() << " characters\n";
+}
+
+int vtkMSLabelGridWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+void vtkMSLabelGridWriter::WriteData()
+{
+  this->SetErrorCode(vtkErrorCode::NoError);
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No file name was given.");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  const std::string& path = this->FileName;
+  const auto endsWith = [&path](const char* ext)
+  { return path.size() > 4 && path.compare(path.size() - 4, 4, ext) == 0; };
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
+  msynth::LabelGrid grid;
+  std::string problem;
+  if (!endsWith(".txt") && !endsWith(".vox"))
+  {
+    problem = "the extension must be .txt (the original program's format) or .vox (MagicaVoxel)";
+  }
+  else if (!image)
+  {
+    problem = "the input is not image data";
+  }
+  else
+  {
+    vtkMSEngineBridge::ReadLabels(image, nullptr, grid, problem);
+  }
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "'" << path << "': cannot be written: " << problem);
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  vtkFieldData* fields = image->GetFieldData();
+  try
+  {
+    if (endsWith(".txt"))
+    {
+      msynth::TextModel model;
+      model.Grid = std::move(grid);
+      model.Header = msynth::GeneratedTextModelHeader();
+      auto* trailer = vtkStringArray::SafeDownCast(fields->GetAbstractArray("TextModelTrailer"));
+      model.Trailer =
+        trailer && trailer->GetNumberOfValues() > 0 ? trailer->GetValue(0) : this->Trailer;
+      msynth::WriteFileAtomically(
+        path, [&](std::ostream& out) { msynth::WriteTextModel(out, model); });
+    }
+    else
+    {
+      msynth::VoxModel model;
+      model.Grid = std::move(grid);
+      vtkDataArray* palette = fields->GetArray("PaletteRGBA");
+      if (palette && palette->GetNumberOfTuples() == 256 && palette->GetNumberOfComponents() == 4)
+      {
+        model.Palette.resize(256);
+        for (vtkIdType i = 0; i < 256; ++i)
+          for (int c = 0; c < 4; ++c)
+            model.Palette[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
+              static_cast<std::uint8_t>(palette->GetComponent(i, c));
+      }
+      msynth::WriteVoxModelFile(path, model);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+  }
+}
