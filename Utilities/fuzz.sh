@@ -67,7 +67,7 @@ for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage F
     result="CRASH (see $log and $crashes)"
     failed=1
   fi
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || echo 0)
   total=$((total + ${runs:-0}))
   printf '%-16s %12s %s\n' "$harness" "${runs:-0}" "$result"
 done

@@ -134,7 +134,9 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
     }
     catch (const std::exception& e)
     {
-      problem = e.what();
+      const std::string what = e.what(), prefix = "'" + path + "': ";
+      problem = prefix + "could not be read: " +
+        (what.compare(0, prefix.size(), prefix) == 0 ? what.substr(prefix.size()) : what);
       return nullptr;
     }
   }
