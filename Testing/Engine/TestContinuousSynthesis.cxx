@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 
@@ -262,4 +263,34 @@ TEST(ContinuousSynthesis, CheckRejectsABrokenModel)
   ASSERT_GE(centre, 0);
   labels[static_cast<std::size_t>(centre)] = labels[static_cast<std::size_t>(centre)] == inside ? 0 : inside;
   EXPECT_NE(CheckArrangementLabels(l.Analysis, arrangement, labels), "");
+}
+
+TEST(ContinuousSynthesis, CancellationStopsWithinABlock)
+{
+  // The whole model at once is one long block: the progress callback is polled inside it, so
+  // a "stop" answer ends the run within a fraction of a second, as a cancelled run (Error).
+  const Loaded l = Load("house.obj");
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, { 44, 44, 10 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  ContinuousSynthesisOptions options;
+  options.Seed = 2;
+  int calls = 0;
+  auto asked = std::chrono::steady_clock::now();
+  options.Progress = [&calls, &asked](double)
+  {
+    asked = std::chrono::steady_clock::now();
+    return ++calls < 2;
+  };
+  try
+  {
+    SynthesizeContinuous(l.Analysis, arrangement, options);
+    ADD_FAILURE() << "not cancelled (" << calls << " polls)";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(calls, 2);
+  // From the "stop" answer to the end of the run.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), 1.0);
 }

@@ -305,6 +305,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
   }
   const bool whole = options.BlockSize == 0;
+  auto lastPoll = std::chrono::steady_clock::now();
   const BlockLayout layout(arrangement, whole ? 0.0 : options.BlockSize * reference);
   const std::int64_t blocks = whole ? 1 : layout.NumberOfBlocks();
   result.Blocks = blocks;
@@ -462,6 +463,16 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
       domains.Record(true);
       while (empty < 0)
       {
+        // Cancellation inside a block: the progress callback is polled every 100 ms at most.
+        if ((assigned & 1023) == 0 && options.Progress &&
+          std::chrono::steady_clock::now() - lastPoll >= std::chrono::milliseconds(100))
+        {
+          lastPoll = std::chrono::steady_clock::now();
+          if (!options.Progress(static_cast<double>(b) / static_cast<double>(blocks)))
+          {
+            throw Error("continuous synthesis was cancelled");
+          }
+        }
         const std::int64_t i = queue.Next();
         if (i < 0)
         {

@@ -838,6 +838,8 @@ public:
     {
       if (cat.Count(local) == 0)
         return local;
+      if ((assignments & 1023) == 0 && this->Stopped())
+        return local; // cancelled: the attempt ends here (and no other starts)
       if (cat.Count(local) > 1)
       {
         ++assignments;
@@ -1068,6 +1070,27 @@ public:
   std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
   std::vector<CatalogSnapshot> Pending; ///< snapshots of the current attempt
+
+  /// Cancellation inside a block: every solver watches Stop; the main one also calls Poll (the
+  /// caller's progress callback, at most every 100 ms), whose false sets Stop. A long block
+  /// (Algorithm 3.1 on a large model) so stops within a fraction of a second.
+  std::atomic<bool>* Stop = nullptr;
+  std::function<bool()> Poll;
+  std::chrono::steady_clock::time_point LastPoll = std::chrono::steady_clock::now();
+  bool Stopped()
+  {
+    if (this->Poll)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - this->LastPoll >= std::chrono::milliseconds(100))
+      {
+        this->LastPoll = now;
+        if (!this->Poll() && this->Stop)
+          this->Stop->store(true);
+      }
+    }
+    return this->Stop && this->Stop->load(std::memory_order_relaxed);
+  }
   std::int64_t Steps = 0;
   double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };
@@ -1173,7 +1196,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
         static_cast<std::uint64_t>(out.Attempts));
       ++out.Attempts;
       out.Empty = worker.RunBlock(block, rng, out.Assignments);
-      if (out.Empty < 0)
+      if (out.Empty < 0 || worker.Stopped())
         break;
     }
     return out;
@@ -1300,9 +1323,14 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     throw Error("block exchange: rank " + std::to_string(options.Exchange.Rank) + " of " +
       std::to_string(options.Exchange.Processes) + " processes");
   stats.Processes = static_cast<int>(processes);
+  std::atomic<bool> stop{ false };
+  solver.Stop = &stop;
   std::vector<std::unique_ptr<Solver>> workers;
   for (unsigned t = 1; t < threads; ++t)
+  {
     workers.push_back(std::make_unique<Solver>(rules, options, plan, seams, shared));
+    workers.back()->Stop = &stop;
+  }
 
   // The all-gather of a phase: per block run here, its outcome and its sites' labels; the
   // blocks run elsewhere are written into the model (their previous labels saved first for the
@@ -1390,6 +1418,9 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   solver.StartSnapshots();
   bool cancelled = false, cancelRequested = false;
   std::size_t done = 0;
+  if (options.Progress)
+    solver.Poll = [&options, &done, &blocks]()
+    { return options.Progress(double(done) / double(blocks.size())); };
   for (std::size_t first = 0; first < blocks.size() && !cancelled;)
   {
     std::size_t last = first;
@@ -1406,7 +1437,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
         solver.CommitSnapshots(stats.Assignments + outcomes[i - first].Assignments);
         record(blocks[i], outcomes[i - first]);
         ++done;
-        cancelled = options.Progress && !options.Progress(double(done) / double(blocks.size()));
+        cancelled = stop || (options.Progress && !options.Progress(double(done) / double(blocks.size())));
       }
     }
     else
@@ -1445,12 +1476,12 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
         record(blocks[i], outcomes[i - first]);
       }
       done += last - first;
-      const bool stop =
-        options.Progress && !options.Progress(double(done) / double(blocks.size()));
+      const bool stopHere =
+        stop || (options.Progress && !options.Progress(double(done) / double(blocks.size())));
       if (distributed)
-        cancelRequested = cancelRequested || stop;
+        cancelRequested = cancelRequested || stopHere;
       else
-        cancelled = stop;
+        cancelled = stopHere;
     }
     first = last;
   }

@@ -110,6 +110,7 @@ TimeVaryingResult SynthesizeTimeVarying(
   const TimeVaryingRules& rules, const TimeVaryingOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
+  auto lastPoll = start; // for cancellation inside a block
   const Coord4& n = options.Size;
   std::int64_t total = 1;
   for (int a = 0; a < 4; ++a)
@@ -311,6 +312,17 @@ TimeVaryingResult SynthesizeTimeVarying(
           }
           if (domains.Count(local) == 1)
             continue;
+          // Cancellation inside a block: the progress callback is polled every 100 ms at most.
+          if ((stats.Assignments & 1023) == 0 && options.Progress &&
+            std::chrono::steady_clock::now() - lastPoll >= std::chrono::milliseconds(100))
+          {
+            lastPoll = std::chrono::steady_clock::now();
+            if (!options.Progress(static_cast<double>(bi) / static_cast<double>(origins.size())))
+            {
+              result.Message = "cancelled";
+              return result;
+            }
+          }
           const int pick = DrawLabel(domains.Domain(local), words,
             [&](int b)
             {
