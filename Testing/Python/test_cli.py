@@ -238,6 +238,27 @@ class CommandLineTest(unittest.TestCase):
                     path, ", line 5: " if path == escape else ": ", problem), command)
                 self.assertNotIn("\x1b", r.stderr)
 
+    def test_moved_tetrahedron_vertex_does_not_hang(self):
+        # The report: the bundled tetrahedron with one vertex moved to (255, 3, 0) made the plane
+        # arrangement run for over 300 s. Each vertex moved in turn, in two boxes: every run
+        # ends (a model, or one line refusing the arrangement) well within the limit.
+        with open(data("Continuous/tetrahedron.obj")) as f:
+            lines = f.read().splitlines()
+        vertices = [i for i, line in enumerate(lines) if line.startswith("v ")]
+        for k, index in enumerate(vertices):
+            moved = list(lines)
+            moved[index] = "v 255 3 0"
+            path = tmp("moved-tetrahedron-%d.obj" % k)
+            with open(path, "w") as f:
+                f.write("\n".join(moved) + "\n")
+            for size in (("24", "24", "10"), ("300", "10", "10")):
+                start = time.time()
+                r = run("synthesize", path, "--size", *size, "--out", tmp("moved-tetrahedron-out"))
+                self.assertLess(time.time() - start, 30, (k, size))
+                self.assertIn(r.returncode, (0, 1), r.stderr)
+                if r.returncode == 1:
+                    self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+
     def test_unwritable_output(self):
         r = run("analyze", data("Examples/Village.vti"), "--out", "/proc/forbidden")
         self.assertEqual(r.returncode, 1)

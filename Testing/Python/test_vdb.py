@@ -43,6 +43,25 @@ class VDBReaderTest(unittest.TestCase):
         self.assertIn("more than the limit", errors)
         self.assertEqual(out.GetNumberOfPoints(), 0)
 
+    def test_damaged_index_box_metadata_is_refused(self):
+        # Our msynth_index_min/max metadata as a damaged file may hold it: the full 32-bit range
+        # (once a division by zero), a box near the top of the range (once an overflow in
+        # copyToDense), an empty box.
+        for name, lo, hi in (("full-range", (-2147483648,) * 3, (2147483647,) * 3),
+                             ("near-top", (2147483000,) * 3, (2147483647,) * 3),
+                             ("empty", (5, 5, 5), (1, 1, 1))):
+            grid = pyopenvdb.FloatGrid()
+            grid.name = "Label"
+            grid.getAccessor().setValueOn((1, 1, 1), 3.0)
+            grid["msynth_index_min"] = lo
+            grid["msynth_index_max"] = hi
+            path = tmp(name + ".vdb")
+            pyopenvdb.write(path, grids=[grid])
+            out, errors = read(path)
+            self.assertIn(path, errors, name)
+            self.assertIn("which is empty or outside +-2^30", errors, name)
+            self.assertEqual(out.GetNumberOfPoints(), 0, name)
+
     def test_foreign_file_uses_active_bounding_box(self):
         grid = pyopenvdb.FloatGrid()
         grid.name = "density"
