@@ -15,6 +15,8 @@ for arg in "$@"; do
 done
 
 bash "$here/install-dependencies.sh"
+# ccache: paths relative to the checkout, so clones in other folders (CI) reuse the cache.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
 
 if [ "$variant" = asan ]; then
   dir="$root/build-asan"

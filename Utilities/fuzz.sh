@@ -12,6 +12,8 @@ seconds="${1:-20}"
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number" >&2; exit 2 ;; esac
 
 bash "$here/install-dependencies.sh"
+# ccache: paths relative to the checkout, so clones in other folders (CI) reuse the cache.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
 dir="$root/build-fuzz"
 if [ ! -f "$dir/build.ninja" ]; then
   cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
