@@ -92,6 +92,9 @@ const char* const Usage = R"(usage:
   msynth synthesize EXAMPLE --size NX NY NZ [--seed S] [--block BX BY BZ] [--out DIR]
                                       discrete model synthesis: writes DIR/labels.vti,
                                       DIR/mesh.vtp, DIR/model.vdb and DIR/statistics.json
+                                      (and DIR/model.txt or DIR/model.vox in the format of a
+                                      .txt or .vox EXAMPLE); the files appear together, or
+                                      not at all when the run fails or is interrupted
   msynth synthesize EXAMPLE.obj --size SX SY SZ [--spacing S] [--seed S] [--out DIR]
                                       continuous model synthesis in a box of SX x SY x SZ
                                       example units (SZ ignored for a 2D example): writes
