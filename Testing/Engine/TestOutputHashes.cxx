@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The same inputs and seed give the same labels: hashes of the models of a dozen
+// configurations, stored here. A change of any solver's behaviour (intended or not) changes a
+// hash; restructuring code must not. When a behaviour change is intended, say so in the commit
+// and update the hash with the value the failure prints.
+#include "msynth/AdjacencyRules.h"
+#include "msynth/ContinuousMesh.h"
+#include "msynth/ContinuousSynthesis.h"
+#include "msynth/DiscreteSynthesis.h"
+#include "msynth/ExampleAnalysis.h"
+#include "msynth/TextModel.h"
+#include "msynth/Tileset.h"
+#include "msynth/TimeVarying.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+using namespace msynth;
+
+namespace
+{
+std::string Data(const std::string& relative)
+{
+  return std::string(MSYNTH_DATA) + "/" + relative;
+}
+
+/// FNV-1a over the values, as 16 hexadecimal digits.
+template <typename Values>
+std::string Hash(const Values& values)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  for (auto v : values)
+  {
+    const auto u = static_cast<std::uint32_t>(v);
+    for (int b = 0; b < 4; ++b)
+    {
+      h ^= (u >> (8 * b)) & 255u;
+      h *= 1099511628211ull;
+    }
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+const LabelGrid& Village()
+{
+  static const LabelGrid v = ReadTextModelFile(Data("Examples/Village.txt"), 1 << 20).Grid;
+  return v;
+}
+
+std::string Discrete(SynthesisOptions o, const LabelGrid& example = Village())
+{
+  o.Example = &example;
+  const SynthesisResult r =
+    Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), o);
+  EXPECT_TRUE(r.Success) << r.Message;
+  return Hash(r.Model.Data());
+}
+
+SynthesisOptions VillageOptions(std::int64_t n, std::int64_t block)
+{
+  SynthesisOptions o;
+  o.Size = { { n, n, 5 } };
+  if (block)
+    o.BlockSize = { { block, block, 5 } };
+  o.Boundary[FaceMinZ] = 1;
+  o.Seed = 11;
+  return o;
+}
+} // namespace
+
+TEST(OutputHashes, DiscreteConfigurations)
+{
+  std::map<std::string, std::string> got;
+  got["whole model"] = Discrete(VillageOptions(24, 0));
+  got["blocks"] = Discrete(VillageOptions(40, 10));
+  {
+    SynthesisOptions o = VillageOptions(40, 10);
+    o.Threads = 2;
+    got["blocks, 2 threads"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(30, 10);
+    o.Order = SiteOrder::MinimumEntropy;
+    o.Choice = LabelChoice::Frequency;
+    got["entropy order, frequency"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(20, 0);
+    o.Choice = LabelChoice::Resemblance;
+    got["resemblance"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(30, 10);
+    o.Symmetry[0].Enabled = true;
+    got["mirror x"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(30, 10);
+    o.Boundary = {};
+    o.Translate[0].Enabled = o.Translate[1].Enabled = true;
+    got["translation (tileable)"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(30, 10);
+    GuideVolume g;
+    g.Dims = { { 2, 1, 1 } };
+    g.Weights[2] = { 0.0f, 3.0f };
+    g.Weights[3] = { 0.0f, 3.0f };
+    o.Guide = g;
+    got["guide"] = Discrete(o);
+  }
+  {
+    SynthesisOptions o = VillageOptions(40, 10);
+    o.Soft.TargetFractions[2] = 0.2;
+    got["soft constraint"] = Discrete(o);
+  }
+  {
+    const Tileset t = ReadTilesetFile(Data("Tilesets/Lines.xml"));
+    SynthesisOptions o;
+    o.Size = { { 16, 16, 1 } };
+    o.Seed = 4;
+    o.Rotate.Enabled = true;
+    o.Rotate.Map = t.TurnMap();
+    const SynthesisResult r = Synthesize(t.Rules(), o);
+    EXPECT_TRUE(r.Success) << r.Message;
+    got["tileset, rotation"] = Hash(r.Model.Data());
+  }
+  const std::map<std::string, std::string> expected = {
+    { "blocks", "e828281039733461" },
+    { "blocks, 2 threads", "e828281039733461" },
+    { "entropy order, frequency", "03b3ed502cc4e113" },
+    { "guide", "e85c7ab609ce2a13" },
+    { "mirror x", "d445252d36e62843" },
+    { "resemblance", "49a04552b9867723" },
+    { "soft constraint", "41227582726751a0" },
+    { "tileset, rotation", "143d35ee984b5263" },
+    { "translation (tileable)", "0489373d9cc17bf2" },
+    { "whole model", "0ea5ad63dafc7712" },
+  };
+  for (const auto& [name, hash] : got)
+  {
+    const auto it = expected.find(name);
+    EXPECT_TRUE(it != expected.end() && it->second == hash)
+      << "    { \"" << name << "\", \"" << hash << "\" },";
+  }
+}
+
+TEST(OutputHashes, TimeVaryingAndContinuous)
+{
+  std::map<std::string, std::string> got;
+  {
+    // A ball rolling along x: frames are z slices of a 6 x 1 x 6 grid.
+    LabelGrid slices(6, 1, 6, 0);
+    for (std::int64_t t = 0; t < 6; ++t)
+      slices.Set(t, 0, t, 1);
+    const TimeVaryingGrid example = TimeVaryingGrid::FromSlices(slices);
+    TimeVaryingOptions o;
+    o.Size = { { 12, 1, 1, 10 } };
+    o.Seed = 5;
+    o.Loop = false;
+    const TimeVaryingResult r = SynthesizeTimeVarying(TimeVaryingRules::FromExample(example), o);
+    EXPECT_TRUE(r.Success) << r.Message;
+    std::vector<Label> all;
+    for (const auto& f : r.Model.Frames)
+      all.insert(all.end(), f.Data().begin(), f.Data().end());
+    got["time-varying"] = Hash(all);
+  }
+  {
+    PolyhedralExample e = ReadOBJExample(Data("Continuous/house.obj"));
+    ValidateExample(e);
+    const PolyhedralAnalysis a = PolyhedralAnalysis::Analyze(e);
+    const ArrangementParameters p = DefaultArrangementParameters(e, a, { 18, 18, 8 }, 0, {});
+    const PlaneArrangement arrangement(a.Families(), p);
+    ContinuousSynthesisOptions o;
+    o.Seed = 7;
+    o.BlockSize = 4;
+    const ContinuousSynthesisResult r = SynthesizeContinuous(a, arrangement, o);
+    EXPECT_TRUE(r.Success) << r.Message;
+    got["continuous house, blocks"] = Hash(r.Labels);
+  }
+  const std::map<std::string, std::string> expected = {
+    { "continuous house, blocks", "9a403552fe60dd2b" },
+    { "time-varying", "f1eeebd4ae9d53c2" },
+  };
+  for (const auto& [name, hash] : got)
+  {
+    const auto it = expected.find(name);
+    EXPECT_TRUE(it != expected.end() && it->second == hash)
+      << "    { \"" << name << "\", \"" << hash << "\" },";
+  }
+}
