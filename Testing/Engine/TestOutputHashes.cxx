@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <map>
 #include <string>
 
 using namespace msynth;
@@ -58,6 +59,18 @@ std::string Discrete(SynthesisOptions o, const LabelGrid& example = Village())
     Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), o);
   EXPECT_TRUE(r.Success) << r.Message;
   return Hash(r.Model.Data());
+}
+
+/// Every configuration's hash as stored; a failure prints the line to store.
+void ExpectHashes(
+  const std::map<std::string, std::string>& got, const std::map<std::string, std::string>& expected)
+{
+  for (const auto& [name, hash] : got)
+  {
+    const auto it = expected.find(name);
+    EXPECT_TRUE(it != expected.end() && it->second == hash)
+      << "    { \"" << name << "\", \"" << hash << "\" },";
+  }
 }
 
 SynthesisOptions VillageOptions(std::int64_t n, std::int64_t block)
@@ -141,12 +154,7 @@ TEST(OutputHashes, DiscreteConfigurations)
     { "translation (tileable)", "0489373d9cc17bf2" },
     { "whole model", "0ea5ad63dafc7712" },
   };
-  for (const auto& [name, hash] : got)
-  {
-    const auto it = expected.find(name);
-    EXPECT_TRUE(it != expected.end() && it->second == hash)
-      << "    { \"" << name << "\", \"" << hash << "\" },";
-  }
+  ExpectHashes(got, expected);
 }
 
 TEST(OutputHashes, TimeVaryingAndContinuous)
@@ -186,10 +194,5 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     { "continuous house, blocks", "9a403552fe60dd2b" },
     { "time-varying", "f1eeebd4ae9d53c2" },
   };
-  for (const auto& [name, hash] : got)
-  {
-    const auto it = expected.find(name);
-    EXPECT_TRUE(it != expected.end() && it->second == hash)
-      << "    { \"" << name << "\", \"" << hash << "\" },";
-  }
+  ExpectHashes(got, expected);
 }
