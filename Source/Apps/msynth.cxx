@@ -126,6 +126,11 @@ synthesize options:
   --ground LABEL      fix LABEL along the bottom face (-z, or -y for 2D outputs)
   --empty LABEL       fix LABEL on every other face (usually the empty label 0) but those
                       of translated axes
+  --outputs LIST      which files discrete synthesis writes, from labels (labels.vti), mesh
+                      (mesh.vtp), vdb (model.vdb), picture (picture.png, tilesets), txt
+                      (model.txt) and vox (model.vox); default: labels,picture for a tileset,
+                      labels,mesh,vdb for a label grid, plus txt or vox for such an example
+                      (statistics.json is always written)
   --pieces DIR        mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels);
                       with a tileset also DIR/<tile>.obj, turned for each orientation
   --mirror AXES       make the output mirror-symmetric along AXES (x, y, z or e.g. xy)
@@ -574,6 +579,7 @@ struct SynthesizeArguments
   bool HasGround = false, HasEmpty = false;
   int Ground = 0, Empty = 0;
   std::string Pieces;
+  std::string Outputs; ///< --outputs: comma-separated kinds of file; empty: the defaults
   std::string Guide;
   std::string Subset;
   std::string ObjectTypes;
@@ -693,43 +699,71 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   vtkImageData* model = synthesis->GetOutput();
 
   MakeDirectory(dir);
-  // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json only.
-  vtkNew<vtkImageData> saved;
-  saved->ShallowCopy(model);
-  vtkNew<vtkFieldData> fields;
-  fields->DeepCopy(model->GetFieldData());
-  fields->RemoveArray("Seconds");
-  saved->SetFieldData(fields);
-  WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
-  std::string textModel;
+  // What to write: --outputs, or what the example calls for.
   const std::string ext = example.size() > 4 ? example.substr(example.size() - 4) : "";
-  if (ext == ".txt" || ext == ".vox")
+  std::string list = a.Outputs;
+  if (list.empty())
   {
-    // The example's own format: the original program's text with the example's <Objects>
-    // trailer (for its loaders), or MagicaVoxel with the example's palette.
-    vtkNew<vtkMSLabelGridWriter> same;
-    same->SetInputData(model);
-    same->SetFileName((dir + "/model" + ext).c_str());
-    std::string messages;
-    if (!vtkMSEngineBridge::Execute(same, messages))
+    list = tileset ? "labels,picture" : "labels,mesh,vdb";
+    if (ext == ".txt")
+      list += ",txt";
+    if (ext == ".vox")
+      list += ",vox";
+  }
+  const auto wanted = [&list](const char* kind)
+  { return ("," + list + ",").find(std::string(",") + kind + ",") != std::string::npos; };
+  if (wanted("picture") && !tileset)
+  {
+    throw std::runtime_error("--outputs picture: pictures are made of a tileset's images; '" +
+      example + "' is not a tileset");
+  }
+  std::vector<std::string> written;
+  if (wanted("labels"))
+  {
+    // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json.
+    vtkNew<vtkImageData> saved;
+    saved->ShallowCopy(model);
+    vtkNew<vtkFieldData> fields;
+    fields->DeepCopy(model->GetFieldData());
+    fields->RemoveArray("Seconds");
+    saved->SetFieldData(fields);
+    WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
+    written.push_back(dir + "/labels.vti");
+  }
+  for (const char* kind : { "txt", "vox" })
+  {
+    if (wanted(kind))
     {
-      throw std::runtime_error(messages);
+      // The original program's text with the example's <Objects> trailer (for its loaders), or
+      // MagicaVoxel with the example's palette.
+      const std::string path = dir + "/model." + kind;
+      vtkNew<vtkMSLabelGridWriter> same;
+      same->SetInputData(model);
+      same->SetFileName(path.c_str());
+      std::string messages;
+      if (!vtkMSEngineBridge::Execute(same, messages))
+      {
+        throw std::runtime_error(messages);
+      }
+      written.push_back(path);
     }
-    textModel = dir + "/model" + ext + ", ";
   }
-  vtkNew<vtkMSLabelGeometry> geometry;
-  geometry->SetInputData(model);
-  geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
-  geometry->SetPieceDirectory(a.Pieces.c_str());
-  if (tileset)
+  if (wanted("mesh"))
   {
-    geometry->SetTilesetFile(example.c_str()); // pieces may be named by tile and turned
-    geometry->SetTilesetSubset(a.Subset.c_str());
+    vtkNew<vtkMSLabelGeometry> geometry;
+    geometry->SetInputData(model);
+    geometry->SetEmptyLabel(a.HasEmpty ? a.Empty : 0);
+    geometry->SetPieceDirectory(a.Pieces.c_str());
+    if (tileset)
+    {
+      geometry->SetTilesetFile(example.c_str()); // pieces may be named by tile and turned
+      geometry->SetTilesetSubset(a.Subset.c_str());
+    }
+    Run(geometry);
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
+    written.push_back(dir + "/mesh.vtp");
   }
-  Run(geometry);
-  WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
-  std::string picture;
-  if (tileset)
+  if (wanted("picture"))
   {
     // The picture, when the tileset's images are there.
     vtkNew<vtkMSTileImage> tiles;
@@ -757,7 +791,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
           image.Pixels.begin() + 4 * static_cast<std::ptrdiff_t>(dims[1] - 1 - y) * dims[0]);
       }
       msynth::WritePng(dir + "/picture.png", image);
-      picture = ", " + dir + "/picture.png";
+      written.push_back(dir + "/picture.png");
     }
     else if (::stat(msynth::TilesetImageFolder(example).c_str(), &folder) != 0)
     {
@@ -768,22 +802,25 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
       throw std::runtime_error(messages);
     }
   }
-  vtkNew<vtkMSOpenVDBWriter> vdb;
-  vdb->SetInputData(model);
-  vdb->SetFileName((dir + "/model.vdb").c_str());
-  vdb->WriteFloatLabelsOn();
-  vdb->AddMetadata("msynth_command", "synthesize");
-  vdb->AddMetadata("seed", std::to_string(a.Seed).c_str());
-  std::string messages;
-  if (!vtkMSEngineBridge::Execute(vdb, messages))
+  if (wanted("vdb"))
   {
-    throw std::runtime_error(messages);
+    vtkNew<vtkMSOpenVDBWriter> vdb;
+    vdb->SetInputData(model);
+    vdb->SetFileName((dir + "/model.vdb").c_str());
+    vdb->WriteFloatLabelsOn();
+    vdb->AddMetadata("msynth_command", "synthesize");
+    vdb->AddMetadata("seed", std::to_string(a.Seed).c_str());
+    std::string messages;
+    if (!vtkMSEngineBridge::Execute(vdb, messages))
+    {
+      throw std::runtime_error(messages);
+    }
+    written.push_back(dir + "/model.vdb");
   }
   if (a.Snapshots > 0)
   {
     // The catalog at every snapshot: DIR/catalog_0001.vdb, ... (Label, CatalogSize, Entropy).
     WriteCatalogSequence(synthesis, dir, 0, "seed", std::to_string(a.Seed));
-    picture += ", " + dir + "/catalog_0001.vdb ...";
   }
 
   // Statistics as JSON.
@@ -809,10 +846,17 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
       out << "  \"Seconds\": " << number("Seconds") << ",\n  \"Message\": " << JsonString(text)
           << "\n}\n";
     });
-  std::cout << text << "\n"
-            << "wrote " << dir << "/labels.vti, " << textModel << dir << "/mesh.vtp, " << dir
-            << "/model.vdb, "
-            << dir << "/statistics.json" << picture << "\n";
+  written.push_back(dir + "/statistics.json");
+  if (a.Snapshots > 0)
+  {
+    written.push_back(dir + "/catalog_0001.vdb ...");
+  }
+  std::cout << text << "\n" << "wrote ";
+  for (std::size_t i = 0; i < written.size(); ++i)
+  {
+    std::cout << (i ? ", " : "") << written[i];
+  }
+  std::cout << "\n";
   return 0;
 }
 
@@ -1389,6 +1433,26 @@ int Main(const std::vector<std::string>& args)
         throw UsageError{ "--types needs NAME=TYPE[,NAME=TYPE...]" };
       }
       synth.ObjectTypes = args[++i];
+      continue;
+    }
+    if (args[i] == "--outputs")
+    {
+      if (i + 1 >= args.size())
+      {
+        throw UsageError{ "--outputs needs a value" };
+      }
+      synth.Outputs = args[++i];
+      std::stringstream items(synth.Outputs);
+      std::string item;
+      while (std::getline(items, item, ','))
+      {
+        if (item != "labels" && item != "mesh" && item != "vdb" && item != "picture" &&
+          item != "txt" && item != "vox")
+        {
+          throw UsageError{ "--outputs: unknown kind '" + msynth::Printable(item) +
+            "' (labels, mesh, vdb, picture, txt, vox)" };
+        }
+      }
       continue;
     }
     if (args[i] == "--pieces" || args[i] == "--guide" || args[i] == "--subset")

@@ -439,6 +439,21 @@ class CommandLineTest(unittest.TestCase):
         png.SetFileName(os.path.join(out, "picture.png"))
         png.Update()
         self.assertEqual(png.GetOutput().GetDimensions(), (160, 112, 1))  # 8-pixel tiles
+        # A 2D tileset needs no voxel mesh or volume by default; --outputs chooses.
+        self.assertEqual(sorted(n for n in os.listdir(out) if not n.startswith(".")),
+                         ["labels.vti", "picture.png", "statistics.json"])
+        r = run("synthesize", tiles, "--size", "6", "5", "1", "--outputs", "labels,mesh,vdb,vox", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(n for n in os.listdir(out) if not n.startswith(".")),
+                         ["labels.vti", "mesh.vtp", "model.vdb", "model.vox", "statistics.json"])
+        self.assertIn("wrote %s/labels.vti, %s/model.vox, %s/mesh.vtp" % (out, out, out), r.stdout)
+        r = run("synthesize", data("Examples/Village.vti"), "--size", "6", "5", "5", "--outputs", "picture",
+                "--out", tmp("cli-no-picture"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("pictures are made of a tileset's images", r.stderr)
+        r = run("synthesize", tiles, "--size", "6", "5", "1", "--outputs", "labels,gif", "--out", out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--outputs: unknown kind 'gif'", r.stderr)
         r = run("check", tiles, os.path.join(out, "labels.vti"))
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         # Subsets: only empty and straight lines (labels 0-2).
