@@ -382,23 +382,6 @@ int Info(const std::string& example)
   return 0;
 }
 
-void MakeDirectory(const std::string& dir)
-{
-  struct stat info;
-  if (::stat(dir.c_str(), &info) == 0)
-  {
-    if (!S_ISDIR(info.st_mode))
-    {
-      throw std::runtime_error("'" + dir + "': exists and is not a folder");
-    }
-    return;
-  }
-  if (::mkdir(dir.c_str(), 0777) != 0)
-  {
-    throw std::runtime_error("'" + dir + "': cannot create folder: " + std::strerror(errno));
-  }
-}
-
 /// @p text with every occurrence of @p from replaced by @p to.
 std::string Replaced(std::string text, const std::string& from, const std::string& to)
 {
@@ -418,27 +401,25 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 {
   msynth::OutputFolder folder(out);
   std::ostringstream said;
-  std::streambuf* console = std::cout.rdbuf(said.rdbuf());
+  struct Console // std::cout into `said` while the command runs
+  {
+    std::streambuf* Saved;
+    ~Console() { std::cout.rdbuf(this->Saved); }
+  } console{ std::cout.rdbuf(said.rdbuf()) };
   int status = 1;
   try
   {
     status = command(folder.Stage());
   }
-  catch (const UsageError&)
-  {
-    std::cout.rdbuf(console);
-    throw;
-  }
   catch (const std::exception& e)
   {
-    std::cout.rdbuf(console);
     throw std::runtime_error(Replaced(e.what(), folder.Stage(), folder.Final()));
   }
-  std::cout.rdbuf(console);
   if (status == 0)
   {
     folder.Publish();
   }
+  std::cout.rdbuf(console.Saved);
   std::cout << Replaced(said.str(), folder.Stage(), folder.Final()) << std::flush;
   return status;
 }
@@ -446,7 +427,6 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 int AnalyzeToFolder(const std::string& example, const std::string& dir)
 {
   Analysis a = Analyze(example);
-  MakeDirectory(dir);
   WriteCSV(dir + "/labels.csv", a.Tables->GetOutput(1));
   WriteCSV(dir + "/transitions.csv", a.Tables->GetOutput(0));
   vtkNew<vtkMSOpenVDBWriter> writer;
@@ -526,7 +506,6 @@ void WriteXML(const std::string& path, DataT* data)
 int PolyhedralAnalyzeToFolder(const std::string& path, const std::string& objectTypes, const std::string& dir)
 {
   auto labels = PolyhedralLabels(path, objectTypes);
-  MakeDirectory(dir);
   WriteCSV(dir + "/labels.csv", labels->GetLabelTable());
   WriteXML<vtkXMLPolyDataWriter>(dir + "/marked-example.vtp", labels->GetMarkedExample());
   std::cout << "wrote " << dir << "/labels.csv, " << dir << "/marked-example.vtp\n";
@@ -698,7 +677,6 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
   }
   vtkImageData* model = synthesis->GetOutput();
 
-  MakeDirectory(dir);
   // What to write: --outputs, or what the example calls for.
   const std::string ext = example.size() > 4 ? example.substr(example.size() - 4) : "";
   std::string list = a.Outputs;
@@ -740,11 +718,7 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
       vtkNew<vtkMSLabelGridWriter> same;
       same->SetInputData(model);
       same->SetFileName(path.c_str());
-      std::string messages;
-      if (!vtkMSEngineBridge::Execute(same, messages))
-      {
-        throw std::runtime_error(messages);
-      }
+      Run(same);
       written.push_back(path);
     }
   }
@@ -900,7 +874,6 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   vtkPolyData* model = mesh->GetOutput();
   vtkPolyData* labelled = synthesis->GetOutput();
 
-  MakeDirectory(dir);
   vtkNew<vtkPolyData> saved; // reproducible for a seed: timing goes to statistics.json only
   saved->ShallowCopy(labelled);
   vtkNew<vtkFieldData> fields;
@@ -1111,7 +1084,6 @@ int Animate(const std::vector<std::string>& examples, const SynthesizeArguments&
     throw std::runtime_error("the synthesized animation breaks the example's rules: " +
       report.First[0].Describe());
   }
-  MakeDirectory(dir);
   for (std::size_t t = 0; t < result.Model.Frames.size(); ++t)
   {
     const msynth::LabelGrid& frame = result.Model.Frames[t];
@@ -1586,15 +1558,15 @@ int Main(const std::vector<std::string>& args)
   throw UsageError{ "unknown command '" + command + "'" };
 }
 
+/// main()'s exit status once it is known (-1 before): a signal arriving after the work is
+/// done ends the process with that status, silently, and discards nothing.
+std::atomic<int> FinalStatus{ -1 };
+
 /**
  * SIGINT and SIGTERM (and SIGHUP) are taken by one thread: it discards the staging folders of
  * the run, says so in one line and ends the process with 128 + the signal's number, whatever
  * stage the run is in. The signals are blocked in every other thread (they inherit the mask).
  */
-/// main()'s exit status once it is known (-1 before): a signal arriving after the work is
-/// done ends the process with that status, silently, and discards nothing.
-std::atomic<int> FinalStatus{ -1 };
-
 void HandleInterruptions()
 {
   static sigset_t signals;

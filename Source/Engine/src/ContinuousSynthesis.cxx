@@ -2,6 +2,8 @@
 #include "msynth/ContinuousSynthesis.h"
 
 #include "msynth/Error.h"
+
+#include "ProgressPoll.h"
 #include "msynth/Random.h"
 
 #include <algorithm>
@@ -305,7 +307,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
   }
   const bool whole = options.BlockSize == 0;
-  auto lastPoll = std::chrono::steady_clock::now();
+  detail::ProgressPoll poll(options.Progress);
   const BlockLayout layout(arrangement, whole ? 0.0 : options.BlockSize * reference);
   const std::int64_t blocks = whole ? 1 : layout.NumberOfBlocks();
   result.Blocks = blocks;
@@ -463,15 +465,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
       domains.Record(true);
       while (empty < 0)
       {
-        // Cancellation inside a block: the progress callback is polled every 100 ms at most.
-        if ((assigned & 1023) == 0 && options.Progress &&
-          std::chrono::steady_clock::now() - lastPoll >= std::chrono::milliseconds(100))
+        // Cancellation inside a block.
+        if ((assigned & 1023) == 0 &&
+          !poll.Continue(static_cast<double>(b) / static_cast<double>(blocks)))
         {
-          lastPoll = std::chrono::steady_clock::now();
-          if (!options.Progress(static_cast<double>(b) / static_cast<double>(blocks)))
-          {
-            throw Error("continuous synthesis was cancelled");
-          }
+          throw Error("continuous synthesis was cancelled");
         }
         const std::int64_t i = queue.Next();
         if (i < 0)

@@ -8,6 +8,8 @@
 #include "msynth/Memory.h"
 #include "msynth/Random.h"
 
+#include "ProgressPoll.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -1071,24 +1073,16 @@ public:
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
   std::vector<CatalogSnapshot> Pending; ///< snapshots of the current attempt
 
-  /// Cancellation inside a block: every solver watches Stop; the main one also calls Poll (the
-  /// caller's progress callback, at most every 100 ms), whose false sets Stop. A long block
-  /// (Algorithm 3.1 on a large model) so stops within a fraction of a second.
+  /// Cancellation inside a block: every solver watches Stop; the main one also polls the
+  /// caller's progress callback (Poll, with the fraction PollFraction gives), whose false sets
+  /// Stop. A long block (Algorithm 3.1 on a large model) so stops within a fraction of a second.
   std::atomic<bool>* Stop = nullptr;
-  std::function<bool()> Poll;
-  std::chrono::steady_clock::time_point LastPoll = std::chrono::steady_clock::now();
+  std::unique_ptr<detail::ProgressPoll> Poll;
+  std::function<double()> PollFraction;
   bool Stopped()
   {
-    if (this->Poll)
-    {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - this->LastPoll >= std::chrono::milliseconds(100))
-      {
-        this->LastPoll = now;
-        if (!this->Poll() && this->Stop)
-          this->Stop->store(true);
-      }
-    }
+    if (this->Poll && !this->Poll->Continue(this->PollFraction()) && this->Stop)
+      this->Stop->store(true);
     return this->Stop && this->Stop->load(std::memory_order_relaxed);
   }
   std::int64_t Steps = 0;
@@ -1419,8 +1413,10 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   bool cancelled = false, cancelRequested = false;
   std::size_t done = 0;
   if (options.Progress)
-    solver.Poll = [&options, &done, &blocks]()
-    { return options.Progress(double(done) / double(blocks.size())); };
+  {
+    solver.Poll = std::make_unique<detail::ProgressPoll>(options.Progress);
+    solver.PollFraction = [&done, &blocks]() { return double(done) / double(blocks.size()); };
+  }
   for (std::size_t first = 0; first < blocks.size() && !cancelled;)
   {
     std::size_t last = first;

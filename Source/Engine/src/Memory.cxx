@@ -30,7 +30,8 @@ std::uint64_t MemInfo(const std::string& key)
   return 0;
 }
 
-/// The process's virtual size in bytes (/proc/self/statm); 0 when unknown.
+} // namespace
+
 std::uint64_t VirtualSize()
 {
   std::ifstream in("/proc/self/statm");
@@ -39,7 +40,6 @@ std::uint64_t VirtualSize()
     return 0;
   return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
 }
-} // namespace
 
 std::uint64_t AvailableMemory()
 {

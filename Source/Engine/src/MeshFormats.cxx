@@ -2,12 +2,12 @@
 #include "msynth/MeshFormats.h"
 
 #include "msynth/Error.h"
+#include "msynth/FileBytes.h"
 
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -16,32 +16,15 @@ namespace msynth
 {
 namespace
 {
-constexpr std::streamoff MaximumFileBytes = std::streamoff(1) << 31;
-
 std::string Slurp(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0 || size > MaximumFileBytes)
-    throw Error::InFile(path, "is larger than 2 GB");
-  in.seekg(0);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(&bytes[0], size);
-  if (!in)
-    throw Error::InFile(path, "could not be read");
-  return bytes;
+  return ReadFileBytes(path, std::uint64_t(1) << 31, "is larger than 2 GB");
 }
 
-/// Printable for messages: control bytes become '?'.
+/// At most 60 characters of @p s for a message (msynth::Error shows control bytes as '?').
 std::string Shown(const std::string& s)
 {
-  std::string out;
-  for (char c : s.substr(0, 60))
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  return out;
+  return s.substr(0, 60);
 }
 
 /// Faces of one type, objects by connectivity; points merged by exact coordinates.

@@ -111,12 +111,7 @@ long long Integer(const std::string& token, const Scanner& scanner)
   errno = 0;
   const long long v = std::strtoll(token.c_str(), &end, 10);
   if (end == token.c_str() || *end)
-  {
-    std::string shown;
-    for (char ch : token)
-      shown += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
-    scanner.Fail("'" + shown + "' is not an integer");
-  }
+    scanner.Fail("'" + token + "' is not an integer"); // (Error shows control bytes as '?')
   if (errno == ERANGE || v < std::numeric_limits<Label>::min() ||
     v > std::numeric_limits<Label>::max())
     scanner.Fail("value out of the 32-bit range");

@@ -2,6 +2,8 @@
 #include "msynth/TimeVarying.h"
 
 #include "msynth/Error.h"
+
+#include "ProgressPoll.h"
 #include "msynth/Random.h"
 
 #include <algorithm>
@@ -110,7 +112,7 @@ TimeVaryingResult SynthesizeTimeVarying(
   const TimeVaryingRules& rules, const TimeVaryingOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
-  auto lastPoll = start; // for cancellation inside a block
+  detail::ProgressPoll poll(options.Progress); // cancellation inside a block
   const Coord4& n = options.Size;
   std::int64_t total = 1;
   for (int a = 0; a < 4; ++a)
@@ -312,16 +314,11 @@ TimeVaryingResult SynthesizeTimeVarying(
           }
           if (domains.Count(local) == 1)
             continue;
-          // Cancellation inside a block: the progress callback is polled every 100 ms at most.
-          if ((stats.Assignments & 1023) == 0 && options.Progress &&
-            std::chrono::steady_clock::now() - lastPoll >= std::chrono::milliseconds(100))
+          if ((stats.Assignments & 1023) == 0 &&
+            !poll.Continue(static_cast<double>(bi) / static_cast<double>(origins.size())))
           {
-            lastPoll = std::chrono::steady_clock::now();
-            if (!options.Progress(static_cast<double>(bi) / static_cast<double>(origins.size())))
-            {
-              result.Message = "cancelled";
-              return result;
-            }
+            result.Message = "cancelled";
+            return result;
           }
           const int pick = DrawLabel(domains.Domain(local), words,
             [&](int b)

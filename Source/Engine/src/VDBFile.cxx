@@ -747,6 +747,15 @@ void WriteAll(int fd, const void* data, std::size_t n)
   }
 }
 
+/// The child's answer: 'O', then @p bytes as a length-prefixed block (PipeReader::Block).
+void SendBlock(int fd, const std::string& bytes)
+{
+  const std::uint64_t n = bytes.size();
+  WriteAll(fd, "O", 1);
+  WriteAll(fd, &n, 8);
+  WriteAll(fd, bytes.data(), bytes.size());
+}
+
 /// Reads exactly what the parent asks for from the child's pipe.
 class PipeReader
 {
@@ -783,6 +792,16 @@ public:
     this->Exact(&v, 8);
     return v;
   }
+  /// A length-prefixed block of at most 64 MiB (the child's side: SendBlock).
+  std::string Block()
+  {
+    const std::uint64_t n = this->U64();
+    if (n > (std::uint64_t(64) << 20))
+      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
+    std::string bytes(static_cast<std::size_t>(n), '\0');
+    this->Exact(&bytes[0], bytes.size());
+    return bytes;
+  }
 
 private:
   int Fd;
@@ -817,13 +836,11 @@ Result Isolated(const std::string& path, std::uint64_t memoryBudget,
       // One thread in the child: the parent's TBB workers do not exist here. Its address
       // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
       tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-      std::ifstream statm("/proc/self/statm");
-      std::uint64_t pages = 0;
-      if (statm >> pages)
+      if (const std::uint64_t used = VirtualSize())
       {
         rlimit limit{};
         ::getrlimit(RLIMIT_AS, &limit);
-        const std::uint64_t cap = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE)) + memoryBudget;
+        const std::uint64_t cap = used + memoryBudget;
         if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
         {
           limit.rlim_cur = static_cast<rlim_t>(cap);
@@ -916,10 +933,7 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
         p.U64(g.Ints.size());
         p.U64(g.Floats.size());
       }
-      WriteAll(fd, "O", 1);
-      const std::uint64_t n = p.Bytes.size();
-      WriteAll(fd, &n, 8);
-      WriteAll(fd, p.Bytes.data(), p.Bytes.size());
+      SendBlock(fd, p.Bytes);
       for (const auto& g : contents.Grids)
       {
         WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
@@ -928,11 +942,7 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
     },
     [&](PipeReader& reader)
     {
-      const std::uint64_t n = reader.U64();
-      if (n > (std::uint64_t(64) << 20))
-        throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
-      std::string headers(static_cast<std::size_t>(n), '\0');
-      reader.Exact(&headers[0], headers.size());
+      const std::string headers = reader.Block();
       Unpacker u{ headers, path };
       FileContents contents;
       contents.Metadata = u.Map();
@@ -979,20 +989,9 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
         p.Map(g.Metadata);
         p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
       }
-      WriteAll(fd, "O", 1);
-      const std::uint64_t n = p.Bytes.size();
-      WriteAll(fd, &n, 8);
-      WriteAll(fd, p.Bytes.data(), p.Bytes.size());
+      SendBlock(fd, p.Bytes);
     },
-    [&](PipeReader& reader)
-    {
-      const std::uint64_t n = reader.U64();
-      if (n > (std::uint64_t(64) << 20))
-        throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
-      std::string bytes(static_cast<std::size_t>(n), '\0');
-      reader.Exact(&bytes[0], bytes.size());
-      return bytes;
-    });
+    [](PipeReader& reader) { return reader.Block(); });
   Unpacker u{ payload, path };
   MetadataMap meta = u.Map();
   if (fileMetadata)

@@ -2,6 +2,7 @@
 #include "msynth/VTKXMLCheck.h"
 
 #include "msynth/Error.h"
+#include "msynth/FileBytes.h"
 
 #include "Xml.h"
 
@@ -12,7 +13,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -433,17 +433,7 @@ private:
 
 void CheckVTKXMLFile(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0 || static_cast<std::uint64_t>(size) > MaximumBytes)
-    throw Error::InFile(path, "is larger than 4 GB");
-  in.seekg(0);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(&bytes[0], size);
-  Checker(path).Run(bytes);
+  Checker(path).Run(ReadFileBytes(path, MaximumBytes, "is larger than 4 GB"));
 }
 
 } // namespace msynth

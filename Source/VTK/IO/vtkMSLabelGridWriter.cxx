@@ -21,7 +21,6 @@ void vtkMSLabelGridWriter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
-  os << indent << "Trailer: " << this->Trailer.size() << " characters\n";
 }
 
 int vtkMSLabelGridWriter::FillInputPortInformation(int, vtkInformation* info)
@@ -72,8 +71,8 @@ void vtkMSLabelGridWriter::WriteData()
       model.Grid = std::move(grid);
       model.Header = msynth::GeneratedTextModelHeader();
       auto* trailer = vtkStringArray::SafeDownCast(fields->GetAbstractArray("TextModelTrailer"));
-      model.Trailer =
-        trailer && trailer->GetNumberOfValues() > 0 ? trailer->GetValue(0) : this->Trailer;
+      if (trailer && trailer->GetNumberOfValues() > 0)
+        model.Trailer = trailer->GetValue(0);
       msynth::WriteFileAtomically(
         path, [&](std::ostream& out) { msynth::WriteTextModel(out, model); });
     }

@@ -38,12 +38,6 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
-  ///@{
-  /// `.txt`: the trailer written when the input has no `TextModelTrailer`. Default empty.
-  vtkSetStdStringFromCharMacro(Trailer);
-  vtkGetCharFromStdStringMacro(Trailer);
-  ///@}
-
 protected:
   vtkMSLabelGridWriter() = default;
   ~vtkMSLabelGridWriter() override = default;
@@ -56,7 +50,6 @@ private:
   void operator=(const vtkMSLabelGridWriter&) = delete;
 
   std::string FileName;
-  std::string Trailer;
 };
 
 #endif

@@ -19,6 +19,9 @@ namespace msynth
  */
 std::uint64_t AvailableMemory();
 
+/// The process's virtual size in bytes (/proc/self/statm); 0 when unknown.
+std::uint64_t VirtualSize();
+
 /// "1.5 GB", "320 MB", "12 KB": @p bytes for messages.
 std::string FormatBytes(std::uint64_t bytes);
 
