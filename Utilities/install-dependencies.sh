@@ -23,6 +23,8 @@ packages=(
   xvfb xauth
   # Fuzzing (Utilities/fuzz.sh): clang with libFuzzer, and the format libraries the engine reads
   clang libclang-rt-14-dev liblz4-dev liblzma-dev zlib1g-dev libpng-dev
+  # Style (Utilities/check-style.sh) and the command line parser (header-only)
+  clang-format libcli11-dev
 )
 
 missing=()

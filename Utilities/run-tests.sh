@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds, and runs every test with ctest
+# The README's test command: installs what is missing, builds, checks the house style
+# (Utilities/check-style.sh: formatting, function and file sizes), and runs every test with ctest
 # (engine, VTK, Python, pvbatch serial and MPI, ParaView GUI under Xvfb), first in the Release
 # build, then in the ASan + UBSan build, then every libFuzzer harness for a bounded time (the
 # regression inputs first). Exits non-zero when anything fails.
@@ -21,6 +22,7 @@ for arg in "$@"; do
 done
 
 bash "$here/build.sh"
+bash "$here/check-style.sh"
 (cd "$root/build" && ctest --output-on-failure --parallel "$(nproc)")
 
 if [ "$sanitizers" = 1 ]; then

@@ -16,15 +16,18 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
+#include "vtkMSLabelGridWriter.h"
 #include "vtkMSNeighbourhoodLabels.h"
+#include "vtkMSOpenVDBWriter.h"
 #include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
-#include "vtkMSOpenVDBWriter.h"
-#include "vtkMSLabelGridWriter.h"
 #include "vtkMSTileImage.h"
 #include "vtkMSTransitionTables.h"
 
 #include "vtkAbstractArray.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -46,19 +49,16 @@
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkCellData.h"
 
-#include "msynth/AtomicFile.h"
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/Error.h"
-#include "msynth/Image.h"
-#include "msynth/OutputFolder.h"
-#include "msynth/ContinuousMesh.h"
-#include "msynth/TimeVarying.h"
-#include "msynth/VTKXMLCheck.h"
-#include "msynth/Tileset.h"
+#include "Continuous/ContinuousMesh.h"
+#include "Core/AtomicFile.h"
+#include "Core/Error.h"
+#include "Core/OutputFolder.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/TimeVarying.h"
+#include "Formats/Image.h"
+#include "Formats/Tileset.h"
+#include "Formats/VTKXMLCheck.h"
 
 #include <array>
 #include <atomic>
@@ -74,8 +74,8 @@
 #include <pthread.h>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <sys/stat.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -299,7 +299,8 @@ int TilesetInfo(const std::string& path, const std::string& subset)
 /// `msynth info EXAMPLE.obj`: "labels: N", then one line per label with its kind and
 /// Boolean expression, then the plane families.
 /// Reads a polyhedral example and computes its neighbourhood labels (errors as exceptions).
-vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(const std::string& path, const std::string& objectTypes)
+vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(
+  const std::string& path, const std::string& objectTypes)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(path.c_str());
@@ -322,7 +323,8 @@ int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
               << table->GetValueByName(r, "Kind").ToString() << " "
               << table->GetValueByName(r, "Expression").ToString() << "\n";
   }
-  auto* normals = vtkDataArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("FamilyNormals"));
+  auto* normals =
+    vtkDataArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("FamilyNormals"));
   std::cout << "plane families: " << normals->GetNumberOfTuples() << "\n";
   for (vtkIdType f = 0; f < normals->GetNumberOfTuples(); ++f)
   {
@@ -385,7 +387,8 @@ int Info(const std::string& example)
 /// @p text with every occurrence of @p from replaced by @p to.
 std::string Replaced(std::string text, const std::string& from, const std::string& to)
 {
-  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+  for (std::size_t at = text.find(from); at != std::string::npos;
+       at = text.find(from, at + to.size()))
   {
     text.replace(at, from.size(), to);
   }
@@ -478,6 +481,25 @@ std::string JsonString(const std::string& text)
   return out + "\"";
 }
 
+/// A solver's statistics read back from its output's field data (vtkMSEngineBridge::AddStatistics).
+std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd)
+{
+  auto fields = msynth::StatisticsFields(msynth::SynthesisStatistics());
+  for (auto& f : fields)
+  {
+    vtkDataArray* array = fd->GetArray(f.Name.c_str());
+    f.Value = array ? array->GetTuple1(0) : 0.0;
+  }
+  return fields;
+}
+
+/// The solver's one-line message from field data `Message`.
+std::string MessageOf(vtkFieldData* fd)
+{
+  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
+  return message && message->GetNumberOfValues() > 0 ? message->GetValue(0) : std::string();
+}
+
 /// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically.
 template <typename WriterT, typename DataT>
 void WriteXML(const std::string& path, DataT* data)
@@ -494,8 +516,8 @@ void WriteXML(const std::string& path, DataT* data)
   {
     // The system's reason when there is one (no space left on device, file too large).
     const std::string reason = errno ? std::strerror(errno)
-      : writer->GetErrorCode()      ? vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())
-                                    : messages;
+      : writer->GetErrorCode()       ? vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())
+                                     : messages;
     std::remove(tmp.c_str());
     throw std::runtime_error("'" + path + "': could not be written: " + reason);
   }
@@ -503,7 +525,8 @@ void WriteXML(const std::string& path, DataT* data)
 }
 
 /// `msynth analyze EXAMPLE.obj`: DIR/labels.csv (the catalog) and DIR/marked-example.vtp.
-int PolyhedralAnalyzeToFolder(const std::string& path, const std::string& objectTypes, const std::string& dir)
+int PolyhedralAnalyzeToFolder(
+  const std::string& path, const std::string& objectTypes, const std::string& dir)
 {
   auto labels = PolyhedralLabels(path, objectTypes);
   WriteCSV(dir + "/labels.csv", labels->GetLabelTable());
@@ -586,8 +609,8 @@ struct SynthesizeArguments
 
 /// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
 /// 0: the writer's default) with file metadata @p key = @p value.
-void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel, const char* key,
-  const std::string& value)
+void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel,
+  const char* key, const std::string& value)
 {
   vtkNew<vtkMSOpenVDBWriter> catalog;
   catalog->SetInputConnection(source->GetOutputPort());
@@ -756,7 +779,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
       msynth::RgbaImage image;
       image.Width = dims[0];
       image.Height = dims[1];
-      image.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+      image.Pixels.resize(
+        static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
       auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
       for (int y = 0; y < dims[1]; ++y) // VTK's rows are bottom first, the PNG's top first
       {
@@ -799,33 +823,23 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
 
   // Statistics as JSON.
   vtkFieldData* fd = model->GetFieldData();
-  auto number = [fd](const char* name)
-  {
-    vtkDataArray* array = fd->GetArray(name);
-    return array ? array->GetTuple1(0) : 0.0;
-  };
-  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
-  const std::string text = message ? message->GetValue(0) : "";
+  const std::string text = MessageOf(fd);
   msynth::WriteFileAtomically(dir + "/statistics.json",
     [&](std::ostream& out)
     {
       out << "{\n  \"example\": " << JsonString(example) << ",\n  \"size\": [" << a.Size[0] << ", "
           << a.Size[1] << ", " << a.Size[2] << "],\n  \"block\": [" << a.Block[0] << ", "
           << a.Block[1] << ", " << a.Block[2] << "],\n  \"seed\": " << a.Seed << ",\n";
-      for (const char* name :
-        { "Blocks", "BlocksAccepted", "BlocksFailed", "BlocksRejected", "Attempts", "Assignments" })
-      {
-        out << "  \"" << name << "\": " << static_cast<long long>(number(name)) << ",\n";
-      }
-      out << "  \"Seconds\": " << number("Seconds") << ",\n  \"Message\": " << JsonString(text)
-          << "\n}\n";
+      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Message\": " << JsonString(text) << "\n}\n";
     });
   written.push_back(dir + "/statistics.json");
   if (a.Snapshots > 0)
   {
     written.push_back(dir + "/catalog_0001.vdb ...");
   }
-  std::cout << text << "\n" << "wrote ";
+  std::cout << text << "\n"
+            << "wrote ";
   for (std::size_t i = 0; i < written.size(); ++i)
   {
     std::cout << (i ? ", " : "") << written[i];
@@ -835,7 +849,8 @@ int Synthesize(const std::string& example, const SynthesizeArguments& a, const s
 }
 
 /// `msynth synthesize EXAMPLE.obj`: plane arrangement → label solver → mesh → files.
-int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& a, const std::string& dir)
+int PolyhedralSynthesize(
+  const std::string& example, const SynthesizeArguments& a, const std::string& dir)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(example.c_str());
@@ -910,10 +925,11 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
   for (int c = 0; c < axes; ++c)
   {
-    dims[static_cast<std::size_t>(c)] =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
+    dims[static_cast<std::size_t>(c)] = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
   }
-  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) > 1e9)
+  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
+    1e9)
   {
     throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
   }
@@ -927,11 +943,13 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   else
   {
     const auto engineMesh = vtkMSEngineBridge::ToContinuousMesh(model, "model");
-    const msynth::LabelGrid volume =
-      msynth::VoxelizeModel(engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
-    image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+    const msynth::LabelGrid volume = msynth::VoxelizeModel(
+      engineMesh, { bounds[0], bounds[2], planar ? 0.0 : bounds[4] }, voxel, dims);
+    image->SetDimensions(
+      static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
     image->SetSpacing(voxel, voxel, voxel);
-    image->SetOrigin(bounds[0] + voxel / 2, bounds[2] + voxel / 2, planar ? 0.0 : bounds[4] + voxel / 2);
+    image->SetOrigin(
+      bounds[0] + voxel / 2, bounds[2] + voxel / 2, planar ? 0.0 : bounds[4] + voxel / 2);
     vtkSmartPointer<vtkIntArray> types;
     types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
     image->GetPointData()->SetScalars(types);
@@ -950,9 +968,10 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
   if (a.Snapshots > 0)
   {
     // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
-    WriteCatalogSequence(
-      synthesis, dir, a.Voxel > 0 ? a.Voxel : std::max(smallest / 2, extent / 128), "example", example);
-    sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" + std::to_string(10000 + a.Snapshots + 1).substr(1) + ".vdb";
+    WriteCatalogSequence(synthesis, dir,
+      a.Voxel > 0 ? a.Voxel : std::max(smallest / 2, extent / 128), "example", example);
+    sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" +
+      std::to_string(10000 + a.Snapshots + 1).substr(1) + ".vdb";
   }
 
   vtkFieldData* fd = labelled->GetFieldData();
@@ -961,29 +980,29 @@ int PolyhedralSynthesize(const std::string& example, const SynthesizeArguments& 
     vtkDataArray* array = fd->GetArray(name);
     return array ? array->GetTuple1(0) : 0.0;
   };
+  const std::string text = MessageOf(fd);
   msynth::WriteFileAtomically(dir + "/statistics.json",
     [&](std::ostream& out)
     {
-      out << "{\n  \"example\": " << JsonString(example) << ",\n  \"size\": [" << a.RealSize[0] << ", "
-          << a.RealSize[1] << ", " << a.RealSize[2] << "],\n  \"blocks\": " << a.Blocks
+      out << "{\n  \"example\": " << JsonString(example) << ",\n  \"size\": [" << a.RealSize[0]
+          << ", " << a.RealSize[1] << ", " << a.RealSize[2] << "],\n  \"blocks\": " << a.Blocks
           << ",\n  \"seed\": " << a.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
           << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
-      for (const char* name : { "Blocks", "Attempts", "FailedAttempts", "FailedBlocks", "Backtracks" })
-      {
-        out << "  \"" << name << "\": " << static_cast<long long>(number(name)) << ",\n";
-      }
-      out << "  \"Seconds\": " << number("Seconds") << "\n}\n";
+      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Message\": " << JsonString(text) << "\n}\n";
     });
-  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, " << model->GetNumberOfPolys()
-            << " polygons, " << static_cast<long long>(number("FailedBlocks")) << " of "
+  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
+            << model->GetNumberOfPolys() << " polygons, "
+            << static_cast<long long>(number("BlocksFailed")) << " of "
             << static_cast<long long>(number("Blocks")) << " blocks left unchanged\n"
-            << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir << "/model.vdb, "
-            << dir << "/statistics.json" << sequence << "\n";
+            << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir
+            << "/model.vdb, " << dir << "/statistics.json" << sequence << "\n";
   return 0;
 }
 
 /// `msynth check EXAMPLE.obj MODEL.vtp`: the independent check of a continuous model.
-int PolyhedralCheck(const std::string& example, const std::string& modelPath, const std::string& objectTypes)
+int PolyhedralCheck(
+  const std::string& example, const std::string& modelPath, const std::string& objectTypes)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(example.c_str());
@@ -1032,7 +1051,8 @@ int PolyhedralCheck(const std::string& example, const std::string& modelPath, co
  * ParaView opens as time steps), DIR/model_0001.vdb, ... and DIR/statistics.json, after checking
  * the model against the example frames.
  */
-int Animate(const std::vector<std::string>& examples, const SynthesizeArguments& a, const std::string& dir)
+int Animate(
+  const std::vector<std::string>& examples, const SynthesizeArguments& a, const std::string& dir)
 {
   msynth::TimeVaryingGrid example;
   for (const auto& path : examples)
@@ -1071,18 +1091,18 @@ int Animate(const std::vector<std::string>& examples, const SynthesizeArguments&
     throw UsageError{ "animate assigns sites in scan-line or random order" };
   }
   options.Order = a.Order == vtkMSDiscreteSynthesis::RANDOM ? msynth::SiteOrder::Random
-                                                           : msynth::SiteOrder::ScanLine;
+                                                            : msynth::SiteOrder::ScanLine;
   const auto rules = msynth::TimeVaryingRules::FromExample(example);
   const msynth::TimeVaryingResult result = msynth::SynthesizeTimeVarying(rules, options);
-  if (!result.Success)
+  if (!result.Succeeded())
   {
     throw std::runtime_error(result.Message);
   }
   const msynth::ConsistencyReport report = msynth::CheckTimeVarying(example, result.Model, a.Loop);
   if (!report.Consistent)
   {
-    throw std::runtime_error("the synthesized animation breaks the example's rules: " +
-      report.First[0].Describe());
+    throw std::runtime_error(
+      "the synthesized animation breaks the example's rules: " + report.First[0].Describe());
   }
   for (std::size_t t = 0; t < result.Model.Frames.size(); ++t)
   {
@@ -1115,15 +1135,12 @@ int Animate(const std::vector<std::string>& examples, const SynthesizeArguments&
       out << "{\n  \"examples\": [";
       for (std::size_t i = 0; i < examples.size(); ++i)
         out << (i ? ", " : "") << JsonString(examples[i]);
-      out << "],\n  \"exampleFrames\": " << example.Frames.size() << ",\n  \"size\": ["
-          << a.Size[0] << ", " << a.Size[1] << ", " << a.Size[2] << "],\n  \"frames\": "
-          << a.Frames << ",\n  \"loop\": " << (a.Loop ? "true" : "false")
-          << ",\n  \"seed\": " << a.Seed << ",\n  \"Blocks\": " << st.Blocks
-          << ",\n  \"BlocksAccepted\": " << st.BlocksAccepted
-          << ",\n  \"BlocksFailed\": " << st.BlocksFailed << ",\n  \"Attempts\": "
-          << st.Attempts << ",\n  \"Assignments\": " << st.Assignments
-          << ",\n  \"Seconds\": " << st.Seconds << ",\n  \"Message\": "
-          << JsonString(result.Message) << "\n}\n";
+      out << "],\n  \"exampleFrames\": " << example.Frames.size() << ",\n  \"size\": [" << a.Size[0]
+          << ", " << a.Size[1] << ", " << a.Size[2] << "],\n  \"frames\": " << a.Frames
+          << ",\n  \"loop\": " << (a.Loop ? "true" : "false") << ",\n  \"seed\": " << a.Seed
+          << ",\n";
+      msynth::WriteStatisticsJSON(out, msynth::StatisticsFields(st));
+      out << "  \"Message\": " << JsonString(result.Message) << "\n}\n";
     });
   std::cout << result.Message << "\n"
             << "consistent: all " << report.PairsChecked
@@ -1240,7 +1257,8 @@ int Main(const std::vector<std::string>& args)
       sizeIndex = i;
       for (int a = 0; a < 3; ++a)
       {
-        synth.RealSize[static_cast<std::size_t>(a)] = real(args[i + 1 + static_cast<std::size_t>(a)], "--size");
+        synth.RealSize[static_cast<std::size_t>(a)] =
+          real(args[i + 1 + static_cast<std::size_t>(a)], "--size");
       }
       i += 3;
       sizeGiven = true;
@@ -1280,7 +1298,9 @@ int Main(const std::vector<std::string>& args)
         throw UsageError{ args[i] + " needs a value" };
       }
       const double v = real(args[i + 1], args[i]);
-      (args[i] == "--spacing" ? synth.Spacing : args[i] == "--blocks" ? synth.Blocks : synth.Voxel) = v;
+      (args[i] == "--spacing"     ? synth.Spacing
+          : args[i] == "--blocks" ? synth.Blocks
+                                  : synth.Voxel) = v;
       ++i;
       continue;
     }
@@ -1386,8 +1406,8 @@ int Main(const std::vector<std::string>& args)
           {
             throw UsageError{ option + ": '" + v + "' is not a set of axes x, y, z" };
           }
-          (option == "--mirror" ? synth.Mirror : synth.Translate)[static_cast<std::size_t>(
-            c - 'x')] = 1;
+          (option == "--mirror" ? synth.Mirror
+                                : synth.Translate)[static_cast<std::size_t>(c - 'x')] = 1;
         }
       }
       else
@@ -1499,8 +1519,8 @@ int Main(const std::vector<std::string>& args)
     }
     if (IsPolyhedral(positional[0]))
     {
-      return IntoFolder(
-        out, [&](const std::string& dir) { return PolyhedralSynthesize(positional[0], synth, dir); });
+      return IntoFolder(out,
+        [&](const std::string& dir) { return PolyhedralSynthesize(positional[0], synth, dir); });
     }
     triple(sizeIndex, "--size", synth.Size, 1); // a label grid's size is in sites
     return IntoFolder(
@@ -1517,8 +1537,7 @@ int Main(const std::vector<std::string>& args)
       throw UsageError{ "animate needs --size NX NY NZ and --frames N" };
     }
     triple(sizeIndex, "--size", synth.Size, 1);
-    return IntoFolder(
-      out, [&](const std::string& dir) { return Animate(positional, synth, dir); });
+    return IntoFolder(out, [&](const std::string& dir) { return Animate(positional, synth, dir); });
   }
   if (command == "check")
   {
@@ -1544,16 +1563,16 @@ int Main(const std::vector<std::string>& args)
     }
     if (IsPolyhedral(positional[0]))
     {
-      return command == "info" ? PolyhedralInfo(positional[0], synth.ObjectTypes)
-                               : IntoFolder(out,
-                                   [&](const std::string& dir) {
-                                     return PolyhedralAnalyzeToFolder(
-                                       positional[0], synth.ObjectTypes, dir);
-                                   });
+      return command == "info"
+        ? PolyhedralInfo(positional[0], synth.ObjectTypes)
+        : IntoFolder(out,
+            [&](const std::string& dir)
+            { return PolyhedralAnalyzeToFolder(positional[0], synth.ObjectTypes, dir); });
     }
     return command == "info"
       ? Info(positional[0])
-      : IntoFolder(out, [&](const std::string& dir) { return AnalyzeToFolder(positional[0], dir); });
+      : IntoFolder(
+          out, [&](const std::string& dir) { return AnalyzeToFolder(positional[0], dir); });
   }
   throw UsageError{ "unknown command '" + command + "'" };
 }

@@ -2,8 +2,8 @@
 // Continuous model synthesis (issue 5 targets): a ~30-polygon example giving ~10,000 output
 // polygons in under 5 s, and a plane arrangement of 10^6 vertices in under 10 s (time and
 // memory against the number of vertices, §4.5.7).
-#include "msynth/ContinuousMesh.h"
-#include "msynth/ContinuousSynthesis.h"
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/ContinuousSynthesis.h"
 
 #include <benchmark/benchmark.h>
 
@@ -54,7 +54,8 @@ void BM_ContinuousChain(benchmark::State& state)
   std::uint64_t seed = 1;
   for (auto _ : state)
   {
-    const auto p = msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { s, s, 6 }, 0, {});
+    const auto p =
+      msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { s, s, 6 }, 0, {});
     const msynth::PlaneArrangement arrangement(e.Analysis.Families(), p);
     msynth::ContinuousSynthesisOptions options;
     options.Seed = seed++;
@@ -102,7 +103,8 @@ void BM_PlaneArrangement(benchmark::State& state)
   const bool house = state.range(1) == 1;
   const Example& e = Load(house ? "house.obj" : "cube.obj");
   const double n = static_cast<double>(state.range(0));
-  const auto p = msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { n, n, n }, house ? 0.5 : 1.0, {});
+  const auto p = msynth::DefaultArrangementParameters(
+    e.Polyhedra, e.Analysis, { n, n, n }, house ? 0.5 : 1.0, {});
   std::int64_t vertices = 0, edges = 0;
   std::size_t bytes = 0;
   for (auto _ : state)
@@ -114,7 +116,8 @@ void BM_PlaneArrangement(benchmark::State& state)
   }
   state.counters["vertices"] = static_cast<double>(vertices);
   state.counters["edges"] = static_cast<double>(edges);
-  state.counters["bytes_per_vertex"] = static_cast<double>(bytes) / static_cast<double>(std::max<std::int64_t>(vertices, 1));
+  state.counters["bytes_per_vertex"] =
+    static_cast<double>(bytes) / static_cast<double>(std::max<std::int64_t>(vertices, 1));
   state.counters["ns_per_vertex"] = benchmark::Counter(static_cast<double>(vertices),
     benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["peak_MB"] = PeakMegabytes();

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BenchmarkFixtures.h"
 
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Tileset.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Formats/Tileset.h"
 
 #include <sstream>
 
@@ -24,7 +24,7 @@ void RunSynthesis(benchmark::State& state, const msynth::SynthesisOptions& optio
   for (auto _ : state)
   {
     const auto result = msynth::Synthesize(rules, options);
-    failed += !result.Success;
+    failed += !result.Succeeded();
     ++runs;
     benchmark::DoNotOptimize(result.Model.Data().data());
   }
@@ -117,7 +117,7 @@ static void BM_Tileset128(benchmark::State& state)
   {
     o.Seed = static_cast<std::uint64_t>(runs++);
     const auto r = msynth::Synthesize(rules, o);
-    failed += !r.Success;
+    failed += !r.Succeeded();
   }
   state.counters["labels"] = rules.NumberOfLabels();
   state.counters["failed_runs"] = static_cast<double>(failed) / static_cast<double>(runs);

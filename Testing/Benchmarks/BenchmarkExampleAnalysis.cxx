@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BenchmarkFixtures.h"
 
-#include "msynth/ExampleAnalysis.h"
+#include "Discrete/ExampleAnalysis.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-#include "msynth/LabelGrid.h"
+#include "Core/LabelGrid.h"
 
 #include <random>
 

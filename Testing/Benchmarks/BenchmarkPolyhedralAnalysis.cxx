@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Continuous example analysis (issue 4 target: a 1,000-polygon example with 10 plane families
 // in under 1 s).
-#include "msynth/PolyhedralAnalysis.h"
+#include "Continuous/PolyhedralAnalysis.h"
 
 #include <benchmark/benchmark.h>
 
@@ -59,9 +59,10 @@ msynth::PolyhedralExample Prisms(int count, bool touching)
       e.Points.push_back({ -2, w, z });
     }
     const int o = count;
-    for (const std::vector<int>& f : std::vector<std::vector<int>>{ { b + 3, b + 2, b + 1, b + 0 },
-           { b + 4, b + 5, b + 6, b + 7 }, { b + 0, b + 1, b + 5, b + 4 }, { b + 1, b + 2, b + 6, b + 5 },
-           { b + 2, b + 3, b + 7, b + 6 }, { b + 3, b + 0, b + 4, b + 7 } })
+    for (const std::vector<int>& f :
+      std::vector<std::vector<int>>{ { b + 3, b + 2, b + 1, b + 0 }, { b + 4, b + 5, b + 6, b + 7 },
+        { b + 0, b + 1, b + 5, b + 4 }, { b + 1, b + 2, b + 6, b + 5 },
+        { b + 2, b + 3, b + 7, b + 6 }, { b + 3, b + 0, b + 4, b + 7 } })
     {
       e.Faces.push_back(f);
       e.FaceObject.push_back(o);

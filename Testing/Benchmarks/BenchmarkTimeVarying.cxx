@@ -3,7 +3,7 @@
 // over time), synthesized to N × N sites × F frames in 16 × 16 × 8-frame blocks.
 #include "BenchmarkFixtures.h"
 
-#include "msynth/TimeVarying.h"
+#include "Discrete/TimeVarying.h"
 
 #include <benchmark/benchmark.h>
 
@@ -37,7 +37,8 @@ static void BM_TimeVarying(benchmark::State& state)
   state.counters["labels"] = rules.NumberOfLabels();
   state.counters["failed_blocks"] =
     static_cast<double>(failedBlocks) / static_cast<double>(state.iterations());
-  state.counters["ns_per_site"] = benchmark::Counter(sites * static_cast<double>(state.iterations()),
-    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_site"] =
+    benchmark::Counter(sites * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_TimeVarying)->Args({ 64, 32 })->Args({ 128, 64 })->Unit(benchmark::kMillisecond);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BenchmarkFixtures.h"
 
-#include "msynth/VDBFile.h"
+#include "VDB/VDBFile.h"
 
 #include <benchmark/benchmark.h>
 
@@ -56,7 +56,8 @@ namespace
 {
 /// A closed UV sphere of radius 1 with @p n × 2n quads split into triangles (about 4n²
 /// triangles; n = 158 gives 99,540), outward.
-void Sphere(int n, std::vector<std::array<double, 3>>& points, std::vector<std::vector<std::int32_t>>& triangles)
+void Sphere(int n, std::vector<std::array<double, 3>>& points,
+  std::vector<std::vector<std::int32_t>>& triangles)
 {
   const double pi = 3.14159265358979323846;
   points.push_back({ 0, 0, -1 });
@@ -66,7 +67,8 @@ void Sphere(int n, std::vector<std::array<double, 3>>& points, std::vector<std::
     for (int j = 0; j < 2 * n; ++j)
     {
       const double theta = pi * j / n;
-      points.push_back({ std::cos(phi) * std::cos(theta), std::cos(phi) * std::sin(theta), std::sin(phi) });
+      points.push_back(
+        { std::cos(phi) * std::cos(theta), std::cos(phi) * std::sin(theta), std::sin(phi) });
     }
   }
   points.push_back({ 0, 0, 1 });
@@ -107,4 +109,8 @@ static void BM_VDBMeshLevelSet(benchmark::State& state)
   state.counters["triangles"] = static_cast<double>(triangles.size());
   state.counters["resolution"] = static_cast<double>(state.range(0));
 }
-BENCHMARK(BM_VDBMeshLevelSet)->Args({ 64, 1 })->Args({ 512, 0 })->Args({ 512, 1 })->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VDBMeshLevelSet)
+  ->Args({ 64, 1 })
+  ->Args({ 512, 0 })
+  ->Args({ 512, 1 })
+  ->Unit(benchmark::kMillisecond);

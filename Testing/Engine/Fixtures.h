@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Example grids and helpers shared by the engine tests.
 #pragma once
-#include "msynth/LabelGrid.h"
+#include "Core/LabelGrid.h"
 
 #include <csignal>
 #include <sys/resource.h>

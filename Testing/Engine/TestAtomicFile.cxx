@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/AtomicFile.h"
-#include "msynth/Error.h"
+#include "Core/AtomicFile.h"
+#include "Core/Error.h"
 
 #include "Fixtures.h"
 

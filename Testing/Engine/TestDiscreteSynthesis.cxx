@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Every model a test obtains is verified by CheckConsistency, which recomputes the allowed pairs
 // from the example grid and shares no code with the solver.
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Error.h"
+#include "Core/Error.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
 
 #include "Fixtures.h"
 
@@ -55,7 +55,7 @@ SynthesisResult SynthesizeFrom(const LabelGrid& example, SynthesisOptions option
 
 void ExpectConsistent(const LabelGrid& example, const SynthesisResult& r)
 {
-  ASSERT_TRUE(r.Success) << r.Message;
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
   const ConsistencyReport report = CheckConsistency(example, r.Model);
   EXPECT_TRUE(report.Consistent) << (report.First.empty() ? "" : report.First[0].Describe());
   EXPECT_GT(report.PairsChecked, 0);
@@ -195,7 +195,7 @@ TEST(DiscreteSynthesis, RandomExamplesReturnOnlyConsistentModels)
       o.AttemptsPerBlock = 1;
       o.Order = static_cast<SiteOrder>(seed % 3);
       const auto r = SynthesizeFrom(e, o);
-      if (r.Success)
+      if (r.Succeeded())
       {
         ++successes;
         ExpectConsistent(e, r);
@@ -226,8 +226,7 @@ TEST(DiscreteSynthesis, ProgressCanCancel)
     return ++calls < 3;
   };
   const auto r = SynthesizeFrom(v, o);
-  EXPECT_FALSE(r.Success);
-  EXPECT_EQ(r.Message, "cancelled");
+  EXPECT_EQ(r.Status, SynthesisStatus::Cancelled);
   EXPECT_EQ(calls, 3);
 }
 
@@ -252,8 +251,7 @@ TEST(DiscreteSynthesis, CancellationStopsWithinABlock)
   // From the "stop" answer to the end of the run.
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
-  EXPECT_FALSE(r.Success);
-  EXPECT_EQ(r.Message, "cancelled");
+  EXPECT_EQ(r.Status, SynthesisStatus::Cancelled);
   EXPECT_EQ(calls, 2);
   EXPECT_LT(seconds, 1.0);
   // Polling changes nothing else: with a callback that never stops, the same model.
@@ -263,7 +261,7 @@ TEST(DiscreteSynthesis, CancellationStopsWithinABlock)
   const SynthesisResult plain = Synthesize(rules, small);
   small.Progress = [](double) { return true; };
   const SynthesisResult polled = Synthesize(rules, small);
-  ASSERT_TRUE(plain.Success && polled.Success);
+  ASSERT_TRUE(plain.Succeeded() && polled.Succeeded());
   EXPECT_EQ(plain.Model, polled.Model);
 }
 
@@ -279,12 +277,15 @@ TEST(ConsistencyCheck, FindsEveryViolation)
   EXPECT_NE(report.First[0].Describe().find("never occurs"), std::string::npos);
   // The printed lines name each pair as it is: no frame in a model without frames.
   ASSERT_EQ(report.First.size(), 3u);
-  EXPECT_EQ(report.First[0].Describe(), "site (0, 0, 0): label 1 followed by 1 along +x is not "
-                                        "allowed (never occurs in the example)");
-  EXPECT_EQ(report.First[1].Describe(), "site (1, 0, 0): label 1 followed by 1 along +x is not "
-                                        "allowed (never occurs in the example)");
-  EXPECT_EQ(report.First[2].Describe(), "site (1, 0, 0): label 1 followed by 1 along +y is not "
-                                        "allowed (never occurs in the example)");
+  EXPECT_EQ(report.First[0].Describe(),
+    "site (0, 0, 0): label 1 followed by 1 along +x is not "
+    "allowed (never occurs in the example)");
+  EXPECT_EQ(report.First[1].Describe(),
+    "site (1, 0, 0): label 1 followed by 1 along +x is not "
+    "allowed (never occurs in the example)");
+  EXPECT_EQ(report.First[2].Describe(),
+    "site (1, 0, 0): label 1 followed by 1 along +y is not "
+    "allowed (never occurs in the example)");
 }
 
 TEST(DiscreteSynthesis, CatalogSnapshotsShowTheCatalogShrinking)
@@ -517,7 +518,7 @@ TEST(DiscreteSynthesis, MirrorMapsSwapLeftAndRightPieces)
   {
     o.Seed = seed;
     const auto r = SynthesizeFrom(bars, o);
-    if (!r.Success)
+    if (!r.Succeeded())
       continue; // whole-model synthesis may fail; failures are never models
     ++successes;
     ExpectConsistent(bars, r);
@@ -723,7 +724,7 @@ TEST(DiscreteSynthesis, FallibleExampleFailsWholeButSucceedsInBlocks)
     o.Seed = seed;
     o.AttemptsPerBlock = 1;
     const auto whole = SynthesizeFrom(e, o);
-    if (whole.Success)
+    if (whole.Succeeded())
     {
       ++wholeSuccesses;
       ExpectConsistent(e, whole);
@@ -807,7 +808,7 @@ TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
       o.Guide = g;
     }
     const auto single = Synthesize(rules, o);
-    ASSERT_TRUE(single.Success) << single.Message;
+    ASSERT_TRUE(single.Succeeded()) << single.Message;
     const int ranks = 3;
     ThreadAllGather gather(ranks);
     std::vector<SynthesisResult> results(static_cast<std::size_t>(ranks));
@@ -827,7 +828,7 @@ TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
       t.join();
     for (const auto& r : results)
     {
-      ASSERT_TRUE(r.Success) << r.Message;
+      ASSERT_TRUE(r.Succeeded()) << r.Message;
       EXPECT_EQ(r.Model, single.Model) << "variant " << variant;
       EXPECT_EQ(r.LastBlock, single.LastBlock);
       EXPECT_EQ(r.Statistics.Processes, ranks);

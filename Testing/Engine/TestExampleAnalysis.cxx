@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Eq. 3.2 is checked against a brute-force recomputation that shares nothing with the engine:
 // for every label pair and axis, scan the example for an occurrence.
-#include "msynth/Error.h"
-#include "msynth/ExampleAnalysis.h"
+#include "Core/Error.h"
+#include "Discrete/ExampleAnalysis.h"
 
 #include "Fixtures.h"
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Pictures: PNG written and read back, BMP as older tilesets have them, and every damaged file
 // an error naming it (never a crash: the sanitizer build runs these too).
-#include "msynth/Error.h"
-#include "msynth/Image.h"
+#include "Core/Error.h"
+#include "Formats/Image.h"
 
 #include <gtest/gtest.h>
 

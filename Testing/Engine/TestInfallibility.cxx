@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Fixtures.h"
 
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Infallibility.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/Infallibility.h"
 
 #include <gtest/gtest.h>
 
@@ -71,8 +71,8 @@ TEST(Infallibility, ProvedExamplesNeverFailAlgorithm31)
       o.AttemptsPerBlock = 1;
       o.Order = SiteOrder::ScanLine; // the order of Algorithm 3.6, which the proof follows
       const auto r = Synthesize(rules, o);
-      ASSERT_TRUE(r.Success) << "proved infallible but failed: trial " << trial << ", seed "
-                             << seed;
+      ASSERT_TRUE(r.Succeeded()) << "proved infallible but failed: trial " << trial << ", seed "
+                                 << seed;
       EXPECT_TRUE(CheckConsistency(e, r.Model).Consistent);
     }
   }
@@ -123,12 +123,13 @@ TEST(Infallibility, LargerRegionsProveWhatTwoByTwoCannot)
   for (std::uint64_t seed = 0; seed < 40; ++seed)
   {
     SynthesisOptions o;
-    o.Size = { { 9 + static_cast<std::int64_t>(seed % 7), 6 + static_cast<std::int64_t>(seed % 5), 1 } };
+    o.Size = { { 9 + static_cast<std::int64_t>(seed % 7), 6 + static_cast<std::int64_t>(seed % 5),
+      1 } };
     o.Seed = seed;
     o.AttemptsPerBlock = 1;
     o.Order = SiteOrder::ScanLine;
     const auto m = Synthesize(rules, o);
-    ASSERT_TRUE(m.Success) << "proved infallible but failed, seed " << seed;
+    ASSERT_TRUE(m.Succeeded()) << "proved infallible but failed, seed " << seed;
     EXPECT_TRUE(CheckConsistency(e, m.Model).Consistent);
   }
 }
@@ -155,8 +156,9 @@ TEST(Infallibility, RegionAnalysisIsSoundAndAgreesWithTheCornersAtTwoByTwo)
       continue;
     ++larger;
     for (std::uint64_t seed = 0; seed < 8; ++seed)
-      for (const std::array<std::int64_t, 3> size : { std::array<std::int64_t, 3>{ { 7, 9, 1 } },
-             std::array<std::int64_t, 3>{ { 16, 12, 1 } }, std::array<std::int64_t, 3>{ { 3, 20, 1 } } })
+      for (const std::array<std::int64_t, 3> size :
+        { std::array<std::int64_t, 3>{ { 7, 9, 1 } }, std::array<std::int64_t, 3>{ { 16, 12, 1 } },
+          std::array<std::int64_t, 3>{ { 3, 20, 1 } } })
       {
         SynthesisOptions o;
         o.Size = size;
@@ -164,8 +166,8 @@ TEST(Infallibility, RegionAnalysisIsSoundAndAgreesWithTheCornersAtTwoByTwo)
         o.AttemptsPerBlock = 1;
         o.Order = SiteOrder::ScanLine;
         const auto m = Synthesize(rules, o);
-        ASSERT_TRUE(m.Success) << "trial " << trial << " proved with region " << report.Region[0]
-                               << "x" << report.Region[1] << " but failed";
+        ASSERT_TRUE(m.Succeeded()) << "trial " << trial << " proved with region "
+                                   << report.Region[0] << "x" << report.Region[1] << " but failed";
         EXPECT_TRUE(CheckConsistency(e, m.Model).Consistent);
       }
   }

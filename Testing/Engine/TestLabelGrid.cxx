@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/Error.h"
-#include "msynth/LabelGrid.h"
+#include "Core/Error.h"
+#include "Core/LabelGrid.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // PLY and STL examples read by our own checked readers: every variant of the formats, and
 // malformed files (short, huge counts, every bit flip) as errors naming the file, never crashes.
-#include "msynth/Error.h"
-#include "msynth/MeshFormats.h"
+#include "Core/Error.h"
+#include "Formats/MeshFormats.h"
 
 #include <gtest/gtest.h>
 

@@ -3,14 +3,14 @@
 // configurations, stored here. A change of any solver's behaviour (intended or not) changes a
 // hash; restructuring code must not. When a behaviour change is intended, say so in the commit
 // and update the hash with the value the failure prints.
-#include "msynth/AdjacencyRules.h"
-#include "msynth/ContinuousMesh.h"
-#include "msynth/ContinuousSynthesis.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/ExampleAnalysis.h"
-#include "msynth/TextModel.h"
-#include "msynth/Tileset.h"
-#include "msynth/TimeVarying.h"
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/ContinuousSynthesis.h"
+#include "Discrete/AdjacencyRules.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/ExampleAnalysis.h"
+#include "Discrete/TimeVarying.h"
+#include "Formats/TextModel.h"
+#include "Formats/Tileset.h"
 
 #include <gtest/gtest.h>
 
@@ -57,7 +57,7 @@ std::string Discrete(SynthesisOptions o, const LabelGrid& example = Village())
   o.Example = &example;
   const SynthesisResult r =
     Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), o);
-  EXPECT_TRUE(r.Success) << r.Message;
+  EXPECT_TRUE(r.Succeeded()) << r.Message;
   return Hash(r.Model.Data());
 }
 
@@ -139,7 +139,7 @@ TEST(OutputHashes, DiscreteConfigurations)
     o.Rotate.Enabled = true;
     o.Rotate.Map = t.TurnMap();
     const SynthesisResult r = Synthesize(t.Rules(), o);
-    EXPECT_TRUE(r.Success) << r.Message;
+    EXPECT_TRUE(r.Succeeded()) << r.Message;
     got["tileset, rotation"] = Hash(r.Model.Data());
   }
   const std::map<std::string, std::string> expected = {
@@ -171,7 +171,7 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     o.Seed = 5;
     o.Loop = false;
     const TimeVaryingResult r = SynthesizeTimeVarying(TimeVaryingRules::FromExample(example), o);
-    EXPECT_TRUE(r.Success) << r.Message;
+    EXPECT_TRUE(r.Succeeded()) << r.Message;
     std::vector<Label> all;
     for (const auto& f : r.Model.Frames)
       all.insert(all.end(), f.Data().begin(), f.Data().end());
@@ -187,7 +187,7 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     o.Seed = 7;
     o.BlockSize = 4;
     const ContinuousSynthesisResult r = SynthesizeContinuous(a, arrangement, o);
-    EXPECT_TRUE(r.Success) << r.Message;
+    EXPECT_TRUE(r.Succeeded()) << r.Message;
     got["continuous house, blocks"] = Hash(r.Labels);
   }
   const std::map<std::string, std::string> expected = {

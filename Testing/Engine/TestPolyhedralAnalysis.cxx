@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Continuous example analysis against the dissertation's own numbers (§4.5.1–4.5.5).
-#include "msynth/Error.h"
-#include "msynth/PolyhedralAnalysis.h"
+#include "Continuous/PolyhedralAnalysis.h"
+#include "Core/Error.h"
 
 #include <gtest/gtest.h>
 
@@ -97,8 +97,8 @@ TEST(PolyhedralAnalysis, TriangleHasEightLabels)
   EXPECT_EQ(a.Families().Size(), 3);
   ASSERT_EQ(a.NumberOfLabels(), 8); // Fig. 4.12
   EXPECT_EQ(CountByKind(a, FeatureKind::Volume), 2);
-  EXPECT_EQ(CountByKind(a, FeatureKind::Face), 3);   // the three edges (codimension 1)
-  EXPECT_EQ(CountByKind(a, FeatureKind::Edge), 3);   // the three vertices (codimension 2)
+  EXPECT_EQ(CountByKind(a, FeatureKind::Face), 3); // the three edges (codimension 1)
+  EXPECT_EQ(CountByKind(a, FeatureKind::Edge), 3); // the three vertices (codimension 2)
   EXPECT_EQ(a.Label(0).Expression, "∅");
   EXPECT_EQ(a.Label(1).Expression, "ℝ²");
   // Fig. 4.15: a site on a horizontal line admits 3 labels.
@@ -190,11 +190,13 @@ TEST(PolyhedralAnalysis, ComplexVertexOfFigure418)
   // Five families through one vertex; the neighbourhood (h3 ∩ (h1 ∪ h2)) ∪ (h4 ∩ (h1 ∪ h5)).
   // These normals cut space into 22 cones, and every one of the five planes separates inside
   // from outside somewhere (not so for every choice of five normals: then a family drops out).
-  const PlaneFamilySet set({ { -3, 1, -1 }, { 1, 3, -1 }, { 0, -2, 1 }, { -1, -1, -3 }, { 1, 2, 2 } });
+  const PlaneFamilySet set(
+    { { -3, 1, -1 }, { 1, 3, -1 }, { 0, -2, 1 }, { -1, -1, -3 }, { 1, 2, 2 } });
   EXPECT_EQ(set.Cones({ 0, 1, 2, 3, 4 }).size(), 22u);
   auto in = [](unsigned mask, int family) { return !((mask >> family) & 1u); };
   const auto label = NeighbourhoodLabel::FromFunction(set, { 0, 1, 2, 3, 4 },
-    [&](const PlaneFamilySet::Cone& c) {
+    [&](const PlaneFamilySet::Cone& c)
+    {
       const unsigned m = c.Mask;
       return ((in(m, 2) && (in(m, 0) || in(m, 1))) || (in(m, 3) && (in(m, 0) || in(m, 4)))) ? 1 : 0;
     });
@@ -203,9 +205,11 @@ TEST(PolyhedralAnalysis, ComplexVertexOfFigure418)
   EXPECT_EQ(label.Expression(false), "(h3 ∩ (h1 ∪ h2)) ∪ (h4 ∩ (h1 ∪ h5))");
   // Equal neighbourhoods compare equal however derived: the same function through an extra,
   // irrelevant family is dropped in the canonical form.
-  const PlaneFamilySet more({ { -3, 1, -1 }, { 1, 3, -1 }, { 0, -2, 1 }, { -1, -1, -3 }, { 1, 2, 2 }, { 2, 1, -1 } });
+  const PlaneFamilySet more(
+    { { -3, 1, -1 }, { 1, 3, -1 }, { 0, -2, 1 }, { -1, -1, -3 }, { 1, 2, 2 }, { 2, 1, -1 } });
   const auto same = NeighbourhoodLabel::FromFunction(more, { 0, 1, 2, 3, 4, 5 },
-    [&](const PlaneFamilySet::Cone& c) {
+    [&](const PlaneFamilySet::Cone& c)
+    {
       const unsigned m = c.Mask;
       return ((in(m, 2) && (in(m, 0) || in(m, 1))) || (in(m, 3) && (in(m, 0) || in(m, 4)))) ? 1 : 0;
     });
@@ -218,9 +222,10 @@ TEST(PolyhedralAnalysis, EvaluationOfFigure421)
   const PlaneFamilySet set({ { 0, 0, 1 }, { 1, 0, 0 }, { 0, 1, 0 } });
   const IntVec3 down{ 0, 0, -1 }; // = −(n2 × n3)… any direction along both planes h2, h3
   auto in = [](unsigned mask, int family) { return !((mask >> family) & 1u); };
-  auto make = [&](auto f) {
-    return NeighbourhoodLabel::FromFunction(set, { 0, 1, 2 },
-      [&](const PlaneFamilySet::Cone& c) { return f(c.Mask) ? 1 : 0; });
+  auto make = [&](auto f)
+  {
+    return NeighbourhoodLabel::FromFunction(
+      set, { 0, 1, 2 }, [&](const PlaneFamilySet::Cone& c) { return f(c.Mask) ? 1 : 0; });
   };
   const auto top = make([&](unsigned m) { return in(m, 0) && (in(m, 1) || in(m, 2)); });
   EXPECT_EQ(top.Expression(false), "h1 ∩ (h2 ∪ h3)");
@@ -290,12 +295,14 @@ TEST(PolyhedralAnalysis, RotatedCopyHasTheSameLabels)
 
 TEST(PolyhedralAnalysis, MalformedMeshesAreRejected)
 {
-  auto without = [](const std::string& text, const std::string& line) {
+  auto without = [](const std::string& text, const std::string& line)
+  {
     std::string s = text;
     s.erase(s.find(line), line.size());
     return s;
   };
-  EXPECT_NE(ValidationError(without(cubeText, "f 5 6 7 8\n")).find("not closed"), std::string::npos);
+  EXPECT_NE(
+    ValidationError(without(cubeText, "f 5 6 7 8\n")).find("not closed"), std::string::npos);
   std::string flipped = cubeText;
   flipped.replace(flipped.find("f 5 6 7 8"), 9, "f 8 7 6 5");
   EXPECT_NE(ValidationError(flipped).find("inconsistent orientation"), std::string::npos);
@@ -334,7 +341,7 @@ f 3 4 5
   {
     EXPECT_NE(std::string(e.what()).find("line 4"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(FromText("v 0 0 0\n"), Error);        // no faces
+  EXPECT_THROW(FromText("v 0 0 0\n"), Error);            // no faces
   EXPECT_THROW(FromText("v 0 0 nan\nf 1 1 1\n"), Error); // not finite
 }
 

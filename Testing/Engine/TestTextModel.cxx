@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/Error.h"
-#include "msynth/TextModel.h"
+#include "Core/Error.h"
+#include "Formats/TextModel.h"
 
 #include <gtest/gtest.h>
 
@@ -172,7 +172,9 @@ TEST(TextModel, MalformedFilesNameTheLineAndProblem)
     std::string::npos);
   EXPECT_NE(
     ErrorOf("a\nb\nc\n1 1 1\n99999999999\n").find("out of the 32-bit range"), std::string::npos);
-  EXPECT_NE(
-    ErrorOf("a\nb\nc\n1 1 1\n\x01\x1b[2J\n").find("'?" "?[2J' is not an integer"), std::string::npos);
+  EXPECT_NE(ErrorOf("a\nb\nc\n1 1 1\n\x01\x1b[2J\n")
+              .find("'?"
+                    "?[2J' is not an integer"),
+    std::string::npos);
   EXPECT_THROW(ReadTextModelFile("/no/such/file.txt", 10), Error);
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Error.h"
-#include "msynth/Tileset.h"
+#include "Core/Error.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Formats/Tileset.h"
 
 #include <gtest/gtest.h>
 
@@ -142,7 +142,7 @@ TEST(Tileset, SynthesisUsesOnlyExpandedPairs)
   {
     o.Seed = seed;
     const auto r = Synthesize(t.Rules(), o);
-    ASSERT_TRUE(r.Success) << r.Message;
+    ASSERT_TRUE(r.Succeeded()) << r.Message;
     for (std::int64_t yy = 0; yy < 20; ++yy)
       for (std::int64_t xx = 0; xx < 24; ++xx)
       {
@@ -176,10 +176,11 @@ TEST(Tileset, MalformedTilesetsNameTheLineAndProblem)
                     "right=\"b\"/></neighbors></set>")
               .find("tile 'b', which is not defined"),
     std::string::npos);
-  EXPECT_NE(ErrorOf("<set><tiles><tile name=\"a\" symmetry=\"I\"/></tiles><neighbors><neighbor "
-                    "left=\"a 8\" right=\"a\"/></neighbors></set>")
-              .find("'a 8': the number after a tile name is one of the 8 rotations and reflections, "
-                    "0 to 7"),
+  EXPECT_NE(
+    ErrorOf("<set><tiles><tile name=\"a\" symmetry=\"I\"/></tiles><neighbors><neighbor "
+            "left=\"a 8\" right=\"a\"/></neighbors></set>")
+      .find("'a 8': the number after a tile name is one of the 8 rotations and reflections, "
+            "0 to 7"),
     std::string::npos);
   EXPECT_NE(ErrorOf("<set size=\"0\"><tiles><tile name=\"a\"/></tiles></set>")
               .find("<set size=\"0\">: the tile size is a whole number of pixels"),
@@ -287,10 +288,11 @@ std::array<std::set<std::pair<int, int>>, 2> WfcPairs(const std::vector<char>& c
     const int base = static_cast<int>(action.size());
     first.push_back(base);
     for (int t = 0; t < cardinality; ++t)
-      action.push_back({ { base + t, base + a(t), base + a(a(t)), base + a(a(a(t))),
-        base + b(t), base + b(a(t)), base + b(a(a(t))), base + b(a(a(a(t)))) } });
+      action.push_back({ { base + t, base + a(t), base + a(a(t)), base + a(a(a(t))), base + b(t),
+        base + b(a(t)), base + b(a(a(t))), base + b(a(a(a(t)))) } });
   }
-  const auto act = [&](int t, int k) { return action[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)]; };
+  const auto act = [&](int t, int k)
+  { return action[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)]; };
   std::array<std::set<std::pair<int, int>>, 2> pairs;
   for (const auto& r : rules)
   {
@@ -340,8 +342,7 @@ TEST(Tileset, PairsEqualWaveFunctionCollapsesPropagator)
     for (std::size_t axis = 0; axis < 2; ++axis)
     {
       const std::set<std::pair<int, int>> got(t.Pairs[axis].begin(), t.Pairs[axis].end());
-      EXPECT_EQ(got, expected[axis])
-        << "axis " << axis << " of " << xml;
+      EXPECT_EQ(got, expected[axis]) << "axis " << axis << " of " << xml;
     }
   }
 }

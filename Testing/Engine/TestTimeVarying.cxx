@@ -2,8 +2,8 @@
 // Time-varying (4D) models, dissertation §3.5.4. Every output is checked by CheckTimeVarying,
 // which recomputes the allowed pairs (in space and in time) from the example frames, and the
 // rolling ball's motion is checked here from its definition.
-#include "msynth/Error.h"
-#include "msynth/TimeVarying.h"
+#include "Core/Error.h"
+#include "Discrete/TimeVarying.h"
 
 #include <gtest/gtest.h>
 
@@ -74,7 +74,7 @@ TEST(TimeVarying, RollingBallOfFigure327)
       if (blocks)
         o.BlockSize = { { 6, 1, 1, 6 } };
       const auto r = SynthesizeTimeVarying(rules, o);
-      ASSERT_TRUE(r.Success) << r.Message;
+      ASSERT_TRUE(r.Succeeded()) << r.Message;
       const auto report = CheckTimeVarying(e, r.Model);
       EXPECT_TRUE(report.Consistent) << (report.First.empty() ? "" : report.First[0].Describe());
       balls += ExpectBallsRoll(r.Model, false);
@@ -94,7 +94,7 @@ TEST(TimeVarying, LoopingAnimationJoinsTheLastFrameToTheFirst)
     o.Seed = seed;
     o.Loop = true;
     const auto r = SynthesizeTimeVarying(rules, o);
-    if (!r.Success)
+    if (!r.Succeeded())
     {
       EXPECT_TRUE(r.Model.Frames.empty());
       continue;
@@ -138,7 +138,7 @@ TEST(TimeVarying, RandomExamplesGiveConsistentModelsOrReportedFailures)
     if (trial % 3 == 0)
       o.BlockSize = { { 4, 4, 3, 3 } };
     const auto r = SynthesizeTimeVarying(rules, o);
-    if (!r.Success)
+    if (!r.Succeeded())
     {
       EXPECT_TRUE(r.Model.Frames.empty()) << "a failure returned a model";
       continue;
@@ -160,7 +160,7 @@ TEST(TimeVarying, SameSeedSameAnimation)
   o.BlockSize = { { 5, 1, 1, 5 } };
   const auto a = SynthesizeTimeVarying(rules, o);
   const auto b = SynthesizeTimeVarying(rules, o);
-  ASSERT_TRUE(a.Success && b.Success);
+  ASSERT_TRUE(a.Succeeded() && b.Succeeded());
   for (std::size_t t = 0; t < a.Model.Frames.size(); ++t)
     EXPECT_EQ(a.Model.Frames[t], b.Model.Frames[t]);
 }
@@ -182,4 +182,21 @@ TEST(TimeVarying, BadInputIsRefused)
   o.Order = SiteOrder::ScanLine;
   o.Choice = LabelChoice::Resemblance;
   EXPECT_THROW(SynthesizeTimeVarying(rules, o), Error);
+}
+
+TEST(TimeVarying, ProgressCancelsWithAStatusAndNoModel)
+{
+  const TimeVaryingGrid e = RollingBall();
+  const auto rules = TimeVaryingRules::FromExample(e);
+  TimeVaryingOptions o;
+  o.Size = { { 16, 1, 1, 20 } };
+  o.BlockSize = { { 6, 1, 1, 6 } };
+  int calls = 0;
+  o.Progress = [&calls](double) { return ++calls < 3; };
+  const auto r = SynthesizeTimeVarying(rules, o);
+  EXPECT_EQ(r.Status, SynthesisStatus::Cancelled);
+  EXPECT_TRUE(r.Model.Frames.empty());
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(r.Statistics.Blocks, 30); // 5 blocks along x (step 3), 6 along time
+  EXPECT_EQ(r.Statistics.BlocksAccepted + r.Statistics.BlocksFailed, 3);
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/Error.h"
-#include "msynth/VDBFile.h"
+#include "Core/Error.h"
+#include "VDB/VDBFile.h"
 
 #include "Fixtures.h"
 
@@ -272,20 +272,22 @@ float ValueAt(const vdb::DenseGrid& g, const std::array<double, 3>& p)
       std::llround((p[static_cast<std::size_t>(a)] - g.Header.Origin[static_cast<std::size_t>(a)]) /
         g.Header.Spacing[static_cast<std::size_t>(a)]) -
       g.Header.IndexMin[static_cast<std::size_t>(a)];
-    if (i[static_cast<std::size_t>(a)] < 0 || i[static_cast<std::size_t>(a)] >= g.Header.Dims[static_cast<std::size_t>(a)])
+    if (i[static_cast<std::size_t>(a)] < 0 ||
+      i[static_cast<std::size_t>(a)] >= g.Header.Dims[static_cast<std::size_t>(a)])
     {
       return g.Header.Background; // outside the stored extent: the background
     }
   }
-  return g.Floats[static_cast<std::size_t>(i[0] + g.Header.Dims[0] * (i[1] + g.Header.Dims[1] * i[2]))];
+  return g
+    .Floats[static_cast<std::size_t>(i[0] + g.Header.Dims[0] * (i[1] + g.Header.Dims[1] * i[2]))];
 }
 } // namespace
 
 TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
 {
   // A 2 x 2 x 2 box (outward quads) and an L-shaped prism, as two surfaces.
-  const std::vector<std::array<double, 3>> points{ { 0, 0, 0 }, { 2, 0, 0 }, { 2, 2, 0 }, { 0, 2, 0 },
-    { 0, 0, 2 }, { 2, 0, 2 }, { 2, 2, 2 }, { 0, 2, 2 } };
+  const std::vector<std::array<double, 3>> points{ { 0, 0, 0 }, { 2, 0, 0 }, { 2, 2, 0 },
+    { 0, 2, 0 }, { 0, 0, 2 }, { 2, 0, 2 }, { 2, 2, 2 }, { 0, 2, 2 } };
   const std::vector<std::vector<std::int32_t>> box{ { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 },
     { 1, 2, 6, 5 }, { 2, 3, 7, 6 }, { 3, 0, 4, 7 } };
   vdb::MeshGridView surface;
@@ -313,11 +315,11 @@ TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
   const vdb::DenseGrid& sdf = contents.Grids[0];
   const vdb::DenseGrid& fog = contents.Grids[1];
   // Signed distance: negative inside, positive outside, about the distance near the surface.
-  EXPECT_LT(ValueAt(sdf, { 1, 1, 1 }), 0.0f);      // deep inside (an inactive interior tile)
+  EXPECT_LT(ValueAt(sdf, { 1, 1, 1 }), 0.0f); // deep inside (an inactive interior tile)
   EXPECT_NEAR(ValueAt(sdf, { 0.1, 1, 1 }), -0.1f, 0.02f);
   EXPECT_NEAR(ValueAt(sdf, { -0.2, 1, 1 }), 0.2f, 0.02f);
   EXPECT_NEAR(ValueAt(sdf, { 1, 1, 2.2 }), 0.2f, 0.02f);
-  EXPECT_GT(ValueAt(sdf, { 3, 3, 3 }), 0.0f);      // far outside: the positive background
+  EXPECT_GT(ValueAt(sdf, { 3, 3, 3 }), 0.0f); // far outside: the positive background
   // Fog: 1 inside, 0 outside.
   EXPECT_NEAR(ValueAt(fog, { 1, 1, 1 }), 1.0f, 1e-6f);
   EXPECT_NEAR(ValueAt(fog, { -0.5, 1, 1 }), 0.0f, 1e-6f);
@@ -326,9 +328,11 @@ TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
   std::remove(path.c_str());
   std::vector<std::vector<std::int32_t>> bad{ { 0, 1, 99 } };
   surface.Polygons = &bad;
-  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("out of range"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("out of range"),
+    std::string::npos);
   surface.Polygons = &box;
   surface.VoxelSize = 0;
-  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("voxel size"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("voxel size"),
+    std::string::npos);
   EXPECT_FALSE(std::ifstream(path).good());
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "msynth/Error.h"
-#include "msynth/VoxModel.h"
+#include "Core/Error.h"
+#include "Formats/VoxModel.h"
 
 #include <gtest/gtest.h>
 
@@ -137,6 +137,7 @@ TEST(VoxModel, WrittenModelsReadBackWithTheirPalette)
   }
   catch (const msynth::Error& e)
   {
-    EXPECT_NE(std::string(e.what()).find("'big.vox': cannot hold a 257 x 1 x 1 model"), std::string::npos);
+    EXPECT_NE(
+      std::string(e.what()).find("'big.vox': cannot hold a 257 x 1 x 1 model"), std::string::npos);
   }
 }

@@ -3,7 +3,7 @@
 // in the other (closed and consistently oriented; voxels of one label touching only along an edge
 // make non-manifold edges used twice each way), and the divergence theorem gives each label's
 // volume as its voxel count times the voxel volume (so every face points outward).
-#include "msynth/VoxelSurface.h"
+#include "Discrete/VoxelSurface.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Helpers of the libFuzzer harnesses (Utilities/fuzz.sh builds and runs them).
-#include "msynth/Error.h"
+#include "Core/Error.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -14,7 +14,8 @@ namespace msynth_fuzz
 /// The input as a file (for readers that take a path), one per process, with extension @p ext.
 inline std::string AsFile(const std::uint8_t* data, std::size_t size, const char* ext)
 {
-  static const std::string dir = [] {
+  static const std::string dir = []
+  {
     const char* shm = ::access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
     return std::string(shm);
   }();

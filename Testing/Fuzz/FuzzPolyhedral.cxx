@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Polyhedral examples: OBJ, PLY and STL (the first byte picks the reader), then validated.
+#include "Formats/MeshFormats.h"
+#include "Formats/PolyhedralExample.h"
 #include "FuzzCommon.h"
-#include "msynth/MeshFormats.h"
-#include "msynth/PolyhedralExample.h"
 
 #include <sstream>
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The discrete solver fed small fuzzed examples and parameters; every model it returns is
 // checked against the example by the independent check (Eq. 3.1).
+#include "Discrete/AdjacencyRules.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/ExampleAnalysis.h"
 #include "FuzzCommon.h"
-#include "msynth/AdjacencyRules.h"
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/ExampleAnalysis.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
@@ -32,9 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   msynth_fuzz::Expect(
     [&]
     {
-      const auto rules = msynth::AdjacencyRules::FromExample(msynth::ExampleAnalysis::FromExample(example));
+      const auto rules =
+        msynth::AdjacencyRules::FromExample(msynth::ExampleAnalysis::FromExample(example));
       const msynth::SynthesisResult r = msynth::Synthesize(rules, o);
-      if (r.Success && !msynth::CheckConsistency(example, r.Model).Consistent)
+      if (r.Succeeded() && !msynth::CheckConsistency(example, r.Model).Consistent)
         __builtin_trap();
     });
   return 0;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The original program's text format (msynth/TextModel.h): read, then written and read back.
+#include "Formats/TextModel.h"
 #include "FuzzCommon.h"
-#include "msynth/TextModel.h"
 
 #include <sstream>
 

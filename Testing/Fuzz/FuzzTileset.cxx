@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Simple-tiled tilesets (msynth/Tileset.h), and a small synthesis with their rules.
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Formats/Tileset.h"
 #include "FuzzCommon.h"
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Tileset.h"
 
 #include <sstream>
 
@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       o.Size = { { 6, 5, 1 } };
       o.Seed = size;
       const msynth::SynthesisResult r = msynth::Synthesize(t.Rules(), o);
-      if (r.Success && !msynth::CheckConsistency(t.Pairs, r.Model).Consistent)
+      if (r.Succeeded() && !msynth::CheckConsistency(t.Pairs, r.Model).Consistent)
         __builtin_trap(); // the independent check must accept every model returned
     });
   return 0;

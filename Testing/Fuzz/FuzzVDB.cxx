@@ -2,7 +2,7 @@
 // OpenVDB files (msynth/VDBFile.h): read in a child process, so only our side is fuzzed here;
 // a crash of the OpenVDB library is an Error.
 #include "FuzzCommon.h"
-#include "msynth/VDBFile.h"
+#include "VDB/VDBFile.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -6,22 +6,22 @@
 // such; an exception other than msynth::Error, or an output a checker rejects, ends the soak
 // with exit status 1.
 //   msynthSoak SECONDS [FIRST_SEED]
-#include "msynth/AdjacencyRules.h"
-#include "msynth/ConsistencyCheck.h"
-#include "msynth/ContinuousMesh.h"
-#include "msynth/ContinuousSynthesis.h"
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Error.h"
-#include "msynth/ExampleAnalysis.h"
-#include "msynth/Random.h"
-#include "msynth/TextModel.h"
-#include "msynth/Tileset.h"
-#include "msynth/VoxModel.h"
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/ContinuousSynthesis.h"
+#include "Core/Error.h"
+#include "Core/Random.h"
+#include "Discrete/AdjacencyRules.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/ExampleAnalysis.h"
+#include "Formats/TextModel.h"
+#include "Formats/Tileset.h"
+#include "Formats/VoxModel.h"
 
 #include <chrono>
-#include <iterator>
 #include <cstdlib>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -85,7 +85,8 @@ int main(int argc, char* argv[])
   while (elapsed() < seconds)
   {
     Random rng = Random::Derived(seed, 0x50a4);
-    const auto pick = [&](int n) { return static_cast<int>(rng.Below(static_cast<std::uint64_t>(n))); };
+    const auto pick = [&](int n)
+    { return static_cast<int>(rng.Below(static_cast<std::uint64_t>(n))); };
     const int kind = pick(3);
     try
     {
@@ -108,7 +109,7 @@ int main(int argc, char* argv[])
           const Tileset& t = pick(2) ? lines : straight;
           name = &t == &lines ? "Lines.xml" : "Lines.xml (straight)";
           r = Synthesize(t.Rules(), o);
-          if (r.Success && !CheckConsistency(t.Pairs, r.Model).Consistent)
+          if (r.Succeeded() && !CheckConsistency(t.Pairs, r.Model).Consistent)
             Die(name + " seed " + std::to_string(seed) + ": the check rejects the model");
         }
         else
@@ -123,12 +124,12 @@ int main(int argc, char* argv[])
           if (pick(4) == 0)
             o.Choice = LabelChoice::Resemblance;
           r = Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), o);
-          if (r.Success && !CheckConsistency(example, r.Model).Consistent)
+          if (r.Succeeded() && !CheckConsistency(example, r.Model).Consistent)
             Die(name + " seed " + std::to_string(seed) + ": the check rejects the model");
         }
         Tally& t = tally[name];
         ++t.Runs;
-        t.Models += r.Success;
+        t.Models += r.Succeeded();
         t.Failed += r.Statistics.BlocksFailed > 0;
         t.Sites += o.Size[0] * o.Size[1] * o.Size[2];
       }
@@ -137,7 +138,8 @@ int main(int argc, char* argv[])
         const int which = pick(static_cast<int>(continuous.size()));
         const auto& [example, analysis] = continuous[static_cast<std::size_t>(which)];
         const Point3 size{ { 3.0 + pick(6), 3.0 + pick(6), example.Planar ? 0.0 : 2.0 + pick(4) } };
-        const ArrangementParameters p = DefaultArrangementParameters(example, analysis, size, 0, {});
+        const ArrangementParameters p =
+          DefaultArrangementParameters(example, analysis, size, 0, {});
         const PlaneArrangement arrangement(analysis.Families(), p);
         ContinuousSynthesisOptions options;
         options.Seed = seed;
@@ -147,18 +149,20 @@ int main(int argc, char* argv[])
         Tally& t = tally[name];
         ++t.Runs;
         t.Sites += arrangement.NumberOfVertices();
-        if (r.Success)
+        if (r.Succeeded())
         {
           ++t.Models;
           const std::string labels = CheckArrangementLabels(analysis, arrangement, r.Labels);
           if (!labels.empty())
             Die(name + " seed " + std::to_string(seed) + ": " + labels);
           const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, r.Labels);
-          const ContinuousModelReport report = CheckContinuousModel(analysis, mesh, example.TypeNames);
+          const ContinuousModelReport report =
+            CheckContinuousModel(analysis, mesh, example.TypeNames);
           if (!report.Valid)
-            Die(name + " seed " + std::to_string(seed) + ": the check rejects the model: " + report.Problem);
+            Die(name + " seed " + std::to_string(seed) +
+              ": the check rejects the model: " + report.Problem);
         }
-        t.Failed += r.FailedBlocks > 0;
+        t.Failed += r.Statistics.BlocksFailed > 0;
       }
     }
     catch (const Error& e)
@@ -175,8 +179,8 @@ int main(int argc, char* argv[])
   std::cout << "example                     runs  models  runs-with-failed-blocks\n";
   for (const auto& [name, t] : tally)
   {
-    std::cout << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << t.Runs
-              << "  " << t.Models << "  " << t.Failed << "\n";
+    std::cout << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << t.Runs << "  "
+              << t.Models << "  " << t.Failed << "\n";
     runs += t.Runs;
   }
   std::cout << "msynthSoak: " << runs << " runs in " << elapsed() << " s, every model checked\n";

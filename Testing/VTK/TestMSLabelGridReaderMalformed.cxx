@@ -5,9 +5,9 @@
 #include "msynthTestUtilities.h"
 
 #include "vtkErrorCode.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkFieldData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 

@@ -18,8 +18,8 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
-#include "msynth/ContinuousMesh.h"
-#include "msynth/Error.h"
+#include "Continuous/ContinuousMesh.h"
+#include "Core/Error.h"
 
 vtkStandardNewMacro(vtkMSArrangementMesh);
 
@@ -50,7 +50,8 @@ int vtkMSArrangementMesh::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (!labelled)
   {
-    vtkErrorMacro(<< "no labelled arrangement input (port 1): connect the ModelSynth Continuous Synthesis filter");
+    vtkErrorMacro(<< "no labelled arrangement input (port 1): connect the ModelSynth Continuous "
+                     "Synthesis filter");
     return 0;
   }
   if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
@@ -61,7 +62,8 @@ int vtkMSArrangementMesh::RequestData(
   try
   {
     const std::string where = vtkMSEngineBridge::ExampleName(labelled);
-    const auto record = vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
+    const auto record =
+      vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
     // The finished model (ModelLabel when the solver shows catalog time steps, else Label).
     vtkDataArray* labelArray = labelled->GetPointData()->GetArray("ModelLabel");
     if (!labelArray)
@@ -72,8 +74,9 @@ int vtkMSArrangementMesh::RequestData(
       labelArray->GetNumberOfTuples() != labelled->GetNumberOfPoints() ||
       !vtkMSEngineBridge::IsIntegerArray(labelArray))
     {
-      throw msynth::Error(where + ": the arrangement input has no integer point array 'Label' with one "
-                                  "value per vertex; connect the ModelSynth Continuous Synthesis filter");
+      throw msynth::Error(where +
+        ": the arrangement input has no integer point array 'Label' with one "
+        "value per vertex; connect the ModelSynth Continuous Synthesis filter");
     }
     msynth::PolyhedralExample ex;
     const auto analysis = vtkMSEngineBridge::AnalyzeExample(
@@ -164,7 +167,8 @@ int vtkMSArrangementMesh::RequestData(
       output->GetFieldData()->AddArray(check);
       if (!report.Valid)
       {
-        throw msynth::Error(ex.Source + ": the synthesized model fails the check: " + report.Problem);
+        throw msynth::Error(
+          ex.Source + ": the synthesized model fails the check: " + report.Problem);
       }
     }
   }

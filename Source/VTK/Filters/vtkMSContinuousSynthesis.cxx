@@ -16,8 +16,8 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "msynth/ContinuousSynthesis.h"
-#include "msynth/Error.h"
+#include "Continuous/ContinuousSynthesis.h"
+#include "Core/Error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +73,8 @@ int vtkMSContinuousSynthesis::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (!arrangementData)
   {
-    vtkErrorMacro(<< "no arrangement input (port 1): connect the ModelSynth Plane Arrangement filter");
+    vtkErrorMacro(
+      << "no arrangement input (port 1): connect the ModelSynth Plane Arrangement filter");
     return 0;
   }
   if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
@@ -89,42 +90,49 @@ int vtkMSContinuousSynthesis::RequestData(
   try
   {
     const bool fresh = cache.FilterTime != this->GetMTime() || !example ||
-      cache.ExampleTime != example->GetMTime() || cache.ArrangementTime != arrangementData->GetMTime();
+      cache.ExampleTime != example->GetMTime() ||
+      cache.ArrangementTime != arrangementData->GetMTime();
     if (fresh)
     {
-      const auto record = vtkMSEngineBridge::LoadArrangement(
-        arrangementData->GetFieldData(), vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
+      const auto record = vtkMSEngineBridge::LoadArrangement(arrangementData->GetFieldData(),
+        vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
       msynth::PolyhedralExample ex;
       const auto analysis = vtkMSEngineBridge::AnalyzeExample(
         example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
       if (analysis.Families().AllNormals() != record.Normals)
       {
-        throw msynth::Error(ex.Source + ": the arrangement was built from another example (its plane "
-                                        "families differ)");
+        throw msynth::Error(ex.Source +
+          ": the arrangement was built from another example (its plane "
+          "families differ)");
       }
       const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
       if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints())
       {
         throw msynth::Error(ex.Source + ": the arrangement input has " +
-          std::to_string(arrangementData->GetNumberOfPoints()) + " points but its parameters give " +
-          std::to_string(arrangement.NumberOfVertices()) + " vertices");
+          std::to_string(arrangementData->GetNumberOfPoints()) +
+          " points but its parameters give " + std::to_string(arrangement.NumberOfVertices()) +
+          " vertices");
       }
       msynth::ContinuousSynthesisOptions options;
-      options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
+      options.Seed = static_cast<std::uint64_t>(this->Seed);
       options.BlockSize = this->BlockSize;
       options.Attempts = this->Attempts;
       options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
-      options.Choice = this->LabelChoice == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
+      options.Choice =
+        this->LabelChoice == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
       options.Snapshots = this->NumberOfSnapshots;
       cache.Snapshots.clear();
-      options.OnSnapshot = [&cache](const msynth::ContinuousSnapshot& s) { cache.Snapshots.push_back(s); };
+      options.OnSnapshot = [&cache](const msynth::ContinuousSnapshot& s)
+      { cache.Snapshots.push_back(s); };
       options.Progress = [this](double f)
       {
         this->UpdateProgress(f);
         return !this->GetAbortExecute();
       };
       cache.Result = msynth::SynthesizeContinuous(analysis, arrangement, options);
-      cache.FilterTime = this->GetMTime();
+      // A cancelled run is not kept: the next update runs again.
+      cache.FilterTime =
+        cache.Result.Status == msynth::SynthesisStatus::Cancelled ? 0 : this->GetMTime();
       cache.ExampleTime = example->GetMTime();
       cache.ArrangementTime = arrangementData->GetMTime();
     }
@@ -143,9 +151,12 @@ int vtkMSContinuousSynthesis::RequestData(
     return 0;
   }
   const auto& result = cache.Result;
-  if (!result.Success)
+  if (!result.Succeeded())
   {
-    vtkErrorMacro(<< vtkMSEngineBridge::ExampleName(example) << ": " << result.Message);
+    if (result.Status != msynth::SynthesisStatus::Cancelled)
+    {
+      vtkErrorMacro(<< vtkMSEngineBridge::ExampleName(example) << ": " << result.Message);
+    }
     return 0;
   }
   output->ShallowCopy(arrangementData);
@@ -167,8 +178,8 @@ int vtkMSContinuousSynthesis::RequestData(
   }
   if (!cache.Snapshots.empty())
   {
-    const std::size_t step =
-      vtkMSEngineBridge::RequestedStep(outputVector->GetInformationObject(0), cache.Snapshots.size());
+    const std::size_t step = vtkMSEngineBridge::RequestedStep(
+      outputVector->GetInformationObject(0), cache.Snapshots.size());
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {
@@ -176,8 +187,10 @@ int vtkMSContinuousSynthesis::RequestData(
       size->SetValue(v, snap.CatalogSize[static_cast<std::size_t>(v)]);
       entropy->SetValue(v, snap.Entropy[static_cast<std::size_t>(v)]);
     }
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+      output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+      output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   }
   output->GetPointData()->AddArray(label);
@@ -199,12 +212,8 @@ int vtkMSContinuousSynthesis::RequestData(
   output->GetPointData()->SetActiveScalars("Label");
   vtkFieldData* fields = output->GetFieldData();
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fields, "Success", 1);
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Blocks", static_cast<vtkIdType>(result.Blocks));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Attempts", static_cast<vtkIdType>(result.Attempts));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "FailedAttempts", static_cast<vtkIdType>(result.FailedAttempts));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "FailedBlocks", static_cast<vtkIdType>(result.FailedBlocks));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Backtracks", static_cast<vtkIdType>(result.Backtracks));
-  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fields, "Seconds", result.Seconds);
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  vtkMSEngineBridge::AddStatistics(fields, result.Statistics, result.Status, result.Message);
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+    fields, "Seed", static_cast<vtkIdType>(this->Seed));
   return 1;
 }

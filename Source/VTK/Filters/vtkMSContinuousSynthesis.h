@@ -9,10 +9,12 @@
  *
  * Output: the arrangement with point arrays `Label` (the example label id of each vertex, as
  * listed by vtkMSNeighbourhoodLabels), `CatalogSize` and `Entropy`, and the run statistics as
- * field data (`Success`, `Blocks`, `Attempts`, `FailedAttempts`, `FailedBlocks`, `Backtracks`,
- * `Seconds`, `Seed`). With NumberOfSnapshots S > 0 the output has S + 1 time steps: the catalog
- * at the start and at S even fractions of the work, so ParaView can animate it shrinking;
- * `Label` is then −1 where undecided and `ModelLabel` holds the finished model at every step.
+ * field data (`Success`, `Seed`, and the names every solver uses: `Blocks`, `BlocksAccepted`,
+ * `BlocksFailed`, `Attempts`, `FailedAttempts`, `Assignments`, `Backtracks`, `Seconds`, `Status`,
+ * `Message`, ...; see vtkMSEngineBridge::AddStatistics). With NumberOfSnapshots S > 0 the output
+ * has S + 1 time steps: the catalog at the start and at S even fractions of the work, so ParaView
+ * can animate it shrinking; `Label` is then −1 where undecided and `ModelLabel` holds the finished
+ * model at every step.
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
@@ -39,8 +41,8 @@ public:
 
   ///@{
   /// Random seed; equal seeds give equal models. Default 0.
-  vtkSetMacro(Seed, int);
-  vtkGetMacro(Seed, int);
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
   ///@}
 
   ///@{
@@ -86,7 +88,7 @@ private:
   vtkMSContinuousSynthesis(const vtkMSContinuousSynthesis&) = delete;
   void operator=(const vtkMSContinuousSynthesis&) = delete;
 
-  int Seed = 0;
+  vtkIdType Seed = 0;
   double BlockSize = 4;
   int Attempts = 20;
   int SiteOrder = 2;

@@ -3,6 +3,7 @@
 
 #include "vtkMSEngineBridge.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -11,15 +12,14 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
-#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
-#include "msynth/DiscreteSynthesis.h"
-#include "msynth/Tileset.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Formats/Tileset.h"
 
 #include <algorithm>
 #include <cmath>
@@ -341,7 +341,8 @@ int vtkMSDiscreteSynthesis::RequestData(
         for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
           mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
       for (int a = 0; a < 3; ++a)
-        mix(static_cast<std::uint64_t>(options.Size[a]) * 31 + static_cast<std::uint64_t>(options.BlockSize[a]));
+        mix(static_cast<std::uint64_t>(options.Size[a]) * 31 +
+          static_cast<std::uint64_t>(options.BlockSize[a]));
       mix(options.Seed);
       fingerprint = static_cast<vtkIdType>(h >> 2) | 1; // never 0: 0 means "not synthesizing"
     }
@@ -420,7 +421,7 @@ int vtkMSDiscreteSynthesis::RequestData(
       vtkErrorMacro(<< e.what());
       return 0;
     }
-    cache.Valid = cache.Result.Success;
+    cache.Valid = cache.Result.Succeeded();
     cache.FilterTime = this->GetMTime();
     cache.Input = input;
     cache.InputTime = inputTime;
@@ -428,9 +429,9 @@ int vtkMSDiscreteSynthesis::RequestData(
     cache.GuideTime = guideTime;
   }
   const msynth::SynthesisResult& result = cache.Result;
-  if (!result.Success)
+  if (!result.Succeeded())
   {
-    if (result.Message != "cancelled")
+    if (result.Status != msynth::SynthesisStatus::Cancelled)
     {
       vtkErrorMacro(<< result.Message);
     }
@@ -451,8 +452,8 @@ int vtkMSDiscreteSynthesis::RequestData(
   if (!cache.Snapshots.empty())
   {
     // The time step asked for (steps are 0, 1, 2, ...).
-    const std::size_t step =
-      vtkMSEngineBridge::RequestedStep(outputVector->GetInformationObject(0), cache.Snapshots.size());
+    const std::size_t step = vtkMSEngineBridge::RequestedStep(
+      outputVector->GetInformationObject(0), cache.Snapshots.size());
     const msynth::CatalogSnapshot& snap = cache.Snapshots[step];
     for (std::size_t i = 0; i < snap.Labels.size(); ++i)
     {
@@ -469,7 +470,8 @@ int vtkMSDiscreteSynthesis::RequestData(
     entropy->SetNumberOfTuples(static_cast<vtkIdType>(snap.Entropy.size()));
     std::copy(snap.Entropy.begin(), snap.Entropy.end(), entropy->GetPointer(0));
     output->GetPointData()->AddArray(entropy);
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
+    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+      output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
     vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
       output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
     vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
@@ -485,35 +487,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkFieldData* fd = output->GetFieldData();
   const auto& s = result.Statistics;
   vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksRejected", static_cast<int>(s.BlocksRejected));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Processes", s.Processes);
-  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Assignments", static_cast<double>(s.Assignments));
-  vtkMSEngineBridge::AddFieldValue<vtkDoubleArray>(fd, "Seconds", s.Seconds);
-  vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "Message", result.Message);
-  if (s.TrivialLabel)
-  {
-    vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "TrivialLabel", *s.TrivialLabel);
-  }
-  vtkNew<vtkIntArray> origins, sites;
-  origins->SetName("FailedBlockOrigins");
-  origins->SetNumberOfComponents(3);
-  sites->SetName("FailedBlockSites");
-  sites->SetNumberOfComponents(3);
-  for (const auto& f : s.Failures)
-  {
-    const int o[3] = { static_cast<int>(f.Origin[0]), static_cast<int>(f.Origin[1]),
-      static_cast<int>(f.Origin[2]) };
-    const int e[3] = { static_cast<int>(f.EmptySite[0]), static_cast<int>(f.EmptySite[1]),
-      static_cast<int>(f.EmptySite[2]) };
-    origins->InsertNextTypedTuple(o);
-    sites->InsertNextTypedTuple(e);
-  }
-  fd->AddArray(origins);
-  fd->AddArray(sites);
+  vtkMSEngineBridge::AddStatistics(fd, s, result.Status, result.Message);
   if (tileset)
   {
     // Label i is orientation k of a tile: its name as the tileset's images are named.

@@ -9,9 +9,11 @@
  *
  * Output: vtkImageData of OutputSize points, with the example's spacing and origin. Point data:
  * `Label` (the model) and `LastBlock` (the block that last changed each site, -1 for never).
- * Field data: the run statistics (`Seed`, `Blocks`, `BlocksAccepted`, `BlocksFailed`,
- * `Attempts`, `Assignments`, `Seconds`, `Message`, `TrivialLabel` in block mode,
- * `FailedBlockOrigins` and `FailedBlockSites` as 3-component arrays) and `ExampleFile`.
+ * Field data: `Seed`, `ExampleFile` and the run statistics under the names every solver uses
+ * (`Blocks`, `BlocksAccepted`, `BlocksFailed`, `BlocksRejected`, `Attempts`, `FailedAttempts`,
+ * `Assignments`, `Phases`, `Threads`, `Processes`, `Seconds`, `Status`, `Message`,
+ * `TrivialLabel` in block mode, `FailedBlockOrigins` and `FailedBlockSites` as 3-component
+ * arrays; vtkMSEngineBridge::AddStatistics).
  *
  * BlockSize 0 on every axis (or at least OutputSize) runs Algorithm 3.1 on the whole model;
  * smaller blocks run Algorithm 3.4, which modifies a trivial consistent start block by block

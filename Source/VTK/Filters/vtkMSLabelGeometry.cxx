@@ -19,11 +19,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkXMLPolyDataReader.h"
 
-#include "msynth/Error.h"
-#include "msynth/MeshFormats.h"
-#include "msynth/Tileset.h"
-#include "msynth/VTKXMLCheck.h"
-#include "msynth/VoxelSurface.h"
+#include "Core/Error.h"
+#include "Discrete/VoxelSurface.h"
+#include "Formats/MeshFormats.h"
+#include "Formats/Tileset.h"
+#include "Formats/VTKXMLCheck.h"
 
 #include <algorithm>
 #include <vector>
@@ -210,11 +210,12 @@ int vtkMSLabelGeometry::RequestData(
       {
         if (b < 0 || b >= tileset.NumberOfLabels())
         {
-          vtkErrorMacro(<< "label " << b << " is not a label of the tileset '" << this->TilesetFile << "' ("
-                        << tileset.NumberOfLabels() << " labels)");
+          vtkErrorMacro(<< "label " << b << " is not a label of the tileset '" << this->TilesetFile
+                        << "' (" << tileset.NumberOfLabels() << " labels)");
           return 0;
         }
-        const auto& tile = tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
+        const auto& tile =
+          tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
         const int k = tileset.LabelOrientation[static_cast<std::size_t>(b)];
         names.emplace_back(tile.Name + " " + std::to_string(k), 0);
         names.emplace_back(tile.Name, k);

@@ -21,7 +21,7 @@
 #include "vtkTable.h"
 #include "vtkTypeInt64Array.h"
 
-#include "msynth/PolyhedralAnalysis.h"
+#include "Continuous/PolyhedralAnalysis.h"
 
 #include <cmath>
 
@@ -100,7 +100,8 @@ int vtkMSNeighbourhoodLabels::RequestData(
   std::string name = "the input";
   if (input)
   {
-    if (auto* file = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("ExampleFile")))
+    if (auto* file =
+          vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("ExampleFile")))
     {
       if (file->GetNumberOfValues() > 0)
       {
@@ -147,8 +148,8 @@ int vtkMSNeighbourhoodLabels::RequestData(
       typesPresent->InsertNextValue(types);
     }
     table->Initialize();
-    for (vtkAbstractArray* column : std::initializer_list<vtkAbstractArray*>{ id, kind, codimension,
-           families, halfSpaces, expression, occurrences, typesPresent })
+    for (vtkAbstractArray* column : std::initializer_list<vtkAbstractArray*>{
+           id, kind, codimension, families, halfSpaces, expression, occurrences, typesPresent })
     {
       table->AddColumn(column);
     }
@@ -233,7 +234,8 @@ int vtkMSNeighbourhoodLabels::RequestData(
     marked->SetVerts(verts);
     marked->SetLines(lines);
     marked->SetPolys(polys);
-    auto column = [&](const char* arrayName, std::vector<int> Values::*member) {
+    auto column = [&](const char* arrayName, std::vector<int> Values::*member)
+    {
       auto array = IntColumn(arrayName);
       for (const Values* part : { &vertValues, &lineValues, &polyValues })
       {

@@ -17,8 +17,8 @@
 #include "vtkStringArray.h"
 #include "vtkTypeInt64Array.h"
 
-#include "msynth/ContinuousSynthesis.h"
-#include "msynth/Error.h"
+#include "Continuous/ContinuousSynthesis.h"
+#include "Core/Error.h"
 
 #include <algorithm>
 
@@ -57,11 +57,12 @@ int vtkMSPlaneArrangement::RequestData(
     input->GetBounds(bounds);
     for (int c = 0; c < 3; ++c)
     {
-      size[static_cast<std::size_t>(c)] = this->OutputSize[c] > 0 ? this->OutputSize[c]
-                                                                   : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
+      size[static_cast<std::size_t>(c)] =
+        this->OutputSize[c] > 0 ? this->OutputSize[c] : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
     }
     vtkMSEngineBridge::ArrangementRecord record;
-    record.Parameters = msynth::DefaultArrangementParameters(example, analysis, size, this->Spacing, {});
+    record.Parameters =
+      msynth::DefaultArrangementParameters(example, analysis, size, this->Spacing, {});
     record.Parameters.MaxVertices = this->MaximumVertices;
     record.Normals = analysis.Families().AllNormals();
     record.AngleToleranceDegrees = this->AngleTolerance;

@@ -12,8 +12,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "msynth/Image.h"
-#include "msynth/Tileset.h"
+#include "Formats/Image.h"
+#include "Formats/Tileset.h"
 
 #include <algorithm>
 #include <vector>
@@ -169,8 +169,8 @@ int vtkMSTileImage::RequestData(
     }
     if (size && image.Width != size)
     {
-      vtkErrorMacro(<< "'" << path << "': is " << image.Width << " pixels wide; the other tiles are "
-                    << size << ".");
+      vtkErrorMacro(<< "'" << path << "': is " << image.Width
+                    << " pixels wide; the other tiles are " << size << ".");
       return 0;
     }
     size = image.Width;

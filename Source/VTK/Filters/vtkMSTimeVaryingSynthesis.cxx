@@ -3,7 +3,9 @@
 
 #include "vtkMSEngineBridge.h"
 
-#include "msynth/TimeVarying.h"
+#include "vtkIdTypeArray.h"
+
+#include "Discrete/TimeVarying.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -84,8 +86,8 @@ int vtkMSTimeVaryingSynthesis::RequestUpdateExtent(
   {
     times = { inInfo->Get(key)[0] };
   }
-  inInfo->Set(vtkMultiTimeStepAlgorithm::UPDATE_TIME_STEPS(), times.data(),
-    static_cast<int>(times.size()));
+  inInfo->Set(
+    vtkMultiTimeStepAlgorithm::UPDATE_TIME_STEPS(), times.data(), static_cast<int>(times.size()));
   return 1;
 }
 
@@ -93,7 +95,8 @@ vtkTypeBool vtkMSTimeVaryingSynthesis::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
-  vtkInformation* inInfo = inputVector && inputVector[0] ? inputVector[0]->GetInformationObject(0) : nullptr;
+  vtkInformation* inInfo =
+    inputVector && inputVector[0] ? inputVector[0]->GetInformationObject(0) : nullptr;
   if (inInfo && request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
     // Later passes skip RequestUpdateExtent and would copy the output's extent upstream.
@@ -134,7 +137,7 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
       frames.push_back(std::move(slice));
   }
   Cache& cache = *this->Cached;
-  if (cache.FilterTime != this->GetMTime() || cache.Example != frames || !cache.Result.Success)
+  if (cache.FilterTime != this->GetMTime() || cache.Example != frames || !cache.Result.Succeeded())
   {
     msynth::TimeVaryingOptions options;
     options.Size = { { this->OutputSize[0], this->OutputSize[1], this->OutputSize[2],
@@ -169,16 +172,15 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
     cache.FilterTime = this->GetMTime();
   }
   const msynth::TimeVaryingResult& result = cache.Result;
-  if (!result.Success)
+  if (!result.Succeeded())
   {
     vtkErrorMacro(<< result.Message);
     return 0;
   }
-  const std::size_t step =
-    vtkMSEngineBridge::RequestedStep(outInfo, result.Model.Frames.size());
+  const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, result.Model.Frames.size());
   const msynth::LabelGrid& frame = result.Model.Frames[step];
-  output->SetExtent(0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
-    this->OutputSize[2] - 1);
+  output->SetExtent(
+    0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
   double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
   outInfo->Get(vtkDataObject::SPACING(), spacing);
   outInfo->Get(vtkDataObject::ORIGIN(), origin);
@@ -193,14 +195,10 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frame", static_cast<int>(step));
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frames", this->NumberOfFrames);
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Loop", this->Loop ? 1 : 0);
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "ExampleFrames",
-    static_cast<int>(cache.Example.size()));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Blocks", static_cast<int>(s.Blocks));
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(
-    fd, "BlocksAccepted", static_cast<int>(s.BlocksAccepted));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "BlocksFailed", static_cast<int>(s.BlocksFailed));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Attempts", static_cast<int>(s.Attempts));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Seed", static_cast<int>(this->Seed));
+    fd, "ExampleFrames", static_cast<int>(cache.Example.size()));
+  vtkMSEngineBridge::AddStatistics(fd, s, result.Status, result.Message);
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", static_cast<vtkIdType>(this->Seed));
   return 1;
 }
 

@@ -104,8 +104,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The base class asks for one example time step per pass; every pass needs the whole extent.
-  vtkTypeBool ProcessRequest(
-    vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int Execute(vtkInformation* request, const std::vector<vtkSmartPointer<vtkDataObject>>& inputs,
     vtkInformationVector* outputVector) override;
 

@@ -16,9 +16,9 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
-#include "msynth/AdjacencyRules.h"
-#include "msynth/ExampleAnalysis.h"
-#include "msynth/Infallibility.h"
+#include "Discrete/AdjacencyRules.h"
+#include "Discrete/ExampleAnalysis.h"
+#include "Discrete/Infallibility.h"
 
 vtkStandardNewMacro(vtkMSTransitionTables);
 

@@ -5,33 +5,34 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
-#include "vtkIdList.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkSmartPointer.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
-#include "vtkStringArray.h"
-#include "vtkTypeInt64Array.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkType.h"
+#include "vtkTypeInt64Array.h"
 
-#include "msynth/Error.h"
+#include "Core/Error.h"
 
 #include <cmath>
 #include <cstdint>
-#include <vector>
 #include <limits>
 #include <map>
+#include <vector>
 
 vtkStandardNewMacro(vtkMSEngineBridge);
 
@@ -244,7 +245,8 @@ void vtkMSEngineBridge::OnError(vtkObject*, unsigned long, void* data)
   this->Messages += message;
 }
 
-msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* polygons, const std::string& name)
+msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(
+  vtkPolyData* polygons, const std::string& name)
 {
   msynth::PolyhedralExample example;
   example.Source = name;
@@ -254,7 +256,8 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
   }
   // Readable type names, as the example reader stores them (TypeIds[i] is named TypeNames[i]).
   auto* typeIds = vtkDataArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("TypeIds"));
-  auto* typeNames = vtkStringArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("TypeNames"));
+  auto* typeNames =
+    vtkStringArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("TypeNames"));
   if (typeIds && typeNames && typeIds->GetNumberOfValues() == typeNames->GetNumberOfValues())
   {
     for (vtkIdType i = 0; i < typeIds->GetNumberOfValues(); ++i)
@@ -279,7 +282,8 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
   vtkNew<vtkIdList> cell;
   auto iterator = vtk::TakeSmartPointer(polygons->GetPolys()->NewIterator());
   vtkIdType index = firstPoly;
-  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++index)
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal();
+       iterator->GoToNextCell(), ++index)
   {
     iterator->GetCurrentCell(cell);
     std::vector<int> face;
@@ -291,8 +295,9 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
     const double type = types ? types->GetComponent(index, 0) : 1.0;
     if (!(type >= 1 && type <= 32767) || type != static_cast<int>(type))
     {
-      throw msynth::Error::InFile(name, "polygon " + std::to_string(index - firstPoly) +
-        " has ObjectType " + std::to_string(type) + "; types are integers 1..32767");
+      throw msynth::Error::InFile(name,
+        "polygon " + std::to_string(index - firstPoly) + " has ObjectType " + std::to_string(type) +
+          "; types are integers 1..32767");
     }
     faceTypes.push_back(static_cast<int>(type));
     if (ids)
@@ -300,8 +305,8 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
       const double id = ids->GetComponent(index, 0);
       if (!(id >= 0 && id < 1e9) || id != static_cast<int>(id))
       {
-        throw msynth::Error::InFile(name, "polygon " + std::to_string(index - firstPoly) +
-          " has an invalid ObjectId");
+        throw msynth::Error::InFile(
+          name, "polygon " + std::to_string(index - firstPoly) + " has an invalid ObjectId");
       }
       faceIds.push_back(static_cast<int>(id));
     }
@@ -324,15 +329,16 @@ msynth::PolyhedralExample vtkMSEngineBridge::ToPolyhedralExample(vtkPolyData* po
     }
     else if (example.ObjectTypes[it->second] != faceTypes[f])
     {
-      throw msynth::Error::InFile(name, "object " + std::to_string(faceIds[f]) +
-        " has polygons of different ObjectType");
+      throw msynth::Error::InFile(
+        name, "object " + std::to_string(faceIds[f]) + " has polygons of different ObjectType");
     }
     example.FaceObject.push_back(it->second);
   }
   return example;
 }
 
-void vtkMSEngineBridge::FromPolyhedralExample(const msynth::PolyhedralExample& example, vtkPolyData* output)
+void vtkMSEngineBridge::FromPolyhedralExample(
+  const msynth::PolyhedralExample& example, vtkPolyData* output)
 {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -367,7 +373,8 @@ std::string vtkMSEngineBridge::ExampleName(vtkDataObject* data)
 {
   if (data)
   {
-    if (auto* file = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("ExampleFile")))
+    if (auto* file =
+          vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("ExampleFile")))
     {
       if (file->GetNumberOfValues() > 0 && !file->GetValue(0).empty())
       {
@@ -381,7 +388,8 @@ std::string vtkMSEngineBridge::ExampleName(vtkDataObject* data)
 msynth::PolyhedralAnalysis vtkMSEngineBridge::AnalyzeExample(vtkPolyData* polygons,
   double angleToleranceDegrees, int maximumSmallInteger, msynth::PolyhedralExample& example)
 {
-  example = vtkMSEngineBridge::ToPolyhedralExample(polygons, vtkMSEngineBridge::ExampleName(polygons));
+  example =
+    vtkMSEngineBridge::ToPolyhedralExample(polygons, vtkMSEngineBridge::ExampleName(polygons));
   msynth::ValidateExample(example);
   msynth::PolyhedralAnalysis::Options options;
   options.AngleTolerance = angleToleranceDegrees * 3.14159265358979323846 / 180.0;
@@ -402,7 +410,8 @@ void vtkMSEngineBridge::StoreArrangement(const ArrangementRecord& record, vtkFie
     }
     fields->AddArray(a);
   };
-  const auto integers = [&](const char* name, const std::vector<std::int64_t>& values, int components)
+  const auto integers = [&](
+                          const char* name, const std::vector<std::int64_t>& values, int components)
   {
     vtkNew<vtkTypeInt64Array> a;
     a->SetName(name);
@@ -416,7 +425,8 @@ void vtkMSEngineBridge::StoreArrangement(const ArrangementRecord& record, vtkFie
   doubles("ArrangementOrigin", { p.Origin[0], p.Origin[1], p.Origin[2] });
   doubles("ArrangementQuantum", { p.Quantum });
   doubles("AngleTolerance", { record.AngleToleranceDegrees });
-  integers("ArrangementBox", { p.BoxLow[0], p.BoxLow[1], p.BoxLow[2], p.BoxHigh[0], p.BoxHigh[1], p.BoxHigh[2] }, 1);
+  integers("ArrangementBox",
+    { p.BoxLow[0], p.BoxLow[1], p.BoxLow[2], p.BoxHigh[0], p.BoxHigh[1], p.BoxHigh[2] }, 1);
   std::vector<std::int64_t> normals;
   for (const auto& n : record.Normals)
   {
@@ -439,7 +449,8 @@ vtkMSEngineBridge::ArrangementRecord vtkMSEngineBridge::LoadArrangement(
     if (!a || a->GetNumberOfValues() < minimum)
     {
       throw msynth::Error(where + ": field data array '" + std::string(name) +
-        "' is missing or too short; the input must come from the ModelSynth Plane Arrangement filter");
+        "' is missing or too short; the input must come from the ModelSynth Plane Arrangement "
+        "filter");
     }
     return a;
   };
@@ -471,7 +482,8 @@ vtkMSEngineBridge::ArrangementRecord vtkMSEngineBridge::LoadArrangement(
   }
   for (vtkIdType f = 0; f < m; ++f)
   {
-    r.Normals.push_back({ integer(normals, 3 * f), integer(normals, 3 * f + 1), integer(normals, 3 * f + 2) });
+    r.Normals.push_back(
+      { integer(normals, 3 * f), integer(normals, 3 * f + 1), integer(normals, 3 * f + 2) });
     p.Offsets.push_back(integer(offsets, f));
     p.Spacings.push_back(integer(spacings, f));
   }
@@ -517,7 +529,8 @@ void vtkMSEngineBridge::SetTimeSteps(vtkInformation* outInfo, std::size_t count)
   {
     times[i] = static_cast<double>(i);
   }
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(count));
+  outInfo->Set(
+    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(count));
   const double range[2] = { 0.0, times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
 }
@@ -533,15 +546,17 @@ std::size_t vtkMSEngineBridge::RequestedStep(vtkInformation* outInfo, std::size_
   return static_cast<std::size_t>(std::min(std::max(std::floor(t + 0.5), 0.0), last));
 }
 
-msynth::ContinuousMesh vtkMSEngineBridge::ToContinuousMesh(vtkPolyData* model, const std::string& name)
+msynth::ContinuousMesh vtkMSEngineBridge::ToContinuousMesh(
+  vtkPolyData* model, const std::string& name)
 {
   vtkDataArray* object = model->GetCellData()->GetArray("ObjectType");
   vtkDataArray* inside = object ? object : model->GetCellData()->GetArray("InsideType");
   vtkDataArray* outside = model->GetCellData()->GetArray("OutsideType");
   if (!inside || (!object && !outside))
   {
-    throw msynth::Error::InFile(name, "not a continuous model: it needs cell arrays InsideType "
-                                      "and OutsideType (3D) or ObjectType (2D)");
+    throw msynth::Error::InFile(name,
+      "not a continuous model: it needs cell arrays InsideType "
+      "and OutsideType (3D) or ObjectType (2D)");
   }
   std::vector<msynth::Point3> points(static_cast<std::size_t>(model->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < model->GetNumberOfPoints(); ++i)
@@ -573,4 +588,35 @@ msynth::ContinuousMesh vtkMSEngineBridge::ToContinuousMesh(vtkPolyData* model, c
   {
     throw msynth::Error::InFile(name, e.what());
   }
+}
+
+void vtkMSEngineBridge::AddStatistics(vtkFieldData* fields,
+  const msynth::SynthesisStatistics& statistics, msynth::SynthesisStatus status,
+  const std::string& message)
+{
+  for (const auto& f : msynth::StatisticsFields(statistics))
+  {
+    if (f.Integer)
+      AddFieldValue<vtkIdTypeArray>(fields, f.Name.c_str(), static_cast<vtkIdType>(f.Value));
+    else
+      AddFieldValue<vtkDoubleArray>(fields, f.Name.c_str(), f.Value);
+  }
+  AddFieldValue<vtkStringArray>(fields, "Status", std::string(msynth::ToString(status)));
+  AddFieldValue<vtkStringArray>(fields, "Message", message);
+  if (statistics.TrivialLabel)
+    AddFieldValue<vtkIntArray>(fields, "TrivialLabel", *statistics.TrivialLabel);
+  vtkNew<vtkIdTypeArray> origins, sites;
+  origins->SetName("FailedBlockOrigins");
+  origins->SetNumberOfComponents(3);
+  sites->SetName("FailedBlockSites");
+  sites->SetNumberOfComponents(3);
+  for (const auto& f : statistics.Failures)
+  {
+    const vtkIdType o[3] = { f.Origin[0], f.Origin[1], f.Origin[2] };
+    const vtkIdType e[3] = { f.EmptySite[0], f.EmptySite[1], f.EmptySite[2] };
+    origins->InsertNextTypedTuple(o);
+    sites->InsertNextTypedTuple(e);
+  }
+  fields->AddArray(origins);
+  fields->AddArray(sites);
 }

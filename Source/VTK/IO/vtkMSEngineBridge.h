@@ -10,16 +10,17 @@
 #ifndef vtkMSEngineBridge_h
 #define vtkMSEngineBridge_h
 
-#include "ModelSynthIOModule.h" // for export macro
-#include "vtkFieldData.h" // for AddFieldValue
-#include "vtkNew.h"       // for AddFieldValue
+#include "Core/BlockSynthesis.h" // for AddStatistics
+#include "ModelSynthIOModule.h"  // for export macro
+#include "vtkFieldData.h"        // for AddFieldValue
+#include "vtkNew.h"              // for AddFieldValue
 #include "vtkObject.h"
 
-#include "msynth/ContinuousMesh.h"     // for msynth::ContinuousMesh
-#include "msynth/LabelGrid.h"          // for msynth::LabelGrid
-#include "msynth/PlaneArrangement.h"   // for msynth::ArrangementParameters
-#include "msynth/PolyhedralAnalysis.h" // for msynth::PolyhedralAnalysis
-#include "msynth/PolyhedralExample.h"  // for msynth::PolyhedralExample
+#include "Continuous/ContinuousMesh.h"     // for msynth::ContinuousMesh
+#include "Continuous/PlaneArrangement.h"   // for msynth::ArrangementParameters
+#include "Continuous/PolyhedralAnalysis.h" // for msynth::PolyhedralAnalysis
+#include "Core/LabelGrid.h"                // for msynth::LabelGrid
+#include "Formats/PolyhedralExample.h"     // for msynth::PolyhedralExample
 
 #include <string>
 
@@ -68,7 +69,8 @@ public:
    * (default 1), `ObjectId` its object (default: connected components per type). Not validated.
    * @p name is used in messages. @throw msynth::Error when there are no polygons.
    */
-  static msynth::PolyhedralExample ToPolyhedralExample(vtkPolyData* polygons, const std::string& name);
+  static msynth::PolyhedralExample ToPolyhedralExample(
+    vtkPolyData* polygons, const std::string& name);
   /**
    * A synthesized continuous model (vtkMSArrangementMesh's output, or model.vtp read back): its
    * polygons with the cell arrays InsideType and OutsideType (3D) or ObjectType (2D).
@@ -87,6 +89,15 @@ public:
     fields->AddArray(a);
   }
 
+  /**
+   * A solver's statistics in @p fields under their one naming (msynth::StatisticsFields: counts
+   * as vtkIdTypeArray, Seconds as vtkDoubleArray), with `Status` ("succeeded", ...), `Message`,
+   * `TrivialLabel` when block synthesis used one, and per failed block `FailedBlockOrigins` and
+   * `FailedBlockSites` (3 components each).
+   */
+  static void AddStatistics(vtkFieldData* fields, const msynth::SynthesisStatistics& statistics,
+    msynth::SynthesisStatus status, const std::string& message);
+
   /// The example's file name from field data `ExampleFile`, else "the input".
   static std::string ExampleName(vtkDataObject* data);
   /**
@@ -94,8 +105,8 @@ public:
    * @p angleToleranceDegrees and @p maximumSmallInteger are the analysis options.
    * @throw msynth::Error naming the example on bad input.
    */
-  static msynth::PolyhedralAnalysis AnalyzeExample(vtkPolyData* polygons, double angleToleranceDegrees,
-    int maximumSmallInteger, msynth::PolyhedralExample& example);
+  static msynth::PolyhedralAnalysis AnalyzeExample(vtkPolyData* polygons,
+    double angleToleranceDegrees, int maximumSmallInteger, msynth::PolyhedralExample& example);
 
   /// What a plane arrangement output carries so later stages rebuild it exactly.
   struct ArrangementRecord
@@ -134,7 +145,8 @@ public:
    * Announces a label image of @p size sites on @p outInfo: its whole extent, the spacing and
    * origin of the example described by @p inInfo (1 and 0 without one), and Int labels.
    */
-  static void SetOutputLabelGrid(vtkInformation* inInfo, vtkInformation* outInfo, const int size[3]);
+  static void SetOutputLabelGrid(
+    vtkInformation* inInfo, vtkInformation* outInfo, const int size[3]);
   /// Announces time steps 0, 1, ..., @p count − 1 on @p outInfo (removes them when 0).
   static void SetTimeSteps(vtkInformation* outInfo, std::size_t count);
   /// The step of 0 ... @p count − 1 that @p outInfo asks for (UPDATE_TIME_STEP rounded and

@@ -18,9 +18,9 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 
-#include "msynth/TextModel.h"
-#include "msynth/VTKXMLCheck.h"
-#include "msynth/VoxModel.h"
+#include "Formats/TextModel.h"
+#include "Formats/VTKXMLCheck.h"
+#include "Formats/VoxModel.h"
 
 #include <array>
 #include <cctype>
@@ -153,8 +153,8 @@ bool vtkMSLabelGridReader::ReadHeader()
   }
   // What VTK's XML reader trusts is checked first (msynth/VTKXMLCheck.h): it crashes on some
   // damaged files instead of failing.
-  const std::string key = this->FileName + '\n' + std::to_string(info.st_size) + '\n' +
-    std::to_string(info.st_mtime);
+  const std::string key =
+    this->FileName + '\n' + std::to_string(info.st_size) + '\n' + std::to_string(info.st_mtime);
   if (key != this->Internal->CheckedKey)
   {
     try

@@ -11,9 +11,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkStringArray.h"
 
-#include "msynth/AtomicFile.h"
-#include "msynth/TextModel.h"
-#include "msynth/VoxModel.h"
+#include "Core/AtomicFile.h"
+#include "Formats/TextModel.h"
+#include "Formats/VoxModel.h"
 
 vtkStandardNewMacro(vtkMSLabelGridWriter);
 

@@ -13,7 +13,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
-#include "msynth/VDBFile.h"
+#include "VDB/VDBFile.h"
 
 #include <algorithm>
 #include <sys/stat.h>

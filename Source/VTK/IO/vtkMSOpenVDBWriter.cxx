@@ -14,28 +14,28 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
-#include "vtkObjectFactory.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointInterpolator.h"
-#include "vtkSmartPointer.h"
-#include "vtkVariant.h"
-#include "vtkVoronoiKernel.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkVariant.h"
+#include "vtkVoronoiKernel.h"
 
-#include "msynth/Error.h"
-#include "msynth/VDBFile.h"
+#include "Core/Error.h"
+#include "VDB/VDBFile.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
-#include <map>
+#include <cstdio>
 #include <limits>
 #include <list>
+#include <map>
 #include <vector>
 
 vtkStandardNewMacro(vtkMSOpenVDBWriter);
@@ -200,12 +200,14 @@ msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::Me
   {
     auto* ids = vtkDataArray::SafeDownCast(field->GetAbstractArray(named[k].first));
     auto* names = vtkStringArray::SafeDownCast(field->GetAbstractArray(named[k].second));
-    if (ids && names && ids->GetNumberOfValues() == names->GetNumberOfValues() && names->GetNumberOfValues() > 0)
+    if (ids && names && ids->GetNumberOfValues() == names->GetNumberOfValues() &&
+      names->GetNumberOfValues() > 0)
     {
       std::string text;
       for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
       {
-        text += (i ? ";" : "") + std::to_string(static_cast<long long>(ids->GetTuple1(i))) + ":" + names->GetValue(i);
+        text += (i ? ";" : "") + std::to_string(static_cast<long long>(ids->GetTuple1(i))) + ":" +
+          names->GetValue(i);
       }
       metadata[keys[k]] = text;
       metadata.erase(named[k].first); // the single-valued case was added above
@@ -258,7 +260,8 @@ void vtkMSOpenVDBWriter::WriteData()
   vtkImageData* input = resampled ? resampled.GetPointer() : this->GetImageDataInput();
   if (!input)
   {
-    vtkErrorMacro(<< "'" << this->FileName << "': not written: the input is neither image data nor a mesh.");
+    vtkErrorMacro(<< "'" << this->FileName
+                  << "': not written: the input is neither image data nor a mesh.");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
@@ -332,7 +335,8 @@ void vtkMSOpenVDBWriter::WriteData()
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
 
-    msynth::vdb::WriteFile(this->CurrentFileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+    msynth::vdb::WriteFile(
+      this->CurrentFileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {
@@ -363,7 +367,8 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   }
   double bounds[6];
   input->GetBounds(bounds);
-  const double extent = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double extent =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
   const double voxel = this->VoxelSize > 0 ? this->VoxelSize : (extent > 0 ? extent / 128.0 : 1.0);
   int dims[3];
   double total = 1;
@@ -376,7 +381,8 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   if (total > double(std::int64_t(1) << 28))
   {
     throw msynth::Error("resampling the points at voxel size " + std::to_string(voxel) + " needs " +
-      std::to_string(static_cast<long long>(total)) + " voxels (more than 2^28); use a larger VoxelSize");
+      std::to_string(static_cast<long long>(total)) +
+      " voxels (more than 2^28); use a larger VoxelSize");
   }
   vtkNew<vtkImageData> grid;
   grid->SetDimensions(dims);
@@ -393,7 +399,8 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   {
     throw msynth::Error("resampling the points failed: " + messages);
   }
-  vtkSmartPointer<vtkImageData> out = vtkImageData::SafeDownCast(interpolator->GetOutputDataObject(0));
+  vtkSmartPointer<vtkImageData> out =
+    vtkImageData::SafeDownCast(interpolator->GetOutputDataObject(0));
   vtkNew<vtkImageData> copy;
   copy->ShallowCopy(out);
   copy->GetFieldData()->ShallowCopy(input->GetFieldData());
@@ -402,8 +409,10 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   for (int i = 0; i < values->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* sampled = values->GetArray(i);
-    vtkDataArray* original = sampled && sampled->GetName() ? input->GetPointData()->GetArray(sampled->GetName()) : nullptr;
-    if (!original || !vtkMSEngineBridge::IsIntegerArray(original) || original->GetNumberOfComponents() != 1)
+    vtkDataArray* original =
+      sampled && sampled->GetName() ? input->GetPointData()->GetArray(sampled->GetName()) : nullptr;
+    if (!original || !vtkMSEngineBridge::IsIntegerArray(original) ||
+      original->GetNumberOfComponents() != 1)
     {
       continue;
     }
@@ -429,20 +438,25 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
     }
     double bounds[6];
     input->GetBounds(bounds);
-    const double extent = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+    const double extent =
+      std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
     if (bounds[1] - bounds[0] <= 0 || bounds[3] - bounds[2] <= 0 || bounds[5] - bounds[4] <= 0)
     {
-      throw msynth::Error("the mesh is flat (a 2D model encloses no volume); level sets need closed 3D surfaces");
+      throw msynth::Error(
+        "the mesh is flat (a 2D model encloses no volume); level sets need closed 3D surfaces");
     }
     const double voxel = this->VoxelSize > 0 ? this->VoxelSize : extent / 256.0;
-    auto* names = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TypeNames"));
+    auto* names =
+      vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TypeNames"));
     // Polygons per grid: the whole model (its interfaces with empty space), and per type.
     std::vector<std::array<double, 3>> points;
     std::vector<std::vector<std::int32_t>> all;
     std::map<int, std::vector<std::vector<std::int32_t>>> perType;
-    if (input->GetCellData()->GetArray("InsideType") && input->GetCellData()->GetArray("OutsideType"))
+    if (input->GetCellData()->GetArray("InsideType") &&
+      input->GetCellData()->GetArray("OutsideType"))
     {
-      msynth::ContinuousMesh model = vtkMSEngineBridge::ToContinuousMesh(input, this->CurrentFileName);
+      msynth::ContinuousMesh model =
+        vtkMSEngineBridge::ToContinuousMesh(input, this->CurrentFileName);
       perType = msynth::SurfacesByType(model);
       for (std::size_t f = 0; f < model.Polygons.size(); ++f)
       {
@@ -493,7 +507,8 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
       view.Metadata["object_type_name"] = name;
       meshes.push_back(view);
     }
-    msynth::vdb::WriteFile(this->CurrentFileName, {}, meshes, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+    msynth::vdb::WriteFile(this->CurrentFileName, {}, meshes,
+      FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {

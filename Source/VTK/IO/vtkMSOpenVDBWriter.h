@@ -18,7 +18,8 @@
  * the input's field data as a string (e.g. `ExampleFile` from the readers, the solvers' `Seed`
  * and run statistics; not `Seconds`, so equal runs give equal files), names by id as
  * `label_names` (from `PieceLabels`/`PieceNames`, the text format's pieces) and
- * `object_type_names` (from `TypeIds`/`TypeNames`), and the pairs given with AddMetadata(). Each grid records `vtk_array` and `vtk_association` (point or cell).
+ * `object_type_names` (from `TypeIds`/`TypeNames`), and the pairs given with AddMetadata(). Each
+ * grid records `vtk_array` and `vtk_association` (point or cell).
  *
  * The file is written atomically: to a temporary file in the same folder, renamed when
  * complete. A failed write reports an error and leaves no partial file.

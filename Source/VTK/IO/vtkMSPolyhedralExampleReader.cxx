@@ -13,9 +13,9 @@
 #include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 
-#include "msynth/MeshFormats.h"
-#include "msynth/VTKXMLCheck.h"
-#include "msynth/Error.h"
+#include "Core/Error.h"
+#include "Formats/MeshFormats.h"
+#include "Formats/VTKXMLCheck.h"
 
 #include <cctype>
 #include <sys/stat.h>
@@ -41,7 +41,8 @@ msynth::ObjectTypeOptions ParseObjectTypes(const std::string& text)
 {
   msynth::ObjectTypeOptions options;
   std::string entry;
-  auto flush = [&]() {
+  auto flush = [&]()
+  {
     const auto begin = entry.find_first_not_of(" \t");
     if (begin == std::string::npos)
     {

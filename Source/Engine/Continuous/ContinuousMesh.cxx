@@ -1,0 +1,535 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Continuous/ContinuousMesh.h"
+
+#include "Core/Error.h"
+
+#include "Continuous/Point3Math.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+namespace msynth
+{
+namespace
+{
+using Wide = __int128;
+
+Wide DotW(const IntVec3& a, const IntVec3& b)
+{
+  return static_cast<Wide>(a[0]) * b[0] + static_cast<Wide>(a[1]) * b[1] +
+    static_cast<Wide>(a[2]) * b[2];
+}
+
+/// (a × b)·n, exactly.
+Wide TripleW(const IntVec3& a, const IntVec3& b, const IntVec3& n)
+{
+  const Wide x = static_cast<Wide>(a[1]) * b[2] - static_cast<Wide>(a[2]) * b[1];
+  const Wide y = static_cast<Wide>(a[2]) * b[0] - static_cast<Wide>(a[0]) * b[2];
+  const Wide z = static_cast<Wide>(a[0]) * b[1] - static_cast<Wide>(a[1]) * b[0];
+  return x * n[0] + y * n[1] + z * n[2];
+}
+
+/// Type of @p label toward a direction whose side of each label family is given by @p side.
+template <class Side>
+int TypeToward(const NeighbourhoodLabel& label, Side&& side)
+{
+  unsigned mask = 0;
+  for (std::size_t j = 0; j < label.Families.size(); ++j)
+  {
+    if (side(label.Families[j]) > 0)
+    {
+      mask |= 1u << j;
+    }
+  }
+  const int t = label.Types[mask];
+  if (t < 0)
+  {
+    throw Error("mesh extraction: internal error (a face lies in a cone the label does not have)");
+  }
+  return t;
+}
+
+class FaceTracer
+{
+public:
+  FaceTracer(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+    const std::vector<std::int32_t>& labels)
+    : Analysis(analysis)
+    , Arrangement(arrangement)
+    , Labels(labels)
+  {
+  }
+
+  /// Links of @p v within the plane of normal @p n, counter-clockwise around n.
+  std::vector<PlaneArrangement::Link> Around(std::int64_t v, const IntVec3& n) const
+  {
+    std::vector<PlaneArrangement::Link> out;
+    for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+    {
+      if (DotW(n, this->Arrangement.Direction(l->Direction)) == 0)
+      {
+        out.push_back(*l);
+      }
+    }
+    if (out.empty())
+    {
+      return out;
+    }
+    const IntVec3 r = this->Arrangement.Direction(out[0].Direction);
+    const auto half = [&](const IntVec3& d)
+    {
+      const Wide t = TripleW(r, d, n);
+      return (t > 0 || (t == 0 && DotW(r, d) > 0)) ? 0 : 1;
+    };
+    std::sort(out.begin(), out.end(),
+      [&](const PlaneArrangement::Link& a, const PlaneArrangement::Link& b)
+      {
+        const IntVec3& da = this->Arrangement.Direction(a.Direction);
+        const IntVec3& db = this->Arrangement.Direction(b.Direction);
+        const int ha = half(da), hb = half(db);
+        if (ha != hb)
+        {
+          return ha < hb;
+        }
+        return TripleW(da, db, n) > 0;
+      });
+    return out;
+  }
+
+  /// Traces the face left of the edge leaving @p u along @p first (counter-clockwise around n).
+  std::vector<std::int64_t> Trace(
+    std::int64_t u, const PlaneArrangement::Link& first, const IntVec3& n) const
+  {
+    std::vector<std::int64_t> loop{ u };
+    PlaneArrangement::Link edge = first;
+    for (std::size_t guard = 0;; ++guard)
+    {
+      if (edge.Vertex < 0 || guard > 1000000)
+      {
+        throw Error("mesh extraction: a face of the model leaves the output box (the labels are "
+                    "not consistent with the arrangement)");
+      }
+      const std::int64_t v = edge.Vertex;
+      if (v == u)
+      {
+        return loop;
+      }
+      loop.push_back(v);
+      const auto around = this->Around(v, n);
+      const int back = edge.Direction ^ 1;
+      std::size_t j = 0;
+      while (j < around.size() && around[j].Direction != back)
+      {
+        ++j;
+      }
+      if (j == around.size())
+      {
+        throw Error("mesh extraction: internal error (an edge has no way back)");
+      }
+      edge = around[(j + around.size() - 1) % around.size()];
+    }
+  }
+
+  const NeighbourhoodLabel& LabelOf(std::int64_t v) const
+  {
+    return this->Analysis.Label(this->Labels[static_cast<std::size_t>(v)]).Label;
+  }
+
+  const PolyhedralAnalysis& Analysis;
+  const PlaneArrangement& Arrangement;
+  const std::vector<std::int32_t>& Labels;
+};
+
+} // namespace
+
+ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+  const std::vector<std::int32_t>& labels)
+{
+  const std::int64_t n = arrangement.NumberOfVertices();
+  if (static_cast<std::int64_t>(labels.size()) != n)
+  {
+    throw Error("mesh extraction: " + std::to_string(labels.size()) + " labels for " +
+      std::to_string(n) + " arrangement vertices");
+  }
+  for (auto a : labels)
+  {
+    if (a < 0 || a >= analysis.NumberOfLabels())
+    {
+      throw Error("mesh extraction: label " + std::to_string(a) + " is not one of the example's " +
+        std::to_string(analysis.NumberOfLabels()) + " labels");
+    }
+  }
+  const PlaneFamilySet& set = arrangement.Families();
+  const FaceTracer tracer(analysis, arrangement, labels);
+  ContinuousMesh mesh;
+  mesh.Planar = arrangement.Planar();
+  std::vector<std::int32_t> pointOf(static_cast<std::size_t>(n), -1);
+  const auto emit = [&](
+                      const std::vector<std::int64_t>& loop, bool reverse, int inside, int outside)
+  {
+    std::vector<std::int32_t> polygon;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const std::int64_t v = loop[reverse ? (loop.size() - i) % loop.size() : i];
+      auto& p = pointOf[static_cast<std::size_t>(v)];
+      if (p < 0)
+      {
+        p = static_cast<std::int32_t>(mesh.Points.size());
+        mesh.Points.push_back(arrangement.Position(v));
+        mesh.PointVertex.push_back(v);
+      }
+      polygon.push_back(p);
+    }
+    mesh.Polygons.push_back(std::move(polygon));
+    mesh.InsideType.push_back(inside);
+    if (!mesh.Planar)
+    {
+      mesh.OutsideType.push_back(outside);
+    }
+  };
+  const IntVec3 up{ 0, 0, 1 };
+  for (std::int64_t u = 0; u < n; ++u)
+  {
+    const NeighbourhoodLabel& label = tracer.LabelOf(u);
+    if (label.Families.empty() && (!mesh.Planar || label.Types[0] == 0))
+    {
+      continue; // inside a cell: no interface (3D) or empty space (2D) starts here
+    }
+    if (mesh.Planar)
+    {
+      const auto around = tracer.Around(u, up);
+      for (std::size_t i = 0; i < around.size(); ++i)
+      {
+        const IntVec3& a = arrangement.Direction(around[i].Direction);
+        const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
+        const IntVec3 w{ a[0] + b[0], a[1] + b[1], 0 };
+        const int type = TypeToward(label, [&](int f) { return set.Side(f, w); });
+        if (type == 0)
+        {
+          continue;
+        }
+        const auto loop = tracer.Trace(u, around[i], up);
+        if (*std::min_element(loop.begin(), loop.end()) == u)
+        {
+          emit(loop, false, type, 0);
+        }
+      }
+      continue;
+    }
+    for (int p : label.Families)
+    {
+      const IntVec3& np = set.Normal(p);
+      const auto around = tracer.Around(u, np);
+      if (around.size() < 4)
+      {
+        throw Error("mesh extraction: internal error (fewer than two lines in a plane)");
+      }
+      for (std::size_t i = 0; i < around.size(); ++i)
+      {
+        const IntVec3& a = arrangement.Direction(around[i].Direction);
+        const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
+        const IntVec3 w{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+        const auto side = [&](int sign)
+        { return TypeToward(label, [&](int f) { return f == p ? sign : set.Side(f, w); }); };
+        const int back = side(-1), front = side(+1);
+        if (back == front)
+        {
+          continue;
+        }
+        const auto loop = tracer.Trace(u, around[i], np);
+        if (*std::min_element(loop.begin(), loop.end()) != u)
+        {
+          continue;
+        }
+        // Counter-clockwise around n_p: the normal points to the front side.
+        const bool backInside = front == 0 || (back != 0 && back < front);
+        if (backInside)
+        {
+          emit(loop, false, back, front);
+        }
+        else
+        {
+          emit(loop, true, front, back);
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+std::map<int, std::vector<std::vector<std::int32_t>>> SurfacesByType(const ContinuousMesh& mesh)
+{
+  std::map<int, std::vector<std::vector<std::int32_t>>> out;
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    const auto& poly = mesh.Polygons[f];
+    if (mesh.InsideType[f] > 0)
+    {
+      out[mesh.InsideType[f]].push_back(poly);
+    }
+    if (!mesh.Planar && mesh.OutsideType[f] > 0)
+    {
+      out[mesh.OutsideType[f]].emplace_back(poly.rbegin(), poly.rend());
+    }
+  }
+  return out;
+}
+
+PolyhedralExample MeshToModel(
+  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
+{
+  PolyhedralExample model;
+  model.Points = mesh.Points;
+  model.Source = "synthesized model";
+  model.TypeNames = typeNames;
+  std::vector<int> faceType;
+  for (auto& [type, polygons] : SurfacesByType(mesh))
+  {
+    for (auto& poly : polygons)
+    {
+      model.Faces.emplace_back(poly.begin(), poly.end());
+      faceType.push_back(type);
+    }
+  }
+  // Objects: faces of one type joined through shared edges.
+  const std::size_t nf = model.Faces.size();
+  std::vector<std::size_t> parent(nf);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&parent](std::size_t i)
+  {
+    while (parent[i] != i)
+    {
+      i = parent[i] = parent[parent[i]];
+    }
+    return i;
+  };
+  std::map<std::tuple<int, int, int>, std::size_t> firstOfEdge; // (type, a, b)
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    const auto& face = model.Faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i)
+    {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      const auto [it, inserted] =
+        firstOfEdge.emplace(std::make_tuple(faceType[f], std::min(a, b), std::max(a, b)), f);
+      if (!inserted)
+      {
+        parent[find(f)] = find(it->second);
+      }
+    }
+  }
+  std::map<std::size_t, int> objectOf;
+  model.FaceObject.assign(nf, 0);
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    const auto [it, inserted] = objectOf.emplace(find(f), model.NumberOfObjects());
+    if (inserted)
+    {
+      model.ObjectTypes.push_back(faceType[f]);
+      const auto t = typeNames.find(faceType[f]);
+      const std::string name =
+        t != typeNames.end() ? t->second : "type" + std::to_string(faceType[f]);
+      model.ObjectNames.push_back(name + "." + std::to_string(it->second));
+    }
+    model.FaceObject[f] = it->second;
+  }
+  model.Planar = mesh.Planar;
+  return model;
+}
+
+ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
+  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
+{
+  ContinuousModelReport report;
+  if (mesh.Polygons.empty())
+  {
+    report.Valid = true; // the empty model satisfies the constraint everywhere
+    return report;
+  }
+  PolyhedralExample model = MeshToModel(mesh, typeNames);
+  report.Objects = model.NumberOfObjects();
+  // Orientation, before validation (which would turn inward objects outward).
+  std::vector<double> volume(static_cast<std::size_t>(model.NumberOfObjects()), 0.0);
+  for (std::size_t f = 0; f < model.Faces.size(); ++f)
+  {
+    const auto& face = model.Faces[f];
+    const Point3& a = model.Points[static_cast<std::size_t>(face[0])];
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+    {
+      const Point3& b = model.Points[static_cast<std::size_t>(face[i])];
+      const Point3& c = model.Points[static_cast<std::size_t>(face[i + 1])];
+      const Point3 cr = point3::Cross(point3::Sub(b, a), point3::Sub(c, a));
+      volume[static_cast<std::size_t>(model.FaceObject[f])] +=
+        mesh.Planar ? cr[2] : point3::Dot(a, cr);
+    }
+  }
+  for (int o = 0; o < model.NumberOfObjects(); ++o)
+  {
+    if (!(volume[static_cast<std::size_t>(o)] > 0))
+    {
+      report.Problem = "object " + model.ObjectNames[static_cast<std::size_t>(o)] +
+        " of the output is not oriented outward";
+      return report;
+    }
+  }
+  try
+  {
+    ValidateExample(model);
+  }
+  catch (const Error& e)
+  {
+    report.Problem = std::string("the output is not a valid closed model: ") + e.what();
+    return report;
+  }
+  const PolyhedralAnalysis found = PolyhedralAnalysis::Analyze(model);
+  // Families of the model's analysis → the example's, by their exact normals (up to sign: a
+  // family's normal points whichever way the first face seen did).
+  std::vector<int> familyMap;
+  std::vector<bool> flipped;
+  for (const auto& n : found.Families().AllNormals())
+  {
+    const auto& all = example.Families().AllNormals();
+    const IntVec3 minus{ -n[0], -n[1], -n[2] };
+    auto it = std::find(all.begin(), all.end(), n);
+    flipped.push_back(it == all.end());
+    if (it == all.end())
+    {
+      it = std::find(all.begin(), all.end(), minus);
+    }
+    if (it == all.end())
+    {
+      report.Problem = "the output has a face direction (" + std::to_string(n[0]) + ", " +
+        std::to_string(n[1]) + ", " + std::to_string(n[2]) + ") that the example does not have";
+      return report;
+    }
+    familyMap.push_back(static_cast<int>(it - all.begin()));
+  }
+  report.DistinctLabels = found.NumberOfLabels();
+  report.SampledFeatures = static_cast<std::int64_t>(found.Features().size());
+  for (int id = 0; id < found.NumberOfLabels(); ++id)
+  {
+    const NeighbourhoodLabel& l = found.Label(id).Label;
+    // Renumber the families and permute the cone bits to the example's order.
+    std::vector<std::pair<int, int>> order; // (example family, position in l)
+    for (std::size_t j = 0; j < l.Families.size(); ++j)
+    {
+      order.emplace_back(familyMap[static_cast<std::size_t>(l.Families[j])], static_cast<int>(j));
+    }
+    std::sort(order.begin(), order.end());
+    NeighbourhoodLabel mapped;
+    for (const auto& o : order)
+    {
+      mapped.Families.push_back(o.first);
+    }
+    mapped.Types.assign(l.Types.size(), -1);
+    for (unsigned m = 0; m < l.Types.size(); ++m)
+    {
+      unsigned target = 0;
+      for (std::size_t k = 0; k < order.size(); ++k)
+      {
+        const auto j = static_cast<std::size_t>(order[k].second);
+        const bool positive = ((m >> j) & 1u) != 0;
+        if (positive != flipped[static_cast<std::size_t>(l.Families[j])])
+        {
+          target |= 1u << k;
+        }
+      }
+      mapped.Types[target] = l.Types[m];
+    }
+    mapped.Canonicalize();
+    if (example.Find(mapped) < 0)
+    {
+      Point3 where{};
+      for (const auto& f : found.Features())
+      {
+        if (f.Label == id)
+        {
+          where = f.A;
+          break;
+        }
+      }
+      report.Problem = "the neighbourhood " + found.Label(id).Expression + " at (" +
+        std::to_string(where[0]) + ", " + std::to_string(where[1]) + ", " +
+        std::to_string(where[2]) + ") is not one of the example's labels";
+      return report;
+    }
+  }
+  report.Valid = true;
+  return report;
+}
+
+LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims)
+{
+  if (!(voxel > 0) || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
+    static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
+      static_cast<double>(LabelGrid::MaxSites))
+  {
+    throw Error("voxelization: the grid is empty or has too many voxels");
+  }
+  LabelGrid grid(dims[0], dims[1], dims[2], 0);
+  if (mesh.Polygons.empty())
+  {
+    return grid;
+  }
+  const PolyhedralExample model = MeshToModel(mesh, {});
+  const SolidClassifier classifier(model);
+  // Off-lattice nudges (fractions of a voxel) keep centres off the planes of the arrangement.
+  const double nudge[3] = { 0.0123456, 0.0234567, mesh.Planar ? 0.0 : 0.0345678 };
+  for (std::int64_t z = 0; z < dims[2]; ++z)
+  {
+    for (std::int64_t y = 0; y < dims[1]; ++y)
+    {
+      for (std::int64_t x = 0; x < dims[0]; ++x)
+      {
+        const Point3 p{ origin[0] + (static_cast<double>(x) + 0.5 + nudge[0]) * voxel,
+          origin[1] + (static_cast<double>(y) + 0.5 + nudge[1]) * voxel,
+          mesh.Planar ? 0.0 : origin[2] + (static_cast<double>(z) + 0.5 + nudge[2]) * voxel };
+        const int object = classifier.ObjectAt(p);
+        if (object >= 0)
+        {
+          grid.Set(x, y, z, model.ObjectTypes[static_cast<std::size_t>(object)]);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
+  std::vector<std::vector<std::int32_t>> polygons, std::vector<std::int32_t> insideType,
+  std::vector<std::int32_t> outsideType)
+{
+  ContinuousMesh mesh;
+  mesh.Planar = planar;
+  if (insideType.size() != polygons.size() || (!planar && outsideType.size() != polygons.size()))
+  {
+    throw Error("a model mesh needs one inside (and, in 3D, one outside) type per polygon");
+  }
+  for (const auto& poly : polygons)
+  {
+    if (poly.size() < 3)
+    {
+      throw Error("a model mesh polygon has fewer than three corners");
+    }
+    for (auto i : poly)
+    {
+      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+      {
+        throw Error("a model mesh polygon refers to a point that does not exist");
+      }
+    }
+  }
+  mesh.Points = std::move(points);
+  mesh.PointVertex.assign(mesh.Points.size(), -1);
+  mesh.Polygons = std::move(polygons);
+  mesh.InsideType = std::move(insideType);
+  if (!planar)
+  {
+    mesh.OutsideType = std::move(outsideType);
+  }
+  return mesh;
+}
+
+} // namespace msynth

@@ -1,0 +1,733 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Continuous/ContinuousSynthesis.h"
+
+#include "Core/BlockSynthesis.h"
+#include "Core/Error.h"
+
+#include "Core/Random.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <set>
+#include <tuple>
+
+namespace msynth
+{
+
+ArrangementRules::ArrangementRules(
+  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
+  : Arrangement(arrangement)
+{
+  const PlaneFamilySet& set = arrangement.Families();
+  if (set.AllNormals() != analysis.Families().AllNormals())
+  {
+    throw Error("the plane arrangement was built for other plane families than the example's");
+  }
+  const int k = analysis.NumberOfLabels();
+  const int directions = arrangement.NumberOfDirections();
+  this->Allocate(k, std::max(directions, 1));
+  this->Empty = analysis.Find(NeighbourhoodLabel::Constant(0));
+  if (this->Empty < 0)
+  {
+    throw Error("the example has no empty space around it");
+  }
+  for (const auto& info : analysis.Labels())
+  {
+    std::uint64_t mask = 0;
+    for (int f : info.Label.Families)
+    {
+      mask |= std::uint64_t(1) << f;
+    }
+    this->LabelFamilies.push_back(mask);
+  }
+  std::map<NeighbourhoodLabel, int> ids;
+  const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
+  this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
+  for (int d = 0; d < directions; ++d)
+  {
+    for (int a = 0; a < k; ++a)
+    {
+      const NeighbourhoodLabel e = analysis.Label(a).Label.Evaluate(set, arrangement.Direction(d));
+      const int id = ids.emplace(e, static_cast<int>(ids.size())).first->second;
+      this->Evaluations[static_cast<std::size_t>(d) * k + a] = id;
+    }
+  }
+  const int w = this->Words();
+  this->EmptyToward.assign(static_cast<std::size_t>(directions) * w, 0);
+  std::vector<std::vector<int>> bucket(ids.size());
+  for (int d = 0; d < directions; ++d)
+  {
+    // Labels b at the far end of an edge along d see it along the opposite class d ^ 1.
+    for (auto& b : bucket)
+    {
+      b.clear();
+    }
+    for (int b = 0; b < k; ++b)
+    {
+      bucket[static_cast<std::size_t>(this->EvaluationId(d ^ 1, b))].push_back(b);
+    }
+    for (int a = 0; a < k; ++a)
+    {
+      const int id = this->EvaluationId(d, a);
+      for (int b : bucket[static_cast<std::size_t>(id)])
+      {
+        this->AllowOne(d, a, b);
+      }
+      if (id == emptyId)
+      {
+        this->EmptyToward[static_cast<std::size_t>(d) * w + (a >> 6)] |= std::uint64_t(1)
+          << (a & 63);
+      }
+    }
+  }
+  this->Finish();
+}
+
+void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out) const
+{
+  const int w = this->Words();
+  std::fill(out, out + w, 0);
+  const std::uint64_t mask = this->Arrangement.FamilyMask(v);
+  for (int a = 0; a < this->NumberOfLabels(); ++a)
+  {
+    if ((this->LabelFamilies[static_cast<std::size_t>(a)] & ~mask) == 0)
+    {
+      out[a >> 6] |= std::uint64_t(1) << (a & 63);
+    }
+  }
+  for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+  {
+    if (l->Vertex < 0)
+    {
+      const std::uint64_t* e =
+        this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
+      for (int i = 0; i < w; ++i)
+      {
+        out[i] &= e[i];
+      }
+    }
+  }
+}
+
+int ArrangementRules::InitialCount(std::int64_t v) const
+{
+  std::vector<std::uint64_t> bits(static_cast<std::size_t>(this->Words()));
+  this->InitialDomain(v, bits.data());
+  int n = 0;
+  for (auto b : bits)
+  {
+    n += __builtin_popcountll(b);
+  }
+  return n;
+}
+
+namespace
+{
+
+/// Vertices grouped into overlapping blocks: cells of half the block edge, a block is 2×2×2 cells.
+struct BlockLayout
+{
+  std::array<std::int64_t, 3> Cells{ { 1, 1, 1 } };
+  std::vector<std::vector<std::int64_t>> CellVertices;
+  std::array<std::int64_t, 3> Blocks{ { 1, 1, 1 } };
+
+  BlockLayout(const PlaneArrangement& arrangement, double edge)
+  {
+    const auto& p = arrangement.Parameters();
+    const int dims = arrangement.Planar() ? 2 : 3;
+    const double half = edge / 2;
+    std::array<double, 3> lo{};
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[static_cast<std::size_t>(c)] =
+        p.Origin[static_cast<std::size_t>(c)] + p.Quantum * static_cast<double>(p.BoxLow[c]);
+      if (c < dims && edge > 0)
+      {
+        const double extent = p.Quantum * static_cast<double>(p.BoxHigh[c] - p.BoxLow[c]);
+        this->Cells[static_cast<std::size_t>(c)] =
+          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent / half - 1e-9)));
+        this->Blocks[static_cast<std::size_t>(c)] =
+          std::max<std::int64_t>(1, this->Cells[static_cast<std::size_t>(c)] - 1);
+      }
+    }
+    this->CellVertices.resize(
+      static_cast<std::size_t>(this->Cells[0] * this->Cells[1] * this->Cells[2]));
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+    {
+      std::array<std::int64_t, 3> cell{ { 0, 0, 0 } };
+      for (int c = 0; c < dims; ++c)
+      {
+        if (edge > 0)
+        {
+          const double t = (arrangement.Position(v)[static_cast<std::size_t>(c)] -
+                             lo[static_cast<std::size_t>(c)]) /
+            half;
+          cell[static_cast<std::size_t>(c)] =
+            std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(t)), 0,
+              this->Cells[static_cast<std::size_t>(c)] - 1);
+        }
+      }
+      this
+        ->CellVertices[static_cast<std::size_t>(
+          cell[0] + this->Cells[0] * (cell[1] + this->Cells[1] * cell[2]))]
+        .push_back(v);
+    }
+  }
+
+  std::int64_t NumberOfBlocks() const
+  {
+    return this->Blocks[0] * this->Blocks[1] * this->Blocks[2];
+  }
+
+  /// Vertices of block @p b in ascending (scan) order.
+  std::vector<std::int64_t> Vertices(std::int64_t b) const
+  {
+    const std::int64_t bx = b % this->Blocks[0], by = (b / this->Blocks[0]) % this->Blocks[1],
+                       bz = b / (this->Blocks[0] * this->Blocks[1]);
+    std::vector<std::int64_t> out;
+    for (std::int64_t z = bz; z < std::min(bz + 2, this->Cells[2]); ++z)
+    {
+      for (std::int64_t y = by; y < std::min(by + 2, this->Cells[1]); ++y)
+      {
+        for (std::int64_t x = bx; x < std::min(bx + 2, this->Cells[0]); ++x)
+        {
+          const auto& c = this->CellVertices[static_cast<std::size_t>(
+            x + this->Cells[0] * (y + this->Cells[1] * z))];
+          out.insert(out.end(), c.begin(), c.end());
+        }
+      }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+};
+
+/// A label of @p domain: uniformly, or proportionally to @p weights when not empty.
+int PickLabel(const std::uint64_t* domain, int words, int count, const std::vector<double>& weights,
+  Random& rng)
+{
+  if (weights.empty())
+  {
+    auto r = static_cast<int>(rng.Below(static_cast<std::uint64_t>(count)));
+    for (int w = 0; w < words; ++w)
+    {
+      for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
+      {
+        if (r-- == 0)
+        {
+          return w * 64 + __builtin_ctzll(bits);
+        }
+      }
+    }
+    return -1;
+  }
+  double total = 0;
+  int last = -1;
+  for (int w = 0; w < words; ++w)
+  {
+    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
+    {
+      total += weights[static_cast<std::size_t>(w * 64 + __builtin_ctzll(bits))];
+    }
+  }
+  double r = rng.Uniform() * total;
+  for (int w = 0; w < words; ++w)
+  {
+    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
+    {
+      last = w * 64 + __builtin_ctzll(bits);
+      r -= weights[static_cast<std::size_t>(last)];
+      if (r < 0)
+      {
+        return last;
+      }
+    }
+  }
+  return last;
+}
+
+/// The undecided vertices of a block in the order they are labelled.
+class SiteQueue
+{
+public:
+  SiteQueue(SiteOrder order, std::int64_t n, Random& rng)
+    : Order(order)
+    , Counts(static_cast<std::size_t>(n), 0)
+    , Key(static_cast<std::size_t>(n))
+  {
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      this->Key[static_cast<std::size_t>(i)] =
+        order == SiteOrder::ScanLine ? static_cast<std::uint64_t>(i) : rng.Next();
+    }
+  }
+
+  void Update(std::int64_t i, int count)
+  {
+    auto& old = this->Counts[static_cast<std::size_t>(i)];
+    if (old > 1)
+    {
+      this->Pending.erase({ this->Order == SiteOrder::MinimumEntropy ? old : 0,
+        this->Key[static_cast<std::size_t>(i)], i });
+    }
+    old = count;
+    if (count > 1)
+    {
+      this->Pending.insert({ this->Order == SiteOrder::MinimumEntropy ? count : 0,
+        this->Key[static_cast<std::size_t>(i)], i });
+    }
+  }
+
+  /// The next undecided vertex, or -1.
+  std::int64_t Next() const
+  {
+    return this->Pending.empty() ? -1 : std::get<2>(*this->Pending.begin());
+  }
+  std::int64_t Remaining() const { return static_cast<std::int64_t>(this->Pending.size()); }
+
+private:
+  SiteOrder Order;
+  std::vector<int> Counts;
+  std::vector<std::uint64_t> Key;
+  std::set<std::tuple<int, std::uint64_t, std::int64_t>> Pending;
+};
+
+} // namespace
+
+namespace
+{
+/**
+ * One run of continuous synthesis (D§4.5, Algorithm 4.1; T§4.5.6 for the blocks): the model's
+ * labels, each block's vertices and catalog, the attempt with one level of backtracking, and the
+ * catalog snapshots. The run over the blocks is the shared BlockRunner.
+ */
+class ContinuousRun
+{
+public:
+  ContinuousRun(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+    const ContinuousSynthesisOptions& options, ContinuousSynthesisResult& result)
+    : Arrangement(arrangement)
+    , Options(options)
+    , Rules(analysis, arrangement)
+    , Result(result)
+    , N(arrangement.NumberOfVertices())
+    , K(this->Rules.NumberOfLabels())
+    , Words(this->Rules.Words())
+  {
+    double reference = 0;
+    for (int f = 0; f < arrangement.Families().Size(); ++f)
+      reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
+    this->Whole = options.BlockSize == 0;
+    this->Layout =
+      std::make_unique<BlockLayout>(arrangement, this->Whole ? 0.0 : options.BlockSize * reference);
+    this->Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
+    result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
+    this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
+    for (std::int64_t v = 0; v < this->N; ++v)
+      this->Rules.InitialDomain(
+        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words);
+    if (options.Choice == LabelChoice::Frequency)
+    {
+      for (const auto& info : analysis.Labels())
+        this->Weights.push_back(static_cast<double>(std::max<std::int64_t>(info.Occurrences, 1)));
+    }
+    else if (options.Choice != LabelChoice::Uniform)
+    {
+      throw Error(
+        "continuous synthesis: only uniform and frequency-weighted label choice are available");
+    }
+    this->LocalOf.assign(static_cast<std::size_t>(this->N), -1);
+  }
+
+  bool WholeModel() const { return this->Whole; }
+  std::int64_t NumberOfBlocks() const { return this->Blocks; }
+  bool Snapshots() const { return this->Options.Snapshots > 0 && this->Options.OnSnapshot; }
+  const std::string& LastFailure() const { return this->Failure; }
+  /// The arrangement vertex of the current block's local vertex @p local.
+  std::int64_t Vertex(std::int64_t local) const
+  {
+    return this->Verts[static_cast<std::size_t>(local)];
+  }
+  void EmptyModel()
+  {
+    this->Result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
+  }
+
+  /// Makes block @p b the current one: its vertices and their local numbers.
+  void Enter(std::int64_t b)
+  {
+    if (this->Whole)
+    {
+      this->Verts.resize(static_cast<std::size_t>(this->N));
+      std::iota(this->Verts.begin(), this->Verts.end(), std::int64_t(0));
+    }
+    else
+    {
+      this->Verts = this->Layout->Vertices(b);
+    }
+    for (std::size_t i = 0; i < this->Verts.size(); ++i)
+      this->LocalOf[static_cast<std::size_t>(this->Verts[i])] = static_cast<std::int32_t>(i);
+    this->BlockStart = ContinuousSnapshot();
+  }
+
+  /// One attempt at the current block @p b: -1 when solved (its labels are written to the
+  /// model), else the local vertex whose catalog became empty.
+  std::int64_t Attempt(std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assignments);
+
+  /// After block @p b: its vertices leave, and its snapshots are emitted.
+  void Leave(std::int64_t b)
+  {
+    for (std::int64_t v : this->Verts)
+      this->LocalOf[static_cast<std::size_t>(v)] = -1;
+    if (this->Whole || !this->Snapshots())
+      return;
+    // Snapshots 1 .. S-1 show the catalog of block floor(j · blocks / S) after its first
+    // propagation; snapshot S the finished model.
+    for (std::int64_t j = 1; j < this->Options.Snapshots; ++j)
+    {
+      if ((j * this->Blocks) / this->Options.Snapshots == b)
+      {
+        if (this->BlockStart.CatalogSize.empty())
+          this->BlockStart = this->Capture(b, false);
+        this->Emit(this->BlockStart);
+      }
+    }
+    if (b + 1 == this->Blocks)
+      this->Emit(this->Capture(b, false));
+  }
+
+  /// The whole model now; @p active: with the current block's catalog; block -1: the catalog
+  /// before anything is chosen.
+  ContinuousSnapshot Capture(std::int64_t block, bool active) const;
+  void Emit(ContinuousSnapshot s)
+  {
+    s.Step = this->Step++;
+    this->Options.OnSnapshot(s);
+  }
+
+private:
+  /// The labels of vertices outside the block constrain the block's catalog (then propagated).
+  std::int64_t ConstrainFromOutside();
+  /// Labels the undecided vertices; a label whose propagation empties a set is removed and
+  /// another tried (one level of backtracking). Returns -1, or the emptied local vertex.
+  std::int64_t AssignAll(std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assigned);
+  template <typename Visit>
+  void ForEachNeighbour(std::int64_t local, Visit&& visit) const
+  {
+    const std::int64_t v = this->Verts[static_cast<std::size_t>(local)];
+    for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+    {
+      if (l->Vertex >= 0)
+      {
+        const std::int32_t u = this->LocalOf[static_cast<std::size_t>(l->Vertex)];
+        if (u >= 0 && !visit(u, l->Direction))
+          return;
+      }
+    }
+  }
+
+  const PlaneArrangement& Arrangement;
+  const ContinuousSynthesisOptions& Options;
+  const ArrangementRules Rules;
+  ContinuousSynthesisResult& Result;
+  const std::int64_t N;
+  const int K, Words;
+  bool Whole = true;
+  std::unique_ptr<BlockLayout> Layout;
+  std::int64_t Blocks = 1;
+  std::vector<std::uint64_t> Initial; ///< [vertex][word]: the catalog before anything is chosen
+  std::vector<double> Weights;        ///< per label; empty: uniform
+  std::vector<std::int32_t> LocalOf;  ///< per vertex: its number in the current block, or -1
+  std::vector<std::int64_t> Verts;    ///< the current block's vertices, ascending
+  LabelDomains Domains;
+  std::vector<ContinuousSnapshot> Pending; ///< whole model: the current attempt's snapshots
+  ContinuousSnapshot BlockStart;           ///< blocks: the block's catalog after propagation
+  std::int64_t Step = 0;
+  std::int64_t AssignmentsSoFar = 0; ///< label choices of all finished attempts
+  std::string Failure;               ///< where the last failed attempt emptied a catalog
+};
+
+ContinuousSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
+{
+  ContinuousSnapshot s;
+  s.Block = block;
+  s.Assignments = this->AssignmentsSoFar;
+  s.CatalogSize.assign(static_cast<std::size_t>(this->N), 1);
+  s.Labels = this->Result.Labels;
+  if (block < 0) // the catalog before anything is chosen
+  {
+    for (std::int64_t v = 0; v < this->N; ++v)
+    {
+      int c = 0;
+      for (int i = 0; i < this->Words; ++i)
+        c += __builtin_popcountll(this->Initial[static_cast<std::size_t>(v) * this->Words + i]);
+      s.CatalogSize[static_cast<std::size_t>(v)] = c;
+      s.Labels[static_cast<std::size_t>(v)] = -1;
+    }
+  }
+  if (active)
+  {
+    for (std::size_t i = 0; i < this->Verts.size(); ++i)
+    {
+      const auto v = static_cast<std::size_t>(this->Verts[i]);
+      const int c = this->Domains.Count(static_cast<std::int64_t>(i));
+      s.CatalogSize[v] = c;
+      s.Labels[v] = c == 1 ? this->Domains.Single(static_cast<std::int64_t>(i)) : -1;
+    }
+  }
+  s.Entropy.resize(s.CatalogSize.size());
+  for (std::size_t i = 0; i < s.CatalogSize.size(); ++i)
+    s.Entropy[i] = s.CatalogSize[i] > 0 ? static_cast<float>(std::log2(s.CatalogSize[i])) : 0.0f;
+  return s;
+}
+
+std::int64_t ContinuousRun::ConstrainFromOutside()
+{
+  const auto m = static_cast<std::int64_t>(this->Verts.size());
+  std::vector<std::uint64_t> startSets(static_cast<std::size_t>(m) * this->Words);
+  for (std::int64_t i = 0; i < m; ++i)
+    std::copy_n(this->Initial.data() +
+        static_cast<std::size_t>(this->Verts[static_cast<std::size_t>(i)]) * this->Words,
+      this->Words, startSets.data() + static_cast<std::size_t>(i) * this->Words);
+  this->Domains.Reset(m, this->K, std::move(startSets));
+  bool ok = true;
+  for (std::int64_t i = 0; i < m; ++i)
+  {
+    const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+    for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+    {
+      if (l->Vertex >= 0 && this->LocalOf[static_cast<std::size_t>(l->Vertex)] < 0)
+      {
+        // A fixed neighbour w: u is reached from w along the opposite direction.
+        ok = this->Domains.Keep(i,
+               this->Rules.Compatible(
+                 l->Direction ^ 1, this->Result.Labels[static_cast<std::size_t>(l->Vertex)])) &&
+          ok;
+      }
+    }
+  }
+  auto neighbours = [this](std::int64_t local, auto&& visit)
+  { this->ForEachNeighbour(local, visit); };
+  return ok ? this->Domains.Propagate(this->Rules, neighbours) : 0;
+}
+
+std::int64_t ContinuousRun::AssignAll(
+  std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assigned)
+{
+  const auto m = static_cast<std::int64_t>(this->Verts.size());
+  auto neighbours = [this](std::int64_t local, auto&& visit)
+  { this->ForEachNeighbour(local, visit); };
+  int taken = 0;
+  std::vector<std::uint64_t> exclude(static_cast<std::size_t>(this->Words));
+  SiteQueue queue(this->Options.Order, m, rng);
+  for (std::int64_t i = 0; i < m; ++i)
+    queue.Update(i, this->Domains.Count(i));
+  this->Domains.ClearChanged();
+  this->Domains.Record(true);
+  std::int64_t empty = -1;
+  for (;;)
+  {
+    if ((assigned & 1023) == 0 && runner.Stopped(0))
+      return 0; // cancelled: the attempt ends here (and no other starts)
+    const std::int64_t i = queue.Next();
+    if (i < 0)
+      return -1;
+    for (;;)
+    {
+      this->Domains.Record(true);
+      const int label =
+        PickLabel(this->Domains.Domain(i), this->Words, this->Domains.Count(i), this->Weights, rng);
+      this->Domains.Assign(i, label);
+      ++assigned;
+      empty = this->Domains.Propagate(this->Rules, neighbours);
+      if (empty < 0)
+        break;
+      this->Domains.Undo(0);
+      ++this->Result.Statistics.Backtracks;
+      std::fill(exclude.begin(), exclude.end(), ~std::uint64_t(0));
+      exclude[static_cast<std::size_t>(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
+      this->Domains.Keep(i, exclude.data());
+      empty = this->Domains.Propagate(this->Rules, neighbours);
+      if (empty >= 0 || this->Domains.Count(i) == 1)
+        break;
+    }
+    for (std::int64_t c : this->Domains.Changed())
+      queue.Update(c, this->Domains.Count(c));
+    this->Domains.ClearChanged();
+    if (empty >= 0)
+      return empty;
+    if (this->Whole && this->Snapshots())
+    {
+      const int snapshots = this->Options.Snapshots;
+      while (
+        taken < snapshots && (m - queue.Remaining()) * snapshots >= std::int64_t(taken + 1) * m)
+      {
+        ++taken;
+        this->Pending.push_back(this->Capture(b, true));
+      }
+    }
+  }
+}
+
+std::int64_t ContinuousRun::Attempt(
+  std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assignments)
+{
+  this->Pending.clear();
+  std::int64_t empty = this->ConstrainFromOutside();
+  if (!this->Whole && this->Snapshots() && empty < 0)
+    this->BlockStart = this->Capture(b, true); // the block's catalog, the rest of the model fixed
+  std::int64_t assigned = 0;
+  if (empty < 0)
+    empty = this->AssignAll(b, rng, runner, assigned);
+  assignments += assigned;
+  this->AssignmentsSoFar += assigned;
+  if (empty >= 0)
+  {
+    const std::int64_t v = this->Verts[static_cast<std::size_t>(empty)];
+    const Point3& p = this->Arrangement.Position(v);
+    this->Failure = "no label fits at vertex " + std::to_string(v) + " (" + std::to_string(p[0]) +
+      ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
+    return empty;
+  }
+  for (std::size_t i = 0; i < this->Verts.size(); ++i)
+    this->Result.Labels[static_cast<std::size_t>(this->Verts[i])] =
+      this->Domains.Single(static_cast<std::int64_t>(i));
+  while (this->Whole && this->Snapshots() &&
+    static_cast<int>(this->Pending.size()) < this->Options.Snapshots)
+    this->Pending.push_back(this->Capture(b, true)); // decided by propagation before the last marks
+  for (const auto& s : this->Pending) // only the successful attempt's snapshots are kept
+    this->Emit(s);
+  return -1;
+}
+} // namespace
+
+ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))
+  {
+    throw Error("continuous synthesis: the block size is measured in plane spacings and must be "
+                "0 (the whole model at once) or at least 1, not " +
+      std::to_string(options.BlockSize));
+  }
+  if (options.Attempts < 1)
+    throw Error("continuous synthesis: at least one attempt is needed");
+  ContinuousSynthesisResult result;
+  SynthesisStatistics& stats = result.Statistics;
+  ContinuousRun run(analysis, arrangement, options, result);
+  if (run.Snapshots())
+    run.Emit(run.Capture(-1, false));
+
+  // Blocks one after the other in scan order (each its own phase).
+  BlockRunner::Policy policy;
+  policy.Serial = true;
+  policy.Progress = options.Progress;
+  const std::int64_t blocks = run.NumberOfBlocks();
+  BlockRunner runner(std::move(policy), static_cast<std::size_t>(blocks));
+  BlockRunner::Hooks hooks;
+  hooks.Run = [&](unsigned, std::size_t i)
+  {
+    const auto b = static_cast<std::int64_t>(i);
+    run.Enter(b);
+    return runner.Attempts(0, options.Attempts,
+      [&](int attempt, std::int64_t& assignments)
+      {
+        Random rng = Random::Derived(
+          options.Seed, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(attempt));
+        return run.Attempt(b, rng, runner, assignments);
+      });
+  };
+  hooks.Finish = [&](std::size_t i, const BlockOutcome& out)
+  {
+    if (!out.Solved())
+    {
+      BlockFailure f;
+      f.Block = static_cast<std::int64_t>(i);
+      f.EmptyIndex = run.Vertex(out.Empty);
+      f.Attempts = out.Attempts;
+      stats.Failures.push_back(f);
+    }
+    run.Leave(static_cast<std::int64_t>(i));
+  };
+  std::vector<int> phases(static_cast<std::size_t>(blocks));
+  std::iota(phases.begin(), phases.end(), 0);
+  result.Status = runner.Run(phases, hooks, stats);
+  stats.Phases = static_cast<int>(blocks);
+  stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (result.Status == SynthesisStatus::Cancelled)
+  {
+    result.Message = "continuous synthesis was cancelled";
+    run.EmptyModel();
+    return result;
+  }
+  if (run.WholeModel() && stats.BlocksFailed > 0)
+  {
+    result.Status = SynthesisStatus::Failed;
+    result.Message = "whole-model synthesis failed in all " + std::to_string(options.Attempts) +
+      " attempts (last: " + run.LastFailure() +
+      "); try blocks (a block size of a few plane spacings)";
+    run.EmptyModel();
+    return result;
+  }
+  result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
+    Summary(stats, run.WholeModel());
+  return result;
+}
+
+std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels)
+{
+  const PlaneFamilySet& set = arrangement.Families();
+  const std::int64_t n = arrangement.NumberOfVertices();
+  if (static_cast<std::int64_t>(labels.size()) != n)
+  {
+    return "there are " + std::to_string(labels.size()) + " labels for " + std::to_string(n) +
+      " vertices";
+  }
+  const NeighbourhoodLabel empty = NeighbourhoodLabel::Constant(0);
+  for (std::int64_t v = 0; v < n; ++v)
+  {
+    const int a = labels[static_cast<std::size_t>(v)];
+    if (a < 0 || a >= analysis.NumberOfLabels())
+    {
+      return "vertex " + std::to_string(v) + " has no example label";
+    }
+    const NeighbourhoodLabel& la = analysis.Label(a).Label;
+    for (int f : la.Families)
+    {
+      if (!((arrangement.FamilyMask(v) >> f) & 1u))
+      {
+        return "vertex " + std::to_string(v) +
+          " has a label on a plane that does not pass through it";
+      }
+    }
+    for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
+    {
+      const IntVec3& d = arrangement.Direction(l->Direction);
+      const NeighbourhoodLabel here = la.Evaluate(set, d);
+      if (l->Vertex < 0)
+      {
+        if (here != empty)
+        {
+          return "vertex " + std::to_string(v) + " is not empty toward the outside of the box";
+        }
+        continue;
+      }
+      const NeighbourhoodLabel& lb =
+        analysis.Label(labels[static_cast<std::size_t>(l->Vertex)]).Label;
+      if (here != lb.Evaluate(set, { -d[0], -d[1], -d[2] }))
+      {
+        return "vertices " + std::to_string(v) + " and " + std::to_string(l->Vertex) +
+          " disagree about the edge between them";
+      }
+    }
+  }
+  return {};
+}
+
+} // namespace msynth

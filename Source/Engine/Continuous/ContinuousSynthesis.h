@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file ContinuousSynthesis.h
+ * @brief The label solver of continuous model synthesis (dissertation §4.5, Algorithm 4.1;
+ * design notes §2 and §4) on the vertices of a PlaneArrangement.
+ *
+ * The constraint: two vertices joined by an edge along d are compatible when their labels
+ * evaluate to the same neighbourhood along the edge (eval(L_u, d) = eval(L_v, −d), §4.5.5), and
+ * an edge leaving the output box must evaluate to empty. It is compiled into a
+ * CompatibilityRelation with two direction classes per line direction, and solved by the same
+ * propagation engine as discrete synthesis (Propagation.h).
+ */
+#include "Continuous/PlaneArrangement.h"
+#include "Continuous/PolyhedralAnalysis.h"
+#include "Core/BlockSynthesis.h"
+#include "Core/Propagation.h"
+#include "Discrete/DiscreteSynthesis.h"
+
+#include <functional>
+#include <string>
+
+namespace msynth
+{
+
+class ArrangementRules : public CompatibilityRelation
+{
+public:
+  ArrangementRules(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement);
+
+  /// The example's label of empty space (the trivial model's label everywhere).
+  int EmptyLabel() const { return this->Empty; }
+  /**
+   * The catalog a vertex starts with (Words() words): labels whose families all have a plane
+   * through @p v, and that are empty along every edge of @p v leaving the output box.
+   */
+  void InitialDomain(std::int64_t v, std::uint64_t* out) const;
+  /// Number of labels in InitialDomain(v).
+  int InitialCount(std::int64_t v) const;
+  /// Id of eval(label, direction class d) among all evaluated neighbourhoods.
+  int EvaluationId(int d, int label) const
+  {
+    return this->Evaluations[static_cast<std::size_t>(d) * this->NumberOfLabels() + label];
+  }
+
+private:
+  const PlaneArrangement& Arrangement;
+  int Empty = -1;
+  std::vector<std::uint64_t> LabelFamilies; ///< family mask per label
+  std::vector<int> Evaluations;             ///< [direction][label]
+  std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
+};
+
+struct ContinuousSnapshot
+{
+  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
+  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
+  std::int64_t Assignments = 0;          ///< label choices made so far
+  std::vector<std::int32_t> CatalogSize; ///< labels still possible per vertex
+  std::vector<float> Entropy;            ///< log2 of CatalogSize (uniform choice)
+  std::vector<std::int32_t> Labels;      ///< the label where decided, else -1
+};
+
+struct ContinuousSynthesisOptions
+{
+  std::uint64_t Seed = 0;
+  /// Block edge in plane spacings (of the family with the largest spacing); 0 labels the whole
+  /// arrangement at once (Algorithm 4.1 as written). Blocks overlap by half (§4.5.6).
+  double BlockSize = 0;
+  int Attempts = 20; ///< tries per block (or for the whole model) before giving up
+  /// Which undecided vertex is labelled next: scan line (z, then y, then x; the dissertation),
+  /// a seeded random order, or the fewest remaining labels first (ties at random).
+  SiteOrder Order = SiteOrder::MinimumEntropy;
+  /// Uniform (the dissertation) or weighted by how often the label occurs in the example.
+  LabelChoice Choice = LabelChoice::Uniform;
+  int Snapshots = 0; ///< catalog snapshots after the start, at even fractions of the work
+  std::function<void(const ContinuousSnapshot&)> OnSnapshot;
+  /// Called with the fraction done; return false to cancel (Status Cancelled, no labels).
+  std::function<bool(double)> Progress;
+};
+
+struct ContinuousSynthesisResult
+{
+  SynthesisStatus Status = SynthesisStatus::Failed;
+  bool Succeeded() const { return this->Status == SynthesisStatus::Succeeded; }
+  std::vector<std::int32_t> Labels; ///< per arrangement vertex (example label ids)
+  /// Blocks, attempts, failed blocks (BlockFailure::EmptyIndex: the vertex whose catalog
+  /// emptied), assignments, backtracks (labels withdrawn because their propagation failed).
+  SynthesisStatistics Statistics;
+  std::string Message; ///< why it failed, or a summary
+};
+
+/**
+ * Labels the arrangement. With blocks, starts from the all-empty model (always consistent) and
+ * relabels overlapping blocks in scan order, rolling a block back when every attempt fails, so
+ * the result is always consistent. Seeded and deterministic.
+ */
+ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);
+
+/**
+ * Checks labels on an arrangement against the rules, edge by edge, with the evaluation code
+ * (not the compiled bit sets). Returns an empty string when consistent, else the first problem.
+ */
+std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels);
+
+} // namespace msynth

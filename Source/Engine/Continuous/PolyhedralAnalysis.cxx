@@ -1,0 +1,589 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Continuous/PolyhedralAnalysis.h"
+
+#include "Continuous/BoxGrid.h"
+#include "Continuous/Point3Math.h"
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+namespace msynth
+{
+
+using point3::Add;
+using point3::Dot;
+using point3::Norm;
+using point3::Sub;
+using point3::Unit;
+
+namespace
+{
+
+/// Distance from @p p to the segment [a, b].
+double SegmentDistance(const Point3& p, const Point3& a, const Point3& b)
+{
+  const Point3 ab = Sub(b, a);
+  const double len2 = Dot(ab, ab);
+  double t = len2 > 0 ? Dot(Sub(p, a), ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return Norm(Sub(p, Add(a, ab, t)));
+}
+
+std::int64_t Gcd64(std::int64_t a, std::int64_t b)
+{
+  a = a < 0 ? -a : a;
+  b = b < 0 ? -b : b;
+  while (b != 0)
+  {
+    const std::int64_t t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+/// A key that identifies (up to the tolerance) a position, to count each feature once.
+std::array<std::int64_t, 3> PositionKey(const Point3& p, double cell)
+{
+  return { std::llround(p[0] / cell), std::llround(p[1] / cell), std::llround(p[2] / cell) };
+}
+
+} // namespace
+
+IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInteger)
+{
+  const double m = std::max({ std::abs(unit[0]), std::abs(unit[1]), std::abs(unit[2]) });
+  if (!(m > 0) || !std::isfinite(m))
+  {
+    throw Error("cannot snap a zero or non-finite direction");
+  }
+  const Point3 u = Unit(unit);
+  auto within = [&](const IntVec3& v)
+  {
+    const Point3 w{ double(v[0]), double(v[1]), double(v[2]) };
+    const double n = Norm(w);
+    if (n == 0)
+    {
+      return false;
+    }
+    const double sine = Norm(point3::Cross(w, u)) / n;
+    return Dot(w, u) > 0 && sine <= std::sin(angleTolerance);
+  };
+  auto reduced = [](IntVec3 v)
+  {
+    const std::int64_t g = Gcd64(Gcd64(v[0], v[1]), v[2]);
+    if (g > 1)
+    {
+      for (auto& c : v)
+      {
+        c /= g;
+      }
+    }
+    return v;
+  };
+  for (int n = 1; n <= maxSmallInteger; ++n)
+  {
+    const IntVec3 v{ std::llround(unit[0] / m * n), std::llround(unit[1] / m * n),
+      std::llround(unit[2] / m * n) };
+    if (within(v))
+    {
+      return reduced(v);
+    }
+  }
+  constexpr double scale = double(1 << 24);
+  return reduced({ std::llround(unit[0] / m * scale), std::llround(unit[1] / m * scale),
+    std::llround(unit[2] / m * scale) });
+}
+
+// ---------------------------------------------------------------------------------------------
+NeighbourhoodProbe::NeighbourhoodProbe(const PolyhedralExample& model,
+  const PlaneFamilySet& families, const std::vector<Point3>& familyUnitNormals,
+  double angleTolerance)
+  : Model(model)
+  , Set(families)
+  , Elements(BoundaryOf(model))
+{
+  const double diagonal = model.Diagonal();
+  this->Tol = std::max(1e-7 * diagonal, 1e-12);
+  const double cosine = std::cos(angleTolerance);
+  double shortest = diagonal;
+  for (std::size_t e = 0; e < this->Elements.size(); ++e)
+  {
+    const auto& element = this->Elements[e];
+    int family = -1;
+    for (std::size_t f = 0; f < familyUnitNormals.size() && family < 0; ++f)
+    {
+      if (std::abs(Dot(element.Normal, familyUnitNormals[f])) >= cosine)
+      {
+        family = static_cast<int>(f);
+      }
+    }
+    if (family < 0)
+    {
+      throw Error::InFile(model.Source,
+        std::string(model.Planar ? "edge " : "face ") + std::to_string(e) +
+          " has a direction in none of the example's plane families");
+    }
+    this->Family.push_back(family);
+    Point3 lo = model.Points[element.Points[0]], hi = lo;
+    const std::size_t n = element.Points.size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const Point3& p = model.Points[element.Points[i]];
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], p[c]);
+        hi[c] = std::max(hi[c], p[c]);
+      }
+      const double length = Norm(Sub(model.Points[element.Points[(i + 1) % n]], p));
+      if (length > 0)
+      {
+        shortest = std::min(shortest, length);
+      }
+    }
+    this->Boxes.push_back({ lo, hi });
+  }
+  this->Offset = std::min(1e-3 * diagonal, 0.05 * shortest);
+  this->Classifier = std::make_unique<SolidClassifier>(model);
+
+  this->Grid = std::make_unique<BoxGrid>(this->Boxes, this->Tol);
+}
+
+NeighbourhoodProbe::~NeighbourhoodProbe() = default;
+
+bool NeighbourhoodProbe::ElementContains(std::size_t e, const Point3& p) const
+{
+  const auto& box = this->Boxes[e];
+  for (int c = 0; c < 3; ++c)
+  {
+    if (p[c] < box[0][c] - this->Tol || p[c] > box[1][c] + this->Tol)
+    {
+      return false;
+    }
+  }
+  const auto& element = this->Elements[e];
+  const auto& pts = this->Model.Points;
+  if (this->Model.Planar)
+  {
+    return SegmentDistance(p, pts[element.Points[0]], pts[element.Points[1]]) <= this->Tol;
+  }
+  const Point3& origin = pts[element.Points[0]];
+  if (std::abs(Dot(element.Normal, Sub(p, origin))) > this->Tol)
+  {
+    return false;
+  }
+  // Crossing test in the projection that drops the normal's largest component; points within
+  // the tolerance of the polygon's boundary count as inside.
+  int drop = 0;
+  for (int c = 1; c < 3; ++c)
+  {
+    if (std::abs(element.Normal[c]) > std::abs(element.Normal[drop]))
+    {
+      drop = c;
+    }
+  }
+  const int i = (drop + 1) % 3, j = (drop + 2) % 3;
+  bool inside = false;
+  const std::size_t n = element.Points.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const Point3& a = pts[element.Points[k]];
+    const Point3& b = pts[element.Points[(k + 1) % n]];
+    if (SegmentDistance(p, a, b) <= this->Tol)
+    {
+      return true;
+    }
+    if ((a[j] > p[j]) != (b[j] > p[j]))
+    {
+      const double x = a[i] + (p[j] - a[j]) * (b[i] - a[i]) / (b[j] - a[j]);
+      inside = x > p[i] ? !inside : inside;
+    }
+  }
+  return inside;
+}
+
+std::vector<std::size_t> NeighbourhoodProbe::ElementsThrough(const Point3& p) const
+{
+  std::vector<std::size_t> elements;
+  for (std::uint32_t e : this->Grid->Candidates(p))
+  {
+    if (this->ElementContains(e, p))
+    {
+      elements.push_back(e);
+    }
+  }
+  return elements;
+}
+
+std::vector<int> NeighbourhoodProbe::FamiliesThrough(const Point3& p) const
+{
+  return this->FamiliesOf(this->ElementsThrough(p));
+}
+
+std::vector<int> NeighbourhoodProbe::FamiliesOf(const std::vector<std::size_t>& elements) const
+{
+  std::vector<int> families;
+  for (std::size_t e : elements)
+  {
+    families.push_back(this->Family[e]);
+  }
+  std::sort(families.begin(), families.end());
+  families.erase(std::unique(families.begin(), families.end()), families.end());
+  return families;
+}
+
+NeighbourhoodLabel NeighbourhoodProbe::LabelAt(const Point3& p) const
+{
+  return this->LabelAt(p, this->ElementsThrough(p));
+}
+
+NeighbourhoodLabel NeighbourhoodProbe::LabelAt(
+  const Point3& p, const std::vector<std::size_t>& elements) const
+{
+  const double distance = this->ProbeDistance();
+  return NeighbourhoodLabel::FromFunction(this->Set, this->FamiliesOf(elements),
+    [&](const PlaneFamilySet::Cone& cone)
+    {
+      const int object = this->Classifier->ObjectAt(Add(p, cone.UnitDirection, distance));
+      return object < 0 ? 0 : this->Model.ObjectTypes[object];
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
+namespace
+{
+
+/// Parameters t in (0, 1) where segment [a, b] meets segment [c, d] lying in the same plane
+/// (coordinates i, j of the projection).
+void SegmentBreaks(const Point3& a, const Point3& b, const Point3& c, const Point3& d, int i, int j,
+  double tol, std::vector<double>& out)
+{
+  const double rx = b[i] - a[i], ry = b[j] - a[j];
+  const double sx = d[i] - c[i], sy = d[j] - c[j];
+  const double length = std::hypot(rx, ry);
+  const double slength = std::hypot(sx, sy);
+  if (length <= tol || slength <= tol)
+  {
+    return;
+  }
+  const double denom = rx * sy - ry * sx;
+  const double qx = c[i] - a[i], qy = c[j] - a[j];
+  if (std::abs(denom) > 1e-12 * length * slength)
+  {
+    const double t = (qx * sy - qy * sx) / denom;
+    const double u = (qx * ry - qy * rx) / denom;
+    const double ut = tol / slength;
+    if (u >= -ut && u <= 1 + ut)
+    {
+      out.push_back(t);
+    }
+    return;
+  }
+  // Parallel: when collinear, the other segment's endpoints split this one.
+  if (std::abs(qx * ry - qy * rx) / length > tol)
+  {
+    return;
+  }
+  out.push_back((qx * rx + qy * ry) / (length * length));
+  out.push_back(((d[i] - a[i]) * rx + (d[j] - a[j]) * ry) / (length * length));
+}
+
+} // namespace
+
+PolyhedralAnalysis PolyhedralAnalysis::Analyze(
+  const PolyhedralExample& example, const Options& options)
+{
+  PolyhedralAnalysis analysis;
+  analysis.IsPlanar = example.Planar;
+  // Plane families (§4.5.1).
+  std::vector<IntVec3> normals;
+  {
+    const double cosine = std::cos(options.AngleTolerance);
+    for (const auto& element : BoundaryOf(example))
+    {
+      bool known = false;
+      for (const auto& u : analysis.UnitNormals)
+      {
+        known = known || std::abs(Dot(u, element.Normal)) >= cosine;
+      }
+      if (!known)
+      {
+        normals.push_back(
+          SnapDirection(element.Normal, options.AngleTolerance, options.MaxSmallInteger));
+        const auto& n = normals.back();
+        analysis.UnitNormals.push_back(Unit({ double(n[0]), double(n[1]), double(n[2]) }));
+      }
+    }
+  }
+  analysis.Set = std::make_shared<PlaneFamilySet>(normals);
+  const NeighbourhoodProbe probe(
+    example, *analysis.Set, analysis.UnitNormals, options.AngleTolerance);
+  analysis.Elements = probe.Boundary();
+  analysis.Family = probe.ElementFamily();
+  const auto& pts = example.Points;
+  const double tol = probe.Tolerance();
+  const double cell = 10 * tol;
+
+  std::map<NeighbourhoodLabel, int> found;
+  std::vector<NeighbourhoodLabel> labels;
+  std::vector<std::int64_t> counts;
+  auto add = [&](const NeighbourhoodLabel& label, std::int64_t count)
+  {
+    auto it = found.find(label);
+    if (it == found.end())
+    {
+      it = found.emplace(label, static_cast<int>(labels.size())).first;
+      labels.push_back(label);
+      counts.push_back(0);
+    }
+    counts[it->second] += count;
+    return it->second;
+  };
+  std::set<std::array<std::int64_t, 3>> seen;
+  std::vector<std::set<int>> labelsOfElement(analysis.Elements.size());
+  auto sample = [&](
+                  FeatureKind kind, const Point3& at, const Point3& a, const Point3& b, int element)
+  {
+    if (!seen.insert(PositionKey(at, cell)).second)
+    {
+      return;
+    }
+    Feature feature;
+    feature.Kind = kind;
+    feature.A = a;
+    feature.B = b;
+    feature.Element = element;
+    const auto through = probe.ElementsThrough(at);
+    feature.Label = add(probe.LabelAt(at, through), 1);
+    analysis.Samples.push_back(feature);
+    if (element >= 0)
+    {
+      // Every face through the sample has this label there (coplanar faces of other objects
+      // included), so a face partly covered by another object is known to have several.
+      labelsOfElement[element].insert(feature.Label);
+      for (std::size_t e : through)
+      {
+        labelsOfElement[e].insert(feature.Label);
+      }
+    }
+  };
+
+  // Volumes: the exterior and the interior of each object type.
+  add(NeighbourhoodLabel::Constant(0), 1);
+  for (int type : example.ObjectTypes)
+  {
+    add(NeighbourhoodLabel::Constant(type), 1);
+  }
+
+  // Edges (3D: polygon edges; 2D: the boundary segments) and where other objects split them.
+  const bool planar = example.Planar;
+  const bool severalObjects = example.NumberOfObjects() > 1;
+  std::map<std::pair<int, int>, std::vector<double>> breaks; // by (low, high) point index
+  std::vector<std::array<Point3, 2>> elementBoxes;
+  for (const auto& element : analysis.Elements)
+  {
+    std::array<Point3, 2> box{ pts[element.Points[0]], pts[element.Points[0]] };
+    for (int v : element.Points)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        box[0][c] = std::min(box[0][c], pts[v][c]);
+        box[1][c] = std::max(box[1][c], pts[v][c]);
+      }
+    }
+    elementBoxes.push_back(box);
+  }
+  const BoxGrid elementGrid(elementBoxes, tol);
+  auto breaksOf = [&](int lo, int hi, int object) -> const std::vector<double>&
+  {
+    auto it = breaks.find({ lo, hi });
+    if (it != breaks.end())
+    {
+      return it->second;
+    }
+    const Point3& a = pts[lo];
+    const Point3& b = pts[hi];
+    const double length = Norm(Sub(b, a));
+    std::vector<double> ts;
+    const Point3 segmentLow{ std::min(a[0], b[0]), std::min(a[1], b[1]), std::min(a[2], b[2]) };
+    const Point3 segmentHigh{ std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]) };
+    // Only elements whose box (grown by the tolerance) meets the segment's can split it.
+    const std::vector<std::uint32_t> near = severalObjects
+      ? elementGrid.Overlapping(segmentLow, segmentHigh)
+      : std::vector<std::uint32_t>();
+    for (const std::uint32_t g : near)
+    {
+      const auto& other = analysis.Elements[g];
+      if (other.Object == object)
+      {
+        continue;
+      }
+      const std::size_t n = other.Points.size();
+      if (planar)
+      {
+        SegmentBreaks(a, b, pts[other.Points[0]], pts[other.Points[1]], 0, 1, tol, ts);
+        continue;
+      }
+      const Point3& origin = pts[other.Points[0]];
+      const double da = Dot(other.Normal, Sub(a, origin));
+      const double db = Dot(other.Normal, Sub(b, origin));
+      if (std::abs(da) <= tol && std::abs(db) <= tol)
+      {
+        int drop = 0;
+        for (int c = 1; c < 3; ++c)
+        {
+          drop = std::abs(other.Normal[c]) > std::abs(other.Normal[drop]) ? c : drop;
+        }
+        for (std::size_t k = 0; k < n; ++k)
+        {
+          SegmentBreaks(a, b, pts[other.Points[k]], pts[other.Points[(k + 1) % n]], (drop + 1) % 3,
+            (drop + 2) % 3, tol, ts);
+        }
+      }
+      else if ((da > tol && db > tol) || (da < -tol && db < -tol))
+      {
+        continue;
+      }
+      else if (std::abs(da - db) > 0)
+      {
+        // Keep the crossing only where it lies on the other face.
+        const double t = da / (da - db);
+        if (probe.ElementContains(g, Add(a, Sub(b, a), t)))
+        {
+          ts.push_back(t);
+        }
+      }
+    }
+    const double margin = tol / std::max(length, tol);
+    std::vector<double> kept;
+    std::sort(ts.begin(), ts.end());
+    for (double t : ts)
+    {
+      if (t > margin && t < 1 - margin && (kept.empty() || t - kept.back() > margin))
+      {
+        kept.push_back(t);
+      }
+    }
+    return breaks.emplace(std::make_pair(lo, hi), kept).first->second;
+  };
+
+  // Vertices first (so that a point shared by several features counts as a vertex).
+  for (const auto& element : analysis.Elements)
+  {
+    for (int v : element.Points)
+    {
+      sample(planar ? FeatureKind::Edge : FeatureKind::Vertex, pts[v], pts[v], pts[v], -1);
+    }
+  }
+  // The pieces of every edge, in order from @p from to @p to.
+  auto pieces = [&](int from, int to, int object)
+  {
+    const int lo = std::min(from, to), hi = std::max(from, to);
+    std::vector<double> ts = breaksOf(lo, hi, object);
+    if (from != lo)
+    {
+      for (auto& t : ts)
+      {
+        t = 1 - t;
+      }
+      std::reverse(ts.begin(), ts.end());
+    }
+    ts.insert(ts.begin(), 0.0);
+    ts.push_back(1.0);
+    return ts;
+  };
+  for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
+  {
+    const auto& element = analysis.Elements[e];
+    const std::size_t n = planar ? 1 : element.Points.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const int from = element.Points[k], to = element.Points[(k + 1) % element.Points.size()];
+      const Point3& a = pts[from];
+      const Point3 ab = Sub(pts[to], a);
+      const auto ts = pieces(from, to, element.Object);
+      for (std::size_t s = 1; s + 1 < ts.size(); ++s)
+      {
+        const Point3 split = Add(a, ab, ts[s]);
+        sample(planar ? FeatureKind::Edge : FeatureKind::Vertex, split, split, split, -1);
+      }
+      for (std::size_t s = 0; s + 1 < ts.size(); ++s)
+      {
+        const Point3 p = Add(a, ab, ts[s]), q = Add(a, ab, ts[s + 1]);
+        const Point3 middle = Add(a, ab, 0.5 * (ts[s] + ts[s + 1]));
+        if (planar)
+        {
+          sample(FeatureKind::Face, middle, p, q, static_cast<int>(e));
+          continue;
+        }
+        sample(FeatureKind::Edge, middle, p, q, -1);
+        // The face beside this piece.
+        const Point3 inward = Unit(point3::Cross(element.Normal, ab));
+        const Point3 inside = Add(middle, inward, probe.FaceOffset());
+        sample(FeatureKind::Face, inside, inside, inside, static_cast<int>(e));
+      }
+    }
+  }
+
+  // Ids in a canonical order: by codimension, then families, then types.
+  std::vector<int> order(labels.size());
+  std::iota(order.begin(), order.end(), 0);
+  const PlaneFamilySet& set = *analysis.Set;
+  std::sort(order.begin(), order.end(),
+    [&](int x, int y)
+    {
+      const int rx = set.Rank(labels[x].Families), ry = set.Rank(labels[y].Families);
+      return rx != ry ? rx < ry : labels[x] < labels[y];
+    });
+  std::vector<int> idOf(labels.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    idOf[order[i]] = static_cast<int>(i);
+    LabelInfo info;
+    info.Label = labels[order[i]];
+    info.Kind = info.Label.Kind(set);
+    info.Occurrences = counts[order[i]];
+    info.Expression = info.Label.Expression(planar);
+    analysis.IdOf.emplace(info.Label, static_cast<int>(i));
+    analysis.Catalog.push_back(std::move(info));
+  }
+  for (auto& feature : analysis.Samples)
+  {
+    feature.Label = idOf[feature.Label];
+  }
+  analysis.ElementLabels.assign(analysis.Elements.size(), -1);
+  for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
+  {
+    if (labelsOfElement[e].size() == 1)
+    {
+      analysis.ElementLabels[e] = idOf[*labelsOfElement[e].begin()];
+    }
+  }
+  return analysis;
+}
+
+int PolyhedralAnalysis::Find(const NeighbourhoodLabel& label) const
+{
+  auto it = this->IdOf.find(label);
+  return it == this->IdOf.end() ? -1 : it->second;
+}
+
+std::vector<int> PolyhedralAnalysis::AllowedLabels(std::vector<int> families) const
+{
+  std::sort(families.begin(), families.end());
+  std::vector<int> allowed;
+  for (int id = 0; id < this->NumberOfLabels(); ++id)
+  {
+    const auto& f = this->Catalog[id].Label.Families;
+    if (std::includes(families.begin(), families.end(), f.begin(), f.end()))
+    {
+      allowed.push_back(id);
+    }
+  }
+  return allowed;
+}
+
+} // namespace msynth

@@ -1,0 +1,339 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Core/BlockSynthesis.h"
+
+#include "Core/Error.h"
+#include "Core/ProgressPoll.h"
+
+#include <algorithm>
+#include <cstring>
+#include <ostream>
+#include <system_error>
+#include <thread>
+
+namespace msynth
+{
+
+const char* ToString(SynthesisStatus status)
+{
+  switch (status)
+  {
+    case SynthesisStatus::Succeeded:
+      return "succeeded";
+    case SynthesisStatus::Failed:
+      return "failed";
+    case SynthesisStatus::Cancelled:
+      return "cancelled";
+  }
+  return "?";
+}
+
+std::vector<StatisticsField> StatisticsFields(const SynthesisStatistics& s)
+{
+  auto count = [](const char* name, std::int64_t v) {
+    return StatisticsField{ name, static_cast<double>(v), true };
+  };
+  return { count("Blocks", s.Blocks), count("BlocksAccepted", s.BlocksAccepted),
+    count("BlocksFailed", s.BlocksFailed), count("BlocksRejected", s.BlocksRejected),
+    count("Attempts", s.Attempts), count("FailedAttempts", s.Attempts - s.BlocksAccepted),
+    count("Assignments", s.Assignments), count("Backtracks", s.Backtracks),
+    count("Phases", s.Phases), count("Threads", s.Threads), count("Processes", s.Processes),
+    StatisticsField{ "Seconds", s.Seconds, false } };
+}
+
+void WriteStatisticsJSON(std::ostream& out, const std::vector<StatisticsField>& fields)
+{
+  for (const auto& f : fields)
+  {
+    out << "  \"" << f.Name << "\": ";
+    if (f.Integer)
+      out << static_cast<long long>(f.Value);
+    else
+      out << f.Value;
+    out << ",\n";
+  }
+}
+
+std::string Summary(const SynthesisStatistics& s, bool wholeModel)
+{
+  if (wholeModel)
+    return "whole-model synthesis succeeded";
+  return std::to_string(s.BlocksAccepted) + " of " + std::to_string(s.Blocks) +
+    " blocks synthesized, " + std::to_string(s.BlocksFailed) + " left at their previous labels" +
+    (s.BlocksRejected
+        ? ", " + std::to_string(s.BlocksRejected) + " rolled back by the soft constraints"
+        : std::string());
+}
+
+std::vector<std::int64_t> BlockStarts(std::int64_t n, std::int64_t m, std::int64_t step)
+{
+  std::vector<std::int64_t> starts{ 0 };
+  while (starts.back() + m < n)
+    starts.push_back(starts.back() + step);
+  return starts;
+}
+
+template <std::size_t D>
+std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
+  const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
+  int& phases)
+{
+  std::array<std::vector<std::int64_t>, D> starts;
+  std::array<int, D> period{};
+  std::size_t count = 1;
+  for (std::size_t a = 0; a < D; ++a)
+  {
+    starts[a] = BlockStarts(n[a], m[a], step[a]);
+    period[a] = starts[a].size() > 1 ? static_cast<int>((m[a] + 1 + step[a] - 1) / step[a]) : 1;
+    count *= starts[a].size();
+  }
+  std::vector<BoxBlock<D>> blocks(count);
+  for (std::size_t index = 0; index < count; ++index)
+  {
+    BoxBlock<D>& b = blocks[index];
+    b.Index = static_cast<std::int64_t>(index);
+    std::size_t rest = index;
+    int phase = 0, radix = 1;
+    for (std::size_t a = 0; a < D; ++a)
+    {
+      const std::size_t i = rest % starts[a].size();
+      rest /= starts[a].size();
+      b.Origin[a] = starts[a][i];
+      b.Dims[a] = std::min(m[a], n[a] - b.Origin[a]);
+      phase += radix * static_cast<int>(i % static_cast<std::size_t>(period[a]));
+      radix *= period[a];
+    }
+    b.Phase = policy == PhasePolicy::NonTouching ? phase : static_cast<int>(index);
+  }
+  if (policy == PhasePolicy::NonTouching)
+  {
+    std::stable_sort(blocks.begin(), blocks.end(),
+      [](const BoxBlock<D>& a, const BoxBlock<D>& b) { return a.Phase < b.Phase; });
+    phases = 1;
+    for (std::size_t a = 0; a < D; ++a)
+      phases *= period[a];
+  }
+  else
+  {
+    phases = static_cast<int>(count);
+  }
+  return blocks;
+}
+
+template std::vector<BoxBlock<3>> PlanBoxBlocks<3>(const std::array<std::int64_t, 3>&,
+  const std::array<std::int64_t, 3>&, const std::array<std::int64_t, 3>&, PhasePolicy, int&);
+template std::vector<BoxBlock<4>> PlanBoxBlocks<4>(const std::array<std::int64_t, 4>&,
+  const std::array<std::int64_t, 4>&, const std::array<std::int64_t, 4>&, PhasePolicy, int&);
+
+int ChooseTrivialLabel(int k, int zero, const std::function<bool(int)>& usable)
+{
+  if (zero >= 0 && usable(zero))
+    return zero;
+  for (int b = 0; b < k; ++b)
+    if (usable(b))
+      return b;
+  return -1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// BlockRunner
+// ---------------------------------------------------------------------------------------------
+
+void BlockRunner::Bytes::Put(std::int64_t v)
+{
+  char b[8];
+  std::memcpy(b, &v, 8);
+  this->Data.insert(this->Data.end(), b, b + 8);
+}
+
+std::int64_t BlockRunner::Bytes::Get()
+{
+  if (this->At + 8 > this->Data.size())
+    throw Error("block exchange: a truncated result");
+  std::int64_t v;
+  std::memcpy(&v, this->Data.data() + this->At, 8);
+  this->At += 8;
+  return v;
+}
+
+struct BlockRunner::Internal
+{
+  Policy Options;
+  std::size_t Blocks = 0;
+  std::size_t Done = 0;
+  std::size_t Processes = 1;
+  std::size_t Rank = 0;
+  std::atomic<bool> Stop{ false };
+  detail::ProgressPoll Poll{ nullptr };
+
+  bool Distributed() const { return this->Processes > 1; }
+  double Fraction() const
+  {
+    return double(this->Done) / double(std::max<std::size_t>(this->Blocks, 1));
+  }
+  bool Report()
+  {
+    return this->Stop || (this->Options.Progress && !this->Options.Progress(this->Fraction()));
+  }
+
+  /// The all-gather of a phase [first, last): this process's outcomes and labels out, every
+  /// other process's in. Returns whether any process asked to cancel.
+  bool Exchange(std::size_t first, std::size_t last, const std::vector<std::size_t>& mine,
+    std::vector<BlockOutcome>& outcomes, bool cancelledHere, const Hooks& hooks)
+  {
+    Bytes out;
+    out.Put(cancelledHere ? 1 : 0);
+    for (std::size_t i : mine)
+    {
+      const BlockOutcome& o = outcomes[i - first];
+      out.Put(static_cast<std::int64_t>(i));
+      out.Put(o.Empty);
+      out.Put(o.Attempts);
+      out.Put(o.Assignments);
+      hooks.Pack(i, out);
+    }
+    auto all = this->Options.Exchange.AllGather(out.Data);
+    if (all.size() != this->Processes)
+      throw Error("block exchange: expected results from " + std::to_string(this->Processes) +
+        " processes, got " + std::to_string(all.size()));
+    bool anyCancelled = false;
+    for (std::size_t p = 0; p < all.size(); ++p)
+    {
+      Bytes in;
+      in.Data = std::move(all[p]);
+      anyCancelled = in.Get() != 0 || anyCancelled;
+      while (in.At < in.Data.size())
+      {
+        const auto i = static_cast<std::size_t>(in.Get());
+        if (i < first || i >= last)
+          throw Error(
+            "block exchange: process " + std::to_string(p) + " sent a block of another phase");
+        BlockOutcome& o = outcomes[i - first];
+        o.Empty = in.Get();
+        o.Attempts = static_cast<int>(in.Get());
+        o.Assignments = in.Get();
+        hooks.Unpack(i, in, p != this->Rank);
+      }
+    }
+    return anyCancelled;
+  }
+};
+
+BlockRunner::BlockRunner(Policy policy, std::size_t blocks)
+  : State(std::make_unique<Internal>())
+{
+  Internal& s = *this->State;
+  s.Blocks = blocks;
+  s.Poll = detail::ProgressPoll(policy.Progress);
+  // More threads than cores only costs memory (a solver each): clamp to the cores.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  unsigned threads =
+    policy.Threads > 0 ? std::min(static_cast<unsigned>(policy.Threads), cores) : cores;
+  if (policy.Serial || blocks < 2)
+    threads = 1;
+  this->NumberOfWorkers = threads;
+  const bool distributed = policy.Exchange.Active() && !policy.Serial;
+  if (distributed &&
+    (policy.Exchange.Rank < 0 || policy.Exchange.Rank >= policy.Exchange.Processes))
+    throw Error("block exchange: rank " + std::to_string(policy.Exchange.Rank) + " of " +
+      std::to_string(policy.Exchange.Processes) + " processes");
+  s.Processes = distributed ? static_cast<std::size_t>(policy.Exchange.Processes) : 1;
+  s.Rank = distributed ? static_cast<std::size_t>(policy.Exchange.Rank) : 0;
+  s.Options = std::move(policy);
+}
+
+BlockRunner::~BlockRunner() = default;
+
+int BlockRunner::Processes() const
+{
+  return static_cast<int>(this->State->Processes);
+}
+
+bool BlockRunner::Stopped(unsigned worker)
+{
+  Internal& s = *this->State;
+  if (worker == 0 && !s.Poll.Continue(s.Fraction()))
+    s.Stop.store(true);
+  return s.Stop.load(std::memory_order_relaxed);
+}
+
+SynthesisStatus BlockRunner::Run(
+  const std::vector<int>& phases, const Hooks& hooks, SynthesisStatistics& stats)
+{
+  Internal& s = *this->State;
+  stats.Blocks = static_cast<std::int64_t>(phases.size());
+  stats.Threads = static_cast<int>(this->NumberOfWorkers);
+  stats.Processes = static_cast<int>(s.Processes);
+  auto record = [&stats](const BlockOutcome& out)
+  {
+    stats.Attempts += out.Attempts;
+    stats.Assignments += out.Assignments;
+    if (out.Solved())
+      ++stats.BlocksAccepted;
+    else
+      ++stats.BlocksFailed;
+  };
+  bool cancelled = false, cancelRequested = false;
+  for (std::size_t first = 0; first < phases.size() && !cancelled;)
+  {
+    std::size_t last = first;
+    while (last < phases.size() && phases[last] == phases[first])
+      ++last;
+    if (this->NumberOfWorkers == 1 && !s.Distributed())
+    {
+      for (std::size_t i = first; i < last && !cancelled; ++i)
+      {
+        const BlockOutcome out = hooks.Run(0, i);
+        hooks.Finish(i, out);
+        record(out);
+        ++s.Done;
+        cancelled = s.Report();
+      }
+      first = last;
+      continue;
+    }
+    // This process's blocks of the phase (all of them without distribution), on the workers.
+    std::vector<BlockOutcome> outcomes(last - first);
+    std::vector<std::size_t> mine;
+    for (std::size_t i = first; i < last; ++i)
+      if ((i - first) % s.Processes == s.Rank)
+        mine.push_back(i);
+    std::atomic<std::size_t> next{ 0 };
+    auto work = [&](unsigned worker)
+    {
+      for (std::size_t j; (j = next++) < mine.size();)
+        outcomes[mine[j] - first] = hooks.Run(worker, mine[j]);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 1; w < this->NumberOfWorkers; ++w)
+    {
+      try
+      {
+        pool.emplace_back(work, w);
+      }
+      catch (const std::system_error&)
+      {
+        break; // no more threads to be had: the others and this one share the blocks
+      }
+    }
+    work(0);
+    for (auto& t : pool)
+      t.join();
+    if (s.Distributed()) // every process stops at the same phase
+      cancelled = s.Exchange(first, last, mine, outcomes, cancelRequested, hooks);
+    for (std::size_t i = first; i < last; ++i)
+    {
+      hooks.Finish(i, outcomes[i - first]); // in block order: deterministic
+      record(outcomes[i - first]);
+    }
+    s.Done += last - first;
+    const bool stopHere = s.Report();
+    if (s.Distributed())
+      cancelRequested = cancelRequested || stopHere;
+    else
+      cancelled = stopHere;
+    first = last;
+  }
+  return cancelled ? SynthesisStatus::Cancelled : SynthesisStatus::Succeeded;
+}
+
+} // namespace msynth

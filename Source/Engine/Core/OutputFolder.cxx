@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Core/OutputFolder.h"
+
+#include "Core/AtomicFile.h"
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <dirent.h>
+#include <fcntl.h>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace msynth
+{
+namespace
+{
+constexpr const char* ManifestName = ".msynth-outputs";
+constexpr const char* LockName = ".msynth-lock";
+
+/// The staging folders not yet published or discarded (for DiscardAll). Never destroyed: a
+/// signal-handling thread may call DiscardAll while the process exits.
+std::mutex& RegistryMutex()
+{
+  static std::mutex* m = new std::mutex;
+  return *m;
+}
+std::set<std::string>& Registry()
+{
+  static std::set<std::string>* r = new std::set<std::string>;
+  return *r;
+}
+/// Folders published by this process (under RegistryMutex).
+int& PublishedCount()
+{
+  static int n = 0;
+  return n;
+}
+
+std::vector<std::string> Entries(const std::string& dir)
+{
+  std::vector<std::string> names;
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string name = e->d_name;
+      if (name != "." && name != "..")
+        names.push_back(name);
+    }
+    ::closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// An exclusive lock on DIR/.msynth-lock for the duration of a publication.
+class FolderLock
+{
+public:
+  explicit FolderLock(const std::string& dir)
+    : Fd(::open((dir + "/" + LockName).c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644))
+  {
+    if (this->Fd < 0)
+      throw Error::InFile(
+        dir, std::string("cannot be locked for writing: ") + std::strerror(errno));
+    while (::flock(this->Fd, LOCK_EX) != 0 && errno == EINTR)
+    {
+    }
+  }
+  ~FolderLock() { ::close(this->Fd); }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+  int Fd;
+};
+} // namespace
+
+void RemoveTree(const std::string& path)
+{
+  struct stat info;
+  if (::lstat(path.c_str(), &info) != 0)
+    return;
+  if (S_ISDIR(info.st_mode))
+  {
+    for (const auto& name : Entries(path))
+      RemoveTree(path + "/" + name);
+    ::rmdir(path.c_str());
+  }
+  else
+  {
+    ::unlink(path.c_str());
+  }
+}
+
+OutputFolder::OutputFolder(const std::string& dir)
+  : Dir(dir.empty() ? std::string(".") : dir)
+{
+  struct stat info;
+  if (::stat(this->Dir.c_str(), &info) == 0)
+  {
+    if (!S_ISDIR(info.st_mode))
+      throw Error::InFile(this->Dir, "exists and is not a folder");
+  }
+  else if (::mkdir(this->Dir.c_str(), 0755) == 0)
+  {
+    this->Created = true;
+  }
+  else if (errno != EEXIST)
+  {
+    throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
+  }
+  static std::atomic<unsigned> counter{ 0 };
+  this->StagePath =
+    this->Dir + "/.msynth-stage-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  std::lock_guard<std::mutex> lock(RegistryMutex());
+  if (::mkdir(this->StagePath.c_str(), 0755) != 0)
+  {
+    const std::string reason = std::strerror(errno);
+    if (this->Created)
+      ::rmdir(this->Dir.c_str());
+    throw Error::InFile(this->Dir, "cannot be written to: " + reason);
+  }
+  Registry().insert(this->StagePath);
+}
+
+OutputFolder::~OutputFolder()
+{
+  std::lock_guard<std::mutex> lock(RegistryMutex());
+  if (Registry().erase(this->StagePath))
+    RemoveTree(this->StagePath);
+  if (this->Created && !this->Published)
+    ::rmdir(this->Dir.c_str()); // only if empty
+}
+
+void OutputFolder::Publish()
+{
+  std::lock_guard<std::mutex> registryLock(RegistryMutex());
+  if (!Registry().count(this->StagePath))
+    throw Error::InFile(this->Dir, "was discarded before its outputs were published");
+  FolderLock folderLock(this->Dir);
+  const std::vector<std::string> written = Entries(this->StagePath);
+  // What the previous run published, less what this run replaces.
+  std::vector<std::string> stale;
+  {
+    std::ifstream manifest(this->Dir + "/" + ManifestName);
+    std::string name;
+    while (std::getline(manifest, name))
+      if (!name.empty() && name.find('/') == std::string::npos && name[0] != '.' &&
+        !std::binary_search(written.begin(), written.end(), name))
+        stale.push_back(name);
+  }
+  for (const auto& name : written)
+    if (std::rename((this->StagePath + "/" + name).c_str(), (this->Dir + "/" + name).c_str()) != 0)
+      throw Error::InFile(
+        this->Dir + "/" + name, std::string("could not be published: ") + std::strerror(errno));
+  for (const auto& name : stale)
+    ::unlink((this->Dir + "/" + name).c_str());
+  WriteFileAtomically(this->Dir + "/" + ManifestName,
+    [&](std::ostream& out)
+    {
+      for (const auto& name : written)
+        out << name << "\n";
+    });
+  Registry().erase(this->StagePath);
+  ::rmdir(this->StagePath.c_str());
+  this->Published = true;
+  ++PublishedCount();
+}
+
+int OutputFolder::DiscardAll(int* published)
+{
+  std::lock_guard<std::mutex> lock(RegistryMutex());
+  const int discarded = static_cast<int>(Registry().size());
+  for (const auto& stage : Registry())
+    RemoveTree(stage);
+  Registry().clear();
+  if (published)
+    *published = PublishedCount();
+  return discarded;
+}
+
+} // namespace msynth

@@ -1,0 +1,573 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/BlockSolver.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace msynth
+{
+namespace detail
+{
+
+BlockSolver::BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& options,
+  const MirrorPlan* plan, const SymmetryPlan* seams, SharedModel& shared)
+  : Rules(rules)
+  , Options(options)
+  , Cat(rules)
+  , Plan(plan)
+  , Seams(seams)
+  , Model(shared.Model)
+  , Fixed(shared.Fixed)
+  , LastBlock(shared.LastBlock)
+{
+  this->N = options.Size;
+  LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
+  if (seams)
+    this->Cat.SetArcs(seams->Relation.get(), &seams->Arcs);
+  const auto sites = static_cast<std::size_t>(this->N[0] * this->N[1] * this->N[2]);
+  if (this->Model.empty())
+  {
+    this->Model.assign(sites, -1);
+    this->Fixed.assign(sites, -1);
+    this->LastBlock.assign(sites, -1);
+  }
+  const int k = rules.NumberOfLabels();
+  this->WLogW.resize(static_cast<std::size_t>(k));
+  for (int b = 0; b < k; ++b)
+  {
+    const double w = this->Weight(b);
+    this->WLogW[static_cast<std::size_t>(b)] = w * std::log(w);
+  }
+  double sum = 0.0, sumWLogW = 0.0;
+  for (int b = 0; b < k; ++b)
+  {
+    sum += this->Weight(b);
+    sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+  }
+  this->FullEntropy = std::log(sum) - sumWLogW / sum;
+  if (options.Guide)
+  {
+    this->SetUpGuide(*options.Guide);
+  }
+  if (options.Choice == LabelChoice::Resemblance)
+  {
+    this->SetUpResemblance();
+  }
+}
+
+int BlockSolver::LabelIndex(Label value, const char* what) const
+{
+  const int b = this->Rules.IndexOf(value);
+  if (b < 0)
+  {
+    throw Error(
+      std::string(what) + " label " + std::to_string(value) + " does not occur in the example");
+  }
+  return b;
+}
+
+/// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
+void BlockSolver::ApplyBoundary()
+{
+  static const int precedence[6] = { FaceMinZ, FaceMaxZ, FaceMinY, FaceMaxY, FaceMinX, FaceMaxX };
+  for (int f = 5; f >= 0; --f) // lowest precedence first, so higher ones overwrite
+  {
+    const int face = precedence[f];
+    const auto& value = this->Options.Boundary[static_cast<std::size_t>(face)];
+    const int axis = face / 2;
+    if (!value || this->N[axis] == 1)
+    {
+      continue;
+    }
+    const int b = this->LabelIndex(*value, "boundary");
+    const std::int64_t layer = (face % 2 == 0) ? 0 : this->N[axis] - 1;
+    Coord p;
+    for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+      for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+        for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+        {
+          if (p[axis] == layer)
+          {
+            this->Fixed[static_cast<std::size_t>(this->Index(p))] = b;
+          }
+        }
+  }
+  for (std::size_t s = 0; s < this->Fixed.size(); ++s)
+  {
+    if (this->Fixed[s] >= 0)
+    {
+      this->Model[s] = this->Fixed[s];
+    }
+  }
+  if (this->HasGuide())
+  {
+    Coord p;
+    for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+      for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+        for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+        {
+          const int b = this->Fixed[static_cast<std::size_t>(this->Index(p))];
+          if (b >= 0 && this->GuideWeight(this->GuideCell(p), b) == 0.0f)
+            throw Error("the boundary label " +
+              std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]) +
+              " has guide weight 0 at " + Format(p));
+        }
+  }
+}
+
+/// The trivial start of Algorithm 3.4 (lines 3-5), checked for consistency.
+int BlockSolver::TrivialStart()
+{
+  int t = -1;
+  if (this->Options.TrivialLabel)
+  {
+    t = this->LabelIndex(*this->Options.TrivialLabel, "trivial");
+    if (!this->Rules.SelfAdjacent(t, this->N))
+    {
+      throw Error("the trivial label " + std::to_string(*this->Options.TrivialLabel) +
+        " is not adjacent to itself along every axis of the output, so a model of only that "
+        "label is not consistent");
+    }
+  }
+  else
+  {
+    t = ChooseTrivialLabel(this->Rules.NumberOfLabels(), this->Rules.IndexOf(0),
+      [this](int b) { return this->Rules.SelfAdjacent(b, this->N); });
+    if (t < 0)
+    {
+      throw Error("the example has no usable trivial start for block synthesis: no label is "
+                  "adjacent to itself along every axis (usually the empty label is). Use "
+                  "whole-model synthesis (a block as large as the output) instead");
+    }
+  }
+  for (std::size_t s = 0; s < this->Model.size(); ++s)
+  {
+    if (this->Fixed[s] < 0)
+    {
+      this->Model[s] = t;
+    }
+  }
+  // With symmetry, the trivial label must be allowed on the mirror planes.
+  if (this->Plan)
+    for (int a = 0; a < 3; ++a)
+      if (this->Plan->Axes[static_cast<std::size_t>(a)] &&
+        !((this->Plan->ColumnMask[static_cast<std::size_t>(a)][static_cast<std::size_t>(t / 64)] >>
+            (t % 64)) &
+          1u))
+        throw Error("the trivial label " +
+          std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(t)]) +
+          " cannot lie next to its own mirror image along " +
+          std::string("xyz").substr(static_cast<std::size_t>(a), 1));
+  // A failed block falls back to the trivial label, so the guide may not forbid it.
+  if (this->HasGuide())
+  {
+    Coord p;
+    for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+      for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+        for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+          if (this->Fixed[static_cast<std::size_t>(this->Index(p))] < 0 &&
+            this->GuideWeight(this->GuideCell(p), t) == 0.0f)
+            throw Error("the guide gives the trivial label " +
+              std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(t)]) +
+              " weight 0 at " + Format(p) +
+              ", but block synthesis falls back to it where a "
+              "block fails. Allow that label everywhere, or use whole-model synthesis");
+  }
+  // The start must satisfy Eq. 3.3, boundary labels included.
+  Coord p;
+  for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+    for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+      for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          Coord q = p;
+          if (++q[axis] >= this->N[axis])
+            continue;
+          const int b = this->Model[static_cast<std::size_t>(this->Index(p))];
+          const int c = this->Model[static_cast<std::size_t>(this->Index(q))];
+          if (!this->Rules.Allowed(2 * axis, b, c))
+          {
+            const auto& v = this->Rules.LabelValues();
+            throw Error("no usable trivial start: the initial model of label " +
+              std::to_string(v[static_cast<std::size_t>(t)]) +
+              " with the boundary labels puts label " +
+              std::to_string(v[static_cast<std::size_t>(b)]) + " before " +
+              std::to_string(v[static_cast<std::size_t>(c)]) + " along " +
+              std::string("xyz").substr(static_cast<std::size_t>(axis), 1) + " at " + Format(p) +
+              ", which the example never does");
+          }
+        }
+  if (this->Seams)
+    this->CheckStartAgainstSeams(t);
+  return t;
+}
+
+/// The trivial start must also satisfy the symmetry's seams and unary constraints.
+void BlockSolver::CheckStartAgainstSeams(int t) const
+{
+  const auto& v = this->Rules.LabelValues();
+  const SiteArcs& arcs = this->Seams->Arcs;
+  const int words = this->Rules.Words();
+  for (std::size_t s = 0; s < this->Model.size(); ++s)
+  {
+    const int b = this->Model[s];
+    const std::uint64_t* mask = this->Seams->HasMasks()
+      ? this->Seams->SiteMasks.data() + s * static_cast<std::size_t>(words)
+      : nullptr;
+    bool ok = !mask || ((mask[b / 64] >> (b % 64)) & 1u);
+    for (std::int64_t i = arcs.Start[s]; ok && i < arcs.Start[s + 1]; ++i)
+      ok = this->Seams->Relation->Allowed(arcs.Class[static_cast<std::size_t>(i)], b,
+        this->Model[static_cast<std::size_t>(arcs.Target[static_cast<std::size_t>(i)])]);
+    if (!ok)
+      throw Error("no usable trivial start: a model of label " +
+        std::to_string(v[static_cast<std::size_t>(t)]) +
+        " (with the boundary labels) does not meet its own symmetric copies at " +
+        Format(this->Coordinates(static_cast<std::int64_t>(s))) +
+        "; the trivial label must be its own image under the symmetry's label map");
+  }
+}
+
+std::int64_t BlockSolver::ConstrainBlock(const Block& block, std::vector<std::int64_t>& free)
+{
+  Catalog& cat = this->Cat;
+  const Coord& o = block.Origin;
+  const Coord& m = block.Dims;
+  free.clear();
+  free.reserve(static_cast<std::size_t>(cat.NumberOfSites()));
+  for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+  {
+    const Coord c = cat.Coordinates(local);
+    const Coord p{ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } };
+    const int fixed = this->Fixed[static_cast<std::size_t>(this->Index(p))];
+    if (fixed >= 0)
+    {
+      if (!cat.Assign(local, fixed))
+        return local;
+    }
+    else
+    {
+      free.push_back(local);
+      if (!this->KeepSiteConstraints(cat, local, p))
+        return local;
+    }
+    for (int d = 0; d < NumberOfDirections; ++d)
+    {
+      const int axis = AxisOf(d);
+      Coord q = p;
+      q[axis] += (d & 1) ? -1 : 1;
+      if (q[axis] < 0 || q[axis] >= this->N[axis] ||
+        (q[axis] >= o[axis] && q[axis] < o[axis] + m[axis]))
+        continue; // outside the model, or inside the block
+      const int label = this->Model[static_cast<std::size_t>(this->Index(q))];
+      if (label >= 0 && !cat.Constrain(local, Opposite(d), label))
+        return local;
+    }
+    if (this->Seams && !this->ConstrainAcrossSeams(block, local, p))
+      return local;
+  }
+  return cat.Propagate();
+}
+
+bool BlockSolver::ConstrainAcrossSeams(const Block& block, std::int64_t local, const Coord& p)
+{
+  const Coord& o = block.Origin;
+  const Coord& m = block.Dims;
+  const SiteArcs& arcs = this->Seams->Arcs;
+  const std::int64_t g = this->Index(p);
+  for (std::int64_t i = arcs.Start[static_cast<std::size_t>(g)];
+       i < arcs.Start[static_cast<std::size_t>(g + 1)]; ++i)
+  {
+    const std::int64_t t = arcs.Target[static_cast<std::size_t>(i)];
+    const Coord q = this->Coordinates(t);
+    if (q[0] >= o[0] && q[1] >= o[1] && q[2] >= o[2] && q[0] < o[0] + m[0] && q[1] < o[1] + m[1] &&
+      q[2] < o[2] + m[2])
+      continue; // inside the block: propagated by the catalog
+    const int label = this->Model[static_cast<std::size_t>(t)];
+    if (label >= 0 &&
+      !this->Cat.Constrain(local, arcs.Class[static_cast<std::size_t>(i)] ^ 1, label))
+      return false;
+  }
+  return true;
+}
+
+int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
+{
+  // The guide's weights of this site's region multiply the choice's (D§3.5.3).
+  const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
+  if (this->Options.Choice == LabelChoice::Resemblance)
+  {
+    this->ResemblanceWeights(local, this->ChoiceWeights);
+    double weightSum = 0.0;
+    for (std::size_t b = 0; b < this->ChoiceWeights.size(); ++b)
+    {
+      if (this->HasGuide())
+        this->ChoiceWeights[b] *= this->GuideWeight(cell, static_cast<int>(b));
+      weightSum += this->ChoiceWeights[b];
+    }
+    if (weightSum > 0.0)
+    {
+      double r = rng.Uniform() * weightSum;
+      int last = -1;
+      for (int b = 0; b < this->Rules.NumberOfLabels(); ++b)
+      {
+        const double x = this->ChoiceWeights[static_cast<std::size_t>(b)];
+        if (x <= 0.0)
+          continue;
+        last = b;
+        r -= x;
+        if (r < 0.0)
+          return b;
+      }
+      return last;
+    }
+    // No example site matches any possible label (labels only reachable through
+    // propagation): fall back to the weighted choice below.
+  }
+  return DrawLabel(
+    this->Cat.Domain(local), this->Rules.Words(),
+    [this, cell](int b) { return this->SiteWeight(cell, b); }, rng.Uniform());
+}
+
+std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t& assignments)
+{
+  Catalog& cat = this->Cat;
+  cat.Reset(block.Origin, block.Dims);
+  this->Pending.clear(); // snapshots of an earlier, failed attempt are dropped
+  const Coord& o = block.Origin;
+  auto global = [&](std::int64_t local)
+  {
+    const Coord c = cat.Coordinates(local);
+    return this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } });
+  };
+
+  // Fixed labels inside the block, and the labels around it (lines 12-17).
+  std::vector<std::int64_t>& free = this->FreeSites;
+  std::int64_t empty = this->ConstrainBlock(block, free);
+  if (empty >= 0)
+    return global(empty);
+
+  // Assign the free sites (lines 19-29), in the chosen order.
+  auto assign = [&](std::int64_t local) -> std::int64_t
+  {
+    if (cat.Count(local) == 0)
+      return local;
+    if ((assignments & 1023) == 0 && this->Stopped())
+      return local; // cancelled: the attempt ends here (and no other starts)
+    if (cat.Count(local) > 1)
+    {
+      ++assignments;
+      cat.Assign(local, this->ChooseLabel(local, rng));
+      const std::int64_t emptied = cat.Propagate();
+      if (emptied < 0)
+        this->MaybeCapture(block, assignments);
+      return emptied;
+    }
+    return -1;
+  };
+
+  if (this->Options.Order == SiteOrder::MinimumEntropy)
+  {
+    empty = this->AssignByEntropy(free, rng, assign);
+  }
+  else
+  {
+    if (this->Options.Order == SiteOrder::Random)
+    {
+      for (std::size_t i = free.size(); i > 1; --i)
+        std::swap(free[i - 1], free[static_cast<std::size_t>(rng.Below(i))]);
+    }
+    for (std::int64_t local : free)
+    {
+      empty = assign(local);
+      if (empty >= 0)
+        break;
+    }
+  }
+  if (empty >= 0)
+    return global(empty);
+
+  // Success: commit the block.
+  for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+  {
+    const auto s = static_cast<std::size_t>(global(local));
+    const int b = cat.Single(local);
+    if (this->Model[s] != b)
+    {
+      this->Model[s] = b;
+      this->LastBlock[s] = static_cast<std::int32_t>(block.Index);
+    }
+  }
+  return -1;
+}
+
+/// Minimum-entropy order with a priority queue (no full scan per step): entries are pushed
+/// when a site's catalog changes and skipped when stale.
+template <typename AssignFn>
+std::int64_t BlockSolver::AssignByEntropy(
+  const std::vector<std::int64_t>& free, Random& rng, AssignFn&& assign)
+{
+  Catalog& cat = this->Cat;
+  struct Entry
+  {
+    double Priority;
+    std::int64_t Local;
+    int Count;
+    bool operator<(const Entry& o) const { return this->Priority > o.Priority; } // min-heap
+  };
+  std::vector<double> noise(static_cast<std::size_t>(cat.NumberOfSites()), 0.0);
+  std::vector<std::uint8_t> isFree(static_cast<std::size_t>(cat.NumberOfSites()), 0);
+  for (std::int64_t local : free)
+  {
+    noise[static_cast<std::size_t>(local)] = 1e-6 * rng.Uniform();
+    isFree[static_cast<std::size_t>(local)] = 1;
+  }
+  auto entropy = [&](std::int64_t local) { return this->Entropy(cat, local); };
+  std::priority_queue<Entry> heap;
+  for (std::int64_t local : free)
+  {
+    if (cat.Count(local) > 1)
+      heap.push(
+        { entropy(local) + noise[static_cast<std::size_t>(local)], local, cat.Count(local) });
+  }
+  cat.ClearChanged();
+  while (!heap.empty())
+  {
+    const Entry e = heap.top();
+    heap.pop();
+    if (cat.Count(e.Local) != e.Count || cat.Count(e.Local) <= 1)
+      continue; // stale, or decided by propagation
+    const std::int64_t empty = assign(e.Local);
+    if (empty >= 0)
+      return empty;
+    for (std::int64_t local : cat.Changed())
+    {
+      if (isFree[static_cast<std::size_t>(local)] && cat.Count(local) > 1)
+        heap.push(
+          { entropy(local) + noise[static_cast<std::size_t>(local)], local, cat.Count(local) });
+    }
+    cat.ClearChanged();
+  }
+  // Every free site is now decided (a single label) or was never undecided.
+  for (std::int64_t local : free)
+  {
+    if (cat.Count(local) == 0)
+      return local;
+  }
+  return -1;
+}
+
+/// Entropy of the weighted labels still possible at @p local of the current catalog (the
+/// guide's weights included).
+double BlockSolver::Entropy(const Catalog& cat, std::int64_t local) const
+{
+  const bool guided = this->HasGuide();
+  const std::int64_t cell = guided ? this->GuideCellOfLocal(local) : 0;
+  double sum = 0.0, sumWLogW = 0.0;
+  const std::uint64_t* dom = cat.Domain(local);
+  for (int w = 0; w < this->Rules.Words(); ++w)
+    for (std::uint64_t bits = dom[w]; bits; bits &= bits - 1)
+    {
+      const int b = w * 64 + __builtin_ctzll(bits);
+      if (guided)
+      {
+        const double weight = this->SiteWeight(cell, b);
+        sum += weight;
+        sumWLogW += weight > 0.0 ? weight * std::log(weight) : 0.0;
+      }
+      else
+      {
+        sum += this->Weight(b);
+        sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+      }
+    }
+  return sum > 0.0 ? std::log(sum) - sumWLogW / sum : 0.0;
+}
+
+/// The whole model now: outside the active block, the model; inside, the catalog.
+CatalogSnapshot BlockSolver::Capture(const Block* active, std::int64_t assignments) const
+{
+  CatalogSnapshot snap;
+  const std::size_t n = this->Model.size();
+  snap.CatalogSize.assign(n, 1);
+  snap.Entropy.assign(n, 0.0f);
+  snap.Labels.resize(n);
+  snap.Block = active ? active->Index : -1;
+  snap.Assignments = assignments;
+  const auto& values = this->Rules.LabelValues();
+  const int k = this->Rules.NumberOfLabels();
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    const int b = this->Model[s];
+    snap.Labels[s] = b >= 0 ? values[static_cast<std::size_t>(b)] : CatalogSnapshot::Undecided;
+    if (b < 0)
+    {
+      snap.CatalogSize[s] = k; // never constrained yet (whole-model start)
+      snap.Entropy[s] = static_cast<float>(this->FullEntropy);
+    }
+  }
+  if (active)
+  {
+    const Catalog& cat = this->Cat;
+    for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+    {
+      const Coord c = cat.Coordinates(local);
+      const auto s = static_cast<std::size_t>(this->Index(
+        { { active->Origin[0] + c[0], active->Origin[1] + c[1], active->Origin[2] + c[2] } }));
+      const int count = cat.Count(local);
+      snap.CatalogSize[s] = count;
+      snap.Entropy[s] = static_cast<float>(this->Entropy(cat, local));
+      snap.Labels[s] = count == 1 ? values[static_cast<std::size_t>(cat.Single(local))]
+                                  : CatalogSnapshot::Undecided;
+    }
+  }
+  return snap;
+}
+
+/// During an attempt: capture when the block's decided fraction reaches the next milestone.
+void BlockSolver::MaybeCapture(const Block& block, std::int64_t assignments)
+{
+  if (!this->Snapshots())
+    return;
+  const int per = this->Options.SnapshotsPerBlock;
+  // The last milestone (all decided) is the committed block, captured by CommitSnapshots.
+  if (static_cast<int>(this->Pending.size()) >= per - 1)
+    return;
+  const double fraction = double(this->Cat.Decided()) / double(this->Cat.NumberOfSites());
+  while (static_cast<int>(this->Pending.size()) < per - 1 &&
+    fraction >= double(this->Pending.size() + 1) / double(per))
+  {
+    this->Pending.push_back(this->Capture(&block, assignments));
+  }
+}
+
+/// After a block: emit its snapshots (padded to SnapshotsPerBlock with the final state).
+void BlockSolver::CommitSnapshots(std::int64_t assignments)
+{
+  if (!this->Snapshots())
+    return;
+  CatalogSnapshot final = this->Capture(nullptr, assignments);
+  while (static_cast<int>(this->Pending.size()) < this->Options.SnapshotsPerBlock - 1)
+    this->Pending.push_back(final);
+  this->Pending.push_back(std::move(final));
+  for (auto& snap : this->Pending)
+  {
+    snap.Step = ++this->Steps;
+    this->Options.OnSnapshot(snap);
+  }
+  this->Pending.clear();
+}
+
+void BlockSolver::StartSnapshots()
+{
+  if (!this->Snapshots())
+    return;
+  CatalogSnapshot start = this->Capture(nullptr, 0);
+  start.Step = 0;
+  this->Options.OnSnapshot(start);
+}
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file BlockSolver.h
+ * @brief The discrete solver of one block (internal): Algorithm 3.4's lines 9-29 on a catalog
+ * (Discrete/Catalog.h) over the block, with what constrains the block from outside (the model
+ * around it, boundary layers, mirror planes, symmetry seams) and the label choice (uniform,
+ * frequency, resemblance of M07§3, the guide of D§3.5.3), plus the trivial start and catalog
+ * snapshots. One solver a worker thread; all of them share one SharedModel. The run over the
+ * blocks is Core/BlockSynthesis.h's BlockRunner, driven by Discrete/DiscreteSynthesis.cxx.
+ *
+ * BlockSolver.cxx holds the block attempt, the trivial start and the snapshots;
+ * BlockSolverWeights.cxx the label weights (guide, resemblance) and the site constraints.
+ */
+#include "Core/BlockSynthesis.h"
+#include "Core/Random.h"
+#include "Discrete/Catalog.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/MirrorPlan.h"
+#include "Discrete/SymmetryPlan.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+namespace detail
+{
+
+using Coord = std::array<std::int64_t, 3>;
+using Block = BoxBlock<3>;
+
+/// "(x, y, z)".
+inline std::string Format(const Coord& c)
+{
+  return "(" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
+    ")";
+}
+
+/// The model being synthesized, shared by the solvers of all threads. Blocks of one phase
+/// never touch, so threads write disjoint sites.
+struct SharedModel
+{
+  std::vector<std::int32_t> Model;     ///< label indices; -1 unassigned
+  std::vector<std::int32_t> Fixed;     ///< boundary label indices; -1 free
+  std::vector<std::int32_t> LastBlock; ///< block that last changed each site
+};
+
+/// The solver of one worker: its own catalog and scratch space over the shared model.
+class BlockSolver
+{
+public:
+  /// A solver over @p shared; the first solver of a run sizes it, later ones (one per extra
+  /// thread) share it. @p runner (may be null) tells when the run is being cancelled; @p worker
+  /// is this solver's worker number there.
+  BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan,
+    const SymmetryPlan* seams, SharedModel& shared);
+
+  /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
+  void SetUpResemblance();
+
+  /// The decided label index at model site @p q during the current block (-1: undecided).
+  int DecidedLabel(const Coord& q) const;
+
+  /// L(k) of Eqs. 4-5 for every label of the catalog at @p local (written to @p weights):
+  /// the number of example sites holding k whose window is at the minimum distance d0.
+  void ResemblanceWeights(std::int64_t local, std::vector<double>& weights);
+
+  /// Dense guide weights [cell][label index] and, per cell, the mask of labels allowed there.
+  void SetUpGuide(const GuideVolume& guide);
+
+  /// Unary constraints of a free site @p p: the guide (at the site and, with symmetry, at each
+  /// of its mirror images for the mirrored label) and the mirror planes' last layers.
+  bool KeepSiteConstraints(Catalog& cat, std::int64_t local, const Coord& p);
+
+  int LabelIndex(Label value, const char* what) const;
+
+  /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
+  void ApplyBoundary();
+
+  /// The trivial start of Algorithm 3.4 (lines 3-5), checked for consistency.
+  int TrivialStart();
+
+  /// The trivial start must also satisfy the symmetry's seams and unary constraints.
+  void CheckStartAgainstSeams(int t) const;
+
+  /// Lines 12-17 of Algorithm 3.4 for @p block on the reset catalog: fixed labels inside, the
+  /// labels around it, unary site constraints, then propagation. Fills @p free with the free
+  /// sites (local indices); returns -1, or the local site whose catalog became empty.
+  std::int64_t ConstrainBlock(const Block& block, std::vector<std::int64_t>& free);
+
+  /// Translation/rotation seams from site @p p (local @p local) to sites outside @p block.
+  bool ConstrainAcrossSeams(const Block& block, std::int64_t local, const Coord& p);
+
+  /// A label for site @p local drawn from its catalog: by resemblance (M07 Eqs. 4-6) or by
+  /// weight, each times the guide's weight of the site's region (D§3.5.3).
+  int ChooseLabel(std::int64_t local, Random& rng);
+
+  /// One attempt at a block (lines 9-29 of Algorithm 3.4). Returns -1 on success, else the
+  /// model index of the site whose catalog became empty.
+  std::int64_t RunBlock(const Block& block, Random& rng, std::int64_t& assignments);
+
+  /// Minimum-entropy order with a priority queue (no full scan per step): entries are pushed
+  /// when a site's catalog changes and skipped when stale.
+  template <typename AssignFn>
+  std::int64_t AssignByEntropy(
+    const std::vector<std::int64_t>& free, Random& rng, AssignFn&& assign);
+
+  /// Entropy of the weighted labels still possible at @p local of the current catalog (the
+  /// guide's weights included).
+  double Entropy(const Catalog& cat, std::int64_t local) const;
+
+  /// The whole model now: outside the active block, the model; inside, the catalog.
+  CatalogSnapshot Capture(const Block* active, std::int64_t assignments) const;
+
+  /// During an attempt: capture when the block's decided fraction reaches the next milestone.
+  void MaybeCapture(const Block& block, std::int64_t assignments);
+
+  /// After a block: emit its snapshots (padded to SnapshotsPerBlock with the final state).
+  void CommitSnapshots(std::int64_t assignments);
+
+  void StartSnapshots();
+
+  bool HasGuide() const { return !this->GuideWeights.empty(); }
+
+  /// The guide cell of model site @p p.
+  std::int64_t GuideCell(const Coord& p) const
+  {
+    // The guide spans the full output, also when only a part of it is synthesized.
+    return this->Options.Guide->CellOf(
+      p, this->Plan ? this->Plan->Full : (this->Seams ? this->Seams->Full : this->N));
+  }
+
+  float GuideWeight(std::int64_t cell, int b) const
+  {
+    return this->GuideWeights[static_cast<std::size_t>(cell * this->Rules.NumberOfLabels() + b)];
+  }
+
+  /// The weight of label @p b at a site of guide cell @p cell (the base weight without a guide).
+  double SiteWeight(std::int64_t cell, int b) const
+  {
+    return this->HasGuide() ? this->Weight(b) * this->GuideWeight(cell, b) : this->Weight(b);
+  }
+
+  /// The guide cell of a site of the current catalog region.
+  std::int64_t GuideCellOfLocal(std::int64_t local) const
+  {
+    const Coord c = this->Cat.Coordinates(local);
+    const Coord& o = this->Cat.Origin();
+    return this->GuideCell({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } });
+  }
+
+  double Weight(int b) const
+  {
+    return this->Options.Choice == LabelChoice::Frequency
+      ? this->Rules.Weights()[static_cast<std::size_t>(b)]
+      : 1.0;
+  }
+
+  std::int64_t Index(const Coord& p) const
+  {
+    return p[0] + this->N[0] * (p[1] + this->N[1] * p[2]);
+  }
+
+  Coord Coordinates(std::int64_t index) const
+  {
+    return { { index % this->N[0], (index / this->N[0]) % this->N[1],
+      index / (this->N[0] * this->N[1]) } };
+  }
+
+  /// Whether the run reports catalog snapshots.
+  bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
+
+  /// Whether the run is being cancelled (polled every 1024 assignments inside a block).
+  bool Stopped() { return this->Runner && this->Runner->Stopped(this->Worker); }
+
+  const AdjacencyRules& Rules;
+  const SynthesisOptions& Options;
+  Catalog Cat;
+  const MirrorPlan* Plan;                        ///< symmetric synthesis of a half, or nullptr
+  const SymmetryPlan* Seams;                     ///< translation/rotation: a domain, or nullptr
+  std::vector<int> ExampleIndex;                 ///< resemblance: the example as label indices
+  std::vector<std::array<int, 3>> WindowOffsets; ///< resemblance: window offsets but the centre
+  std::vector<std::int64_t> ResemblanceCounts;
+  std::vector<double> ChoiceWeights;
+  std::vector<std::uint64_t> MaskScratch;
+  std::vector<std::int64_t> FreeSites;   ///< the current block's free sites (local indices)
+  std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
+  std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
+  std::vector<CatalogSnapshot> Pending;  ///< snapshots of the current attempt
+  BlockRunner* Runner = nullptr;         ///< the run (cancellation), or nullptr
+  unsigned Worker = 0;                   ///< this solver's worker number in Runner
+  std::int64_t Steps = 0;
+  double FullEntropy = 0.0;
+  Coord N{ { 1, 1, 1 } };
+  std::vector<std::int32_t>& Model;     ///< label indices; -1 unassigned (shared)
+  std::vector<std::int32_t>& Fixed;     ///< boundary label indices; -1 free (shared)
+  std::vector<std::int32_t>& LastBlock; ///< block that last changed each site (shared)
+  std::vector<double> WLogW;
+};
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,534 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Discrete model synthesis (D ch. 3): Algorithms 3.1 and 3.4 as one run of blocks over the
+// shared block machinery (Core/BlockSynthesis.h), each block solved by a BlockSolver
+// (Discrete/BlockSolver.h); soft constraints (M07§4.2) decide which blocks are kept; symmetric
+// outputs (D§3.5.2) synthesize a part and unfold it.
+#include "Discrete/DiscreteSynthesis.h"
+
+#include "Core/Error.h"
+#include "Core/Memory.h"
+#include "Core/Random.h"
+#include "Discrete/BlockSolver.h"
+#include "Discrete/MirrorPlan.h"
+#include "Discrete/SymmetryPlan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <thread>
+
+namespace msynth
+{
+using namespace detail;
+
+namespace
+{
+/// Block size and step per axis from the options (Algorithm 3.5's m and the overlap).
+bool BlockGeometry(const SynthesisOptions& options, Coord& m, Coord& step)
+{
+  bool wholeModel = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t n = options.Size[a];
+    m[a] = options.BlockSize[a] <= 0 ? n : std::min(options.BlockSize[a], n);
+    wholeModel = wholeModel && m[a] == n;
+    std::int64_t overlap = options.Overlap[a] < 0 ? m[a] / 2 : options.Overlap[a];
+    overlap = std::min(overlap, m[a] - 1);
+    step[a] = m[a] - overlap;
+  }
+  return wholeModel;
+}
+
+/// Visits the model index of every site of @p block (x fastest).
+template <typename Visit>
+void ForEachSite(const Block& block, const Coord& n, Visit&& visit)
+{
+  Coord p;
+  for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
+    for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
+      for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
+        visit(static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2])));
+}
+
+/**
+ * Soft constraints (M07§4.2): keeps or rolls back each synthesized block with the Metropolis
+ * probability, from the label counts of the model (target fractions) and an optional fitness
+ * of the whole model. Decisions are made in block order.
+ */
+class SoftConstraints
+{
+public:
+  SoftConstraints(const AdjacencyRules& rules, const SynthesisOptions& options, SharedModel& shared,
+    const Coord& n, std::size_t blocks, SynthesisStatistics& stats)
+    : Rules(rules)
+    , Options(options.Soft)
+    , Seed(options.Seed)
+    , Shared(shared)
+    , N(n)
+    , Stats(stats)
+  {
+    if (!this->Options.Active())
+      return;
+    const int k = rules.NumberOfLabels();
+    this->Target.assign(static_cast<std::size_t>(k), -1.0);
+    this->Counts.assign(static_cast<std::size_t>(k), 0);
+    this->Saved.resize(blocks);
+    for (const auto& kv : this->Options.TargetFractions)
+    {
+      const int b = rules.IndexOf(kv.first);
+      if (b < 0)
+        throw Error("the soft constraint names label " + std::to_string(kv.first) +
+          ", which does not occur in the example");
+      if (!(kv.second >= 0.0 && kv.second <= 1.0))
+        throw Error(
+          "the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
+      this->Target[static_cast<std::size_t>(b)] = kv.second;
+    }
+    if (!(this->Options.Temperature > 0.0) || !std::isfinite(this->Options.Temperature))
+      throw Error("the soft constraints' temperature must be positive");
+    for (std::int32_t b : shared.Model)
+      ++this->Counts[static_cast<std::size_t>(b)];
+    if (this->Options.Fitness)
+      this->Fitness = this->Options.Fitness(this->ModelGrid());
+  }
+
+  /// Remembers block @p i's labels before it changes (thread-safe across blocks).
+  void Save(std::size_t i, const Block& block)
+  {
+    if (!this->Options.Active())
+      return;
+    auto& saved = this->Saved[i];
+    saved.clear();
+    ForEachSite(block, this->N,
+      [&](std::size_t s)
+      {
+        saved.push_back(this->Shared.Model[s]);
+        saved.push_back(this->Shared.LastBlock[s]);
+      });
+  }
+
+  /// Keeps the synthesized block @p i (true) or restores its saved labels (false).
+  bool Decide(std::size_t i, const Block& block)
+  {
+    if (!this->Options.Active())
+      return true;
+    const int k = this->Rules.NumberOfLabels();
+    std::vector<std::int64_t> delta(static_cast<std::size_t>(k), 0);
+    const std::vector<std::int32_t>& saved = this->Saved[i];
+    std::size_t at = 0;
+    ForEachSite(block, this->N,
+      [&](std::size_t s)
+      {
+        --delta[static_cast<std::size_t>(saved[at])];
+        ++delta[static_cast<std::size_t>(this->Shared.Model[s])];
+        at += 2;
+      });
+    double dE = 0.0;
+    for (int b = 0; b < k; ++b)
+    {
+      const auto c = this->Counts[static_cast<std::size_t>(b)];
+      const auto d = delta[static_cast<std::size_t>(b)];
+      if (d != 0)
+        dE += this->Energy(b, c + d) - this->Energy(b, c);
+    }
+    double ratio = std::exp(-dE / this->Options.Temperature);
+    double fitness = this->Fitness;
+    if (this->Options.Fitness)
+    {
+      fitness = this->Options.Fitness(this->ModelGrid());
+      if (!(fitness > 0.0) || !(this->Fitness > 0.0))
+        throw Error("the soft constraints' fitness must be positive");
+      ratio *= fitness / this->Fitness;
+    }
+    Random rng =
+      Random::Derived(this->Seed, static_cast<std::uint64_t>(block.Index), 0x50f7ull << 32);
+    if (ratio >= 1.0 || rng.Uniform() < ratio)
+    {
+      for (int b = 0; b < k; ++b)
+        this->Counts[static_cast<std::size_t>(b)] += delta[static_cast<std::size_t>(b)];
+      this->Fitness = fitness;
+      return true;
+    }
+    at = 0;
+    ForEachSite(block, this->N,
+      [&](std::size_t s)
+      {
+        this->Shared.Model[s] = saved[at++];
+        this->Shared.LastBlock[s] = saved[at++];
+      });
+    ++this->Stats.BlocksRejected;
+    return false;
+  }
+
+private:
+  /// N · (fraction − target)² of label @p b at @p count sites (0 without a target).
+  double Energy(int b, std::int64_t count) const
+  {
+    const double t = this->Target[static_cast<std::size_t>(b)];
+    const auto sites = static_cast<double>(this->Shared.Model.size());
+    return t < 0.0 ? 0.0 : sites * (double(count) / sites - t) * (double(count) / sites - t);
+  }
+
+  LabelGrid ModelGrid() const
+  {
+    std::vector<Label> values(this->Shared.Model.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = this->Rules.LabelValues()[static_cast<std::size_t>(this->Shared.Model[i])];
+    return LabelGrid(this->N, std::move(values));
+  }
+
+  const AdjacencyRules& Rules;
+  const SoftConstraint& Options;
+  std::uint64_t Seed;
+  SharedModel& Shared;
+  Coord N;
+  SynthesisStatistics& Stats;
+  std::vector<double> Target;                   ///< per label index; -1: none
+  std::vector<std::int64_t> Counts;             ///< per label index, in the current model
+  double Fitness = 0.0;                         ///< of the current model
+  std::vector<std::vector<std::int32_t>> Saved; ///< per block: (label, last block) per site
+};
+
+/// The solvers of a run: worker 0's, and one more per extra thread over the same model.
+struct Workers
+{
+  std::vector<std::unique_ptr<BlockSolver>> Extra;
+  BlockSolver* First = nullptr;
+  BlockSolver& operator[](unsigned w) { return w == 0 ? *this->First : *this->Extra[w - 1]; }
+};
+
+/// The blocks' hooks for the runner: attempts, keep or roll back, snapshots, failures, and the
+/// labels exchanged between processes.
+BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<Block>& blocks,
+  BlockRunner& runner, Workers& workers, SoftConstraints& soft, SharedModel& shared,
+  SynthesisStatistics& stats)
+{
+  BlockSolver& solver = workers[0];
+  const Coord n = solver.N;
+  BlockRunner::Hooks hooks;
+  hooks.Run = [&options, &blocks, &runner, &workers, &soft](unsigned w, std::size_t i)
+  {
+    soft.Save(i, blocks[i]);
+    BlockSolver& worker = workers[w];
+    return runner.Attempts(w, options.AttemptsPerBlock,
+      [&](int attempt, std::int64_t& assignments)
+      {
+        Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(blocks[i].Index),
+          static_cast<std::uint64_t>(attempt));
+        return worker.RunBlock(blocks[i], rng, assignments);
+      });
+  };
+  hooks.Finish = [&blocks, &soft, &solver, &stats, n](std::size_t i, const BlockOutcome& out)
+  {
+    const bool kept = out.Solved() && soft.Decide(i, blocks[i]);
+    if (!kept)
+      solver.Pending.clear(); // the block keeps its previous labels: repeat that state
+    solver.CommitSnapshots(stats.Assignments + out.Assignments);
+    if (out.Solved())
+      return;
+    BlockFailure f;
+    f.Block = blocks[i].Index;
+    f.Origin = blocks[i].Origin;
+    f.EmptySite = { { out.Empty % n[0], (out.Empty / n[0]) % n[1], out.Empty / (n[0] * n[1]) } };
+    f.Attempts = out.Attempts;
+    stats.Failures.push_back(f);
+  };
+  hooks.Pack = [&blocks, &shared, n](std::size_t i, BlockRunner::Bytes& out)
+  {
+    ForEachSite(blocks[i], n,
+      [&](std::size_t s)
+      {
+        out.Put(shared.Model[s]);
+        out.Put(shared.LastBlock[s]);
+      });
+  };
+  hooks.Unpack = [&blocks, &shared, &soft, n](std::size_t i, BlockRunner::Bytes& in, bool remote)
+  {
+    if (remote)
+      soft.Save(i, blocks[i]); // the labels before the block, as where it ran
+    ForEachSite(blocks[i], n,
+      [&](std::size_t s)
+      {
+        const auto label = static_cast<std::int32_t>(in.Get());
+        const auto lastBlock = static_cast<std::int32_t>(in.Get());
+        if (remote)
+        {
+          shared.Model[s] = label;
+          shared.LastBlock[s] = lastBlock;
+        }
+      });
+  };
+  return hooks;
+}
+
+/// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
+/// mirror plan or symmetry seams when a part of a symmetric output is synthesized.
+SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOptions& options,
+  const MirrorPlan* plan, const SymmetryPlan* seams)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (options.AttemptsPerBlock < 1)
+    throw Error("attempts per block must be at least 1");
+  SharedModel shared;
+  BlockSolver solver(rules, options, plan, seams, shared);
+  const Coord n = solver.N;
+  Coord m, step;
+  const bool wholeModel = BlockGeometry(options, m, step);
+  solver.ApplyBoundary();
+
+  SynthesisResult result;
+  SynthesisStatistics& stats = result.Statistics;
+  if (!wholeModel)
+    stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
+  const std::vector<Block> blocks =
+    PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
+  if (options.Soft.Active() && wholeModel)
+    throw Error("soft constraints (Metropolis acceptance of block changes) need block synthesis");
+  SoftConstraints soft(rules, options, shared, n, blocks.size(), stats);
+
+  // Snapshots need one thread; seams link blocks of one phase; a fitness function sees the
+  // whole model, so its decisions must follow every block in order.
+  BlockRunner::Policy policy;
+  policy.Threads = options.Threads;
+  policy.Exchange = options.Exchange;
+  policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
+    static_cast<bool>(options.Soft.Fitness);
+  policy.Progress = options.Progress;
+  BlockRunner runner(std::move(policy), blocks.size());
+  Workers workers;
+  workers.First = &solver;
+  solver.Runner = &runner;
+  for (unsigned w = 1; w < runner.Workers(); ++w)
+  {
+    workers.Extra.push_back(std::make_unique<BlockSolver>(rules, options, plan, seams, shared));
+    workers.Extra.back()->Runner = &runner;
+    workers.Extra.back()->Worker = w;
+  }
+  std::vector<int> phases;
+  for (const Block& b : blocks)
+    phases.push_back(b.Phase);
+
+  solver.StartSnapshots();
+  const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
+  result.Status = runner.Run(phases, hooks, stats);
+  stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (result.Status == SynthesisStatus::Cancelled)
+  {
+    result.Message = "cancelled";
+    return result;
+  }
+  if (wholeModel && stats.BlocksFailed > 0)
+  {
+    // Algorithm 3.1 failed: report it, never return the partial model.
+    result.Status = SynthesisStatus::Failed;
+    result.Message = "whole-model synthesis (Algorithm 3.1) failed " +
+      std::to_string(options.AttemptsPerBlock) + " time(s); the catalog became empty at site " +
+      Format(stats.Failures.front().EmptySite) +
+      " in the last attempt. Try another seed, more attempts, or block synthesis";
+    return result;
+  }
+  std::vector<Label> values(solver.Model.size());
+  for (std::size_t s = 0; s < values.size(); ++s)
+    values[s] = rules.LabelValues()[static_cast<std::size_t>(solver.Model[s])];
+  result.Model = LabelGrid(n, std::move(values));
+  result.LastBlock = std::move(solver.LastBlock);
+  result.Message = Summary(stats, wholeModel);
+  return result;
+}
+
+/**
+ * A part of the output (a mirrored half; a period or a quadrant) spread over the whole output:
+ * output site q shows part site Source(q) (linear index, x fastest) with its label value mapped
+ * by Image(q, value).
+ */
+struct Unfolding
+{
+  Coord Full{ { 1, 1, 1 } };
+  std::function<std::size_t(const Coord&)> Source;
+  std::function<Label(const Coord&, Label)> Image;
+
+  template <class Visit>
+  void ForEach(Visit&& visit) const
+  {
+    Coord q;
+    std::size_t i = 0;
+    for (q[2] = 0; q[2] < this->Full[2]; ++q[2])
+      for (q[1] = 0; q[1] < this->Full[1]; ++q[1])
+        for (q[0] = 0; q[0] < this->Full[0]; ++q[0], ++i)
+          visit(i, q, this->Source(q));
+  }
+
+  CatalogSnapshot Snapshot(const CatalogSnapshot& part) const
+  {
+    CatalogSnapshot out;
+    out.Step = part.Step;
+    out.Block = part.Block;
+    out.Assignments = part.Assignments;
+    const auto n = static_cast<std::size_t>(this->Full[0] * this->Full[1] * this->Full[2]);
+    out.CatalogSize.resize(n);
+    out.Entropy.resize(n);
+    out.Labels.resize(n);
+    this->ForEach(
+      [&](std::size_t i, const Coord& q, std::size_t j)
+      {
+        out.CatalogSize[i] = part.CatalogSize[j];
+        out.Entropy[i] = part.Entropy[j];
+        const Label v = part.Labels[j];
+        out.Labels[i] = v == CatalogSnapshot::Undecided ? v : this->Image(q, v);
+      });
+    return out;
+  }
+
+  /// Replaces the part's model and LastBlock in @p r by the whole output's.
+  void Apply(SynthesisResult& r) const
+  {
+    LabelGrid model(this->Full[0], this->Full[1], this->Full[2]);
+    std::vector<std::int32_t> lastBlock(static_cast<std::size_t>(model.NumberOfSites()));
+    this->ForEach(
+      [&](std::size_t i, const Coord& q, std::size_t j)
+      {
+        model.Data()[i] = this->Image(q, r.Model.Data()[j]);
+        lastBlock[i] = r.LastBlock[j];
+      });
+    r.Model = std::move(model);
+    r.LastBlock = std::move(lastBlock);
+  }
+};
+
+/// Synthesizes @p part (the options of a half, period or quadrant) and spreads it by
+/// @p unfolding; the snapshots @p options asks for are spread too.
+SynthesisResult SynthesizePart(const AdjacencyRules& rules, const SynthesisOptions& options,
+  SynthesisOptions part, const MirrorPlan* mirror, const SymmetryPlan* seams,
+  const Unfolding& unfolding)
+{
+  if (options.OnSnapshot)
+    part.OnSnapshot = [&](const CatalogSnapshot& s) { options.OnSnapshot(unfolding.Snapshot(s)); };
+  SynthesisResult r = SynthesizeDirect(rules, part, mirror, seams);
+  if (r.Succeeded())
+    unfolding.Apply(r);
+  return r;
+}
+
+/// Translation or rotation symmetry: synthesizes the plan's domain with its seams, then repeats
+/// (turns) it over the output with the labels mapped.
+SynthesisResult SynthesizeSeamSymmetric(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  const auto plan = PlanSymmetry(rules, options);
+  const auto& values = rules.LabelValues();
+  Unfolding unfolding;
+  unfolding.Full = plan->Full;
+  unfolding.Source = [&plan](const Coord& q) { return static_cast<std::size_t>(plan->Source(q)); };
+  unfolding.Image = [&](const Coord& q, Label v)
+  { return values[static_cast<std::size_t>(plan->Image(q, rules.IndexOf(v)))]; };
+  SynthesisResult r =
+    SynthesizePart(rules, options, plan->DomainOptions, nullptr, plan.get(), unfolding);
+  if (r.Succeeded())
+    r.Message += plan->Rotate ? " (turned copies of a quadrant)" : " (repeated periods)";
+  return r;
+}
+
+/// Refuses, before anything is allocated, a model whose memory would exceed what is available:
+/// per site the model, the last-block record and the caller's copies (about 24 bytes), plus a
+/// catalog (two bit sets of the labels and bookkeeping) over each block being solved at once.
+void CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o)
+{
+  std::uint64_t sites = 1, blockSites = 1;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const auto n = static_cast<std::uint64_t>(o.Size[a]);
+    sites *= n;
+    const auto m = static_cast<std::uint64_t>(o.BlockSize[a]);
+    blockSites *= (m == 0 || m > n) ? n : m;
+  }
+  const auto perCatalogSite = static_cast<std::uint64_t>(rules.Words()) * 16 + 24;
+  const std::uint64_t catalogs =
+    blockSites * (blockSites < sites ? std::max(1u, std::thread::hardware_concurrency()) : 1u);
+  CheckMemory(sites * 24 + catalogs * perCatalogSite,
+    "a " + std::to_string(o.Size[0]) + " x " + std::to_string(o.Size[1]) + " x " +
+      std::to_string(o.Size[2]) + " model of " + std::to_string(rules.NumberOfLabels()) +
+      " labels");
+}
+} // namespace
+
+std::int64_t CountBlocks(const SynthesisOptions& requested)
+{
+  LabelGrid::CheckDimensions(requested.Size[0], requested.Size[1], requested.Size[2]);
+  SynthesisOptions options = requested;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (requested.Symmetry[static_cast<std::size_t>(a)].Enabled)
+      options.Size[a] = (requested.Size[a] + 1) / 2; // the synthesized half
+    const Translation& t = requested.Translate[static_cast<std::size_t>(a)];
+    if (t.Enabled && t.Period > 0 && t.Period < requested.Size[a])
+      options.Size[a] = t.Period; // one period
+  }
+  if (requested.Rotate.Enabled)
+    for (int a = 0; a < 2; ++a)
+      options.Size[a] = (requested.Size[a] + 1) / 2; // a quadrant
+  Coord m, step;
+  BlockGeometry(options, m, step);
+  std::int64_t count = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    count *= static_cast<std::int64_t>(BlockStarts(options.Size[a], m[a], step[a]).size());
+  }
+  return count;
+}
+
+std::int64_t CountSnapshots(const SynthesisOptions& options)
+{
+  return options.SnapshotsPerBlock > 0 ? 1 + CountBlocks(options) * options.SnapshotsPerBlock : 0;
+}
+
+SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  CheckSynthesisMemory(rules, options);
+  if (AnyMirror(options) && AnySeamSymmetry(options))
+    throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
+  if (!AnyMirror(options))
+  {
+    return AnySeamSymmetry(options) ? SynthesizeSeamSymmetric(rules, options)
+                                    : SynthesizeDirect(rules, options, nullptr, nullptr);
+  }
+  const MirrorPlan plan = PlanMirror(rules, options);
+  const auto& values = rules.LabelValues();
+  // Output site q folds onto half site p, mirrored over the axes where q lies past the middle.
+  auto fold = [&plan](const Coord& q, Coord& p)
+  {
+    int axes = 0;
+    p = q;
+    for (int a = 0; a < 3; ++a)
+      if (plan.Axes[static_cast<std::size_t>(a)] && q[a] >= plan.Half[a])
+      {
+        p[a] = plan.Full[a] - 1 - q[a];
+        axes |= 1 << a;
+      }
+    return axes;
+  };
+  Unfolding unfolding;
+  unfolding.Full = plan.Full;
+  unfolding.Source = [&](const Coord& q)
+  {
+    Coord p;
+    fold(q, p);
+    return static_cast<std::size_t>(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
+  };
+  unfolding.Image = [&](const Coord& q, Label v)
+  {
+    Coord p;
+    return values[static_cast<std::size_t>(plan.Image(rules.IndexOf(v), fold(q, p)))];
+  };
+  SynthesisResult r = SynthesizePart(rules, options, plan.HalfOptions, &plan, nullptr, unfolding);
+  if (!r.Succeeded())
+  {
+    return r;
+  }
+  r.Message += " (mirrored)";
+  return r;
+}
+
+} // namespace msynth

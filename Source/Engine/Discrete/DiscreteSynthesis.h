@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file DiscreteSynthesis.h
+ * @brief Discrete model synthesis (dissertation ch. 3): Algorithm 3.1 (the whole model at
+ * once) and Algorithm 3.4 (modify the model in overlapping blocks, from a trivial consistent
+ * start, rolling a block back when it fails).
+ *
+ * Both are one loop: a block as large as the output is Algorithm 3.1. Every returned model
+ * satisfies the adjacency constraint (Eq. 3.3); a failure of Algorithm 3.1 is reported as a
+ * failure with the site where the catalog became empty, never returned as a model.
+ *
+ * Determinism: each block attempt draws from its own generator derived from (seed, block,
+ * attempt), and blocks are visited in phases such that blocks of one phase never touch (not
+ * even through a neighbour layer). The result therefore depends only on the inputs and the
+ * seed, and blocks of one phase can later run concurrently with the same result.
+ */
+#include "Core/BlockSynthesis.h"
+#include "Core/LabelGrid.h"
+#include "Discrete/AdjacencyRules.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+
+/// The six faces of the output box, in the order of SynthesisOptions::Boundary (the order of
+/// VTK bounds: x min, x max, y min, y max, z min, z max).
+enum Face : int
+{
+  FaceMinX = 0,
+  FaceMaxX = 1,
+  FaceMinY = 2,
+  FaceMaxY = 3,
+  FaceMinZ = 4,
+  FaceMaxZ = 5
+};
+
+/// How a label is drawn from the catalog at a site.
+enum class LabelChoice
+{
+  Uniform,   ///< every possible label equally likely (the dissertation)
+  Frequency, ///< weighted by the label's frequency in the example
+  /// Resemblance (2007 paper, Eqs. 2–6): label k is weighted by L(k), the number of example
+  /// sites holding k whose (2w+1)³ window is at the minimum perceptual distance d0 from the
+  /// model's window around the site. The distance counts the pieces that differ where both
+  /// windows have one (inside the example, decided in the model). Needs
+  /// SynthesisOptions::Example.
+  Resemblance
+};
+
+/// The order in which sites of a block are assigned.
+enum class SiteOrder
+{
+  ScanLine,      ///< x fastest, then y, then z (the dissertation)
+  Random,        ///< a seeded random permutation
+  MinimumEntropy ///< the site with the fewest (entropy-weighted) choices first, ties at random
+};
+
+/**
+ * The state of the catalog over the whole model at one moment, for watching the solver work.
+ * Sites outside the block being synthesized hold their current label (catalog size 1).
+ */
+struct CatalogSnapshot
+{
+  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
+  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
+  std::int64_t Assignments = 0;          ///< label choices made so far
+  std::vector<std::int32_t> CatalogSize; ///< labels still possible per site
+  std::vector<float> Entropy;            ///< entropy of the (weighted) possible labels per site
+  std::vector<Label> Labels;             ///< the label value where decided, else Undecided
+  static constexpr Label Undecided = -2147483647 - 1;
+};
+
+/**
+ * Large-scale constraints (dissertation §3.5.3): a guide grid stretched over the output box
+ * giving, per cell, a weight for each label (its relative probability there). Output site p
+ * reads cell floor((p + 1/2) · Dims / Size) on each axis. A weight of zero removes the label
+ * from the catalog at those sites, and the removal propagates; labels without weights have
+ * weight 1 everywhere.
+ */
+struct GuideVolume
+{
+  std::array<std::int64_t, 3> Dims{ { 1, 1, 1 } };
+  /// Label value → one weight per guide cell (x fastest), each ≥ 0 and finite.
+  std::map<Label, std::vector<float>> Weights;
+
+  /// The cell (x fastest) holding site @p p of an output of @p size sites:
+  /// floor((p + 1/2) · Dims / size) per axis, in integers.
+  std::int64_t CellOf(
+    const std::array<std::int64_t, 3>& p, const std::array<std::int64_t, 3>& size) const
+  {
+    std::int64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::min(this->Dims[a] - 1, ((2 * p[a] + 1) * this->Dims[a]) / (2 * size[a]));
+    return c[0] + this->Dims[0] * (c[1] + this->Dims[1] * c[2]);
+  }
+};
+
+/**
+ * Reflection symmetry (dissertation §3.5.2) about the middle plane of an axis: the output
+ * satisfies M(n − 1 − x) = f(M(x)) along that axis, where f maps each label to its mirror image
+ * (labels not listed map to themselves). f must be an involution that preserves the example's
+ * rules (T_a[b, c] = T_a[f(c), f(b)] along the axis, T[b, c] = T[f(b), f(c)] across it), and the
+ * maps of several mirrored axes must commute. The lower half is synthesized and mirrored.
+ */
+struct Mirror
+{
+  bool Enabled = false;
+  std::map<Label, Label> Map;
+};
+
+/**
+ * Translation symmetry (dissertation §3.5.2) along one axis: M(x + P) = f(M(x)) for a period P,
+ * and the model continues across each period: T[M(P − 1), f(M(0))] along the axis. With
+ * P = the output size and f the identity the output tiles seamlessly (a periodic model). f maps
+ * each label to its image one period on (labels not listed map to themselves); it must be a
+ * permutation of the labels that preserves the example's rules along every axis
+ * (T[b, c] = T[f(b), f(c)]), and the maps of several translated axes must commute. One period
+ * is synthesized, with the seam as extra constraints, and repeated.
+ */
+struct Translation
+{
+  bool Enabled = false;
+  std::int64_t Period = 0; ///< P; 0 means the output size (a tileable model)
+  std::map<Label, Label> Map;
+};
+
+/**
+ * Rotation symmetry (dissertation §3.5.2) by 90° about the vertical axis through the centre of
+ * the output (which must be square in x and y): M(n − 1 − y, x, z) = f(M(x, y, z)), the model
+ * turned a quarter counter-clockwise is f of itself. f maps each label to its image turned a
+ * quarter counter-clockwise (a tileset's orientation k to k + 1); f⁴ must be the identity and f
+ * must carry the rules along x to those along y: T_x[b, c] = T_y[f(b), f(c)],
+ * T_y[b, c] = T_x[f(c), f(b)], T_z[b, c] = T_z[f(b), f(c)]. A quadrant is synthesized, with the
+ * seams to its turned copies as extra constraints, and turned into the other three.
+ */
+struct Rotation
+{
+  bool Enabled = false;
+  std::map<Label, Label> Map;
+};
+
+/**
+ * Soft constraints (2007 paper, §4.2): each block's change is kept with the Metropolis
+ * probability min(1, f(M') / f(M)), otherwise rolled back, so models that fit better are more
+ * likely. Built in: target fractions of labels, with f(M) = exp(−E / T) and
+ * E = N · Σ_b (fraction_b − target_b)² over the labels given (computed from label counts, so
+ * each decision is cheap). Optionally a user fitness f(M) > 0 (larger is better), evaluated on
+ * the whole model after every block. Needs block synthesis (Algorithm 3.1 has no previous model
+ * to compare with). Decisions are made in block order, so results do not depend on threads.
+ */
+struct SoftConstraint
+{
+  std::map<Label, double> TargetFractions;
+  double Temperature = 0.01;
+  std::function<double(const LabelGrid&)> Fitness;
+  bool Active() const { return !this->TargetFractions.empty() || static_cast<bool>(this->Fitness); }
+};
+
+struct SynthesisOptions
+{
+  /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
+  std::array<std::int64_t, 3> Size{ { 1, 1, 1 } };
+  /// Block size m (Algorithm 3.4); 0 on an axis means the whole axis. All zero (or ≥ Size) is
+  /// Algorithm 3.1.
+  std::array<std::int64_t, 3> BlockSize{ { 0, 0, 0 } };
+  /// Overlap between consecutive blocks; -1 means half the block (the dissertation's choice).
+  std::array<std::int64_t, 3> Overlap{ { -1, -1, -1 } };
+  /// Attempts per block before the block is left as it was (Algorithm 3.1: attempts overall).
+  int AttemptsPerBlock = 10;
+  std::uint64_t Seed = 0;
+  LabelChoice Choice = LabelChoice::Uniform;
+  /// The example grid, for LabelChoice::Resemblance (not owned; must outlive the call).
+  const LabelGrid* Example = nullptr;
+  /// Half-width w of the resemblance window (2w + 1 sites per axis). Default 1.
+  int ResemblanceWindow = 1;
+  SiteOrder Order = SiteOrder::ScanLine;
+  /**
+   * Labels (values) fixed on the boundary layer of each face, in the order -x, +x, -y, +y, -z,
+   * +z (Fig. 3.11: ground along the bottom, empty elsewhere). Faces of axes of size 1 are
+   * ignored. Where faces meet, the first face in the order -z, +z, -y, +y, -x, +x wins.
+   */
+  std::array<std::optional<Label>, 6> Boundary;
+  /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
+  /// adjacent to itself along every axis, else the first such label in value order).
+  std::optional<Label> TrivialLabel;
+  /// Reflection symmetry per axis (x, y, z).
+  std::array<Mirror, 3> Symmetry;
+  /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.
+  std::array<Translation, 3> Translate;
+  /// Rotation symmetry about the vertical axis; cannot be combined with mirrors or translation.
+  Rotation Rotate;
+  /// Soft constraints; inactive by default.
+  SoftConstraint Soft;
+  /// Large-scale constraints; empty for none.
+  std::optional<GuideVolume> Guide;
+  /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
+  /// model is the same for any number of threads. Runs with snapshots, runs with translation
+  /// or rotation symmetry (whose seams link distant blocks) and runs with a soft-constraint
+  /// fitness function (which sees the whole model after every block) use one thread.
+  int Threads = 0;
+  /// Blocks spread over processes (Core/BlockSynthesis.h); inactive by default. Runs with
+  /// snapshots, with translation or rotation seams, or with a fitness function run every block
+  /// on every process instead.
+  BlockExchange Exchange;
+  /// Called after each block (one thread) or each phase (several) with the fraction done, on
+  /// the calling thread; returning false cancels the run.
+  std::function<bool(double)> Progress;
+  /**
+   * Catalog snapshots (time steps): one at the start, then SnapshotsPerBlock per block, taken
+   * when the fraction of decided sites of the block first reaches 1/S, 2/S, ..., 1 (the last is
+   * the committed block). A block that fails repeats its previous state, so there are always
+   * exactly 1 + Blocks × SnapshotsPerBlock snapshots (see CountSnapshots). 0: none.
+   */
+  int SnapshotsPerBlock = 0;
+  std::function<void(const CatalogSnapshot&)> OnSnapshot;
+};
+
+struct SynthesisResult
+{
+  /// Succeeded when Model is a complete consistent model. In block mode a model is always
+  /// returned unless cancelled (failed blocks keep their previous, consistent labels; see
+  /// Statistics.Failures).
+  SynthesisStatus Status = SynthesisStatus::Failed;
+  bool Succeeded() const { return this->Status == SynthesisStatus::Succeeded; }
+  std::string Message;
+  LabelGrid Model; ///< label values
+  /// Per site, the index of the last block that changed it (-1: never changed).
+  std::vector<std::int32_t> LastBlock;
+  SynthesisStatistics Statistics;
+};
+
+/// The number of blocks Synthesize will visit for these options (sizes only).
+std::int64_t CountBlocks(const SynthesisOptions& options);
+/// The number of snapshots Synthesize will report: 1 + CountBlocks × SnapshotsPerBlock (0 if
+/// SnapshotsPerBlock is 0).
+std::int64_t CountSnapshots(const SynthesisOptions& options);
+
+/**
+ * @brief Runs discrete model synthesis.
+ * @throw Error on invalid options: a size below 1, a boundary or trivial label the rules do
+ * not know, or block synthesis without a usable trivial start (then the message says why).
+ */
+SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+} // namespace msynth

@@ -1,0 +1,434 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/SymmetryPlan.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <tuple>
+
+namespace msynth
+{
+namespace detail
+{
+
+ExtendedRelation::ExtendedRelation(
+  const AdjacencyRules& rules, const std::vector<std::function<bool(int, int)>>& extra)
+{
+  const int k = rules.NumberOfLabels();
+  this->Allocate(k, NumberOfDirections + 2 * static_cast<int>(extra.size()));
+  for (int d = 0; d < NumberOfDirections; ++d)
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c)
+        if (rules.Allowed(d, b, c))
+          this->AllowOne(d, b, c);
+  for (std::size_t i = 0; i < extra.size(); ++i)
+  {
+    const int d = NumberOfDirections + 2 * static_cast<int>(i);
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c)
+        if (extra[i](b, c))
+        {
+          this->AllowOne(d, b, c);
+          this->AllowOne(d + 1, c, b);
+        }
+  }
+  this->Finish();
+}
+
+LabelMap::LabelMap(std::vector<int> f)
+  : F(std::move(f))
+{
+  const std::size_t k = this->F.size();
+  this->Cycle.assign(k, -1);
+  this->Position.assign(k, 0);
+  for (std::size_t b = 0; b < k; ++b)
+  {
+    if (this->Cycle[b] >= 0)
+      continue;
+    std::vector<int> cycle;
+    for (int c = static_cast<int>(b); this->Cycle[static_cast<std::size_t>(c)] < 0;
+         c = this->F[static_cast<std::size_t>(c)])
+    {
+      this->Cycle[static_cast<std::size_t>(c)] = static_cast<int>(this->Cycles.size());
+      this->Position[static_cast<std::size_t>(c)] = static_cast<int>(cycle.size());
+      cycle.push_back(c);
+    }
+    this->Cycles.push_back(std::move(cycle));
+  }
+}
+
+int LabelMap::Power(int b, std::int64_t j) const
+{
+  const auto& cycle =
+    this->Cycles[static_cast<std::size_t>(this->Cycle[static_cast<std::size_t>(b)])];
+  const auto len = static_cast<std::int64_t>(cycle.size());
+  return cycle[static_cast<std::size_t>(
+    (this->Position[static_cast<std::size_t>(b)] + j % len) % len)];
+}
+
+std::int64_t SymmetryPlan::Source(const std::array<std::int64_t, 3>& q) const
+{
+  std::array<std::int64_t, 3> r = q;
+  for (int a = 0; a < 3; ++a)
+    if (this->Period[a] > 0)
+      r[a] = q[a] % this->Period[a];
+  if (this->Rotate)
+  {
+    const std::int64_t xy = this->TurnSource[static_cast<std::size_t>(q[0] + this->Full[0] * q[1])];
+    r[0] = xy % this->Domain[0];
+    r[1] = xy / this->Domain[0];
+  }
+  return r[0] + this->Domain[0] * (r[1] + this->Domain[1] * r[2]);
+}
+
+int SymmetryPlan::Image(const std::array<std::int64_t, 3>& q, int b) const
+{
+  for (int a = 0; a < 3; ++a)
+    if (this->Period[a] > 0)
+      b = this->Shift[a].Power(b, q[a] / this->Period[a]);
+  if (this->Rotate)
+    b = this->Turn.Power(b, this->TurnPower[static_cast<std::size_t>(q[0] + this->Full[0] * q[1])]);
+  return b;
+}
+
+bool AnySeamSymmetry(const SynthesisOptions& options)
+{
+  return options.Rotate.Enabled || options.Translate[0].Enabled || options.Translate[1].Enabled ||
+    options.Translate[2].Enabled;
+}
+
+namespace
+{
+using Coord = std::array<std::int64_t, 3>;
+const char* const AxisName = "xyz";
+const char* const FaceName[6] = { "-x", "+x", "-y", "+y", "-z", "+z" };
+} // namespace
+
+std::unique_ptr<SymmetryPlan> PlanSymmetry(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  auto plan = std::make_unique<SymmetryPlan>();
+  plan->Full = options.Size;
+  plan->Domain = options.Size;
+  plan->DomainOptions = options;
+  SynthesisOptions& domain = plan->DomainOptions;
+  domain.Rotate.Enabled = false;
+  for (auto& t : domain.Translate)
+    t.Enabled = false;
+  const int k = rules.NumberOfLabels();
+  const auto& values = rules.LabelValues();
+  auto name = [&](int b) { return std::to_string(values[static_cast<std::size_t>(b)]); };
+  auto readMap = [&](const std::map<Label, Label>& m, const std::string& what)
+  {
+    std::vector<int> f(static_cast<std::size_t>(k));
+    std::iota(f.begin(), f.end(), 0);
+    for (const auto& kv : m)
+    {
+      const int from = rules.IndexOf(kv.first), to = rules.IndexOf(kv.second);
+      if (from < 0 || to < 0)
+        throw Error("the " + what + " names label " +
+          std::to_string(from < 0 ? kv.first : kv.second) +
+          ", which does not occur in the example");
+      f[static_cast<std::size_t>(from)] = to;
+    }
+    std::vector<char> hit(static_cast<std::size_t>(k), 0);
+    for (int b = 0; b < k; ++b)
+      if (hit[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])]++)
+        throw Error("the " + what + " is not one-to-one: two labels map to label " +
+          name(f[static_cast<std::size_t>(b)]));
+    return LabelMap(std::move(f));
+  };
+  // Each seam relation, registered once: (kind, axis or direction, power) → relation index.
+  std::vector<std::function<bool(int, int)>> relations;
+  std::map<std::tuple<int, int, int>, int> relationIndex;
+  auto relation = [&](int kind, int d, int j, std::function<bool(int, int)> pred)
+  {
+    const auto key = std::make_tuple(kind, d, j);
+    const auto it = relationIndex.find(key);
+    if (it != relationIndex.end())
+      return it->second;
+    relations.push_back(std::move(pred));
+    return relationIndex[key] = static_cast<int>(relations.size()) - 1;
+  };
+  std::vector<LabelMap*> maps; // every map, for the boundary check
+  std::vector<std::string> mapNames;
+
+  bool anyTranslation = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    const Translation& t = options.Translate[static_cast<std::size_t>(a)];
+    if (!t.Enabled)
+      continue;
+    const std::string axis(1, AxisName[a]);
+    const std::int64_t n = options.Size[a];
+    if (n < 2)
+      throw Error("translation symmetry along " + axis +
+        " needs an output longer than one site along " + axis);
+    const std::int64_t period = t.Period <= 0 ? n : t.Period;
+    if (period > n)
+      throw Error("the period along " + axis + " (" + std::to_string(period) +
+        ") is longer than the output (" + std::to_string(n) + ")");
+    LabelMap& f = plan->Shift[static_cast<std::size_t>(a)];
+    f = readMap(t.Map, "translation map along " + axis);
+    for (int a2 = 0; a2 < 3; ++a2)
+      for (int b = 0; b < k; ++b)
+        for (int c = 0; c < k; ++c)
+          if (rules.Allowed(2 * a2, b, c) != rules.Allowed(2 * a2, f.Apply(b), f.Apply(c)))
+            throw Error("the translation map along " + axis +
+              " does not preserve the example's rules: label " + name(b) + " before " + name(c) +
+              " along " + AxisName[a2] +
+              (rules.Allowed(2 * a2, b, c) ? " occurs" : " does not occur") + ", but " +
+              name(f.Apply(b)) + " before " + name(f.Apply(c)) +
+              (rules.Allowed(2 * a2, b, c) ? " does not" : " does"));
+    if (options.Boundary[static_cast<std::size_t>(2 * a)] ||
+      options.Boundary[static_cast<std::size_t>(2 * a + 1)])
+      throw Error("the model repeats along " + axis + ", so its " + axis +
+        " faces cannot have boundary labels");
+    plan->Period[a] = period;
+    plan->Domain[a] = period;
+    anyTranslation = true;
+    maps.push_back(&f);
+    mapNames.push_back("translation map along " + axis);
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int c = a + 1; c < 3; ++c)
+      if (plan->Period[a] > 0 && plan->Period[c] > 0)
+        for (int b = 0; b < k; ++b)
+          if (plan->Shift[a].Apply(plan->Shift[c].Apply(b)) !=
+            plan->Shift[c].Apply(plan->Shift[a].Apply(b)))
+            throw Error(std::string("the translation maps along ") + AxisName[a] + " and " +
+              AxisName[c] + " do not commute (label " + name(b) + ")");
+
+  const std::int64_t n = options.Size[0];
+  const std::int64_t h = (n + 1) / 2;
+  if (options.Rotate.Enabled)
+  {
+    if (anyTranslation)
+      throw Error("rotation symmetry cannot be combined with translation symmetry");
+    if (options.Size[0] != options.Size[1] || n < 2)
+      throw Error("rotation symmetry about the vertical needs an output square in x and y, at "
+                  "least 2 x 2 (the size is " +
+        std::to_string(options.Size[0]) + " x " + std::to_string(options.Size[1]) + ")");
+    plan->Rotate = true;
+    LabelMap& f = plan->Turn;
+    f = readMap(options.Rotate.Map, "rotation map");
+    for (int b = 0; b < k; ++b)
+      if (f.Power(b, 4) != b)
+        throw Error(
+          "the rotation map turned four times does not bring label " + name(b) + " back to itself");
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c)
+      {
+        const int fb = f.Apply(b), fc = f.Apply(c);
+        const char* broken = nullptr;
+        if (rules.Allowed(PlusX, b, c) != rules.Allowed(PlusY, fb, fc))
+          broken = "along x, turned along y";
+        else if (rules.Allowed(PlusY, b, c) != rules.Allowed(PlusX, fc, fb))
+          broken = "along y, turned along -x";
+        else if (rules.Allowed(PlusZ, b, c) != rules.Allowed(PlusZ, fb, fc))
+          broken = "along z, turned along z";
+        if (broken)
+          throw Error("the example's rules are not preserved by a quarter turn with the rotation "
+                      "map: label " +
+            name(b) + " before " + name(c) + " (" + broken + ") does not match label " + name(fb) +
+            " and " + name(fc) + ". The example must look the same turned by 90 degrees");
+      }
+    // Side faces: one label on all four, its own turned image.
+    std::optional<Label> side;
+    for (int face = 0; face < 4; ++face)
+    {
+      const auto& v = options.Boundary[static_cast<std::size_t>(face)];
+      if (!v)
+        continue;
+      if (side && *side != *v)
+        throw Error("with rotation symmetry the four side faces must share one boundary label "
+                    "(got " +
+          std::to_string(*side) + " and " + std::to_string(*v) + ")");
+      side = v;
+    }
+    domain.Boundary[FaceMinX] = side;
+    domain.Boundary[FaceMinY] = side;
+    domain.Boundary[FaceMaxX].reset();
+    domain.Boundary[FaceMaxY].reset();
+    plan->Domain[0] = plan->Domain[1] = h;
+    maps.push_back(&f);
+    mapNames.push_back("rotation map");
+    // Where each output xy site comes from: the domain site of its orbit with the lowest index.
+    plan->TurnSource.assign(static_cast<std::size_t>(n * n), -1);
+    plan->TurnPower.assign(static_cast<std::size_t>(n * n), 0);
+    for (std::int64_t y = 0; y < n; ++y)
+      for (std::int64_t x = 0; x < n; ++x)
+      {
+        std::int64_t rx = x, ry = y; // R^{-j}(x, y)
+        std::int64_t best = -1;
+        int power = 0;
+        for (int j = 0; j < 4; ++j)
+        {
+          if (rx < h && ry < h && (best < 0 || rx + h * ry < best))
+          {
+            best = rx + h * ry;
+            power = j;
+          }
+          const std::int64_t tx = ry, ty = n - 1 - rx; // R^{-1}(x, y) = (y, n - 1 - x)
+          rx = tx;
+          ry = ty;
+        }
+        plan->TurnSource[static_cast<std::size_t>(x + n * y)] = best;
+        plan->TurnPower[static_cast<std::size_t>(x + n * y)] = static_cast<std::uint8_t>(power);
+      }
+  }
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    for (int face = 0; face < 6; ++face)
+    {
+      const auto& v = domain.Boundary[static_cast<std::size_t>(face)];
+      if (!v || options.Size[face / 2] == 1)
+        continue;
+      const int b = rules.IndexOf(*v);
+      if (b >= 0 && maps[i]->Apply(b) != b)
+        throw Error("the boundary label " + std::to_string(*v) + " of the " + FaceName[face] +
+          " face is not its own image under the " + mapNames[i] +
+          ", so the symmetric copies would not keep it");
+    }
+  domain.Size = plan->Domain;
+
+  // Seams: (source, target, relation) between domain sites; a site linked to itself becomes a
+  // unary mask.
+  const Coord& dd = plan->Domain;
+  const std::int64_t sites = dd[0] * dd[1] * dd[2];
+  const int words = rules.Words();
+  auto index = [&](const Coord& p) { return p[0] + dd[0] * (p[1] + dd[1] * p[2]); };
+  auto keepOnly = [&](std::int64_t site, const std::function<bool(int)>& allowed)
+  {
+    if (plan->SiteMasks.empty())
+    {
+      plan->SiteMasks.assign(static_cast<std::size_t>(sites * words), 0);
+      for (std::int64_t s = 0; s < sites; ++s)
+        for (int b = 0; b < k; ++b)
+          plan->SiteMasks[static_cast<std::size_t>(s * words + b / 64)] |= std::uint64_t(1)
+            << (b % 64);
+    }
+    for (int b = 0; b < k; ++b)
+      if (!allowed(b))
+        plan->SiteMasks[static_cast<std::size_t>(site * words + b / 64)] &=
+          ~(std::uint64_t(1) << (b % 64));
+  };
+  std::vector<std::tuple<std::int64_t, std::int64_t, int>> arcs;
+  auto link = [&](std::int64_t s, std::int64_t t, int rel)
+  {
+    if (s == t)
+    {
+      const auto& pred = relations[static_cast<std::size_t>(rel)];
+      keepOnly(s, [&](int b) { return pred(b, b); });
+      return;
+    }
+    arcs.emplace_back(s, t, NumberOfDirections + 2 * rel);
+    arcs.emplace_back(t, s, NumberOfDirections + 2 * rel + 1);
+  };
+  Coord p;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (plan->Period[a] == 0)
+      continue;
+    const LabelMap f = plan->Shift[static_cast<std::size_t>(a)];
+    const int rel = relation(
+      0, a, 1, [&rules, a, f](int b, int c) { return rules.Allowed(2 * a, b, f.Apply(c)); });
+    for (p[2] = 0; p[2] < dd[2]; ++p[2])
+      for (p[1] = 0; p[1] < dd[1]; ++p[1])
+        for (p[0] = 0; p[0] < dd[0]; ++p[0])
+          if (p[a] == dd[a] - 1)
+          {
+            Coord q = p;
+            q[a] = 0;
+            link(index(p), index(q), rel);
+          }
+  }
+  if (plan->Rotate)
+  {
+    const LabelMap f = plan->Turn;
+    for (p[2] = 0; p[2] < dd[2]; ++p[2])
+      for (p[1] = 0; p[1] < h; ++p[1])
+        for (p[0] = 0; p[0] < h; ++p[0])
+        {
+          const std::int64_t s = index(p);
+          const auto at = static_cast<std::size_t>(p[0] + n * p[1]);
+          // A duplicate of a lower-index domain site (odd sizes: the left arm of the centre row).
+          const std::int64_t src = plan->TurnSource[at];
+          const int j = plan->TurnPower[at];
+          if (src != p[0] + h * p[1])
+            link(s, src + h * h * p[2],
+              relation(2, 0, j, [f, j](int b, int c) { return b == f.Power(c, j); }));
+          // The centre of an odd size is its own turned image.
+          if (n % 2 == 1 && p[0] == h - 1 && p[1] == h - 1)
+            keepOnly(s, [&](int b) { return f.Apply(b) == b; });
+          for (int d : { PlusX, PlusY })
+          {
+            Coord q = p;
+            ++q[AxisOf(d)];
+            if (q[AxisOf(d)] < h || q[AxisOf(d)] >= n)
+              continue; // inside the domain, or outside the output
+            const auto qa = static_cast<std::size_t>(q[0] + n * q[1]);
+            const int jq = plan->TurnPower[qa];
+            const int rel = relation(1, d, jq,
+              [&rules, f, d, jq](int b, int c) { return rules.Allowed(d, b, f.Power(c, jq)); });
+            link(s, plan->TurnSource[qa] + h * h * p[2], rel);
+          }
+        }
+  }
+  // The guide at every image of a domain site.
+  if (options.Guide)
+  {
+    const GuideVolume& g = *options.Guide;
+    const std::int64_t cells = g.Dims[0] * g.Dims[1] * g.Dims[2];
+    bool valid = g.Dims[0] >= 1 && g.Dims[1] >= 1 && g.Dims[2] >= 1;
+    std::vector<const std::vector<float>*> weights(static_cast<std::size_t>(k), nullptr);
+    for (const auto& kv : g.Weights)
+    {
+      const int b = rules.IndexOf(kv.first);
+      valid = valid && b >= 0 && static_cast<std::int64_t>(kv.second.size()) == cells;
+      if (b >= 0)
+        weights[static_cast<std::size_t>(b)] = &kv.second;
+    }
+    if (valid) // else the solver reports what is wrong with the guide
+    {
+      Coord q;
+      for (q[2] = 0; q[2] < plan->Full[2]; ++q[2])
+        for (q[1] = 0; q[1] < plan->Full[1]; ++q[1])
+          for (q[0] = 0; q[0] < plan->Full[0]; ++q[0])
+          {
+            const std::int64_t cell = g.CellOf(q, plan->Full);
+            keepOnly(plan->Source(q),
+              [&](int b)
+              {
+                const auto* w = weights[static_cast<std::size_t>(plan->Image(q, b))];
+                return !w || (*w)[static_cast<std::size_t>(cell)] > 0.0f;
+              });
+          }
+    }
+  }
+  plan->Relation = std::make_unique<ExtendedRelation>(rules, relations);
+  // Arcs by source (CSR).
+  SiteArcs& out = plan->Arcs;
+  out.Dims = dd;
+  out.Start.assign(static_cast<std::size_t>(sites + 1), 0);
+  for (const auto& arc : arcs)
+    ++out.Start[static_cast<std::size_t>(std::get<0>(arc) + 1)];
+  for (std::int64_t s = 0; s < sites; ++s)
+    out.Start[static_cast<std::size_t>(s + 1)] += out.Start[static_cast<std::size_t>(s)];
+  out.Target.resize(arcs.size());
+  out.Class.resize(arcs.size());
+  std::vector<std::int64_t> fill(out.Start.begin(), out.Start.end() - 1);
+  for (const auto& arc : arcs)
+  {
+    const auto i = static_cast<std::size_t>(fill[static_cast<std::size_t>(std::get<0>(arc))]++);
+    out.Target[i] = std::get<1>(arc);
+    out.Class[i] = std::get<2>(arc);
+  }
+  return plan;
+}
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file VoxelSurface.h
+ * @brief The surface of a label grid seen as voxels: every site is a cube (its point ± half
+ * the spacing); a face is emitted wherever a non-empty site meets a different label or the
+ * outside, oriented outward from that site. Each label's faces therefore form closed,
+ * consistently oriented surfaces (where two labels meet there is one face for each).
+ */
+#include "Core/LabelGrid.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace msynth
+{
+
+struct VoxelSurface
+{
+  std::vector<std::array<double, 3>> Points;
+  std::vector<std::array<std::int64_t, 4>> Quads; ///< counter-clockwise seen from outside
+  std::vector<Label> QuadLabels;                  ///< label of the voxel each quad bounds
+};
+
+/// Extracts the voxel surface of @p grid; sites with label @p empty produce nothing.
+VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
+  const std::array<double, 3>& origin, const std::array<double, 3>& spacing);
+
+} // namespace msynth

@@ -1,0 +1,328 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Formats/Tileset.h"
+
+#include "Core/Error.h"
+
+#include "Formats/Xml.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+
+namespace msynth
+{
+namespace
+{
+using detail::XmlElement;
+using detail::XmlReader;
+
+const XmlElement* Child(const XmlElement& e, const std::string& name)
+{
+  for (const auto& c : e.Children)
+    if (c.Name == name)
+      return &c;
+  return nullptr;
+}
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+int OrientationCount(char symmetry)
+{
+  switch (symmetry)
+  {
+    case 'X':
+      return 1;
+    case 'I':
+    case '\\':
+      return 2;
+    case 'L':
+    case 'T':
+      return 4;
+    case 'F':
+      return 8;
+    default:
+      return 0;
+  }
+}
+
+int TransformOrientation(char symmetry, int i, bool mirror)
+{
+  // Rotation r (90° counter-clockwise) and left-right mirror m on the orientations of each
+  // class; they satisfy r^4 = m^2 = 1 and m r = r^-1 m (tested).
+  switch (symmetry)
+  {
+    case 'I':
+      return mirror ? i : 1 - i;
+    case '\\':
+      return 1 - i;
+    case 'L':
+      return mirror ? (i % 2 == 0 ? i + 1 : i - 1) : (i + 1) % 4;
+    case 'T':
+      return mirror ? (i % 2 == 0 ? i : 4 - i) : (i + 1) % 4;
+    case 'F':
+      if (mirror)
+        return i < 4 ? i + 4 : i - 4;
+      return i < 4 ? (i + 1) % 4 : 4 + (i + 3) % 4;
+    default:
+      return i; // X
+  }
+}
+
+int DihedralAction(char symmetry, int orientation, int element)
+{
+  int o = orientation;
+  for (int r = 0; r < element % 4; ++r)
+    o = TransformOrientation(symmetry, o, false);
+  return element >= 4 ? TransformOrientation(symmetry, o, true) : o;
+}
+
+std::string TilesetImageFolder(const std::string& xmlPath)
+{
+  const std::string::size_type slash = xmlPath.rfind('/');
+  const std::string base = slash == std::string::npos ? xmlPath : xmlPath.substr(slash + 1);
+  if (base == "data.xml") // the older layout: NAME/data.xml with the images beside it
+    return slash == std::string::npos ? std::string(".") : xmlPath.substr(0, slash);
+  const std::string::size_type dot = base.rfind('.');
+  return xmlPath.substr(0, xmlPath.size() - (dot == std::string::npos ? 0 : base.size() - dot));
+}
+
+std::string TileImageFile(
+  const std::string& xmlPath, const Tileset& set, const TilesetTile& tile, int orientation)
+{
+  const std::string stem = TilesetImageFolder(xmlPath) + "/" + tile.Name +
+    (set.Unique ? " " + std::to_string(orientation) : std::string());
+  for (const char* ext : { ".png", ".bmp" })
+    if (std::ifstream(stem + ext).good())
+      return stem + ext;
+  return stem + ".png";
+}
+
+std::string Tileset::LabelName(int label) const
+{
+  const TilesetTile& t =
+    this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+  return t.Orientations == 1
+    ? t.Name
+    : t.Name + " " + std::to_string(this->LabelOrientation[static_cast<std::size_t>(label)]);
+}
+
+std::map<Label, Label> Tileset::TurnMap() const
+{
+  std::map<Label, Label> map;
+  for (int label = 0; label < this->NumberOfLabels(); ++label)
+  {
+    const TilesetTile& t =
+      this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+    map[label] = t.FirstLabel +
+      TransformOrientation(
+        t.Symmetry, this->LabelOrientation[static_cast<std::size_t>(label)], false);
+  }
+  return map;
+}
+
+AdjacencyRules Tileset::Rules() const
+{
+  std::vector<Label> values;
+  std::vector<double> weights;
+  for (int b = 0; b < this->NumberOfLabels(); ++b)
+  {
+    values.push_back(b);
+    weights.push_back(
+      this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(b)])].Weight);
+  }
+  return AdjacencyRules::FromPairs(values, weights, this->Pairs);
+}
+
+Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subsetName)
+{
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.size() > (std::size_t(1) << 24))
+    throw Error::InFile(name, "is larger than 16 MiB, too large for a tileset");
+  XmlReader xml(std::move(text), name);
+  const XmlElement root = xml.Parse();
+  if (root.Name != "set")
+    xml.Fail("the top-level element is <" + root.Name + ">, not <set>", root.Line);
+
+  Tileset set;
+  if (const std::string* unique = root.Attribute("unique"))
+  {
+    std::string u = *unique;
+    for (auto& ch : u)
+      ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    set.Unique = u == "true";
+  }
+  if (const std::string* size = root.Attribute("size"))
+  {
+    char* end = nullptr;
+    const long v = std::strtol(size->c_str(), &end, 10);
+    if (end == size->c_str() || *end || v < 1 || v > 4096)
+      xml.Fail("<set size=\"" + *size + "\">: the tile size is a whole number of pixels, 1 to 4096",
+        root.Line);
+    set.TileSize = static_cast<int>(v);
+  }
+  // The tiles of the chosen subset.
+  std::set<std::string> allowed;
+  if (!subsetName.empty())
+  {
+    const XmlElement* subsets = Child(root, "subsets");
+    const XmlElement* chosen = nullptr;
+    if (subsets)
+      for (const auto& s : subsets->Children) // by reference: chosen points into the tree
+        if (s.Name == "subset" && s.Attribute("name") && *s.Attribute("name") == subsetName)
+          chosen = &s;
+    if (!chosen)
+      throw Error::InFile(name, "has no subset named '" + subsetName + "'");
+    for (const auto& t : chosen->Children)
+      if (t.Name == "tile" && t.Attribute("name"))
+        allowed.insert(*t.Attribute("name"));
+  }
+  const XmlElement* tiles = Child(root, "tiles");
+  if (!tiles)
+    xml.Fail("<set> has no <tiles>", root.Line);
+  for (const auto& t : tiles->Children)
+  {
+    if (t.Name != "tile")
+      continue;
+    const std::string* tileName = t.Attribute("name");
+    if (!tileName || tileName->empty())
+      xml.Fail("a <tile> has no name", t.Line);
+    for (const auto& other : set.Tiles)
+      if (other.Name == *tileName)
+        xml.Fail("tile '" + *tileName + "' is defined twice", t.Line);
+    if (!allowed.empty() && !allowed.count(*tileName))
+      continue;
+    TilesetTile tile;
+    tile.Name = *tileName;
+    const std::string* symmetry = t.Attribute("symmetry");
+    tile.Symmetry = symmetry ? (symmetry->size() == 1 ? (*symmetry)[0] : '?') : 'X';
+    tile.Orientations = OrientationCount(tile.Symmetry);
+    if (tile.Orientations == 0)
+      xml.Fail("tile '" + tile.Name + "' has symmetry '" + (symmetry ? *symmetry : "") +
+          "'; the classes are X, I, \\, L, T and F",
+        t.Line);
+    if (const std::string* weight = t.Attribute("weight"))
+    {
+      char* end = nullptr;
+      tile.Weight = std::strtod(weight->c_str(), &end);
+      if (end == weight->c_str() || *end || !(tile.Weight > 0.0) || !std::isfinite(tile.Weight))
+        xml.Fail(
+          "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
+          t.Line);
+    }
+    tile.FirstLabel = set.NumberOfLabels();
+    for (int k = 0; k < tile.Orientations; ++k)
+    {
+      set.LabelTile.push_back(static_cast<int>(set.Tiles.size()));
+      set.LabelOrientation.push_back(k);
+    }
+    set.Tiles.push_back(tile);
+  }
+  if (set.Tiles.empty())
+    xml.Fail("the tileset has no tiles" +
+        (subsetName.empty() ? std::string() : " in subset '" + subsetName + "'"),
+      tiles->Line);
+
+  // Neighbors: each holds in all 8 rotations and reflections of the two-tile configuration.
+  auto parseRef = [&](const XmlElement& n, const char* side, int& tileIndex, int& orientation)
+  {
+    const std::string* ref = n.Attribute(side);
+    if (!ref)
+      xml.Fail(std::string("a <neighbor> has no '") + side + "'", n.Line);
+    std::istringstream words(*ref);
+    std::string tileName;
+    words >> tileName;
+    orientation = 0;
+    std::string extra;
+    if (words >> orientation)
+      words >> extra;
+    else if (!words.eof())
+      xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
+    if (!extra.empty())
+      xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
+    if (orientation < 0 || orientation > 7)
+      xml.Fail("'" + *ref +
+          "': the number after a tile name is one of the 8 rotations and "
+          "reflections, 0 to 7",
+        n.Line);
+    tileIndex = -1;
+    for (std::size_t i = 0; i < set.Tiles.size(); ++i)
+      if (set.Tiles[i].Name == tileName)
+        tileIndex = static_cast<int>(i);
+    if (tileIndex < 0)
+    {
+      bool defined = false;
+      for (const auto& t : tiles->Children)
+        defined |= t.Attribute("name") && *t.Attribute("name") == tileName;
+      if (!defined)
+        xml.Fail("a <neighbor> names tile '" + tileName + "', which is not defined", n.Line);
+      return false; // defined but outside the chosen subset
+    }
+    // As WaveFunctionCollapse reads it (action[first][k]): element k of the dihedral group
+    // (identity, three quarter turns, then the four mirrored) applied to orientation 0.
+    orientation =
+      DihedralAction(set.Tiles[static_cast<std::size_t>(tileIndex)].Symmetry, 0, orientation);
+    return true;
+  };
+  std::array<std::set<std::pair<int, int>>, 3> pairs;
+  if (const XmlElement* neighbors = Child(root, "neighbors"))
+  {
+    for (const auto& n : neighbors->Children)
+    {
+      if (n.Name != "neighbor")
+        continue;
+      int tiles2[2], orient[2];
+      const bool a = parseRef(n, "left", tiles2[0], orient[0]);
+      const bool b = parseRef(n, "right", tiles2[1], orient[1]);
+      if (!a || !b)
+        continue;
+      for (int mirror = 0; mirror < 2; ++mirror)
+        for (int turns = 0; turns < 4; ++turns)
+        {
+          int px[2] = { 0, 1 }, py[2] = { 0, 0 }, label[2];
+          for (int s = 0; s < 2; ++s)
+          {
+            const TilesetTile& t = set.Tiles[static_cast<std::size_t>(tiles2[s])];
+            int o = orient[s];
+            for (int r = 0; r < turns; ++r)
+            {
+              const int x = px[s];
+              px[s] = -py[s];
+              py[s] = x;
+              o = TransformOrientation(t.Symmetry, o, false);
+            }
+            if (mirror)
+            {
+              px[s] = -px[s];
+              o = TransformOrientation(t.Symmetry, o, true);
+            }
+            label[s] = t.FirstLabel + o;
+          }
+          if (px[0] != px[1])
+            pairs[0].insert(px[0] < px[1] ? std::make_pair(label[0], label[1])
+                                          : std::make_pair(label[1], label[0]));
+          else
+            pairs[1].insert(py[0] < py[1] ? std::make_pair(label[0], label[1])
+                                          : std::make_pair(label[1], label[0]));
+        }
+    }
+  }
+  for (int axis = 0; axis < 2; ++axis)
+    set.Pairs[static_cast<std::size_t>(axis)].assign(
+      pairs[static_cast<std::size_t>(axis)].begin(), pairs[static_cast<std::size_t>(axis)].end());
+  return set;
+}
+
+Tileset ReadTilesetFile(const std::string& path, const std::string& subset)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
+  return ReadTileset(in, path, subset);
+}
+
+} // namespace msynth

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file Tileset.h
+ * @brief Simple-tiled tilesets in the XML format popularised by WaveFunctionCollapse:
+ *
+ *     <set unique="False">
+ *       <tiles> <tile name="corner" symmetry="L" weight="0.5"/> ... </tiles>
+ *       <neighbors> <neighbor left="corner 1" right="line"/> ... </neighbors>
+ *       <subsets> <subset name="small"> <tile name="corner"/> ... </subset> </subsets>
+ *     </set>
+ *
+ * Each tile has a symmetry class that fixes how many distinct orientations it has: X (1),
+ * I (2), \ (2), L (4), T (4), F (8). Orientation k + 1 is orientation k turned 90°
+ * counter-clockwise; orientations 4-7 (class F) are 0-3 mirrored left-right. Every orientation
+ * of every tile is one label. A neighbor entry "A i" left of "B j" names A and B each in the
+ * orientation reached from orientation 0 by dihedral element i (j), 0-7 (DihedralAction; 0
+ * when omitted), and holds in all 8 rotations and reflections of that two-tile configuration,
+ * which gives the allowed pairs along x (left → right) and y (bottom → top). `<set size>` and
+ * `unique`, `<subsets>` and tile `weight` are read too.
+ */
+#include "Discrete/AdjacencyRules.h"
+
+#include <array>
+#include <istream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace msynth
+{
+
+struct TilesetTile
+{
+  std::string Name;
+  char Symmetry = 'X'; ///< X, I, \, L, T or F
+  double Weight = 1.0;
+  int FirstLabel = 0; ///< label of orientation 0; orientation k is FirstLabel + k
+  int Orientations = 1;
+};
+
+struct Tileset
+{
+  bool Unique = false; ///< one image per orientation (else per tile, rotated)
+  int TileSize = 0;    ///< `<set size="...">`: the tile images' width in pixels (0: not given)
+  std::vector<TilesetTile> Tiles;
+  std::vector<int> LabelTile;                            ///< per label: index into Tiles
+  std::vector<int> LabelOrientation;                     ///< per label: orientation
+  std::array<std::vector<std::pair<int, int>>, 3> Pairs; ///< allowed (first, second) per axis
+
+  int NumberOfLabels() const { return static_cast<int>(this->LabelTile.size()); }
+  /// The label name as the format's published sets name images: "tile k" (or "tile").
+  std::string LabelName(int label) const;
+  /// Each label's image turned 90° counter-clockwise (the same tile's next orientation): the
+  /// label map of rotation symmetry (Rotation::Map) for outputs of this tileset.
+  std::map<Label, Label> TurnMap() const;
+  /// Adjacency rules (label values 0..n-1, weights from the tiles) for 2D synthesis.
+  AdjacencyRules Rules() const;
+};
+
+/// Orientation reached from @p orientation of a tile of class @p symmetry by turning it 90°
+/// counter-clockwise (@p mirror false) or mirroring it left-right (@p mirror true).
+int TransformOrientation(char symmetry, int orientation, bool mirror);
+/**
+ * The orientation reached from @p orientation by element @p element (0-7) of the dihedral
+ * group, numbered as WaveFunctionCollapse numbers it: 0 the identity, 1-3 one to three quarter
+ * turns counter-clockwise, 4-7 those followed by the left-right mirror. "tile k" in a neighbor
+ * rule means DihedralAction(symmetry, 0, k), so "b_i 3" (class I) is orientation 1.
+ */
+int DihedralAction(char symmetry, int orientation, int element);
+/// Number of distinct orientations of class @p symmetry (1, 2, 4 or 8), 0 for an unknown class.
+int OrientationCount(char symmetry);
+
+/**
+ * The folder of a tileset's images, in either layout the published sets use: `NAME.xml` beside
+ * a folder `NAME/`, or the older `NAME/data.xml` with the images beside it.
+ */
+std::string TilesetImageFolder(const std::string& xmlPath);
+/// The image of @p orientation of @p tile (`tile.png`, or `tile k.png` in a unique set; `.bmp`
+/// when only that exists, as older sets have it).
+std::string TileImageFile(
+  const std::string& xmlPath, const Tileset& set, const TilesetTile& tile, int orientation);
+
+/**
+ * Reads a tileset; @p name is used in error messages, @p subset selects a <subset> ("" for all
+ * tiles). @throw Error "'name', line N: problem" for malformed XML, unknown tiles, symmetry
+ * classes or orientations.
+ */
+Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subset = "");
+Tileset ReadTilesetFile(const std::string& path, const std::string& subset = "");
+
+} // namespace msynth

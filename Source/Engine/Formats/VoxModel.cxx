@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Formats/VoxModel.h"
+
+#include "Core/AtomicFile.h"
+#include "Core/Error.h"
+
+#include <cstring>
+#include <fstream>
+
+namespace msynth
+{
+namespace
+{
+/// Little-endian reads within [Position, End), failing cleanly past the end.
+class Cursor
+{
+public:
+  Cursor(const std::vector<std::uint8_t>& bytes, const std::string& name)
+    : Bytes(bytes)
+    , Name(name)
+    , End(bytes.size())
+  {
+  }
+  [[noreturn]] void Fail(const std::string& problem) const
+  {
+    throw Error::InFile(this->Name,
+      "is not a valid MagicaVoxel file: " + problem + " (at byte " +
+        std::to_string(this->Position) + ")");
+  }
+  void Need(std::size_t n) const
+  {
+    if (n > this->End - this->Position)
+      this->Fail("the data ends early");
+  }
+  std::uint32_t U32()
+  {
+    this->Need(4);
+    const std::uint8_t* p = this->Bytes.data() + this->Position;
+    this->Position += 4;
+    return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) |
+      (std::uint32_t(p[3]) << 24);
+  }
+  std::string Id()
+  {
+    this->Need(4);
+    std::string id(reinterpret_cast<const char*>(this->Bytes.data() + this->Position), 4);
+    this->Position += 4;
+    return id;
+  }
+  const std::uint8_t* Take(std::size_t n)
+  {
+    this->Need(n);
+    const std::uint8_t* p = this->Bytes.data() + this->Position;
+    this->Position += n;
+    return p;
+  }
+  const std::vector<std::uint8_t>& Bytes;
+  const std::string& Name;
+  std::size_t Position = 0;
+  std::size_t End;
+};
+
+/// MagicaVoxel's default palette, as its file format documentation defines it (ABGR words).
+const std::uint32_t DefaultPalette[256] = { 0x00000000, 0xffffffff, 0xffccffff, 0xff99ffff,
+  0xff66ffff, 0xff33ffff, 0xff00ffff, 0xffffccff, 0xffccccff, 0xff99ccff, 0xff66ccff, 0xff33ccff,
+  0xff00ccff, 0xffff99ff, 0xffcc99ff, 0xff9999ff, 0xff6699ff, 0xff3399ff, 0xff0099ff, 0xffff66ff,
+  0xffcc66ff, 0xff9966ff, 0xff6666ff, 0xff3366ff, 0xff0066ff, 0xffff33ff, 0xffcc33ff, 0xff9933ff,
+  0xff6633ff, 0xff3333ff, 0xff0033ff, 0xffff00ff, 0xffcc00ff, 0xff9900ff, 0xff6600ff, 0xff3300ff,
+  0xff0000ff, 0xffffffcc, 0xffccffcc, 0xff99ffcc, 0xff66ffcc, 0xff33ffcc, 0xff00ffcc, 0xffffcccc,
+  0xffcccccc, 0xff99cccc, 0xff66cccc, 0xff33cccc, 0xff00cccc, 0xffff99cc, 0xffcc99cc, 0xff9999cc,
+  0xff6699cc, 0xff3399cc, 0xff0099cc, 0xffff66cc, 0xffcc66cc, 0xff9966cc, 0xff6666cc, 0xff3366cc,
+  0xff0066cc, 0xffff33cc, 0xffcc33cc, 0xff9933cc, 0xff6633cc, 0xff3333cc, 0xff0033cc, 0xffff00cc,
+  0xffcc00cc, 0xff9900cc, 0xff6600cc, 0xff3300cc, 0xff0000cc, 0xffffff99, 0xffccff99, 0xff99ff99,
+  0xff66ff99, 0xff33ff99, 0xff00ff99, 0xffffcc99, 0xffcccc99, 0xff99cc99, 0xff66cc99, 0xff33cc99,
+  0xff00cc99, 0xffff9999, 0xffcc9999, 0xff999999, 0xff669999, 0xff339999, 0xff009999, 0xffff6699,
+  0xffcc6699, 0xff996699, 0xff666699, 0xff336699, 0xff006699, 0xffff3399, 0xffcc3399, 0xff993399,
+  0xff663399, 0xff333399, 0xff003399, 0xffff0099, 0xffcc0099, 0xff990099, 0xff660099, 0xff330099,
+  0xff000099, 0xffffff66, 0xffccff66, 0xff99ff66, 0xff66ff66, 0xff33ff66, 0xff00ff66, 0xffffcc66,
+  0xffcccc66, 0xff99cc66, 0xff66cc66, 0xff33cc66, 0xff00cc66, 0xffff9966, 0xffcc9966, 0xff999966,
+  0xff669966, 0xff339966, 0xff009966, 0xffff6666, 0xffcc6666, 0xff996666, 0xff666666, 0xff336666,
+  0xff006666, 0xffff3366, 0xffcc3366, 0xff993366, 0xff663366, 0xff333366, 0xff003366, 0xffff0066,
+  0xffcc0066, 0xff990066, 0xff660066, 0xff330066, 0xff000066, 0xffffff33, 0xffccff33, 0xff99ff33,
+  0xff66ff33, 0xff33ff33, 0xff00ff33, 0xffffcc33, 0xffcccc33, 0xff99cc33, 0xff66cc33, 0xff33cc33,
+  0xff00cc33, 0xffff9933, 0xffcc9933, 0xff999933, 0xff669933, 0xff339933, 0xff009933, 0xffff6633,
+  0xffcc6633, 0xff996633, 0xff666633, 0xff336633, 0xff006633, 0xffff3333, 0xffcc3333, 0xff993333,
+  0xff663333, 0xff333333, 0xff003333, 0xffff0033, 0xffcc0033, 0xff990033, 0xff660033, 0xff330033,
+  0xff000033, 0xffffff00, 0xffccff00, 0xff99ff00, 0xff66ff00, 0xff33ff00, 0xff00ff00, 0xffffcc00,
+  0xffcccc00, 0xff99cc00, 0xff66cc00, 0xff33cc00, 0xff00cc00, 0xffff9900, 0xffcc9900, 0xff999900,
+  0xff669900, 0xff339900, 0xff009900, 0xffff6600, 0xffcc6600, 0xff996600, 0xff666600, 0xff336600,
+  0xff006600, 0xffff3300, 0xffcc3300, 0xff993300, 0xff663300, 0xff333300, 0xff003300, 0xffff0000,
+  0xffcc0000, 0xff990000, 0xff660000, 0xff330000, 0xff0000ee, 0xff0000dd, 0xff0000bb, 0xff0000aa,
+  0xff000088, 0xff000077, 0xff000055, 0xff000044, 0xff000022, 0xff000011, 0xff00ee00, 0xff00dd00,
+  0xff00bb00, 0xff00aa00, 0xff008800, 0xff007700, 0xff005500, 0xff004400, 0xff002200, 0xff001100,
+  0xffee0000, 0xffdd0000, 0xffbb0000, 0xffaa0000, 0xff880000, 0xff770000, 0xff550000, 0xff440000,
+  0xff220000, 0xff110000, 0xffeeeeee, 0xffdddddd, 0xffbbbbbb, 0xffaaaaaa, 0xff888888, 0xff777777,
+  0xff555555, 0xff444444, 0xff222222, 0xff111111 };
+} // namespace
+
+VoxModel ReadVoxModel(
+  const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites)
+{
+  Cursor c(bytes, name);
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), "VOX ", 4) != 0)
+    c.Fail("it does not start with 'VOX '");
+  c.Position = 4;
+  c.U32(); // version (150 and 200 are in use; the chunks we read are the same)
+
+  if (c.Id() != "MAIN")
+    c.Fail("the first chunk is not MAIN");
+  const std::uint32_t mainContent = c.U32();
+  const std::uint32_t mainChildren = c.U32();
+  c.Take(mainContent);
+  if (mainChildren > c.End - c.Position)
+    c.Fail("MAIN declares more children than the file holds");
+  c.End = c.Position + mainChildren;
+
+  VoxModel model;
+  bool haveSize = false, haveVoxels = false, havePalette = false;
+  std::array<std::int64_t, 3> size{ { 0, 0, 0 } };
+  int models = 0;
+  model.Palette.resize(256);
+  while (c.Position < c.End)
+  {
+    const std::string id = c.Id();
+    const std::uint32_t content = c.U32();
+    const std::uint32_t children = c.U32();
+    const std::size_t start = c.Position;
+    c.Need(content);
+    if (id == "SIZE")
+    {
+      ++models;
+      if (content < 12)
+        c.Fail("SIZE chunk is too short");
+      if (!haveSize)
+      {
+        for (auto& d : size)
+          d = static_cast<std::int64_t>(c.U32());
+        for (auto d : size)
+          if (d < 1 || d > 2048)
+            c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) +
+              " x " + std::to_string(size[2]) + " is outside 1..2048");
+        if (size[0] * size[1] * size[2] > maxSites)
+          c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
+            std::to_string(size[2]) + " exceeds the limit of " + std::to_string(maxSites) +
+            " sites");
+        model.Grid = LabelGrid(size[0], size[1], size[2], 0);
+        haveSize = true;
+      }
+    }
+    else if (id == "XYZI")
+    {
+      if (!haveSize)
+        c.Fail("XYZI chunk before any SIZE chunk");
+      if (!haveVoxels)
+      {
+        const std::uint32_t count = c.U32();
+        if (count > (content - 4) / 4 || content < 4)
+          c.Fail("XYZI declares " + std::to_string(count) + " voxels but holds " +
+            std::to_string(content >= 4 ? (content - 4) / 4 : 0));
+        const std::uint8_t* v = c.Take(std::size_t(count) * 4);
+        for (std::uint32_t i = 0; i < count; ++i)
+        {
+          const std::int64_t x = v[4 * i], y = v[4 * i + 1], z = v[4 * i + 2];
+          if (!model.Grid.Contains(x, y, z))
+            c.Fail("voxel (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+              std::to_string(z) + ") lies outside the model size");
+          model.Grid.Set(x, y, z, v[4 * i + 3]);
+        }
+        haveVoxels = true;
+      }
+    }
+    else if (id == "RGBA")
+    {
+      if (content < 1024)
+        c.Fail("RGBA chunk is shorter than 256 colours");
+      const std::uint8_t* p = c.Take(1024);
+      // Entry i of the chunk is the colour of palette index i + 1; index 0 is empty.
+      model.Palette[0] = { { 0, 0, 0, 0 } };
+      for (int i = 0; i < 255; ++i)
+        model.Palette[static_cast<std::size_t>(i + 1)] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2],
+          p[4 * i + 3] } };
+      havePalette = true;
+    }
+    // Other chunks (PACK, scene graph, materials, ...) are skipped.
+    if (children > c.End - start - content)
+      c.Fail("chunk '" + id + "' declares more children than its parent holds");
+    c.Position = start + content + children;
+  }
+  if (!haveSize || !haveVoxels)
+    c.Fail("no model (SIZE and XYZI chunks) found");
+  if (!havePalette)
+  {
+    for (int i = 0; i < 256; ++i)
+    {
+      const std::uint32_t abgr = DefaultPalette[i];
+      model.Palette[static_cast<std::size_t>(i)] = { { static_cast<std::uint8_t>(abgr & 0xff),
+        static_cast<std::uint8_t>((abgr >> 8) & 0xff),
+        static_cast<std::uint8_t>((abgr >> 16) & 0xff), static_cast<std::uint8_t>(abgr >> 24) } };
+    }
+  }
+  model.NumberOfModels = models;
+  return model;
+}
+
+VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites)
+{
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in)
+    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
+  const std::streamoff size = in.tellg();
+  if (size < 0 || size > (std::streamoff(1) << 28))
+    throw Error::InFile(path, "is larger than 256 MiB, too large for a MagicaVoxel model");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), size);
+  if (!in)
+    throw Error::InFile(path, "could not be read");
+  return ReadVoxModel(bytes, path, maxSites);
+}
+
+void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& name)
+{
+  const auto& d = model.Grid.Dimensions();
+  if (d[0] > 256 || d[1] > 256 || d[2] > 256)
+    throw Error::InFile(name,
+      "cannot hold a " + std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " +
+        std::to_string(d[2]) + " model: MagicaVoxel models are at most 256 voxels a side");
+  std::vector<std::uint8_t> voxels;
+  for (std::int64_t z = 0; z < d[2]; ++z)
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+      {
+        const Label b = model.Grid.At(x, y, z);
+        if (b == 0)
+          continue;
+        if (b < 0 || b > 255)
+          throw Error::InFile(name,
+            "cannot hold label " + std::to_string(b) + " at (" + std::to_string(x) + ", " +
+              std::to_string(y) + ", " + std::to_string(z) +
+              "): MagicaVoxel labels are palette indices 1..255");
+        for (std::int64_t v : { x, y, z, std::int64_t(b) })
+          voxels.push_back(static_cast<std::uint8_t>(v));
+      }
+  const auto u32 = [&out](std::uint32_t v)
+  {
+    const char b[4] = { static_cast<char>(v & 255), static_cast<char>((v >> 8) & 255),
+      static_cast<char>((v >> 16) & 255), static_cast<char>(v >> 24) };
+    out.write(b, 4);
+  };
+  const bool palette = model.Palette.size() == 256;
+  const std::uint32_t sizeChunk = 12 + 12,
+                      xyziChunk = 12 + 4 + static_cast<std::uint32_t>(voxels.size()),
+                      rgbaChunk = palette ? 12 + 1024 : 0;
+  out.write("VOX ", 4);
+  u32(150);
+  out.write("MAIN", 4);
+  u32(0);
+  u32(sizeChunk + xyziChunk + rgbaChunk);
+  out.write("SIZE", 4);
+  u32(12);
+  u32(0);
+  for (std::int64_t n : d)
+    u32(static_cast<std::uint32_t>(n));
+  out.write("XYZI", 4);
+  u32(4 + static_cast<std::uint32_t>(voxels.size()));
+  u32(0);
+  u32(static_cast<std::uint32_t>(voxels.size() / 4));
+  out.write(
+    reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
+  if (palette)
+  {
+    // Entry i of the chunk is palette index i + 1.
+    out.write("RGBA", 4);
+    u32(1024);
+    u32(0);
+    for (std::size_t i = 1; i <= 256; ++i)
+    {
+      const auto& c = i < 256 ? model.Palette[i] : std::array<std::uint8_t, 4>{ { 0, 0, 0, 0 } };
+      out.write(reinterpret_cast<const char*>(c.data()), 4);
+    }
+  }
+}
+
+void WriteVoxModelFile(const std::string& path, const VoxModel& model)
+{
+  WriteFileAtomically(path, [&](std::ostream& out) { WriteVoxModel(out, model, path); });
+}
+
+} // namespace msynth

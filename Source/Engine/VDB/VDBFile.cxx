@@ -1,0 +1,1021 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The only translation unit of ModelSynth that includes OpenVDB's headers (they compile
+// slowly). Everything OpenVDB-specific stays in this file, behind msynth/VDBFile.h.
+#include "VDB/VDBFile.h"
+
+#include "Core/AtomicFile.h"
+#include "Core/Error.h"
+#include "Core/Memory.h"
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <functional>
+#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+#include <openvdb/tools/LevelSetUtil.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <type_traits>
+
+namespace msynth
+{
+namespace vdb
+{
+
+int ComponentCount(ValueType type)
+{
+  return type == ValueType::Vec3Float ? 3 : 1;
+}
+
+namespace
+{
+// ---------------------------------------------------------------------------------------------
+// internal
+// ---------------------------------------------------------------------------------------------
+constexpr const char* IndexMinKey = "msynth_index_min";
+constexpr const char* IndexMaxKey = "msynth_index_max";
+
+void InitializeOpenVDB()
+{
+  // openvdb::initialize() is idempotent and guarded by OpenVDB's own mutex.
+  openvdb::initialize();
+}
+
+openvdb::math::Transform::Ptr MakeTransform(const GridHeader& h)
+{
+  for (double s : h.Spacing)
+  {
+    if (!(s > 0.0) || !std::isfinite(s))
+    {
+      throw Error("grid '" + h.Name + "' has a spacing that is not positive and finite");
+    }
+  }
+  for (double o : h.Origin)
+  {
+    if (!std::isfinite(o))
+    {
+      throw Error("grid '" + h.Name + "' has an origin that is not finite");
+    }
+  }
+  const openvdb::Vec3d scale(h.Spacing[0], h.Spacing[1], h.Spacing[2]);
+  const openvdb::Vec3d translate(h.Origin[0], h.Origin[1], h.Origin[2]);
+  openvdb::math::MapBase::Ptr map(new openvdb::math::ScaleTranslateMap(scale, translate));
+  return openvdb::math::Transform::Ptr(new openvdb::math::Transform(map));
+}
+
+template <typename GridT, typename ValueT>
+typename GridT::Ptr DenseToGrid(const DenseGridView& view, const ValueT& background)
+{
+  const GridHeader& h = view.Header;
+  const openvdb::Coord lo(h.IndexMin[0], h.IndexMin[1], h.IndexMin[2]);
+  const openvdb::Coord hi(static_cast<openvdb::Int32>(h.IndexMin[0] + h.Dims[0] - 1),
+    static_cast<openvdb::Int32>(h.IndexMin[1] + h.Dims[1] - 1),
+    static_cast<openvdb::Int32>(h.IndexMin[2] + h.Dims[2] - 1));
+  typename GridT::Ptr grid = GridT::create(background);
+  const ValueT* values = static_cast<const ValueT*>(view.Values);
+  bool extreme = false; // copyFromDense compares as a - b, which must not overflow
+  if constexpr (std::is_integral<ValueT>::value)
+  {
+    const auto far = [](ValueT v) { return v < -(ValueT(1) << 29) || v > (ValueT(1) << 29); };
+    extreme = far(background);
+    for (std::int64_t i = 0, n = h.NumberOfVoxels(); i < n && !extreme; ++i)
+      extreme = far(values[i]);
+  }
+  if (extreme)
+  {
+    // Exactly the voxels unequal to the background become active, one by one (labels such as
+    // the catalog's undecided INT_MIN would overflow copyFromDense's comparison).
+    auto accessor = grid->getAccessor();
+    std::size_t i = 0;
+    for (openvdb::Int32 z = lo.z(); z <= hi.z(); ++z)
+      for (openvdb::Int32 y = lo.y(); y <= hi.y(); ++y)
+        for (openvdb::Int32 x = lo.x(); x <= hi.x(); ++x, ++i)
+          if (values[i] != background)
+            accessor.setValueOn(openvdb::Coord(x, y, z), values[i]);
+  }
+  else
+  {
+    // copyFromDense only reads the dense buffer; the Dense class just lacks a const flavour.
+    openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(
+      openvdb::CoordBBox(lo, hi), const_cast<ValueT*>(values));
+    // Tolerance zero: exactly the voxels equal to the background become inactive.
+    openvdb::tools::copyFromDense(dense, *grid, openvdb::zeroVal<ValueT>());
+  }
+  grid->insertMeta(IndexMinKey, openvdb::Vec3IMetadata(openvdb::Vec3i(lo.x(), lo.y(), lo.z())));
+  grid->insertMeta(IndexMaxKey, openvdb::Vec3IMetadata(openvdb::Vec3i(hi.x(), hi.y(), hi.z())));
+  return grid;
+}
+
+openvdb::GridBase::Ptr MakeGrid(const DenseGridView& view)
+{
+  const GridHeader& h = view.Header;
+  if (h.Name.empty())
+  {
+    throw Error("a grid has no name");
+  }
+  if (view.Values == nullptr)
+  {
+    throw Error("grid '" + h.Name + "' has no values");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t last = std::int64_t(h.IndexMin[a]) + h.Dims[a] - 1;
+    if (h.Dims[a] < 1 || last > std::numeric_limits<std::int32_t>::max())
+    {
+      throw Error("grid '" + h.Name + "' has an extent OpenVDB cannot index");
+    }
+  }
+  openvdb::GridBase::Ptr grid;
+  switch (h.Type)
+  {
+    case ValueType::Int32:
+      grid = DenseToGrid<openvdb::Int32Grid, std::int32_t>(
+        view, static_cast<std::int32_t>(h.Background));
+      break;
+    case ValueType::Float:
+      grid = DenseToGrid<openvdb::FloatGrid, float>(view, static_cast<float>(h.Background));
+      break;
+    case ValueType::Vec3Float:
+    {
+      const auto b = static_cast<float>(h.Background);
+      grid = DenseToGrid<openvdb::Vec3SGrid, openvdb::Vec3s>(view, openvdb::Vec3s(b, b, b));
+      break;
+    }
+  }
+  grid->setName(h.Name);
+  grid->setTransform(MakeTransform(h));
+  if (h.GridClass == "level set")
+  {
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  }
+  else if (h.GridClass == "fog volume")
+  {
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  }
+  else if (!h.GridClass.empty())
+  {
+    throw Error("grid '" + h.Name + "' has unknown grid class '" + h.GridClass + "'");
+  }
+  for (const auto& kv : h.Metadata)
+  {
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  return grid;
+}
+
+MetadataMap StringMetadataOf(const openvdb::MetaMap& meta)
+{
+  MetadataMap result;
+  for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it)
+  {
+    // Only user-level strings; OpenVDB's own entries (class, stats...) are reachable elsewhere.
+    if (it->second && it->second->typeName() == openvdb::StringMetadata::staticTypeName())
+    {
+      result[it->first] = it->second->str();
+    }
+  }
+  return result;
+}
+
+/// Index-space extent to read: our stored extent, else the active voxel bounding box.
+/// The largest index coordinate accepted in a box: far from the 32-bit ends, so OpenVDB's
+/// own box arithmetic (max + 1, dimensions) cannot overflow.
+constexpr std::int64_t MaximumIndex = std::int64_t(1) << 30;
+
+/// The extent a grid stands for: our writer's stored index box (metadata, which a file may
+/// get wrong: checked), else the active voxels' bounding box.
+openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
+{
+  auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(IndexMinKey);
+  auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(IndexMaxKey);
+  if (lo && hi)
+  {
+    const openvdb::Vec3i a = lo->value(), b = hi->value();
+    for (int k = 0; k < 3; ++k)
+    {
+      // 64-bit arithmetic: the values are the file's, not ours.
+      const std::int64_t from = a[k], to = b[k];
+      if (from > to || from < -MaximumIndex || to > MaximumIndex)
+        throw Error("grid '" + grid.getName() + "' stores the index box (" + std::to_string(a.x()) +
+          ", " + std::to_string(a.y()) + ", " + std::to_string(a.z()) + ") - (" +
+          std::to_string(b.x()) + ", " + std::to_string(b.y()) + ", " + std::to_string(b.z()) +
+          "), which is empty or outside +-2^30");
+    }
+    return openvdb::CoordBBox(
+      openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
+  }
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if (!box.empty())
+    for (int k = 0; k < 3; ++k)
+      if (box.min()[k] < -MaximumIndex || box.max()[k] > MaximumIndex)
+        throw Error("grid '" + grid.getName() + "' has active voxels outside +-2^30");
+  return box;
+}
+
+template <typename GridT, typename ValueT>
+void GridToDense(const GridT& grid, const openvdb::CoordBBox& box, ValueT* out)
+{
+  openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(box, out);
+  openvdb::tools::copyToDense(grid, dense, /*serial=*/true); // no TBB in the reading child
+}
+
+DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& options)
+{
+  DenseGrid out;
+  GridHeader& h = out.Header;
+  h.Name = base->getName();
+  if (base->isType<openvdb::Int32Grid>())
+  {
+    h.Type = ValueType::Int32;
+  }
+  else if (base->isType<openvdb::FloatGrid>())
+  {
+    h.Type = ValueType::Float;
+  }
+  else if (base->isType<openvdb::Vec3SGrid>())
+  {
+    h.Type = ValueType::Vec3Float;
+  }
+  else
+  {
+    throw Error("grid '" + h.Name + "' has value type '" + base->valueType() +
+      "', which ModelSynth does not read (int32, float and vec3s grids are supported)");
+  }
+
+  const openvdb::math::Transform& xform = base->transform();
+  if (!xform.isLinear())
+  {
+    throw Error("grid '" + h.Name + "' has a non-linear (frustum) transform");
+  }
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (r != c && m(r, c) != 0.0)
+      {
+        throw Error("grid '" + h.Name +
+          "' has a rotated or sheared transform; only "
+          "axis-aligned voxel grids map to image data");
+      }
+    }
+  }
+  const openvdb::Vec3d origin = xform.indexToWorld(openvdb::Vec3d(0.0, 0.0, 0.0));
+  h.Origin = { { origin.x(), origin.y(), origin.z() } };
+  h.Spacing = { { m(0, 0), m(1, 1), m(2, 2) } };
+
+  const openvdb::GridClass cls = base->getGridClass();
+  h.GridClass = cls == openvdb::GRID_LEVEL_SET ? "level set"
+    : cls == openvdb::GRID_FOG_VOLUME          ? "fog volume"
+                                               : "";
+  h.Metadata = StringMetadataOf(*base);
+
+  openvdb::CoordBBox box = ExtentOf(*base);
+  if (box.empty())
+  {
+    // A grid with no active voxel and no stored extent: one background voxel.
+    box = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
+  }
+  h.IndexMin = { { box.min().x(), box.min().y(), box.min().z() } };
+  for (int k = 0; k < 3; ++k)
+    h.Dims[static_cast<std::size_t>(k)] = std::int64_t(box.max()[k]) - box.min()[k] + 1;
+  const std::int64_t limit = options.MaxVoxels;
+  if (h.Dims[0] > limit || h.Dims[1] > limit / h.Dims[0] ||
+    h.Dims[2] > limit / (h.Dims[0] * h.Dims[1]))
+  {
+    throw Error("grid '" + h.Name + "' spans " + std::to_string(h.Dims[0]) + " x " +
+      std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) +
+      " voxels, more than the limit of " + std::to_string(limit) + " voxels");
+  }
+  const auto n = static_cast<std::size_t>(h.NumberOfVoxels());
+  CheckMemory(n * (h.Type == ValueType::Vec3Float ? 12 : 4),
+    "reading grid '" + h.Name + "' (" + std::to_string(h.Dims[0]) + " x " +
+      std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) + " voxels)");
+  switch (h.Type)
+  {
+    case ValueType::Int32:
+    {
+      const auto& g = static_cast<const openvdb::Int32Grid&>(*base);
+      h.Background = g.background();
+      out.Ints.resize(n);
+      GridToDense(g, box, out.Ints.data());
+      break;
+    }
+    case ValueType::Float:
+    {
+      const auto& g = static_cast<const openvdb::FloatGrid&>(*base);
+      h.Background = g.background();
+      out.Floats.resize(n);
+      GridToDense(g, box, out.Floats.data());
+      break;
+    }
+    case ValueType::Vec3Float:
+    {
+      const auto& g = static_cast<const openvdb::Vec3SGrid&>(*base);
+      h.Background = g.background().x();
+      out.Floats.resize(3 * n);
+      GridToDense(g, box, reinterpret_cast<openvdb::Vec3s*>(out.Floats.data()));
+      break;
+    }
+  }
+  return out;
+}
+
+/// Writes grids exactly as openvdb::io::File does (Archive::write to a seekable stream), but to
+/// a stream the caller owns and checks: io::File never looks at its stream's state, so a full
+/// disk would go unnoticed.
+class CheckedArchive : public openvdb::io::Archive
+{
+public:
+  openvdb::io::Archive::Ptr copy() const override
+  {
+    return openvdb::io::Archive::Ptr(new CheckedArchive(*this));
+  }
+  void Write(
+    std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& meta) const
+  {
+    this->write(out, grids, /*seekable=*/true, meta);
+  }
+};
+
+/// A whole VDB file in memory: its metadata and grids.
+struct Archive
+{
+  openvdb::MetaMap::Ptr Metadata;
+  openvdb::GridPtrVecPtr Grids;
+};
+
+/// Reads all of @p path through a stream we own, so that a short read (a truncated file) is
+/// seen as the stream's failure: OpenVDB itself does not check every read.
+Archive LoadArchive(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
+  }
+  char magic[8] = {};
+  in.read(magic, 8);
+  // OpenVDB files start with the 64-bit magic number 0x56444220 ("VDB ") in little endian.
+  if (!in || static_cast<unsigned char>(magic[0]) != 0x20 || magic[1] != 'B' || magic[2] != 'D' ||
+    magic[3] != 'V')
+  {
+    throw Error::InFile(path, "is not a readable OpenVDB file (wrong magic number)");
+  }
+  in.seekg(0);
+  // Throw at the first short read: OpenVDB does not check its reads, and after a failed one it
+  // would go on with garbage lengths (allocating up to 2 GB per string).
+  in.exceptions(std::ios::failbit | std::ios::badbit);
+  Archive archive;
+  try
+  {
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
+    archive.Metadata = stream.getMetadata();
+    archive.Grids = stream.getGrids();
+  }
+  catch (const std::ios_base::failure&)
+  {
+    throw Error::InFile(path, "is truncated or corrupt (the file ended before its data)");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error::InFile(path, "is corrupt or needs more memory than is available");
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, std::string("is not a readable OpenVDB file: ") + e.what());
+  }
+  in.exceptions(std::ios::goodbit);
+  if (in.fail() || !archive.Metadata || !archive.Grids)
+  {
+    throw Error::InFile(path, "is truncated or corrupt (the file ended before its data)");
+  }
+  in.peek();
+  if (!in.eof())
+  {
+    throw Error::InFile(path, "is corrupt (unexpected data after the last grid)");
+  }
+  return archive;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// public API
+// ---------------------------------------------------------------------------------------------
+void WriteFile(
+  const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata)
+{
+  WriteFile(path, grids, {}, metadata);
+}
+
+namespace
+{
+/// The level set (and fog volume) of one mesh.
+void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
+{
+  if (!mesh.Points || !mesh.Polygons)
+  {
+    throw Error("mesh grid '" + mesh.Name + "' has no points or polygons");
+  }
+  if (!(mesh.VoxelSize > 0) || !std::isfinite(mesh.VoxelSize))
+  {
+    throw Error("mesh grid '" + mesh.Name + "': the voxel size must be positive");
+  }
+  if (!(mesh.HalfWidth >= 1) || !std::isfinite(mesh.HalfWidth))
+  {
+    throw Error("mesh grid '" + mesh.Name + "': the band half width must be at least one voxel");
+  }
+  std::vector<openvdb::Vec3s> points;
+  points.reserve(mesh.Points->size());
+  for (const auto& p : *mesh.Points)
+  {
+    points.emplace_back(
+      static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+  }
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  const auto n = static_cast<std::int64_t>(points.size());
+  for (const auto& poly : *mesh.Polygons)
+  {
+    for (auto i : poly)
+    {
+      if (i < 0 || i >= n)
+      {
+        throw Error("mesh grid '" + mesh.Name + "' has a polygon with a point index out of range");
+      }
+    }
+    // The sign comes from OpenVDB's inside/outside flood fill, not from the winding.
+    if (poly.size() == 4)
+    {
+      quads.emplace_back(poly[0], poly[1], poly[2], poly[3]);
+    }
+    else
+    {
+      for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      {
+        triangles.emplace_back(poly[0], poly[k], poly[k + 1]);
+      }
+    }
+  }
+  const auto transform = openvdb::math::Transform::createLinearTransform(mesh.VoxelSize);
+  openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(
+    *transform, points, triangles, quads, static_cast<float>(mesh.HalfWidth));
+  grid->setName(mesh.Name);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  for (const auto& kv : mesh.Metadata)
+  {
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  out.push_back(grid);
+  if (!mesh.FogName.empty())
+  {
+    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
+    openvdb::tools::sdfToFogVolume(*fog);
+    fog->setName(mesh.FogName);
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    out.push_back(fog);
+  }
+}
+} // namespace
+
+void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+  const std::vector<MeshGridView>& meshes, const MetadataMap& metadata)
+{
+  InitializeOpenVDB();
+  if (path.empty())
+  {
+    throw Error("no output file name was given");
+  }
+  openvdb::GridPtrVec vdbGrids;
+  try
+  {
+    for (const auto& view : grids)
+    {
+      for (const auto& g : vdbGrids)
+      {
+        if (g->getName() == view.Header.Name)
+        {
+          throw Error("two grids are named '" + view.Header.Name + "'");
+        }
+      }
+      vdbGrids.push_back(MakeGrid(view));
+    }
+    for (const auto& mesh : meshes)
+    {
+      MakeMeshGrids(mesh, vdbGrids);
+    }
+    for (std::size_t i = 0; i < vdbGrids.size(); ++i)
+    {
+      for (std::size_t j = 0; j < i; ++j)
+      {
+        if (vdbGrids[i]->getName() == vdbGrids[j]->getName())
+        {
+          throw Error("two grids are named '" + vdbGrids[i]->getName() + "'");
+        }
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, std::string("not written: ") + e.what());
+  }
+
+  openvdb::MetaMap fileMeta;
+  for (const auto& kv : metadata)
+  {
+    fileMeta.insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  }
+  fileMeta.insertMeta(
+    "generator", openvdb::StringMetadata(std::string("ModelSynth ") + MSYNTH_VERSION));
+
+  // Written as io::File writes (a seekable archive), through a checked stream of ours.
+  WriteFileAtomically(path,
+    [&](std::ostream& out)
+    {
+      try
+      {
+        CheckedArchive().Write(out, vdbGrids, fileMeta);
+      }
+      catch (const Error&)
+      {
+        throw;
+      }
+      catch (const std::exception& e)
+      {
+        throw Error::InFile(path, std::string("could not be written: ") + e.what());
+      }
+    });
+}
+
+namespace
+{
+FileContents ReadFileHere(const std::string& path, const ReadOptions& options)
+{
+  InitializeOpenVDB();
+  const Archive archive = LoadArchive(path);
+  FileContents contents;
+  try
+  {
+    contents.Metadata = StringMetadataOf(*archive.Metadata);
+    for (const auto& grid : *archive.Grids)
+    {
+      const std::string name = grid->getName();
+      if (!options.GridNames.empty() &&
+        std::find(options.GridNames.begin(), options.GridNames.end(), name) ==
+          options.GridNames.end())
+      {
+        continue;
+      }
+      contents.Grids.push_back(ReadGrid(grid, options));
+    }
+    for (const auto& wanted : options.GridNames)
+    {
+      if (std::none_of(contents.Grids.begin(), contents.Grids.end(),
+            [&](const DenseGrid& g) { return g.Header.Name == wanted; }))
+      {
+        throw Error("has no grid named '" + wanted + "'");
+      }
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error::InFile(path, "needs more memory than is available");
+  }
+  catch (const std::exception& e)
+  {
+    throw Error::InFile(path, e.what());
+  }
+  return contents;
+}
+
+std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fileMetadata)
+{
+  InitializeOpenVDB();
+  const Archive archive = LoadArchive(path);
+  if (fileMetadata)
+  {
+    *fileMetadata = StringMetadataOf(*archive.Metadata);
+  }
+  std::vector<GridSummary> result;
+  for (const auto& g : *archive.Grids)
+  {
+    GridSummary s;
+    s.Name = g->getName();
+    s.TypeName = g->valueType();
+    s.GridClass = openvdb::GridBase::gridClassToString(g->getGridClass());
+    s.Metadata = StringMetadataOf(*g);
+    s.ActiveVoxelCount = static_cast<std::int64_t>(g->activeVoxelCount());
+    result.push_back(std::move(s));
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading in a child process. OpenVDB trusts sizes in the file (a negative Blosc chunk size
+// overflows its buffer), so the library reads in a forked child; only our own serialization of
+// the result crosses back, checked as untrusted data. A crash or overflow ends the child, and
+// the parent reports the file as corrupt.
+
+/// Appends values to a byte string (the child's side).
+struct Packer
+{
+  std::string Bytes;
+  void Raw(const void* p, std::size_t n) { this->Bytes.append(static_cast<const char*>(p), n); }
+  void U64(std::uint64_t v) { this->Raw(&v, 8); }
+  void F64(double v) { this->Raw(&v, 8); }
+  void Str(const std::string& v)
+  {
+    this->U64(v.size());
+    this->Raw(v.data(), v.size());
+  }
+  void Map(const MetadataMap& m)
+  {
+    this->U64(m.size());
+    for (const auto& kv : m)
+    {
+      this->Str(kv.first);
+      this->Str(kv.second);
+    }
+  }
+};
+
+/// Reads them back with every size checked (the parent's side).
+struct Unpacker
+{
+  const std::string& Bytes;
+  const std::string& Path;
+  std::size_t Pos = 0;
+  void Raw(void* p, std::size_t n)
+  {
+    if (n > this->Bytes.size() - this->Pos)
+      throw Error::InFile(this->Path, "could not be read (the reading process sent too little)");
+    std::memcpy(p, this->Bytes.data() + this->Pos, n);
+    this->Pos += n;
+  }
+  std::uint64_t U64(std::uint64_t limit = std::numeric_limits<std::uint64_t>::max())
+  {
+    std::uint64_t v = 0;
+    this->Raw(&v, 8);
+    if (v > limit)
+      throw Error::InFile(
+        this->Path, "could not be read (a size out of range from the reading process)");
+    return v;
+  }
+  double F64()
+  {
+    double v = 0;
+    this->Raw(&v, 8);
+    return v;
+  }
+  std::string Str()
+  {
+    std::string v(static_cast<std::size_t>(this->U64(this->Bytes.size() - this->Pos)), '\0');
+    this->Raw(&v[0], v.size());
+    return v;
+  }
+  MetadataMap Map()
+  {
+    MetadataMap m;
+    for (std::uint64_t n = this->U64(this->Bytes.size()); n > 0; --n)
+    {
+      std::string key = this->Str();
+      m[key] = this->Str();
+    }
+    return m;
+  }
+};
+
+void PackHeader(Packer& p, const GridHeader& h)
+{
+  p.Str(h.Name);
+  p.U64(static_cast<std::uint64_t>(h.Type));
+  for (int a = 0; a < 3; ++a)
+  {
+    p.U64(static_cast<std::uint64_t>(
+      static_cast<std::int64_t>(h.IndexMin[static_cast<std::size_t>(a)])));
+    p.U64(static_cast<std::uint64_t>(h.Dims[static_cast<std::size_t>(a)]));
+    p.F64(h.Origin[static_cast<std::size_t>(a)]);
+    p.F64(h.Spacing[static_cast<std::size_t>(a)]);
+  }
+  p.F64(h.Background);
+  p.Str(h.GridClass);
+  p.Map(h.Metadata);
+}
+
+GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels)
+{
+  GridHeader h;
+  h.Name = u.Str();
+  h.Type = static_cast<ValueType>(u.U64(2));
+  for (int a = 0; a < 3; ++a)
+  {
+    h.IndexMin[static_cast<std::size_t>(a)] =
+      static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
+    h.Dims[static_cast<std::size_t>(a)] =
+      static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
+    h.Origin[static_cast<std::size_t>(a)] = u.F64();
+    h.Spacing[static_cast<std::size_t>(a)] = u.F64();
+  }
+  h.Background = u.F64();
+  h.GridClass = u.Str();
+  h.Metadata = u.Map();
+  if (h.Dims[0] * h.Dims[1] > maxVoxels || h.NumberOfVoxels() > maxVoxels)
+    throw Error::InFile(u.Path, "could not be read (a grid out of range from the reading process)");
+  return h;
+}
+
+/// Writes all of @p n bytes at @p data to @p fd (the child's side).
+void WriteAll(int fd, const void* data, std::size_t n)
+{
+  const char* p = static_cast<const char*>(data);
+  while (n > 0)
+  {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR)
+      continue;
+    if (k <= 0)
+      ::_exit(1); // the parent stopped listening
+    p += k;
+    n -= static_cast<std::size_t>(k);
+  }
+}
+
+/// The child's answer: 'O', then @p bytes as a length-prefixed block (PipeReader::Block).
+void SendBlock(int fd, const std::string& bytes)
+{
+  const std::uint64_t n = bytes.size();
+  WriteAll(fd, "O", 1);
+  WriteAll(fd, &n, 8);
+  WriteAll(fd, bytes.data(), bytes.size());
+}
+
+/// Reads exactly what the parent asks for from the child's pipe.
+class PipeReader
+{
+public:
+  PipeReader(int fd, const std::string& path)
+    : Fd(fd)
+    , Path(path)
+  {
+  }
+  /// Up to @p n bytes; fewer only at the end of the pipe.
+  std::size_t Some(void* data, std::size_t n)
+  {
+    char* p = static_cast<char*>(data);
+    std::size_t done = 0;
+    while (done < n)
+    {
+      const ssize_t k = ::read(this->Fd, p + done, n - done);
+      if (k < 0 && errno == EINTR)
+        continue;
+      if (k <= 0)
+        break;
+      done += static_cast<std::size_t>(k);
+    }
+    return done;
+  }
+  void Exact(void* data, std::size_t n)
+  {
+    if (this->Some(data, n) != n)
+      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
+  }
+  std::uint64_t U64()
+  {
+    std::uint64_t v = 0;
+    this->Exact(&v, 8);
+    return v;
+  }
+  /// A length-prefixed block of at most 64 MiB (the child's side: SendBlock).
+  std::string Block()
+  {
+    const std::uint64_t n = this->U64();
+    if (n > (std::uint64_t(64) << 20))
+      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
+    std::string bytes(static_cast<std::size_t>(n), '\0');
+    this->Exact(&bytes[0], bytes.size());
+    return bytes;
+  }
+
+private:
+  int Fd;
+  const std::string& Path;
+};
+
+/**
+ * Runs @p child in a forked child that writes to the given pipe ('O' and its data, or 'E' and
+ * a message), and @p parent on the parent's end, which reads that data. A crash of the child,
+ * or data that do not follow the protocol, is an Error naming @p path.
+ */
+template <typename Result>
+Result Isolated(const std::string& path, std::uint64_t memoryBudget,
+  const std::function<void(int)>& child, const std::function<Result(PipeReader&)>& parent)
+{
+  int fds[2];
+  if (::pipe(fds) != 0)
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0)
+  {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  }
+  if (pid == 0)
+  {
+    ::close(fds[0]);
+    std::string message;
+    try
+    {
+      // One thread in the child: the parent's TBB workers do not exist here. Its address
+      // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      if (const std::uint64_t used = VirtualSize())
+      {
+        rlimit limit{};
+        ::getrlimit(RLIMIT_AS, &limit);
+        const std::uint64_t cap = used + memoryBudget;
+        if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
+        {
+          limit.rlim_cur = static_cast<rlim_t>(cap);
+          ::setrlimit(RLIMIT_AS, &limit);
+        }
+      }
+      child(fds[1]);
+      ::_exit(0);
+    }
+    catch (const std::bad_alloc&)
+    {
+      message = Error::InFile(path, "needs more memory than is available").what();
+    }
+    catch (const std::exception& e)
+    {
+      message = e.what();
+    }
+    WriteAll(fds[1], "E", 1);
+    WriteAll(fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  PipeReader reader(fds[0], path);
+  const auto finish = [&](bool kill)
+  {
+    if (kill)
+      ::kill(pid, SIGKILL);
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    {
+    }
+    return status;
+  };
+  const auto crashed = [&](int status)
+  {
+    return Error::InFile(path,
+      WIFSIGNALED(status) ? "is corrupt: the OpenVDB library crashed reading it (signal " +
+          std::to_string(WTERMSIG(status)) + ")"
+                          : std::string("is corrupt: the OpenVDB library failed reading it"));
+  };
+  char kind = 0;
+  if (reader.Some(&kind, 1) != 1 || (kind != 'O' && kind != 'E'))
+    throw crashed(finish(false));
+  if (kind == 'E')
+  {
+    std::string message(4096, '\0');
+    message.resize(reader.Some(&message[0], message.size()));
+    finish(false);
+    throw Error(message);
+  }
+  try
+  {
+    Result result = parent(reader);
+    char extra = 0;
+    const bool more = reader.Some(&extra, 1) != 0;
+    const int status = finish(more);
+    if (more || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      throw crashed(status);
+    return result;
+  }
+  catch (const Error&)
+  {
+    const int status = finish(true);
+    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL)
+      throw crashed(status);
+    throw;
+  }
+}
+} // namespace
+
+FileContents ReadFile(const std::string& path, const ReadOptions& options)
+{
+  InitializeOpenVDB();
+  // The dense grids, the tree they come from and OpenVDB's buffers.
+  const std::uint64_t budget =
+    static_cast<std::uint64_t>(options.MaxVoxels) * 36 + (std::uint64_t(1) << 30);
+  return Isolated<FileContents>(
+    path, budget,
+    [&](int fd)
+    {
+      const FileContents contents = ReadFileHere(path, options);
+      // The headers first (sizes included), then each grid's values as they are in memory.
+      Packer p;
+      p.Map(contents.Metadata);
+      p.U64(contents.Grids.size());
+      for (const auto& g : contents.Grids)
+      {
+        PackHeader(p, g.Header);
+        p.U64(g.Ints.size());
+        p.U64(g.Floats.size());
+      }
+      SendBlock(fd, p.Bytes);
+      for (const auto& g : contents.Grids)
+      {
+        WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+    },
+    [&](PipeReader& reader)
+    {
+      const std::string headers = reader.Block();
+      Unpacker u{ headers, path };
+      FileContents contents;
+      contents.Metadata = u.Map();
+      for (std::uint64_t count = u.U64(100000); count > 0; --count)
+      {
+        DenseGrid g;
+        g.Header = UnpackHeader(u, options.MaxVoxels);
+        const auto voxels = static_cast<std::uint64_t>(g.Header.NumberOfVoxels());
+        const std::uint64_t ints = u.U64(voxels), floats = u.U64(3 * voxels);
+        const std::uint64_t expected =
+          voxels * static_cast<std::uint64_t>(ComponentCount(g.Header.Type));
+        if ((g.Header.Type == ValueType::Int32 ? ints : floats) != expected || (ints && floats))
+          throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
+        CheckMemory((ints + floats) * 4, "reading grid '" + g.Header.Name + "' of '" + path + "'");
+        contents.Grids.push_back(std::move(g));
+        contents.Grids.back().Ints.resize(static_cast<std::size_t>(ints));
+        contents.Grids.back().Floats.resize(static_cast<std::size_t>(floats));
+      }
+      for (auto& g : contents.Grids)
+      {
+        reader.Exact(g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        reader.Exact(g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+      return contents;
+    });
+}
+
+std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
+{
+  InitializeOpenVDB();
+  const std::string payload = Isolated<std::string>(
+    path, std::uint64_t(8) << 30,
+    [&](int fd)
+    {
+      MetadataMap meta;
+      const std::vector<GridSummary> grids = ListGridsHere(path, &meta);
+      Packer p;
+      p.Map(meta);
+      p.U64(grids.size());
+      for (const auto& g : grids)
+      {
+        p.Str(g.Name);
+        p.Str(g.TypeName);
+        p.Str(g.GridClass);
+        p.Map(g.Metadata);
+        p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
+      }
+      SendBlock(fd, p.Bytes);
+    },
+    [](PipeReader& reader) { return reader.Block(); });
+  Unpacker u{ payload, path };
+  MetadataMap meta = u.Map();
+  if (fileMetadata)
+    *fileMetadata = meta;
+  std::vector<GridSummary> result;
+  for (std::uint64_t n = u.U64(100000); n > 0; --n)
+  {
+    GridSummary g;
+    g.Name = u.Str();
+    g.TypeName = u.Str();
+    g.GridClass = u.Str();
+    g.Metadata = u.Map();
+    g.ActiveVoxelCount = static_cast<std::int64_t>(u.U64());
+    result.push_back(std::move(g));
+  }
+  return result;
+}
+
+} // namespace vdb
+} // namespace msynth
