@@ -572,6 +572,35 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(run("info").returncode, 2)
         self.assertEqual(run("analyze", "x.vti", "--out").returncode, 2)
         self.assertEqual(run("--help").returncode, 0)
+        # Each command has its own options: one line ending with where to read them.
+        village = data("Examples/Village.vti")
+        for args, words in ((("check", village, village, "--mirror", "xy"), "--mirror"),
+                            (("synthesize", village, "--size", "4", "4", "4", "--spacing", "2"),
+                             "--spacing applies to polyhedral examples"),
+                            (("synthesize", data("Continuous/cube.obj"), "--size", "4", "4", "4",
+                              "--mirror", "x"), "--mirror applies to label grids and tilesets"),
+                            (("synthesize", village, "--size", "4.5", "4", "4"), "in sites"),
+                            (("synthesize", village, "--size", "4", "4", "4", "--swap", "1-2"),
+                             "is not LABEL:LABEL"),
+                            (("animate", village, "--size", "4", "4", "1", "--frames", "2",
+                              "--order", "entropy"), "--order"),
+                            (("info",), "EXAMPLE is required")):
+            r = run(*args)
+            self.assertEqual(r.returncode, 2, args)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertIn(words, r.stderr)
+            self.assertTrue(r.stderr.rstrip().endswith("see msynth %s --help" % args[0]), r.stderr)
+        r = run("synthesize", "--help")
+        self.assertEqual(r.returncode, 0)
+        self.assertIn("--mirror", r.stdout)
+        self.assertIn("--spacing", r.stdout)
+        self.assertNotIn("--frames", r.stdout)
+        r = run("animate", "--help")
+        self.assertIn("--frames", r.stdout)
+        self.assertNotIn("--mirror", r.stdout)
+        r = run("--version")
+        self.assertEqual(r.returncode, 0)
+        self.assertTrue(r.stdout.startswith("msynth "), r.stdout)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth animate EXAMPLE... --size NX NY NZ --frames N`: time-varying synthesis (D§3.5.4)
+// through vtkMSTimeVaryingSynthesis. One example file: its z slices are the frames; several:
+// one frame each, given to the filter as time steps (as a file series in ParaView). Writes
+// DIR/frame_0000.vti, ... (a series ParaView opens as time steps), DIR/model_0001.vdb, ... and
+// DIR/statistics.json, after checking the animation against the example frames.
+#include "Commands.h"
+#include "Common.h"
+
+#include "vtkFieldData.h"
+#include "vtkImageAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSOpenVDBWriter.h"
+#include "vtkMSTimeVaryingSynthesis.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include "Discrete/TimeVarying.h"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+/// Frames read beforehand, offered as time steps 0, 1, ... (what ParaView's file series is).
+class vtkMSFrameSeries : public vtkImageAlgorithm
+{
+public:
+  static vtkMSFrameSeries* New();
+  vtkTypeMacro(vtkMSFrameSeries, vtkImageAlgorithm);
+  void AddFrame(vtkImageData* frame) { this->Frames.emplace_back(frame); }
+
+protected:
+  vtkMSFrameSeries() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    std::vector<double> times(this->Frames.size());
+    for (std::size_t t = 0; t < times.size(); ++t)
+      times[t] = static_cast<double>(t);
+    info->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { 0.0, times.empty() ? 0.0 : times.back() };
+    info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    if (!this->Frames.empty())
+      info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Frames[0]->GetExtent(), 6);
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    std::size_t t = 0;
+    if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+      t = static_cast<std::size_t>(
+        std::max(0.0, info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()) + 0.5));
+    if (t >= this->Frames.size())
+      return 0;
+    vtkImageData* output = vtkImageData::GetData(info);
+    output->ShallowCopy(this->Frames[t]);
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(t));
+    return 1;
+  }
+
+private:
+  std::vector<vtkSmartPointer<vtkImageData>> Frames;
+};
+vtkStandardNewMacro(vtkMSFrameSeries);
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+const std::vector<std::string> Orders{ "scanline", "random" };
+const std::vector<std::string> Choices{ "uniform", "frequency" };
+
+struct AnimateOptions
+{
+  std::vector<std::string> Examples;
+  std::vector<int> Size;
+  int Frames = 0;
+  bool Loop = false;
+  std::vector<int> Block{ 0, 0, 0 };
+  int BlockFrames = 0;
+  std::int64_t Seed = 0;
+  int Attempts = 10;
+  std::string Order = "scanline";
+  std::string Choice = "uniform";
+  std::string Out = "msynth-output";
+};
+
+/// The example frames as the independent check reads them: each file, or one file's z slices.
+msynth::TimeVaryingGrid ReadFrames(const std::vector<std::string>& examples)
+{
+  msynth::TimeVaryingGrid example;
+  for (const auto& path : examples)
+  {
+    vtkNew<vtkMSLabelGridReader> reader;
+    reader->SetFileName(path.c_str());
+    Run(reader);
+    msynth::LabelGrid grid;
+    std::string problem;
+    if (!vtkMSEngineBridge::ReadLabels(reader->GetOutput(), nullptr, grid, problem))
+    {
+      throw std::runtime_error("'" + path + "': " + problem);
+    }
+    if (examples.size() == 1)
+    {
+      return msynth::TimeVaryingGrid::FromSlices(grid);
+    }
+    example.Frames.push_back(std::move(grid));
+  }
+  return example;
+}
+
+/// Frame @p t of the synthesis: its labels, and frame_t.vti and model_(t+1).vdb written.
+msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const std::string& dir)
+{
+  synthesis->UpdateTimeStep(t);
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(synthesis->GetOutput());
+  msynth::LabelGrid frame;
+  std::string problem;
+  if (!vtkMSEngineBridge::ReadLabels(image, nullptr, frame, problem))
+  {
+    throw std::runtime_error("frame " + std::to_string(t) + ": " + problem);
+  }
+  char name[32];
+  std::snprintf(name, sizeof(name), "/frame_%04d.vti", t);
+  WriteXML<vtkXMLImageDataWriter>(dir + name, image.GetPointer());
+  vtkNew<vtkMSOpenVDBWriter> vdb;
+  vdb->SetInputData(image);
+  std::snprintf(name, sizeof(name), "/model_%04d.vdb", t + 1);
+  vdb->SetFileName((dir + name).c_str());
+  vdb->AddMetadata("msynth_command", "animate");
+  vdb->AddMetadata("frame", std::to_string(t).c_str());
+  Run(vdb);
+  return frame;
+}
+
+int Animate(const AnimateOptions& o, const std::string& dir)
+{
+  vtkNew<vtkMSLabelGridReader> reader;
+  vtkNew<vtkMSFrameSeries> series;
+  vtkNew<vtkMSTimeVaryingSynthesis> synthesis;
+  if (o.Examples.size() == 1)
+  {
+    reader->SetFileName(o.Examples[0].c_str());
+    synthesis->SetInputConnection(reader->GetOutputPort());
+    synthesis->ExampleTimeFromZOn();
+  }
+  else
+  {
+    for (const auto& path : o.Examples)
+    {
+      vtkNew<vtkMSLabelGridReader> frame;
+      frame->SetFileName(path.c_str());
+      Run(frame);
+      series->AddFrame(frame->GetOutput());
+    }
+    synthesis->SetInputConnection(series->GetOutputPort());
+  }
+  synthesis->SetOutputSize(o.Size[0], o.Size[1], o.Size[2]);
+  synthesis->SetNumberOfFrames(o.Frames);
+  synthesis->SetBlockSize(o.Block[0], o.Block[1], o.Block[2], o.BlockFrames);
+  synthesis->SetAttemptsPerBlock(o.Attempts);
+  synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
+  synthesis->SetLoop(o.Loop);
+  synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
+  synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));
+  {
+    ProgressBar bar(synthesis);
+    synthesis->UpdateInformation();
+    Run(synthesis);
+  }
+  const msynth::TimeVaryingGrid example = ReadFrames(o.Examples);
+  msynth::TimeVaryingGrid model;
+  for (int t = 0; t < o.Frames; ++t)
+  {
+    model.Frames.push_back(WriteFrame(synthesis, t, dir));
+  }
+  const msynth::ConsistencyReport report = msynth::CheckTimeVarying(example, model, o.Loop);
+  if (!report.Consistent)
+  {
+    throw std::runtime_error(
+      "the synthesized animation breaks the example's rules: " + report.First[0].Describe());
+  }
+  vtkFieldData* fd = synthesis->GetOutput()->GetFieldData();
+  const std::string message = MessageOf(fd);
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"examples\": [";
+      for (std::size_t i = 0; i < o.Examples.size(); ++i)
+        out << (i ? ", " : "") << JsonString(o.Examples[i]);
+      out << "],\n  \"exampleFrames\": " << example.Frames.size() << ",\n  \"size\": [" << o.Size[0]
+          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"frames\": " << o.Frames
+          << ",\n  \"loop\": " << (o.Loop ? "true" : "false") << ",\n  \"seed\": " << o.Seed
+          << ",\n";
+      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Message\": " << JsonString(message) << "\n}\n";
+    });
+  std::cout << message << "\n"
+            << "consistent: all " << report.PairsChecked
+            << " pairs of neighbours in space and time occur in the example\n"
+            << "wrote " << dir << "/frame_0000.vti ... frame_" << std::setw(4) << std::setfill('0')
+            << (o.Frames - 1) << ".vti, " << dir << "/model_0001.vdb ..., " << dir
+            << "/statistics.json\n";
+  return 0;
+}
+} // namespace
+
+CommandRunner AddAnimate(CLI::App& app)
+{
+  auto o = std::make_shared<AnimateOptions>();
+  CLI::App* a = app.add_subcommand("animate",
+    "time-varying synthesis (D 3.5.4): one EXAMPLE image whose z slices are the frames, or one "
+    "file per frame; writes DIR/frame_0000.vti ... (a series ParaView opens as time steps), "
+    "DIR/model_0001.vdb ... and DIR/statistics.json");
+  a->add_option("EXAMPLE", o->Examples, "the example: one image, or one file per frame")
+    ->required();
+  a->add_option("--size", o->Size, "frame size NX NY NZ in sites")
+    ->expected(3)
+    ->required()
+    ->check(CLI::Range(1, 1000000000));
+  a->add_option("--frames", o->Frames, "number of frames")
+    ->required()
+    ->check(CLI::Range(1, 1000000));
+  a->add_flag("--loop", o->Loop, "join the last frame to the first (a repeating animation)");
+  a->add_option("--block", o->Block, "block size BX BY BZ (default: the whole model)")
+    ->expected(3)
+    ->check(CLI::Range(0, 1000000000));
+  a->add_option("--block-frames", o->BlockFrames, "frames per block (0: all)")
+    ->check(CLI::Range(0, 1000000));
+  AddSeedOption(*a, o->Seed);
+  AddAttemptsOption(*a, o->Attempts, "attempts per block");
+  AddOrderOption(*a, o->Order, Orders);
+  AddChoiceOption(*a, o->Choice, Choices);
+  AddOutOption(*a, o->Out);
+  return [o]()
+  {
+    for (const auto& path : o->Examples)
+    {
+      CheckInputFile(path);
+    }
+    return IntoFolder(o->Out, [&](const std::string& dir) { return Animate(*o, dir); });
+  };
+}
+
+} // namespace cli
+} // namespace msynth

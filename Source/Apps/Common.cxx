@@ -1,0 +1,347 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Common.h"
+
+#include "vtkMSOpenVDBWriter.h"
+#include "vtkMSPolyhedralExampleReader.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkVariant.h"
+
+#include "Core/Error.h"
+#include "Core/OutputFolder.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace msynth
+{
+namespace cli
+{
+
+bool IsTileset(const std::string& path)
+{
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".xml") == 0;
+}
+
+bool IsPolyhedral(const std::string& path)
+{
+  return vtkMSPolyhedralExampleReader::CanReadFile(path.c_str()) != 0;
+}
+
+void CheckInputFile(const std::string& path, bool model)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    throw std::runtime_error("'" + path + "': no such file");
+  }
+  if (S_ISDIR(info.st_mode))
+  {
+    throw std::runtime_error("'" + path + "': is a folder, not a file");
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    throw std::runtime_error("'" + path + "': is not a regular file (a pipe, socket or device)");
+  }
+  const std::string::size_type dot = path.rfind('.');
+  std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos
+    ? std::string()
+    : path.substr(dot);
+  for (auto& c : ext)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  static const char* const known[] = { ".vti", ".txt", ".vox", ".xml", ".obj", ".vtp", ".ply",
+    ".stl" };
+  bool ok = false;
+  for (const char* k : known)
+  {
+    ok |= ext == k;
+  }
+  if (!ok)
+  {
+    throw std::runtime_error("'" + path + "': " +
+      (ext.empty() ? std::string("has no extension")
+                   : "has the unknown extension '" + msynth::Printable(ext) + "'") +
+      (model ? "; models are .vti, .txt, .vox or .vtp files"
+             : "; examples are label grids (.vti, .txt, .vox), tilesets (.xml) or polyhedra "
+               "(.obj, .vtp, .ply, .stl)"));
+  }
+}
+
+void Run(vtkAlgorithm* algorithm)
+{
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(algorithm, messages))
+  {
+    throw std::runtime_error(messages);
+  }
+}
+
+namespace
+{
+/// @p text with every occurrence of @p from replaced by @p to.
+std::string Replaced(std::string text, const std::string& from, const std::string& to)
+{
+  for (std::size_t at = text.find(from); at != std::string::npos;
+       at = text.find(from, at + to.size()))
+  {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+} // namespace
+
+int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command)
+{
+  msynth::OutputFolder folder(out);
+  std::ostringstream said;
+  struct Console // std::cout into `said` while the command runs
+  {
+    std::streambuf* Saved;
+    ~Console() { std::cout.rdbuf(this->Saved); }
+  } console{ std::cout.rdbuf(said.rdbuf()) };
+  int status = 1;
+  try
+  {
+    status = command(folder.Stage());
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(Replaced(e.what(), folder.Stage(), folder.Final()));
+  }
+  if (status == 0)
+  {
+    folder.Publish();
+  }
+  std::cout.rdbuf(console.Saved);
+  std::cout << Replaced(said.str(), folder.Stage(), folder.Final()) << std::flush;
+  return status;
+}
+
+void WriteCSV(const std::string& path, vtkTable* table)
+{
+  msynth::WriteFileAtomically(path,
+    [table](std::ostream& out)
+    {
+      for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
+      {
+        out << (c ? "," : "") << table->GetColumnName(c);
+      }
+      out << "\n";
+      for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+      {
+        for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
+        {
+          out << (c ? "," : "") << table->GetValue(r, c).ToString();
+        }
+        out << "\n";
+      }
+    });
+}
+
+std::string JsonString(const std::string& text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+  {
+    switch (c)
+    {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char buffer[8];
+          std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+          out += buffer;
+        }
+        else
+        {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd)
+{
+  auto fields = msynth::StatisticsFields(msynth::SynthesisStatistics());
+  for (auto& f : fields)
+  {
+    vtkDataArray* array = fd->GetArray(f.Name.c_str());
+    f.Value = array ? array->GetTuple1(0) : 0.0;
+  }
+  return fields;
+}
+
+std::string MessageOf(vtkFieldData* fd)
+{
+  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
+  return message && message->GetNumberOfValues() > 0 ? message->GetValue(0) : std::string();
+}
+
+long long CountOf(vtkFieldData* fd, const char* name)
+{
+  vtkDataArray* array = fd->GetArray(name);
+  return array && array->GetNumberOfTuples() > 0 ? static_cast<long long>(array->GetTuple1(0)) : 0;
+}
+
+ProgressBar::ProgressBar(vtkAlgorithm* algorithm)
+  : Algorithm(algorithm)
+{
+  if (::isatty(STDERR_FILENO) == 0)
+  {
+    return;
+  }
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetClientData(this);
+  callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data)
+    { static_cast<ProgressBar*>(self)->OnProgress(*static_cast<double*>(data)); });
+  this->Observer = algorithm->AddObserver(vtkCommand::ProgressEvent, callback);
+}
+
+ProgressBar::~ProgressBar()
+{
+  if (this->Observer)
+  {
+    this->Algorithm->RemoveObserver(this->Observer);
+  }
+  if (this->Shown)
+  {
+    std::cerr << "\n";
+  }
+}
+
+void ProgressBar::OnProgress(double f)
+{
+  const int width = 40, filled = static_cast<int>(f * width + 0.5);
+  std::cerr << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+            << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+            << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
+  this->Shown = true;
+}
+
+void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel,
+  const char* key, const std::string& value)
+{
+  vtkNew<vtkMSOpenVDBWriter> catalog;
+  catalog->SetInputConnection(source->GetOutputPort());
+  catalog->SetFileName((dir + "/catalog.vdb").c_str());
+  catalog->SetVoxelSize(voxel);
+  catalog->WriteTimeStepsOn();
+  catalog->AddMetadata(key, value.c_str());
+  vtkNew<vtkMSEngineBridge> errors;
+  errors->Watch(catalog);
+  if (!catalog->Write() || errors->HasErrors())
+  {
+    throw std::runtime_error(errors->GetMessages());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared options
+// ---------------------------------------------------------------------------------------------
+
+void AddOutOption(CLI::App& command, std::string& out)
+{
+  command.add_option("--out", out,
+    "output folder; its files appear together, or not at all when the run fails or is "
+    "interrupted");
+}
+
+void AddSeedOption(CLI::App& command, std::int64_t& seed)
+{
+  command.add_option("--seed", seed, "random seed; the same inputs and seed give the same result");
+}
+
+void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what)
+{
+  command.add_option("--attempts", attempts, what)->check(CLI::Range(1, 1000000));
+}
+
+void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& what)
+{
+  command.add_option("--snapshots", snapshots, what)->check(CLI::Range(0, 9998));
+}
+
+void AddTypesOption(CLI::App& command, std::string& types)
+{
+  command.add_option("--types", types,
+    "object types of a polyhedral example: object (or base) name N has type T, as N=T,...");
+}
+
+void AddSubsetOption(CLI::App& command, std::string& subset)
+{
+  command.add_option("--subset", subset, "with a tileset: use the tiles of its subset NAME");
+}
+
+CLI::Option* AddOrderOption(
+  CLI::App& command, std::string& order, const std::vector<std::string>& allowed)
+{
+  return command
+    .add_option("--order", order,
+      "the order sites are assigned in: scanline, random or entropy (fewest choices first)")
+    ->check(CLI::IsMember(allowed));
+}
+
+CLI::Option* AddChoiceOption(
+  CLI::App& command, std::string& choice, const std::vector<std::string>& allowed)
+{
+  return command
+    .add_option("--choice", choice,
+      "how a label is drawn: uniform, frequency (weighted by the example) or resemblance "
+      "(favour labels whose 3x3x3 surroundings match the example)")
+    ->check(CLI::IsMember(allowed));
+}
+
+CLI::Validator NonNegativeReal()
+{
+  return CLI::Validator(
+    [](std::string& text)
+    {
+      char* end = nullptr;
+      errno = 0;
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v) || v < 0)
+      {
+        return "'" + msynth::Printable(text) + "' is not a non-negative number";
+      }
+      return std::string();
+    },
+    "NUMBER>=0");
+}
+
+int IndexIn(const std::string& value, const std::vector<std::string>& names)
+{
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    if (names[i] == value)
+    {
+      return static_cast<int>(i);
+    }
+  }
+  return 0;
+}
+
+} // namespace cli
+} // namespace msynth

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file Common.h
+ * @brief What every msynth command shares: checking input files, running VTK algorithms with
+ * their errors as one message, staged output folders, writing VTK XML, CSV and JSON files,
+ * statistics read back from field data, the progress bar, and the options several commands
+ * take (registered with CLI11 the same way everywhere).
+ */
+#include "vtkErrorCode.h"
+#include "vtkMSEngineBridge.h"
+#include "vtkNew.h"
+
+#include "Core/AtomicFile.h"
+#include "Core/BlockSynthesis.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkFieldData;
+class vtkTable;
+
+namespace msynth
+{
+namespace cli
+{
+
+/// A usage problem found after parsing (an option that does not fit the example): exit 2 with
+/// "msynth COMMAND: What; see msynth COMMAND --help".
+struct UsageError
+{
+  std::string What;
+};
+
+/// True when @p path names a simple-tiled tileset (.xml) rather than a label grid.
+bool IsTileset(const std::string& path);
+/// A polyhedral example of continuous model synthesis (.obj, .vtp, .ply, .stl).
+bool IsPolyhedral(const std::string& path);
+
+/**
+ * An input file given on the command line: it must be a regular file (not a folder, a pipe or
+ * a device) of a kind msynth reads. @throw std::runtime_error saying which.
+ */
+void CheckInputFile(const std::string& path, bool model = false);
+
+/// Runs @p algorithm, turning its VTK errors into one exception message.
+void Run(vtkAlgorithm* algorithm);
+
+/**
+ * Runs @p command with a staging folder inside @p out and publishes its files together when it
+ * succeeds (msynth::OutputFolder): a failed or interrupted run leaves @p out as it was. What the
+ * command prints names the final files, and is printed once they are there.
+ */
+int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command);
+
+/// @p table as CSV (a header of column names), written atomically.
+void WriteCSV(const std::string& path, vtkTable* table);
+/// @p text as a JSON string literal.
+std::string JsonString(const std::string& text);
+/// A solver's statistics read back from its output's field data (vtkMSEngineBridge::AddStatistics).
+std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd);
+/// The solver's one-line message from field data `Message`.
+std::string MessageOf(vtkFieldData* fd);
+/// The one-value count @p name of field data (0 when it is not there).
+long long CountOf(vtkFieldData* fd, const char* name);
+
+/// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically.
+template <typename WriterT, typename DataT>
+void WriteXML(const std::string& path, DataT* data)
+{
+  const std::string tmp = msynth::TemporaryPathBeside(path);
+  vtkNew<WriterT> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  std::string messages;
+  errno = 0;
+  const bool ran = vtkMSEngineBridge::Execute(writer, messages);
+  const int saved = errno; // the system's reason, read before anything else can change it
+  if (!ran || writer->GetErrorCode() != 0)
+  {
+    const std::string reason = saved != 0 ? std::strerror(saved)
+      : writer->GetErrorCode() ? vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())
+                               : messages;
+    std::remove(tmp.c_str());
+    throw std::runtime_error("'" + path + "': could not be written: " + reason);
+  }
+  msynth::CommitTemporaryFile(tmp, path);
+}
+
+/// A progress bar on stderr while @p algorithm runs, when stderr is a terminal.
+class ProgressBar
+{
+public:
+  explicit ProgressBar(vtkAlgorithm* algorithm);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+private:
+  void OnProgress(double fraction);
+  vtkAlgorithm* Algorithm;
+  unsigned long Observer = 0;
+  bool Shown = false;
+};
+
+/// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
+/// 0: the writer's default) with file metadata @p key = @p value.
+void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel,
+  const char* key, const std::string& value);
+
+// ---------------------------------------------------------------------------------------------
+// Options several commands take, registered the same way everywhere.
+// ---------------------------------------------------------------------------------------------
+
+/// `--out DIR` (default ./msynth-output).
+void AddOutOption(CLI::App& command, std::string& out);
+/// `--seed S` (64-bit).
+void AddSeedOption(CLI::App& command, std::int64_t& seed);
+/// `--attempts N` with @p what (attempts per block, or per block of the arrangement).
+void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what);
+/// `--snapshots N` with @p what.
+void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& what);
+/// `--types NAME=TYPE,...` (object types of a polyhedral example).
+void AddTypesOption(CLI::App& command, std::string& types);
+/// `--subset NAME` (a tileset's subset).
+void AddSubsetOption(CLI::App& command, std::string& subset);
+/// `--order` from @p allowed (scanline, random, entropy).
+CLI::Option* AddOrderOption(
+  CLI::App& command, std::string& order, const std::vector<std::string>& allowed);
+/// `--choice` from @p allowed (uniform, frequency, resemblance).
+CLI::Option* AddChoiceOption(
+  CLI::App& command, std::string& choice, const std::vector<std::string>& allowed);
+
+/// A finite number at least 0 ("'x' is not a non-negative number" otherwise).
+CLI::Validator NonNegativeReal();
+
+/// The index of @p value in @p names (the order of the filters' enums).
+int IndexIn(const std::string& value, const std::vector<std::string>& names);
+
+} // namespace cli
+} // namespace msynth

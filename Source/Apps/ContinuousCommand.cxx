@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth synthesize EXAMPLE.obj --size SX SY SZ`: continuous model synthesis (D ch. 4): plane
+// arrangement (vtkMSPlaneArrangement) → label solver (vtkMSContinuousSynthesis) → mesh
+// (vtkMSArrangementMesh) → model.vtp, arrangement.vtp, model.vdb and statistics.json.
+#include "Common.h"
+#include "Synthesize.h"
+
+#include "vtkCellData.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMSArrangementMesh.h"
+#include "vtkMSContinuousSynthesis.h"
+#include "vtkMSOpenVDBWriter.h"
+#include "vtkMSPlaneArrangement.h"
+#include "vtkMSPolyhedralExampleReader.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/PlaneArrangement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+/// The voxel sizes of the outputs: model.vdb's, and the catalog sequence's.
+struct Voxels
+{
+  double Model = 1;
+  double Catalog = 1;
+  std::array<double, 6> Bounds{};
+  bool Planar = false;
+};
+
+Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o)
+{
+  Voxels v;
+  v.Planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
+  labelled->GetBounds(v.Bounds.data());
+  const auto record = vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), o.Example);
+  const msynth::PlaneFamilySet families(record.Normals);
+  double smallest = 0;
+  for (int f = 0; f < families.Size(); ++f)
+  {
+    const double world = record.Parameters.Spacing(families, f);
+    smallest = f == 0 ? world : std::min(smallest, world);
+  }
+  double extent = 0;
+  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
+  {
+    extent = std::max(extent, v.Bounds[2 * c + 1] - v.Bounds[2 * c]);
+  }
+  v.Model = o.Voxel > 0 ? o.Voxel : std::max(smallest / 4, extent / 256);
+  if (!(v.Model > 0))
+  {
+    v.Model = 1;
+  }
+  v.Catalog = o.Voxel > 0 ? o.Voxel : std::max(smallest / 2, extent / 128);
+  return v;
+}
+
+/// model.vdb: a 3D model as level sets per object type and a fog volume; a 2D (or empty) model
+/// as a slab of object types.
+void WriteModelVDB(
+  vtkPolyData* model, const Voxels& v, const SynthesizeOptions& o, const std::string& dir)
+{
+  const double voxel = v.Model;
+  const auto& bounds = v.Bounds;
+  std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
+  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
+  {
+    dims[static_cast<std::size_t>(c)] = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
+  }
+  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
+    1e9)
+  {
+    throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
+  }
+  vtkNew<vtkMSOpenVDBWriter> vdb;
+  vtkNew<vtkImageData> image;
+  if (!v.Planar && model->GetNumberOfPolys() > 0)
+  {
+    vdb->SetInputData(model);
+    vdb->SetVoxelSize(voxel);
+  }
+  else
+  {
+    const auto engineMesh = vtkMSEngineBridge::ToContinuousMesh(model, "model");
+    const msynth::LabelGrid volume = msynth::VoxelizeModel(
+      engineMesh, { bounds[0], bounds[2], v.Planar ? 0.0 : bounds[4] }, voxel, dims);
+    image->SetDimensions(
+      static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+    image->SetSpacing(voxel, voxel, voxel);
+    image->SetOrigin(
+      bounds[0] + voxel / 2, bounds[2] + voxel / 2, v.Planar ? 0.0 : bounds[4] + voxel / 2);
+    vtkSmartPointer<vtkIntArray> types;
+    types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
+    image->GetPointData()->SetScalars(types);
+    vdb->SetInputData(image);
+    vdb->SetLabelArrayName("ObjectType");
+    vdb->WriteFloatLabelsOn();
+  }
+  vdb->SetFileName((dir + "/model.vdb").c_str());
+  vdb->AddMetadata("msynth_command", "synthesize");
+  vdb->AddMetadata("example", o.Example.c_str());
+  vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
+  vdb->AddMetadata("block_spacings", std::to_string(o.Blocks).c_str());
+  vdb->AddMetadata("plane_spacing", o.Spacing > 0 ? std::to_string(o.Spacing).c_str() : "derived");
+  Run(vdb);
+}
+
+void WriteStatistics(
+  vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o, const std::string& dir)
+{
+  vtkFieldData* fd = labelled->GetFieldData();
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size[0]
+          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"blocks\": " << o.Blocks
+          << ",\n  \"seed\": " << o.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
+          << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
+      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
+    });
+}
+} // namespace
+
+int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
+{
+  vtkNew<vtkMSPolyhedralExampleReader> reader;
+  reader->SetFileName(o.Example.c_str());
+  reader->SetObjectTypes(o.Types.c_str());
+  Run(reader);
+  double exampleBounds[6];
+  reader->GetOutput()->GetBounds(exampleBounds);
+  const bool flat = exampleBounds[5] - exampleBounds[4] <= 0;
+  if (o.Size[0] <= 0 || o.Size[1] <= 0 || (!flat && o.Size[2] <= 0))
+  {
+    throw std::runtime_error("'" + o.Example + "': --size must be positive along x, y" +
+      (flat ? std::string() : std::string(" and z")) + " (example units)");
+  }
+  vtkNew<vtkMSPlaneArrangement> arrangement;
+  arrangement->SetInputConnection(reader->GetOutputPort());
+  arrangement->SetOutputSize(o.Size[0], o.Size[1], o.Size[2]);
+  arrangement->SetSpacing(o.Spacing);
+  vtkNew<vtkMSContinuousSynthesis> synthesis;
+  synthesis->SetInputConnection(0, reader->GetOutputPort());
+  synthesis->SetArrangementConnection(arrangement->GetOutputPort());
+  synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
+  synthesis->SetBlockSize(o.Blocks);
+  synthesis->SetAttempts(o.Attempts);
+  synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
+  synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
+  synthesis->SetNumberOfSnapshots(o.Snapshots);
+  vtkNew<vtkMSArrangementMesh> mesh;
+  mesh->SetInputConnection(0, reader->GetOutputPort());
+  mesh->SetArrangementConnection(synthesis->GetOutputPort());
+  Run(arrangement);
+  {
+    ProgressBar bar(synthesis);
+    Run(synthesis);
+  }
+  Run(mesh);
+  vtkPolyData* model = mesh->GetOutput();
+  vtkPolyData* labelled = synthesis->GetOutput();
+
+  vtkNew<vtkPolyData> saved; // reproducible for a seed: timing goes to statistics.json only
+  saved->ShallowCopy(labelled);
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(labelled->GetFieldData());
+  fields->RemoveArray("Seconds");
+  saved->SetFieldData(fields);
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
+  const Voxels voxels = ChooseVoxels(labelled, model, o);
+  WriteModelVDB(model, voxels, o, dir);
+  std::string sequence;
+  if (o.Snapshots > 0)
+  {
+    // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
+    WriteCatalogSequence(synthesis, dir, voxels.Catalog, "example", o.Example);
+    sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" +
+      std::to_string(10000 + o.Snapshots + 1).substr(1) + ".vdb";
+  }
+  WriteStatistics(labelled, model, o, dir);
+  vtkFieldData* fd = labelled->GetFieldData();
+  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
+            << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
+            << CountOf(fd, "Blocks") << " blocks left unchanged\n"
+            << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir
+            << "/model.vdb, " << dir << "/statistics.json" << sequence << "\n";
+  return 0;
+}
+
+} // namespace cli
+} // namespace msynth

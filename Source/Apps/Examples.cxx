@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Examples.h"
+
+#include "Common.h"
+
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSNeighbourhoodLabels.h"
+#include "vtkMSPolyhedralExampleReader.h"
+#include "vtkMSTransitionTables.h"
+
+namespace msynth
+{
+namespace cli
+{
+
+ExampleTables AnalyzeLabelGrid(const std::string& example)
+{
+  ExampleTables a;
+  a.Reader = vtkSmartPointer<vtkMSLabelGridReader>::New();
+  a.Reader->SetFileName(example.c_str());
+  Run(a.Reader);
+  a.Tables = vtkSmartPointer<vtkMSTransitionTables>::New();
+  a.Tables->SetInputConnection(a.Reader->GetOutputPort());
+  Run(a.Tables);
+  return a;
+}
+
+vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(
+  const std::string& path, const std::string& objectTypes)
+{
+  vtkNew<vtkMSPolyhedralExampleReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetObjectTypes(objectTypes.c_str());
+  Run(reader); // so that the reader's own error (naming the file) is the one reported
+  auto labels = vtkSmartPointer<vtkMSNeighbourhoodLabels>::New();
+  labels->SetInputConnection(reader->GetOutputPort());
+  Run(labels);
+  return labels;
+}
+
+} // namespace cli
+} // namespace msynth

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth info EXAMPLE`: a label grid's labels, counts, transitions (Eq. 3.2) and the
+// infallibility verdict (D§3.4); a tileset's labels; a polyhedral example's neighbourhood
+// labels and plane families (D§4.3).
+#include "Commands.h"
+#include "Common.h"
+#include "Examples.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSNeighbourhoodLabels.h"
+#include "vtkMSTransitionTables.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkVariant.h"
+
+#include "Formats/Tileset.h"
+
+#include <iostream>
+#include <memory>
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+struct InfoOptions
+{
+  std::string Example;
+  std::string Subset;
+  std::string Types;
+};
+
+int TilesetInfo(const std::string& path, const std::string& subset)
+{
+  const msynth::Tileset t = msynth::ReadTilesetFile(path, subset);
+  std::cout << "tileset: " << path << (t.Unique ? " (unique)" : "") << "\n"
+            << "tiles: " << t.Tiles.size() << "\n"
+            << "labels: " << t.NumberOfLabels() << "\n";
+  for (int b = 0; b < t.NumberOfLabels(); ++b)
+  {
+    const auto& tile = t.Tiles[static_cast<std::size_t>(t.LabelTile[static_cast<std::size_t>(b)])];
+    std::cout << "  label " << b << ": " << t.LabelName(b) << " (symmetry " << tile.Symmetry
+              << ", weight " << tile.Weight << ")\n";
+  }
+  std::cout << "transitions +x: " << t.Pairs[0].size() << "\n"
+            << "transitions +y: " << t.Pairs[1].size() << "\n";
+  return 0;
+}
+
+/// "labels: N", one line per label with its kind and Boolean expression, then the families.
+int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
+{
+  auto labels = PolyhedralLabels(path, objectTypes);
+  vtkTable* table = labels->GetLabelTable();
+  std::cout << "labels: " << table->GetNumberOfRows() << "\n";
+  for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+  {
+    std::cout << "  " << table->GetValueByName(r, "Id").ToString() << " "
+              << table->GetValueByName(r, "Kind").ToString() << " "
+              << table->GetValueByName(r, "Expression").ToString() << "\n";
+  }
+  auto* normals =
+    vtkDataArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("FamilyNormals"));
+  std::cout << "plane families: " << normals->GetNumberOfTuples() << "\n";
+  for (vtkIdType f = 0; f < normals->GetNumberOfTuples(); ++f)
+  {
+    double n[3];
+    normals->GetTuple(f, n);
+    std::cout << "  h" << f + 1 << ": normal (" << static_cast<long long>(n[0]) << ", "
+              << static_cast<long long>(n[1]) << ", " << static_cast<long long>(n[2]) << ")\n";
+  }
+  return 0;
+}
+
+void PrintTransitions(vtkTable* transitions)
+{
+  const char* names[3] = { "+x", "+y", "+z" };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    std::vector<std::string> pairs;
+    for (vtkIdType r = 0; r < transitions->GetNumberOfRows(); ++r)
+    {
+      if (transitions->GetValueByName(r, "Axis").ToInt() == axis)
+      {
+        pairs.push_back(transitions->GetValueByName(r, "From").ToString() + "->" +
+          transitions->GetValueByName(r, "To").ToString());
+      }
+    }
+    std::cout << "transitions " << names[axis] << ": " << pairs.size() << "\n";
+    for (const auto& p : pairs)
+    {
+      std::cout << "  " << p << "\n";
+    }
+  }
+}
+
+int LabelGridInfo(const std::string& example)
+{
+  const ExampleTables a = AnalyzeLabelGrid(example);
+  vtkImageData* image = a.Reader->GetOutput();
+  vtkTable* labels = a.Tables->GetOutput(1);
+  vtkTable* transitions = a.Tables->GetOutput(0);
+  int dims[3];
+  image->GetDimensions(dims);
+  std::cout << "example: " << example << "\n"
+            << "size: " << dims[0] << " x " << dims[1] << " x " << dims[2] << "\n"
+            << "labels: " << labels->GetNumberOfRows() << "\n";
+  for (vtkIdType r = 0; r < labels->GetNumberOfRows(); ++r)
+  {
+    std::cout << "  label " << labels->GetValueByName(r, "Label").ToString() << ": "
+              << labels->GetValueByName(r, "Count").ToString() << " sites\n";
+  }
+  vtkFieldData* fd = transitions->GetFieldData();
+  if (auto* verdict =
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray("InfallibilityExplanation")))
+  {
+    const bool proved = fd->GetArray("Infallible")->GetTuple1(0) != 0;
+    std::cout << "infallibility: " << (proved ? "proved infallible" : "not proved") << " ("
+              << verdict->GetValue(0) << ")\n"
+              << "recommendation: "
+              << vtkStringArray::SafeDownCast(fd->GetAbstractArray("Recommendation"))->GetValue(0)
+              << "\n";
+  }
+  PrintTransitions(transitions);
+  return 0;
+}
+} // namespace
+
+CommandRunner AddInfo(CLI::App& app)
+{
+  auto o = std::make_shared<InfoOptions>();
+  CLI::App* info = app.add_subcommand("info",
+    "print an example's labels and transition tables; for a polyhedral example (.obj, .vtp, "
+    ".ply, .stl) its neighbourhood labels (continuous model synthesis)");
+  info->add_option("EXAMPLE", o->Example, "a label grid, tileset or polyhedral example")
+    ->required();
+  AddSubsetOption(*info, o->Subset);
+  AddTypesOption(*info, o->Types);
+  return [o]()
+  {
+    CheckInputFile(o->Example);
+    if (IsTileset(o->Example))
+    {
+      return TilesetInfo(o->Example, o->Subset);
+    }
+    if (IsPolyhedral(o->Example))
+    {
+      return PolyhedralInfo(o->Example, o->Types);
+    }
+    return LabelGridInfo(o->Example);
+  };
+}
+
+} // namespace cli
+} // namespace msynth

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file Synthesize.h
+ * @brief The options of `msynth synthesize`, shared by its two kinds: discrete synthesis of a
+ * label grid or tileset (SynthesizeCommand.cxx) and continuous synthesis of a polyhedral
+ * example (ContinuousCommand.cxx).
+ */
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace msynth
+{
+namespace cli
+{
+
+struct SynthesizeOptions
+{
+  std::string Example;
+  std::string Out = "msynth-output";
+  std::vector<double> Size; ///< sites (discrete) or example units (continuous)
+  std::int64_t Seed = 0;
+  int Attempts = 10; ///< per block (continuous: default 20)
+  std::string Order; ///< empty: scanline (discrete), entropy (continuous)
+  std::string Choice = "uniform";
+  int Snapshots = 0;
+  // Discrete.
+  std::array<int, 3> Size3{ { 0, 0, 0 } }; ///< Size in sites
+  std::vector<int> Block{ 0, 0, 0 };
+  int Threads = 0;
+  std::vector<int> Ground, Empty; ///< at most one value each
+  std::string Outputs;            ///< comma-separated kinds; empty: what the example calls for
+  std::string Pieces;
+  std::string Guide;
+  std::string Subset;
+  std::vector<std::string> Targets;
+  double Temperature = 0.01;
+  std::string Mirror, Translate; ///< sets of axes
+  std::vector<std::string> Swaps, Shifts, Turns;
+  std::vector<int> Period{ 0, 0, 0 };
+  bool Rotate = false;
+  // Continuous.
+  std::string Types;
+  double Spacing = 0;
+  double Blocks = 4;
+  double Voxel = 0;
+};
+
+/// Discrete synthesis into the staging folder @p dir.
+int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir);
+/// Continuous synthesis into the staging folder @p dir.
+int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir);
+
+} // namespace cli
+} // namespace msynth

@@ -1,0 +1,524 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth synthesize EXAMPLE --size ...`: the options of both kinds of synthesis, which kind the
+// example calls for, and discrete synthesis of a label grid or tileset (D ch. 3) through
+// vtkMSDiscreteSynthesis, writing the files the example calls for (or --outputs).
+#include "Commands.h"
+#include "Common.h"
+#include "Synthesize.h"
+
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMSDiscreteSynthesis.h"
+#include "vtkMSLabelGeometry.h"
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSLabelGridWriter.h"
+#include "vtkMSOpenVDBWriter.h"
+#include "vtkMSTileImage.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include "Core/Error.h"
+#include "Formats/Image.h"
+#include "Formats/Tileset.h"
+#include "Formats/VTKXMLCheck.h"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+const std::vector<std::string> Orders{ "scanline", "random", "entropy" };
+const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
+const std::vector<std::string> OutputKinds{ "labels", "mesh", "vdb", "picture", "txt", "vox" };
+
+/// "A:B" with two integers.
+std::string LabelPair(const std::string& text)
+{
+  const auto colon = text.find(':');
+  if (colon == std::string::npos)
+    return "'" + Printable(text) + "' is not LABEL:LABEL";
+  for (const std::string& part : { text.substr(0, colon), text.substr(colon + 1) })
+  {
+    char* end = nullptr;
+    std::strtol(part.c_str(), &end, 10);
+    if (part.empty() || *end != '\0')
+      return "'" + Printable(text) + "' is not LABEL:LABEL (two integers)";
+  }
+  return std::string();
+}
+
+/// "L:F" with an integer label and a fraction.
+std::string LabelFraction(const std::string& text)
+{
+  const auto colon = text.find(':');
+  char* end = nullptr;
+  if (colon != std::string::npos)
+  {
+    const std::string label = text.substr(0, colon), fraction = text.substr(colon + 1);
+    std::strtol(label.c_str(), &end, 10);
+    const bool labelOk = !label.empty() && *end == '\0';
+    const double f = std::strtod(fraction.c_str(), &end);
+    if (labelOk && !fraction.empty() && *end == '\0' && f >= 0 && f <= 1)
+      return std::string();
+  }
+  return "'" + Printable(text) + "' is not LABEL:FRACTION (a fraction between 0 and 1)";
+}
+
+std::string Axes(const std::string& text)
+{
+  for (const char c : text)
+    if (c < 'x' || c > 'z')
+      return "'" + Printable(text) + "' is not a set of axes x, y, z";
+  return text.empty() ? "no axes given" : std::string();
+}
+
+std::string OutputList(const std::string& text)
+{
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ','))
+    if (IndexIn(item, OutputKinds) == 0 && item != OutputKinds[0])
+      return "unknown kind '" + Printable(item) + "' (labels, mesh, vdb, picture, txt, vox)";
+  return std::string();
+}
+
+std::string Join(const std::vector<std::string>& items)
+{
+  std::string out;
+  for (const auto& s : items)
+    out += (out.empty() ? "" : ",") + s;
+  return out;
+}
+
+struct Registered
+{
+  std::shared_ptr<SynthesizeOptions> Options;
+  std::vector<CLI::Option*> DiscreteOnly, ContinuousOnly;
+  CLI::Option* Attempts = nullptr;
+  CLI::Option* Order = nullptr;
+};
+
+void AddDiscreteOptions(CLI::App& s, Registered& r)
+{
+  SynthesizeOptions& o = *r.Options;
+  auto discrete = [&r](CLI::Option* option)
+  { r.DiscreteOnly.push_back(option->group("Discrete synthesis (label grids, tilesets)")); };
+  discrete(s.add_option("--block", o.Block,
+              "block size BX BY BZ of Algorithm 3.4 (default: the whole model, Algorithm 3.1)")
+             ->expected(3)
+             ->check(CLI::Range(0, 1000000000)));
+  discrete(s.add_option("--threads", o.Threads,
+              "threads for block synthesis (default: one per core; the same result)")
+             ->check(CLI::Range(0, 1024)));
+  discrete(s.add_option("--ground", o.Ground, "fix LABEL along the bottom face (-z; -y in 2D)")
+             ->expected(1));
+  discrete(s.add_option("--empty", o.Empty,
+              "fix LABEL on every other face (usually 0) but those of translated axes")
+             ->expected(1));
+  discrete(s.add_option("--outputs", o.Outputs,
+              "which files to write, from labels (labels.vti), mesh (mesh.vtp), vdb (model.vdb), "
+              "picture (picture.png, tilesets), txt (model.txt), vox (model.vox); default: "
+              "labels,picture for a tileset, labels,mesh,vdb for a label grid, plus txt or vox "
+              "for such an example; statistics.json is always written")
+             ->check(OutputList, "KINDS"));
+  discrete(s.add_option("--pieces", o.Pieces,
+    "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels); with a tileset "
+    "also DIR/<tile>.obj, turned for each orientation"));
+  discrete(s.add_option("--mirror", o.Mirror, "make the output mirror-symmetric along AXES")
+             ->check(Axes, "AXES"));
+  discrete(s.add_option("--swap", o.Swaps, "labels A and B are each other's mirror images (A:B)")
+             ->allow_extra_args(false)
+             ->check(LabelPair, "A:B"));
+  discrete(s.add_option("--translate", o.Translate,
+              "make the output repeat along AXES; with the default period it tiles seamlessly")
+             ->check(Axes, "AXES"));
+  discrete(s.add_option("--period", o.Period, "periods PX PY PZ of the translated axes (0: size)")
+             ->expected(3)
+             ->check(CLI::Range(0, 1 << 30)));
+  discrete(s.add_option("--shift", o.Shifts, "label A's image one period on is B (A:B)")
+             ->allow_extra_args(false)
+             ->check(LabelPair, "A:B"));
+  discrete(s.add_flag("--rotate", o.Rotate,
+    "make the output look the same turned 90 degrees about the vertical (square in x and y)"));
+  discrete(s.add_option("--turn", o.Turns, "label A turned 90 degrees counter-clockwise is B")
+             ->allow_extra_args(false)
+             ->check(LabelPair, "A:B"));
+  discrete(s.add_option("--subset", o.Subset, "with a tileset: use the tiles of its subset NAME"));
+  discrete(s.add_option("--target", o.Targets,
+              "soft constraint: aim for fraction F of label L (L:F; needs --block)")
+             ->allow_extra_args(false)
+             ->check(LabelFraction, "L:F"));
+  discrete(s.add_option("--temperature", o.Temperature,
+              "temperature of the soft constraints' Metropolis acceptance")
+             ->check(CLI::PositiveNumber));
+  discrete(s.add_option("--guide", o.Guide,
+    "large-scale constraints: image data over the output box whose point arrays Weight_<label> "
+    "weight each label (0 forbids it there)"));
+}
+
+void AddContinuousOptions(CLI::App& s, Registered& r)
+{
+  SynthesizeOptions& o = *r.Options;
+  auto continuous = [&r](CLI::Option* option)
+  { r.ContinuousOnly.push_back(option->group("Continuous synthesis (polyhedral examples)")); };
+  continuous(s.add_option("--spacing", o.Spacing,
+                "smallest plane spacing (default: derived from the example's planes)")
+               ->check(NonNegativeReal()));
+  continuous(
+    s.add_option("--blocks", o.Blocks, "block edge in plane spacings (0: the whole model at once)")
+      ->check(NonNegativeReal()));
+  continuous(s.add_option("--voxel", o.Voxel,
+                "voxel size of model.vdb (default: a quarter of the smallest plane spacing, at "
+                "least 1/256 of the model's extent)")
+               ->check(NonNegativeReal()));
+  continuous(s.add_option("--types", o.Types,
+    "object types of a polyhedral example: object (or base) name N has type T, as N=T,..."));
+}
+
+/// Refuses options of the other kind of synthesis, and sizes a label grid cannot have.
+void CheckKind(const Registered& r, bool polyhedral)
+{
+  SynthesizeOptions& o = *r.Options;
+  for (const CLI::Option* option : polyhedral ? r.DiscreteOnly : r.ContinuousOnly)
+  {
+    if (option->count() > 0)
+    {
+      throw UsageError{ option->get_name() + " applies to " +
+        (polyhedral ? "label grids and tilesets" : "polyhedral examples") + ", not to '" +
+        o.Example + "'" };
+    }
+  }
+  if (polyhedral)
+  {
+    if (r.Order->count() == 0)
+      o.Order = "entropy";
+    if (r.Attempts->count() == 0)
+      o.Attempts = 20;
+    if (o.Choice == "resemblance")
+      throw UsageError{ "--choice resemblance applies to label grids, not to '" + o.Example + "'" };
+    return;
+  }
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const double v = o.Size[a];
+    if (v < 1 || v > 1e9 || std::floor(v) != v)
+      throw UsageError{ "--size of a label grid is in sites: integers between 1 and 10^9" };
+    o.Size3[a] = static_cast<int>(v);
+  }
+  if (o.Order.empty())
+    o.Order = "scanline";
+}
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Discrete synthesis
+// ---------------------------------------------------------------------------------------------
+namespace
+{
+/// The filter's settings from the options.
+void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
+{
+  synthesis->SetOutputSize(o.Size3.data());
+  synthesis->SetBlockSize(o.Block.data());
+  synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
+  synthesis->SetAttemptsPerBlock(o.Attempts);
+  synthesis->SetNumberOfThreads(o.Threads);
+  synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
+  synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));
+  // Ground along the bottom: -z in 3D, -y for a 2D (single-layer) output.
+  const int bottom = o.Size3[2] > 1 ? 4 : 2;
+  int use[6] = { 0, 0, 0, 0, 0, 0 }, labels[6] = { 0, 0, 0, 0, 0, 0 };
+  for (int f = 0; f < 6; ++f)
+  {
+    const bool translated = o.Translate.find(static_cast<char>('x' + f / 2)) != std::string::npos;
+    if (f == bottom && !o.Ground.empty())
+    {
+      use[f] = 1;
+      labels[f] = o.Ground[0];
+    }
+    else if (f != bottom && !o.Empty.empty() && !translated)
+    { // a translated axis has no faces: the model repeats across them
+      use[f] = 1;
+      labels[f] = o.Empty[0];
+    }
+  }
+  synthesis->SetUseBoundary(use);
+  synthesis->SetBoundaryLabels(labels);
+  int mirror[3], translate[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    mirror[a] = o.Mirror.find(static_cast<char>('x' + a)) != std::string::npos;
+    translate[a] = o.Translate.find(static_cast<char>('x' + a)) != std::string::npos;
+  }
+  synthesis->SetMirror(mirror);
+  synthesis->SetTargetFractions(Join(o.Targets).c_str());
+  synthesis->SetSoftTemperature(o.Temperature);
+  synthesis->SetMirrorSwaps(Join(o.Swaps).c_str());
+  synthesis->SetTranslate(translate);
+  synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);
+  synthesis->SetTranslationMap(Join(o.Shifts).c_str());
+  synthesis->SetRotate(o.Rotate);
+  synthesis->SetRotationMap(Join(o.Turns).c_str());
+  synthesis->SetCatalogSnapshotsPerBlock(o.Snapshots);
+}
+
+/// Reads the guide volume into @p guide and connects it.
+void ConnectGuide(
+  vtkMSDiscreteSynthesis* synthesis, vtkXMLImageDataReader* guide, const std::string& path)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    throw std::runtime_error("'" + path + "': no such guide file");
+  }
+  msynth::CheckVTKXMLFile(path); // what VTK's reader trusts, first
+  guide->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(guide, messages))
+  {
+    throw std::runtime_error("'" + path + "': not a readable guide volume: " + messages);
+  }
+  synthesis->SetGuideConnection(guide->GetOutputPort());
+}
+
+/// The picture of a tileset model (libpng at fast compression), when the tile images are there.
+void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
+  std::vector<std::string>& written)
+{
+  vtkNew<vtkMSTileImage> tiles;
+  tiles->SetInputData(model);
+  tiles->SetTilesetFile(o.Example.c_str());
+  tiles->SetTilesetSubset(o.Subset.c_str());
+  std::string messages;
+  struct stat folder;
+  if (!vtkMSEngineBridge::Execute(tiles, messages))
+  {
+    if (::stat(msynth::TilesetImageFolder(o.Example).c_str(), &folder) != 0)
+    {
+      std::cerr << "msynth: note: no picture: the tileset has no folder of tile images\n";
+      return;
+    }
+    throw std::runtime_error(messages);
+  }
+  vtkImageData* rgba = tiles->GetOutput();
+  int dims[3];
+  rgba->GetDimensions(dims);
+  msynth::RgbaImage image;
+  image.Width = dims[0];
+  image.Height = dims[1];
+  image.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+  auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
+  for (int y = 0; y < dims[1]; ++y) // VTK's rows are bottom first, the PNG's top first
+  {
+    std::copy(pixels->GetPointer(4 * static_cast<vtkIdType>(y) * dims[0]),
+      pixels->GetPointer(4 * static_cast<vtkIdType>(y + 1) * dims[0]),
+      image.Pixels.begin() + 4 * static_cast<std::ptrdiff_t>(dims[1] - 1 - y) * dims[0]);
+  }
+  msynth::WritePng(dir + "/picture.png", image);
+  written.push_back(dir + "/picture.png");
+}
+
+void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
+  const std::string& dir, std::vector<std::string>& written)
+{
+  vtkNew<vtkMSLabelGeometry> geometry;
+  geometry->SetInputData(model);
+  geometry->SetEmptyLabel(o.Empty.empty() ? 0 : o.Empty[0]);
+  geometry->SetPieceDirectory(o.Pieces.c_str());
+  if (tileset)
+  {
+    geometry->SetTilesetFile(o.Example.c_str()); // pieces may be named by tile and turned
+    geometry->SetTilesetSubset(o.Subset.c_str());
+  }
+  Run(geometry);
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
+  written.push_back(dir + "/mesh.vtp");
+}
+
+void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
+{
+  vtkFieldData* fd = model->GetFieldData();
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size3[0]
+          << ", " << o.Size3[1] << ", " << o.Size3[2] << "],\n  \"block\": [" << o.Block[0] << ", "
+          << o.Block[1] << ", " << o.Block[2] << "],\n  \"seed\": " << o.Seed << ",\n";
+      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
+    });
+}
+
+/// The files to write: --outputs, or what the example calls for.
+std::string OutputsWanted(const SynthesizeOptions& o, bool tileset)
+{
+  if (!o.Outputs.empty())
+    return o.Outputs;
+  const std::string ext = o.Example.size() > 4 ? o.Example.substr(o.Example.size() - 4) : "";
+  std::string list = tileset ? "labels,picture" : "labels,mesh,vdb";
+  if (ext == ".txt")
+    list += ",txt";
+  if (ext == ".vox")
+    list += ",vox";
+  return list;
+}
+
+void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
+  const std::string& dir, std::vector<std::string>& written)
+{
+  const std::string list = OutputsWanted(o, tileset);
+  const auto wanted = [&list](const char* kind)
+  { return ("," + list + ",").find(std::string(",") + kind + ",") != std::string::npos; };
+  if (wanted("picture") && !tileset)
+  {
+    throw std::runtime_error("--outputs picture: pictures are made of a tileset's images; '" +
+      o.Example + "' is not a tileset");
+  }
+  if (wanted("labels"))
+  {
+    // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json.
+    vtkNew<vtkImageData> saved;
+    saved->ShallowCopy(model);
+    vtkNew<vtkFieldData> fields;
+    fields->DeepCopy(model->GetFieldData());
+    fields->RemoveArray("Seconds");
+    saved->SetFieldData(fields);
+    WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
+    written.push_back(dir + "/labels.vti");
+  }
+  for (const char* kind : { "txt", "vox" })
+  {
+    if (wanted(kind))
+    {
+      // The original program's text with the example's <Objects> trailer (for its loaders), or
+      // MagicaVoxel with the example's palette.
+      const std::string path = dir + "/model." + kind;
+      vtkNew<vtkMSLabelGridWriter> same;
+      same->SetInputData(model);
+      same->SetFileName(path.c_str());
+      Run(same);
+      written.push_back(path);
+    }
+  }
+  if (wanted("mesh"))
+    WriteMesh(model, o, tileset, dir, written);
+  if (wanted("picture"))
+    WritePicture(model, o, dir, written);
+  if (wanted("vdb"))
+  {
+    vtkNew<vtkMSOpenVDBWriter> vdb;
+    vdb->SetInputData(model);
+    vdb->SetFileName((dir + "/model.vdb").c_str());
+    vdb->WriteFloatLabelsOn();
+    vdb->AddMetadata("msynth_command", "synthesize");
+    vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
+    Run(vdb);
+    written.push_back(dir + "/model.vdb");
+  }
+}
+} // namespace
+
+int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
+{
+  vtkNew<vtkMSLabelGridReader> reader;
+  vtkNew<vtkMSDiscreteSynthesis> synthesis;
+  const bool tileset = IsTileset(o.Example);
+  if (tileset)
+  {
+    synthesis->SetTilesetFile(o.Example.c_str());
+    synthesis->SetTilesetSubset(o.Subset.c_str());
+  }
+  else
+  {
+    reader->SetFileName(o.Example.c_str());
+    Run(reader);
+    synthesis->SetInputConnection(reader->GetOutputPort());
+  }
+  Configure(synthesis, o);
+  vtkNew<vtkXMLImageDataReader> guide;
+  if (!o.Guide.empty())
+  {
+    ConnectGuide(synthesis, guide, o.Guide);
+  }
+  {
+    ProgressBar bar(synthesis);
+    Run(synthesis);
+  }
+  vtkImageData* model = synthesis->GetOutput();
+  std::vector<std::string> written;
+  WriteOutputs(model, o, tileset, dir, written);
+  if (o.Snapshots > 0)
+  {
+    // The catalog at every snapshot: DIR/catalog_0001.vdb, ... (Label, CatalogSize, Entropy).
+    WriteCatalogSequence(synthesis, dir, 0, "seed", std::to_string(o.Seed));
+  }
+  WriteStatistics(model, o, dir);
+  written.push_back(dir + "/statistics.json");
+  if (o.Snapshots > 0)
+  {
+    written.push_back(dir + "/catalog_0001.vdb ...");
+  }
+  std::cout << MessageOf(model->GetFieldData()) << "\n"
+            << "wrote ";
+  for (std::size_t i = 0; i < written.size(); ++i)
+  {
+    std::cout << (i ? ", " : "") << written[i];
+  }
+  std::cout << "\n";
+  return 0;
+}
+
+CommandRunner AddSynthesize(CLI::App& app)
+{
+  Registered r;
+  r.Options = std::make_shared<SynthesizeOptions>();
+  SynthesizeOptions& o = *r.Options;
+  CLI::App* s = app.add_subcommand("synthesize",
+    "model synthesis from EXAMPLE: discrete for a label grid (.vti, .txt, .vox) or a tileset "
+    "(.xml), continuous for a polyhedral example (.obj, .vtp, .ply, .stl). Writes the model and "
+    "DIR/statistics.json; the files appear together, or not at all when the run fails or is "
+    "interrupted");
+  s->add_option("EXAMPLE", o.Example, "the example")->required();
+  s->add_option("--size", o.Size,
+     "output size NX NY NZ: sites for a label grid or tileset (NZ 1 for 2D), example units for "
+     "a polyhedral example (NZ ignored for a 2D one)")
+    ->expected(3)
+    ->required()
+    ->check(NonNegativeReal());
+  AddSeedOption(*s, o.Seed);
+  r.Attempts =
+    s->add_option("--attempts", o.Attempts, "attempts per block (default 10; continuous 20)")
+      ->check(CLI::Range(1, 1000000));
+  r.Order = AddOrderOption(*s, o.Order, Orders);
+  AddChoiceOption(*s, o.Choice, Choices);
+  AddSnapshotsOption(*s, o.Snapshots,
+    "catalog snapshots (per block for a label grid), also written as the sequence "
+    "DIR/catalog_0001.vdb ... (Label, CatalogSize, Entropy)");
+  AddOutOption(*s, o.Out);
+  AddDiscreteOptions(*s, r);
+  AddContinuousOptions(*s, r);
+  return [r]()
+  {
+    const SynthesizeOptions& opts = *r.Options;
+    CheckInputFile(opts.Example);
+    const bool polyhedral = IsPolyhedral(opts.Example);
+    CheckKind(r, polyhedral);
+    return IntoFolder(opts.Out,
+      [&](const std::string& dir)
+      { return polyhedral ? SynthesizeContinuous(opts, dir) : SynthesizeDiscrete(opts, dir); });
+  };
+}
+
+} // namespace cli
+} // namespace msynth
