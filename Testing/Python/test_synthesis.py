@@ -41,6 +41,34 @@ class SynthesisTest(unittest.TestCase):
             last = labels_zyx(out, "LastBlock")
             self.assertGreaterEqual(int(last.max()), 0)
 
+    def test_enums_and_statistics_have_one_naming(self):
+        # VTK's SetXToY convention on every synthesis filter, with the same values.
+        for cls in (modelsynth.vtkMSDiscreteSynthesis, modelsynth.vtkMSTimeVaryingSynthesis,
+                    modelsynth.vtkMSContinuousSynthesis):
+            f = cls()
+            f.SetSiteOrderToRandom()
+            self.assertEqual(f.GetSiteOrder(), cls.RANDOM)
+            f.SetSiteOrderToScanLine()
+            self.assertEqual(f.GetSiteOrder(), modelsynth.vtkMSDiscreteSynthesis.SCAN_LINE)
+            f.SetLabelChoiceToFrequency()
+            self.assertEqual(f.GetLabelChoice(), modelsynth.vtkMSDiscreteSynthesis.FREQUENCY)
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetSiteOrderToMinimumEntropy()
+        s.SetLabelChoiceToResemblance()
+        self.assertEqual((s.GetSiteOrder(), s.GetLabelChoice()), (2, 2))
+        # The statistics under the names every solver uses, with the run's status.
+        out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(20, 20, 5),
+                                 BlockSize=(8, 8, 5), Seed=3)
+        self.assertEqual(errors, "")
+        fd = out.GetFieldData()
+        for name in ("Blocks", "BlocksAccepted", "BlocksFailed", "BlocksRejected", "Attempts",
+                     "FailedAttempts", "Assignments", "Backtracks", "Phases", "Threads",
+                     "Processes", "Seconds"):
+            self.assertIsNotNone(fd.GetArray(name), name)
+        self.assertEqual(fd.GetAbstractArray("Status").GetValue(0), "succeeded")
+        self.assertEqual(fd.GetArray("FailedAttempts").GetValue(0),
+                         fd.GetArray("Attempts").GetValue(0) - fd.GetArray("BlocksAccepted").GetValue(0))
+
     def test_same_seed_same_model(self):
         a, _ = synthesize(self.reader.GetOutputPort(), OutputSize=(20, 20, 5), BlockSize=(8, 8, 5), Seed=3)
         b, _ = synthesize(self.reader.GetOutputPort(), OutputSize=(20, 20, 5), BlockSize=(8, 8, 5), Seed=3)

@@ -2,6 +2,7 @@
 #include "vtkMSContinuousSynthesis.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSSynthesisRun.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -24,10 +25,7 @@
 
 struct vtkMSContinuousSynthesis::Cache
 {
-  vtkMTimeType FilterTime = 0;
-  vtkMTimeType ExampleTime = 0;
-  vtkMTimeType ArrangementTime = 0;
-  msynth::ContinuousSynthesisResult Result;
+  vtkMSSynthesisCache<msynth::ContinuousSynthesisResult> Run;
   std::vector<msynth::ContinuousSnapshot> Snapshots;
 };
 
@@ -65,6 +63,46 @@ int vtkMSContinuousSynthesis::RequestInformation(
   return 1;
 }
 
+namespace
+{
+/// The arrangement rebuilt exactly from its field data, checked against the example, and the
+/// solver run on it.
+msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyData* example,
+  vtkPolyData* arrangementData, std::vector<msynth::ContinuousSnapshot>& snapshots)
+{
+  const auto record = vtkMSEngineBridge::LoadArrangement(arrangementData->GetFieldData(),
+    vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
+  msynth::PolyhedralExample ex;
+  const auto analysis = vtkMSEngineBridge::AnalyzeExample(
+    example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
+  if (analysis.Families().AllNormals() != record.Normals)
+  {
+    throw msynth::Error(
+      ex.Source + ": the arrangement was built from another example (its plane families differ)");
+  }
+  const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
+  if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints())
+  {
+    throw msynth::Error(ex.Source + ": the arrangement input has " +
+      std::to_string(arrangementData->GetNumberOfPoints()) + " points but its parameters give " +
+      std::to_string(arrangement.NumberOfVertices()) + " vertices");
+  }
+  msynth::ContinuousSynthesisOptions options;
+  options.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  options.BlockSize = self->GetBlockSize();
+  options.Attempts = self->GetAttempts();
+  options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
+  options.Choice =
+    self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
+  options.Snapshots = self->GetNumberOfSnapshots();
+  snapshots.clear();
+  options.OnSnapshot = [&snapshots](const msynth::ContinuousSnapshot& s)
+  { snapshots.push_back(s); };
+  options.Progress = vtkMSSynthesisRun::Progress(self);
+  return msynth::SynthesizeContinuous(analysis, arrangement, options);
+}
+} // namespace
+
 int vtkMSContinuousSynthesis::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -87,115 +125,59 @@ int vtkMSContinuousSynthesis::RequestData(
     this->Cached.reset(new Cache);
   }
   Cache& cache = *this->Cached;
-  try
+  if (cache.Run.Fresh(this, { example, arrangementData }))
   {
-    const bool fresh = cache.FilterTime != this->GetMTime() || !example ||
-      cache.ExampleTime != example->GetMTime() ||
-      cache.ArrangementTime != arrangementData->GetMTime();
-    if (fresh)
+    cache.Run.Clear();
+    const std::string what = "Synthesis on an arrangement of " +
+      std::to_string(arrangementData->GetNumberOfPoints()) + " vertices";
+    if (!vtkMSSynthesisRun::Solve(this, what,
+          [&]() { cache.Run.Result = Solve(this, example, arrangementData, cache.Snapshots); }))
     {
-      const auto record = vtkMSEngineBridge::LoadArrangement(arrangementData->GetFieldData(),
-        vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
-      msynth::PolyhedralExample ex;
-      const auto analysis = vtkMSEngineBridge::AnalyzeExample(
-        example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
-      if (analysis.Families().AllNormals() != record.Normals)
-      {
-        throw msynth::Error(ex.Source +
-          ": the arrangement was built from another example (its plane "
-          "families differ)");
-      }
-      const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
-      if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints())
-      {
-        throw msynth::Error(ex.Source + ": the arrangement input has " +
-          std::to_string(arrangementData->GetNumberOfPoints()) +
-          " points but its parameters give " + std::to_string(arrangement.NumberOfVertices()) +
-          " vertices");
-      }
-      msynth::ContinuousSynthesisOptions options;
-      options.Seed = static_cast<std::uint64_t>(this->Seed);
-      options.BlockSize = this->BlockSize;
-      options.Attempts = this->Attempts;
-      options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
-      options.Choice =
-        this->LabelChoice == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
-      options.Snapshots = this->NumberOfSnapshots;
-      cache.Snapshots.clear();
-      options.OnSnapshot = [&cache](const msynth::ContinuousSnapshot& s)
-      { cache.Snapshots.push_back(s); };
-      options.Progress = [this](double f)
-      {
-        this->UpdateProgress(f);
-        return !this->GetAbortExecute();
-      };
-      cache.Result = msynth::SynthesizeContinuous(analysis, arrangement, options);
-      // A cancelled run is not kept: the next update runs again.
-      cache.FilterTime =
-        cache.Result.Status == msynth::SynthesisStatus::Cancelled ? 0 : this->GetMTime();
-      cache.ExampleTime = example->GetMTime();
-      cache.ArrangementTime = arrangementData->GetMTime();
+      return 0;
     }
+    cache.Run.Keep(this, { example, arrangementData }, cache.Run.Result.Succeeded());
   }
-  catch (const std::bad_alloc&)
+  const auto& result = cache.Run.Result;
+  if (!vtkMSSynthesisRun::Report(
+        this, result.Status, result.Message, vtkMSEngineBridge::ExampleName(example)))
   {
-    cache.FilterTime = 0;
-    vtkErrorMacro(<< "Synthesis needs more memory than is available (arrangement of "
-                  << arrangementData->GetNumberOfPoints() << " vertices).");
     return 0;
   }
-  catch (const std::exception& e)
-  {
-    cache.FilterTime = 0;
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  const auto& result = cache.Result;
-  if (!result.Succeeded())
-  {
-    if (result.Status != msynth::SynthesisStatus::Cancelled)
-    {
-      vtkErrorMacro(<< vtkMSEngineBridge::ExampleName(example) << ": " << result.Message);
-    }
-    return 0;
-  }
+  this->FillOutput(arrangementData, output, outputVector->GetInformationObject(0));
+  return 1;
+}
+
+void vtkMSContinuousSynthesis::FillOutput(
+  vtkPolyData* arrangementData, vtkPolyData* output, vtkInformation* outInfo)
+{
+  const Cache& cache = *this->Cached;
+  const auto& result = cache.Run.Result;
   output->ShallowCopy(arrangementData);
   const vtkIdType n = arrangementData->GetNumberOfPoints();
   vtkNew<vtkIntArray> label;
   label->SetName("Label");
   label->SetNumberOfValues(n);
-  vtkNew<vtkIntArray> size;
-  size->SetName("CatalogSize");
-  size->SetNumberOfValues(n);
-  vtkNew<vtkFloatArray> entropy;
-  entropy->SetName("Entropy");
-  entropy->SetNumberOfValues(n);
   for (vtkIdType v = 0; v < n; ++v)
   {
     label->SetValue(v, result.Labels[static_cast<std::size_t>(v)]);
-    size->SetValue(v, 1);
-    entropy->SetValue(v, 0.0f);
   }
-  if (!cache.Snapshots.empty())
+  if (cache.Snapshots.empty())
   {
-    const std::size_t step = vtkMSEngineBridge::RequestedStep(
-      outputVector->GetInformationObject(0), cache.Snapshots.size());
+    // The finished model: one label possible everywhere.
+    vtkMSSynthesisRun::AddCatalog(output, std::vector<std::int32_t>(static_cast<std::size_t>(n), 1),
+      std::vector<float>(static_cast<std::size_t>(n), 0.0f));
+  }
+  else
+  {
+    const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, cache.Snapshots.size());
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {
       label->SetValue(v, snap.Labels[static_cast<std::size_t>(v)]);
-      size->SetValue(v, snap.CatalogSize[static_cast<std::size_t>(v)]);
-      entropy->SetValue(v, snap.Entropy[static_cast<std::size_t>(v)]);
     }
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-      output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-      output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
+    vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
+    vtkMSSynthesisRun::AddStep(output, snap.Step, snap.Block, snap.Assignments);
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
-  }
-  output->GetPointData()->AddArray(label);
-  if (!cache.Snapshots.empty())
-  {
     // The finished model at every time step, so that mesh extraction downstream does not
     // depend on the time shown.
     vtkNew<vtkIntArray> model;
@@ -207,13 +189,11 @@ int vtkMSContinuousSynthesis::RequestData(
     }
     output->GetPointData()->AddArray(model);
   }
-  output->GetPointData()->AddArray(size);
-  output->GetPointData()->AddArray(entropy);
+  output->GetPointData()->AddArray(label);
   output->GetPointData()->SetActiveScalars("Label");
   vtkFieldData* fields = output->GetFieldData();
   vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fields, "Success", 1);
   vtkMSEngineBridge::AddStatistics(fields, result.Statistics, result.Status, result.Message);
   vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
     fields, "Seed", static_cast<vtkIdType>(this->Seed));
-  return 1;
 }

@@ -36,6 +36,19 @@ public:
   vtkTypeMacro(vtkMSContinuousSynthesis, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// The values of vtkMSDiscreteSynthesis's LabelChoices and SiteOrders that apply here.
+  enum LabelChoices
+  {
+    UNIFORM = 0,  ///< every possible label equally likely (the dissertation)
+    FREQUENCY = 1 ///< weighted by occurrences in the example
+  };
+  enum SiteOrders
+  {
+    SCAN_LINE = 0,      ///< z, then y, then x (the dissertation)
+    RANDOM = 1,         ///< a seeded random order
+    MINIMUM_ENTROPY = 2 ///< fewest labels first
+  };
+
   /// The arrangement input (port 1).
   void SetArrangementConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
@@ -59,15 +72,20 @@ public:
   ///@}
 
   ///@{
-  /// Vertex order: 0 scan line (the dissertation), 1 random, 2 fewest labels first. Default 2.
-  vtkSetClampMacro(SiteOrder, int, 0, 2);
+  /// Vertex order (SiteOrders). Default MINIMUM_ENTROPY.
+  vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
   vtkGetMacro(SiteOrder, int);
+  void SetSiteOrderToScanLine() { this->SetSiteOrder(SCAN_LINE); }
+  void SetSiteOrderToRandom() { this->SetSiteOrder(RANDOM); }
+  void SetSiteOrderToMinimumEntropy() { this->SetSiteOrder(MINIMUM_ENTROPY); }
   ///@}
 
   ///@{
-  /// Label choice: 0 uniform (the dissertation), 1 weighted by occurrences in the example.
-  vtkSetClampMacro(LabelChoice, int, 0, 1);
+  /// Label choice (LabelChoices). Default UNIFORM.
+  vtkSetClampMacro(LabelChoice, int, UNIFORM, FREQUENCY);
   vtkGetMacro(LabelChoice, int);
+  void SetLabelChoiceToUniform() { this->SetLabelChoice(UNIFORM); }
+  void SetLabelChoiceToFrequency() { this->SetLabelChoice(FREQUENCY); }
   ///@}
 
   ///@{
@@ -88,11 +106,14 @@ private:
   vtkMSContinuousSynthesis(const vtkMSContinuousSynthesis&) = delete;
   void operator=(const vtkMSContinuousSynthesis&) = delete;
 
+  /// The labels (or the requested snapshot), the catalog and the field data on @p output.
+  void FillOutput(vtkPolyData* arrangementData, vtkPolyData* output, vtkInformation* outInfo);
+
   vtkIdType Seed = 0;
   double BlockSize = 4;
   int Attempts = 20;
-  int SiteOrder = 2;
-  int LabelChoice = 0;
+  int SiteOrder = MINIMUM_ENTROPY;
+  int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;
 
   struct Cache;

@@ -2,6 +2,7 @@
 #include "vtkMSDiscreteSynthesis.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSSynthesisRun.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
@@ -33,13 +34,7 @@ vtkStandardNewMacro(vtkMSDiscreteSynthesis);
 /// The last run: its result and snapshots, and what it was computed from.
 struct vtkMSDiscreteSynthesis::Internals
 {
-  vtkMTimeType FilterTime = 0;
-  vtkMTimeType InputTime = 0;
-  vtkDataObject* Input = nullptr;
-  vtkDataObject* Guide = nullptr;
-  vtkMTimeType GuideTime = 0;
-  bool Valid = false;
-  msynth::SynthesisResult Result;
+  vtkMSSynthesisCache<msynth::SynthesisResult> Cache;
   std::vector<msynth::CatalogSnapshot> Snapshots;
   msynth::Tileset Tiles; ///< the tileset of the last run, when TilesetFile is set
 };
@@ -146,14 +141,301 @@ int vtkMSDiscreteSynthesis::RequestUpdateExtent(
   return 1;
 }
 
+namespace
+{
+/// Label maps "a:b,c:d" of a symmetry property (@p both: each pair both ways).
+bool ReadMap(vtkMSDiscreteSynthesis* self, const char* property, const char* value, bool both,
+  std::map<msynth::Label, msynth::Label>& map)
+{
+  std::string text = value ? value : "";
+  for (char& c : text)
+    c = c == ',' || c == ';' ? ' ' : c;
+  std::istringstream pairs(text);
+  std::string pair;
+  while (pairs >> pair)
+  {
+    int a = 0, b = 0;
+    char colon = 0, extra = 0;
+    std::istringstream one(pair);
+    if (!(one >> a >> colon >> b) || colon != ':' || (one >> extra))
+    {
+      vtkErrorWithObjectMacro(
+        self, << property << ": '" << pair << "' is not a pair 'a:b' of labels.");
+      return false;
+    }
+    map[a] = b;
+    if (both)
+      map[b] = a;
+  }
+  return true;
+}
+
+/// The symmetries (D§3.5.2) and soft constraints (M07§4.2) of the filter's properties.
+bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions& options)
+{
+  const int* mirror = self->GetMirror();
+  if (mirror[0] || mirror[1] || mirror[2])
+  {
+    std::map<msynth::Label, msynth::Label> swaps;
+    if (!ReadMap(self, "MirrorSwaps", self->GetMirrorSwaps(), true, swaps))
+      return false;
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      options.Symmetry[axis].Map = swaps;
+  }
+  const int* translate = self->GetTranslate();
+  if (translate[0] || translate[1] || translate[2])
+  {
+    std::map<msynth::Label, msynth::Label> shift;
+    if (!ReadMap(self, "TranslationMap", self->GetTranslationMap(), false, shift))
+      return false;
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      options.Translate[axis].Map = shift;
+  }
+  if (self->GetRotate() &&
+    !ReadMap(self, "RotationMap", self->GetRotationMap(), false, options.Rotate.Map))
+    return false;
+  std::string text = self->GetTargetFractions() ? self->GetTargetFractions() : "";
+  for (char& c : text)
+    c = c == ',' || c == ';' ? ' ' : c;
+  std::istringstream pairs(text);
+  std::string pair;
+  while (pairs >> pair)
+  {
+    int label = 0;
+    double fraction = 0.0;
+    char colon = 0, extra = 0;
+    std::istringstream one(pair);
+    if (!(one >> label >> colon >> fraction) || colon != ':' || (one >> extra))
+    {
+      vtkErrorWithObjectMacro(
+        self, << "TargetFractions: '" << pair << "' is not 'label:fraction'.");
+      return false;
+    }
+    options.Soft.TargetFractions[label] = fraction;
+    options.Soft.Temperature = self->GetSoftTemperature();
+  }
+  return true;
+}
+
+/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label>.
+bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
+{
+  msynth::GuideVolume volume;
+  int dims[3];
+  guide->GetDimensions(dims);
+  volume.Dims = { { dims[0], dims[1], dims[2] } };
+  vtkPointData* pd = guide->GetPointData();
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* array = pd->GetArray(i);
+    const std::string name = array && array->GetName() ? array->GetName() : "";
+    if (name.rfind("Weight_", 0) != 0)
+      continue;
+    char* end = nullptr;
+    const long value = std::strtol(name.c_str() + 7, &end, 10);
+    if (end == name.c_str() + 7 || *end != '\0' || array->GetNumberOfComponents() != 1)
+    {
+      vtkErrorWithObjectMacro(
+        self, << "Guide array '" << name << "' must be named Weight_<label> with one component.");
+      return false;
+    }
+    std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
+    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+      weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
+    volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
+  }
+  if (volume.Weights.empty())
+  {
+    vtkWarningWithObjectMacro(
+      self, << "The guide has no point array named Weight_<label>; it has no effect.");
+  }
+  options.Guide = std::move(volume);
+  return true;
+}
+
+/// The engine's options from every property of the filter (and the guide, when connected).
+bool BuildOptions(
+  vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
+{
+  options = SizeOptions(self);
+  options.AttemptsPerBlock = self->GetAttemptsPerBlock();
+  options.Threads = self->GetNumberOfThreads();
+  options.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
+  options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
+  for (int f = 0; f < 6; ++f)
+    if (self->GetUseBoundary()[f])
+      options.Boundary[static_cast<std::size_t>(f)] = self->GetBoundaryLabels()[f];
+  if (self->GetUseTrivialLabel())
+    options.TrivialLabel = self->GetTrivialLabel();
+  options.ResemblanceWindow = self->GetResemblanceWindow();
+  options.Progress = vtkMSSynthesisRun::Progress(self);
+  return ReadSymmetryAndSoft(self, options) && (!guide || ReadGuide(self, guide, options));
+}
+
+/**
+ * Under MPI every rank reads the whole example (RequestUpdateExtent) and runs the filter; the
+ * blocks are spread only when every rank is about to synthesize from the same example, which
+ * the ranks first agree on (a fingerprint of the example and the sizes), so no rank waits for
+ * one that will not exchange.
+ */
+void SetUpExchange(
+  vtkMSDiscreteSynthesis* self, vtkDataArray* labels, bool fresh, msynth::SynthesisOptions& options)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!self->GetDistributeBlocks() || !controller || controller->GetNumberOfProcesses() < 2)
+    return;
+  vtkIdType fingerprint = 0;
+  if (fresh)
+  {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](std::uint64_t v)
+    {
+      h ^= v;
+      h *= 1099511628211ull;
+    };
+    for (const char* c = self->GetTilesetFile(); c && *c; ++c)
+      mix(static_cast<unsigned char>(*c));
+    if (labels)
+      for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+        mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
+    for (int a = 0; a < 3; ++a)
+      mix(static_cast<std::uint64_t>(options.Size[a]) * 31 +
+        static_cast<std::uint64_t>(options.BlockSize[a]));
+    mix(options.Seed);
+    fingerprint = static_cast<vtkIdType>(h >> 2) | 1; // never 0: 0 means "not synthesizing"
+  }
+  vtkIdType low = 0, high = 0;
+  controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
+  controller->AllReduce(&fingerprint, &high, 1, vtkCommunicator::MAX_OP);
+  if (low == 0 || low != high)
+    return;
+  options.Exchange.Rank = controller->GetLocalProcessId();
+  options.Exchange.Processes = controller->GetNumberOfProcesses();
+  options.Exchange.AllGather = [controller](const std::vector<char>& mine)
+  {
+    // The lengths first, then the bytes of every rank.
+    const int ranks = controller->GetNumberOfProcesses();
+    vtkIdType length = static_cast<vtkIdType>(mine.size());
+    std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
+    controller->AllGather(&length, lengths.data(), 1);
+    vtkIdType total = 0;
+    for (std::size_t r = 0; r < lengths.size(); ++r)
+    {
+      offsets[r] = total;
+      total += lengths[r];
+    }
+    std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+    controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+    std::vector<std::vector<char>> parts(lengths.size());
+    for (std::size_t r = 0; r < lengths.size(); ++r)
+      parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
+    return parts;
+  };
+}
+
+/// What the example says of its labels goes with the model: its file, the text format's piece
+/// names and trailer, a .vox palette (for vtkMSLabelGridWriter, the OpenVDB label_names); with
+/// a tileset, the names of its labels.
+void AddExampleFields(
+  vtkFieldData* fd, vtkImageData* input, const char* tilesetFile, const msynth::Tileset* tiles)
+{
+  if (tiles)
+  {
+    // Label i is orientation k of a tile: its name as the tileset's images are named.
+    vtkNew<vtkStringArray> names;
+    names->SetName("TileNames");
+    for (int b = 0; b < tiles->NumberOfLabels(); ++b)
+      names->InsertNextValue(tiles->LabelName(b));
+    fd->AddArray(names);
+    vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", std::string(tilesetFile));
+  }
+  for (const char* name :
+    { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
+    if (vtkAbstractArray* array = input ? input->GetFieldData()->GetAbstractArray(name) : nullptr)
+      fd->AddArray(array);
+}
+} // namespace
+
+bool vtkMSDiscreteSynthesis::Solve(
+  vtkImageData* input, vtkDataArray* labels, msynth::SynthesisOptions& options)
+{
+  Internals& run = *this->Internal;
+  run.Snapshots.clear();
+  if (options.SnapshotsPerBlock > 0)
+    options.OnSnapshot = [&run](const msynth::CatalogSnapshot& snap)
+    { run.Snapshots.push_back(snap); };
+  const std::string what = "A " + std::to_string(this->OutputSize[0]) + " x " +
+    std::to_string(this->OutputSize[1]) + " x " + std::to_string(this->OutputSize[2]) + " model";
+  return vtkMSSynthesisRun::Solve(this, what,
+    [&]()
+    {
+      if (this->TilesetFile.empty())
+      {
+        const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
+        const auto analysis = msynth::ExampleAnalysis::FromExample(example);
+        options.Example = &example;
+        run.Cache.Result =
+          msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+        return;
+      }
+      if (options.Choice == msynth::LabelChoice::Resemblance)
+        throw std::runtime_error(
+          "resemblance-weighted choice needs an example grid, not a tileset");
+      run.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      if (options.Rotate.Enabled && options.Rotate.Map.empty())
+        options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
+      run.Cache.Result = msynth::Synthesize(run.Tiles.Rules(), options);
+    });
+}
+
+void vtkMSDiscreteSynthesis::FillOutput(
+  vtkImageData* input, vtkImageData* output, vtkInformation* outInfo)
+{
+  const Internals& run = *this->Internal;
+  const msynth::SynthesisResult& result = run.Cache.Result;
+  output->SetExtent(
+    0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
+  if (input)
+  {
+    output->SetSpacing(input->GetSpacing());
+    output->SetOrigin(input->GetOrigin());
+  }
+  vtkSmartPointer<vtkIntArray> label;
+  label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
+  output->GetPointData()->SetScalars(label);
+  if (!run.Snapshots.empty())
+  {
+    // The time step asked for (steps are 0, 1, 2, ...).
+    const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, run.Snapshots.size());
+    const msynth::CatalogSnapshot& snap = run.Snapshots[step];
+    for (std::size_t i = 0; i < snap.Labels.size(); ++i)
+      label->SetValue(static_cast<vtkIdType>(i),
+        snap.Labels[i] == msynth::CatalogSnapshot::Undecided ? VTK_INT_MIN : snap.Labels[i]);
+    vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
+    vtkMSSynthesisRun::AddStep(output, snap.Step, snap.Block, snap.Assignments);
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
+  }
+  vtkNew<vtkIntArray> lastBlock;
+  lastBlock->SetName("LastBlock");
+  lastBlock->SetNumberOfTuples(static_cast<vtkIdType>(result.LastBlock.size()));
+  std::copy(result.LastBlock.begin(), result.LastBlock.end(), lastBlock->GetPointer(0));
+  output->GetPointData()->AddArray(lastBlock);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
+  vtkMSEngineBridge::AddStatistics(fd, result.Statistics, result.Status, result.Message);
+  AddExampleFields(
+    fd, input, this->TilesetFile.c_str(), this->TilesetFile.empty() ? nullptr : &run.Tiles);
+}
+
 int vtkMSDiscreteSynthesis::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  const bool tileset = !this->TilesetFile.empty();
   vtkDataArray* labels = nullptr;
-  if (!tileset)
+  if (this->TilesetFile.empty())
   {
     if (!input)
     {
@@ -175,341 +457,22 @@ int vtkMSDiscreteSynthesis::RequestData(
       return 0;
     }
   }
-
-  msynth::SynthesisOptions options = SizeOptions(this);
-  options.AttemptsPerBlock = this->AttemptsPerBlock;
-  options.Threads = this->NumberOfThreads;
-  options.Seed = static_cast<std::uint64_t>(this->Seed);
-  options.Choice = static_cast<msynth::LabelChoice>(this->LabelChoice);
-  options.Order = static_cast<msynth::SiteOrder>(this->SiteOrder);
-  for (int f = 0; f < 6; ++f)
-  {
-    if (this->UseBoundary[f])
-    {
-      options.Boundary[static_cast<std::size_t>(f)] = this->BoundaryLabels[f];
-    }
-  }
-  if (this->UseTrivialLabel)
-  {
-    options.TrivialLabel = this->TrivialLabel;
-  }
-  // Label maps "a:b,c:d" of the symmetries.
-  auto readMap = [this](const std::string& property, const std::string& value, bool both,
-                   std::map<msynth::Label, msynth::Label>& map)
-  {
-    std::string text = value;
-    for (char& c : text)
-      c = c == ',' || c == ';' ? ' ' : c;
-    std::istringstream pairs(text);
-    std::string pair;
-    while (pairs >> pair)
-    {
-      int a = 0, b = 0;
-      char colon = 0, extra = 0;
-      std::istringstream one(pair);
-      if (!(one >> a >> colon >> b) || colon != ':' || (one >> extra))
-      {
-        vtkErrorMacro(<< property << ": '" << pair << "' is not a pair 'a:b' of labels.");
-        return false;
-      }
-      map[a] = b;
-      if (both)
-        map[b] = a;
-    }
-    return true;
-  };
-  if (this->Mirror[0] || this->Mirror[1] || this->Mirror[2])
-  {
-    std::map<msynth::Label, msynth::Label> swaps;
-    if (!readMap("MirrorSwaps", this->MirrorSwaps, true, swaps))
-      return 0;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      options.Symmetry[static_cast<std::size_t>(axis)].Enabled = this->Mirror[axis] != 0;
-      options.Symmetry[static_cast<std::size_t>(axis)].Map = swaps;
-    }
-  }
-  if (this->Translate[0] || this->Translate[1] || this->Translate[2])
-  {
-    std::map<msynth::Label, msynth::Label> shift;
-    if (!readMap("TranslationMap", this->TranslationMap, false, shift))
-      return 0;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      auto& t = options.Translate[static_cast<std::size_t>(axis)];
-      t.Enabled = this->Translate[axis] != 0;
-      t.Period = this->TranslationPeriod[axis];
-      t.Map = shift;
-    }
-  }
-  if (this->Rotate)
-  {
-    options.Rotate.Enabled = true;
-    if (!readMap("RotationMap", this->RotationMap, false, options.Rotate.Map))
-      return 0;
-  }
-  if (!this->TargetFractions.empty())
-  {
-    std::string text = this->TargetFractions;
-    for (char& c : text)
-      c = c == ',' || c == ';' ? ' ' : c;
-    std::istringstream pairs(text);
-    std::string pair;
-    while (pairs >> pair)
-    {
-      int label = 0;
-      double fraction = 0.0;
-      char colon = 0, extra = 0;
-      std::istringstream one(pair);
-      if (!(one >> label >> colon >> fraction) || colon != ':' || (one >> extra))
-      {
-        vtkErrorMacro(<< "TargetFractions: '" << pair << "' is not 'label:fraction'.");
-        return 0;
-      }
-      options.Soft.TargetFractions[label] = fraction;
-    }
-    options.Soft.Temperature = this->SoftTemperature;
-  }
-  vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
-  if (guide)
-  {
-    msynth::GuideVolume volume;
-    int dims[3];
-    guide->GetDimensions(dims);
-    volume.Dims = { { dims[0], dims[1], dims[2] } };
-    vtkPointData* pd = guide->GetPointData();
-    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
-    {
-      vtkDataArray* array = pd->GetArray(i);
-      const std::string name = array && array->GetName() ? array->GetName() : "";
-      if (name.rfind("Weight_", 0) != 0)
-      {
-        continue;
-      }
-      char* end = nullptr;
-      const long value = std::strtol(name.c_str() + 7, &end, 10);
-      if (end == name.c_str() + 7 || *end != '\0' || array->GetNumberOfComponents() != 1)
-      {
-        vtkErrorMacro(<< "Guide array '" << name
-                      << "' must be named Weight_<label> with one component.");
-        return 0;
-      }
-      std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
-      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
-      {
-        weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
-      }
-      volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
-    }
-    if (volume.Weights.empty())
-    {
-      vtkWarningMacro(<< "The guide has no point array named Weight_<label>; it has no effect.");
-    }
-    options.Guide = std::move(volume);
-  }
-  options.Progress = [this](double fraction)
-  {
-    this->UpdateProgress(fraction);
-    return !this->CheckAbort();
-  };
-
-  Internals& cache = *this->Internal;
-  const vtkMTimeType guideTime = guide ? guide->GetMTime() : 0;
-  const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
-  const bool fresh = !cache.Valid || cache.FilterTime != this->GetMTime() || cache.Input != input ||
-    cache.InputTime != inputTime || cache.Guide != guide || cache.GuideTime != guideTime;
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  // Under MPI every rank reads the whole example (RequestUpdateExtent) and runs this; the
-  // blocks are spread only when every rank is about to synthesize from the same example, which
-  // the ranks first agree on (a fingerprint of the example and the sizes), so no rank waits for
-  // one that will not exchange.
-  bool distribute = false;
-  if (this->DistributeBlocks && controller && controller->GetNumberOfProcesses() > 1)
-  {
-    vtkIdType fingerprint = 0;
-    if (fresh)
-    {
-      std::uint64_t h = 1469598103934665603ull;
-      auto mix = [&h](std::uint64_t v)
-      {
-        h ^= v;
-        h *= 1099511628211ull;
-      };
-      for (char c : this->TilesetFile)
-        mix(static_cast<unsigned char>(c));
-      if (labels)
-        for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-          mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
-      for (int a = 0; a < 3; ++a)
-        mix(static_cast<std::uint64_t>(options.Size[a]) * 31 +
-          static_cast<std::uint64_t>(options.BlockSize[a]));
-      mix(options.Seed);
-      fingerprint = static_cast<vtkIdType>(h >> 2) | 1; // never 0: 0 means "not synthesizing"
-    }
-    vtkIdType low = 0, high = 0;
-    controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
-    controller->AllReduce(&fingerprint, &high, 1, vtkCommunicator::MAX_OP);
-    distribute = low != 0 && low == high;
-  }
-  if (distribute)
-  {
-    options.Exchange.Rank = controller->GetLocalProcessId();
-    options.Exchange.Processes = controller->GetNumberOfProcesses();
-    options.Exchange.AllGather = [controller](const std::vector<char>& mine)
-    {
-      // The lengths first, then the bytes of every rank.
-      const int ranks = controller->GetNumberOfProcesses();
-      vtkIdType length = static_cast<vtkIdType>(mine.size());
-      std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
-      controller->AllGather(&length, lengths.data(), 1);
-      vtkIdType total = 0;
-      for (std::size_t r = 0; r < lengths.size(); ++r)
-      {
-        offsets[r] = total;
-        total += lengths[r];
-      }
-      std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
-      controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
-      std::vector<std::vector<char>> parts(lengths.size());
-      for (std::size_t r = 0; r < lengths.size(); ++r)
-        parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
-      return parts;
-    };
-  }
+  msynth::SynthesisOptions options;
+  if (!BuildOptions(this, guide, options))
+    return 0;
+  auto& cache = this->Internal->Cache;
+  const bool fresh = cache.Fresh(this, { input, guide });
+  SetUpExchange(this, labels, fresh, options);
   if (fresh)
   {
-    cache.Valid = false;
-    cache.Snapshots.clear();
-    if (options.SnapshotsPerBlock > 0)
-    {
-      options.OnSnapshot = [&cache](const msynth::CatalogSnapshot& snap)
-      { cache.Snapshots.push_back(snap); };
-    }
-    try
-    {
-      if (tileset)
-      {
-        if (options.Choice == msynth::LabelChoice::Resemblance)
-        {
-          throw std::runtime_error(
-            "resemblance-weighted choice needs an example grid, not a tileset");
-        }
-        cache.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-        if (options.Rotate.Enabled && options.Rotate.Map.empty())
-        {
-          options.Rotate.Map = cache.Tiles.TurnMap(); // each tile turns to its next orientation
-        }
-        cache.Result = msynth::Synthesize(cache.Tiles.Rules(), options);
-      }
-      else
-      {
-        const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
-        const auto analysis = msynth::ExampleAnalysis::FromExample(example);
-        options.Example = &example;
-        options.ResemblanceWindow = this->ResemblanceWindow;
-        cache.Result = msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
-      }
-    }
-    catch (const std::bad_alloc&)
-    {
-      vtkErrorMacro(<< "A " << this->OutputSize[0] << " x " << this->OutputSize[1] << " x "
-                    << this->OutputSize[2] << " model needs more memory than is available.");
+    cache.Clear();
+    if (!this->Solve(input, labels, options))
       return 0;
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< e.what());
-      return 0;
-    }
-    cache.Valid = cache.Result.Succeeded();
-    cache.FilterTime = this->GetMTime();
-    cache.Input = input;
-    cache.InputTime = inputTime;
-    cache.Guide = guide;
-    cache.GuideTime = guideTime;
+    cache.Keep(this, { input, guide }, cache.Result.Succeeded());
   }
-  const msynth::SynthesisResult& result = cache.Result;
-  if (!result.Succeeded())
-  {
-    if (result.Status != msynth::SynthesisStatus::Cancelled)
-    {
-      vtkErrorMacro(<< result.Message);
-    }
+  if (!vtkMSSynthesisRun::Report(this, cache.Result.Status, cache.Result.Message))
     return 0;
-  }
-
-  const int extent[6] = { 0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0,
-    this->OutputSize[2] - 1 };
-  output->SetExtent(const_cast<int*>(extent));
-  if (input)
-  {
-    output->SetSpacing(input->GetSpacing());
-    output->SetOrigin(input->GetOrigin());
-  }
-  vtkSmartPointer<vtkIntArray> label;
-  label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
-  output->GetPointData()->SetScalars(label);
-  if (!cache.Snapshots.empty())
-  {
-    // The time step asked for (steps are 0, 1, 2, ...).
-    const std::size_t step = vtkMSEngineBridge::RequestedStep(
-      outputVector->GetInformationObject(0), cache.Snapshots.size());
-    const msynth::CatalogSnapshot& snap = cache.Snapshots[step];
-    for (std::size_t i = 0; i < snap.Labels.size(); ++i)
-    {
-      label->SetValue(static_cast<vtkIdType>(i),
-        snap.Labels[i] == msynth::CatalogSnapshot::Undecided ? VTK_INT_MIN : snap.Labels[i]);
-    }
-    vtkNew<vtkIntArray> size;
-    size->SetName("CatalogSize");
-    size->SetNumberOfTuples(static_cast<vtkIdType>(snap.CatalogSize.size()));
-    std::copy(snap.CatalogSize.begin(), snap.CatalogSize.end(), size->GetPointer(0));
-    output->GetPointData()->AddArray(size);
-    vtkNew<vtkFloatArray> entropy;
-    entropy->SetName("Entropy");
-    entropy->SetNumberOfTuples(static_cast<vtkIdType>(snap.Entropy.size()));
-    std::copy(snap.Entropy.begin(), snap.Entropy.end(), entropy->GetPointer(0));
-    output->GetPointData()->AddArray(entropy);
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-      output->GetFieldData(), "Step", static_cast<vtkIdType>(snap.Step));
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-      output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(snap.Block));
-    vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-      output->GetFieldData(), "StepAssignments", static_cast<vtkIdType>(snap.Assignments));
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
-  }
-  vtkNew<vtkIntArray> lastBlock;
-  lastBlock->SetName("LastBlock");
-  lastBlock->SetNumberOfTuples(static_cast<vtkIdType>(result.LastBlock.size()));
-  std::copy(result.LastBlock.begin(), result.LastBlock.end(), lastBlock->GetPointer(0));
-  output->GetPointData()->AddArray(lastBlock);
-
-  vtkFieldData* fd = output->GetFieldData();
-  const auto& s = result.Statistics;
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
-  vtkMSEngineBridge::AddStatistics(fd, s, result.Status, result.Message);
-  if (tileset)
-  {
-    // Label i is orientation k of a tile: its name as the tileset's images are named.
-    vtkNew<vtkStringArray> names;
-    names->SetName("TileNames");
-    for (int b = 0; b < cache.Tiles.NumberOfLabels(); ++b)
-    {
-      names->InsertNextValue(cache.Tiles.LabelName(b));
-    }
-    fd->AddArray(names);
-    vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", this->TilesetFile);
-  }
-  // What the example says of its labels goes with the model: its file, the text format's
-  // piece names and trailer, a .vox palette (for vtkMSLabelGridWriter, the OpenVDB label_names).
-  for (const char* name :
-    { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
-  {
-    if (vtkAbstractArray* array = input ? input->GetFieldData()->GetAbstractArray(name) : nullptr)
-    {
-      fd->AddArray(array);
-    }
-  }
+  this->FillOutput(input, output, outputVector->GetInformationObject(0));
   return 1;
 }
 

@@ -70,6 +70,13 @@
 
 #include <string> // for ivar
 
+class vtkDataArray;
+class vtkImageData;
+namespace msynth
+{
+struct SynthesisOptions;
+}
+
 class MODELSYNTHFILTERS_EXPORT vtkMSDiscreteSynthesis : public vtkImageAlgorithm
 {
 public:
@@ -127,6 +134,9 @@ public:
   /// LabelChoices value. Default UNIFORM.
   vtkSetClampMacro(LabelChoice, int, UNIFORM, RESEMBLANCE);
   vtkGetMacro(LabelChoice, int);
+  void SetLabelChoiceToUniform() { this->SetLabelChoice(UNIFORM); }
+  void SetLabelChoiceToFrequency() { this->SetLabelChoice(FREQUENCY); }
+  void SetLabelChoiceToResemblance() { this->SetLabelChoice(RESEMBLANCE); }
   ///@}
 
   ///@{
@@ -179,6 +189,9 @@ public:
   /// SiteOrders value. Default SCAN_LINE.
   vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
   vtkGetMacro(SiteOrder, int);
+  void SetSiteOrderToScanLine() { this->SetSiteOrder(SCAN_LINE); }
+  void SetSiteOrderToRandom() { this->SetSiteOrder(RANDOM); }
+  void SetSiteOrderToMinimumEntropy() { this->SetSiteOrder(MINIMUM_ENTROPY); }
   ///@}
 
   ///@{
@@ -271,6 +284,11 @@ protected:
 private:
   vtkMSDiscreteSynthesis(const vtkMSDiscreteSynthesis&) = delete;
   void operator=(const vtkMSDiscreteSynthesis&) = delete;
+
+  /// Runs the engine on the example (or the tileset) into the cache; false after an error.
+  bool Solve(vtkImageData* input, vtkDataArray* labels, msynth::SynthesisOptions& options);
+  /// The model (or the requested snapshot), LastBlock and the field data on @p output.
+  void FillOutput(vtkImageData* input, vtkImageData* output, vtkInformation* outInfo);
 
   int OutputSize[3] = { 32, 32, 8 };
   int BlockSize[3] = { 0, 0, 0 };

@@ -2,6 +2,7 @@
 #include "vtkMSTimeVaryingSynthesis.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSSynthesisRun.h"
 
 #include "vtkIdTypeArray.h"
 
@@ -27,9 +28,8 @@ vtkStandardNewMacro(vtkMSTimeVaryingSynthesis);
 /// The last result, reused while neither the filter nor the example frames change.
 struct vtkMSTimeVaryingSynthesis::Cache
 {
-  vtkMTimeType FilterTime = 0;
-  std::vector<msynth::LabelGrid> Example;
-  msynth::TimeVaryingResult Result;
+  vtkMSSynthesisCache<msynth::TimeVaryingResult> Run;
+  std::vector<msynth::LabelGrid> Example; ///< the frames the result was computed from
 };
 
 vtkMSTimeVaryingSynthesis::vtkMSTimeVaryingSynthesis()
@@ -137,8 +137,9 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
       frames.push_back(std::move(slice));
   }
   Cache& cache = *this->Cached;
-  if (cache.FilterTime != this->GetMTime() || cache.Example != frames || !cache.Result.Succeeded())
+  if (cache.Run.Fresh(this, {}) || cache.Example != frames)
   {
+    cache.Run.Clear();
     msynth::TimeVaryingOptions options;
     options.Size = { { this->OutputSize[0], this->OutputSize[1], this->OutputSize[2],
       this->NumberOfFrames } };
@@ -151,30 +152,26 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
     options.Order =
       this->SiteOrder == RANDOM ? msynth::SiteOrder::Random : msynth::SiteOrder::ScanLine;
     options.Loop = this->Loop;
-    options.Progress = [this](double done)
+    options.Progress = vtkMSSynthesisRun::Progress(this);
+    const std::string what =
+      "A time-varying model of " + std::to_string(this->NumberOfFrames) + " frames";
+    if (!vtkMSSynthesisRun::Solve(this, what,
+          [&]()
+          {
+            msynth::TimeVaryingGrid example;
+            example.Frames = frames;
+            cache.Run.Result = msynth::SynthesizeTimeVarying(
+              msynth::TimeVaryingRules::FromExample(example), options);
+          }))
     {
-      this->UpdateProgress(done);
-      return !this->GetAbortExecute();
-    };
-    try
-    {
-      msynth::TimeVaryingGrid example;
-      example.Frames = frames;
-      cache.Result =
-        msynth::SynthesizeTimeVarying(msynth::TimeVaryingRules::FromExample(example), options);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< e.what());
       return 0;
     }
     cache.Example = std::move(frames);
-    cache.FilterTime = this->GetMTime();
+    cache.Run.Keep(this, {}, cache.Run.Result.Succeeded());
   }
-  const msynth::TimeVaryingResult& result = cache.Result;
-  if (!result.Succeeded())
+  const msynth::TimeVaryingResult& result = cache.Run.Result;
+  if (!vtkMSSynthesisRun::Report(this, result.Status, result.Message))
   {
-    vtkErrorMacro(<< result.Message);
     return 0;
   }
   const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, result.Model.Frames.size());

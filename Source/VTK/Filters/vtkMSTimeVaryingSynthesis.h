@@ -41,12 +41,13 @@ public:
   /// The frame of the last update.
   vtkImageData* GetOutput();
 
-  enum LabelChoiceType
+  /// The values of vtkMSDiscreteSynthesis's LabelChoices and SiteOrders that apply here.
+  enum LabelChoices
   {
     UNIFORM = 0,
     FREQUENCY = 1
   };
-  enum SiteOrderType
+  enum SiteOrders
   {
     SCAN_LINE = 0,
     RANDOM = 1
@@ -77,8 +78,12 @@ public:
   vtkGetMacro(Seed, vtkIdType);
   vtkSetClampMacro(LabelChoice, int, UNIFORM, FREQUENCY);
   vtkGetMacro(LabelChoice, int);
+  void SetLabelChoiceToUniform() { this->SetLabelChoice(UNIFORM); }
+  void SetLabelChoiceToFrequency() { this->SetLabelChoice(FREQUENCY); }
   vtkSetClampMacro(SiteOrder, int, SCAN_LINE, RANDOM);
   vtkGetMacro(SiteOrder, int);
+  void SetSiteOrderToScanLine() { this->SetSiteOrder(SCAN_LINE); }
+  void SetSiteOrderToRandom() { this->SetSiteOrder(RANDOM); }
   ///@}
 
   ///@{

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSSynthesisRun.h"
+
+#include "vtkMSEngineBridge.h"
+
+#include "vtkDataSet.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+#include <new>
+
+namespace vtkMSSynthesisRun
+{
+
+std::function<bool(double)> Progress(vtkAlgorithm* filter)
+{
+  return [filter](double fraction)
+  {
+    filter->UpdateProgress(fraction);
+    return !filter->CheckAbort();
+  };
+}
+
+bool Solve(vtkAlgorithm* filter, const std::string& what, const std::function<void()>& solve)
+{
+  try
+  {
+    solve();
+    return true;
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorWithObjectMacro(filter, << what << " needs more memory than is available.");
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(filter, << e.what());
+  }
+  return false;
+}
+
+bool Report(vtkAlgorithm* filter, msynth::SynthesisStatus status, const std::string& message,
+  const std::string& context)
+{
+  if (status == msynth::SynthesisStatus::Failed)
+  {
+    vtkErrorWithObjectMacro(filter, << (context.empty() ? "" : context + ": ") << message);
+  }
+  return status == msynth::SynthesisStatus::Succeeded;
+}
+
+void AddCatalog(
+  vtkDataSet* output, const std::vector<std::int32_t>& size, const std::vector<float>& entropy)
+{
+  vtkNew<vtkIntArray> sizes;
+  sizes->SetName("CatalogSize");
+  sizes->SetNumberOfTuples(static_cast<vtkIdType>(size.size()));
+  std::copy(size.begin(), size.end(), sizes->GetPointer(0));
+  output->GetPointData()->AddArray(sizes);
+  vtkNew<vtkFloatArray> entropies;
+  entropies->SetName("Entropy");
+  entropies->SetNumberOfTuples(static_cast<vtkIdType>(entropy.size()));
+  std::copy(entropy.begin(), entropy.end(), entropies->GetPointer(0));
+  output->GetPointData()->AddArray(entropies);
+}
+
+void AddStep(vtkDataSet* output, std::int64_t step, std::int64_t block, std::int64_t assignments)
+{
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+    output->GetFieldData(), "Step", static_cast<vtkIdType>(step));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+    output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(block));
+  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+    output->GetFieldData(), "StepAssignments", static_cast<vtkIdType>(assignments));
+}
+
+}
