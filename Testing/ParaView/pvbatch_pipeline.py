@@ -148,6 +148,20 @@ check(mid.GetPointData().GetArray("Entropy") is not None, "Entropy at a time ste
 
 # A tileset through its source proxy and the picture through the tile-image filter.
 tileset = os.path.join(DATA, "Tilesets", "Lines.xml")
+# Both synthesis proxies derive from MSDiscreteSynthesisBase: shared properties, own defaults.
+fresh_tiles = ModelSynthTilesetSynthesis()
+fresh_grid = ModelSynthDiscreteSynthesis(Input=reader)
+check(list(fresh_tiles.OutputSize) == [32, 32, 1], "tileset default size %s" % list(fresh_tiles.OutputSize))
+check(list(fresh_grid.OutputSize) == [32, 32, 8], "grid default size %s" % list(fresh_grid.OutputSize))
+check((fresh_tiles.LabelChoice, fresh_tiles.SiteOrder) == ("Tile weights", "Minimum entropy"),
+      "tileset defaults %s %s" % (fresh_tiles.LabelChoice, fresh_tiles.SiteOrder))
+check(fresh_grid.SiteOrder == "Scan line", "grid site order %s" % fresh_grid.SiteOrder)
+for name in ("BlockSize", "Seed", "Translate", "Rotate", "Mirror", "CatalogSnapshotsPerBlock"):
+    check(fresh_tiles.GetProperty(name) is not None and fresh_grid.GetProperty(name) is not None,
+          "shared property " + name)
+check(fresh_grid.GetProperty("ResemblanceWindow") is not None, "the grid's own property")
+Delete(fresh_tiles)
+Delete(fresh_grid)
 tiled = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[12, 9, 1], Seed=4)
 picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tileset))
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
