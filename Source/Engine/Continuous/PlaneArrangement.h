@@ -26,6 +26,10 @@ namespace msynth
 {
 
 class PolyhedralAnalysis;
+namespace detail
+{
+class ArrangementBuilder;
+}
 
 struct ArrangementParameters
 {
@@ -109,6 +113,7 @@ public:
   std::size_t MemoryBytes() const;
 
 private:
+  friend class detail::ArrangementBuilder; // fills the vertices, directions and links
   PlaneFamilySet Set;
   ArrangementParameters Params;
   std::vector<IntVec3> Directions;

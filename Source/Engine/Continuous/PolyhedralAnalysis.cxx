@@ -293,117 +293,148 @@ void SegmentBreaks(const Point3& a, const Point3& b, const Point3& c, const Poin
 
 } // namespace
 
-PolyhedralAnalysis PolyhedralAnalysis::Analyze(
-  const PolyhedralExample& example, const Options& options)
+namespace
 {
-  PolyhedralAnalysis analysis;
-  analysis.IsPlanar = example.Planar;
-  // Plane families (§4.5.1).
+/// The plane families of the example (§4.5.1): one per direction of its boundary elements, snapped
+/// to small integers; their unit normals go to @p units.
+std::vector<IntVec3> FindFamilies(const PolyhedralExample& example,
+  const PolyhedralAnalysis::Options& options, std::vector<Point3>& units)
+{
   std::vector<IntVec3> normals;
+  const double cosine = std::cos(options.AngleTolerance);
+  for (const auto& element : BoundaryOf(example))
   {
-    const double cosine = std::cos(options.AngleTolerance);
-    for (const auto& element : BoundaryOf(example))
+    bool known = false;
+    for (const auto& u : units)
     {
-      bool known = false;
-      for (const auto& u : analysis.UnitNormals)
-      {
-        known = known || std::abs(Dot(u, element.Normal)) >= cosine;
-      }
-      if (!known)
-      {
-        normals.push_back(
-          SnapDirection(element.Normal, options.AngleTolerance, options.MaxSmallInteger));
-        const auto& n = normals.back();
-        analysis.UnitNormals.push_back(Unit({ double(n[0]), double(n[1]), double(n[2]) }));
-      }
+      known = known || std::abs(Dot(u, element.Normal)) >= cosine;
+    }
+    if (!known)
+    {
+      normals.push_back(
+        SnapDirection(element.Normal, options.AngleTolerance, options.MaxSmallInteger));
+      const auto& n = normals.back();
+      units.push_back(Unit({ double(n[0]), double(n[1]), double(n[2]) }));
     }
   }
-  analysis.Set = std::make_shared<PlaneFamilySet>(normals);
-  const NeighbourhoodProbe probe(
-    example, *analysis.Set, analysis.UnitNormals, options.AngleTolerance);
-  analysis.Elements = probe.Boundary();
-  analysis.Family = probe.ElementFamily();
-  const auto& pts = example.Points;
-  const double tol = probe.Tolerance();
-  const double cell = 10 * tol;
+  return normals;
+}
 
-  std::map<NeighbourhoodLabel, int> found;
-  std::vector<NeighbourhoodLabel> labels;
-  std::vector<std::int64_t> counts;
-  auto add = [&](const NeighbourhoodLabel& label, std::int64_t count)
+/**
+ * The features of the example sampled for their neighbourhood labels (§4.3): every vertex, every
+ * piece of an edge between the points where other objects split it, and the face beside each
+ * piece; each label once, with how often it occurs.
+ */
+class FeatureSampler
+{
+public:
+  FeatureSampler(const PolyhedralExample& example, const NeighbourhoodProbe& probe,
+    std::vector<PolyhedralAnalysis::Feature>& samples, const std::vector<BoundaryElement>& elements)
+    : Example(example)
+    , Probe(probe)
+    , Samples(samples)
+    , Elements(elements)
+    , Tol(probe.Tolerance())
+    , Cell(10 * probe.Tolerance())
+    , Planar(example.Planar)
+    , SeveralObjects(example.NumberOfObjects() > 1)
+    , LabelsOfElement(elements.size())
   {
-    auto it = found.find(label);
-    if (it == found.end())
+    std::vector<std::array<Point3, 2>> boxes;
+    const auto& pts = example.Points;
+    for (const auto& element : elements)
     {
-      it = found.emplace(label, static_cast<int>(labels.size())).first;
-      labels.push_back(label);
-      counts.push_back(0);
+      std::array<Point3, 2> box{ pts[element.Points[0]], pts[element.Points[0]] };
+      for (int v : element.Points)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          box[0][c] = std::min(box[0][c], pts[v][c]);
+          box[1][c] = std::max(box[1][c], pts[v][c]);
+        }
+      }
+      boxes.push_back(box);
     }
-    counts[it->second] += count;
-    return it->second;
-  };
-  std::set<std::array<std::int64_t, 3>> seen;
-  std::vector<std::set<int>> labelsOfElement(analysis.Elements.size());
-  auto sample = [&](
-                  FeatureKind kind, const Point3& at, const Point3& a, const Point3& b, int element)
+    this->ElementGrid = BoxGrid(boxes, this->Tol);
+  }
+
+  /// Samples everything: the volumes, the vertices first (so that a point shared by several
+  /// features counts as a vertex), then edges and faces.
+  void Run()
   {
-    if (!seen.insert(PositionKey(at, cell)).second)
+    this->AddLabel(NeighbourhoodLabel::Constant(0), 1); // the exterior
+    for (int type : this->Example.ObjectTypes)
+    {
+      this->AddLabel(NeighbourhoodLabel::Constant(type), 1); // each object type's interior
+    }
+    const auto& pts = this->Example.Points;
+    for (const auto& element : this->Elements)
+    {
+      for (int v : element.Points)
+      {
+        this->Sample(
+          this->Planar ? FeatureKind::Edge : FeatureKind::Vertex, pts[v], pts[v], pts[v], -1);
+      }
+    }
+    for (std::size_t e = 0; e < this->Elements.size(); ++e)
+    {
+      this->SampleEdgesOf(e);
+    }
+  }
+
+  const std::vector<NeighbourhoodLabel>& Labels() const { return this->LabelList; }
+  const std::vector<std::int64_t>& Counts() const { return this->CountList; }
+  const std::vector<std::set<int>>& LabelsOf() const { return this->LabelsOfElement; }
+
+private:
+  int AddLabel(const NeighbourhoodLabel& label, std::int64_t count)
+  {
+    auto it = this->Found.find(label);
+    if (it == this->Found.end())
+    {
+      it = this->Found.emplace(label, static_cast<int>(this->LabelList.size())).first;
+      this->LabelList.push_back(label);
+      this->CountList.push_back(0);
+    }
+    this->CountList[static_cast<std::size_t>(it->second)] += count;
+    return it->second;
+  }
+
+  void Sample(FeatureKind kind, const Point3& at, const Point3& a, const Point3& b, int element)
+  {
+    if (!this->Seen.insert(PositionKey(at, this->Cell)).second)
     {
       return;
     }
-    Feature feature;
+    PolyhedralAnalysis::Feature feature;
     feature.Kind = kind;
     feature.A = a;
     feature.B = b;
     feature.Element = element;
-    const auto through = probe.ElementsThrough(at);
-    feature.Label = add(probe.LabelAt(at, through), 1);
-    analysis.Samples.push_back(feature);
+    const auto through = this->Probe.ElementsThrough(at);
+    feature.Label = this->AddLabel(this->Probe.LabelAt(at, through), 1);
+    this->Samples.push_back(feature);
     if (element >= 0)
     {
       // Every face through the sample has this label there (coplanar faces of other objects
       // included), so a face partly covered by another object is known to have several.
-      labelsOfElement[element].insert(feature.Label);
+      this->LabelsOfElement[static_cast<std::size_t>(element)].insert(feature.Label);
       for (std::size_t e : through)
       {
-        labelsOfElement[e].insert(feature.Label);
+        this->LabelsOfElement[e].insert(feature.Label);
       }
     }
-  };
-
-  // Volumes: the exterior and the interior of each object type.
-  add(NeighbourhoodLabel::Constant(0), 1);
-  for (int type : example.ObjectTypes)
-  {
-    add(NeighbourhoodLabel::Constant(type), 1);
   }
 
-  // Edges (3D: polygon edges; 2D: the boundary segments) and where other objects split them.
-  const bool planar = example.Planar;
-  const bool severalObjects = example.NumberOfObjects() > 1;
-  std::map<std::pair<int, int>, std::vector<double>> breaks; // by (low, high) point index
-  std::vector<std::array<Point3, 2>> elementBoxes;
-  for (const auto& element : analysis.Elements)
+  /// Where elements of other objects split the segment (lo, hi), as fractions along it.
+  const std::vector<double>& BreaksOf(int lo, int hi, int object)
   {
-    std::array<Point3, 2> box{ pts[element.Points[0]], pts[element.Points[0]] };
-    for (int v : element.Points)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        box[0][c] = std::min(box[0][c], pts[v][c]);
-        box[1][c] = std::max(box[1][c], pts[v][c]);
-      }
-    }
-    elementBoxes.push_back(box);
-  }
-  const BoxGrid elementGrid(elementBoxes, tol);
-  auto breaksOf = [&](int lo, int hi, int object) -> const std::vector<double>&
-  {
-    auto it = breaks.find({ lo, hi });
-    if (it != breaks.end())
+    auto it = this->Breaks.find({ lo, hi });
+    if (it != this->Breaks.end())
     {
       return it->second;
     }
+    const auto& pts = this->Example.Points;
     const Point3& a = pts[lo];
     const Point3& b = pts[hi];
     const double length = Norm(Sub(b, a));
@@ -411,53 +442,17 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
     const Point3 segmentLow{ std::min(a[0], b[0]), std::min(a[1], b[1]), std::min(a[2], b[2]) };
     const Point3 segmentHigh{ std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]) };
     // Only elements whose box (grown by the tolerance) meets the segment's can split it.
-    const std::vector<std::uint32_t> near = severalObjects
-      ? elementGrid.Overlapping(segmentLow, segmentHigh)
+    const std::vector<std::uint32_t> near = this->SeveralObjects
+      ? this->ElementGrid.Overlapping(segmentLow, segmentHigh)
       : std::vector<std::uint32_t>();
     for (const std::uint32_t g : near)
     {
-      const auto& other = analysis.Elements[g];
-      if (other.Object == object)
+      if (this->Elements[g].Object != object)
       {
-        continue;
-      }
-      const std::size_t n = other.Points.size();
-      if (planar)
-      {
-        SegmentBreaks(a, b, pts[other.Points[0]], pts[other.Points[1]], 0, 1, tol, ts);
-        continue;
-      }
-      const Point3& origin = pts[other.Points[0]];
-      const double da = Dot(other.Normal, Sub(a, origin));
-      const double db = Dot(other.Normal, Sub(b, origin));
-      if (std::abs(da) <= tol && std::abs(db) <= tol)
-      {
-        int drop = 0;
-        for (int c = 1; c < 3; ++c)
-        {
-          drop = std::abs(other.Normal[c]) > std::abs(other.Normal[drop]) ? c : drop;
-        }
-        for (std::size_t k = 0; k < n; ++k)
-        {
-          SegmentBreaks(a, b, pts[other.Points[k]], pts[other.Points[(k + 1) % n]], (drop + 1) % 3,
-            (drop + 2) % 3, tol, ts);
-        }
-      }
-      else if ((da > tol && db > tol) || (da < -tol && db < -tol))
-      {
-        continue;
-      }
-      else if (std::abs(da - db) > 0)
-      {
-        // Keep the crossing only where it lies on the other face.
-        const double t = da / (da - db);
-        if (probe.ElementContains(g, Add(a, Sub(b, a), t)))
-        {
-          ts.push_back(t);
-        }
+        this->BreaksBy(g, a, b, ts);
       }
     }
-    const double margin = tol / std::max(length, tol);
+    const double margin = this->Tol / std::max(length, this->Tol);
     std::vector<double> kept;
     std::sort(ts.begin(), ts.end());
     for (double t : ts)
@@ -467,22 +462,57 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
         kept.push_back(t);
       }
     }
-    return breaks.emplace(std::make_pair(lo, hi), kept).first->second;
-  };
+    return this->Breaks.emplace(std::make_pair(lo, hi), kept).first->second;
+  }
 
-  // Vertices first (so that a point shared by several features counts as a vertex).
-  for (const auto& element : analysis.Elements)
+  /// The points where element @p g splits the segment (a, b), appended to @p ts.
+  void BreaksBy(std::uint32_t g, const Point3& a, const Point3& b, std::vector<double>& ts) const
   {
-    for (int v : element.Points)
+    const auto& pts = this->Example.Points;
+    const auto& other = this->Elements[g];
+    const std::size_t n = other.Points.size();
+    const double tol = this->Tol;
+    if (this->Planar)
     {
-      sample(planar ? FeatureKind::Edge : FeatureKind::Vertex, pts[v], pts[v], pts[v], -1);
+      SegmentBreaks(a, b, pts[other.Points[0]], pts[other.Points[1]], 0, 1, tol, ts);
+      return;
+    }
+    const Point3& origin = pts[other.Points[0]];
+    const double da = Dot(other.Normal, Sub(a, origin));
+    const double db = Dot(other.Normal, Sub(b, origin));
+    if (std::abs(da) <= tol && std::abs(db) <= tol)
+    {
+      int drop = 0;
+      for (int c = 1; c < 3; ++c)
+      {
+        drop = std::abs(other.Normal[c]) > std::abs(other.Normal[drop]) ? c : drop;
+      }
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        SegmentBreaks(a, b, pts[other.Points[k]], pts[other.Points[(k + 1) % n]], (drop + 1) % 3,
+          (drop + 2) % 3, tol, ts);
+      }
+    }
+    else if ((da > tol && db > tol) || (da < -tol && db < -tol))
+    {
+      return;
+    }
+    else if (std::abs(da - db) > 0)
+    {
+      // Keep the crossing only where it lies on the other face.
+      const double t = da / (da - db);
+      if (this->Probe.ElementContains(g, Add(a, Sub(b, a), t)))
+      {
+        ts.push_back(t);
+      }
     }
   }
-  // The pieces of every edge, in order from @p from to @p to.
-  auto pieces = [&](int from, int to, int object)
+
+  /// The pieces of an edge, as fractions in order from @p from to @p to.
+  std::vector<double> Pieces(int from, int to, int object)
   {
     const int lo = std::min(from, to), hi = std::max(from, to);
-    std::vector<double> ts = breaksOf(lo, hi, object);
+    std::vector<double> ts = this->BreaksOf(lo, hi, object);
     if (from != lo)
     {
       for (auto& t : ts)
@@ -494,39 +524,74 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
     ts.insert(ts.begin(), 0.0);
     ts.push_back(1.0);
     return ts;
-  };
-  for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
+  }
+
+  /// Element @p e's edges (3D: polygon edges; 2D: the segment): split points, pieces, faces.
+  void SampleEdgesOf(std::size_t e)
   {
-    const auto& element = analysis.Elements[e];
-    const std::size_t n = planar ? 1 : element.Points.size();
+    const auto& pts = this->Example.Points;
+    const auto& element = this->Elements[e];
+    const std::size_t n = this->Planar ? 1 : element.Points.size();
     for (std::size_t k = 0; k < n; ++k)
     {
       const int from = element.Points[k], to = element.Points[(k + 1) % element.Points.size()];
       const Point3& a = pts[from];
       const Point3 ab = Sub(pts[to], a);
-      const auto ts = pieces(from, to, element.Object);
+      const auto ts = this->Pieces(from, to, element.Object);
       for (std::size_t s = 1; s + 1 < ts.size(); ++s)
       {
         const Point3 split = Add(a, ab, ts[s]);
-        sample(planar ? FeatureKind::Edge : FeatureKind::Vertex, split, split, split, -1);
+        this->Sample(
+          this->Planar ? FeatureKind::Edge : FeatureKind::Vertex, split, split, split, -1);
       }
       for (std::size_t s = 0; s + 1 < ts.size(); ++s)
       {
         const Point3 p = Add(a, ab, ts[s]), q = Add(a, ab, ts[s + 1]);
         const Point3 middle = Add(a, ab, 0.5 * (ts[s] + ts[s + 1]));
-        if (planar)
+        if (this->Planar)
         {
-          sample(FeatureKind::Face, middle, p, q, static_cast<int>(e));
+          this->Sample(FeatureKind::Face, middle, p, q, static_cast<int>(e));
           continue;
         }
-        sample(FeatureKind::Edge, middle, p, q, -1);
+        this->Sample(FeatureKind::Edge, middle, p, q, -1);
         // The face beside this piece.
         const Point3 inward = Unit(point3::Cross(element.Normal, ab));
-        const Point3 inside = Add(middle, inward, probe.FaceOffset());
-        sample(FeatureKind::Face, inside, inside, inside, static_cast<int>(e));
+        const Point3 inside = Add(middle, inward, this->Probe.FaceOffset());
+        this->Sample(FeatureKind::Face, inside, inside, inside, static_cast<int>(e));
       }
     }
   }
+
+  const PolyhedralExample& Example;
+  const NeighbourhoodProbe& Probe;
+  std::vector<PolyhedralAnalysis::Feature>& Samples;
+  const std::vector<BoundaryElement>& Elements;
+  const double Tol, Cell;
+  const bool Planar, SeveralObjects;
+  BoxGrid ElementGrid;
+  std::map<NeighbourhoodLabel, int> Found;
+  std::vector<NeighbourhoodLabel> LabelList;
+  std::vector<std::int64_t> CountList;
+  std::set<std::array<std::int64_t, 3>> Seen;
+  std::vector<std::set<int>> LabelsOfElement;
+  std::map<std::pair<int, int>, std::vector<double>> Breaks; ///< by (low, high) point index
+};
+} // namespace
+
+PolyhedralAnalysis PolyhedralAnalysis::Analyze(
+  const PolyhedralExample& example, const Options& options)
+{
+  PolyhedralAnalysis analysis;
+  analysis.IsPlanar = example.Planar;
+  analysis.Set =
+    std::make_shared<PlaneFamilySet>(FindFamilies(example, options, analysis.UnitNormals));
+  const NeighbourhoodProbe probe(
+    example, *analysis.Set, analysis.UnitNormals, options.AngleTolerance);
+  analysis.Elements = probe.Boundary();
+  analysis.Family = probe.ElementFamily();
+  FeatureSampler sampler(example, probe, analysis.Samples, analysis.Elements);
+  sampler.Run();
+  const auto& labels = sampler.Labels();
 
   // Ids in a canonical order: by codimension, then families, then types.
   std::vector<int> order(labels.size());
@@ -545,8 +610,8 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
     LabelInfo info;
     info.Label = labels[order[i]];
     info.Kind = info.Label.Kind(set);
-    info.Occurrences = counts[order[i]];
-    info.Expression = info.Label.Expression(planar);
+    info.Occurrences = sampler.Counts()[order[i]];
+    info.Expression = info.Label.Expression(example.Planar);
     analysis.IdOf.emplace(info.Label, static_cast<int>(i));
     analysis.Catalog.push_back(std::move(info));
   }
@@ -557,9 +622,10 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
   analysis.ElementLabels.assign(analysis.Elements.size(), -1);
   for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
   {
-    if (labelsOfElement[e].size() == 1)
+    const auto& of = sampler.LabelsOf()[e];
+    if (of.size() == 1)
     {
-      analysis.ElementLabels[e] = idOf[*labelsOfElement[e].begin()];
+      analysis.ElementLabels[e] = idOf[*of.begin()];
     }
   }
   return analysis;

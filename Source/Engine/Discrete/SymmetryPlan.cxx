@@ -108,63 +108,118 @@ const char* const AxisName = "xyz";
 const char* const FaceName[6] = { "-x", "+x", "-y", "+y", "-z", "+z" };
 } // namespace
 
-std::unique_ptr<SymmetryPlan> PlanSymmetry(
-  const AdjacencyRules& rules, const SynthesisOptions& options)
+namespace
 {
-  auto plan = std::make_unique<SymmetryPlan>();
-  plan->Full = options.Size;
-  plan->Domain = options.Size;
-  plan->DomainOptions = options;
-  SynthesisOptions& domain = plan->DomainOptions;
-  domain.Rotate.Enabled = false;
-  for (auto& t : domain.Translate)
-    t.Enabled = false;
-  const int k = rules.NumberOfLabels();
-  const auto& values = rules.LabelValues();
-  auto name = [&](int b) { return std::to_string(values[static_cast<std::size_t>(b)]); };
-  auto readMap = [&](const std::map<Label, Label>& m, const std::string& what)
+/// PlanSymmetry in steps: the maps of the translated axes and of the rotation (checked against
+/// the rules and the boundary), then the seams between domain sites as arcs of extra relations
+/// (or unary masks where a site meets itself), the guide at every image, and the arcs by source.
+class SymmetryPlanner
+{
+public:
+  SymmetryPlanner(const AdjacencyRules& rules, const SynthesisOptions& options)
+    : Rules(rules)
+    , Options(options)
+    , Plan(std::make_unique<SymmetryPlan>())
+    , K(rules.NumberOfLabels())
   {
-    std::vector<int> f(static_cast<std::size_t>(k));
+    this->Plan->Full = options.Size;
+    this->Plan->Domain = options.Size;
+    this->Plan->DomainOptions = options;
+    SynthesisOptions& domain = this->Plan->DomainOptions;
+    domain.Rotate.Enabled = false;
+    for (auto& t : domain.Translate)
+      t.Enabled = false;
+  }
+
+  std::unique_ptr<SymmetryPlan> Build()
+  {
+    const bool anyTranslation = this->PlanTranslations();
+    if (this->Options.Rotate.Enabled)
+    {
+      if (anyTranslation)
+        throw Error("rotation symmetry cannot be combined with translation symmetry");
+      this->PlanRotation();
+    }
+    this->CheckBoundaries();
+    this->Plan->DomainOptions.Size = this->Plan->Domain;
+    this->TranslationSeams();
+    if (this->Plan->Rotate)
+      this->RotationSeams();
+    if (this->Options.Guide)
+      this->GuideAtImages(*this->Options.Guide);
+    this->Plan->Relation = std::make_unique<ExtendedRelation>(this->Rules, this->Relations);
+    this->ArcsBySource();
+    return std::move(this->Plan);
+  }
+
+private:
+  std::string Name(int b) const
+  {
+    return std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]);
+  }
+
+  /// A label map given by values, checked to be one-to-one on the example's labels.
+  LabelMap ReadMap(const std::map<Label, Label>& m, const std::string& what) const
+  {
+    std::vector<int> f(static_cast<std::size_t>(this->K));
     std::iota(f.begin(), f.end(), 0);
     for (const auto& kv : m)
     {
-      const int from = rules.IndexOf(kv.first), to = rules.IndexOf(kv.second);
+      const int from = this->Rules.IndexOf(kv.first), to = this->Rules.IndexOf(kv.second);
       if (from < 0 || to < 0)
         throw Error("the " + what + " names label " +
           std::to_string(from < 0 ? kv.first : kv.second) +
           ", which does not occur in the example");
       f[static_cast<std::size_t>(from)] = to;
     }
-    std::vector<char> hit(static_cast<std::size_t>(k), 0);
-    for (int b = 0; b < k; ++b)
+    std::vector<char> hit(static_cast<std::size_t>(this->K), 0);
+    for (int b = 0; b < this->K; ++b)
       if (hit[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])]++)
         throw Error("the " + what + " is not one-to-one: two labels map to label " +
-          name(f[static_cast<std::size_t>(b)]));
+          this->Name(f[static_cast<std::size_t>(b)]));
     return LabelMap(std::move(f));
-  };
-  // Each seam relation, registered once: (kind, axis or direction, power) → relation index.
-  std::vector<std::function<bool(int, int)>> relations;
-  std::map<std::tuple<int, int, int>, int> relationIndex;
-  auto relation = [&](int kind, int d, int j, std::function<bool(int, int)> pred)
+  }
+
+  /// Each seam relation, registered once: (kind, axis or direction, power) → relation index.
+  int Relation(int kind, int d, int j, std::function<bool(int, int)> pred)
   {
     const auto key = std::make_tuple(kind, d, j);
-    const auto it = relationIndex.find(key);
-    if (it != relationIndex.end())
+    const auto it = this->RelationIndex.find(key);
+    if (it != this->RelationIndex.end())
       return it->second;
-    relations.push_back(std::move(pred));
-    return relationIndex[key] = static_cast<int>(relations.size()) - 1;
-  };
-  std::vector<LabelMap*> maps; // every map, for the boundary check
-  std::vector<std::string> mapNames;
+    this->Relations.push_back(std::move(pred));
+    return this->RelationIndex[key] = static_cast<int>(this->Relations.size()) - 1;
+  }
 
-  bool anyTranslation = false;
-  for (int a = 0; a < 3; ++a)
+  /// The translated axes: their periods and maps, which must preserve the rules and commute.
+  bool PlanTranslations()
   {
-    const Translation& t = options.Translate[static_cast<std::size_t>(a)];
-    if (!t.Enabled)
-      continue;
+    bool any = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      const Translation& t = this->Options.Translate[static_cast<std::size_t>(a)];
+      if (t.Enabled)
+      {
+        this->PlanTranslation(a, t);
+        any = true;
+      }
+    }
+    const SymmetryPlan& plan = *this->Plan;
+    for (int a = 0; a < 3; ++a)
+      for (int c = a + 1; c < 3; ++c)
+        if (plan.Period[a] > 0 && plan.Period[c] > 0)
+          for (int b = 0; b < this->K; ++b)
+            if (plan.Shift[a].Apply(plan.Shift[c].Apply(b)) !=
+              plan.Shift[c].Apply(plan.Shift[a].Apply(b)))
+              throw Error(std::string("the translation maps along ") + AxisName[a] + " and " +
+                AxisName[c] + " do not commute (label " + this->Name(b) + ")");
+    return any;
+  }
+
+  void PlanTranslation(int a, const Translation& t)
+  {
     const std::string axis(1, AxisName[a]);
-    const std::int64_t n = options.Size[a];
+    const std::int64_t n = this->Options.Size[a];
     if (n < 2)
       throw Error("translation symmetry along " + axis +
         " needs an output longer than one site along " + axis);
@@ -172,56 +227,40 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
     if (period > n)
       throw Error("the period along " + axis + " (" + std::to_string(period) +
         ") is longer than the output (" + std::to_string(n) + ")");
-    LabelMap& f = plan->Shift[static_cast<std::size_t>(a)];
-    f = readMap(t.Map, "translation map along " + axis);
+    LabelMap& f = this->Plan->Shift[static_cast<std::size_t>(a)];
+    f = this->ReadMap(t.Map, "translation map along " + axis);
+    const AdjacencyRules& rules = this->Rules;
     for (int a2 = 0; a2 < 3; ++a2)
-      for (int b = 0; b < k; ++b)
-        for (int c = 0; c < k; ++c)
+      for (int b = 0; b < this->K; ++b)
+        for (int c = 0; c < this->K; ++c)
           if (rules.Allowed(2 * a2, b, c) != rules.Allowed(2 * a2, f.Apply(b), f.Apply(c)))
             throw Error("the translation map along " + axis +
-              " does not preserve the example's rules: label " + name(b) + " before " + name(c) +
-              " along " + AxisName[a2] +
+              " does not preserve the example's rules: label " + this->Name(b) + " before " +
+              this->Name(c) + " along " + AxisName[a2] +
               (rules.Allowed(2 * a2, b, c) ? " occurs" : " does not occur") + ", but " +
-              name(f.Apply(b)) + " before " + name(f.Apply(c)) +
+              this->Name(f.Apply(b)) + " before " + this->Name(f.Apply(c)) +
               (rules.Allowed(2 * a2, b, c) ? " does not" : " does"));
-    if (options.Boundary[static_cast<std::size_t>(2 * a)] ||
-      options.Boundary[static_cast<std::size_t>(2 * a + 1)])
+    if (this->Options.Boundary[static_cast<std::size_t>(2 * a)] ||
+      this->Options.Boundary[static_cast<std::size_t>(2 * a + 1)])
       throw Error("the model repeats along " + axis + ", so its " + axis +
         " faces cannot have boundary labels");
-    plan->Period[a] = period;
-    plan->Domain[a] = period;
-    anyTranslation = true;
-    maps.push_back(&f);
-    mapNames.push_back("translation map along " + axis);
+    this->Plan->Period[a] = period;
+    this->Plan->Domain[a] = period;
+    this->Maps.push_back(&f);
+    this->MapNames.push_back("translation map along " + axis);
   }
-  for (int a = 0; a < 3; ++a)
-    for (int c = a + 1; c < 3; ++c)
-      if (plan->Period[a] > 0 && plan->Period[c] > 0)
-        for (int b = 0; b < k; ++b)
-          if (plan->Shift[a].Apply(plan->Shift[c].Apply(b)) !=
-            plan->Shift[c].Apply(plan->Shift[a].Apply(b)))
-            throw Error(std::string("the translation maps along ") + AxisName[a] + " and " +
-              AxisName[c] + " do not commute (label " + name(b) + ")");
 
-  const std::int64_t n = options.Size[0];
-  const std::int64_t h = (n + 1) / 2;
-  if (options.Rotate.Enabled)
+  /// The quarter turn's map must come back after four turns and carry the rules along x to
+  /// those along y.
+  void CheckRotationMap(const LabelMap& f) const
   {
-    if (anyTranslation)
-      throw Error("rotation symmetry cannot be combined with translation symmetry");
-    if (options.Size[0] != options.Size[1] || n < 2)
-      throw Error("rotation symmetry about the vertical needs an output square in x and y, at "
-                  "least 2 x 2 (the size is " +
-        std::to_string(options.Size[0]) + " x " + std::to_string(options.Size[1]) + ")");
-    plan->Rotate = true;
-    LabelMap& f = plan->Turn;
-    f = readMap(options.Rotate.Map, "rotation map");
-    for (int b = 0; b < k; ++b)
+    const AdjacencyRules& rules = this->Rules;
+    for (int b = 0; b < this->K; ++b)
       if (f.Power(b, 4) != b)
-        throw Error(
-          "the rotation map turned four times does not bring label " + name(b) + " back to itself");
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c)
+        throw Error("the rotation map turned four times does not bring label " + this->Name(b) +
+          " back to itself");
+    for (int b = 0; b < this->K; ++b)
+      for (int c = 0; c < this->K; ++c)
       {
         const int fb = f.Apply(b), fc = f.Apply(c);
         const char* broken = nullptr;
@@ -234,14 +273,30 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
         if (broken)
           throw Error("the example's rules are not preserved by a quarter turn with the rotation "
                       "map: label " +
-            name(b) + " before " + name(c) + " (" + broken + ") does not match label " + name(fb) +
-            " and " + name(fc) + ". The example must look the same turned by 90 degrees");
+            this->Name(b) + " before " + this->Name(c) + " (" + broken + ") does not match label " +
+            this->Name(fb) + " and " + this->Name(fc) +
+            ". The example must look the same turned by 90 degrees");
       }
+  }
+
+  void PlanRotation()
+  {
+    SymmetryPlan& plan = *this->Plan;
+    const std::int64_t n = this->Options.Size[0];
+    const std::int64_t h = (n + 1) / 2;
+    if (this->Options.Size[0] != this->Options.Size[1] || n < 2)
+      throw Error("rotation symmetry about the vertical needs an output square in x and y, at "
+                  "least 2 x 2 (the size is " +
+        std::to_string(this->Options.Size[0]) + " x " + std::to_string(this->Options.Size[1]) +
+        ")");
+    plan.Rotate = true;
+    plan.Turn = this->ReadMap(this->Options.Rotate.Map, "rotation map");
+    this->CheckRotationMap(plan.Turn);
     // Side faces: one label on all four, its own turned image.
     std::optional<Label> side;
     for (int face = 0; face < 4; ++face)
     {
-      const auto& v = options.Boundary[static_cast<std::size_t>(face)];
+      const auto& v = this->Options.Boundary[static_cast<std::size_t>(face)];
       if (!v)
         continue;
       if (side && *side != *v)
@@ -250,16 +305,17 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
           std::to_string(*side) + " and " + std::to_string(*v) + ")");
       side = v;
     }
+    SynthesisOptions& domain = plan.DomainOptions;
     domain.Boundary[FaceMinX] = side;
     domain.Boundary[FaceMinY] = side;
     domain.Boundary[FaceMaxX].reset();
     domain.Boundary[FaceMaxY].reset();
-    plan->Domain[0] = plan->Domain[1] = h;
-    maps.push_back(&f);
-    mapNames.push_back("rotation map");
+    plan.Domain[0] = plan.Domain[1] = h;
+    this->Maps.push_back(&plan.Turn);
+    this->MapNames.push_back("rotation map");
     // Where each output xy site comes from: the domain site of its orbit with the lowest index.
-    plan->TurnSource.assign(static_cast<std::size_t>(n * n), -1);
-    plan->TurnPower.assign(static_cast<std::size_t>(n * n), 0);
+    plan.TurnSource.assign(static_cast<std::size_t>(n * n), -1);
+    plan.TurnPower.assign(static_cast<std::size_t>(n * n), 0);
     for (std::int64_t y = 0; y < n; ++y)
       for (std::int64_t x = 0; x < n; ++x)
       {
@@ -277,93 +333,118 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
           rx = tx;
           ry = ty;
         }
-        plan->TurnSource[static_cast<std::size_t>(x + n * y)] = best;
-        plan->TurnPower[static_cast<std::size_t>(x + n * y)] = static_cast<std::uint8_t>(power);
+        plan.TurnSource[static_cast<std::size_t>(x + n * y)] = best;
+        plan.TurnPower[static_cast<std::size_t>(x + n * y)] = static_cast<std::uint8_t>(power);
       }
   }
-  for (std::size_t i = 0; i < maps.size(); ++i)
-    for (int face = 0; face < 6; ++face)
-    {
-      const auto& v = domain.Boundary[static_cast<std::size_t>(face)];
-      if (!v || options.Size[face / 2] == 1)
-        continue;
-      const int b = rules.IndexOf(*v);
-      if (b >= 0 && maps[i]->Apply(b) != b)
-        throw Error("the boundary label " + std::to_string(*v) + " of the " + FaceName[face] +
-          " face is not its own image under the " + mapNames[i] +
-          ", so the symmetric copies would not keep it");
-    }
-  domain.Size = plan->Domain;
 
-  // Seams: (source, target, relation) between domain sites; a site linked to itself becomes a
-  // unary mask.
-  const Coord& dd = plan->Domain;
-  const std::int64_t sites = dd[0] * dd[1] * dd[2];
-  const int words = rules.Words();
-  auto index = [&](const Coord& p) { return p[0] + dd[0] * (p[1] + dd[1] * p[2]); };
-  auto keepOnly = [&](std::int64_t site, const std::function<bool(int)>& allowed)
+  /// A boundary label must be its own image under every map.
+  void CheckBoundaries() const
   {
-    if (plan->SiteMasks.empty())
+    const SynthesisOptions& domain = this->Plan->DomainOptions;
+    for (std::size_t i = 0; i < this->Maps.size(); ++i)
+      for (int face = 0; face < 6; ++face)
+      {
+        const auto& v = domain.Boundary[static_cast<std::size_t>(face)];
+        if (!v || this->Options.Size[face / 2] == 1)
+          continue;
+        const int b = this->Rules.IndexOf(*v);
+        if (b >= 0 && this->Maps[i]->Apply(b) != b)
+          throw Error("the boundary label " + std::to_string(*v) + " of the " + FaceName[face] +
+            " face is not its own image under the " + this->MapNames[i] +
+            ", so the symmetric copies would not keep it");
+      }
+  }
+
+  std::int64_t Index(const Coord& p) const
+  {
+    const Coord& dd = this->Plan->Domain;
+    return p[0] + dd[0] * (p[1] + dd[1] * p[2]);
+  }
+
+  /// Site @p site keeps only the labels @p allowed accepts (a unary mask).
+  void KeepOnly(std::int64_t site, const std::function<bool(int)>& allowed)
+  {
+    const Coord& dd = this->Plan->Domain;
+    const std::int64_t sites = dd[0] * dd[1] * dd[2];
+    const int words = this->Rules.Words();
+    auto& masks = this->Plan->SiteMasks;
+    if (masks.empty())
     {
-      plan->SiteMasks.assign(static_cast<std::size_t>(sites * words), 0);
+      masks.assign(static_cast<std::size_t>(sites * words), 0);
       for (std::int64_t s = 0; s < sites; ++s)
-        for (int b = 0; b < k; ++b)
-          plan->SiteMasks[static_cast<std::size_t>(s * words + b / 64)] |= std::uint64_t(1)
-            << (b % 64);
+        for (int b = 0; b < this->K; ++b)
+          masks[static_cast<std::size_t>(s * words + b / 64)] |= std::uint64_t(1) << (b % 64);
     }
-    for (int b = 0; b < k; ++b)
+    for (int b = 0; b < this->K; ++b)
       if (!allowed(b))
-        plan->SiteMasks[static_cast<std::size_t>(site * words + b / 64)] &=
-          ~(std::uint64_t(1) << (b % 64));
-  };
-  std::vector<std::tuple<std::int64_t, std::int64_t, int>> arcs;
-  auto link = [&](std::int64_t s, std::int64_t t, int rel)
+        masks[static_cast<std::size_t>(site * words + b / 64)] &= ~(std::uint64_t(1) << (b % 64));
+  }
+
+  /// A seam from @p s to @p t under relation @p rel (a unary mask when they are one site).
+  void Link(std::int64_t s, std::int64_t t, int rel)
   {
     if (s == t)
     {
-      const auto& pred = relations[static_cast<std::size_t>(rel)];
-      keepOnly(s, [&](int b) { return pred(b, b); });
+      const auto& pred = this->Relations[static_cast<std::size_t>(rel)];
+      this->KeepOnly(s, [&](int b) { return pred(b, b); });
       return;
     }
-    arcs.emplace_back(s, t, NumberOfDirections + 2 * rel);
-    arcs.emplace_back(t, s, NumberOfDirections + 2 * rel + 1);
-  };
-  Coord p;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (plan->Period[a] == 0)
-      continue;
-    const LabelMap f = plan->Shift[static_cast<std::size_t>(a)];
-    const int rel = relation(
-      0, a, 1, [&rules, a, f](int b, int c) { return rules.Allowed(2 * a, b, f.Apply(c)); });
-    for (p[2] = 0; p[2] < dd[2]; ++p[2])
-      for (p[1] = 0; p[1] < dd[1]; ++p[1])
-        for (p[0] = 0; p[0] < dd[0]; ++p[0])
-          if (p[a] == dd[a] - 1)
-          {
-            Coord q = p;
-            q[a] = 0;
-            link(index(p), index(q), rel);
-          }
+    this->Arcs.emplace_back(s, t, NumberOfDirections + 2 * rel);
+    this->Arcs.emplace_back(t, s, NumberOfDirections + 2 * rel + 1);
   }
-  if (plan->Rotate)
+
+  /// The last layer of each translated axis continues into the first, shifted by its map.
+  void TranslationSeams()
   {
-    const LabelMap f = plan->Turn;
+    const Coord& dd = this->Plan->Domain;
+    const AdjacencyRules& rules = this->Rules;
+    Coord p;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (this->Plan->Period[a] == 0)
+        continue;
+      const LabelMap f = this->Plan->Shift[static_cast<std::size_t>(a)];
+      const int rel = this->Relation(
+        0, a, 1, [&rules, a, f](int b, int c) { return rules.Allowed(2 * a, b, f.Apply(c)); });
+      for (p[2] = 0; p[2] < dd[2]; ++p[2])
+        for (p[1] = 0; p[1] < dd[1]; ++p[1])
+          for (p[0] = 0; p[0] < dd[0]; ++p[0])
+            if (p[a] == dd[a] - 1)
+            {
+              Coord q = p;
+              q[a] = 0;
+              this->Link(this->Index(p), this->Index(q), rel);
+            }
+    }
+  }
+
+  /// A quadrant's sites meet their turned copies: duplicates, the centre, and the neighbours
+  /// across the quadrant's +x and +y sides.
+  void RotationSeams()
+  {
+    const SymmetryPlan& plan = *this->Plan;
+    const AdjacencyRules& rules = this->Rules;
+    const Coord& dd = plan.Domain;
+    const std::int64_t n = this->Options.Size[0];
+    const std::int64_t h = (n + 1) / 2;
+    const LabelMap f = plan.Turn;
+    Coord p;
     for (p[2] = 0; p[2] < dd[2]; ++p[2])
       for (p[1] = 0; p[1] < h; ++p[1])
         for (p[0] = 0; p[0] < h; ++p[0])
         {
-          const std::int64_t s = index(p);
+          const std::int64_t s = this->Index(p);
           const auto at = static_cast<std::size_t>(p[0] + n * p[1]);
           // A duplicate of a lower-index domain site (odd sizes: the left arm of the centre row).
-          const std::int64_t src = plan->TurnSource[at];
-          const int j = plan->TurnPower[at];
+          const std::int64_t src = plan.TurnSource[at];
+          const int j = plan.TurnPower[at];
           if (src != p[0] + h * p[1])
-            link(s, src + h * h * p[2],
-              relation(2, 0, j, [f, j](int b, int c) { return b == f.Power(c, j); }));
+            this->Link(s, src + h * h * p[2],
+              this->Relation(2, 0, j, [f, j](int b, int c) { return b == f.Power(c, j); }));
           // The centre of an odd size is its own turned image.
           if (n % 2 == 1 && p[0] == h - 1 && p[1] == h - 1)
-            keepOnly(s, [&](int b) { return f.Apply(b) == b; });
+            this->KeepOnly(s, [&](int b) { return f.Apply(b) == b; });
           for (int d : { PlusX, PlusY })
           {
             Coord q = p;
@@ -371,63 +452,84 @@ std::unique_ptr<SymmetryPlan> PlanSymmetry(
             if (q[AxisOf(d)] < h || q[AxisOf(d)] >= n)
               continue; // inside the domain, or outside the output
             const auto qa = static_cast<std::size_t>(q[0] + n * q[1]);
-            const int jq = plan->TurnPower[qa];
-            const int rel = relation(1, d, jq,
+            const int jq = plan.TurnPower[qa];
+            const int rel = this->Relation(1, d, jq,
               [&rules, f, d, jq](int b, int c) { return rules.Allowed(d, b, f.Power(c, jq)); });
-            link(s, plan->TurnSource[qa] + h * h * p[2], rel);
+            this->Link(s, plan.TurnSource[qa] + h * h * p[2], rel);
           }
         }
   }
-  // The guide at every image of a domain site.
-  if (options.Guide)
+
+  /// The guide at every image of a domain site (unary masks).
+  void GuideAtImages(const GuideVolume& g)
   {
-    const GuideVolume& g = *options.Guide;
+    const SymmetryPlan& plan = *this->Plan;
     const std::int64_t cells = g.Dims[0] * g.Dims[1] * g.Dims[2];
     bool valid = g.Dims[0] >= 1 && g.Dims[1] >= 1 && g.Dims[2] >= 1;
-    std::vector<const std::vector<float>*> weights(static_cast<std::size_t>(k), nullptr);
+    std::vector<const std::vector<float>*> weights(static_cast<std::size_t>(this->K), nullptr);
     for (const auto& kv : g.Weights)
     {
-      const int b = rules.IndexOf(kv.first);
+      const int b = this->Rules.IndexOf(kv.first);
       valid = valid && b >= 0 && static_cast<std::int64_t>(kv.second.size()) == cells;
       if (b >= 0)
         weights[static_cast<std::size_t>(b)] = &kv.second;
     }
-    if (valid) // else the solver reports what is wrong with the guide
+    if (!valid)
+      return; // the solver reports what is wrong with the guide
+    Coord q;
+    for (q[2] = 0; q[2] < plan.Full[2]; ++q[2])
+      for (q[1] = 0; q[1] < plan.Full[1]; ++q[1])
+        for (q[0] = 0; q[0] < plan.Full[0]; ++q[0])
+        {
+          const std::int64_t cell = g.CellOf(q, plan.Full);
+          this->KeepOnly(plan.Source(q),
+            [&](int b)
+            {
+              const auto* w = weights[static_cast<std::size_t>(plan.Image(q, b))];
+              return !w || (*w)[static_cast<std::size_t>(cell)] > 0.0f;
+            });
+        }
+  }
+
+  /// The arcs by source (CSR).
+  void ArcsBySource()
+  {
+    const Coord& dd = this->Plan->Domain;
+    const std::int64_t sites = dd[0] * dd[1] * dd[2];
+    SiteArcs& out = this->Plan->Arcs;
+    out.Dims = dd;
+    out.Start.assign(static_cast<std::size_t>(sites + 1), 0);
+    for (const auto& arc : this->Arcs)
+      ++out.Start[static_cast<std::size_t>(std::get<0>(arc) + 1)];
+    for (std::int64_t s = 0; s < sites; ++s)
+      out.Start[static_cast<std::size_t>(s + 1)] += out.Start[static_cast<std::size_t>(s)];
+    out.Target.resize(this->Arcs.size());
+    out.Class.resize(this->Arcs.size());
+    std::vector<std::int64_t> fill(out.Start.begin(), out.Start.end() - 1);
+    for (const auto& arc : this->Arcs)
     {
-      Coord q;
-      for (q[2] = 0; q[2] < plan->Full[2]; ++q[2])
-        for (q[1] = 0; q[1] < plan->Full[1]; ++q[1])
-          for (q[0] = 0; q[0] < plan->Full[0]; ++q[0])
-          {
-            const std::int64_t cell = g.CellOf(q, plan->Full);
-            keepOnly(plan->Source(q),
-              [&](int b)
-              {
-                const auto* w = weights[static_cast<std::size_t>(plan->Image(q, b))];
-                return !w || (*w)[static_cast<std::size_t>(cell)] > 0.0f;
-              });
-          }
+      const auto i = static_cast<std::size_t>(fill[static_cast<std::size_t>(std::get<0>(arc))]++);
+      out.Target[i] = std::get<1>(arc);
+      out.Class[i] = std::get<2>(arc);
     }
   }
-  plan->Relation = std::make_unique<ExtendedRelation>(rules, relations);
-  // Arcs by source (CSR).
-  SiteArcs& out = plan->Arcs;
-  out.Dims = dd;
-  out.Start.assign(static_cast<std::size_t>(sites + 1), 0);
-  for (const auto& arc : arcs)
-    ++out.Start[static_cast<std::size_t>(std::get<0>(arc) + 1)];
-  for (std::int64_t s = 0; s < sites; ++s)
-    out.Start[static_cast<std::size_t>(s + 1)] += out.Start[static_cast<std::size_t>(s)];
-  out.Target.resize(arcs.size());
-  out.Class.resize(arcs.size());
-  std::vector<std::int64_t> fill(out.Start.begin(), out.Start.end() - 1);
-  for (const auto& arc : arcs)
-  {
-    const auto i = static_cast<std::size_t>(fill[static_cast<std::size_t>(std::get<0>(arc))]++);
-    out.Target[i] = std::get<1>(arc);
-    out.Class[i] = std::get<2>(arc);
-  }
-  return plan;
+
+  const AdjacencyRules& Rules;
+  const SynthesisOptions& Options;
+  std::unique_ptr<SymmetryPlan> Plan;
+  const int K;
+  std::vector<std::function<bool(int, int)>> Relations;
+  std::map<std::tuple<int, int, int>, int> RelationIndex;
+  std::vector<const LabelMap*> Maps; ///< every map, for the boundary check
+  std::vector<std::string> MapNames;
+  std::vector<std::tuple<std::int64_t, std::int64_t, int>> Arcs;
+};
+} // namespace
+
+std::unique_ptr<SymmetryPlan> PlanSymmetry(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  return SymmetryPlanner(rules, options).Build();
 }
 
 } // namespace detail

@@ -1,0 +1,511 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Continuous/ArrangementBuilder.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+namespace msynth
+{
+namespace detail
+{
+
+ArrangementBuilder::ArrangementBuilder(
+  const PlaneFamilySet& set, const ArrangementParameters& params)
+  : Set(set)
+  , Params(params)
+  , M(set.Size())
+  , Dim(params.Planar ? 2 : 3)
+{
+}
+
+void ArrangementBuilder::Build(PlaneArrangement& out)
+{
+  this->CheckParameters();
+  this->FindPlaneRanges();
+  this->ListTuples();
+  this->GenerateVertices();
+  this->NumberInScanLineOrder(out);
+  this->ListDirections(out);
+  this->LinkVertices(out);
+}
+
+void ArrangementBuilder::CheckParameters() const
+{
+  if (this->M > 64)
+  {
+    throw Error("plane arrangement: more than 64 plane families");
+  }
+  if (static_cast<int>(this->Params.Offsets.size()) != this->M ||
+    static_cast<int>(this->Params.Spacings.size()) != this->M)
+  {
+    throw Error("plane arrangement: one offset and one spacing per family are needed");
+  }
+  for (int f = 0; f < this->M; ++f)
+  {
+    if (this->Params.Spacings[static_cast<std::size_t>(f)] <= 0)
+    {
+      throw Error("plane arrangement: spacings must be positive");
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (this->Params.BoxHigh[c] < this->Params.BoxLow[c])
+    {
+      throw Error("plane arrangement: the output box is empty");
+    }
+  }
+}
+
+void ArrangementBuilder::FindPlaneRanges()
+{
+  const IntVec3& lo = this->Params.BoxLow;
+  const IntVec3& hi = this->Params.BoxHigh;
+  this->Range.resize(static_cast<std::size_t>(this->M));
+  for (int f = 0; f < this->M; ++f)
+  {
+    Wide vmin = 0, vmax = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const Wide a = Mul(this->Normal(f)[c], lo[c]), b = Mul(this->Normal(f)[c], hi[c]);
+      vmin = Add(vmin, std::min(a, b));
+      vmax = Add(vmax, std::max(a, b));
+    }
+    this->Range[static_cast<std::size_t>(f)] = { CeilDiv(
+                                                   vmin - this->Offset(f), this->SpacingOf(f)),
+      FloorDiv(vmax - this->Offset(f), this->SpacingOf(f)) };
+  }
+}
+
+Wide ArrangementBuilder::Determinant(const int* t) const
+{
+  if (this->Dim == 2)
+  {
+    return Mul(this->Normal(t[0])[0], this->Normal(t[1])[1]) -
+      Mul(this->Normal(t[0])[1], this->Normal(t[1])[0]);
+  }
+  const IntVec3 c = CrossInt(this->Normal(t[1]), this->Normal(t[2]));
+  return Add(Add(Mul(this->Normal(t[0])[0], c[0]), Mul(this->Normal(t[0])[1], c[1])),
+    Mul(this->Normal(t[0])[2], c[2]));
+}
+
+// Generating tuples: Dim families with independent normals. Each vertex is generated only by
+// the lexicographically first independent tuple among the families through it.
+void ArrangementBuilder::ListTuples()
+{
+  Wide denseSize = 0;
+  std::array<int, 3> t{ { 0, 0, 0 } };
+  const auto consider = [&]()
+  {
+    if (this->Determinant(t.data()) == 0)
+    {
+      return;
+    }
+    Tuple tu;
+    tu.F = t;
+    Wide cells = 1;
+    for (int i = 0; i < this->Dim; ++i)
+    {
+      const auto& r = this->Range[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
+      tu.Lo[static_cast<std::size_t>(i)] = r[0];
+      tu.Count[static_cast<std::size_t>(i)] = std::max<Wide>(0, r[1] - r[0] + 1);
+      cells = Mul(cells, tu.Count[static_cast<std::size_t>(i)]);
+    }
+    tu.Base = static_cast<std::size_t>(denseSize);
+    denseSize = Add(denseSize, cells);
+    this->TupleIndex[t] = this->Tuples.size();
+    this->Tuples.push_back(tu);
+  };
+  for (t[0] = 0; t[0] < this->M; ++t[0])
+  {
+    for (t[1] = t[0] + 1; t[1] < this->M; ++t[1])
+    {
+      if (this->Dim == 2)
+      {
+        t[2] = -1;
+        consider();
+        continue;
+      }
+      for (t[2] = t[1] + 1; t[2] < this->M; ++t[2])
+      {
+        consider();
+      }
+    }
+  }
+  // Candidates are the plane-index boxes of the tuples; most lie in the output box.
+  const Wide maxCandidates = std::max<Wide>(Wide(8) * this->Params.MaxVertices, Wide(10000000));
+  if (denseSize > maxCandidates || denseSize > Wide(2000000000))
+  {
+    throw Error("plane arrangement: about " +
+      std::to_string(static_cast<long long>(std::min<Wide>(denseSize, Wide(1) << 62))) +
+      " candidate vertices, more than the limit of " + std::to_string(this->Params.MaxVertices) +
+      " vertices allows; use a smaller box or a larger spacing");
+  }
+  this->Dense.assign(static_cast<std::size_t>(denseSize), -1);
+}
+
+Exact ArrangementBuilder::Solve(const Tuple& tu, const std::array<Wide, 3>& value) const
+{
+  Exact x;
+  const int* f = tu.F.data();
+  if (this->Dim == 2)
+  {
+    const IntVec3& a = this->Normal(f[0]);
+    const IntVec3& b = this->Normal(f[1]);
+    x.Den = Mul(a[0], b[1]) - Mul(a[1], b[0]);
+    x.Num[0] = Mul(value[0], b[1]) - Mul(value[1], a[1]);
+    x.Num[1] = Mul(value[1], a[0]) - Mul(value[0], b[0]);
+    x.Num[2] = 0;
+  }
+  else
+  {
+    // X = (v0 (n1×n2) + v1 (n2×n0) + v2 (n0×n1)) / det.
+    const IntVec3 c0 = CrossInt(this->Normal(f[1]), this->Normal(f[2]));
+    const IntVec3 c1 = CrossInt(this->Normal(f[2]), this->Normal(f[0]));
+    const IntVec3 c2 = CrossInt(this->Normal(f[0]), this->Normal(f[1]));
+    for (int c = 0; c < 3; ++c)
+    {
+      x.Num[static_cast<std::size_t>(c)] =
+        Add(Add(Mul(value[0], c0[c]), Mul(value[1], c1[c])), Mul(value[2], c2[c]));
+    }
+    x.Den = this->Determinant(f);
+  }
+  x.Reduce();
+  return x;
+}
+
+bool ArrangementBuilder::InBox(const Exact& x) const
+{
+  for (int c = 0; c < this->Dim; ++c)
+  {
+    if (x.Num[static_cast<std::size_t>(c)] < Mul(this->Params.BoxLow[c], x.Den) ||
+      x.Num[static_cast<std::size_t>(c)] > Mul(this->Params.BoxHigh[c], x.Den))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::uint64_t ArrangementBuilder::FamiliesThrough(
+  const Exact& x, std::vector<Wide>& planeIndex) const
+{
+  std::uint64_t mask = 0;
+  planeIndex.resize(static_cast<std::size_t>(this->M));
+  for (int f = 0; f < this->M; ++f)
+  {
+    const Wide r = DotNum(this->Normal(f), x) - Mul(this->Offset(f), x.Den);
+    const Wide s = Mul(this->SpacingOf(f), x.Den);
+    if (r % s == 0)
+    {
+      mask |= std::uint64_t(1) << f;
+      planeIndex[static_cast<std::size_t>(f)] = r / s;
+    }
+  }
+  return mask;
+}
+
+const ArrangementBuilder::Tuple* ArrangementBuilder::FirstTuple(std::uint64_t mask) const
+{
+  std::vector<int> fs;
+  for (int f = 0; f < this->M; ++f)
+  {
+    if ((mask >> f) & 1u)
+    {
+      fs.push_back(f);
+    }
+  }
+  const int k = static_cast<int>(fs.size());
+  std::array<int, 3> t{ { -1, -1, -1 } };
+  for (int a = 0; a < k; ++a)
+  {
+    for (int b = a + 1; b < k; ++b)
+    {
+      if (this->Dim == 2)
+      {
+        t = { { fs[static_cast<std::size_t>(a)], fs[static_cast<std::size_t>(b)], -1 } };
+        if (this->Determinant(t.data()) != 0)
+        {
+          return &this->Tuples[this->TupleIndex.at(t)];
+        }
+        continue;
+      }
+      for (int c = b + 1; c < k; ++c)
+      {
+        t = { { fs[static_cast<std::size_t>(a)], fs[static_cast<std::size_t>(b)],
+          fs[static_cast<std::size_t>(c)] } };
+        if (this->Determinant(t.data()) != 0)
+        {
+          return &this->Tuples[this->TupleIndex.at(t)];
+        }
+      }
+    }
+  }
+  return nullptr;
+}
+
+std::size_t ArrangementBuilder::DenseSlot(
+  const Tuple& tu, const std::vector<Wide>& planeIndex) const
+{
+  Wide idx = 0;
+  for (int i = 0; i < this->Dim; ++i)
+  {
+    const Wide c = planeIndex[static_cast<std::size_t>(tu.F[static_cast<std::size_t>(i)])] -
+      tu.Lo[static_cast<std::size_t>(i)];
+    idx = idx * tu.Count[static_cast<std::size_t>(i)] + c;
+  }
+  return tu.Base + static_cast<std::size_t>(idx);
+}
+
+// 1. Vertices: every point of a tuple's planes in the box, generated by its first tuple only.
+void ArrangementBuilder::GenerateVertices()
+{
+  std::vector<Wide> planeIndex;
+  for (const Tuple& tu : this->Tuples)
+  {
+    std::array<Wide, 3> c{ { 0, 0, 0 } };
+    std::array<Wide, 3> value{ { 0, 0, 0 } };
+    const Wide n2 = this->Dim == 3 ? tu.Count[2] : 1;
+    for (c[0] = 0; c[0] < tu.Count[0]; ++c[0])
+    {
+      for (c[1] = 0; c[1] < tu.Count[1]; ++c[1])
+      {
+        for (c[2] = 0; c[2] < n2; ++c[2])
+        {
+          for (int i = 0; i < this->Dim; ++i)
+          {
+            const int f = tu.F[static_cast<std::size_t>(i)];
+            value[static_cast<std::size_t>(i)] = Add(this->Offset(f),
+              Mul(tu.Lo[static_cast<std::size_t>(i)] + c[static_cast<std::size_t>(i)],
+                this->SpacingOf(f)));
+          }
+          const Exact x = this->Solve(tu, value);
+          if (!this->InBox(x))
+          {
+            continue;
+          }
+          const std::uint64_t mask = this->FamiliesThrough(x, planeIndex);
+          if (this->FirstTuple(mask) != &tu)
+          {
+            continue;
+          }
+          if (static_cast<std::int64_t>(this->Vertices.size()) >= this->Params.MaxVertices)
+          {
+            throw Error("plane arrangement: more than " + std::to_string(this->Params.MaxVertices) +
+              " vertices; use a smaller box or a larger spacing");
+          }
+          this->Dense[this->DenseSlot(tu, planeIndex)] =
+            static_cast<std::int32_t>(this->Vertices.size());
+          this->Vertices.push_back(x);
+          this->Masks.push_back(mask);
+        }
+      }
+    }
+  }
+}
+
+// 2. Scan-line order: by z, then y, then x (exactly), so ids follow the solver's sweep.
+void ArrangementBuilder::NumberInScanLineOrder(PlaneArrangement& out)
+{
+  const std::size_t n = this->Vertices.size();
+  std::vector<std::int32_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+    [this](std::int32_t a, std::int32_t b)
+    {
+      const Exact& p = this->Vertices[static_cast<std::size_t>(a)];
+      const Exact& q = this->Vertices[static_cast<std::size_t>(b)];
+      for (int c = 2; c >= 0; --c)
+      {
+        const Wide l = Mul(p.Num[static_cast<std::size_t>(c)], q.Den);
+        const Wide r = Mul(q.Num[static_cast<std::size_t>(c)], p.Den);
+        if (l != r)
+        {
+          return l < r;
+        }
+      }
+      return false;
+    });
+  std::vector<std::int32_t> rank(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    rank[static_cast<std::size_t>(order[i])] = static_cast<std::int32_t>(i);
+  }
+  for (auto& id : this->Dense)
+  {
+    if (id >= 0)
+    {
+      id = rank[static_cast<std::size_t>(id)];
+    }
+  }
+  std::vector<Exact> sorted(n);
+  out.Masks.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    sorted[i] = this->Vertices[static_cast<std::size_t>(order[i])];
+    out.Masks[i] = this->Masks[static_cast<std::size_t>(order[i])];
+  }
+  this->Vertices.swap(sorted);
+  out.Positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Positions[i][static_cast<std::size_t>(c)] =
+        this->Params.Origin[static_cast<std::size_t>(c)] +
+        this->Params.Quantum *
+          static_cast<double>(this->Vertices[i].Num[static_cast<std::size_t>(c)]) /
+          static_cast<double>(this->Vertices[i].Den);
+    }
+  }
+}
+
+IntVec3 ArrangementBuilder::LineDirection(int a, int b) const
+{
+  if (this->Dim == 2)
+  {
+    const IntVec3& na = this->Normal(a);
+    return Primitive({ -na[1], na[0], 0 });
+  }
+  return Primitive(CrossInt(this->Normal(a), this->Normal(b)));
+}
+
+// 3. Direction classes: every line direction of the arrangement, both ways.
+void ArrangementBuilder::ListDirections(PlaneArrangement& out)
+{
+  for (int a = 0; a < this->M; ++a)
+  {
+    for (int b = this->Dim == 2 ? a : a + 1; b < (this->Dim == 2 ? a + 1 : this->M); ++b)
+    {
+      const IntVec3 d = this->LineDirection(a, b);
+      if (d == IntVec3{ 0, 0, 0 } || this->DirectionIndex.count(d))
+      {
+        continue;
+      }
+      this->DirectionIndex[d] = static_cast<int>(out.Directions.size());
+      out.Directions.push_back(d);
+      out.Directions.push_back({ -d[0], -d[1], -d[2] });
+    }
+  }
+}
+
+std::int32_t ArrangementBuilder::NextAlong(const Exact& x, const IntVec3& d) const
+{
+  // Nearest crossing t = tn / td > 0 with another family's plane.
+  Wide bestN = -1, bestD = 1;
+  for (int f = 0; f < this->M; ++f)
+  {
+    const Wide s = static_cast<Wide>(this->Normal(f)[0]) * d[0] +
+      static_cast<Wide>(this->Normal(f)[1]) * d[1] + static_cast<Wide>(this->Normal(f)[2]) * d[2];
+    if (s == 0)
+    {
+      continue;
+    }
+    const Wide value = DotNum(this->Normal(f), x) - Mul(this->Offset(f), x.Den); // × Den
+    const Wide step = Mul(this->SpacingOf(f), x.Den);
+    const Wide c = s > 0 ? FloorDiv(value, step) + 1 : CeilDiv(value, step) - 1;
+    // t = (c·S·Den − value) / (Den · s)
+    Wide tn = Mul(c, step) - value;
+    Wide td = Mul(x.Den, s);
+    if (td < 0)
+    {
+      tn = -tn;
+      td = -td;
+    }
+    if (bestN < 0 || Mul(tn, bestD) < Mul(bestN, td))
+    {
+      bestN = tn;
+      bestD = td;
+    }
+  }
+  if (bestN <= 0)
+  {
+    return -1;
+  }
+  Exact y;
+  for (int c = 0; c < 3; ++c)
+  {
+    y.Num[static_cast<std::size_t>(c)] =
+      Add(Mul(x.Num[static_cast<std::size_t>(c)], bestD), Mul(Mul(bestN, d[c]), x.Den));
+  }
+  y.Den = Mul(x.Den, bestD);
+  y.Reduce();
+  if (!this->InBox(y))
+  {
+    return -1;
+  }
+  std::vector<Wide> planeIndex;
+  const Tuple* tu = this->FirstTuple(this->FamiliesThrough(y, planeIndex));
+  if (!tu)
+  {
+    throw Error("plane arrangement: internal error (a crossing is not a vertex)");
+  }
+  const std::int32_t target = this->Dense[this->DenseSlot(*tu, planeIndex)];
+  if (target < 0)
+  {
+    throw Error("plane arrangement: internal error (a vertex was not generated)");
+  }
+  return target;
+}
+
+// 4. Links: from each vertex both ways along every line through it to the next vertex.
+void ArrangementBuilder::LinkVertices(PlaneArrangement& out)
+{
+  const std::size_t n = this->Vertices.size();
+  out.LinkStart.assign(n + 1, 0);
+  std::vector<int> lines;
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    const std::uint64_t mask = out.Masks[v];
+    lines.clear();
+    for (int a = 0; a < this->M; ++a)
+    {
+      if (!((mask >> a) & 1u))
+      {
+        continue;
+      }
+      for (int b = this->Dim == 2 ? a : a + 1; b < (this->Dim == 2 ? a + 1 : this->M); ++b)
+      {
+        if (!((mask >> b) & 1u))
+        {
+          continue;
+        }
+        const IntVec3 d = this->LineDirection(a, b);
+        if (d == IntVec3{ 0, 0, 0 })
+        {
+          continue;
+        }
+        const int k = this->DirectionIndex.at(d);
+        if (std::find(lines.begin(), lines.end(), k) == lines.end())
+        {
+          lines.push_back(k);
+        }
+      }
+    }
+    std::sort(lines.begin(), lines.end());
+    for (int k : lines)
+    {
+      for (int sign = 0; sign < 2; ++sign)
+      {
+        const int dc = k + sign;
+        const std::int32_t target =
+          this->NextAlong(this->Vertices[v], out.Directions[static_cast<std::size_t>(dc)]);
+        out.Links.push_back({ target, static_cast<std::int32_t>(dc) });
+        if (target < 0)
+        {
+          ++out.OuterEdges;
+        }
+        else if (static_cast<std::size_t>(target) > v)
+        {
+          ++out.InnerEdges;
+        }
+      }
+    }
+    out.LinkStart[v + 1] = static_cast<std::int64_t>(out.Links.size());
+  }
+}
+
+} // namespace detail
+} // namespace msynth

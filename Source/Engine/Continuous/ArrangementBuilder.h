@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file ArrangementBuilder.h
+ * @brief How a PlaneArrangement is built (internal; D§4.5.1-4.5.2, design note §3), in named
+ * steps: check the parameters, find each family's planes through the box, list the generating
+ * tuples of families, (1) generate the vertices exactly, (2) number them in scan-line order,
+ * (3) list the line directions, (4) link every vertex to the next one along each line.
+ */
+#include "Continuous/ExactArithmetic.h"
+#include "Continuous/PlaneArrangement.h"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace msynth
+{
+namespace detail
+{
+
+class ArrangementBuilder
+{
+public:
+  ArrangementBuilder(const PlaneFamilySet& set, const ArrangementParameters& params);
+
+  /// Builds the arrangement into @p out's vertices, directions and links.
+  void Build(PlaneArrangement& out);
+
+private:
+  /// dim families with independent normals, and their block of candidate vertices in Dense.
+  struct Tuple
+  {
+    std::array<int, 3> F{};
+    std::array<Wide, 3> Lo{};
+    std::array<Wide, 3> Count{};
+    std::size_t Base = 0;
+  };
+
+  void CheckParameters() const;
+  void FindPlaneRanges();
+  void ListTuples();
+  void GenerateVertices();
+  void NumberInScanLineOrder(PlaneArrangement& out);
+  void ListDirections(PlaneArrangement& out);
+  void LinkVertices(PlaneArrangement& out);
+  /// The next vertex from @p x along direction class @p dc (-1: the line leaves the box).
+  std::int32_t NextAlong(const Exact& x, const IntVec3& d) const;
+
+  const IntVec3& Normal(int f) const { return this->Set.Normal(f); }
+  Wide Offset(int f) const
+  {
+    return static_cast<Wide>(this->Params.Offsets[static_cast<std::size_t>(f)]);
+  }
+  Wide SpacingOf(int f) const
+  {
+    return static_cast<Wide>(this->Params.Spacings[static_cast<std::size_t>(f)]);
+  }
+  Wide Determinant(const int* t) const;
+  /// The intersection point of the tuple's planes of values @p value.
+  Exact Solve(const Tuple& tu, const std::array<Wide, 3>& value) const;
+  bool InBox(const Exact& x) const;
+  /// Families with a plane through @p x (bits), their plane indices into @p planeIndex.
+  std::uint64_t FamiliesThrough(const Exact& x, std::vector<Wide>& planeIndex) const;
+  /// The lexicographically first independent tuple among the families of @p mask.
+  const Tuple* FirstTuple(std::uint64_t mask) const;
+  std::size_t DenseSlot(const Tuple& tu, const std::vector<Wide>& planeIndex) const;
+  IntVec3 LineDirection(int a, int b) const;
+
+  const PlaneFamilySet& Set;
+  const ArrangementParameters& Params;
+  int M = 0;                              ///< families
+  int Dim = 3;                            ///< 2 for a planar arrangement
+  std::vector<std::array<Wide, 2>> Range; ///< per family: plane indices meeting the box
+  std::vector<Tuple> Tuples;
+  std::map<std::array<int, 3>, std::size_t> TupleIndex;
+  std::vector<std::int32_t> Dense; ///< per candidate of every tuple: vertex id or -1
+  std::vector<Exact> Vertices;     ///< exact positions, then in scan-line order
+  std::vector<std::uint64_t> Masks;
+  std::map<IntVec3, int> DirectionIndex;
+};
+
+} // namespace detail
+} // namespace msynth
