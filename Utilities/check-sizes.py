@@ -8,9 +8,9 @@ its closing brace. Comments, strings and character literals are blanked first, s
 them do not count. Prints every offender and exits 1 if there is one; `--report N` lists every
 function of N lines or more instead, longest first.
 
-Utilities/size-exceptions.txt lists the offenders still waiting to be split ("LINES PATH NAME",
-one a line): a listed function or file may not grow beyond its listed size, and nothing new may
-join the list. Remove a line when its function is split.
+Utilities/size-exceptions.txt, when it exists, lists offenders allowed for a while ("LINES PATH
+NAME", one a line): a listed function or file may not grow beyond its listed size. There is none
+today; keep it that way.
 """
 import argparse
 import pathlib

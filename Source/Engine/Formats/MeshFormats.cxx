@@ -162,10 +162,13 @@ std::uint64_t CheckedIndex(
 }
 } // namespace
 
-PolyhedralExample ReadPLYExample(const std::string& path)
+namespace
 {
-  const std::string bytes = Slurp(path);
-  std::size_t pos = 0;
+/// The PLY header: its format (0 ascii, 1 little endian, 2 big endian) and elements; @p pos
+/// ends at the first byte of the body.
+int ReadPlyHeader(const std::string& bytes, const std::string& path, std::size_t& pos,
+  std::vector<PlyElement>& elements)
+{
   auto line = [&]() -> std::string
   {
     const std::size_t end = bytes.find('\n', pos);
@@ -180,7 +183,6 @@ PolyhedralExample ReadPLYExample(const std::string& path)
   if (bytes.compare(0, 3, "ply") != 0 || line() != "ply")
     throw Error::InFile(path, "is not a PLY file (it does not start with 'ply')");
   int format = -1;
-  std::vector<PlyElement> elements;
   for (int lines = 0;; ++lines)
   {
     if (lines > 100000)
@@ -244,6 +246,16 @@ PolyhedralExample ReadPLYExample(const std::string& path)
   }
   if (format < 0)
     throw Error::InFile(path, "has no format line");
+  return format;
+}
+} // namespace
+
+PolyhedralExample ReadPLYExample(const std::string& path)
+{
+  const std::string bytes = Slurp(path);
+  std::size_t pos = 0;
+  std::vector<PlyElement> elements;
+  const int format = ReadPlyHeader(bytes, path, pos, elements);
   PlyBody body(bytes, pos, format, path);
   MeshBuilder mesh(path);
   std::vector<int> pointOf; // PLY vertex index -> merged point

@@ -138,71 +138,107 @@ AdjacencyRules Tileset::Rules() const
   return AdjacencyRules::FromPairs(values, weights, this->Pairs);
 }
 
-Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subsetName)
+namespace
 {
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (text.size() > (std::size_t(1) << 24))
-    throw Error::InFile(name, "is larger than 16 MiB, too large for a tileset");
-  XmlReader xml(std::move(text), name);
-  const XmlElement root = xml.Parse();
-  if (root.Name != "set")
-    xml.Fail("the top-level element is <" + root.Name + ">, not <set>", root.Line);
+/// A tileset read as WaveFunctionCollapse reads its XML: the <set>'s attributes, the tiles of
+/// the chosen subset with their symmetry and weight, and the neighbour rules, each in all eight
+/// rotations and reflections of the two-tile configuration.
+class TilesetParser
+{
+public:
+  TilesetParser(XmlReader& xml, const XmlElement& root, const std::string& name)
+    : Xml(xml)
+    , Root(root)
+    , Name(name)
+  {
+    if (root.Name != "set")
+      xml.Fail("the top-level element is <" + root.Name + ">, not <set>", root.Line);
+  }
 
-  Tileset set;
-  if (const std::string* unique = root.Attribute("unique"))
+  Tileset Read(const std::string& subsetName)
   {
-    std::string u = *unique;
-    for (auto& ch : u)
-      ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    set.Unique = u == "true";
+    this->ReadSetAttributes();
+    this->Tiles = Child(this->Root, "tiles");
+    if (!this->Tiles)
+      this->Xml.Fail("<set> has no <tiles>", this->Root.Line);
+    this->ReadTiles(this->AllowedTiles(subsetName));
+    if (this->Set.Tiles.empty())
+      this->Xml.Fail("the tileset has no tiles" +
+          (subsetName.empty() ? std::string() : " in subset '" + subsetName + "'"),
+        this->Tiles->Line);
+    this->ReadNeighbors();
+    return std::move(this->Set);
   }
-  if (const std::string* size = root.Attribute("size"))
+
+private:
+  void ReadSetAttributes()
   {
-    char* end = nullptr;
-    const long v = std::strtol(size->c_str(), &end, 10);
-    if (end == size->c_str() || *end || v < 1 || v > 4096)
-      xml.Fail("<set size=\"" + *size + "\">: the tile size is a whole number of pixels, 1 to 4096",
-        root.Line);
-    set.TileSize = static_cast<int>(v);
+    if (const std::string* unique = this->Root.Attribute("unique"))
+    {
+      std::string u = *unique;
+      for (auto& ch : u)
+        ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      this->Set.Unique = u == "true";
+    }
+    if (const std::string* size = this->Root.Attribute("size"))
+    {
+      char* end = nullptr;
+      const long v = std::strtol(size->c_str(), &end, 10);
+      if (end == size->c_str() || *end || v < 1 || v > 4096)
+        this->Xml.Fail(
+          "<set size=\"" + *size + "\">: the tile size is a whole number of pixels, 1 to 4096",
+          this->Root.Line);
+      this->Set.TileSize = static_cast<int>(v);
+    }
   }
-  // The tiles of the chosen subset.
-  std::set<std::string> allowed;
-  if (!subsetName.empty())
+
+  /// The tile names of subset @p subsetName (empty: every tile).
+  std::set<std::string> AllowedTiles(const std::string& subsetName) const
   {
-    const XmlElement* subsets = Child(root, "subsets");
+    std::set<std::string> allowed;
+    if (subsetName.empty())
+      return allowed;
+    const XmlElement* subsets = Child(this->Root, "subsets");
     const XmlElement* chosen = nullptr;
     if (subsets)
       for (const auto& s : subsets->Children) // by reference: chosen points into the tree
         if (s.Name == "subset" && s.Attribute("name") && *s.Attribute("name") == subsetName)
           chosen = &s;
     if (!chosen)
-      throw Error::InFile(name, "has no subset named '" + subsetName + "'");
+      throw Error::InFile(this->Name, "has no subset named '" + subsetName + "'");
     for (const auto& t : chosen->Children)
       if (t.Name == "tile" && t.Attribute("name"))
         allowed.insert(*t.Attribute("name"));
+    return allowed;
   }
-  const XmlElement* tiles = Child(root, "tiles");
-  if (!tiles)
-    xml.Fail("<set> has no <tiles>", root.Line);
-  for (const auto& t : tiles->Children)
+
+  void ReadTiles(const std::set<std::string>& allowed)
   {
-    if (t.Name != "tile")
-      continue;
-    const std::string* tileName = t.Attribute("name");
-    if (!tileName || tileName->empty())
-      xml.Fail("a <tile> has no name", t.Line);
-    for (const auto& other : set.Tiles)
-      if (other.Name == *tileName)
-        xml.Fail("tile '" + *tileName + "' is defined twice", t.Line);
-    if (!allowed.empty() && !allowed.count(*tileName))
-      continue;
+    for (const auto& t : this->Tiles->Children)
+    {
+      if (t.Name != "tile")
+        continue;
+      const std::string* tileName = t.Attribute("name");
+      if (!tileName || tileName->empty())
+        this->Xml.Fail("a <tile> has no name", t.Line);
+      for (const auto& other : this->Set.Tiles)
+        if (other.Name == *tileName)
+          this->Xml.Fail("tile '" + *tileName + "' is defined twice", t.Line);
+      if (!allowed.empty() && !allowed.count(*tileName))
+        continue;
+      this->AddTile(t, *tileName);
+    }
+  }
+
+  void AddTile(const XmlElement& t, const std::string& tileName)
+  {
     TilesetTile tile;
-    tile.Name = *tileName;
+    tile.Name = tileName;
     const std::string* symmetry = t.Attribute("symmetry");
     tile.Symmetry = symmetry ? (symmetry->size() == 1 ? (*symmetry)[0] : '?') : 'X';
     tile.Orientations = OrientationCount(tile.Symmetry);
     if (tile.Orientations == 0)
-      xml.Fail("tile '" + tile.Name + "' has symmetry '" + (symmetry ? *symmetry : "") +
+      this->Xml.Fail("tile '" + tile.Name + "' has symmetry '" + (symmetry ? *symmetry : "") +
           "'; the classes are X, I, \\, L, T and F",
         t.Line);
     if (const std::string* weight = t.Attribute("weight"))
@@ -210,29 +246,25 @@ Tileset ReadTileset(std::istream& in, const std::string& name, const std::string
       char* end = nullptr;
       tile.Weight = std::strtod(weight->c_str(), &end);
       if (end == weight->c_str() || *end || !(tile.Weight > 0.0) || !std::isfinite(tile.Weight))
-        xml.Fail(
+        this->Xml.Fail(
           "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
           t.Line);
     }
-    tile.FirstLabel = set.NumberOfLabels();
+    tile.FirstLabel = this->Set.NumberOfLabels();
     for (int k = 0; k < tile.Orientations; ++k)
     {
-      set.LabelTile.push_back(static_cast<int>(set.Tiles.size()));
-      set.LabelOrientation.push_back(k);
+      this->Set.LabelTile.push_back(static_cast<int>(this->Set.Tiles.size()));
+      this->Set.LabelOrientation.push_back(k);
     }
-    set.Tiles.push_back(tile);
+    this->Set.Tiles.push_back(tile);
   }
-  if (set.Tiles.empty())
-    xml.Fail("the tileset has no tiles" +
-        (subsetName.empty() ? std::string() : " in subset '" + subsetName + "'"),
-      tiles->Line);
 
-  // Neighbors: each holds in all 8 rotations and reflections of the two-tile configuration.
-  auto parseRef = [&](const XmlElement& n, const char* side, int& tileIndex, int& orientation)
+  /// One side of a <neighbor>: its tile and orientation. False for a tile outside the subset.
+  bool ParseRef(const XmlElement& n, const char* side, int& tileIndex, int& orientation) const
   {
     const std::string* ref = n.Attribute(side);
     if (!ref)
-      xml.Fail(std::string("a <neighbor> has no '") + side + "'", n.Line);
+      this->Xml.Fail(std::string("a <neighbor> has no '") + side + "'", n.Line);
     std::istringstream words(*ref);
     std::string tileName;
     words >> tileName;
@@ -241,80 +273,105 @@ Tileset ReadTileset(std::istream& in, const std::string& name, const std::string
     if (words >> orientation)
       words >> extra;
     else if (!words.eof())
-      xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
+      this->Xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
     if (!extra.empty())
-      xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
+      this->Xml.Fail("'" + *ref + "' is not 'tile' or 'tile orientation'", n.Line);
     if (orientation < 0 || orientation > 7)
-      xml.Fail("'" + *ref +
+      this->Xml.Fail("'" + *ref +
           "': the number after a tile name is one of the 8 rotations and "
           "reflections, 0 to 7",
         n.Line);
     tileIndex = -1;
-    for (std::size_t i = 0; i < set.Tiles.size(); ++i)
-      if (set.Tiles[i].Name == tileName)
+    for (std::size_t i = 0; i < this->Set.Tiles.size(); ++i)
+      if (this->Set.Tiles[i].Name == tileName)
         tileIndex = static_cast<int>(i);
     if (tileIndex < 0)
     {
       bool defined = false;
-      for (const auto& t : tiles->Children)
+      for (const auto& t : this->Tiles->Children)
         defined |= t.Attribute("name") && *t.Attribute("name") == tileName;
       if (!defined)
-        xml.Fail("a <neighbor> names tile '" + tileName + "', which is not defined", n.Line);
+        this->Xml.Fail("a <neighbor> names tile '" + tileName + "', which is not defined", n.Line);
       return false; // defined but outside the chosen subset
     }
     // As WaveFunctionCollapse reads it (action[first][k]): element k of the dihedral group
     // (identity, three quarter turns, then the four mirrored) applied to orientation 0.
     orientation =
-      DihedralAction(set.Tiles[static_cast<std::size_t>(tileIndex)].Symmetry, 0, orientation);
+      DihedralAction(this->Set.Tiles[static_cast<std::size_t>(tileIndex)].Symmetry, 0, orientation);
     return true;
-  };
-  std::array<std::set<std::pair<int, int>>, 3> pairs;
-  if (const XmlElement* neighbors = Child(root, "neighbors"))
-  {
-    for (const auto& n : neighbors->Children)
-    {
-      if (n.Name != "neighbor")
-        continue;
-      int tiles2[2], orient[2];
-      const bool a = parseRef(n, "left", tiles2[0], orient[0]);
-      const bool b = parseRef(n, "right", tiles2[1], orient[1]);
-      if (!a || !b)
-        continue;
-      for (int mirror = 0; mirror < 2; ++mirror)
-        for (int turns = 0; turns < 4; ++turns)
-        {
-          int px[2] = { 0, 1 }, py[2] = { 0, 0 }, label[2];
-          for (int s = 0; s < 2; ++s)
-          {
-            const TilesetTile& t = set.Tiles[static_cast<std::size_t>(tiles2[s])];
-            int o = orient[s];
-            for (int r = 0; r < turns; ++r)
-            {
-              const int x = px[s];
-              px[s] = -py[s];
-              py[s] = x;
-              o = TransformOrientation(t.Symmetry, o, false);
-            }
-            if (mirror)
-            {
-              px[s] = -px[s];
-              o = TransformOrientation(t.Symmetry, o, true);
-            }
-            label[s] = t.FirstLabel + o;
-          }
-          if (px[0] != px[1])
-            pairs[0].insert(px[0] < px[1] ? std::make_pair(label[0], label[1])
-                                          : std::make_pair(label[1], label[0]));
-          else
-            pairs[1].insert(py[0] < py[1] ? std::make_pair(label[0], label[1])
-                                          : std::make_pair(label[1], label[0]));
-        }
-    }
   }
-  for (int axis = 0; axis < 2; ++axis)
-    set.Pairs[static_cast<std::size_t>(axis)].assign(
-      pairs[static_cast<std::size_t>(axis)].begin(), pairs[static_cast<std::size_t>(axis)].end());
-  return set;
+
+  /// The pairs of one rule in all 8 rotations and reflections of the configuration.
+  void AddRule(const int tiles[2], const int orient[2],
+    std::array<std::set<std::pair<int, int>>, 3>& pairs) const
+  {
+    for (int mirror = 0; mirror < 2; ++mirror)
+      for (int turns = 0; turns < 4; ++turns)
+      {
+        int px[2] = { 0, 1 }, py[2] = { 0, 0 }, label[2];
+        for (int s = 0; s < 2; ++s)
+        {
+          const TilesetTile& t = this->Set.Tiles[static_cast<std::size_t>(tiles[s])];
+          int o = orient[s];
+          for (int r = 0; r < turns; ++r)
+          {
+            const int x = px[s];
+            px[s] = -py[s];
+            py[s] = x;
+            o = TransformOrientation(t.Symmetry, o, false);
+          }
+          if (mirror)
+          {
+            px[s] = -px[s];
+            o = TransformOrientation(t.Symmetry, o, true);
+          }
+          label[s] = t.FirstLabel + o;
+        }
+        if (px[0] != px[1])
+          pairs[0].insert(px[0] < px[1] ? std::make_pair(label[0], label[1])
+                                        : std::make_pair(label[1], label[0]));
+        else
+          pairs[1].insert(py[0] < py[1] ? std::make_pair(label[0], label[1])
+                                        : std::make_pair(label[1], label[0]));
+      }
+  }
+
+  void ReadNeighbors()
+  {
+    std::array<std::set<std::pair<int, int>>, 3> pairs;
+    if (const XmlElement* neighbors = Child(this->Root, "neighbors"))
+    {
+      for (const auto& n : neighbors->Children)
+      {
+        if (n.Name != "neighbor")
+          continue;
+        int tiles[2], orient[2];
+        const bool a = this->ParseRef(n, "left", tiles[0], orient[0]);
+        const bool b = this->ParseRef(n, "right", tiles[1], orient[1]);
+        if (a && b)
+          this->AddRule(tiles, orient, pairs);
+      }
+    }
+    for (std::size_t axis = 0; axis < 2; ++axis)
+      this->Set.Pairs[axis].assign(pairs[axis].begin(), pairs[axis].end());
+  }
+
+  XmlReader& Xml;
+  const XmlElement& Root;
+  const std::string& Name;
+  const XmlElement* Tiles = nullptr;
+  Tileset Set;
+};
+} // namespace
+
+Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subsetName)
+{
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.size() > (std::size_t(1) << 24))
+    throw Error::InFile(name, "is larger than 16 MiB, too large for a tileset");
+  XmlReader xml(std::move(text), name);
+  const XmlElement root = xml.Parse();
+  return TilesetParser(xml, root, name).Read(subsetName);
 }
 
 Tileset ReadTilesetFile(const std::string& path, const std::string& subset)

@@ -6,6 +6,7 @@
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "VDB/IsolatedRead.h"
 
 #include <cerrno>
 #include <csignal>
@@ -623,299 +624,6 @@ std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fil
   return result;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Reading in a child process. OpenVDB trusts sizes in the file (a negative Blosc chunk size
-// overflows its buffer), so the library reads in a forked child; only our own serialization of
-// the result crosses back, checked as untrusted data. A crash or overflow ends the child, and
-// the parent reports the file as corrupt.
-
-/// Appends values to a byte string (the child's side).
-struct Packer
-{
-  std::string Bytes;
-  void Raw(const void* p, std::size_t n) { this->Bytes.append(static_cast<const char*>(p), n); }
-  void U64(std::uint64_t v) { this->Raw(&v, 8); }
-  void F64(double v) { this->Raw(&v, 8); }
-  void Str(const std::string& v)
-  {
-    this->U64(v.size());
-    this->Raw(v.data(), v.size());
-  }
-  void Map(const MetadataMap& m)
-  {
-    this->U64(m.size());
-    for (const auto& kv : m)
-    {
-      this->Str(kv.first);
-      this->Str(kv.second);
-    }
-  }
-};
-
-/// Reads them back with every size checked (the parent's side).
-struct Unpacker
-{
-  const std::string& Bytes;
-  const std::string& Path;
-  std::size_t Pos = 0;
-  void Raw(void* p, std::size_t n)
-  {
-    if (n > this->Bytes.size() - this->Pos)
-      throw Error::InFile(this->Path, "could not be read (the reading process sent too little)");
-    std::memcpy(p, this->Bytes.data() + this->Pos, n);
-    this->Pos += n;
-  }
-  std::uint64_t U64(std::uint64_t limit = std::numeric_limits<std::uint64_t>::max())
-  {
-    std::uint64_t v = 0;
-    this->Raw(&v, 8);
-    if (v > limit)
-      throw Error::InFile(
-        this->Path, "could not be read (a size out of range from the reading process)");
-    return v;
-  }
-  double F64()
-  {
-    double v = 0;
-    this->Raw(&v, 8);
-    return v;
-  }
-  std::string Str()
-  {
-    std::string v(static_cast<std::size_t>(this->U64(this->Bytes.size() - this->Pos)), '\0');
-    this->Raw(&v[0], v.size());
-    return v;
-  }
-  MetadataMap Map()
-  {
-    MetadataMap m;
-    for (std::uint64_t n = this->U64(this->Bytes.size()); n > 0; --n)
-    {
-      std::string key = this->Str();
-      m[key] = this->Str();
-    }
-    return m;
-  }
-};
-
-void PackHeader(Packer& p, const GridHeader& h)
-{
-  p.Str(h.Name);
-  p.U64(static_cast<std::uint64_t>(h.Type));
-  for (int a = 0; a < 3; ++a)
-  {
-    p.U64(static_cast<std::uint64_t>(
-      static_cast<std::int64_t>(h.IndexMin[static_cast<std::size_t>(a)])));
-    p.U64(static_cast<std::uint64_t>(h.Dims[static_cast<std::size_t>(a)]));
-    p.F64(h.Origin[static_cast<std::size_t>(a)]);
-    p.F64(h.Spacing[static_cast<std::size_t>(a)]);
-  }
-  p.F64(h.Background);
-  p.Str(h.GridClass);
-  p.Map(h.Metadata);
-}
-
-GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels)
-{
-  GridHeader h;
-  h.Name = u.Str();
-  h.Type = static_cast<ValueType>(u.U64(2));
-  for (int a = 0; a < 3; ++a)
-  {
-    h.IndexMin[static_cast<std::size_t>(a)] =
-      static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
-    h.Dims[static_cast<std::size_t>(a)] =
-      static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
-    h.Origin[static_cast<std::size_t>(a)] = u.F64();
-    h.Spacing[static_cast<std::size_t>(a)] = u.F64();
-  }
-  h.Background = u.F64();
-  h.GridClass = u.Str();
-  h.Metadata = u.Map();
-  if (h.Dims[0] * h.Dims[1] > maxVoxels || h.NumberOfVoxels() > maxVoxels)
-    throw Error::InFile(u.Path, "could not be read (a grid out of range from the reading process)");
-  return h;
-}
-
-/// Writes all of @p n bytes at @p data to @p fd (the child's side).
-void WriteAll(int fd, const void* data, std::size_t n)
-{
-  const char* p = static_cast<const char*>(data);
-  while (n > 0)
-  {
-    const ssize_t k = ::write(fd, p, n);
-    if (k < 0 && errno == EINTR)
-      continue;
-    if (k <= 0)
-      ::_exit(1); // the parent stopped listening
-    p += k;
-    n -= static_cast<std::size_t>(k);
-  }
-}
-
-/// The child's answer: 'O', then @p bytes as a length-prefixed block (PipeReader::Block).
-void SendBlock(int fd, const std::string& bytes)
-{
-  const std::uint64_t n = bytes.size();
-  WriteAll(fd, "O", 1);
-  WriteAll(fd, &n, 8);
-  WriteAll(fd, bytes.data(), bytes.size());
-}
-
-/// Reads exactly what the parent asks for from the child's pipe.
-class PipeReader
-{
-public:
-  PipeReader(int fd, const std::string& path)
-    : Fd(fd)
-    , Path(path)
-  {
-  }
-  /// Up to @p n bytes; fewer only at the end of the pipe.
-  std::size_t Some(void* data, std::size_t n)
-  {
-    char* p = static_cast<char*>(data);
-    std::size_t done = 0;
-    while (done < n)
-    {
-      const ssize_t k = ::read(this->Fd, p + done, n - done);
-      if (k < 0 && errno == EINTR)
-        continue;
-      if (k <= 0)
-        break;
-      done += static_cast<std::size_t>(k);
-    }
-    return done;
-  }
-  void Exact(void* data, std::size_t n)
-  {
-    if (this->Some(data, n) != n)
-      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
-  }
-  std::uint64_t U64()
-  {
-    std::uint64_t v = 0;
-    this->Exact(&v, 8);
-    return v;
-  }
-  /// A length-prefixed block of at most 64 MiB (the child's side: SendBlock).
-  std::string Block()
-  {
-    const std::uint64_t n = this->U64();
-    if (n > (std::uint64_t(64) << 20))
-      throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
-    std::string bytes(static_cast<std::size_t>(n), '\0');
-    this->Exact(&bytes[0], bytes.size());
-    return bytes;
-  }
-
-private:
-  int Fd;
-  const std::string& Path;
-};
-
-/**
- * Runs @p child in a forked child that writes to the given pipe ('O' and its data, or 'E' and
- * a message), and @p parent on the parent's end, which reads that data. A crash of the child,
- * or data that do not follow the protocol, is an Error naming @p path.
- */
-template <typename Result>
-Result Isolated(const std::string& path, std::uint64_t memoryBudget,
-  const std::function<void(int)>& child, const std::function<Result(PipeReader&)>& parent)
-{
-  int fds[2];
-  if (::pipe(fds) != 0)
-    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
-  const pid_t pid = ::fork();
-  if (pid < 0)
-  {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
-  }
-  if (pid == 0)
-  {
-    ::close(fds[0]);
-    std::string message;
-    try
-    {
-      // One thread in the child: the parent's TBB workers do not exist here. Its address
-      // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
-      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-      if (const std::uint64_t used = VirtualSize())
-      {
-        rlimit limit{};
-        ::getrlimit(RLIMIT_AS, &limit);
-        const std::uint64_t cap = used + memoryBudget;
-        if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
-        {
-          limit.rlim_cur = static_cast<rlim_t>(cap);
-          ::setrlimit(RLIMIT_AS, &limit);
-        }
-      }
-      child(fds[1]);
-      ::_exit(0);
-    }
-    catch (const std::bad_alloc&)
-    {
-      message = Error::InFile(path, "needs more memory than is available").what();
-    }
-    catch (const std::exception& e)
-    {
-      message = e.what();
-    }
-    WriteAll(fds[1], "E", 1);
-    WriteAll(fds[1], message.data(), message.size());
-    ::_exit(0);
-  }
-  ::close(fds[1]);
-  PipeReader reader(fds[0], path);
-  const auto finish = [&](bool kill)
-  {
-    if (kill)
-      ::kill(pid, SIGKILL);
-    ::close(fds[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
-    {
-    }
-    return status;
-  };
-  const auto crashed = [&](int status)
-  {
-    return Error::InFile(path,
-      WIFSIGNALED(status) ? "is corrupt: the OpenVDB library crashed reading it (signal " +
-          std::to_string(WTERMSIG(status)) + ")"
-                          : std::string("is corrupt: the OpenVDB library failed reading it"));
-  };
-  char kind = 0;
-  if (reader.Some(&kind, 1) != 1 || (kind != 'O' && kind != 'E'))
-    throw crashed(finish(false));
-  if (kind == 'E')
-  {
-    std::string message(4096, '\0');
-    message.resize(reader.Some(&message[0], message.size()));
-    finish(false);
-    throw Error(message);
-  }
-  try
-  {
-    Result result = parent(reader);
-    char extra = 0;
-    const bool more = reader.Some(&extra, 1) != 0;
-    const int status = finish(more);
-    if (more || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw crashed(status);
-    return result;
-  }
-  catch (const Error&)
-  {
-    const int status = finish(true);
-    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL)
-      throw crashed(status);
-    throw;
-  }
-}
 } // namespace
 
 FileContents ReadFile(const std::string& path, const ReadOptions& options)
@@ -924,38 +632,38 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
   // The dense grids, the tree they come from and OpenVDB's buffers.
   const std::uint64_t budget =
     static_cast<std::uint64_t>(options.MaxVoxels) * 36 + (std::uint64_t(1) << 30);
-  return Isolated<FileContents>(
+  FileContents contents;
+  detail::RunIsolated(
     path, budget,
     [&](int fd)
     {
-      const FileContents contents = ReadFileHere(path, options);
+      const FileContents read = ReadFileHere(path, options);
       // The headers first (sizes included), then each grid's values as they are in memory.
-      Packer p;
-      p.Map(contents.Metadata);
-      p.U64(contents.Grids.size());
-      for (const auto& g : contents.Grids)
+      detail::Packer p;
+      p.Map(read.Metadata);
+      p.U64(read.Grids.size());
+      for (const auto& g : read.Grids)
       {
-        PackHeader(p, g.Header);
+        detail::PackHeader(p, g.Header);
         p.U64(g.Ints.size());
         p.U64(g.Floats.size());
       }
-      SendBlock(fd, p.Bytes);
-      for (const auto& g : contents.Grids)
+      detail::SendBlock(fd, p.Bytes);
+      for (const auto& g : read.Grids)
       {
-        WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
-        WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
+        detail::WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        detail::WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
       }
     },
-    [&](PipeReader& reader)
+    [&](detail::PipeReader& reader)
     {
       const std::string headers = reader.Block();
-      Unpacker u{ headers, path };
-      FileContents contents;
+      detail::Unpacker u{ headers, path };
       contents.Metadata = u.Map();
       for (std::uint64_t count = u.U64(100000); count > 0; --count)
       {
         DenseGrid g;
-        g.Header = UnpackHeader(u, options.MaxVoxels);
+        g.Header = detail::UnpackHeader(u, options.MaxVoxels);
         const auto voxels = static_cast<std::uint64_t>(g.Header.NumberOfVoxels());
         const std::uint64_t ints = u.U64(voxels), floats = u.U64(3 * voxels);
         const std::uint64_t expected =
@@ -972,20 +680,21 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
         reader.Exact(g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
         reader.Exact(g.Floats.data(), g.Floats.size() * sizeof(float));
       }
-      return contents;
     });
+  return contents;
 }
 
 std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
 {
   InitializeOpenVDB();
-  const std::string payload = Isolated<std::string>(
+  std::string payload;
+  detail::RunIsolated(
     path, std::uint64_t(8) << 30,
     [&](int fd)
     {
       MetadataMap meta;
       const std::vector<GridSummary> grids = ListGridsHere(path, &meta);
-      Packer p;
+      detail::Packer p;
       p.Map(meta);
       p.U64(grids.size());
       for (const auto& g : grids)
@@ -996,10 +705,10 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
         p.Map(g.Metadata);
         p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
       }
-      SendBlock(fd, p.Bytes);
+      detail::SendBlock(fd, p.Bytes);
     },
-    [](PipeReader& reader) { return reader.Block(); });
-  Unpacker u{ payload, path };
+    [&payload](detail::PipeReader& reader) { payload = reader.Block(); });
+  detail::Unpacker u{ payload, path };
   MetadataMap meta = u.Map();
   if (fileMetadata)
     *fileMetadata = meta;

@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "VDB/IsolatedRead.h"
+
+#include "Core/Error.h"
+#include "Core/Memory.h"
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <new>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+namespace msynth
+{
+namespace vdb
+{
+namespace detail
+{
+
+void PackHeader(Packer& p, const GridHeader& h)
+{
+  p.Str(h.Name);
+  p.U64(static_cast<std::uint64_t>(h.Type));
+  for (int a = 0; a < 3; ++a)
+  {
+    p.U64(static_cast<std::uint64_t>(
+      static_cast<std::int64_t>(h.IndexMin[static_cast<std::size_t>(a)])));
+    p.U64(static_cast<std::uint64_t>(h.Dims[static_cast<std::size_t>(a)]));
+    p.F64(h.Origin[static_cast<std::size_t>(a)]);
+    p.F64(h.Spacing[static_cast<std::size_t>(a)]);
+  }
+  p.F64(h.Background);
+  p.Str(h.GridClass);
+  p.Map(h.Metadata);
+}
+
+GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels)
+{
+  GridHeader h;
+  h.Name = u.Str();
+  h.Type = static_cast<ValueType>(u.U64(2));
+  for (int a = 0; a < 3; ++a)
+  {
+    h.IndexMin[static_cast<std::size_t>(a)] =
+      static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
+    h.Dims[static_cast<std::size_t>(a)] =
+      static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
+    h.Origin[static_cast<std::size_t>(a)] = u.F64();
+    h.Spacing[static_cast<std::size_t>(a)] = u.F64();
+  }
+  h.Background = u.F64();
+  h.GridClass = u.Str();
+  h.Metadata = u.Map();
+  if (h.Dims[0] * h.Dims[1] > maxVoxels || h.NumberOfVoxels() > maxVoxels)
+    throw Error::InFile(u.Path, "could not be read (a grid out of range from the reading process)");
+  return h;
+}
+
+void WriteAll(int fd, const void* data, std::size_t n)
+{
+  const char* p = static_cast<const char*>(data);
+  while (n > 0)
+  {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR)
+      continue;
+    if (k <= 0)
+      ::_exit(1); // the parent stopped listening
+    p += k;
+    n -= static_cast<std::size_t>(k);
+  }
+}
+
+void SendBlock(int fd, const std::string& bytes)
+{
+  const std::uint64_t n = bytes.size();
+  WriteAll(fd, "O", 1);
+  WriteAll(fd, &n, 8);
+  WriteAll(fd, bytes.data(), bytes.size());
+}
+
+void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
+  const std::function<void(int)>& child, const std::function<void(PipeReader&)>& parent)
+{
+  int fds[2];
+  if (::pipe(fds) != 0)
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0)
+  {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error::InFile(path, std::string("could not be read: ") + std::strerror(errno));
+  }
+  if (pid == 0)
+  {
+    ::close(fds[0]);
+    std::string message;
+    try
+    {
+      // One thread in the child: the parent's TBB workers do not exist here. Its address
+      // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      if (const std::uint64_t used = VirtualSize())
+      {
+        rlimit limit{};
+        ::getrlimit(RLIMIT_AS, &limit);
+        const std::uint64_t cap = used + memoryBudget;
+        if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
+        {
+          limit.rlim_cur = static_cast<rlim_t>(cap);
+          ::setrlimit(RLIMIT_AS, &limit);
+        }
+      }
+      child(fds[1]);
+      ::_exit(0);
+    }
+    catch (const std::bad_alloc&)
+    {
+      message = Error::InFile(path, "needs more memory than is available").what();
+    }
+    catch (const std::exception& e)
+    {
+      message = e.what();
+    }
+    WriteAll(fds[1], "E", 1);
+    WriteAll(fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  PipeReader reader(fds[0], path);
+  const auto finish = [&](bool kill)
+  {
+    if (kill)
+      ::kill(pid, SIGKILL);
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    {
+    }
+    return status;
+  };
+  const auto crashed = [&](int status)
+  {
+    return Error::InFile(path,
+      WIFSIGNALED(status) ? "is corrupt: the OpenVDB library crashed reading it (signal " +
+          std::to_string(WTERMSIG(status)) + ")"
+                          : std::string("is corrupt: the OpenVDB library failed reading it"));
+  };
+  char kind = 0;
+  if (reader.Some(&kind, 1) != 1 || (kind != 'O' && kind != 'E'))
+    throw crashed(finish(false));
+  if (kind == 'E')
+  {
+    std::string message(4096, '\0');
+    message.resize(reader.Some(&message[0], message.size()));
+    finish(false);
+    throw Error(message);
+  }
+  try
+  {
+    parent(reader);
+    char extra = 0;
+    const bool more = reader.Some(&extra, 1) != 0;
+    const int status = finish(more);
+    if (more || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      throw crashed(status);
+  }
+  catch (const Error&)
+  {
+    const int status = finish(true);
+    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL)
+      throw crashed(status);
+    throw;
+  }
+}
+
+} // namespace detail
+} // namespace vdb
+} // namespace msynth
