@@ -6,6 +6,7 @@
 // DIR/statistics.json, after checking the animation against the example frames.
 #include "Commands.h"
 #include "Common.h"
+#include "vtkMSLabelArrays.h"
 
 #include "vtkFieldData.h"
 #include "vtkImageAlgorithm.h"
@@ -106,7 +107,7 @@ msynth::TimeVaryingGrid ReadFrames(const std::vector<std::string>& examples)
     Run(reader);
     msynth::LabelGrid grid;
     std::string problem;
-    if (!vtkMSEngineBridge::ReadLabels(reader->GetOutput(), nullptr, grid, problem))
+    if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, grid, problem))
     {
       throw std::runtime_error("'" + path + "': " + problem);
     }
@@ -127,7 +128,7 @@ msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const 
   image->DeepCopy(synthesis->GetOutput());
   msynth::LabelGrid frame;
   std::string problem;
-  if (!vtkMSEngineBridge::ReadLabels(image, nullptr, frame, problem))
+  if (!vtkMSLabelArrays::ReadLabels(image, nullptr, frame, problem))
   {
     throw std::runtime_error("frame " + std::to_string(t) + ": " + problem);
   }

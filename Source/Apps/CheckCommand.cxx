@@ -4,6 +4,8 @@
 // the neighbourhoods of its polyhedral example (Eq. 4.1, closed and oriented).
 #include "Commands.h"
 #include "Common.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkImageData.h"
 #include "vtkMSLabelGridReader.h"
@@ -54,8 +56,8 @@ int CheckContinuous(
   }
   msynth::PolyhedralExample ex;
   const msynth::PolyhedralAnalysis analysis =
-    vtkMSEngineBridge::AnalyzeExample(reader->GetOutput(), 0.01, 12, ex);
-  const auto mesh = vtkMSEngineBridge::ToContinuousMesh(modelReader->GetOutput(), modelPath);
+    vtkMSPolyhedra::AnalyzeExample(reader->GetOutput(), 0.01, 12, ex);
+  const auto mesh = vtkMSPolyhedra::ToContinuousMesh(modelReader->GetOutput(), modelPath);
   const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
   if (report.Valid)
   {
@@ -76,7 +78,7 @@ int CheckDiscrete(
   m->SetFileName(modelPath.c_str());
   Run(m);
   auto grid = [](vtkImageData* image)
-  { return vtkMSEngineBridge::ToLabelGrid(image, image->GetPointData()->GetArray("Label")); };
+  { return vtkMSLabelArrays::ToLabelGrid(image, image->GetPointData()->GetArray("Label")); };
   msynth::ConsistencyReport report;
   if (IsTileset(example))
   {

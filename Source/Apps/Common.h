@@ -66,7 +66,7 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 void WriteCSV(const std::string& path, vtkTable* table);
 /// @p text as a JSON string literal.
 std::string JsonString(const std::string& text);
-/// A solver's statistics read back from its output's field data (vtkMSEngineBridge::AddStatistics).
+/// A solver's statistics read back from its output's field data (vtkMSFieldData::AddStatistics).
 std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd);
 /// The solver's one-line message from field data `Message`.
 std::string MessageOf(vtkFieldData* fd);

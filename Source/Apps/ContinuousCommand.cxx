@@ -4,6 +4,9 @@
 // (vtkMSArrangementMesh) → model.vtp, arrangement.vtp, model.vdb and statistics.json.
 #include "Common.h"
 #include "Synthesize.h"
+#include "vtkMSArrangementStorage.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
@@ -45,7 +48,7 @@ Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeO
   Voxels v;
   v.Planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
   labelled->GetBounds(v.Bounds.data());
-  const auto record = vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), o.Example);
+  const auto record = vtkMSArrangementStorage::LoadArrangement(labelled->GetFieldData(), o.Example);
   const msynth::PlaneFamilySet families(record.Normals);
   double smallest = 0;
   for (int f = 0; f < families.Size(); ++f)
@@ -94,7 +97,7 @@ void WriteModelVDB(
   }
   else
   {
-    const auto engineMesh = vtkMSEngineBridge::ToContinuousMesh(model, "model");
+    const auto engineMesh = vtkMSPolyhedra::ToContinuousMesh(model, "model");
     const msynth::LabelGrid volume = msynth::VoxelizeModel(
       engineMesh, { bounds[0], bounds[2], v.Planar ? 0.0 : bounds[4] }, voxel, dims);
     image->SetDimensions(
@@ -103,7 +106,7 @@ void WriteModelVDB(
     image->SetOrigin(
       bounds[0] + voxel / 2, bounds[2] + voxel / 2, v.Planar ? 0.0 : bounds[4] + voxel / 2);
     vtkSmartPointer<vtkIntArray> types;
-    types.TakeReference(vtkMSEngineBridge::NewLabelArray(volume, "ObjectType"));
+    types.TakeReference(vtkMSLabelArrays::NewLabelArray(volume, "ObjectType"));
     image->GetPointData()->SetScalars(types);
     vdb->SetInputData(image);
     vdb->SetLabelArrayName("ObjectType");

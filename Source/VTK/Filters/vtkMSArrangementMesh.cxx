@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSArrangementMesh.h"
 
+#include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -54,16 +59,16 @@ int vtkMSArrangementMesh::RequestData(
                      "Synthesis filter");
     return 0;
   }
-  if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
+  if (vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
     labelled->GetNumberOfPoints() == 0)
   {
     return 1;
   }
   try
   {
-    const std::string where = vtkMSEngineBridge::ExampleName(labelled);
+    const std::string where = vtkMSFieldData::ExampleName(labelled);
     const auto record =
-      vtkMSEngineBridge::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
+      vtkMSArrangementStorage::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
     // The finished model (ModelLabel when the solver shows catalog time steps, else Label).
     vtkDataArray* labelArray = labelled->GetPointData()->GetArray("ModelLabel");
     if (!labelArray)
@@ -72,14 +77,14 @@ int vtkMSArrangementMesh::RequestData(
     }
     if (!labelArray || labelArray->GetNumberOfComponents() != 1 ||
       labelArray->GetNumberOfTuples() != labelled->GetNumberOfPoints() ||
-      !vtkMSEngineBridge::IsIntegerArray(labelArray))
+      !vtkMSLabelArrays::IsIntegerArray(labelArray))
     {
       throw msynth::Error(where +
         ": the arrangement input has no integer point array 'Label' with one "
         "value per vertex; connect the ModelSynth Continuous Synthesis filter");
     }
     msynth::PolyhedralExample ex;
-    const auto analysis = vtkMSEngineBridge::AnalyzeExample(
+    const auto analysis = vtkMSPolyhedra::AnalyzeExample(
       example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
     if (analysis.Families().AllNormals() != record.Normals)
     {

@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSContinuousSynthesis.h"
 
+#include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSPipeline.h"
+#include "vtkMSPolyhedra.h"
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkDoubleArray.h"
@@ -58,7 +62,7 @@ int vtkMSContinuousSynthesis::FillInputPortInformation(int, vtkInformation* info
 int vtkMSContinuousSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkMSEngineBridge::SetTimeSteps(outputVector->GetInformationObject(0),
+  vtkMSPipeline::SetTimeSteps(outputVector->GetInformationObject(0),
     this->NumberOfSnapshots > 0 ? static_cast<std::size_t>(this->NumberOfSnapshots) + 1 : 0);
   return 1;
 }
@@ -70,10 +74,10 @@ namespace
 msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyData* example,
   vtkPolyData* arrangementData, std::vector<msynth::ContinuousSnapshot>& snapshots)
 {
-  const auto record = vtkMSEngineBridge::LoadArrangement(arrangementData->GetFieldData(),
-    vtkMSEngineBridge::ExampleName(arrangementData) + " (arrangement)");
+  const auto record = vtkMSArrangementStorage::LoadArrangement(arrangementData->GetFieldData(),
+    vtkMSFieldData::ExampleName(arrangementData) + " (arrangement)");
   msynth::PolyhedralExample ex;
-  const auto analysis = vtkMSEngineBridge::AnalyzeExample(
+  const auto analysis = vtkMSPolyhedra::AnalyzeExample(
     example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
   if (analysis.Families().AllNormals() != record.Normals)
   {
@@ -115,7 +119,7 @@ int vtkMSContinuousSynthesis::RequestData(
       << "no arrangement input (port 1): connect the ModelSynth Plane Arrangement filter");
     return 0;
   }
-  if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
+  if (vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
     arrangementData->GetNumberOfPoints() == 0)
   {
     return 1; // in parallel, the arrangement lives on piece 0
@@ -139,7 +143,7 @@ int vtkMSContinuousSynthesis::RequestData(
   }
   const auto& result = cache.Run.Result;
   if (!vtkMSSynthesisRun::Report(
-        this, result.Status, result.Message, vtkMSEngineBridge::ExampleName(example)))
+        this, result.Status, result.Message, vtkMSFieldData::ExampleName(example)))
   {
     return 0;
   }
@@ -169,7 +173,7 @@ void vtkMSContinuousSynthesis::FillOutput(
   }
   else
   {
-    const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, cache.Snapshots.size());
+    const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, cache.Snapshots.size());
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {
@@ -192,8 +196,7 @@ void vtkMSContinuousSynthesis::FillOutput(
   output->GetPointData()->AddArray(label);
   output->GetPointData()->SetActiveScalars("Label");
   vtkFieldData* fields = output->GetFieldData();
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fields, "Success", 1);
-  vtkMSEngineBridge::AddStatistics(fields, result.Statistics, result.Status, result.Message);
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
-    fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(fields, "Success", 1);
+  vtkMSFieldData::AddStatistics(fields, result.Statistics, result.Status, result.Message);
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
 }

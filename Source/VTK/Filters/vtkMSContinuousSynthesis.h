@@ -11,7 +11,7 @@
  * listed by vtkMSNeighbourhoodLabels), `CatalogSize` and `Entropy`, and the run statistics as
  * field data (`Success`, `Seed`, and the names every solver uses: `Blocks`, `BlocksAccepted`,
  * `BlocksFailed`, `Attempts`, `FailedAttempts`, `Assignments`, `Backtracks`, `Seconds`, `Status`,
- * `Message`, ...; see vtkMSEngineBridge::AddStatistics). With NumberOfSnapshots S > 0 the output
+ * `Message`, ...; see vtkMSFieldData::AddStatistics). With NumberOfSnapshots S > 0 the output
  * has S + 1 time steps: the catalog at the start and at S even fractions of the work, so ParaView
  * can animate it shrinking; `Label` is then −1 where undecided and `ModelLabel` holds the finished
  * model at every step.

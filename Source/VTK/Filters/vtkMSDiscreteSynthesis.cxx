@@ -2,6 +2,9 @@
 #include "vtkMSDiscreteSynthesis.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkCommunicator.h"
@@ -95,10 +98,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkMSEngineBridge::SetOutputLabelGrid(
+  vtkMSPipeline::SetOutputLabelGrid(
     inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
 
-  vtkMSEngineBridge::SetTimeSteps(outInfo, 0);
+  vtkMSPipeline::SetTimeSteps(outInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)
   {
     const msynth::SynthesisOptions options = SizeOptions(this);
@@ -114,7 +117,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
                     << "per block, larger blocks or a smaller output.");
       return 0;
     }
-    vtkMSEngineBridge::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
+    vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
   }
   return 1;
 }
@@ -348,7 +351,7 @@ void AddExampleFields(
     for (int b = 0; b < tiles->NumberOfLabels(); ++b)
       names->InsertNextValue(tiles->LabelName(b));
     fd->AddArray(names);
-    vtkMSEngineBridge::AddFieldValue<vtkStringArray>(fd, "TilesetFile", std::string(tilesetFile));
+    vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesetFile", std::string(tilesetFile));
   }
   for (const char* name :
     { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
@@ -372,7 +375,7 @@ bool vtkMSDiscreteSynthesis::Solve(
     {
       if (this->TilesetFile.empty())
       {
-        const msynth::LabelGrid example = vtkMSEngineBridge::ToLabelGrid(input, labels);
+        const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
         const auto analysis = msynth::ExampleAnalysis::FromExample(example);
         options.Example = &example;
         run.Cache.Result =
@@ -402,12 +405,12 @@ void vtkMSDiscreteSynthesis::FillOutput(
     output->SetOrigin(input->GetOrigin());
   }
   vtkSmartPointer<vtkIntArray> label;
-  label.TakeReference(vtkMSEngineBridge::NewLabelArray(result.Model, "Label"));
+  label.TakeReference(vtkMSLabelArrays::NewLabelArray(result.Model, "Label"));
   output->GetPointData()->SetScalars(label);
   if (!run.Snapshots.empty())
   {
     // The time step asked for (steps are 0, 1, 2, ...).
-    const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, run.Snapshots.size());
+    const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, run.Snapshots.size());
     const msynth::CatalogSnapshot& snap = run.Snapshots[step];
     for (std::size_t i = 0; i < snap.Labels.size(); ++i)
       label->SetValue(static_cast<vtkIdType>(i),
@@ -422,8 +425,8 @@ void vtkMSDiscreteSynthesis::FillOutput(
   std::copy(result.LastBlock.begin(), result.LastBlock.end(), lastBlock->GetPointer(0));
   output->GetPointData()->AddArray(lastBlock);
   vtkFieldData* fd = output->GetFieldData();
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
-  vtkMSEngineBridge::AddStatistics(fd, result.Statistics, result.Status, result.Message);
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
+  vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
   AddExampleFields(
     fd, input, this->TilesetFile.c_str(), this->TilesetFile.empty() ? nullptr : &run.Tiles);
 }
@@ -443,7 +446,7 @@ int vtkMSDiscreteSynthesis::RequestData(
       return 0;
     }
     // An empty selection (ParaView's domain before the data exists) falls back to "Label".
-    labels = vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
+    labels = vtkMSLabelArrays::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
     std::string problem;
     if (!labels)
     {
@@ -451,7 +454,7 @@ int vtkMSDiscreteSynthesis::RequestData(
         << "The example has no label array (an integer point array, by default 'Label').");
       return 0;
     }
-    if (!vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+    if (!vtkMSLabelArrays::CheckLabelArray(input, labels, problem))
     {
       vtkErrorMacro(<< "Bad example: " << problem);
       return 0;

@@ -13,7 +13,7 @@
  * (`Blocks`, `BlocksAccepted`, `BlocksFailed`, `BlocksRejected`, `Attempts`, `FailedAttempts`,
  * `Assignments`, `Phases`, `Threads`, `Processes`, `Seconds`, `Status`, `Message`,
  * `TrivialLabel` in block mode, `FailedBlockOrigins` and `FailedBlockSites` as 3-component
- * arrays; vtkMSEngineBridge::AddStatistics).
+ * arrays; vtkMSFieldData::AddStatistics).
  *
  * BlockSize 0 on every axis (or at least OutputSize) runs Algorithm 3.1 on the whole model;
  * smaller blocks run Algorithm 3.4, which modifies a trivial consistent start block by block

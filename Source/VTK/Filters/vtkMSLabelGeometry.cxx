@@ -2,6 +2,8 @@
 #include "vtkMSLabelGeometry.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -117,7 +119,7 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
       const msynth::PolyhedralExample piece =
         ext == "ply" ? msynth::ReadPLYExample(path) : msynth::ReadSTLExample(path);
       auto mesh = vtkSmartPointer<vtkPolyData>::New();
-      vtkMSEngineBridge::FromPolyhedralExample(piece, mesh);
+      vtkMSPolyhedra::FromPolyhedralExample(piece, mesh);
       return mesh;
     }
     catch (const std::exception& e)
@@ -163,7 +165,7 @@ int vtkMSLabelGeometry::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   msynth::LabelGrid grid;
   std::string problem;
-  if (!vtkMSEngineBridge::ReadLabels(input, nullptr, grid, problem))
+  if (!vtkMSLabelArrays::ReadLabels(input, nullptr, grid, problem))
   {
     vtkErrorMacro(<< "Bad input: " << problem);
     return 0;

@@ -2,6 +2,9 @@
 #include "vtkMSNeighbourhoodLabels.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSPipeline.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -237,14 +240,14 @@ int vtkMSNeighbourhoodLabels::RequestData(
   vtkTable* table = vtkTable::GetData(outputVector, 0);
   vtkPolyData* marked = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (vtkMSEngineBridge::UpdatePiece(outInfo) > 0 && (!input || input->GetNumberOfPolys() == 0))
+  if (vtkMSPipeline::UpdatePiece(outInfo) > 0 && (!input || input->GetNumberOfPolys() == 0))
   {
     return 1; // in parallel, the example lives on piece 0 and is analyzed there only
   }
-  const std::string name = vtkMSEngineBridge::ExampleName(input);
+  const std::string name = vtkMSFieldData::ExampleName(input);
   try
   {
-    msynth::PolyhedralExample example = vtkMSEngineBridge::ToPolyhedralExample(input, name);
+    msynth::PolyhedralExample example = vtkMSPolyhedra::ToPolyhedralExample(input, name);
     msynth::ValidateExample(example);
     msynth::PolyhedralAnalysis::Options options;
     options.AngleTolerance = this->AngleTolerance * M_PI / 180.0;

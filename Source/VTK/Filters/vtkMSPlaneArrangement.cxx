@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSPlaneArrangement.h"
 
+#include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSPipeline.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -43,14 +47,14 @@ int vtkMSPlaneArrangement::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)) > 0)
+  if (vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) > 0)
   {
     return 1; // the arrangement is built once, on piece 0
   }
   try
   {
     msynth::PolyhedralExample example;
-    const auto analysis = vtkMSEngineBridge::AnalyzeExample(
+    const auto analysis = vtkMSPolyhedra::AnalyzeExample(
       input, this->AngleTolerance, this->MaximumSmallInteger, example);
     msynth::Point3 size{};
     double bounds[6];
@@ -60,7 +64,7 @@ int vtkMSPlaneArrangement::RequestData(
       size[static_cast<std::size_t>(c)] =
         this->OutputSize[c] > 0 ? this->OutputSize[c] : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
     }
-    vtkMSEngineBridge::ArrangementRecord record;
+    vtkMSArrangementStorage::ArrangementRecord record;
     record.Parameters =
       msynth::DefaultArrangementParameters(example, analysis, size, this->Spacing, {});
     record.Parameters.MaxVertices = this->MaximumVertices;
@@ -116,10 +120,10 @@ int vtkMSPlaneArrangement::RequestData(
     output->GetPointData()->AddArray(catalog);
     output->GetPointData()->SetActiveScalars("CatalogSize");
     output->GetCellData()->AddArray(direction);
-    vtkMSEngineBridge::StoreArrangement(record, output->GetFieldData());
+    vtkMSArrangementStorage::StoreArrangement(record, output->GetFieldData());
     vtkNew<vtkStringArray> file;
     file->SetName("ExampleFile");
-    file->InsertNextValue(vtkMSEngineBridge::ExampleName(input));
+    file->InsertNextValue(vtkMSFieldData::ExampleName(input));
     output->GetFieldData()->AddArray(file);
   }
   catch (const msynth::Error& e)

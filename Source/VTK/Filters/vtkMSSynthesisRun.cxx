@@ -2,6 +2,7 @@
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
 
 #include "vtkDataSet.h"
 #include "vtkFloatArray.h"
@@ -70,11 +71,11 @@ void AddCatalog(
 
 void AddStep(vtkDataSet* output, std::int64_t step, std::int64_t block, std::int64_t assignments)
 {
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     output->GetFieldData(), "Step", static_cast<vtkIdType>(step));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     output->GetFieldData(), "ActiveBlock", static_cast<vtkIdType>(block));
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     output->GetFieldData(), "StepAssignments", static_cast<vtkIdType>(assignments));
 }
 

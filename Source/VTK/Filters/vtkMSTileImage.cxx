@@ -2,6 +2,7 @@
 #include "vtkMSTileImage.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
 
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -118,9 +119,9 @@ int vtkMSTileImage::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  vtkDataArray* labels = vtkMSEngineBridge::FindLabelArray(input, nullptr);
+  vtkDataArray* labels = vtkMSLabelArrays::FindLabelArray(input, nullptr);
   std::string problem;
-  if (!labels || !vtkMSEngineBridge::CheckLabelArray(input, labels, problem))
+  if (!labels || !vtkMSLabelArrays::CheckLabelArray(input, labels, problem))
   {
     vtkErrorMacro(<< (labels ? problem : std::string("The input has no label array.")));
     return 0;

@@ -2,6 +2,9 @@
 #include "vtkMSTimeVaryingSynthesis.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkIdTypeArray.h"
@@ -62,9 +65,9 @@ int vtkMSTimeVaryingSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkMSEngineBridge::SetOutputLabelGrid(
+  vtkMSPipeline::SetOutputLabelGrid(
     inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
-  vtkMSEngineBridge::SetTimeSteps(outInfo, static_cast<std::size_t>(this->NumberOfFrames));
+  vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(this->NumberOfFrames));
   outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
@@ -73,8 +76,8 @@ int vtkMSTimeVaryingSynthesis::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(
-    inInfo, vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)));
+  vtkMSPipeline::RequestWholeExtentOnPieceZero(
+    inInfo, vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)));
   // Every frame of the example (one request when its frames are z slices or it has no time).
   std::vector<double> times{ 0.0 };
   const auto key = vtkStreamingDemandDrivenPipeline::TIME_STEPS();
@@ -100,8 +103,8 @@ vtkTypeBool vtkMSTimeVaryingSynthesis::ProcessRequest(
   if (inInfo && request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
     // Later passes skip RequestUpdateExtent and would copy the output's extent upstream.
-    vtkMSEngineBridge::RequestWholeExtentOnPieceZero(
-      inInfo, vtkMSEngineBridge::UpdatePiece(outputVector->GetInformationObject(0)));
+    vtkMSPipeline::RequestWholeExtentOnPieceZero(
+      inInfo, vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)));
   }
   return result;
 }
@@ -111,7 +114,7 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (vtkMSEngineBridge::UpdatePiece(outInfo) != 0)
+  if (vtkMSPipeline::UpdatePiece(outInfo) != 0)
   {
     output->Initialize(); // piece 0 holds the model
     return 1;
@@ -122,7 +125,7 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   {
     msynth::LabelGrid grid;
     std::string problem;
-    if (!vtkMSEngineBridge::ReadLabels(
+    if (!vtkMSLabelArrays::ReadLabels(
           vtkImageData::SafeDownCast(inputs[i]), nullptr, grid, problem))
     {
       vtkErrorMacro(<< "Bad example frame " << i << ": " << problem);
@@ -174,7 +177,7 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   {
     return 0;
   }
-  const std::size_t step = vtkMSEngineBridge::RequestedStep(outInfo, result.Model.Frames.size());
+  const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, result.Model.Frames.size());
   const msynth::LabelGrid& frame = result.Model.Frames[step];
   output->SetExtent(
     0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
@@ -183,19 +186,19 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   outInfo->Get(vtkDataObject::ORIGIN(), origin);
   output->SetSpacing(spacing);
   output->SetOrigin(origin);
-  vtkIntArray* labels = vtkMSEngineBridge::NewLabelArray(frame, "Label");
+  vtkIntArray* labels = vtkMSLabelArrays::NewLabelArray(frame, "Label");
   output->GetPointData()->SetScalars(labels);
   labels->Delete();
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   vtkFieldData* fd = output->GetFieldData();
   const msynth::SynthesisStatistics& s = result.Statistics;
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frame", static_cast<int>(step));
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Frames", this->NumberOfFrames);
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(fd, "Loop", this->Loop ? 1 : 0);
-  vtkMSEngineBridge::AddFieldValue<vtkIntArray>(
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Frame", static_cast<int>(step));
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Frames", this->NumberOfFrames);
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Loop", this->Loop ? 1 : 0);
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(
     fd, "ExampleFrames", static_cast<int>(cache.Example.size()));
-  vtkMSEngineBridge::AddStatistics(fd, s, result.Status, result.Message);
-  vtkMSEngineBridge::AddFieldValue<vtkIdTypeArray>(fd, "Seed", static_cast<vtkIdType>(this->Seed));
+  vtkMSFieldData::AddStatistics(fd, s, result.Status, result.Message);
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", static_cast<vtkIdType>(this->Seed));
   return 1;
 }
 

@@ -2,6 +2,8 @@
 #include "vtkMSTransitionTables.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -39,7 +41,7 @@ int vtkMSTransitionTables::RequestUpdateExtent(
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, vtkMSEngineBridge::UpdatePiece(outInfo));
+  vtkMSPipeline::RequestWholeExtentOnPieceZero(inInfo, vtkMSPipeline::UpdatePiece(outInfo));
   return 1;
 }
 
@@ -67,14 +69,14 @@ int vtkMSTransitionTables::RequestData(
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (vtkMSEngineBridge::UpdatePiece(outInfo) > 0)
+  if (vtkMSPipeline::UpdatePiece(outInfo) > 0)
   {
     return 1; // piece 0 computes the tables (see class documentation)
   }
   // No (or an empty) selection, as when ParaView's domain has not seen the data yet: use the
   // point array "Label", else the active scalars.
   vtkDataArray* array =
-    vtkMSEngineBridge::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
+    vtkMSLabelArrays::FindLabelArray(input, this->GetInputArrayToProcess(0, inputVector));
   if (!array)
   {
     vtkErrorMacro(<< "The input has no label array (expected an integer point array, by "
@@ -82,7 +84,7 @@ int vtkMSTransitionTables::RequestData(
     return 0;
   }
   std::string problem;
-  if (!vtkMSEngineBridge::CheckLabelArray(input, array, problem))
+  if (!vtkMSLabelArrays::CheckLabelArray(input, array, problem))
   {
     vtkErrorMacro(<< problem);
     return 0;
@@ -91,7 +93,7 @@ int vtkMSTransitionTables::RequestData(
   msynth::ExampleAnalysis analysis;
   try
   {
-    analysis = msynth::ExampleAnalysis::FromExample(vtkMSEngineBridge::ToLabelGrid(input, array));
+    analysis = msynth::ExampleAnalysis::FromExample(vtkMSLabelArrays::ToLabelGrid(input, array));
   }
   catch (const std::exception& e)
   {

@@ -2,6 +2,7 @@
 #include "vtkMSLabelGridReader.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArraySelection.h"
@@ -293,7 +294,7 @@ int vtkMSLabelGridReader::RequestData(
     output->SetOrigin(0, 0, 0);
     output->SetSpacing(1, 1, 1);
     vtkSmartPointer<vtkIntArray> labels;
-    labels.TakeReference(vtkMSEngineBridge::NewLabelArray(text.Grid, "Label"));
+    labels.TakeReference(vtkMSLabelArrays::NewLabelArray(text.Grid, "Label"));
     output->GetPointData()->SetScalars(labels);
     output->GetFieldData()->AddArray(source);
     vtkNew<vtkIntArray> pieceLabels;
@@ -376,7 +377,7 @@ int vtkMSLabelGridReader::RequestData(
   sites->SetDirectionMatrix(image->GetDirectionMatrix());
 
   std::string problem;
-  if (!vtkMSEngineBridge::CheckLabelArray(sites, labels, problem))
+  if (!vtkMSLabelArrays::CheckLabelArray(sites, labels, problem))
   {
     this->Fail(problem);
     return 0;

@@ -2,6 +2,7 @@
 #include "vtkMSLabelGridWriter.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
 
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -54,7 +55,7 @@ void vtkMSLabelGridWriter::WriteData()
   }
   else
   {
-    vtkMSEngineBridge::ReadLabels(image, nullptr, grid, problem);
+    vtkMSLabelArrays::ReadLabels(image, nullptr, grid, problem);
   }
   if (!problem.empty())
   {

@@ -2,6 +2,9 @@
 #include "vtkMSOpenVDBWriter.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
@@ -88,7 +91,7 @@ vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
     }
     if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
     {
-      vtkMSEngineBridge::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
+      vtkMSPipeline::RequestWholeExtentOnPieceZero(inInfo, this->Piece);
     }
     else if (this->Piece == 0)
     {
@@ -128,7 +131,7 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
   view.Header.Background = background;
   view.Header.Metadata["vtk_array"] = array->GetName() ? array->GetName() : "";
   view.Header.Metadata["vtk_association"] = association;
-  if (nc == 1 && !asFloat && vtkMSEngineBridge::IsIntegerArray(array))
+  if (nc == 1 && !asFloat && vtkMSLabelArrays::IsIntegerArray(array))
   {
     double range[2];
     array->GetRange(range, 0);
@@ -411,7 +414,7 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
     vtkDataArray* sampled = values->GetArray(i);
     vtkDataArray* original =
       sampled && sampled->GetName() ? input->GetPointData()->GetArray(sampled->GetName()) : nullptr;
-    if (!original || !vtkMSEngineBridge::IsIntegerArray(original) ||
+    if (!original || !vtkMSLabelArrays::IsIntegerArray(original) ||
       original->GetNumberOfComponents() != 1)
     {
       continue;
@@ -455,8 +458,7 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
     if (input->GetCellData()->GetArray("InsideType") &&
       input->GetCellData()->GetArray("OutsideType"))
     {
-      msynth::ContinuousMesh model =
-        vtkMSEngineBridge::ToContinuousMesh(input, this->CurrentFileName);
+      msynth::ContinuousMesh model = vtkMSPolyhedra::ToContinuousMesh(input, this->CurrentFileName);
       perType = msynth::SurfacesByType(model);
       for (std::size_t f = 0; f < model.Polygons.size(); ++f)
       {

@@ -2,6 +2,7 @@
 #include "vtkMSPolyhedralExampleReader.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSPolyhedra.h"
 
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
@@ -142,7 +143,7 @@ int vtkMSPolyhedralExampleReader::RequestData(
         vtkErrorMacro(<< "'" << this->FileName << "': cannot be read as .vtp (" << messages << ")");
         return 0;
       }
-      example = vtkMSEngineBridge::ToPolyhedralExample(reader->GetOutput(), this->FileName);
+      example = vtkMSPolyhedra::ToPolyhedralExample(reader->GetOutput(), this->FileName);
     }
     else
     {
@@ -151,7 +152,7 @@ int vtkMSPolyhedralExampleReader::RequestData(
       return 0;
     }
     msynth::ValidateExample(example);
-    vtkMSEngineBridge::FromPolyhedralExample(example, output);
+    vtkMSPolyhedra::FromPolyhedralExample(example, output);
     vtkNew<vtkStringArray> file;
     file->SetName("ExampleFile");
     file->InsertNextValue(this->FileName);

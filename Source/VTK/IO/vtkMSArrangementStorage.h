@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSArrangementStorage
+ * @brief What a plane arrangement output carries so that later stages rebuild it exactly.
+ *
+ * Static functions shared by ModelSynth's VTK classes (not wrapped for Python: their signatures
+ * use engine types).
+ */
+#ifndef vtkMSArrangementStorage_h
+#define vtkMSArrangementStorage_h
+
+#include "Continuous/PlaneArrangement.h" // for msynth::ArrangementParameters
+#include "ModelSynthIOModule.h"          // for export macro
+
+#include <string>
+#include <vector>
+
+class vtkFieldData;
+
+class MODELSYNTHIO_EXPORT vtkMSArrangementStorage
+{
+public:
+  /// What a plane arrangement output carries so later stages rebuild it exactly.
+  struct ArrangementRecord
+  {
+    msynth::ArrangementParameters Parameters;
+    std::vector<msynth::IntVec3> Normals;
+    double AngleToleranceDegrees = 0.01;
+    int MaximumSmallInteger = 12;
+  };
+
+  /// Field data arrays ArrangementOrigin, ArrangementQuantum, ArrangementBox, FamilyNormals,
+  /// FamilyOffsets, FamilySpacings, Planar, AngleTolerance, MaximumSmallInteger.
+  static void StoreArrangement(const ArrangementRecord& record, vtkFieldData* fields);
+
+  /// @throw msynth::Error naming @p where and the missing or malformed array.
+  static ArrangementRecord LoadArrangement(vtkFieldData* fields, const std::string& where);
+};
+
+#endif

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSLabelArrays.h"
+
+#include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkType.h"
+#include "vtkTypeInt64Array.h"
+
+#include "Core/Error.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <vector>
+
+bool vtkMSLabelArrays::IsIntegerArray(vtkDataArray* array)
+{
+  switch (array ? array->GetDataType() : VTK_VOID)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_LONG:
+    case VTK_UNSIGNED_LONG:
+    case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+    case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool vtkMSLabelArrays::CheckLabelArray(
+  vtkImageData* image, vtkDataArray* array, std::string& problem)
+{
+  if (!image || !array)
+  {
+    problem = "no label array";
+    return false;
+  }
+  const std::string name = array->GetName() ? array->GetName() : "(unnamed)";
+  if (!IsIntegerArray(array))
+  {
+    problem = "array '" + name + "' holds " + array->GetDataTypeAsString() +
+      " values; labels must be integers";
+    return false;
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    problem = "array '" + name + "' has " + std::to_string(array->GetNumberOfComponents()) +
+      " components; labels need exactly one";
+    return false;
+  }
+  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    problem = "array '" + name + "' has " + std::to_string(array->GetNumberOfTuples()) +
+      " values for " + std::to_string(image->GetNumberOfPoints()) + " sites";
+    return false;
+  }
+  if (image->GetNumberOfPoints() == 0)
+  {
+    problem = "the label grid has no sites";
+    return false;
+  }
+  double range[2];
+  array->GetRange(range, 0);
+  if (range[0] < std::numeric_limits<std::int32_t>::min() ||
+    range[1] > std::numeric_limits<std::int32_t>::max())
+  {
+    problem = "array '" + name + "' has values outside the 32-bit integer range";
+    return false;
+  }
+  return true;
+}
+
+vtkDataArray* vtkMSLabelArrays::FindLabelArray(vtkImageData* image, vtkDataArray* selected)
+{
+  if (selected || !image)
+  {
+    return selected;
+  }
+  vtkDataArray* labels = image->GetPointData()->GetArray("Label");
+  return labels ? labels : image->GetPointData()->GetScalars();
+}
+
+bool vtkMSLabelArrays::ReadLabels(
+  vtkImageData* image, vtkDataArray* selected, msynth::LabelGrid& grid, std::string& problem)
+{
+  vtkDataArray* labels = image ? FindLabelArray(image, selected) : nullptr;
+  if (!labels)
+  {
+    problem = "the image has no label array (point array 'Label' or the active scalars)";
+    return false;
+  }
+  if (!CheckLabelArray(image, labels, problem))
+  {
+    return false;
+  }
+  grid = ToLabelGrid(image, labels);
+  return true;
+}
+
+msynth::LabelGrid vtkMSLabelArrays::ToLabelGrid(vtkImageData* image, vtkDataArray* labels)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  std::vector<msynth::Label> values(static_cast<std::size_t>(labels->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+  {
+    values[static_cast<std::size_t>(i)] = static_cast<msynth::Label>(labels->GetTuple1(i));
+  }
+  return msynth::LabelGrid({ { dims[0], dims[1], dims[2] } }, std::move(values));
+}
+
+vtkIntArray* vtkMSLabelArrays::NewLabelArray(const msynth::LabelGrid& grid, const char* name)
+{
+  vtkIntArray* array = vtkIntArray::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(grid.NumberOfSites());
+  std::copy(grid.Data().begin(), grid.Data().end(), array->GetPointer(0));
+  return array;
+}

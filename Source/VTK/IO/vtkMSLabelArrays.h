@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSLabelArrays
+ * @brief Label arrays of image data as the engine's label grids, and back.
+ *
+ * Static functions shared by ModelSynth's VTK classes (not wrapped for Python: their signatures
+ * use engine types).
+ */
+#ifndef vtkMSLabelArrays_h
+#define vtkMSLabelArrays_h
+
+#include "Core/LabelGrid.h"     // for msynth::LabelGrid
+#include "ModelSynthIOModule.h" // for export macro
+
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkIntArray;
+
+class MODELSYNTHIO_EXPORT vtkMSLabelArrays
+{
+public:
+  /// True when @p array holds integers (any width or signedness).
+  static bool IsIntegerArray(vtkDataArray* array);
+
+  /**
+   * Checks that @p array can serve as labels of @p image's points: integer type, one
+   * component, one value per point, values within the 32-bit range. On failure returns false
+   * and sets @p problem to a sentence naming the array and what is wrong.
+   */
+  static bool CheckLabelArray(vtkImageData* image, vtkDataArray* array, std::string& problem);
+
+  /**
+   * The label array of @p image: @p selected (the filter's input array to process) when set,
+   * else the point array "Label", else the active point scalars; nullptr when there is none.
+   */
+  static vtkDataArray* FindLabelArray(vtkImageData* image, vtkDataArray* selected);
+
+  /// Copies a checked label array into an engine grid (x fastest, as VTK stores points).
+  static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
+
+  /**
+   * FindLabelArray, CheckLabelArray and ToLabelGrid in one: @p image's labels (@p selected when
+   * set) as a grid. False, with @p problem set to a sentence, when there is no usable array.
+   */
+  static bool ReadLabels(
+    vtkImageData* image, vtkDataArray* selected, msynth::LabelGrid& grid, std::string& problem);
+
+  /// A new vtkIntArray named @p name holding @p grid's labels.
+  static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
+};
+
+#endif
