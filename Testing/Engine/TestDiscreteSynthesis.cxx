@@ -838,3 +838,15 @@ TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
     }
   }
 }
+
+TEST(DiscreteSynthesis, RulesFromPairsNumberTheirLabelsInValueOrder)
+{
+  // A label's index is its rank among the values (IndexOfLabel): values out of order would
+  // give wrong indices, so they are refused.
+  const std::array<std::vector<std::pair<int, int>>, 3> pairs{ { { { 0, 1 } }, {}, {} } };
+  const auto rules = AdjacencyRules::FromPairs({ 3, 7 }, { 1.0, 2.0 }, pairs);
+  EXPECT_EQ(rules.IndexOf(7), 1);
+  EXPECT_EQ(rules.IndexOf(5), -1);
+  EXPECT_THROW(AdjacencyRules::FromPairs({ 7, 3 }, { 1.0, 2.0 }, pairs), Error);
+  EXPECT_THROW(AdjacencyRules::FromPairs({ 3, 3 }, { 1.0, 2.0 }, pairs), Error);
+}

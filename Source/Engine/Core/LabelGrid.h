@@ -7,6 +7,7 @@
  * Sites are indexed (x, y, z) with x fastest, the same order as vtkImageData points, so a grid
  * converts to and from image data without reordering. A 2D model has nz = 1.
  */
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -15,6 +16,13 @@ namespace msynth
 {
 
 using Label = std::int32_t;
+
+/// The index of @p value in @p values (ascending, each value once: a label's index), or -1.
+inline int IndexOfLabel(const std::vector<Label>& values, Label value)
+{
+  const auto it = std::lower_bound(values.begin(), values.end(), value);
+  return it != values.end() && *it == value ? static_cast<int>(it - values.begin()) : -1;
+}
 
 /// The three axes, and the six axis-aligned unit directions of the adjacency constraint.
 enum Axis : int

@@ -48,6 +48,13 @@ AdjacencyRules AdjacencyRules::FromPairs(std::vector<Label> values, std::vector<
     throw Error("adjacency rules: " + std::to_string(values.size()) + " labels but " +
       std::to_string(weights.size()) + " weights");
   }
+  for (std::size_t i = 1; i < values.size(); ++i)
+  {
+    if (values[i - 1] >= values[i])
+    {
+      throw Error("adjacency rules: label values must be given in ascending order, once each");
+    }
+  }
   for (std::size_t i = 0; i < weights.size(); ++i)
   {
     if (!(weights[i] > 0.0) || !std::isfinite(weights[i]))
@@ -76,8 +83,7 @@ AdjacencyRules AdjacencyRules::FromPairs(std::vector<Label> values, std::vector<
 
 int AdjacencyRules::IndexOf(Label value) const
 {
-  const auto it = std::find(this->Values.begin(), this->Values.end(), value);
-  return it == this->Values.end() ? -1 : static_cast<int>(it - this->Values.begin());
+  return IndexOfLabel(this->Values, value);
 }
 
 bool AdjacencyRules::SelfAdjacent(int b, const std::array<std::int64_t, 3>& outputSize) const

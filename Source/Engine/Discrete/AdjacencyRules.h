@@ -53,9 +53,9 @@ public:
 
   /**
    * Rules from explicit allowed pairs: @p pairs[axis] lists (b, c) label indices meaning c may
-   * follow b along +axis. @p values are the label values of the k labels, @p weights their
-   * relative frequencies (all > 0 and finite).
-   * @throw Error on an index out of range or a bad weight.
+   * follow b along +axis. @p values are the label values of the k labels (ascending, each
+   * once), @p weights their relative frequencies (all > 0 and finite).
+   * @throw Error on an index out of range, values out of order or a bad weight.
    */
   static AdjacencyRules FromPairs(std::vector<Label> values, std::vector<double> weights,
     const std::array<std::vector<std::pair<int, int>>, 3>& pairs);

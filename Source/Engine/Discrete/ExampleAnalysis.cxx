@@ -79,12 +79,7 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
 
 int ExampleAnalysis::IndexOf(Label value) const
 {
-  const auto it = std::lower_bound(this->LabelValues.begin(), this->LabelValues.end(), value);
-  if (it == this->LabelValues.end() || *it != value)
-  {
-    return -1;
-  }
-  return static_cast<int>(it - this->LabelValues.begin());
+  return IndexOfLabel(this->LabelValues, value);
 }
 
 std::int64_t ExampleAnalysis::PairCount(int axis, int from, int to) const

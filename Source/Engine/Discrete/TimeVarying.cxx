@@ -103,9 +103,7 @@ TimeVaryingRules TimeVaryingRules::FromExample(const TimeVaryingGrid& example)
 
 int TimeVaryingRules::IndexOf(Label value) const
 {
-  const auto it = std::lower_bound(this->Values.begin(), this->Values.end(), value);
-  return it != this->Values.end() && *it == value ? static_cast<int>(it - this->Values.begin())
-                                                  : -1;
+  return IndexOfLabel(this->Values, value);
 }
 
 namespace
