@@ -436,7 +436,7 @@ std::int32_t ArrangementBuilder::NextAlong(const Exact& x, const IntVec3& d) con
   {
     return -1;
   }
-  std::vector<Wide> planeIndex;
+  std::vector<Wide>& planeIndex = this->Scratch;
   const Tuple* tu = this->FirstTuple(this->FamiliesThrough(y, planeIndex));
   if (!tu)
   {

@@ -79,6 +79,7 @@ private:
   std::vector<Exact> Vertices;     ///< exact positions, then in scan-line order
   std::vector<std::uint64_t> Masks;
   std::map<IntVec3, int> DirectionIndex;
+  mutable std::vector<Wide> Scratch; ///< plane indices of NextAlong's vertex (no allocation a link)
 };
 
 } // namespace detail
