@@ -47,6 +47,80 @@ int vtkMSArrangementMesh::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+namespace
+{
+/// The mesh's points (with their arrangement vertices) and polygons with their object types.
+void FillMesh(vtkPolyData* output, const msynth::ContinuousMesh& mesh)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.Points.size()));
+  vtkNew<vtkIdTypeArray> vertex;
+  vertex->SetName("ArrangementVertex");
+  vertex->SetNumberOfValues(static_cast<vtkIdType>(mesh.Points.size()));
+  for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), mesh.Points[i].data());
+    vertex->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(mesh.PointVertex[i]));
+  }
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> inside;
+  inside->SetName(mesh.Planar ? "ObjectType" : "InsideType");
+  vtkNew<vtkIntArray> outside;
+  outside->SetName("OutsideType");
+  std::vector<vtkIdType> ids;
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    ids.assign(mesh.Polygons[f].begin(), mesh.Polygons[f].end());
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    inside->InsertNextValue(mesh.InsideType[f]);
+    if (!mesh.Planar)
+    {
+      outside->InsertNextValue(mesh.OutsideType[f]);
+    }
+  }
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetPointData()->AddArray(vertex);
+  output->GetCellData()->AddArray(inside);
+  if (!mesh.Planar)
+  {
+    output->GetCellData()->AddArray(outside);
+  }
+  output->GetCellData()->SetActiveScalars(inside->GetName());
+}
+
+/// The example's file and its object type names by type id (0: empty), e.g. for the VDB
+/// writer's surface_<type>.
+void AddTypeNames(vtkPolyData* output, const msynth::PolyhedralExample& ex)
+{
+  vtkNew<vtkStringArray> file;
+  file->SetName("ExampleFile");
+  file->InsertNextValue(ex.Source);
+  output->GetFieldData()->AddArray(file);
+  vtkNew<vtkStringArray> typeNames;
+  typeNames->SetName("TypeNames");
+  const int maxType = ex.TypeNames.empty() ? 0 : ex.TypeNames.rbegin()->first;
+  typeNames->SetNumberOfValues(maxType + 1);
+  typeNames->SetValue(0, "empty");
+  for (const auto& [type, name] : ex.TypeNames)
+  {
+    if (type > 0)
+    {
+      typeNames->SetValue(type, name);
+    }
+  }
+  vtkNew<vtkIntArray> typeIds; // paired with TypeNames, as the example reader does
+  typeIds->SetName("TypeIds");
+  for (int t = 0; t <= maxType; ++t)
+  {
+    typeIds->InsertNextValue(t);
+  }
+  output->GetFieldData()->AddArray(typeNames);
+  output->GetFieldData()->AddArray(typeIds);
+}
+} // namespace
+
 int vtkMSArrangementMesh::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -102,67 +176,8 @@ int vtkMSArrangementMesh::RequestData(
     }
     const msynth::ContinuousMesh mesh = msynth::ExtractMesh(analysis, arrangement, labels);
 
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.Points.size()));
-    vtkNew<vtkIdTypeArray> vertex;
-    vertex->SetName("ArrangementVertex");
-    vertex->SetNumberOfValues(static_cast<vtkIdType>(mesh.Points.size()));
-    for (std::size_t i = 0; i < mesh.Points.size(); ++i)
-    {
-      points->SetPoint(static_cast<vtkIdType>(i), mesh.Points[i].data());
-      vertex->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(mesh.PointVertex[i]));
-    }
-    vtkNew<vtkCellArray> polys;
-    vtkNew<vtkIntArray> inside;
-    inside->SetName(mesh.Planar ? "ObjectType" : "InsideType");
-    vtkNew<vtkIntArray> outside;
-    outside->SetName("OutsideType");
-    std::vector<vtkIdType> ids;
-    for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
-    {
-      ids.assign(mesh.Polygons[f].begin(), mesh.Polygons[f].end());
-      polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-      inside->InsertNextValue(mesh.InsideType[f]);
-      if (!mesh.Planar)
-      {
-        outside->InsertNextValue(mesh.OutsideType[f]);
-      }
-    }
-    output->SetPoints(points);
-    output->SetPolys(polys);
-    output->GetPointData()->AddArray(vertex);
-    output->GetCellData()->AddArray(inside);
-    if (!mesh.Planar)
-    {
-      output->GetCellData()->AddArray(outside);
-    }
-    output->GetCellData()->SetActiveScalars(inside->GetName());
-    vtkNew<vtkStringArray> file;
-    file->SetName("ExampleFile");
-    file->InsertNextValue(ex.Source);
-    output->GetFieldData()->AddArray(file);
-    // Object type names by type id (0: empty), e.g. for the VDB writer's surface_<type>.
-    vtkNew<vtkStringArray> typeNames;
-    typeNames->SetName("TypeNames");
-    const int maxType = ex.TypeNames.empty() ? 0 : ex.TypeNames.rbegin()->first;
-    typeNames->SetNumberOfValues(maxType + 1);
-    typeNames->SetValue(0, "empty");
-    for (const auto& [type, name] : ex.TypeNames)
-    {
-      if (type > 0)
-      {
-        typeNames->SetValue(type, name);
-      }
-    }
-    vtkNew<vtkIntArray> typeIds; // paired with TypeNames, as the example reader does
-    typeIds->SetName("TypeIds");
-    for (int t = 0; t <= maxType; ++t)
-    {
-      typeIds->InsertNextValue(t);
-    }
-    output->GetFieldData()->AddArray(typeNames);
-    output->GetFieldData()->AddArray(typeIds);
+    FillMesh(output, mesh);
+    AddTypeNames(output, ex);
     if (this->CheckModel)
     {
       const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);

@@ -158,6 +158,140 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
 }
 } // namespace
 
+namespace
+{
+using Pieces = std::map<msynth::Label, vtkSmartPointer<vtkPolyData>>;
+
+/// The pieces of the labels present in @p grid from folder @p folder: <label>.vtp|obj|ply|stl,
+/// and with a tileset <tile> <k>.* or <tile>.* turned to orientation k. False with @p problem.
+bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder,
+  const std::string& tilesetFile, const std::string& subset, msynth::Label empty, Pieces& pieces,
+  std::string& problem)
+{
+  struct stat info;
+  if (::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+  {
+    problem = "'" + folder + "': no such folder of pieces.";
+    return false;
+  }
+  msynth::Tileset tileset;
+  if (!tilesetFile.empty())
+  {
+    try
+    {
+      tileset = msynth::ReadTilesetFile(tilesetFile, subset);
+    }
+    catch (const msynth::Error& e)
+    {
+      problem = e.what();
+      return false;
+    }
+  }
+  const std::set<msynth::Label> present(grid.Data().begin(), grid.Data().end());
+  for (msynth::Label b : present)
+  {
+    if (b == empty)
+      continue;
+    // Candidate names, each with the orientation to turn it by (0: as it is).
+    std::vector<std::pair<std::string, int>> names{ { std::to_string(b), 0 } };
+    if (!tilesetFile.empty())
+    {
+      if (b < 0 || b >= tileset.NumberOfLabels())
+      {
+        problem = "label " + std::to_string(b) + " is not a label of the tileset '" + tilesetFile +
+          "' (" + std::to_string(tileset.NumberOfLabels()) + " labels)";
+        return false;
+      }
+      const auto& tile =
+        tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
+      const int k = tileset.LabelOrientation[static_cast<std::size_t>(b)];
+      names.emplace_back(tile.Name + " " + std::to_string(k), 0);
+      names.emplace_back(tile.Name, k);
+    }
+    bool found = false;
+    for (const auto& [name, turn] : names)
+    {
+      for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
+      {
+        const std::string path = folder + "/" + name + ext;
+        if (!found && IsFile(path))
+        {
+          auto mesh = ReadPiece(path, problem);
+          if (!mesh)
+            return false;
+          pieces[b] = turn ? Turned(mesh, turn) : mesh;
+          found = true;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+/// Where the geometry goes: points, polygons and their labels.
+struct Geometry
+{
+  vtkNew<vtkPoints> Points;
+  vtkNew<vtkCellArray> Polys;
+  vtkNew<vtkIntArray> Labels;
+};
+
+/// The voxel surface of the labels without a piece (labels with one count as empty there).
+void AppendVoxelSurface(const msynth::LabelGrid& grid, const Pieces& pieces, msynth::Label empty,
+  const std::array<double, 3>& start, const double* spacing, Geometry& out)
+{
+  msynth::LabelGrid voxels = grid;
+  for (auto& v : voxels.Data())
+    if (pieces.count(v))
+      v = empty;
+  const msynth::VoxelSurface surface =
+    msynth::ExtractVoxelSurface(voxels, empty, start, { { spacing[0], spacing[1], spacing[2] } });
+  for (const auto& p : surface.Points)
+    out.Points->InsertNextPoint(p.data());
+  for (std::size_t q = 0; q < surface.Quads.size(); ++q)
+  {
+    const vtkIdType ids[4] = { surface.Quads[q][0], surface.Quads[q][1], surface.Quads[q][2],
+      surface.Quads[q][3] };
+    out.Polys->InsertNextCell(4, ids);
+    out.Labels->InsertNextValue(surface.QuadLabels[q]);
+  }
+}
+
+/// Piece @p piece of label @p label placed at every site holding it (scaled by the spacing).
+void AppendPiece(const msynth::LabelGrid& grid, msynth::Label label, vtkPolyData* piece,
+  const std::array<double, 3>& start, const double* spacing, Geometry& out)
+{
+  vtkCellArray* cells = piece->GetPolys();
+  const auto& n = grid.Dimensions();
+  vtkNew<vtkIdList> cell;
+  for (std::int64_t z = 0; z < n[2]; ++z)
+    for (std::int64_t y = 0; y < n[1]; ++y)
+      for (std::int64_t x = 0; x < n[0]; ++x)
+      {
+        if (grid.At(x, y, z) != label)
+          continue;
+        const vtkIdType base = out.Points->GetNumberOfPoints();
+        const double center[3] = { start[0] + double(x) * spacing[0],
+          start[1] + double(y) * spacing[1], start[2] + double(z) * spacing[2] };
+        for (vtkIdType i = 0; i < piece->GetNumberOfPoints(); ++i)
+        {
+          double p[3];
+          piece->GetPoint(i, p);
+          out.Points->InsertNextPoint(center[0] + p[0] * spacing[0], center[1] + p[1] * spacing[1],
+            center[2] + p[2] * spacing[2]);
+        }
+        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+        {
+          cells->GetCellAtId(c, cell);
+          for (vtkIdType i = 0; i < cell->GetNumberOfIds(); ++i)
+            cell->SetId(i, cell->GetId(i) + base);
+          out.Polys->InsertNextCell(cell);
+          out.Labels->InsertNextValue(label);
+        }
+      }
+}
+} // namespace
+
 int vtkMSLabelGeometry::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -177,137 +311,30 @@ int vtkMSLabelGeometry::RequestData(
   // World position of site (0, 0, 0) of the grid.
   const std::array<double, 3> start{ { origin[0] + extent[0] * spacing[0],
     origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2] } };
-
-  // Pieces for the labels present.
-  std::map<msynth::Label, vtkSmartPointer<vtkPolyData>> pieces;
-  if (!this->PieceDirectory.empty())
+  Pieces pieces;
+  if (!this->PieceDirectory.empty() &&
+    !LoadPieces(grid, this->PieceDirectory, this->TilesetFile, this->TilesetSubset,
+      this->EmptyLabel, pieces, problem))
   {
-    struct stat info;
-    if (::stat(this->PieceDirectory.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
-    {
-      vtkErrorMacro(<< "'" << this->PieceDirectory << "': no such folder of pieces.");
-      return 0;
-    }
-    msynth::Tileset tileset;
-    if (!this->TilesetFile.empty())
-    {
-      try
-      {
-        tileset = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-      }
-      catch (const msynth::Error& e)
-      {
-        vtkErrorMacro(<< e.what());
-        return 0;
-      }
-    }
-    const std::set<msynth::Label> present(grid.Data().begin(), grid.Data().end());
-    for (msynth::Label b : present)
-    {
-      if (b == this->EmptyLabel)
-        continue;
-      // Candidate names, each with the orientation to turn it by (0: as it is).
-      std::vector<std::pair<std::string, int>> names{ { std::to_string(b), 0 } };
-      if (!this->TilesetFile.empty())
-      {
-        if (b < 0 || b >= tileset.NumberOfLabels())
-        {
-          vtkErrorMacro(<< "label " << b << " is not a label of the tileset '" << this->TilesetFile
-                        << "' (" << tileset.NumberOfLabels() << " labels)");
-          return 0;
-        }
-        const auto& tile =
-          tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
-        const int k = tileset.LabelOrientation[static_cast<std::size_t>(b)];
-        names.emplace_back(tile.Name + " " + std::to_string(k), 0);
-        names.emplace_back(tile.Name, k);
-      }
-      bool found = false;
-      for (const auto& [name, turn] : names)
-      {
-        for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
-        {
-          const std::string path = this->PieceDirectory + "/" + name + ext;
-          if (!found && IsFile(path))
-          {
-            auto mesh = ReadPiece(path, problem);
-            if (!mesh)
-            {
-              vtkErrorMacro(<< problem);
-              return 0;
-            }
-            pieces[b] = turn ? Turned(mesh, turn) : mesh;
-            found = true;
-          }
-        }
-      }
-    }
+    vtkErrorMacro(<< problem);
+    return 0;
   }
-
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> cellLabels;
-  cellLabels->SetName("Label");
-
-  // Voxel surface of the labels without a piece (labels with one count as empty there).
-  msynth::LabelGrid voxels = grid;
-  for (auto& v : voxels.Data())
-    if (pieces.count(v))
-      v = this->EmptyLabel;
-  const msynth::VoxelSurface surface = msynth::ExtractVoxelSurface(
-    voxels, this->EmptyLabel, start, { { spacing[0], spacing[1], spacing[2] } });
-  for (const auto& p : surface.Points)
-    points->InsertNextPoint(p.data());
-  for (std::size_t q = 0; q < surface.Quads.size(); ++q)
-  {
-    const vtkIdType ids[4] = { surface.Quads[q][0], surface.Quads[q][1], surface.Quads[q][2],
-      surface.Quads[q][3] };
-    polys->InsertNextCell(4, ids);
-    cellLabels->InsertNextValue(surface.QuadLabels[q]);
-  }
-
-  // Pieces, placed at their sites.
-  const auto& n = grid.Dimensions();
-  vtkNew<vtkIdList> cell;
+  Geometry geometry;
+  geometry.Points->SetDataTypeToDouble();
+  geometry.Labels->SetName("Label");
+  AppendVoxelSurface(grid, pieces, this->EmptyLabel, start, spacing, geometry);
   for (const auto& kv : pieces)
   {
-    vtkPolyData* piece = kv.second;
-    vtkCellArray* cells = piece->GetPolys()->GetNumberOfCells() ? piece->GetPolys() : nullptr;
-    if (!cells)
+    if (kv.second->GetPolys()->GetNumberOfCells() == 0)
     {
       vtkWarningMacro(<< "The piece of label " << kv.first << " has no polygons; skipped.");
       continue;
     }
-    for (std::int64_t z = 0; z < n[2]; ++z)
-      for (std::int64_t y = 0; y < n[1]; ++y)
-        for (std::int64_t x = 0; x < n[0]; ++x)
-        {
-          if (grid.At(x, y, z) != kv.first)
-            continue;
-          const vtkIdType base = points->GetNumberOfPoints();
-          const double center[3] = { start[0] + double(x) * spacing[0],
-            start[1] + double(y) * spacing[1], start[2] + double(z) * spacing[2] };
-          for (vtkIdType i = 0; i < piece->GetNumberOfPoints(); ++i)
-          {
-            double p[3];
-            piece->GetPoint(i, p);
-            points->InsertNextPoint(center[0] + p[0] * spacing[0], center[1] + p[1] * spacing[1],
-              center[2] + p[2] * spacing[2]);
-          }
-          for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-          {
-            cells->GetCellAtId(c, cell);
-            for (vtkIdType i = 0; i < cell->GetNumberOfIds(); ++i)
-              cell->SetId(i, cell->GetId(i) + base);
-            polys->InsertNextCell(cell);
-            cellLabels->InsertNextValue(kv.first);
-          }
-        }
+    AppendPiece(grid, kv.first, kv.second, start, spacing, geometry);
   }
-  output->SetPoints(points);
-  output->SetPolys(polys);
-  output->GetCellData()->SetScalars(cellLabels);
+  output->SetPoints(geometry.Points);
+  output->SetPolys(geometry.Polys);
+  output->GetCellData()->SetScalars(geometry.Labels);
   return 1;
 }
 
