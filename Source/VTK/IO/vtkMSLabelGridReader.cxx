@@ -274,6 +274,86 @@ int vtkMSLabelGridReader::RequestInformation(
   return 1;
 }
 
+namespace
+{
+/// A model of the original program's text format (or a .vox model) as a label image, with what
+/// the file says of its labels as field data: piece names, the trailer, the palette.
+void FillFromTextModel(vtkImageData* output, const msynth::TextModel& text,
+  const std::vector<std::array<std::uint8_t, 4>>& colours)
+{
+  const auto& d = text.Grid.Dimensions();
+  output->SetExtent(
+    0, static_cast<int>(d[0]) - 1, 0, static_cast<int>(d[1]) - 1, 0, static_cast<int>(d[2]) - 1);
+  output->SetOrigin(0, 0, 0);
+  output->SetSpacing(1, 1, 1);
+  vtkSmartPointer<vtkIntArray> labels;
+  labels.TakeReference(vtkMSLabelArrays::NewLabelArray(text.Grid, "Label"));
+  output->GetPointData()->SetScalars(labels);
+  vtkNew<vtkIntArray> pieceLabels;
+  pieceLabels->SetName("PieceLabels");
+  vtkNew<vtkStringArray> pieceNames;
+  pieceNames->SetName("PieceNames");
+  for (const auto& kv : text.Pieces)
+  {
+    for (const auto& name : kv.second)
+    {
+      pieceLabels->InsertNextValue(kv.first);
+      pieceNames->InsertNextValue(name);
+    }
+  }
+  if (pieceNames->GetNumberOfValues() > 0)
+  {
+    output->GetFieldData()->AddArray(pieceLabels);
+    output->GetFieldData()->AddArray(pieceNames);
+  }
+  if (!text.Trailer.empty())
+  {
+    // The text after the last value (the <Objects> section), written back unchanged by
+    // vtkMSLabelGridWriter so the original program's loaders find the scene and pieces.
+    vtkNew<vtkStringArray> trailer;
+    trailer->SetName("TextModelTrailer");
+    trailer->InsertNextValue(text.Trailer);
+    output->GetFieldData()->AddArray(trailer);
+  }
+  if (!colours.empty())
+  {
+    vtkNew<vtkUnsignedCharArray> palette;
+    palette->SetName("PaletteRGBA");
+    palette->SetNumberOfComponents(4);
+    for (const auto& rgba : colours)
+    {
+      palette->InsertNextTypedTuple(rgba.data());
+    }
+    output->GetFieldData()->AddArray(palette);
+  }
+}
+
+/// The sites of @p image: its points, or with @p onCells one point per cell at the centres.
+void SitesOf(vtkImageData* image, bool onCells, vtkImageData* sites)
+{
+  int extent[6];
+  double origin[3], spacing[3];
+  image->GetExtent(extent);
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  if (onCells)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (extent[2 * a + 1] > extent[2 * a])
+      {
+        extent[2 * a + 1] -= 1;
+        origin[a] += 0.5 * spacing[a];
+      }
+    }
+  }
+  sites->SetExtent(extent);
+  sites->SetOrigin(origin);
+  sites->SetSpacing(spacing);
+  sites->SetDirectionMatrix(image->GetDirectionMatrix());
+}
+} // namespace
+
 int vtkMSLabelGridReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -287,53 +367,8 @@ int vtkMSLabelGridReader::RequestData(
   source->InsertNextValue(this->FileName);
   if (this->IsText)
   {
-    const msynth::TextModel& text = this->Internal->Text;
-    const auto& d = text.Grid.Dimensions();
-    output->SetExtent(
-      0, static_cast<int>(d[0]) - 1, 0, static_cast<int>(d[1]) - 1, 0, static_cast<int>(d[2]) - 1);
-    output->SetOrigin(0, 0, 0);
-    output->SetSpacing(1, 1, 1);
-    vtkSmartPointer<vtkIntArray> labels;
-    labels.TakeReference(vtkMSLabelArrays::NewLabelArray(text.Grid, "Label"));
-    output->GetPointData()->SetScalars(labels);
+    FillFromTextModel(output, this->Internal->Text, this->Internal->Palette);
     output->GetFieldData()->AddArray(source);
-    vtkNew<vtkIntArray> pieceLabels;
-    pieceLabels->SetName("PieceLabels");
-    vtkNew<vtkStringArray> pieceNames;
-    pieceNames->SetName("PieceNames");
-    for (const auto& kv : text.Pieces)
-    {
-      for (const auto& name : kv.second)
-      {
-        pieceLabels->InsertNextValue(kv.first);
-        pieceNames->InsertNextValue(name);
-      }
-    }
-    if (pieceNames->GetNumberOfValues() > 0)
-    {
-      output->GetFieldData()->AddArray(pieceLabels);
-      output->GetFieldData()->AddArray(pieceNames);
-    }
-    if (!text.Trailer.empty())
-    {
-      // The text after the last value (the <Objects> section), written back unchanged by
-      // vtkMSLabelGridWriter so the original program's loaders find the scene and pieces.
-      vtkNew<vtkStringArray> trailer;
-      trailer->SetName("TextModelTrailer");
-      trailer->InsertNextValue(text.Trailer);
-      output->GetFieldData()->AddArray(trailer);
-    }
-    if (!this->Internal->Palette.empty())
-    {
-      vtkNew<vtkUnsignedCharArray> palette;
-      palette->SetName("PaletteRGBA");
-      palette->SetNumberOfComponents(4);
-      for (const auto& rgba : this->Internal->Palette)
-      {
-        palette->InsertNextTypedTuple(rgba.data());
-      }
-      output->GetFieldData()->AddArray(palette);
-    }
     return 1;
   }
   std::string messages;
@@ -353,29 +388,8 @@ int vtkMSLabelGridReader::RequestData(
     return 0;
   }
 
-  // The sites: the image's points, or one point per cell at the cell centers.
   vtkNew<vtkImageData> sites;
-  int extent[6];
-  double origin[3], spacing[3];
-  image->GetExtent(extent);
-  image->GetOrigin(origin);
-  image->GetSpacing(spacing);
-  if (this->LabelsOnCells)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      if (extent[2 * a + 1] > extent[2 * a])
-      {
-        extent[2 * a + 1] -= 1;
-        origin[a] += 0.5 * spacing[a];
-      }
-    }
-  }
-  sites->SetExtent(extent);
-  sites->SetOrigin(origin);
-  sites->SetSpacing(spacing);
-  sites->SetDirectionMatrix(image->GetDirectionMatrix());
-
+  SitesOf(image, this->LabelsOnCells, sites);
   std::string problem;
   if (!vtkMSLabelArrays::CheckLabelArray(sites, labels, problem))
   {

@@ -225,6 +225,80 @@ msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::Me
 }
 } // namespace
 
+namespace
+{
+/// The point and cell geometry of @p input as grid headers; cells are one fewer along axes with
+/// more than one point, centred between the points.
+void GridGeometries(
+  vtkImageData* input, msynth::vdb::GridHeader& points, msynth::vdb::GridHeader& cells)
+{
+  int extent[6];
+  double origin[3], spacing[3];
+  input->GetExtent(extent);
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    points.IndexMin[a] = extent[2 * a];
+    points.Dims[a] = std::int64_t(extent[2 * a + 1]) - extent[2 * a] + 1;
+    points.Origin[a] = origin[a];
+    points.Spacing[a] = spacing[a];
+  }
+  cells = points;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (points.Dims[a] > 1)
+    {
+      cells.Dims[a] -= 1;
+      cells.Origin[a] += 0.5 * spacing[a];
+    }
+  }
+}
+
+/// Which array holds labels, and how they are written.
+struct LabelPolicy
+{
+  std::string ArrayName;
+  double Empty = 0;
+  bool AlsoFloat = false;
+};
+
+/// Every numeric array of @p data as a grid of @p geometry (the label array also as float when
+/// asked); the reasons for arrays that cannot be grids go to @p skipped.
+void AddGrids(vtkDataSetAttributes* data, vtkImageData* input,
+  const msynth::vdb::GridHeader& geometry, const char* association, bool cellData,
+  const LabelPolicy& labels, Buffers& buffers, std::vector<msynth::vdb::DenseGridView>& views,
+  std::vector<std::string>& skipped)
+{
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* array = data->GetArray(i);
+    if (!array)
+    {
+      continue; // string or other non-numeric array
+    }
+    std::string name = array->GetName() ? array->GetName() : "array" + std::to_string(i);
+    if (cellData && input->GetPointData()->GetAbstractArray(name.c_str()))
+    {
+      name += "_cell";
+    }
+    const bool isLabel = !cellData && name == labels.ArrayName;
+    std::string reason;
+    if (!AddArray(array, name, geometry, association, isLabel ? labels.Empty : 0.0, false, buffers,
+          views, reason))
+    {
+      skipped.push_back(reason);
+      continue;
+    }
+    if (isLabel && labels.AlsoFloat)
+    {
+      AddArray(
+        array, name + "_float", geometry, association, labels.Empty, true, buffers, views, reason);
+    }
+  }
+}
+} // namespace
+
 void vtkMSOpenVDBWriter::WriteData()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
@@ -271,73 +345,27 @@ void vtkMSOpenVDBWriter::WriteData()
 
   try
   {
-    int extent[6];
-    double origin[3], spacing[3];
-    input->GetExtent(extent);
-    input->GetOrigin(origin);
-    input->GetSpacing(spacing);
-    msynth::vdb::GridHeader points;
-    for (int a = 0; a < 3; ++a)
-    {
-      points.IndexMin[a] = extent[2 * a];
-      points.Dims[a] = std::int64_t(extent[2 * a + 1]) - extent[2 * a] + 1;
-      points.Origin[a] = origin[a];
-      points.Spacing[a] = spacing[a];
-    }
-    // Cells: one fewer along axes with more than one point, centred between the points.
-    msynth::vdb::GridHeader cells = points;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (points.Dims[a] > 1)
-      {
-        cells.Dims[a] -= 1;
-        cells.Origin[a] += 0.5 * spacing[a];
-      }
-    }
+    msynth::vdb::GridHeader points, cells;
+    GridGeometries(input, points, cells);
     if (input->GetNumberOfPoints() == 0)
     {
       throw msynth::Error("the input image is empty");
     }
-
     Buffers buffers;
     std::vector<msynth::vdb::DenseGridView> views;
-    std::string skipped;
-    auto addAll = [&](vtkDataSetAttributes* data, const msynth::vdb::GridHeader& geometry,
-                    const char* association, bool cellData)
+    std::vector<std::string> skipped;
+    const LabelPolicy labels{ this->LabelArrayName, static_cast<double>(this->EmptyLabel),
+      this->WriteFloatLabels };
+    AddGrids(input->GetPointData(), input, points, "point", false, labels, buffers, views, skipped);
+    AddGrids(input->GetCellData(), input, cells, "cell", true, labels, buffers, views, skipped);
+    for (const auto& reason : skipped)
     {
-      for (int i = 0; i < data->GetNumberOfArrays(); ++i)
-      {
-        vtkDataArray* array = data->GetArray(i);
-        if (!array)
-        {
-          continue; // string or other non-numeric array
-        }
-        std::string name = array->GetName() ? array->GetName() : "array" + std::to_string(i);
-        if (cellData && input->GetPointData()->GetAbstractArray(name.c_str()))
-        {
-          name += "_cell";
-        }
-        const bool isLabel = !cellData && name == this->LabelArrayName;
-        if (!AddArray(array, name, geometry, association, isLabel ? this->EmptyLabel : 0.0, false,
-              buffers, views, skipped))
-        {
-          vtkWarningMacro(<< "'" << this->FileName << "': " << skipped << "; skipped.");
-          continue;
-        }
-        if (isLabel && this->WriteFloatLabels)
-        {
-          AddArray(array, name + "_float", geometry, association, this->EmptyLabel, true, buffers,
-            views, skipped);
-        }
-      }
-    };
-    addAll(input->GetPointData(), points, "point", false);
-    addAll(input->GetCellData(), cells, "cell", true);
+      vtkWarningMacro(<< "'" << this->FileName << "': " << reason << "; skipped.");
+    }
     if (views.empty())
     {
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
-
     msynth::vdb::WriteFile(
       this->CurrentFileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
