@@ -42,6 +42,62 @@ void vtkMSPlaneArrangement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumVertices: " << this->MaximumVertices << "\n";
 }
 
+namespace
+{
+/// The arrangement as poly data: its vertices (families through each, catalog size) and its
+/// inner edges with their direction classes.
+void FillArrangement(vtkPolyData* output, const msynth::PlaneArrangement& arrangement,
+  const msynth::ArrangementRules& rules)
+{
+  const vtkIdType n = arrangement.NumberOfVertices();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkTypeInt64Array> families;
+  families->SetName("Families");
+  families->SetNumberOfValues(n);
+  vtkNew<vtkIntArray> count;
+  count->SetName("NumberOfFamilies");
+  count->SetNumberOfValues(n);
+  vtkNew<vtkIntArray> catalog;
+  catalog->SetName("CatalogSize");
+  catalog->SetNumberOfValues(n);
+  vtkNew<vtkCellArray> verts;
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkIntArray> direction;
+  direction->SetName("Direction");
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    points->SetPoint(v, arrangement.Position(v).data());
+    families->SetValue(v, static_cast<vtkTypeInt64>(arrangement.FamilyMask(v)));
+    count->SetValue(v, __builtin_popcountll(arrangement.FamilyMask(v)));
+    catalog->SetValue(v, rules.InitialCount(v));
+    verts->InsertNextCell(1, &v);
+    direction->InsertNextValue(-1);
+  }
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
+    {
+      if (l->Vertex > v)
+      {
+        const vtkIdType ends[2] = { v, l->Vertex };
+        lines->InsertNextCell(2, ends);
+        direction->InsertNextValue(l->Direction);
+      }
+    }
+  }
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  output->SetLines(lines);
+  output->GetPointData()->AddArray(families);
+  output->GetPointData()->AddArray(count);
+  output->GetPointData()->AddArray(catalog);
+  output->GetPointData()->SetActiveScalars("CatalogSize");
+  output->GetCellData()->AddArray(direction);
+}
+} // namespace
+
 int vtkMSPlaneArrangement::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -74,52 +130,7 @@ int vtkMSPlaneArrangement::RequestData(
     const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
     const msynth::ArrangementRules rules(analysis, arrangement);
 
-    const vtkIdType n = arrangement.NumberOfVertices();
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(n);
-    vtkNew<vtkTypeInt64Array> families;
-    families->SetName("Families");
-    families->SetNumberOfValues(n);
-    vtkNew<vtkIntArray> count;
-    count->SetName("NumberOfFamilies");
-    count->SetNumberOfValues(n);
-    vtkNew<vtkIntArray> catalog;
-    catalog->SetName("CatalogSize");
-    catalog->SetNumberOfValues(n);
-    vtkNew<vtkCellArray> verts;
-    vtkNew<vtkCellArray> lines;
-    vtkNew<vtkIntArray> direction;
-    direction->SetName("Direction");
-    for (vtkIdType v = 0; v < n; ++v)
-    {
-      points->SetPoint(v, arrangement.Position(v).data());
-      families->SetValue(v, static_cast<vtkTypeInt64>(arrangement.FamilyMask(v)));
-      count->SetValue(v, __builtin_popcountll(arrangement.FamilyMask(v)));
-      catalog->SetValue(v, rules.InitialCount(v));
-      verts->InsertNextCell(1, &v);
-      direction->InsertNextValue(-1);
-    }
-    for (vtkIdType v = 0; v < n; ++v)
-    {
-      for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
-      {
-        if (l->Vertex > v)
-        {
-          const vtkIdType ends[2] = { v, l->Vertex };
-          lines->InsertNextCell(2, ends);
-          direction->InsertNextValue(l->Direction);
-        }
-      }
-    }
-    output->SetPoints(points);
-    output->SetVerts(verts);
-    output->SetLines(lines);
-    output->GetPointData()->AddArray(families);
-    output->GetPointData()->AddArray(count);
-    output->GetPointData()->AddArray(catalog);
-    output->GetPointData()->SetActiveScalars("CatalogSize");
-    output->GetCellData()->AddArray(direction);
+    FillArrangement(output, arrangement, rules);
     vtkMSArrangementStorage::StoreArrangement(record, output->GetFieldData());
     vtkNew<vtkStringArray> file;
     file->SetName("ExampleFile");

@@ -114,6 +114,58 @@ Picture Oriented(const Picture& p, int orientation)
 }
 } // namespace
 
+namespace
+{
+/// One picture per label of @p tiles: its tile's image turned and mirrored to its orientation
+/// (or its own image in a unique set), rows bottom first. @throw std::runtime_error saying which
+/// image is missing, unreadable or of another size.
+std::vector<Picture> LoadPictures(
+  const std::string& tilesetFile, const msynth::Tileset& tiles, int& size)
+{
+  std::vector<Picture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
+  size = 0;
+  for (int b = 0; b < tiles.NumberOfLabels(); ++b)
+  {
+    const auto& tile =
+      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
+    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
+    const std::string path = msynth::TileImageFile(tilesetFile, tiles, tile, k);
+    msynth::RgbaImage image;
+    try
+    {
+      image = msynth::ReadImage(path);
+    }
+    catch (const std::exception& e)
+    {
+      throw std::runtime_error(std::string(e.what()) + " (tile '" + tile.Name + "')");
+    }
+    std::string problem;
+    if (image.Width != image.Height)
+      problem = "tile images must be square (this one is " + std::to_string(image.Width) + " x " +
+        std::to_string(image.Height) + ").";
+    else if (tiles.TileSize && image.Width != tiles.TileSize)
+      problem = "is " + std::to_string(image.Width) +
+        " pixels wide; the tileset's <set size> says " + std::to_string(tiles.TileSize) + ".";
+    else if (size && image.Width != size)
+      problem = "is " + std::to_string(image.Width) + " pixels wide; the other tiles are " +
+        std::to_string(size) + ".";
+    if (!problem.empty())
+      throw std::runtime_error("'" + path + "': " + problem);
+    size = image.Width;
+    Picture p;
+    p.Size = size;
+    p.RGBA.resize(static_cast<std::size_t>(size) * size * 4);
+    for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
+    {
+      std::copy(image.At(0, size - 1 - j), image.At(0, size - 1 - j) + 4 * size,
+        p.RGBA.begin() + 4 * static_cast<std::ptrdiff_t>(j) * size);
+    }
+    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
+  }
+  return pictures;
+}
+} // namespace
+
 int vtkMSTileImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -137,53 +189,16 @@ int vtkMSTileImage::RequestData(
     return 0;
   }
 
-  // One picture per label.
-  std::vector<Picture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
+  std::vector<Picture> pictures;
   int size = 0;
-  for (int b = 0; b < tiles.NumberOfLabels(); ++b)
+  try
   {
-    const auto& tile =
-      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
-    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
-    const std::string path = msynth::TileImageFile(this->TilesetFile, tiles, tile, k);
-    msynth::RgbaImage image;
-    try
-    {
-      image = msynth::ReadImage(path);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< e.what() << " (tile '" << tile.Name << "')");
-      return 0;
-    }
-    if (image.Width != image.Height)
-    {
-      vtkErrorMacro(<< "'" << path << "': tile images must be square (this one is " << image.Width
-                    << " x " << image.Height << ").");
-      return 0;
-    }
-    if (tiles.TileSize && image.Width != tiles.TileSize)
-    {
-      vtkErrorMacro(<< "'" << path << "': is " << image.Width
-                    << " pixels wide; the tileset's <set size> says " << tiles.TileSize << ".");
-      return 0;
-    }
-    if (size && image.Width != size)
-    {
-      vtkErrorMacro(<< "'" << path << "': is " << image.Width
-                    << " pixels wide; the other tiles are " << size << ".");
-      return 0;
-    }
-    size = image.Width;
-    Picture p;
-    p.Size = size;
-    p.RGBA.resize(static_cast<std::size_t>(size) * size * 4);
-    for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
-    {
-      std::copy(image.At(0, size - 1 - j), image.At(0, size - 1 - j) + 4 * size,
-        p.RGBA.begin() + 4 * static_cast<std::ptrdiff_t>(j) * size);
-    }
-    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
+    pictures = LoadPictures(this->TilesetFile, tiles, size);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
   }
 
   int dims[3];

@@ -109,6 +109,54 @@ vtkTypeBool vtkMSTimeVaryingSynthesis::ProcessRequest(
   return result;
 }
 
+namespace
+{
+/// The example frames: each input, or with @p fromZ the z slices of each. False with @p problem.
+bool ReadFrames(const std::vector<vtkSmartPointer<vtkDataObject>>& inputs, bool fromZ,
+  std::vector<msynth::LabelGrid>& frames, std::string& problem)
+{
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+  {
+    msynth::LabelGrid grid;
+    if (!vtkMSLabelArrays::ReadLabels(
+          vtkImageData::SafeDownCast(inputs[i]), nullptr, grid, problem))
+    {
+      problem = "Bad example frame " + std::to_string(i) + ": " + problem;
+      return false;
+    }
+    if (!fromZ)
+    {
+      frames.push_back(std::move(grid));
+      continue;
+    }
+    for (auto& slice : msynth::TimeVaryingGrid::FromSlices(grid).Frames)
+      frames.push_back(std::move(slice));
+  }
+  return true;
+}
+
+/// The engine's options from the filter's properties.
+msynth::TimeVaryingOptions OptionsOf(vtkMSTimeVaryingSynthesis* self)
+{
+  msynth::TimeVaryingOptions options;
+  const int* size = self->GetOutputSize();
+  const int* block = self->GetBlockSize();
+  options.Size = { { size[0], size[1], size[2], self->GetNumberOfFrames() } };
+  options.BlockSize = { { block[0], block[1], block[2], block[3] } };
+  options.AttemptsPerBlock = self->GetAttemptsPerBlock();
+  options.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  options.Choice = self->GetLabelChoice() == vtkMSTimeVaryingSynthesis::FREQUENCY
+    ? msynth::LabelChoice::Frequency
+    : msynth::LabelChoice::Uniform;
+  options.Order = self->GetSiteOrder() == vtkMSTimeVaryingSynthesis::RANDOM
+    ? msynth::SiteOrder::Random
+    : msynth::SiteOrder::ScanLine;
+  options.Loop = self->GetLoop();
+  options.Progress = vtkMSSynthesisRun::Progress(self);
+  return options;
+}
+} // namespace
+
 int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   const std::vector<vtkSmartPointer<vtkDataObject>>& inputs, vtkInformationVector* outputVector)
 {
@@ -119,43 +167,18 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
     output->Initialize(); // piece 0 holds the model
     return 1;
   }
-  // The example frames.
   std::vector<msynth::LabelGrid> frames;
-  for (std::size_t i = 0; i < inputs.size(); ++i)
+  std::string problem;
+  if (!ReadFrames(inputs, this->ExampleTimeFromZ, frames, problem))
   {
-    msynth::LabelGrid grid;
-    std::string problem;
-    if (!vtkMSLabelArrays::ReadLabels(
-          vtkImageData::SafeDownCast(inputs[i]), nullptr, grid, problem))
-    {
-      vtkErrorMacro(<< "Bad example frame " << i << ": " << problem);
-      return 0;
-    }
-    if (!this->ExampleTimeFromZ)
-    {
-      frames.push_back(std::move(grid));
-      continue;
-    }
-    for (auto& slice : msynth::TimeVaryingGrid::FromSlices(grid).Frames)
-      frames.push_back(std::move(slice));
+    vtkErrorMacro(<< problem);
+    return 0;
   }
   Cache& cache = *this->Cached;
   if (cache.Run.Fresh(this, {}) || cache.Example != frames)
   {
     cache.Run.Clear();
-    msynth::TimeVaryingOptions options;
-    options.Size = { { this->OutputSize[0], this->OutputSize[1], this->OutputSize[2],
-      this->NumberOfFrames } };
-    options.BlockSize = { { this->BlockSize[0], this->BlockSize[1], this->BlockSize[2],
-      this->BlockSize[3] } };
-    options.AttemptsPerBlock = this->AttemptsPerBlock;
-    options.Seed = static_cast<std::uint64_t>(this->Seed);
-    options.Choice = this->LabelChoice == FREQUENCY ? msynth::LabelChoice::Frequency
-                                                    : msynth::LabelChoice::Uniform;
-    options.Order =
-      this->SiteOrder == RANDOM ? msynth::SiteOrder::Random : msynth::SiteOrder::ScanLine;
-    options.Loop = this->Loop;
-    options.Progress = vtkMSSynthesisRun::Progress(this);
+    const msynth::TimeVaryingOptions options = OptionsOf(this);
     const std::string what =
       "A time-varying model of " + std::to_string(this->NumberOfFrames) + " frames";
     if (!vtkMSSynthesisRun::Solve(this, what,
