@@ -212,12 +212,12 @@ TEST(ContinuousSynthesis, SeededSnapshotsAndDeterminism)
   const PlaneArrangement arrangement(l.Analysis.Families(), p);
   for (double block : { 0.0, 2.0 })
   {
-    std::vector<ContinuousSnapshot> snapshots;
+    std::vector<CatalogSnapshot> snapshots;
     ContinuousSynthesisOptions options;
     options.Seed = 11;
     options.BlockSize = block;
     options.Snapshots = 5;
-    options.OnSnapshot = [&](const ContinuousSnapshot& s) { snapshots.push_back(s); };
+    options.OnSnapshot = [&](const CatalogSnapshot& s) { snapshots.push_back(s); };
     const auto a = SynthesizeContinuous(l.Analysis, arrangement, options);
     ASSERT_TRUE(a.Succeeded()) << a.Message;
     ASSERT_EQ(snapshots.size(), 6u) << "block " << block;
@@ -227,9 +227,10 @@ TEST(ContinuousSynthesis, SeededSnapshotsAndDeterminism)
       EXPECT_EQ(
         snapshots[i].CatalogSize.size(), static_cast<std::size_t>(arrangement.NumberOfVertices()));
     }
-    // The start has choices; the end is the result.
+    // The start has choices, nothing decided; the end is the result.
     EXPECT_GT(
       *std::max_element(snapshots[0].CatalogSize.begin(), snapshots[0].CatalogSize.end()), 1);
+    EXPECT_EQ(snapshots[0].Labels[0], CatalogSnapshot::Undecided);
     EXPECT_EQ(snapshots.back().Labels, a.Labels);
     options.OnSnapshot = nullptr;
     const auto b = SynthesizeContinuous(l.Analysis, arrangement, options);

@@ -371,7 +371,7 @@ public:
     }
     for (std::size_t i = 0; i < this->Verts.size(); ++i)
       this->LocalOf[static_cast<std::size_t>(this->Verts[i])] = static_cast<std::int32_t>(i);
-    this->BlockStart = ContinuousSnapshot();
+    this->BlockStart = CatalogSnapshot();
   }
 
   /// One attempt at the current block @p b: -1 when solved (its labels are written to the
@@ -402,8 +402,8 @@ public:
 
   /// The whole model now; @p active: with the current block's catalog; block -1: the catalog
   /// before anything is chosen.
-  ContinuousSnapshot Capture(std::int64_t block, bool active) const;
-  void Emit(ContinuousSnapshot s)
+  CatalogSnapshot Capture(std::int64_t block, bool active) const;
+  void Emit(CatalogSnapshot s)
   {
     s.Step = this->Step++;
     this->Options.OnSnapshot(s);
@@ -444,16 +444,16 @@ private:
   std::vector<std::int32_t> LocalOf;  ///< per vertex: its number in the current block, or -1
   std::vector<std::int64_t> Verts;    ///< the current block's vertices, ascending
   LabelDomains Domains;
-  std::vector<ContinuousSnapshot> Pending; ///< whole model: the current attempt's snapshots
-  ContinuousSnapshot BlockStart;           ///< blocks: the block's catalog after propagation
+  std::vector<CatalogSnapshot> Pending; ///< whole model: the current attempt's snapshots
+  CatalogSnapshot BlockStart;           ///< blocks: the block's catalog after propagation
   std::int64_t Step = 0;
   std::int64_t AssignmentsSoFar = 0; ///< label choices of all finished attempts
   std::string Failure;               ///< where the last failed attempt emptied a catalog
 };
 
-ContinuousSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
+CatalogSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
 {
-  ContinuousSnapshot s;
+  CatalogSnapshot s;
   s.Block = block;
   s.Assignments = this->AssignmentsSoFar;
   s.CatalogSize.assign(static_cast<std::size_t>(this->N), 1);
@@ -466,7 +466,7 @@ ContinuousSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
       for (int i = 0; i < this->Words; ++i)
         c += __builtin_popcountll(this->Initial[static_cast<std::size_t>(v) * this->Words + i]);
       s.CatalogSize[static_cast<std::size_t>(v)] = c;
-      s.Labels[static_cast<std::size_t>(v)] = -1;
+      s.Labels[static_cast<std::size_t>(v)] = CatalogSnapshot::Undecided;
     }
   }
   if (active)
@@ -476,7 +476,8 @@ ContinuousSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
       const auto v = static_cast<std::size_t>(this->Verts[i]);
       const int c = this->Domains.Count(static_cast<std::int64_t>(i));
       s.CatalogSize[v] = c;
-      s.Labels[v] = c == 1 ? this->Domains.Single(static_cast<std::int64_t>(i)) : -1;
+      s.Labels[v] =
+        c == 1 ? this->Domains.Single(static_cast<std::int64_t>(i)) : CatalogSnapshot::Undecided;
     }
   }
   s.Entropy.resize(s.CatalogSize.size());

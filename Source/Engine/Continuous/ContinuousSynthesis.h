@@ -51,16 +51,6 @@ private:
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
 };
 
-struct ContinuousSnapshot
-{
-  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
-  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
-  std::int64_t Assignments = 0;          ///< label choices made so far
-  std::vector<std::int32_t> CatalogSize; ///< labels still possible per vertex
-  std::vector<float> Entropy;            ///< log2 of CatalogSize (uniform choice)
-  std::vector<std::int32_t> Labels;      ///< the label where decided, else -1
-};
-
 struct ContinuousSynthesisOptions
 {
   std::uint64_t Seed = 0;
@@ -74,7 +64,7 @@ struct ContinuousSynthesisOptions
   /// Uniform (the dissertation) or weighted by how often the label occurs in the example.
   LabelChoice Choice = LabelChoice::Uniform;
   int Snapshots = 0; ///< catalog snapshots after the start, at even fractions of the work
-  std::function<void(const ContinuousSnapshot&)> OnSnapshot;
+  std::function<void(const CatalogSnapshot&)> OnSnapshot;
   /// Called with the fraction done; return false to cancel (Status Cancelled, no labels).
   std::function<bool(double)> Progress;
 };

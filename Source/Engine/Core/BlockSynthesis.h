@@ -40,6 +40,24 @@ enum class SynthesisStatus
 /// "succeeded", "failed" or "cancelled".
 const char* ToString(SynthesisStatus status);
 
+/**
+ * The state of the catalog over the whole model at one moment, for watching a solver work (every
+ * solver reports these). Sites outside the block being synthesized hold their current label
+ * (catalog size 1).
+ */
+struct CatalogSnapshot
+{
+  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
+  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
+  std::int64_t Assignments = 0;          ///< label choices made so far
+  std::vector<std::int32_t> CatalogSize; ///< labels still possible per site
+  std::vector<float> Entropy;            ///< entropy of the (weighted) possible labels per site
+  /// Where decided, the label (discrete: its value; continuous: the example's label id), else
+  /// Undecided.
+  std::vector<Label> Labels;
+  static constexpr Label Undecided = -2147483647 - 1;
+};
+
 /// A block whose every attempt failed (the model keeps its previous labels there).
 struct BlockFailure
 {

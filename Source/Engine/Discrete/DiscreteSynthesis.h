@@ -65,21 +65,6 @@ enum class SiteOrder
 };
 
 /**
- * The state of the catalog over the whole model at one moment, for watching the solver work.
- * Sites outside the block being synthesized hold their current label (catalog size 1).
- */
-struct CatalogSnapshot
-{
-  std::int64_t Step = 0;                 ///< 0 for the start, then 1, 2, ...
-  std::int64_t Block = -1;               ///< block being synthesized (-1 at the start)
-  std::int64_t Assignments = 0;          ///< label choices made so far
-  std::vector<std::int32_t> CatalogSize; ///< labels still possible per site
-  std::vector<float> Entropy;            ///< entropy of the (weighted) possible labels per site
-  std::vector<Label> Labels;             ///< the label value where decided, else Undecided
-  static constexpr Label Undecided = -2147483647 - 1;
-};
-
-/**
  * Large-scale constraints (dissertation §3.5.3): a guide grid stretched over the output box
  * giving, per cell, a weight for each label (its relative probability there). Output site p
  * reads cell floor((p + 1/2) · Dims / Size) on each axis. A weight of zero removes the label

@@ -30,7 +30,7 @@
 struct vtkMSContinuousSynthesis::Cache
 {
   vtkMSSynthesisCache<msynth::ContinuousSynthesisResult> Run;
-  std::vector<msynth::ContinuousSnapshot> Snapshots;
+  std::vector<msynth::CatalogSnapshot> Snapshots;
 };
 
 vtkStandardNewMacro(vtkMSContinuousSynthesis);
@@ -72,7 +72,7 @@ namespace
 /// The arrangement rebuilt exactly from its field data, checked against the example, and the
 /// solver run on it.
 msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyData* example,
-  vtkPolyData* arrangementData, std::vector<msynth::ContinuousSnapshot>& snapshots)
+  vtkPolyData* arrangementData, std::vector<msynth::CatalogSnapshot>& snapshots)
 {
   const auto record = vtkMSArrangementStorage::LoadArrangement(arrangementData->GetFieldData(),
     vtkMSFieldData::ExampleName(arrangementData) + " (arrangement)");
@@ -100,8 +100,7 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   options.Snapshots = self->GetNumberOfSnapshots();
   snapshots.clear();
-  options.OnSnapshot = [&snapshots](const msynth::ContinuousSnapshot& s)
-  { snapshots.push_back(s); };
+  options.OnSnapshot = [&snapshots](const msynth::CatalogSnapshot& s) { snapshots.push_back(s); };
   options.Progress = vtkMSSynthesisRun::Progress(self);
   return msynth::SynthesizeContinuous(analysis, arrangement, options);
 }
@@ -177,7 +176,8 @@ void vtkMSContinuousSynthesis::FillOutput(
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {
-      label->SetValue(v, snap.Labels[static_cast<std::size_t>(v)]);
+      const msynth::Label l = snap.Labels[static_cast<std::size_t>(v)];
+      label->SetValue(v, l == msynth::CatalogSnapshot::Undecided ? -1 : l); // -1: undecided
     }
     vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
     vtkMSSynthesisRun::AddStep(output, snap.Step, snap.Block, snap.Assignments);
