@@ -5,6 +5,7 @@ import os
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
+from paraview.modules.vtkRemotingServerManager import vtkSMOrderedPropertyIterator
 
 DATA = os.environ["MSYNTH_DATA"]
 TMP = os.environ["MSYNTH_TMP"]
@@ -160,6 +161,16 @@ for name in ("BlockSize", "Seed", "Translate", "Rotate", "Mirror", "CatalogSnaps
     check(fresh_tiles.GetProperty(name) is not None and fresh_grid.GetProperty(name) is not None,
           "shared property " + name)
 check(fresh_grid.GetProperty("ResemblanceWindow") is not None, "the grid's own property")
+check(fresh_grid.LabelChoice == "Uniform", "grid label choice %s" % fresh_grid.LabelChoice)
+for proxy in (fresh_grid, fresh_tiles):  # the panel shows the label choice beside the site order
+    ordered = vtkSMOrderedPropertyIterator()
+    ordered.SetProxy(proxy.SMProxy)
+    ordered.Begin()
+    names = []
+    while not ordered.IsAtEnd():
+        names.append(ordered.GetKey())
+        ordered.Next()
+    check(abs(names.index("LabelChoice") - names.index("SiteOrder")) == 1, "panel order %s" % names)
 Delete(fresh_tiles)
 Delete(fresh_grid)
 tiled = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[12, 9, 1], Seed=4)
