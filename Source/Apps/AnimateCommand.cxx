@@ -153,6 +153,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
   if (o.Examples.size() == 1)
   {
     reader->SetFileName(o.Examples[0].c_str());
+    Run(reader); // so that the reader's own error (naming the file) is the one reported
     synthesis->SetInputConnection(reader->GetOutputPort());
     synthesis->ExampleTimeFromZOn();
   }

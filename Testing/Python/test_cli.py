@@ -549,6 +549,11 @@ class CommandLineTest(unittest.TestCase):
             with open(os.path.join(out, "statistics.json")) as f:
                 self.assertEqual(json.load(f)["exampleFrames"], 8)
         self.assertEqual(run("animate", tmp("ball.vti"), "--size", "4", "1", "1").returncode, 2)  # no --frames
+        for bad in (data("Malformed/truncated.vti"), data("Continuous/cube.obj")):  # one line naming it
+            r = run("animate", bad, "--size", "4", "1", "1", "--frames", "2", "--out", tmp("cli-animate-bad"))
+            self.assertEqual(r.returncode, 1)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertIn(bad, r.stderr)
         r = run("animate", tmp("ball.vti"), singles[0], "--size", "4", "1", "1", "--frames", "3")
         self.assertEqual(r.returncode, 1)  # frames of different sizes
         self.assertIn("frame 1", r.stderr)
