@@ -26,6 +26,7 @@
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -88,7 +89,7 @@ std::string OutputList(const std::string& text)
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ','))
-    if (IndexIn(item, OutputKinds) == 0 && item != OutputKinds[0])
+    if (std::find(OutputKinds.begin(), OutputKinds.end(), item) == OutputKinds.end())
       return "unknown kind '" + Printable(item) + "' (labels, mesh, vdb, picture, txt, vox)";
   return std::string();
 }

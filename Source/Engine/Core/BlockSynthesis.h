@@ -159,6 +159,17 @@ std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
   const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
   int& phases);
 
+/// The phase of each block of @p blocks, in their order (what BlockRunner::Run takes).
+template <std::size_t D>
+std::vector<int> PhasesOf(const std::vector<BoxBlock<D>>& blocks)
+{
+  std::vector<int> phases;
+  phases.reserve(blocks.size());
+  for (const auto& b : blocks)
+    phases.push_back(b.Phase);
+  return phases;
+}
+
 /**
  * The label of the trivial start (Algorithm 3.4, lines 3-5) among @p k labels: label @p zero
  * (the index of value 0, or -1) when @p usable, else the first usable label; -1 when none is.

@@ -306,13 +306,10 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     workers.Extra.back()->Runner = &runner;
     workers.Extra.back()->Worker = w;
   }
-  std::vector<int> phases;
-  for (const Block& b : blocks)
-    phases.push_back(b.Phase);
 
   solver.StartSnapshots();
   const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
-  result.Status = runner.Run(phases, hooks, stats);
+  result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
   stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (result.Status == SynthesisStatus::Cancelled)
   {

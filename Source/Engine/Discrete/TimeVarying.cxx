@@ -417,10 +417,7 @@ TimeVaryingResult SynthesizeTimeVarying(
     failure.Attempts = out.Attempts;
     stats.Failures.push_back(failure);
   };
-  std::vector<int> phases;
-  for (const Block4& b : blocks)
-    phases.push_back(b.Phase);
-  result.Status = runner.Run(phases, hooks, stats);
+  result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
   stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (result.Status == SynthesisStatus::Cancelled)
   {
