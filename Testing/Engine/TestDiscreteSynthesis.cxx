@@ -433,11 +433,17 @@ TEST(DiscreteSynthesis, GuideErrors)
   g.Weights[2].resize(1);
   o.Guide = g;
   EXPECT_THROW(SynthesizeFrom(v, o), Error); // negative
-  // Block synthesis cannot honour a zero on the trivial label: refused, with the reason.
+  // Without label 0 the start is another label, or layers of labels, the guide allows.
   g.Weights.clear();
   g.Weights[0] = { 0.0f };
   o.Guide = g;
   o.BlockSize = { { 5, 5, 5 } };
+  const SynthesisResult r = SynthesizeFrom(v, o);
+  ExpectConsistent(v, r);
+  EXPECT_NE(r.Statistics.TrivialLabel, 0);
+  EXPECT_EQ(std::count(r.Model.Data().begin(), r.Model.Data().end(), 0), 0);
+  // Block synthesis cannot honour a zero on the chosen trivial label: refused, with the reason.
+  o.TrivialLabel = 0;
   try
   {
     SynthesizeFrom(v, o);

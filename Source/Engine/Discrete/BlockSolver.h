@@ -80,11 +80,28 @@ public:
   /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
   void ApplyBoundary();
 
-  /// The trivial start of Algorithm 3.4 (lines 3-5), checked for consistency.
+  /// The start of Algorithm 3.4 (lines 3-5), checked for consistency (TrivialStart.cxx): one
+  /// trivial label everywhere, else one per layer along an axis. Returns the label most sites
+  /// start with.
   int TrivialStart();
 
-  /// The trivial start must also satisfy the symmetry's seams and unary constraints.
-  void CheckStartAgainstSeams(int t) const;
+  /// The labels site @p s may hold (@p out: Words() words): its boundary label, else those the
+  /// guide and the symmetry's unary constraints allow.
+  void SiteMask(std::size_t s, std::uint64_t* out) const;
+
+  /// Per layer along @p axis, the labels all its sites may hold that are adjacent to themselves
+  /// along the output's other axes.
+  std::vector<std::uint64_t> LayerMasks(int axis) const;
+
+  /// One label per layer along @p axis forming a consistent start, or empty.
+  std::vector<int> LayeredStart(int axis) const;
+
+  /// The start (@p what names it, @p t its commonest label) against the mirror planes, the
+  /// guide, Eq. 3.3 and the seams.
+  void CheckStart(int t, const std::string& what) const;
+
+  /// The start must also satisfy the symmetry's seams and unary constraints.
+  void CheckStartAgainstSeams(const std::string& start) const;
 
   /// Lines 12-17 of Algorithm 3.4 for @p block on the reset catalog: fixed labels inside, the
   /// labels around it, unary site constraints, then propagation. Fills @p free with the free

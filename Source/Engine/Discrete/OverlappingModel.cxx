@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/OverlappingModel.h"
+
+#include "Core/Error.h"
+#include "Core/Memory.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace msynth
+{
+namespace
+{
+using WindowCells = std::vector<std::uint16_t>;
+
+/// The window of @p set's sample with top-left pixel (@p x, @p y), wrapping around its edges.
+WindowCells Window(const PatternSet& set, int x, int y)
+{
+  const int n = set.Options.N;
+  WindowCells w(static_cast<std::size_t>(n * n));
+  for (int dy = 0; dy < n; ++dy)
+    for (int dx = 0; dx < n; ++dx)
+      w[static_cast<std::size_t>(dy * n + dx)] = set.Sample[static_cast<std::size_t>(
+        ((y + dy) % set.SampleHeight) * set.SampleWidth + (x + dx) % set.SampleWidth)];
+  return w;
+}
+
+/// The window turned a quarter: new (x, y) is old (N − 1 − y, x), as WaveFunctionCollapse turns.
+WindowCells Turned(const WindowCells& p, int n)
+{
+  WindowCells r(p.size());
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      r[static_cast<std::size_t>(y * n + x)] = p[static_cast<std::size_t>(x * n + n - 1 - y)];
+  return r;
+}
+
+/// The window mirrored left-right.
+WindowCells Mirrored(const WindowCells& p, int n)
+{
+  WindowCells r(p.size());
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      r[static_cast<std::size_t>(y * n + x)] = p[static_cast<std::size_t>(y * n + n - 1 - x)];
+  return r;
+}
+
+std::string Key(const std::uint16_t* cells, int columns0, int columns1, int rows0, int rows1, int n)
+{
+  std::string key;
+  for (int y = rows0; y < rows1; ++y)
+    for (int x = columns0; x < columns1; ++x)
+    {
+      const std::uint16_t c = cells[y * n + x];
+      key.push_back(static_cast<char>(c & 0xff));
+      key.push_back(static_cast<char>(c >> 8));
+    }
+  return key;
+}
+
+void CheckOptions(const RgbaImage& sample, const OverlappingOptions& o, const std::string& name)
+{
+  if (o.N < 1 || o.N > 8)
+    throw Error("'" + name + "': the pattern size must be between 1 and 8, not " +
+      std::to_string(o.N));
+  if (o.Symmetry < 1 || o.Symmetry > 8)
+    throw Error("'" + name + "': the pattern symmetry must be between 1 and 8, not " +
+      std::to_string(o.Symmetry));
+  if (sample.Width < 1 || sample.Height < 1 || o.N > sample.Width || o.N > sample.Height)
+    throw Error("'" + name + "': the sample (" + std::to_string(sample.Width) + " x " +
+      std::to_string(sample.Height) + " pixels) is smaller than a " + std::to_string(o.N) + " x " +
+      std::to_string(o.N) + " pattern");
+}
+
+/// The sample as colour indices, colours numbered by first appearance.
+void IndexColours(const RgbaImage& sample, PatternSet& set, const std::string& name)
+{
+  std::unordered_map<std::uint32_t, std::uint16_t> index;
+  set.Sample.resize(static_cast<std::size_t>(sample.Width) * static_cast<std::size_t>(sample.Height));
+  for (std::size_t i = 0; i < set.Sample.size(); ++i)
+  {
+    const std::uint8_t* p = sample.Pixels.data() + 4 * i;
+    const std::uint32_t rgba = p[0] | (p[1] << 8) | (p[2] << 16) | (std::uint32_t(p[3]) << 24);
+    auto it = index.find(rgba);
+    if (it == index.end())
+    {
+      if (set.Colours.size() >= 65536)
+        throw Error("'" + name + "': the sample has more than 65536 colours");
+      it = index.emplace(rgba, static_cast<std::uint16_t>(set.Colours.size())).first;
+      set.Colours.push_back({ { p[0], p[1], p[2], p[3] } });
+    }
+    set.Sample[i] = it->second;
+  }
+}
+
+/// Pairs along x (columns 1..N−1 of b equal columns 0..N−2 of c) and along y, up (rows 0..N−2
+/// of b, from the top, equal rows 1..N−1 of c: c lies above b).
+void FindPairs(PatternSet& set, const std::string& name)
+{
+  const int n = set.Options.N;
+  const int k = set.NumberOfPatterns();
+  std::size_t total = 0;
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    std::unordered_map<std::string, std::vector<int>> byLeading;
+    for (int c = 0; c < k; ++c)
+    {
+      const std::uint16_t* cells = set.Cells.data() + static_cast<std::size_t>(c * n * n);
+      byLeading[axis == 0 ? Key(cells, 0, n - 1, 0, n, n) : Key(cells, 0, n, 1, n, n)].push_back(
+        c);
+    }
+    for (int b = 0; b < k; ++b)
+    {
+      const std::uint16_t* cells = set.Cells.data() + static_cast<std::size_t>(b * n * n);
+      const auto it =
+        byLeading.find(axis == 0 ? Key(cells, 1, n, 0, n, n) : Key(cells, 0, n, 0, n - 1, n));
+      if (it == byLeading.end())
+        continue;
+      total += it->second.size();
+      if (total > (std::size_t(1) << 26))
+        throw Error("'" + name + "': the sample's " + std::to_string(k) +
+          " patterns have more than 2^26 neighbour pairs; use a larger pattern size");
+      for (const int c : it->second)
+        set.Pairs[static_cast<std::size_t>(axis)].emplace_back(b, c);
+    }
+  }
+}
+} // namespace
+
+PatternSet ExtractPatterns(
+  const RgbaImage& sample, const OverlappingOptions& options, const std::string& name)
+{
+  CheckOptions(sample, options, name);
+  PatternSet set;
+  set.Options = options;
+  set.SampleWidth = sample.Width;
+  set.SampleHeight = sample.Height;
+  IndexColours(sample, set, name);
+  const int n = options.N;
+  const int xmax = options.PeriodicInput ? sample.Width : sample.Width - n + 1;
+  const int ymax = options.PeriodicInput ? sample.Height : sample.Height - n + 1;
+  std::unordered_map<std::string, int> index;
+  for (int y = 0; y < ymax; ++y)
+    for (int x = 0; x < xmax; ++x)
+    {
+      std::array<WindowCells, 8> images;
+      images[0] = Window(set, x, y);
+      for (int j = 1; j < 4; ++j)
+        images[static_cast<std::size_t>(2 * j)] =
+          Turned(images[static_cast<std::size_t>(2 * j - 2)], n);
+      for (int j = 0; j < 4; ++j)
+        images[static_cast<std::size_t>(2 * j + 1)] =
+          Mirrored(images[static_cast<std::size_t>(2 * j)], n);
+      for (int s = 0; s < options.Symmetry; ++s)
+      {
+        const WindowCells& p = images[static_cast<std::size_t>(s)];
+        const std::string key = Key(p.data(), 0, n, 0, n, n);
+        const auto it = index.find(key);
+        if (it != index.end())
+        {
+          set.Counts[static_cast<std::size_t>(it->second)] += 1.0;
+          continue;
+        }
+        if (set.NumberOfPatterns() >= MaximumPatterns)
+          throw Error("'" + name + "': the sample has more than " +
+            std::to_string(MaximumPatterns) + " different " + std::to_string(n) + " x " +
+            std::to_string(n) +
+            " patterns; use a smaller pattern size, less symmetry or a sample with fewer colours");
+        index.emplace(key, set.NumberOfPatterns());
+        set.Counts.push_back(1.0);
+        set.Cells.insert(set.Cells.end(), p.begin(), p.end());
+      }
+    }
+  FindPairs(set, name);
+  return set;
+}
+
+AdjacencyRules PatternSet::Rules() const
+{
+  std::vector<Label> values(static_cast<std::size_t>(this->NumberOfPatterns()));
+  for (std::size_t t = 0; t < values.size(); ++t)
+    values[t] = static_cast<Label>(t);
+  return AdjacencyRules::FromPairs(std::move(values), this->Counts, this->Pairs);
+}
+
+std::array<std::int64_t, 3> PatternSet::SitesFor(
+  std::int64_t width, std::int64_t height, bool periodicOutput) const
+{
+  const int n = this->Options.N;
+  if (width < n || height < n)
+    throw Error("the picture (" + std::to_string(width) + " x " + std::to_string(height) +
+      " pixels) is smaller than a " + std::to_string(n) + " x " + std::to_string(n) + " pattern");
+  if (periodicOutput)
+    return { { width, height, 1 } };
+  return { { width - n + 1, height - n + 1, 1 } };
+}
+
+int PatternSet::GroundPattern(bool periodicOutput) const
+{
+  const int n = this->Options.N;
+  if (periodicOutput && !this->Options.PeriodicInput && n > 1)
+    throw Error("a ground for a repeating output is the sample's window that starts on its "
+                "last row and wraps to its top, which needs a periodic input");
+  const int x = periodicOutput ? this->SampleWidth / 2 : std::min(this->SampleWidth / 2,
+                                                           this->SampleWidth - n);
+  const int y = periodicOutput ? this->SampleHeight - 1 : this->SampleHeight - n;
+  const WindowCells w = Window(*this, x, y);
+  for (int t = 0; t < this->NumberOfPatterns(); ++t)
+    if (std::equal(w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
+      return t;
+  throw Error("the ground window of the sample is not one of its patterns");
+}
+
+GuideVolume PatternSet::GroundGuide(
+  const std::array<std::int64_t, 3>& sites, bool periodicOutput) const
+{
+  const int ground = this->GroundPattern(periodicOutput);
+  const std::int64_t rows = sites[1];
+  CheckMemory(static_cast<std::uint64_t>(rows) *
+      static_cast<std::uint64_t>(this->NumberOfPatterns()) * 8u,
+    "the ground constraint of " + std::to_string(rows) + " rows of " +
+      std::to_string(this->NumberOfPatterns()) + " patterns");
+  GuideVolume guide;
+  guide.Dims = { { 1, rows, 1 } };
+  for (int t = 0; t < this->NumberOfPatterns(); ++t)
+  {
+    std::vector<float> w(static_cast<std::size_t>(rows), t == ground ? 0.0f : 1.0f);
+    w[0] = t == ground ? 1.0f : 0.0f;
+    guide.Weights.emplace(static_cast<Label>(t), std::move(w));
+  }
+  return guide;
+}
+
+RgbaImage PatternSet::Compose(const LabelGrid& model, bool periodicOutput) const
+{
+  const int n = this->Options.N;
+  const std::int64_t sx = model.Size(0), sy = model.Size(1);
+  RgbaImage picture;
+  const std::int64_t w = periodicOutput ? sx : sx + n - 1;
+  const std::int64_t h = periodicOutput ? sy : sy + n - 1;
+  if (model.Size(2) != 1 || w * h > MaximumImagePixels || w > 65536 || h > 65536)
+    throw Error("a picture of " + std::to_string(w) + " x " + std::to_string(h) + " x " +
+      std::to_string(model.Size(2)) + " pixels cannot be made (2D, at most 2^26 pixels)");
+  picture.Width = static_cast<int>(w);
+  picture.Height = static_cast<int>(h);
+  picture.Pixels.resize(static_cast<std::size_t>(w * h * 4));
+  for (std::int64_t py = 0; py < h; ++py)
+    for (std::int64_t px = 0; px < w; ++px)
+    {
+      const std::int64_t x = std::min(px, sx - 1), row = std::min(py, sy - 1);
+      const Label t = model.At(x, sy - 1 - row, 0);
+      if (t < 0 || t >= this->NumberOfPatterns())
+        throw Error("the model has label " + std::to_string(t) + ", which is not one of the " +
+          std::to_string(this->NumberOfPatterns()) + " patterns");
+      const auto& c = this->Colours[this->At(
+        t, static_cast<int>(px - x), static_cast<int>(py - row))];
+      std::copy(c.begin(), c.end(), picture.Pixels.begin() + 4 * (py * w + px));
+    }
+  return picture;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The independent check: windows of RGBA pixels, compared as bytes.
+// ---------------------------------------------------------------------------------------------
+namespace
+{
+/// Pixel (x, y) of dihedral image @p k (0-7, WaveFunctionCollapse's order: even k turns k/2
+/// quarters, odd k mirrors that turn left-right) of an N × N window, as coordinates in the window.
+std::pair<int, int> SourceOf(int k, int x, int y, int n)
+{
+  if (k % 2 == 1)
+    x = n - 1 - x;
+  for (int j = 0; j < k / 2; ++j)
+  {
+    const int px = n - 1 - y, py = x; // a turned window's (x, y) is the window's (N−1−y, x)
+    x = px;
+    y = py;
+  }
+  return { x, y };
+}
+
+std::string WindowBytes(const RgbaImage& image, int x0, int y0, int k, int n)
+{
+  std::string bytes;
+  bytes.reserve(static_cast<std::size_t>(4 * n * n));
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+    {
+      const auto s = SourceOf(k, x, y, n);
+      const std::uint8_t* p =
+        image.At((x0 + s.first) % image.Width, (y0 + s.second) % image.Height);
+      bytes.append(reinterpret_cast<const char*>(p), 4);
+    }
+  return bytes;
+}
+} // namespace
+
+std::vector<std::string> CheckPicture(const RgbaImage& sample, const OverlappingOptions& options,
+  const RgbaImage& picture, bool periodicOutput, std::size_t limit)
+{
+  const int n = options.N;
+  std::vector<std::string> problems;
+  if (picture.Width < n || picture.Height < n)
+    return { "the picture is smaller than a pattern" };
+  std::unordered_set<std::string> windows;
+  const int xs = options.PeriodicInput ? sample.Width : sample.Width - n + 1;
+  const int ys = options.PeriodicInput ? sample.Height : sample.Height - n + 1;
+  for (int y = 0; y < ys; ++y)
+    for (int x = 0; x < xs; ++x)
+      for (int k = 0; k < options.Symmetry; ++k)
+        windows.insert(WindowBytes(sample, x, y, k, n));
+  std::string ground;
+  int groundRow = -1;
+  if (options.Ground)
+  {
+    const int gx = periodicOutput ? sample.Width / 2 : std::min(sample.Width / 2, sample.Width - n);
+    ground = WindowBytes(sample, gx, periodicOutput ? sample.Height - 1 : sample.Height - n, 0, n);
+    groundRow = periodicOutput ? picture.Height - 1 : picture.Height - n;
+  }
+  const int xe = periodicOutput ? picture.Width : picture.Width - n + 1;
+  const int ye = periodicOutput ? picture.Height : picture.Height - n + 1;
+  for (int y = 0; y < ye && problems.size() < limit; ++y)
+    for (int x = 0; x < xe && problems.size() < limit; ++x)
+    {
+      const std::string w = WindowBytes(picture, x, y, 0, n);
+      const std::string at = " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+      if (!windows.count(w))
+        problems.push_back("the window" + at + " is not in the sample");
+      else if (options.Ground && (y == groundRow) != (w == ground))
+        problems.push_back(y == groundRow ? "the window" + at + " of the bottom row is not ground"
+                                          : "the ground window appears" + at);
+    }
+  return problems;
+}
+
+} // namespace msynth
