@@ -17,12 +17,12 @@ namespace
 /// A picture from rows of characters, top first; each character is one colour.
 RgbaImage Picture(const std::vector<std::string>& rows)
 {
-  static const std::map<char, std::array<std::uint8_t, 4>> colours{
-    { '.', { { 120, 180, 255, 255 } } }, { '#', { { 90, 60, 30, 255 } } },
-    { '|', { { 30, 160, 40, 255 } } }, { 'o', { { 240, 40, 60, 255 } } },
-    { 'a', { { 0, 0, 0, 255 } } }, { 'b', { { 255, 255, 255, 255 } } },
-    { 'c', { { 255, 0, 0, 255 } } }, { 'd', { { 0, 255, 0, 255 } } },
-    { 'e', { { 0, 0, 255, 255 } } }, { 'f', { { 9, 9, 9, 255 } } },
+  static const std::map<char, std::array<std::uint8_t, 4>> colours{ { '.',
+                                                                      { { 120, 180, 255, 255 } } },
+    { '#', { { 90, 60, 30, 255 } } }, { '|', { { 30, 160, 40, 255 } } },
+    { 'o', { { 240, 40, 60, 255 } } }, { 'a', { { 0, 0, 0, 255 } } },
+    { 'b', { { 255, 255, 255, 255 } } }, { 'c', { { 255, 0, 0, 255 } } },
+    { 'd', { { 0, 255, 0, 255 } } }, { 'e', { { 0, 0, 255, 255 } } }, { 'f', { { 9, 9, 9, 255 } } },
     { 'g', { { 1, 2, 3, 255 } } }, { 'h', { { 4, 5, 6, 255 } } }, { 'i', { { 7, 8, 9, 255 } } } };
   RgbaImage image;
   image.Width = static_cast<int>(rows[0].size());
@@ -48,8 +48,7 @@ const std::vector<std::string> Meadow{
 };
 
 RgbaImage SynthesizePicture(const PatternSet& set, const RgbaImage& sample, SynthesisOptions o,
-  bool periodic,
-  int width, int height)
+  bool periodic, int width, int height)
 {
   o.Size = set.SitesFor(width, height, periodic);
   if (periodic)
@@ -101,16 +100,16 @@ TEST(OverlappingModel, DihedralImagesInWaveFunctionCollapseOrder)
   const PatternSet set = ExtractPatterns(nine, o, "nine");
   ASSERT_EQ(set.NumberOfPatterns(), 8);
   const auto colour = [&](int t, int x, int y) { return set.Colours[set.At(t, x, y)][2]; };
-  EXPECT_EQ(colour(0, 0, 0), 0);   // a: black
-  EXPECT_EQ(colour(1, 0, 0), 0);   // mirrored: c, red (blue 0) ...
-  EXPECT_EQ(set.At(1, 0, 0), 2);   // colour index 2 is c
-  EXPECT_EQ(set.At(2, 0, 0), 2);   // turned: c at the top left
-  EXPECT_EQ(set.At(2, 0, 2), 0);   // a at the bottom left
-  EXPECT_EQ(set.At(3, 0, 0), 8);   // the turn mirrored: i at the top left
-  EXPECT_EQ(set.At(4, 0, 0), 8);   // half turn: i at the top left
-  EXPECT_EQ(set.At(6, 0, 0), 6);   // three quarters: g at the top left
-  EXPECT_EQ(set.At(7, 0, 0), 0);   // its mirror: a (the transpose)
-  EXPECT_EQ(set.At(7, 1, 0), 3);   // d right of a in the transpose
+  EXPECT_EQ(colour(0, 0, 0), 0); // a: black
+  EXPECT_EQ(colour(1, 0, 0), 0); // mirrored: c, red (blue 0) ...
+  EXPECT_EQ(set.At(1, 0, 0), 2); // colour index 2 is c
+  EXPECT_EQ(set.At(2, 0, 0), 2); // turned: c at the top left
+  EXPECT_EQ(set.At(2, 0, 2), 0); // a at the bottom left
+  EXPECT_EQ(set.At(3, 0, 0), 8); // the turn mirrored: i at the top left
+  EXPECT_EQ(set.At(4, 0, 0), 8); // half turn: i at the top left
+  EXPECT_EQ(set.At(6, 0, 0), 6); // three quarters: g at the top left
+  EXPECT_EQ(set.At(7, 0, 0), 0); // its mirror: a (the transpose)
+  EXPECT_EQ(set.At(7, 1, 0), 3); // d right of a in the transpose
   (void)colour;
 }
 

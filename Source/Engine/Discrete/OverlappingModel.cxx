@@ -63,8 +63,8 @@ std::string Key(const std::uint16_t* cells, int columns0, int columns1, int rows
 void CheckOptions(const RgbaImage& sample, const OverlappingOptions& o, const std::string& name)
 {
   if (o.N < 1 || o.N > 8)
-    throw Error("'" + name + "': the pattern size must be between 1 and 8, not " +
-      std::to_string(o.N));
+    throw Error(
+      "'" + name + "': the pattern size must be between 1 and 8, not " + std::to_string(o.N));
   if (o.Symmetry < 1 || o.Symmetry > 8)
     throw Error("'" + name + "': the pattern symmetry must be between 1 and 8, not " +
       std::to_string(o.Symmetry));
@@ -78,7 +78,8 @@ void CheckOptions(const RgbaImage& sample, const OverlappingOptions& o, const st
 void IndexColours(const RgbaImage& sample, PatternSet& set, const std::string& name)
 {
   std::unordered_map<std::uint32_t, std::uint16_t> index;
-  set.Sample.resize(static_cast<std::size_t>(sample.Width) * static_cast<std::size_t>(sample.Height));
+  set.Sample.resize(
+    static_cast<std::size_t>(sample.Width) * static_cast<std::size_t>(sample.Height));
   for (std::size_t i = 0; i < set.Sample.size(); ++i)
   {
     const std::uint8_t* p = sample.Pixels.data() + 4 * i;
@@ -108,8 +109,7 @@ void FindPairs(PatternSet& set, const std::string& name)
     for (int c = 0; c < k; ++c)
     {
       const std::uint16_t* cells = set.Cells.data() + static_cast<std::size_t>(c * n * n);
-      byLeading[axis == 0 ? Key(cells, 0, n - 1, 0, n, n) : Key(cells, 0, n, 1, n, n)].push_back(
-        c);
+      byLeading[axis == 0 ? Key(cells, 0, n - 1, 0, n, n) : Key(cells, 0, n, 1, n, n)].push_back(c);
     }
     for (int b = 0; b < k; ++b)
     {
@@ -203,12 +203,13 @@ int PatternSet::GroundPattern(bool periodicOutput) const
   if (periodicOutput && !this->Options.PeriodicInput && n > 1)
     throw Error("a ground for a repeating output is the sample's window that starts on its "
                 "last row and wraps to its top, which needs a periodic input");
-  const int x = periodicOutput ? this->SampleWidth / 2 : std::min(this->SampleWidth / 2,
-                                                           this->SampleWidth - n);
+  const int x =
+    periodicOutput ? this->SampleWidth / 2 : std::min(this->SampleWidth / 2, this->SampleWidth - n);
   const int y = periodicOutput ? this->SampleHeight - 1 : this->SampleHeight - n;
   const WindowCells w = Window(*this, x, y);
   for (int t = 0; t < this->NumberOfPatterns(); ++t)
-    if (std::equal(w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
+    if (std::equal(
+          w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
       return t;
   throw Error("the ground window of the sample is not one of its patterns");
 }
@@ -218,8 +219,8 @@ GuideVolume PatternSet::GroundGuide(
 {
   const int ground = this->GroundPattern(periodicOutput);
   const std::int64_t rows = sites[1];
-  CheckMemory(static_cast<std::uint64_t>(rows) *
-      static_cast<std::uint64_t>(this->NumberOfPatterns()) * 8u,
+  CheckMemory(
+    static_cast<std::uint64_t>(rows) * static_cast<std::uint64_t>(this->NumberOfPatterns()) * 8u,
     "the ground constraint of " + std::to_string(rows) + " rows of " +
       std::to_string(this->NumberOfPatterns()) + " patterns");
   GuideVolume guide;
@@ -254,8 +255,8 @@ RgbaImage PatternSet::Compose(const LabelGrid& model, bool periodicOutput) const
       if (t < 0 || t >= this->NumberOfPatterns())
         throw Error("the model has label " + std::to_string(t) + ", which is not one of the " +
           std::to_string(this->NumberOfPatterns()) + " patterns");
-      const auto& c = this->Colours[this->At(
-        t, static_cast<int>(px - x), static_cast<int>(py - row))];
+      const auto& c =
+        this->Colours[this->At(t, static_cast<int>(px - x), static_cast<int>(py - row))];
       std::copy(c.begin(), c.end(), picture.Pixels.begin() + 4 * (py * w + px));
     }
   return picture;

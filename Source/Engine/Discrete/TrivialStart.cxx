@@ -210,12 +210,14 @@ int BlockSolver::TrivialStart()
   }
   if (!layers.empty())
     t = std::max_element(counts.begin(), counts.end(),
-      [](const auto& a, const auto& b) { return a.second < b.second; })
-          ->first;
-  this->CheckStart(t, layers.empty() ? std::string("a model of label ")
-                                     : "a model layered along " +
-                       std::string("xyz").substr(static_cast<std::size_t>(layerAxis), 1) +
-                       " starting with label ");
+      [](const auto& a, const auto& b) {
+        return a.second < b.second;
+      })->first;
+  this->CheckStart(t,
+    layers.empty() ? std::string("a model of label ")
+                   : "a model layered along " +
+        std::string("xyz").substr(static_cast<std::size_t>(layerAxis), 1) +
+        " starting with label ");
   return t;
 }
 
