@@ -66,6 +66,7 @@ def main():
     text_examples(examples, malformed)
     vox_examples(examples, malformed)
     tileset_example(DATA)
+    sample_images(DATA)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
@@ -239,5 +240,86 @@ def tileset_example(data):
         writer.Write()
 
 
+# Image samples for the overlapping model, as text art (top row first), one character a colour.
+SAMPLE_COLOURS = {
+    ".": (150, 200, 255, 255),  # sky
+    "#": (110, 75, 40, 255),    # earth
+    "|": (40, 150, 50, 255),    # stem
+    "o": (230, 60, 90, 255),    # flower
+    "W": (20, 20, 20, 255),     # wall
+    " ": (235, 235, 225, 255),  # floor
+    "r": (170, 60, 40, 255),    # brick
+    "m": (200, 200, 190, 255),  # mortar
+}
+SAMPLES = {
+    # Flowers on stems between sky and earth: for --ground (the earth stays at the bottom).
+    "Meadow": [
+        "................",
+        "................",
+        "................",
+        "..o.........o...",
+        "..|....o....|...",
+        "..|....|....|...",
+        "..|....|..o.|...",
+        "..|....|..|.|...",
+        "################",
+        "################",
+    ],
+    # Rooms with doors, walls one pixel thick: all eight symmetries.
+    "Rooms": [
+        "WWWWWWWWWWWWWWWW",
+        "W    W         W",
+        "W    W         W",
+        "W              W",
+        "W    W         W",
+        "WWWWWW WWWWWWWWW",
+        "W       W      W",
+        "W       W      W",
+        "W              W",
+        "W       W      W",
+        "W       W      W",
+        "WWWW WWWWWWW WWW",
+        "W         W    W",
+        "W              W",
+        "W         W    W",
+        "WWWWWWWWWWWWWWWW",
+    ],
+    # A brick wall: no 3 x 3 window of one colour, so blocks start from layers of rows.
+    "Bricks": [
+        "mmmmmmmm",
+        "rrrmrrrr",
+        "rrrmrrrr",
+        "mmmmmmmm",
+        "rrrrrrmr",
+        "rrrrrrmr",
+    ],
+}
+
+
+def sample_images(data):
+    """Data/Samples/<name>.png from SAMPLES."""
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+
+    folder = os.path.join(data, "Samples")
+    os.makedirs(folder, exist_ok=True)
+    for name, rows in SAMPLES.items():
+        image = vtkImageData()
+        image.SetDimensions(len(rows[0]), len(rows), 1)
+        rgba = vtkUnsignedCharArray()
+        rgba.SetNumberOfComponents(4)
+        for row in reversed(rows):  # VTK's rows are bottom first
+            for c in row:
+                rgba.InsertNextTuple4(*SAMPLE_COLOURS[c])
+        image.GetPointData().SetScalars(rgba)
+        writer = vtkPNGWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(os.path.join(folder, name + ".png"))
+        writer.Write()
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:] == ["samples"]:
+        sample_images(DATA)
+    else:
+        main()

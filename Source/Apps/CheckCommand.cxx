@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `msynth check EXAMPLE MODEL`: the independent checks, which share no code with the solvers: a
 // label grid against the pairs of its example (Eq. 3.1) or tileset, a continuous model against
-// the neighbourhoods of its polyhedral example (Eq. 4.1, closed and oriented).
+// the neighbourhoods of its polyhedral example (Eq. 4.1, closed and oriented), a picture against
+// the windows of its image sample.
 #include "Commands.h"
 #include "Common.h"
 #include "vtkMSLabelArrays.h"
@@ -17,6 +18,8 @@
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
 #include "Discrete/ConsistencyCheck.h"
+#include "Discrete/OverlappingModel.h"
+#include "Formats/Image.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 
@@ -36,7 +39,36 @@ struct CheckOptions
   std::string Model;
   std::string Subset;
   std::string Types;
+  OverlappingOptions Patterns;
+  bool NoPeriodicInput = false;
+  std::string Translate;
 };
+
+/// A picture against the windows of its image sample (Discrete/OverlappingModel.h's
+/// CheckPicture, which shares no code with the patterns' synthesis).
+int CheckSamplePicture(const CheckOptions& o)
+{
+  if (!IsSample(o.Model))
+    throw std::runtime_error(
+      "'" + o.Model + "': the model of an image sample is its picture (.png)");
+  OverlappingOptions options = o.Patterns;
+  options.PeriodicInput = !o.NoPeriodicInput;
+  const msynth::Periodic periodic{ { o.Translate.find('x') != std::string::npos,
+    o.Translate.find('y') != std::string::npos } };
+  const RgbaImage picture = ReadImage(o.Model);
+  const auto problems = CheckPicture(ReadImage(o.Example), options, picture, periodic, 10);
+  if (problems.empty())
+  {
+    std::cout << "consistent: every " << options.N << " x " << options.N << " window of " << o.Model
+              << " (" << picture.Width << " x " << picture.Height << ") occurs in " << o.Example
+              << "\n";
+    return 0;
+  }
+  std::cout << "inconsistent: " << o.Model << " has windows that are not in " << o.Example << "\n";
+  for (const auto& p : problems)
+    std::cout << "  " << p << "\n";
+  return 1;
+}
 
 /// A continuous model (.vtp) against its polyhedral example.
 int CheckContinuous(
@@ -113,14 +145,29 @@ CommandRunner AddCheck(CLI::App& app)
   CLI::App* check = app.add_subcommand("check",
     "verify that MODEL satisfies the adjacency constraint of EXAMPLE (a label grid or tileset; "
     "Eq. 3.1) or, for a polyhedral EXAMPLE, that the continuous MODEL.vtp is closed, oriented "
-    "and has only the example's neighbourhoods (Eq. 4.1). Exit 0 when it does, 1 listing the "
+    "and has only the example's neighbourhoods (Eq. 4.1), or for an image sample that every "
+    "window of the picture MODEL.png is one of the sample's. Exit 0 when it does, 1 listing the "
     "problems when not");
   check->add_option("EXAMPLE", o->Example, "the example the model was synthesized from")
     ->required();
-  check->add_option("MODEL", o->Model, "the model (.vti, .txt, .vox; .vtp for continuous)")
+  check
+    ->add_option(
+      "MODEL", o->Model, "the model (.vti, .txt, .vox; .vtp for continuous; .png for a sample)")
     ->required();
   AddSubsetOption(*check, o->Subset);
   AddTypesOption(*check, o->Types);
+  const char* sample = "Image samples (.png, .bmp)";
+  check->add_option("--pattern", o->Patterns.N, "pattern size N of an image sample")
+    ->check(CLI::Range(1, 8))
+    ->group(sample);
+  check->add_option("--symmetry", o->Patterns.Symmetry, "symmetries of the sample's windows (1-8)")
+    ->check(CLI::Range(1, 8))
+    ->group(sample);
+  check->add_flag("--no-periodic-input", o->NoPeriodicInput, "windows did not wrap")->group(sample);
+  check->add_option("--translate", o->Translate, "the picture repeats along these axes (x, y)")
+    ->group(sample);
+  check->add_flag("--ground", o->Patterns.Ground, "the bottom row is the sample's ground")
+    ->group(sample);
   return [o]()
   {
     CheckInputFile(o->Example);
@@ -129,6 +176,8 @@ CommandRunner AddCheck(CLI::App& app)
     {
       return CheckContinuous(o->Example, o->Model, o->Types);
     }
+    if (IsSample(o->Example))
+      return CheckSamplePicture(*o);
     return CheckDiscrete(o->Example, o->Model, o->Subset);
   };
 }

@@ -34,6 +34,14 @@ bool IsTileset(const std::string& path)
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".xml") == 0;
 }
 
+bool IsSample(const std::string& path)
+{
+  std::string ext = path.size() > 4 ? path.substr(path.size() - 4) : "";
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png" || ext == ".bmp";
+}
+
 bool IsPolyhedral(const std::string& path)
 {
   return vtkMSPolyhedralExampleReader::CanReadFile(path.c_str()) != 0;
@@ -62,8 +70,8 @@ void CheckInputFile(const std::string& path, bool model)
   {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  static const char* const known[] = { ".vti", ".txt", ".vox", ".xml", ".obj", ".vtp", ".ply",
-    ".stl" };
+  static const char* const known[] = { ".vti", ".txt", ".vox", ".xml", ".png", ".bmp", ".obj",
+    ".vtp", ".ply", ".stl" };
   bool ok = false;
   for (const char* k : known)
   {
@@ -75,8 +83,8 @@ void CheckInputFile(const std::string& path, bool model)
       (ext.empty() ? std::string("has no extension")
                    : "has the unknown extension '" + msynth::Printable(ext) + "'") +
       (model ? "; models are .vti, .txt, .vox or .vtp files"
-             : "; examples are label grids (.vti, .txt, .vox), tilesets (.xml) or polyhedra "
-               "(.obj, .vtp, .ply, .stl)"));
+             : "; examples are label grids (.vti, .txt, .vox), tilesets (.xml), image samples "
+               "(.png, .bmp) or polyhedra (.obj, .vtp, .ply, .stl)"));
   }
 }
 

@@ -43,6 +43,8 @@ struct UsageError
 
 /// True when @p path names a simple-tiled tileset (.xml) rather than a label grid.
 bool IsTileset(const std::string& path);
+/// True when @p path names an image sample (.png, .bmp) of the overlapping model.
+bool IsSample(const std::string& path);
 /// A polyhedral example of continuous model synthesis (.obj, .vtp, .ply, .stl).
 bool IsPolyhedral(const std::string& path);
 

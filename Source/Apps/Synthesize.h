@@ -3,8 +3,8 @@
 /**
  * @file Synthesize.h
  * @brief The options of `msynth synthesize`, shared by its two kinds: discrete synthesis of a
- * label grid or tileset (SynthesizeCommand.cxx) and continuous synthesis of a polyhedral
- * example (ContinuousCommand.cxx).
+ * label grid, tileset or image sample (SynthesizeCommand.cxx) and continuous synthesis of a
+ * polyhedral example (ContinuousCommand.cxx).
  */
 #include <array>
 #include <cstdint>
@@ -41,6 +41,11 @@ struct SynthesizeOptions
   std::vector<std::string> Swaps, Shifts, Turns;
   std::vector<int> Period{ 0, 0, 0 };
   bool Rotate = false;
+  // Image samples.
+  int Pattern = 3;
+  int Symmetry = 8;
+  bool NoPeriodicInput = false;
+  bool SampleGround = false; ///< --ground without a label, for an image sample
   // Continuous.
   std::string Types;
   double Spacing = 0;

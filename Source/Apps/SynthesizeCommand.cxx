@@ -13,6 +13,7 @@
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSLabelGridWriter.h"
 #include "vtkMSOpenVDBWriter.h"
+#include "vtkMSPatternImage.h"
 #include "vtkMSTileImage.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -105,7 +106,9 @@ std::string Join(const std::vector<std::string>& items)
 struct Registered
 {
   std::shared_ptr<SynthesizeOptions> Options;
-  std::vector<CLI::Option*> DiscreteOnly, ContinuousOnly;
+  std::vector<CLI::Option*> DiscreteOnly, ContinuousOnly, SampleOnly, NotForSamples;
+  CLI::Option* Ground = nullptr;
+  CLI::App* Command = nullptr;
   CLI::Option* Attempts = nullptr;
   CLI::Option* Order = nullptr;
 };
@@ -122,8 +125,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_option("--threads", o.Threads,
               "threads for block synthesis (default: one per core; the same result)")
              ->check(CLI::Range(0, 1024)));
-  discrete(s.add_option("--ground", o.Ground, "fix LABEL along the bottom face (-z; -y in 2D)")
-             ->expected(1));
+  r.Ground = s.add_option("--ground", o.Ground,
+                "fix LABEL along the bottom face (-z; -y in 2D); with an image sample, no "
+                "LABEL: the sample's bottom-middle window along the bottom row only")
+               ->expected(0, 1);
+  discrete(r.Ground);
   discrete(s.add_option("--empty", o.Empty,
               "fix LABEL on every other face (usually 0) but those of translated axes")
              ->expected(1));
@@ -168,6 +174,24 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "weight each label (0 forbids it there)"));
 }
 
+void AddSampleOptions(CLI::App& s, Registered& r)
+{
+  SynthesizeOptions& o = *r.Options;
+  auto sample = [&r](CLI::Option* option)
+  {
+    r.SampleOnly.push_back(option->group("Image samples (.png, .bmp)"));
+    r.DiscreteOnly.push_back(option);
+  };
+  sample(s.add_option("--pattern", o.Pattern, "pattern size N: the labels are N x N windows")
+           ->check(CLI::Range(1, 8)));
+  sample(s.add_option("--symmetry", o.Symmetry,
+            "how many of each window's 8 rotations and reflections are patterns, in "
+            "WaveFunctionCollapse's order (identity, mirror, quarter turn, ...)")
+           ->check(CLI::Range(1, 8)));
+  sample(s.add_flag(
+    "--no-periodic-input", o.NoPeriodicInput, "windows do not wrap around the sample's edges"));
+}
+
 void AddContinuousOptions(CLI::App& s, Registered& r)
 {
   SynthesizeOptions& o = *r.Options;
@@ -187,10 +211,30 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
     "object types of a polyhedral example: object (or base) name N has type T, as N=T,..."));
 }
 
+/// Options of label grids that an image sample does not take, and the forms of --ground.
+void CheckSampleKind(const Registered& r, bool sample)
+{
+  SynthesizeOptions& o = *r.Options;
+  for (const CLI::Option* option : sample ? r.NotForSamples : r.SampleOnly)
+    if (option->count() > 0)
+      throw UsageError{ option->get_name() + " applies to " +
+        (sample ? "label grids and tilesets" : "image samples (.png, .bmp)") + ", not to '" +
+        o.Example + "'" };
+  // Given without a value, --ground has no result but is in the parse order.
+  const auto& order = r.Command->parse_order();
+  const bool ground = std::find(order.begin(), order.end(), r.Ground) != order.end();
+  if (ground && sample != o.Ground.empty())
+    throw UsageError{ sample ? "--ground takes no LABEL with an image sample"
+                             : "--ground needs a LABEL with a label grid or tileset" };
+  o.SampleGround = sample && ground;
+}
+
 /// Refuses options of the other kind of synthesis, and sizes a label grid cannot have.
 void CheckKind(const Registered& r, bool polyhedral)
 {
   SynthesizeOptions& o = *r.Options;
+  if (!polyhedral)
+    CheckSampleKind(r, IsSample(o.Example));
   for (const CLI::Option* option : polyhedral ? r.DiscreteOnly : r.ContinuousOnly)
   {
     if (option->count() > 0)
@@ -272,6 +316,14 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetRotate(o.Rotate);
   synthesis->SetRotationMap(Join(o.Turns).c_str());
   synthesis->SetCatalogSnapshotsPerBlock(o.Snapshots);
+  if (IsSample(o.Example))
+  {
+    synthesis->SetSampleFile(o.Example.c_str());
+    synthesis->SetPatternSize(o.Pattern);
+    synthesis->SetPatternSymmetry(o.Symmetry);
+    synthesis->SetPeriodicInput(!o.NoPeriodicInput);
+    synthesis->SetGround(o.SampleGround);
+  }
 }
 
 /// Reads the guide volume into @p guide and connects it.
@@ -293,26 +345,37 @@ void ConnectGuide(
   synthesis->SetGuideConnection(guide->GetOutputPort());
 }
 
-/// The picture of a tileset model (libpng at fast compression), when the tile images are there.
+/// The picture of a tileset model or of an image sample's patterns (libpng at fast
+/// compression), when the tile images are there.
 void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
   std::vector<std::string>& written)
 {
   vtkNew<vtkMSTileImage> tiles;
+  vtkNew<vtkMSPatternImage> patterns;
+  vtkImageAlgorithm* composer = tiles;
+  if (IsSample(o.Example))
+  {
+    composer = patterns;
+    patterns->SetInputData(model);
+    patterns->SetPatternSize(o.Pattern);
+    patterns->SetPeriodicOutput(
+      o.Translate.find('x') != std::string::npos, o.Translate.find('y') != std::string::npos);
+  }
   tiles->SetInputData(model);
   tiles->SetTilesetFile(o.Example.c_str());
   tiles->SetTilesetSubset(o.Subset.c_str());
   std::string messages;
   struct stat folder;
-  if (!vtkMSEngineBridge::Execute(tiles, messages))
+  if (!vtkMSEngineBridge::Execute(composer, messages))
   {
-    if (::stat(msynth::TilesetImageFolder(o.Example).c_str(), &folder) != 0)
+    if (composer == tiles && ::stat(msynth::TilesetImageFolder(o.Example).c_str(), &folder) != 0)
     {
       std::cerr << "msynth: note: no picture: the tileset has no folder of tile images\n";
       return;
     }
     throw std::runtime_error(messages);
   }
-  vtkImageData* rgba = tiles->GetOutput();
+  vtkImageData* rgba = composer->GetOutput();
   int dims[3];
   rgba->GetDimensions(dims);
   msynth::RgbaImage image;
@@ -367,7 +430,7 @@ std::string OutputsWanted(const SynthesizeOptions& o, bool tileset)
   if (!o.Outputs.empty())
     return o.Outputs;
   const std::string ext = o.Example.size() > 4 ? o.Example.substr(o.Example.size() - 4) : "";
-  std::string list = tileset ? "labels,picture" : "labels,mesh,vdb";
+  std::string list = tileset || IsSample(o.Example) ? "labels,picture" : "labels,mesh,vdb";
   if (ext == ".txt")
     list += ",txt";
   if (ext == ".vox")
@@ -381,10 +444,11 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   const std::string list = OutputsWanted(o, tileset);
   const auto wanted = [&list](const char* kind)
   { return ("," + list + ",").find(std::string(",") + kind + ",") != std::string::npos; };
-  if (wanted("picture") && !tileset)
+  if (wanted("picture") && !tileset && !IsSample(o.Example))
   {
-    throw std::runtime_error("--outputs picture: pictures are made of a tileset's images; '" +
-      o.Example + "' is not a tileset");
+    throw std::runtime_error("--outputs picture: pictures are made of a tileset's images or an "
+                             "image sample's pixels; '" +
+      o.Example + "' is neither");
   }
   if (wanted("labels"))
   {
@@ -440,7 +504,7 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
     synthesis->SetTilesetFile(o.Example.c_str());
     synthesis->SetTilesetSubset(o.Subset.c_str());
   }
-  else
+  else if (!IsSample(o.Example))
   {
     reader->SetFileName(o.Example.c_str());
     Run(reader);
@@ -486,14 +550,15 @@ CommandRunner AddSynthesize(CLI::App& app)
   r.Options = std::make_shared<SynthesizeOptions>();
   SynthesizeOptions& o = *r.Options;
   CLI::App* s = app.add_subcommand("synthesize",
-    "model synthesis from EXAMPLE: discrete for a label grid (.vti, .txt, .vox) or a tileset "
-    "(.xml), continuous for a polyhedral example (.obj, .vtp, .ply, .stl). Writes the model and "
+    "model synthesis from EXAMPLE: discrete for a label grid (.vti, .txt, .vox), a tileset "
+    "(.xml) or an image sample (.png, .bmp: its N x N windows), continuous for a polyhedral "
+    "example (.obj, .vtp, .ply, .stl). Writes the model and "
     "DIR/statistics.json; the files appear together, or not at all when the run fails or is "
     "interrupted");
   s->add_option("EXAMPLE", o.Example, "the example")->required();
   s->add_option("--size", o.Size,
-     "output size NX NY NZ: sites for a label grid or tileset (NZ 1 for 2D), example units for "
-     "a polyhedral example (NZ ignored for a 2D one)")
+     "output size NX NY NZ: sites for a label grid or tileset (NZ 1 for 2D), pixels for an "
+     "image sample (NZ 1), example units for a polyhedral example (NZ ignored for a 2D one)")
     ->expected(3)
     ->required()
     ->check(NonNegativeReal());
@@ -507,8 +572,12 @@ CommandRunner AddSynthesize(CLI::App& app)
     "catalog snapshots (per block for a label grid), also written as the sequence "
     "DIR/catalog_0001.vdb ... (Label, CatalogSize, Entropy)");
   AddOutOption(*s, o.Out);
+  r.Command = s;
   AddDiscreteOptions(*s, r);
+  AddSampleOptions(*s, r);
   AddContinuousOptions(*s, r);
+  for (const char* name : { "--pieces", "--mirror", "--swap", "--rotate", "--turn", "--subset" })
+    r.NotForSamples.push_back(s->get_option(name));
   return [r]()
   {
     const SynthesizeOptions& opts = *r.Options;

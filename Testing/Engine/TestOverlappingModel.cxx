@@ -50,18 +50,21 @@ const std::vector<std::string> Meadow{
 RgbaImage SynthesizePicture(const PatternSet& set, const RgbaImage& sample, SynthesisOptions o,
   bool periodic, int width, int height)
 {
-  o.Size = set.SitesFor(width, height, periodic);
+  const Periodic both{ { periodic, periodic } };
+  o.Size = set.SitesFor(width, height, both);
   if (periodic)
     o.Translate[0].Enabled = o.Translate[1].Enabled = true;
-  if (set.Options.Ground)
-    o.Guide = set.GroundGuide(o.Size, periodic);
+  set.Configure(o, both);
   const SynthesisResult r = Synthesize(set.Rules(), o);
   EXPECT_TRUE(r.Succeeded()) << r.Message;
   EXPECT_EQ(r.Statistics.BlocksFailed, 0);
-  const RgbaImage picture = set.Compose(r.Model, periodic);
+  // Valid is not enough: a picture of one pattern passes the check. Most patterns appear.
+  const std::set<Label> used(r.Model.Data().begin(), r.Model.Data().end());
+  EXPECT_GE(static_cast<int>(used.size()), set.NumberOfPatterns() / 2);
+  const RgbaImage picture = set.Compose(r.Model, both);
   EXPECT_EQ(picture.Width, width);
   EXPECT_EQ(picture.Height, height);
-  const auto problems = CheckPicture(sample, set.Options, picture, periodic);
+  const auto problems = CheckPicture(sample, set.Options, picture, both);
   EXPECT_TRUE(problems.empty()) << problems.front();
   return picture;
 }
@@ -126,9 +129,9 @@ TEST(OverlappingModel, BadOptionsAreErrors)
   EXPECT_THROW(ExtractPatterns(board, o, "board"), Error);
   o.Symmetry = 1;
   const PatternSet set = ExtractPatterns(board, o, "board");
-  EXPECT_THROW(set.SitesFor(1, 5, false), Error);
+  EXPECT_THROW(set.SitesFor(1, 5, { { false, false } }), Error);
   LabelGrid bad(2, 2, 1, 7);
-  EXPECT_THROW(set.Compose(bad, true), Error);
+  EXPECT_THROW(set.Compose(bad, { { true, true } }), Error);
 }
 
 TEST(OverlappingModel, PicturesFromBlocksAndWholeModel)
@@ -179,21 +182,22 @@ TEST(OverlappingModel, CheckerFindsWrongPictures)
   const PatternSet set = ExtractPatterns(sample, po, "meadow");
   SynthesisOptions o;
   o.Seed = 5;
-  o.Size = set.SitesFor(30, 20, false);
+  const Periodic bounded{ { false, false } }, repeating{ { true, true } };
+  o.Size = set.SitesFor(30, 20, bounded);
   const SynthesisResult r = Synthesize(set.Rules(), o);
   ASSERT_TRUE(r.Succeeded());
-  RgbaImage picture = set.Compose(r.Model, false);
-  ASSERT_TRUE(CheckPicture(sample, po, picture, false).empty());
+  RgbaImage picture = set.Compose(r.Model, bounded);
+  ASSERT_TRUE(CheckPicture(sample, po, picture, bounded).empty());
   // A flower in the ground is in no window of the sample.
   picture.Pixels[static_cast<std::size_t>(4 * (19 * 30 + 7))] = 240;
   picture.Pixels[static_cast<std::size_t>(4 * (19 * 30 + 7) + 1)] = 40;
   picture.Pixels[static_cast<std::size_t>(4 * (19 * 30 + 7) + 2)] = 60;
-  EXPECT_FALSE(CheckPicture(sample, po, picture, false).empty());
+  EXPECT_FALSE(CheckPicture(sample, po, picture, bounded).empty());
   // Turned windows are not in a sample read without symmetry.
   const RgbaImage turned = Picture({ "ab.", "...", "..." });
   OverlappingOptions one;
   one.Symmetry = 1;
-  EXPECT_FALSE(CheckPicture(Picture({ "a..", "b..", "..." }), one, turned, true).empty());
+  EXPECT_FALSE(CheckPicture(Picture({ "a..", "b..", "..." }), one, turned, repeating).empty());
   one.Symmetry = 8;
-  EXPECT_TRUE(CheckPicture(Picture({ "a..", "b..", "..." }), one, turned, true).empty());
+  EXPECT_TRUE(CheckPicture(Picture({ "a..", "b..", "..." }), one, turned, repeating).empty());
 }

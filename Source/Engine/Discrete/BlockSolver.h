@@ -85,6 +85,9 @@ public:
   /// start with.
   int TrivialStart();
 
+  /// SynthesisOptions::Start in the model, checked. Returns its commonest label.
+  int GivenStart(const LabelGrid& start);
+
   /// The labels site @p s may hold (@p out: Words() words): its boundary label, else those the
   /// guide and the symmetry's unary constraints allow.
   void SiteMask(std::size_t s, std::uint64_t* out) const;

@@ -177,6 +177,13 @@ struct SynthesisOptions
   /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
   /// adjacent to itself along every axis, else the first such label in value order).
   std::optional<Label> TrivialLabel;
+  /**
+   * The start of block synthesis instead of a model of one trivial label (Algorithm 3.4, lines
+   * 3-5): label values over the output (over the synthesized period with translation symmetry;
+   * not with mirrors or rotation), satisfying the adjacency constraint, the boundary labels and
+   * the guide. Empty: a trivial label, else layers of labels (BlockSolver::TrivialStart).
+   */
+  std::optional<LabelGrid> Start;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
   /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.

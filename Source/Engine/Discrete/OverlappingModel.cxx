@@ -186,38 +186,49 @@ AdjacencyRules PatternSet::Rules() const
 }
 
 std::array<std::int64_t, 3> PatternSet::SitesFor(
-  std::int64_t width, std::int64_t height, bool periodicOutput) const
+  std::int64_t width, std::int64_t height, const Periodic& periodic) const
 {
   const int n = this->Options.N;
   if (width < n || height < n)
     throw Error("the picture (" + std::to_string(width) + " x " + std::to_string(height) +
       " pixels) is smaller than a " + std::to_string(n) + " x " + std::to_string(n) + " pattern");
-  if (periodicOutput)
-    return { { width, height, 1 } };
-  return { { width - n + 1, height - n + 1, 1 } };
+  return { { periodic[0] ? width : width - n + 1, periodic[1] ? height : height - n + 1, 1 } };
 }
 
-int PatternSet::GroundPattern(bool periodicOutput) const
+std::vector<int> PatternSet::GroundPatterns(bool periodicY) const
 {
   const int n = this->Options.N;
-  if (periodicOutput && !this->Options.PeriodicInput && n > 1)
+  if (periodicY && !this->Options.PeriodicInput && n > 1)
     throw Error("a ground for a repeating output is the sample's window that starts on its "
                 "last row and wraps to its top, which needs a periodic input");
-  const int x =
-    periodicOutput ? this->SampleWidth / 2 : std::min(this->SampleWidth / 2, this->SampleWidth - n);
-  const int y = periodicOutput ? this->SampleHeight - 1 : this->SampleHeight - n;
-  const WindowCells w = Window(*this, x, y);
-  for (int t = 0; t < this->NumberOfPatterns(); ++t)
-    if (std::equal(
-          w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
-      return t;
-  throw Error("the ground window of the sample is not one of its patterns");
+  std::vector<int> xs;
+  if (periodicY)
+    xs.push_back(this->SampleWidth / 2);
+  else
+    for (int x = 0;
+         x < (this->Options.PeriodicInput ? this->SampleWidth : this->SampleWidth - n + 1); ++x)
+      xs.push_back(x);
+  std::vector<int> ground;
+  for (const int x : xs)
+  {
+    const WindowCells w =
+      Window(*this, x, periodicY ? this->SampleHeight - 1 : this->SampleHeight - n);
+    int found = -1;
+    for (int t = 0; t < this->NumberOfPatterns() && found < 0; ++t)
+      if (std::equal(
+            w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
+        found = t;
+    if (found < 0)
+      throw Error("the ground window of the sample is not one of its patterns");
+    if (std::find(ground.begin(), ground.end(), found) == ground.end())
+      ground.push_back(found);
+  }
+  return ground;
 }
 
-GuideVolume PatternSet::GroundGuide(
-  const std::array<std::int64_t, 3>& sites, bool periodicOutput) const
+GuideVolume PatternSet::GroundGuide(const std::array<std::int64_t, 3>& sites, bool periodicY) const
 {
-  const int ground = this->GroundPattern(periodicOutput);
+  const std::vector<int> ground = this->GroundPatterns(periodicY);
   const std::int64_t rows = sites[1];
   CheckMemory(
     static_cast<std::uint64_t>(rows) * static_cast<std::uint64_t>(this->NumberOfPatterns()) * 8u,
@@ -227,20 +238,61 @@ GuideVolume PatternSet::GroundGuide(
   guide.Dims = { { 1, rows, 1 } };
   for (int t = 0; t < this->NumberOfPatterns(); ++t)
   {
-    std::vector<float> w(static_cast<std::size_t>(rows), t == ground ? 0.0f : 1.0f);
-    w[0] = t == ground ? 1.0f : 0.0f;
+    const bool isGround = std::find(ground.begin(), ground.end(), t) != ground.end();
+    std::vector<float> w(static_cast<std::size_t>(rows), isGround ? 0.0f : 1.0f);
+    w[0] = isGround ? 1.0f : 0.0f;
     guide.Weights.emplace(static_cast<Label>(t), std::move(w));
   }
   return guide;
 }
 
-RgbaImage PatternSet::Compose(const LabelGrid& model, bool periodicOutput) const
+std::optional<LabelGrid> PatternSet::TiledStart(
+  const std::array<std::int64_t, 3>& sites, const Periodic& periodic) const
+{
+  const int n = this->Options.N;
+  const std::int64_t sw = this->SampleWidth, sh = this->SampleHeight;
+  if (!this->Options.PeriodicInput || this->Options.Ground || (periodic[0] && sites[0] % sw) ||
+    (periodic[1] && sites[1] % sh) || sites[2] != 1)
+    return std::nullopt;
+  std::unordered_map<std::string, int> index;
+  for (int t = 0; t < this->NumberOfPatterns(); ++t)
+    index.emplace(Key(this->Cells.data() + static_cast<std::size_t>(t * n * n), 0, n, 0, n, n), t);
+  std::vector<int> at(static_cast<std::size_t>(sw * sh));
+  for (int y = 0; y < sh; ++y)
+    for (int x = 0; x < sw; ++x)
+    {
+      const WindowCells w = Window(*this, x, y);
+      at[static_cast<std::size_t>(y * sw + x)] = index.at(Key(w.data(), 0, n, 0, n, n));
+    }
+  LabelGrid start(sites[0], sites[1], 1);
+  for (std::int64_t y = 0; y < sites[1]; ++y)
+    for (std::int64_t x = 0; x < sites[0]; ++x)
+      start.Set(x, y, 0, at[static_cast<std::size_t>(((sites[1] - 1 - y) % sh) * sw + x % sw)]);
+  return start;
+}
+
+void PatternSet::Configure(SynthesisOptions& options, const Periodic& periodic) const
+{
+  if (this->Options.Ground)
+  {
+    if (options.Guide)
+      throw Error("the ground is a guide of its own: it cannot be combined with a guide");
+    options.Guide = this->GroundGuide(options.Size, periodic[1]);
+  }
+  bool blocks = false;
+  for (int a = 0; a < 3; ++a)
+    blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
+  if (blocks && !options.TrivialLabel && !options.Start)
+    options.Start = this->TiledStart(options.Size, periodic);
+}
+
+RgbaImage PatternSet::Compose(const LabelGrid& model, const Periodic& periodic) const
 {
   const int n = this->Options.N;
   const std::int64_t sx = model.Size(0), sy = model.Size(1);
   RgbaImage picture;
-  const std::int64_t w = periodicOutput ? sx : sx + n - 1;
-  const std::int64_t h = periodicOutput ? sy : sy + n - 1;
+  const std::int64_t w = periodic[0] ? sx : sx + n - 1;
+  const std::int64_t h = periodic[1] ? sy : sy + n - 1;
   if (model.Size(2) != 1 || w * h > MaximumImagePixels || w > 65536 || h > 65536)
     throw Error("a picture of " + std::to_string(w) + " x " + std::to_string(h) + " x " +
       std::to_string(model.Size(2)) + " pixels cannot be made (2D, at most 2^26 pixels)");
@@ -299,7 +351,7 @@ std::string WindowBytes(const RgbaImage& image, int x0, int y0, int k, int n)
 } // namespace
 
 std::vector<std::string> CheckPicture(const RgbaImage& sample, const OverlappingOptions& options,
-  const RgbaImage& picture, bool periodicOutput, std::size_t limit)
+  const RgbaImage& picture, const Periodic& periodic, std::size_t limit)
 {
   const int n = options.N;
   std::vector<std::string> problems;
@@ -312,16 +364,20 @@ std::vector<std::string> CheckPicture(const RgbaImage& sample, const Overlapping
     for (int x = 0; x < xs; ++x)
       for (int k = 0; k < options.Symmetry; ++k)
         windows.insert(WindowBytes(sample, x, y, k, n));
-  std::string ground;
+  std::unordered_set<std::string> ground;
   int groundRow = -1;
   if (options.Ground)
   {
-    const int gx = periodicOutput ? sample.Width / 2 : std::min(sample.Width / 2, sample.Width - n);
-    ground = WindowBytes(sample, gx, periodicOutput ? sample.Height - 1 : sample.Height - n, 0, n);
-    groundRow = periodicOutput ? picture.Height - 1 : picture.Height - n;
+    // WaveFunctionCollapse's ground: the bottom-middle window, wrapping; bounded, the last rows.
+    if (periodic[1])
+      ground.insert(WindowBytes(sample, sample.Width / 2, sample.Height - 1, 0, n));
+    else
+      for (int x = 0; x < xs; ++x)
+        ground.insert(WindowBytes(sample, x, sample.Height - n, 0, n));
+    groundRow = periodic[1] ? picture.Height - 1 : picture.Height - n;
   }
-  const int xe = periodicOutput ? picture.Width : picture.Width - n + 1;
-  const int ye = periodicOutput ? picture.Height : picture.Height - n + 1;
+  const int xe = periodic[0] ? picture.Width : picture.Width - n + 1;
+  const int ye = periodic[1] ? picture.Height : picture.Height - n + 1;
   for (int y = 0; y < ye && problems.size() < limit; ++y)
     for (int x = 0; x < xe && problems.size() < limit; ++x)
     {
@@ -329,7 +385,7 @@ std::vector<std::string> CheckPicture(const RgbaImage& sample, const Overlapping
       const std::string at = " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
       if (!windows.count(w))
         problems.push_back("the window" + at + " is not in the sample");
-      else if (options.Ground && (y == groundRow) != (w == ground))
+      else if (options.Ground && (y == groundRow) != (ground.count(w) > 0))
         problems.push_back(y == groundRow ? "the window" + at + " of the bottom row is not ground"
                                           : "the ground window appears" + at);
     }

@@ -18,7 +18,10 @@
  * high. A picture of W × H pixels needs (W − N + 1) × (H − N + 1) sites (each pixel of the last
  * N − 1 rows and columns comes from the last site's window), or W × H sites when it repeats
  * (periodic output: translation symmetry along x and y with the picture's size as period).
- * With Ground, the grid's bottom row holds the ground pattern and no other row does.
+ * With Ground, the grid's bottom row holds ground patterns and no other row does: for an output
+ * repeating along y the window at the bottom middle of the sample that starts on its last row
+ * (wrapping to its top), as WaveFunctionCollapse; otherwise the windows of the sample's last N
+ * rows, so the picture ends in the sample's bottom rows.
  */
 #include "Core/LabelGrid.h"
 #include "Discrete/AdjacencyRules.h"
@@ -27,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,11 +43,12 @@ struct OverlappingOptions
   int N = 3;                 ///< pattern size in pixels (1-8)
   bool PeriodicInput = true; ///< windows wrap around the sample's edges
   int Symmetry = 8;          ///< 1-8: how many of each window's dihedral images are patterns
-  /// The ground pattern fills the bottom row of the output and nowhere else: the window at the
-  /// bottom middle of the sample (starting on its last row and wrapping to its top for a
-  /// periodic output, its last N rows otherwise).
+  /// Ground patterns fill the bottom row of the output and nowhere else (see above).
   bool Ground = false;
 };
+
+/// Whether the output picture repeats (tiles seamlessly) along x and along y.
+using Periodic = std::array<bool, 2>;
 
 /// The largest number of patterns a sample may give (the rules take 6 k² bits).
 constexpr int MaximumPatterns = 8192;
@@ -69,17 +74,32 @@ public:
   }
   /// Rules for the pattern grid: label values 0..k−1, weights the counts.
   AdjacencyRules Rules() const;
-  /// The label grid size for a picture of @p width × @p height pixels. @throw Error when the
-  /// picture is smaller than a pattern.
+  /// The label grid size for a picture of @p width × @p height pixels that repeats along x and
+  /// y as @p periodic says. @throw Error when the picture is smaller than a pattern.
   std::array<std::int64_t, 3> SitesFor(
-    std::int64_t width, std::int64_t height, bool periodicOutput) const;
-  /// The ground pattern for a periodic or bounded output. @throw Error when the sample has no
-  /// such window (a non-periodic sample asked for a wrapping one).
-  int GroundPattern(bool periodicOutput) const;
-  /// The guide that keeps the ground pattern on the bottom row of @p sites and off the others.
-  GuideVolume GroundGuide(const std::array<std::int64_t, 3>& sites, bool periodicOutput) const;
+    std::int64_t width, std::int64_t height, const Periodic& periodic) const;
+  /// The ground patterns for an output repeating along y or not. @throw Error when the sample
+  /// has no such window (a non-periodic sample asked for a wrapping one).
+  std::vector<int> GroundPatterns(bool periodicY) const;
+  /// The guide that keeps the ground patterns on the bottom row of @p sites and off the others.
+  GuideVolume GroundGuide(const std::array<std::int64_t, 3>& sites, bool periodicY) const;
+  /**
+   * The sample repeated over a grid of @p sites (site (x, y) is the window at (x mod width,
+   * row mod height) of the sample), a consistent start for block synthesis that, unlike a
+   * model of one pattern, leaves every block the sample's variety around it. Empty when the
+   * sample does not wrap (PeriodicInput off), with Ground, or where the output repeats along an
+   * axis by a length that is not a multiple of the sample's.
+   */
+  std::optional<LabelGrid> TiledStart(
+    const std::array<std::int64_t, 3>& sites, const Periodic& periodic) const;
+  /**
+   * Sets up @p options (Size already the grid's) for these patterns: the ground guide with
+   * Ground (@throw Error when @p options has a guide already), and for block synthesis the
+   * tiled start where there is one.
+   */
+  void Configure(SynthesisOptions& options, const Periodic& periodic) const;
   /// The picture of a grid of patterns (label values 0..k−1). @throw Error on other values.
-  RgbaImage Compose(const LabelGrid& model, bool periodicOutput) const;
+  RgbaImage Compose(const LabelGrid& model, const Periodic& periodic) const;
 };
 
 /**
@@ -92,12 +112,12 @@ PatternSet ExtractPatterns(
 
 /**
  * Checks a picture against its sample without the patterns' code: every N × N window of
- * @p picture (wrapping around its edges when @p periodicOutput) must be one of the sample's
+ * @p picture (wrapping around the edges along which it is @p periodic) must be one of the sample's
  * windows or their first `Symmetry` dihedral images, colours compared as RGBA; with Ground, the
- * windows of the picture's bottom row must be the ground window and no other may be. Returns
+ * windows of the picture's bottom row must be ground windows and no other may be. Returns
  * the problems found (at most @p limit), empty when the picture is right.
  */
 std::vector<std::string> CheckPicture(const RgbaImage& sample, const OverlappingOptions& options,
-  const RgbaImage& picture, bool periodicOutput, std::size_t limit = 10);
+  const RgbaImage& picture, const Periodic& periodic, std::size_t limit = 10);
 
 } // namespace msynth

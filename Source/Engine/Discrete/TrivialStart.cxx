@@ -155,6 +155,8 @@ int BlockSolver::TrivialStart()
   int t = -1;
   std::vector<int> layers;
   int layerAxis = -1;
+  if (this->Options.Start)
+    return this->GivenStart(*this->Options.Start);
   if (this->Options.TrivialLabel)
   {
     t = this->LabelIndex(*this->Options.TrivialLabel, "trivial");
@@ -218,6 +220,30 @@ int BlockSolver::TrivialStart()
                    : "a model layered along " +
         std::string("xyz").substr(static_cast<std::size_t>(layerAxis), 1) +
         " starting with label ");
+  return t;
+}
+
+/// SynthesisOptions::Start, checked like a trivial one. Returns its commonest label.
+int BlockSolver::GivenStart(const LabelGrid& start)
+{
+  if (this->Plan || (this->Seams && this->Seams->Rotate))
+    throw Error("a start model cannot be combined with mirror or rotation symmetry");
+  if (start.Dimensions() != this->N)
+    throw Error("the start model has " + Format(start.Dimensions()) + " sites, the output " +
+      Format(this->N));
+  std::map<int, std::int64_t> counts;
+  for (std::size_t s = 0; s < this->Model.size(); ++s)
+  {
+    if (this->Fixed[s] >= 0)
+      continue;
+    this->Model[s] = this->LabelIndex(start.Data()[s], "start");
+    ++counts[this->Model[s]];
+  }
+  const int t = counts.empty() ? this->Model.front()
+                               : std::max_element(counts.begin(), counts.end(),
+                                   [](const auto& a, const auto& b) { return a.second < b.second; })
+                                   ->first;
+  this->CheckStart(t, "the start model, mostly label ");
   return t;
 }
 

@@ -4,6 +4,7 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSPatternImage.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
 
@@ -14,6 +15,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMultiProcessController.h"
@@ -23,6 +25,8 @@
 #include "vtkStringArray.h"
 
 #include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/OverlappingModel.h"
+#include "Formats/Image.h"
 #include "Formats/Tileset.h"
 
 #include <algorithm>
@@ -41,6 +45,16 @@ struct vtkMSDiscreteSynthesis::Internals
   std::vector<msynth::CatalogSnapshot> Snapshots;
   msynth::Tileset Tiles; ///< the tileset of the last run, when TilesetFile is set
 };
+
+int vtkMSDiscreteSynthesis::GridSize(int axis) const
+{
+  if (this->SampleFile.empty() || axis == 2)
+    return this->OutputSize[axis];
+  // A picture of W pixels: W sites where it repeats, else W − N + 1 (the last window's pixels
+  // end the row).
+  return this->Translate[axis] ? this->OutputSize[axis]
+                               : this->OutputSize[axis] - this->PatternSize + 1;
+}
 
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
   : Internal(new Internals)
@@ -66,7 +80,7 @@ msynth::SynthesisOptions SizeOptions(vtkMSDiscreteSynthesis* self)
     options.Symmetry[static_cast<std::size_t>(a)].Enabled = self->GetMirror()[a] != 0;
     options.Translate[static_cast<std::size_t>(a)].Enabled = self->GetTranslate()[a] != 0;
     options.Translate[static_cast<std::size_t>(a)].Period = self->GetTranslationPeriod()[a];
-    options.Size[a] = self->GetOutputSize()[a];
+    options.Size[a] = self->GridSize(a);
     options.BlockSize[a] = self->GetBlockSize()[a];
     options.Overlap[a] = self->GetBlockOverlap()[a];
   }
@@ -88,18 +102,34 @@ int vtkMSDiscreteSynthesis::FillInputPortInformation(int port, vtkInformation* i
 int vtkMSDiscreteSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  int grid[3];
   for (int a = 0; a < 3; ++a)
   {
-    if (this->OutputSize[a] < 1)
+    grid[a] = this->GridSize(a);
+    if (grid[a] < 1)
     {
-      vtkErrorMacro(<< "OutputSize must be at least 1 on every axis, got " << this->OutputSize[0]
-                    << " " << this->OutputSize[1] << " " << this->OutputSize[2] << ".");
+      vtkErrorMacro(<< "OutputSize must be at least 1 on every axis"
+                    << (this->SampleFile.empty() ? "" : " (and a pattern in x and y)") << ", got "
+                    << this->OutputSize[0] << " " << this->OutputSize[1] << " "
+                    << this->OutputSize[2] << ".");
       return 0;
     }
   }
+  if (!this->SampleFile.empty() && this->OutputSize[2] != 1)
+  {
+    vtkErrorMacro(<< "An image sample makes a 2D picture: OutputSize must be 1 in z, got "
+                  << this->OutputSize[2] << ".");
+    return 0;
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkMSPipeline::SetOutputLabelGrid(
-    inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
+  vtkMSPipeline::SetOutputLabelGrid(inputVector[0]->GetInformationObject(0), outInfo, grid);
+  if (this->SampleFile.empty())
+    outInfo->Remove(vtkMSPatternImage::PATTERN_PICTURE());
+  else
+  {
+    const int pattern[3] = { this->PatternSize, this->Translate[0] != 0, this->Translate[1] != 0 };
+    outInfo->Set(vtkMSPatternImage::PATTERN_PICTURE(), pattern, 3);
+  }
 
   vtkMSPipeline::SetTimeSteps(outInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)
@@ -297,8 +327,9 @@ void SetUpExchange(
       h ^= v;
       h *= 1099511628211ull;
     };
-    for (const char* c = self->GetTilesetFile(); c && *c; ++c)
-      mix(static_cast<unsigned char>(*c));
+    for (const char* file : { self->GetTilesetFile(), self->GetSampleFile() })
+      for (const char* c = file; c && *c; ++c)
+        mix(static_cast<unsigned char>(*c));
     if (labels)
       for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
         mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
@@ -373,6 +404,11 @@ bool vtkMSDiscreteSynthesis::Solve(
   return vtkMSSynthesisRun::Solve(this, what,
     [&]()
     {
+      if (!this->SampleFile.empty())
+      {
+        this->SolveSample(options);
+        return;
+      }
       if (this->TilesetFile.empty())
       {
         const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
@@ -392,13 +428,27 @@ bool vtkMSDiscreteSynthesis::Solve(
     });
 }
 
+void vtkMSDiscreteSynthesis::SolveSample(msynth::SynthesisOptions& options)
+{
+  if (options.Choice == msynth::LabelChoice::Resemblance)
+    throw std::runtime_error("resemblance-weighted choice needs an example grid, not a sample");
+  msynth::OverlappingOptions po;
+  po.N = this->PatternSize;
+  po.Symmetry = this->PatternSymmetry;
+  po.PeriodicInput = this->PeriodicInput;
+  po.Ground = this->Ground;
+  const msynth::PatternSet patterns =
+    msynth::ExtractPatterns(msynth::ReadImage(this->SampleFile), po, this->SampleFile);
+  patterns.Configure(options, { { this->Translate[0] != 0, this->Translate[1] != 0 } });
+  this->Internal->Cache.Result = msynth::Synthesize(patterns.Rules(), options);
+}
+
 void vtkMSDiscreteSynthesis::FillOutput(
   vtkImageData* input, vtkImageData* output, vtkInformation* outInfo)
 {
   const Internals& run = *this->Internal;
   const msynth::SynthesisResult& result = run.Cache.Result;
-  output->SetExtent(
-    0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
+  output->SetExtent(0, this->GridSize(0) - 1, 0, this->GridSize(1) - 1, 0, this->GridSize(2) - 1);
   if (input)
   {
     output->SetSpacing(input->GetSpacing());
@@ -429,6 +479,20 @@ void vtkMSDiscreteSynthesis::FillOutput(
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
   AddExampleFields(
     fd, input, this->TilesetFile.c_str(), this->TilesetFile.empty() ? nullptr : &run.Tiles);
+  if (!this->SampleFile.empty())
+  {
+    // What vtkMSPatternImage needs to compose the picture.
+    vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "SampleFile", this->SampleFile);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "PatternSize", this->PatternSize);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "PatternSymmetry", this->PatternSymmetry);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "PeriodicInput", this->PeriodicInput ? 1 : 0);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Ground", this->Ground ? 1 : 0);
+    vtkNew<vtkIntArray> periodic;
+    periodic->SetName("PeriodicOutput");
+    periodic->InsertNextValue(this->Translate[0] != 0);
+    periodic->InsertNextValue(this->Translate[1] != 0);
+    fd->AddArray(periodic);
+  }
 }
 
 int vtkMSDiscreteSynthesis::RequestData(
@@ -438,11 +502,16 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkDataArray* labels = nullptr;
-  if (this->TilesetFile.empty())
+  if (!this->TilesetFile.empty() && !this->SampleFile.empty())
+  {
+    vtkErrorMacro(<< "Set a TilesetFile or a SampleFile, not both.");
+    return 0;
+  }
+  if (this->TilesetFile.empty() && this->SampleFile.empty())
   {
     if (!input)
     {
-      vtkErrorMacro(<< "No input example (and no TilesetFile).");
+      vtkErrorMacro(<< "No input example (and no TilesetFile or SampleFile).");
       return 0;
     }
     // An empty selection (ParaView's domain before the data exists) falls back to "Label".
@@ -498,4 +567,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
      << this->TranslationMap << "')\n";
   os << indent << "DistributeBlocks: " << this->DistributeBlocks << "\n";
   os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
+  os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
+     << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
+     << ", ground " << this->Ground << ")\n";
 }

@@ -50,6 +50,17 @@
  * tileset and the example input is not needed; label i is an orientation of a tile, named in
  * the field array `TileNames` ("tile k"). vtkMSTileImage composes the tiles' images.
  *
+ * Image samples (the overlapping model of WaveFunctionCollapse, Discrete/OverlappingModel.h):
+ * with SampleFile set (a PNG or BMP picture) the labels are the sample's PatternSize ×
+ * PatternSize pixel windows, with the first PatternSymmetry of their dihedral images, wrapping
+ * around the sample with PeriodicInput; patterns are neighbours where they overlap. OutputSize
+ * is then the picture's size in pixels: the label grid has (W − N + 1) × (H − N + 1) sites, or W
+ * (H) along an axis that Translate makes repeat (a seamlessly tiling picture). Ground puts the
+ * sample's bottom-middle window along the bottom row and nowhere else (no guide input then).
+ * The field data records the sample and its options (`SampleFile`, `PatternSize`,
+ * `PatternSymmetry`, `PeriodicInput`, `Ground`, `PeriodicOutput`), from which vtkMSPatternImage
+ * composes the picture.
+ *
  * The result depends only on the inputs and Seed.
  *
  * Watching the solver: with CatalogSnapshotsPerBlock S > 0 the output has time steps
@@ -151,6 +162,26 @@ public:
   vtkGetCharFromStdStringMacro(TilesetFile);
   vtkSetStdStringFromCharMacro(TilesetSubset);
   vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
+
+  ///@{
+  /// An image sample (.png, .bmp) to take the rules from instead of the example: its
+  /// PatternSize × PatternSize windows (1-8, default 3) with the first PatternSymmetry (1-8,
+  /// default 8) of their dihedral images are the labels; PeriodicInput (default on) lets windows
+  /// wrap around the sample; Ground keeps the bottom-middle window on the bottom row. Default
+  /// "" (none).
+  vtkSetStdStringFromCharMacro(SampleFile);
+  vtkGetCharFromStdStringMacro(SampleFile);
+  vtkSetClampMacro(PatternSize, int, 1, 8);
+  vtkGetMacro(PatternSize, int);
+  vtkSetClampMacro(PatternSymmetry, int, 1, 8);
+  vtkGetMacro(PatternSymmetry, int);
+  vtkSetMacro(PeriodicInput, bool);
+  vtkGetMacro(PeriodicInput, bool);
+  vtkBooleanMacro(PeriodicInput, bool);
+  vtkSetMacro(Ground, bool);
+  vtkGetMacro(Ground, bool);
+  vtkBooleanMacro(Ground, bool);
   ///@}
 
   ///@{
@@ -272,6 +303,10 @@ public:
   vtkGetMacro(MaximumSnapshotMemory, vtkIdType);
   ///@}
 
+  /// The label grid's size along @p axis: OutputSize, or with a SampleFile the number of
+  /// pattern sites a picture of OutputSize pixels needs.
+  int GridSize(int axis) const;
+
 protected:
   vtkMSDiscreteSynthesis();
   ~vtkMSDiscreteSynthesis() override;
@@ -285,8 +320,11 @@ private:
   vtkMSDiscreteSynthesis(const vtkMSDiscreteSynthesis&) = delete;
   void operator=(const vtkMSDiscreteSynthesis&) = delete;
 
-  /// Runs the engine on the example (or the tileset) into the cache; false after an error.
+  /// Runs the engine on the example (or the tileset, or the sample) into the cache; false after
+  /// an error.
   bool Solve(vtkImageData* input, vtkDataArray* labels, msynth::SynthesisOptions& options);
+  /// The patterns of SampleFile and their synthesis, into the cache.
+  void SolveSample(msynth::SynthesisOptions& options);
   /// The model (or the requested snapshot), LastBlock and the field data on @p output.
   void FillOutput(vtkImageData* input, vtkImageData* output, vtkInformation* outInfo);
 
@@ -316,6 +354,11 @@ private:
   std::string TargetFractions;
   double SoftTemperature = 0.01;
   std::string TilesetSubset;
+  std::string SampleFile;
+  int PatternSize = 3;
+  int PatternSymmetry = 8;
+  bool PeriodicInput = true;
+  bool Ground = false;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
 
   struct Internals;
