@@ -128,6 +128,19 @@ TEST(OverlappingModel, BadOptionsAreErrors)
   o.Symmetry = 9;
   EXPECT_THROW(ExtractPatterns(board, o, "board"), Error);
   o.Symmetry = 1;
+  RgbaImage huge;
+  huge.Width = 2048;
+  huge.Height = 1024;
+  huge.Pixels.assign(static_cast<std::size_t>(4 * huge.Width * huge.Height), 0);
+  EXPECT_THROW(ExtractPatterns(huge, o, "huge"), Error); // over 2^20 pixels
+  // Every pixel a colour of its own: more patterns than allowed, refused while counting.
+  RgbaImage noisy;
+  noisy.Width = noisy.Height = 128;
+  for (int i = 0; i < 128 * 128; ++i)
+    for (const int c : { i & 255, i >> 8, 7, 255 })
+      noisy.Pixels.push_back(static_cast<std::uint8_t>(c));
+  o.N = 2;
+  EXPECT_THROW(ExtractPatterns(noisy, o, "noisy"), Error);
   const PatternSet set = ExtractPatterns(board, o, "board");
   EXPECT_THROW(set.SitesFor(1, 5, { { false, false } }), Error);
   LabelGrid bad(2, 2, 1, 7);

@@ -178,6 +178,51 @@ picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tiles
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
 check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
 
+# An image sample (the overlapping model) through its source proxy and the pattern picture;
+# every 3 x 3 window of the picture is checked against the sample's windows here.
+sample = os.path.join(DATA, "Samples", "Rooms.png")
+fresh_sample = ModelSynthImageSampleSynthesis()
+check(list(fresh_sample.OutputSize) == [64, 64, 1], "sample default size %s" % list(fresh_sample.OutputSize))
+check((fresh_sample.PatternSize, fresh_sample.PatternSymmetry, fresh_sample.PeriodicInput,
+       fresh_sample.Ground) == (3, 8, 1, 0), "sample defaults")
+Delete(fresh_sample)
+rooms = ModelSynthImageSampleSynthesis(SampleFile=sample, OutputSize=[40, 30, 1], BlockSize=[16, 16, 1], Seed=3)
+labels = servermanager.Fetch(rooms)
+check(labels.GetDimensions() == (38, 28, 1), "pattern sites %s" % (labels.GetDimensions(),))
+drawn = servermanager.Fetch(ModelSynthPatternPicture(Input=rooms))
+check(drawn.GetDimensions() == (40, 30, 1), "pattern picture size %s" % (drawn.GetDimensions(),))
+from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+
+
+def rows_of(image):
+    """Pixels as rows from the top, each pixel a tuple of its components (RGB or RGBA)."""
+    nx, ny, _ = image.GetDimensions()
+    a = image.GetPointData().GetScalars()
+    c = a.GetNumberOfComponents()
+    px = [tuple(int(a.GetComponent(i, k)) for k in range(min(c, 3))) for i in range(nx * ny)]
+    return [px[(ny - 1 - y) * nx:(ny - y) * nx] for y in range(ny)]
+
+
+png = vtkPNGReader()
+png.SetFileName(sample)
+png.Update()
+own = rows_of(png.GetOutput())
+h, w = len(own), len(own[0])
+allowed = set()
+for y in range(h):
+    for x in range(w):
+        win = [[own[(y + j) % h][(x + i) % w] for i in range(3)] for j in range(3)]
+        for _ in range(4):  # all eight symmetries: turns and their mirrors
+            win = [list(r) for r in zip(*win)][::-1]
+            allowed.add(str(win))
+            allowed.add(str([r[::-1] for r in win]))
+pic = rows_of(drawn)
+bad = [(x, y) for y in range(28) for x in range(38)
+       if str([pic[y + j][x:x + 3] for j in range(3)]) not in allowed]
+check(not bad, "pattern picture windows not in the sample: %s" % bad[:3])
+check(len({str([pic[y + j][x:x + 3] for j in range(3)]) for y in range(28) for x in range(38)}) >= 12,
+      "the pattern picture is varied")
+
 # Symmetry (§3.5.2) through the proxies: a tileable village, and a tile picture that looks the
 # same turned a quarter (each tile turns to its next orientation).
 synthesis.CatalogSnapshotsPerBlock = 0

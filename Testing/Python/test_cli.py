@@ -229,7 +229,8 @@ class CommandLineTest(unittest.TestCase):
         for path, problem in ((folder, "is a folder, not a file"),
                               (fifo, "is not a regular file (a pipe, socket or device)"),
                               (other, "has the unknown extension '.abc'; examples are label grids "
-                                       "(.vti, .txt, .vox), tilesets (.xml) or polyhedra (.obj, .vtp, .ply, .stl)"),
+                                       "(.vti, .txt, .vox), tilesets (.xml), image samples (.png, .bmp) or "
+                                       "polyhedra (.obj, .vtp, .ply, .stl)"),
                               (escape, "'?[31mred?' is not an integer")):
             for command in (("info", path), ("synthesize", path, "--size", "4", "4", "1")):
                 r = run(*command)
@@ -423,6 +424,62 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("no such guide file", r.stderr)
 
+    def test_image_sample(self):
+        meadow = data("Samples/Meadow.png")
+        out = tmp("cli-sample")
+        shutil.rmtree(out, ignore_errors=True)
+        r = run("synthesize", meadow, "--pattern", "3", "--symmetry", "2", "--ground", "--translate", "xy",
+                "--size", "64", "40", "1", "--block", "16", "16", "1", "--seed", "3", "--choice", "frequency",
+                "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(n for n in os.listdir(out) if not n.startswith(".")),
+                         ["labels.vti", "picture.png", "statistics.json"])
+        from vtkmodules.vtkIOImage import vtkPNGReader
+        png = vtkPNGReader()
+        png.SetFileName(os.path.join(out, "picture.png"))
+        png.Update()
+        self.assertEqual(png.GetOutput().GetDimensions(), (64, 40, 1))
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["BlocksFailed"], 0)
+        picture = os.path.join(out, "picture.png")
+        r = run("check", meadow, picture, "--symmetry", "2", "--translate", "xy", "--ground")
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("consistent: every 3 x 3 window", r.stdout)
+        # The check fails where the picture breaks the sample: not repeating, it wraps wrongly;
+        # a sample without the earth has none of these windows.
+        r = run("check", data("Samples/Rooms.png"), picture, "--symmetry", "2")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("is not in the sample", r.stdout)
+        # Bounded, no ground, whole model; the same seed gives the same picture.
+        for attempt in (1, 2):
+            r = run("synthesize", data("Samples/Rooms.png"), "--size", "30", "20", "1", "--seed", "9",
+                    "--out", tmp("cli-rooms%d" % attempt))
+            self.assertEqual(r.returncode, 0, r.stderr)
+        with open(tmp("cli-rooms1/picture.png"), "rb") as a, open(tmp("cli-rooms2/picture.png"), "rb") as b:
+            self.assertEqual(a.read(), b.read())
+        self.assertEqual(run("check", data("Samples/Rooms.png"), tmp("cli-rooms1/picture.png")).returncode, 0)
+        # Usage: sample options elsewhere, grid options for a sample, --ground's two forms.
+        for args, message in (
+                ((data("Examples/Village.vti"), "--size", "5", "5", "5", "--pattern", "2"),
+                 "--pattern applies to image samples"),
+                ((meadow, "--size", "20", "20", "1", "--mirror", "x"), "--mirror applies to label grids"),
+                ((meadow, "--size", "20", "20", "1", "--ground", "1"), "--ground takes no LABEL"),
+                ((data("Examples/Village.vti"), "--size", "5", "5", "5", "--ground"), "--ground needs a LABEL")):
+            r = run("synthesize", *args, "--out", tmp("cli-sample-usage"))
+            self.assertEqual(r.returncode, 2, args)
+            self.assertIn(message, r.stderr)
+        # Bad samples and sizes: one line naming the problem, no output.
+        bad = tmp("not-a-picture.png")
+        shutil.rmtree(tmp("cli-sample-bad"), ignore_errors=True)
+        with open(bad, "wb") as f:
+            f.write(b"\x89PNG\r\n\x1a\n" + b"\0" * 20)
+        for args in ((bad, "--size", "20", "20", "1"), (meadow, "--size", "2", "20", "1"),
+                     (data("Samples/Bricks.png"), "--pattern", "8", "--size", "20", "20", "1")):
+            r = run("synthesize", *args, "--out", tmp("cli-sample-bad"))
+            self.assertEqual(r.returncode, 1, args)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertFalse(os.path.exists(tmp("cli-sample-bad/picture.png")))
+
     def test_tileset(self):
         tiles = data("Tilesets/Lines.xml")
         r = run("info", tiles)
@@ -450,7 +507,7 @@ class CommandLineTest(unittest.TestCase):
         r = run("synthesize", data("Examples/Village.vti"), "--size", "6", "5", "5", "--outputs", "picture",
                 "--out", tmp("cli-no-picture"))
         self.assertEqual(r.returncode, 1)
-        self.assertIn("pictures are made of a tileset's images", r.stderr)
+        self.assertIn("pictures are made of a tileset's images or an image sample's pixels", r.stderr)
         r = run("synthesize", tiles, "--size", "6", "5", "1", "--outputs", "labels,gif", "--out", out)
         self.assertEqual(r.returncode, 2)
         self.assertIn("--outputs: unknown kind 'gif'", r.stderr)

@@ -68,6 +68,11 @@ void CheckOptions(const RgbaImage& sample, const OverlappingOptions& o, const st
   if (o.Symmetry < 1 || o.Symmetry > 8)
     throw Error("'" + name + "': the pattern symmetry must be between 1 and 8, not " +
       std::to_string(o.Symmetry));
+  if (static_cast<std::int64_t>(sample.Width) * sample.Height > MaximumSamplePixels)
+    throw Error("'" + name + "': the sample has " + std::to_string(sample.Width) + " x " +
+      std::to_string(sample.Height) +
+      " pixels; image samples are at most 2^20 pixels (every "
+      "window of every symmetry is read)");
   if (sample.Width < 1 || sample.Height < 1 || o.N > sample.Width || o.N > sample.Height)
     throw Error("'" + name + "': the sample (" + std::to_string(sample.Width) + " x " +
       std::to_string(sample.Height) + " pixels) is smaller than a " + std::to_string(o.N) + " x " +

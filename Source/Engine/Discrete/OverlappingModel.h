@@ -50,6 +50,9 @@ struct OverlappingOptions
 /// Whether the output picture repeats (tiles seamlessly) along x and along y.
 using Periodic = std::array<bool, 2>;
 
+/// The largest sample: 2^20 pixels (a 1024 x 1024 picture), so reading its windows is bounded.
+constexpr std::int64_t MaximumSamplePixels = std::int64_t(1) << 20;
+
 /// The largest number of patterns a sample may give (the rules take 6 k² bits).
 constexpr int MaximumPatterns = 8192;
 
@@ -105,7 +108,8 @@ public:
 /**
  * The patterns of @p sample and their rules. @p name names the sample in errors.
  * @throw Error for bad options (N outside 1-8 or larger than the sample, symmetry outside 1-8),
- * more than 65536 colours or more than MaximumPatterns patterns.
+ * a sample over MaximumSamplePixels, more than 65536 colours or more than MaximumPatterns
+ * patterns (all bounded before anything grows with them).
  */
 PatternSet ExtractPatterns(
   const RgbaImage& sample, const OverlappingOptions& options, const std::string& name);

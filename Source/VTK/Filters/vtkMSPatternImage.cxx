@@ -49,8 +49,9 @@ void PictureExtent(const int sites[6], const int pattern[3], int extent[6])
 int Recorded(vtkFieldData* fd, const char* name, int component, int otherwise)
 {
   vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
-  return a && a->GetNumberOfValues() > component ? static_cast<int>(a->GetVariantValue(component).ToInt())
-                                                 : otherwise;
+  return a && a->GetNumberOfValues() > component
+    ? static_cast<int>(a->GetVariantValue(component).ToInt())
+    : otherwise;
 }
 } // namespace
 
@@ -130,9 +131,8 @@ int vtkMSPatternImage::RequestData(
     vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), announced);
   if (announced[1] + 1 != picture.Width || announced[3] + 1 != picture.Height)
   {
-    vtkErrorMacro(<< "The labels record pattern size " << po.N << " and repetition "
-                  << periodic[0] << " " << periodic[1]
-                  << "; set PatternSize and PeriodicOutput to the same.");
+    vtkErrorMacro(<< "The labels record pattern size " << po.N << " and repetition " << periodic[0]
+                  << " " << periodic[1] << "; set PatternSize and PeriodicOutput to the same.");
     return 0;
   }
   output->SetExtent(0, picture.Width - 1, 0, picture.Height - 1, 0, 0);
@@ -141,7 +141,8 @@ int vtkMSPatternImage::RequestData(
   rgba->SetNumberOfComponents(4);
   rgba->SetNumberOfTuples(static_cast<vtkIdType>(picture.Width) * picture.Height);
   for (int y = 0; y < picture.Height; ++y) // VTK's rows are bottom first, the picture's top first
-    std::copy(picture.At(0, picture.Height - 1 - y), picture.At(0, picture.Height - 1 - y) + 4 * picture.Width,
+    std::copy(picture.At(0, picture.Height - 1 - y),
+      picture.At(0, picture.Height - 1 - y) + 4 * picture.Width,
       rgba->GetPointer(4 * static_cast<vtkIdType>(y) * picture.Width));
   output->GetPointData()->SetScalars(rgba);
   return 1;
