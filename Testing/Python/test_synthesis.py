@@ -165,6 +165,14 @@ class SynthesisTest(unittest.TestCase):
         self.assertIn("the boundary label 0 has guide weight 0", errors.text())
         s.SetUseBoundary(0, 0, 0, 0, 0, 0)
         errors = ErrorObserver(s)
+        s.Update()  # the start avoids label 0: another label, or layers of labels
+        self.assertEqual(errors.text(), "")
+        model = labels_zyx(s.GetOutput())
+        self.assertEqual(violations(self.example, model), [])
+        self.assertFalse((model == 0).any())
+        s.SetUseTrivialLabel(1)
+        s.SetTrivialLabel(0)
+        errors = ErrorObserver(s)
         s.Update()
         self.assertIn("trivial label 0 weight 0", errors.text())
 
