@@ -22,8 +22,10 @@ struct SynthesizeOptions
   std::string Out = "msynth-output";
   std::vector<double> Size; ///< sites (discrete) or example units (continuous)
   std::int64_t Seed = 0;
-  int Attempts = 10; ///< per block (continuous: default 20)
-  std::string Order; ///< empty: scanline (discrete), entropy (continuous)
+  int Attempts = 10;              ///< per block (continuous: default 20)
+  std::int64_t Backtracks = 1000; ///< per attempt (discrete)
+  bool NoRepair = false;          ///< no second try at failed blocks
+  std::string Order;              ///< empty: scanline (discrete), entropy (continuous)
   std::string Choice = "uniform";
   int Snapshots = 0;
   // Discrete.

@@ -122,6 +122,13 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "block size BX BY BZ of Algorithm 3.4 (default: the whole model, Algorithm 3.1)")
              ->expected(3)
              ->check(CLI::Range(0, 1000000000)));
+  discrete(s.add_option("--backtracks", o.Backtracks,
+              "choices an attempt may undo when a catalog becomes empty (0: none, as the "
+              "dissertation)")
+             ->check(CLI::Range(std::int64_t(0), std::int64_t(1) << 40)));
+  discrete(s.add_flag("--no-repair", o.NoRepair,
+    "leave blocks whose attempts all fail at their previous labels, without a second try "
+    "after the other blocks"));
   discrete(s.add_option("--threads", o.Threads,
               "threads for block synthesis (default: one per core; the same result)")
              ->check(CLI::Range(0, 1024)));
@@ -278,6 +285,8 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetBlockSize(o.Block.data());
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetAttemptsPerBlock(o.Attempts);
+  synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
+  synthesis->SetRepairFailedBlocks(!o.NoRepair);
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
   synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));

@@ -2,6 +2,7 @@
 #include "BenchmarkFixtures.h"
 
 #include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/OverlappingModel.h"
 #include "Formats/Tileset.h"
 
 #include <sstream>
@@ -136,3 +137,70 @@ static void BM_SynthesizeTileable(benchmark::State& state)
   RunSynthesis(state, o);
 }
 BENCHMARK(BM_SynthesizeTileable)->Unit(benchmark::kMillisecond);
+
+namespace
+{
+/// A rooms-like 16 x 16 image sample: walls one pixel thick, rooms, doors (as the bundled
+/// Data/Samples/Rooms.png).
+msynth::RgbaImage RoomsSample()
+{
+  static const char* const rows[] = { "WWWWWWWWWWWWWWWW", "W    W         W", "W    W         W",
+    "W              W", "W    W         W", "WWWWWW WWWWWWWWW", "W       W      W",
+    "W       W      W", "W              W", "W       W      W", "W       W      W",
+    "WWWW WWWWWWW WWW", "W         W    W", "W              W", "W         W    W",
+    "WWWWWWWWWWWWWWWW" };
+  msynth::RgbaImage image;
+  image.Width = image.Height = 16;
+  for (const char* row : rows)
+    for (const char* c = row; *c; ++c)
+      for (const int v : { *c == 'W' ? 20 : 235, *c == 'W' ? 20 : 235, 225, 255 })
+        image.Pixels.push_back(static_cast<std::uint8_t>(v));
+  return image;
+}
+} // namespace
+
+// Image samples (the overlapping model): patterns and rules of a 16 x 16 sample with all eight
+// symmetries (range 0: pattern size N).
+static void BM_ImagePatterns(benchmark::State& state)
+{
+  const msynth::RgbaImage sample = RoomsSample();
+  msynth::OverlappingOptions o;
+  o.N = static_cast<int>(state.range(0));
+  int patterns = 0;
+  for (auto _ : state)
+  {
+    const msynth::PatternSet set = msynth::ExtractPatterns(sample, o, "rooms");
+    benchmark::DoNotOptimize(set.Rules());
+    patterns = set.NumberOfPatterns();
+  }
+  state.counters["patterns"] = patterns;
+}
+BENCHMARK(BM_ImagePatterns)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// A 256 x 256 picture from the rooms sample (N = 3, 8 symmetries) in 32 x 32 blocks, minimum
+// entropy, frequency-weighted, picture composed; range 0: backtracks per attempt.
+static void BM_ImageSample256(benchmark::State& state)
+{
+  const msynth::PatternSet set =
+    msynth::ExtractPatterns(RoomsSample(), msynth::OverlappingOptions(), "rooms");
+  const msynth::AdjacencyRules rules = set.Rules();
+  const msynth::Periodic bounded{ { false, false } };
+  msynth::SynthesisOptions o;
+  o.Size = set.SitesFor(256, 256, bounded);
+  o.BlockSize = { { 32, 32, 1 } };
+  o.Order = msynth::SiteOrder::MinimumEntropy;
+  o.Choice = msynth::LabelChoice::Frequency;
+  o.Threads = 1;
+  o.BacktracksPerAttempt = state.range(0);
+  set.Configure(o, bounded);
+  std::int64_t failedBlocks = 0, runs = 0;
+  for (auto _ : state)
+  {
+    o.Seed = static_cast<std::uint64_t>(runs++);
+    const auto r = msynth::Synthesize(rules, o);
+    failedBlocks += r.Statistics.BlocksFailed;
+    benchmark::DoNotOptimize(set.Compose(r.Model, bounded));
+  }
+  state.counters["failed_blocks"] = static_cast<double>(failedBlocks) / static_cast<double>(runs);
+}
+BENCHMARK(BM_ImageSample256)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond);

@@ -157,7 +157,8 @@ check(list(fresh_grid.OutputSize) == [32, 32, 8], "grid default size %s" % list(
 check((fresh_tiles.LabelChoice, fresh_tiles.SiteOrder) == ("Tile weights", "Minimum entropy"),
       "tileset defaults %s %s" % (fresh_tiles.LabelChoice, fresh_tiles.SiteOrder))
 check(fresh_grid.SiteOrder == "Scan line", "grid site order %s" % fresh_grid.SiteOrder)
-for name in ("BlockSize", "Seed", "Translate", "Rotate", "Mirror", "CatalogSnapshotsPerBlock"):
+for name in ("BlockSize", "Seed", "Translate", "Rotate", "Mirror", "CatalogSnapshotsPerBlock",
+             "BacktracksPerAttempt", "RepairFailedBlocks"):
     check(fresh_tiles.GetProperty(name) is not None and fresh_grid.GetProperty(name) is not None,
           "shared property " + name)
 check(fresh_grid.GetProperty("ResemblanceWindow") is not None, "the grid's own property")

@@ -34,10 +34,10 @@ std::vector<StatisticsField> StatisticsFields(const SynthesisStatistics& s)
   };
   return { count("Blocks", s.Blocks), count("BlocksAccepted", s.BlocksAccepted),
     count("BlocksFailed", s.BlocksFailed), count("BlocksRejected", s.BlocksRejected),
-    count("Attempts", s.Attempts), count("FailedAttempts", s.Attempts - s.BlocksAccepted),
-    count("Assignments", s.Assignments), count("Backtracks", s.Backtracks),
-    count("Phases", s.Phases), count("Threads", s.Threads), count("Processes", s.Processes),
-    StatisticsField{ "Seconds", s.Seconds, false } };
+    count("BlocksRepaired", s.BlocksRepaired), count("Attempts", s.Attempts),
+    count("FailedAttempts", s.Attempts - s.BlocksAccepted), count("Assignments", s.Assignments),
+    count("Backtracks", s.Backtracks), count("Phases", s.Phases), count("Threads", s.Threads),
+    count("Processes", s.Processes), StatisticsField{ "Seconds", s.Seconds, false } };
 }
 
 void WriteStatisticsJSON(std::ostream& out, const std::vector<StatisticsField>& fields)
@@ -61,7 +61,9 @@ std::string Summary(const SynthesisStatistics& s, bool wholeModel)
     " blocks synthesized, " + std::to_string(s.BlocksFailed) + " left at their previous labels" +
     (s.BlocksRejected
         ? ", " + std::to_string(s.BlocksRejected) + " rolled back by the soft constraints"
-        : std::string());
+        : std::string()) +
+    (s.BlocksRepaired ? ", " + std::to_string(s.BlocksRepaired) + " of them on a second try"
+                      : std::string());
 }
 
 std::vector<std::int64_t> BlockStarts(std::int64_t n, std::int64_t m, std::int64_t step)

@@ -76,6 +76,9 @@ struct SynthesisStatistics
   std::int64_t BlocksAccepted = 0; ///< solved (including those the soft constraints rolled back)
   std::int64_t BlocksFailed = 0;
   std::int64_t BlocksRejected = 0; ///< synthesized but rolled back by the soft constraints
+  /// Failed blocks synthesized by a second try after every other block (counted in
+  /// BlocksAccepted, not in BlocksFailed).
+  std::int64_t BlocksRepaired = 0;
   std::int64_t Attempts = 0;
   std::int64_t Assignments = 0;
   std::int64_t Backtracks = 0; ///< labels withdrawn because their propagation failed
@@ -96,8 +99,8 @@ struct StatisticsField
 };
 
 /// The statistics in one order and naming, for field data and JSON: Blocks, BlocksAccepted,
-/// BlocksFailed, BlocksRejected, Attempts, FailedAttempts, Assignments, Backtracks, Phases,
-/// Threads, Processes, Seconds.
+/// BlocksFailed, BlocksRejected, BlocksRepaired, Attempts, FailedAttempts, Assignments,
+/// Backtracks, Phases, Threads, Processes, Seconds.
 std::vector<StatisticsField> StatisticsFields(const SynthesisStatistics& s);
 
 /// The fields as JSON members ("  \"Blocks\": 12,\n" ...), each line ending with a comma.

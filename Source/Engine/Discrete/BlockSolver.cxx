@@ -24,6 +24,7 @@ BlockSolver::BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& op
   , LastBlock(shared.LastBlock)
 {
   this->N = options.Size;
+  this->Order = options.Order;
   LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
   if (seams)
     this->Cat.SetArcs(seams->Relation.get(), &seams->Arcs);
@@ -237,41 +238,35 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
   if (empty >= 0)
     return global(empty);
 
-  // Assign the free sites (lines 19-29), in the chosen order.
-  auto assign = [&](std::int64_t local) -> std::int64_t
+  // Assign the free sites (lines 19-29), in the chosen order, with bounded chronological
+  // backtracking (Search.cxx): a choice that empties a catalog is undone and ruled out there.
+  BlockSearch search(*this, block, rng, assignments);
+  if (this->Order == SiteOrder::MinimumEntropy)
   {
-    if (cat.Count(local) == 0)
-      return local;
-    if ((assignments & 1023) == 0 && this->Stopped())
-      return local; // cancelled: the attempt ends here (and no other starts)
-    if (cat.Count(local) > 1)
-    {
-      ++assignments;
-      cat.Assign(local, this->ChooseLabel(local, rng));
-      const std::int64_t emptied = cat.Propagate();
-      if (emptied < 0)
-        this->MaybeCapture(block, assignments);
-      return emptied;
-    }
-    return -1;
-  };
-
-  if (this->Options.Order == SiteOrder::MinimumEntropy)
-  {
-    empty = this->AssignByEntropy(free, rng, assign);
+    empty =
+      this->AssignByEntropy(free, rng, [&](std::int64_t local) { return search.Assign(local); });
   }
   else
   {
-    if (this->Options.Order == SiteOrder::Random)
+    if (this->Order == SiteOrder::Random)
     {
       for (std::size_t i = free.size(); i > 1; --i)
         std::swap(free[i - 1], free[static_cast<std::size_t>(rng.Below(i))]);
     }
-    for (std::int64_t local : free)
+    std::vector<std::int64_t>& position = this->Position;
+    position.assign(static_cast<std::size_t>(cat.NumberOfSites()), -1);
+    for (std::size_t i = 0; i < free.size(); ++i)
+      position[static_cast<std::size_t>(free[i])] = static_cast<std::int64_t>(i);
+    for (std::size_t i = 0; i < free.size();)
     {
-      empty = assign(local);
+      empty = search.Assign(free[i]);
       if (empty >= 0)
         break;
+      // After a backtrack, go on from the site whose choice was ruled out: every later site is
+      // as it was before that choice.
+      i = search.Resume() >= 0
+        ? static_cast<std::size_t>(position[static_cast<std::size_t>(search.Resume())])
+        : i + 1;
     }
   }
   if (empty >= 0)

@@ -213,12 +213,60 @@ public:
   BlockRunner* Runner = nullptr;         ///< the run (cancellation), or nullptr
   unsigned Worker = 0;                   ///< this solver's worker number in Runner
   std::int64_t Steps = 0;
+  std::int64_t Backtracked = 0;          ///< choices undone by BlockSearch, over all blocks
+  SiteOrder Order = SiteOrder::ScanLine; ///< the options' order (the repair pass's may differ)
+  std::vector<std::int64_t> Position;    ///< scan orders: each free site's place in the order
   double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };
   std::vector<std::int32_t>& Model;     ///< label indices; -1 unassigned (shared)
   std::vector<std::int32_t>& Fixed;     ///< boundary label indices; -1 free (shared)
   std::vector<std::int32_t>& LastBlock; ///< block that last changed each site (shared)
   std::vector<double> WLogW;
+};
+
+/**
+ * The assignments of one block attempt with bounded chronological backtracking (a deviation
+ * from Algorithm 3.4, whose attempt ends at the first empty catalog): a choice whose
+ * propagation empties a catalog is undone and ruled out at its site; when that empties a
+ * catalog too, the choice before it is undone and ruled out, and so on, at most
+ * SynthesisOptions::BacktracksPerAttempt times. Undoing uses the catalog's trail, which is
+ * dropped (and the search goes on without backtracking) when it would exceed MaximumTrailWords.
+ */
+class BlockSearch
+{
+public:
+  /// The trail's bound, in 64-bit words (128 MiB).
+  static constexpr std::size_t MaximumTrailWords = std::size_t(1) << 24;
+
+  BlockSearch(BlockSolver& solver, const Block& block, Random& rng, std::int64_t& assignments);
+  ~BlockSearch();
+  BlockSearch(const BlockSearch&) = delete;
+  BlockSearch& operator=(const BlockSearch&) = delete;
+
+  /// Assigns site @p local (local index) a label when it still has several. Returns -1, or a
+  /// site whose catalog is empty when no choice is left to undo or the budget is spent (or the
+  /// run is being cancelled).
+  std::int64_t Assign(std::int64_t local);
+  /// After an Assign that backtracked, the site whose choice was ruled out (every site decided
+  /// after it is as it was before that choice); else -1.
+  std::int64_t Resume() const { return this->ResumeAt; }
+
+private:
+  struct Decision
+  {
+    std::int64_t Local;
+    int Label;
+    std::size_t Mark;
+  };
+  BlockSolver& Solver;
+  const Block& Current;
+  Random& Rng;
+  std::int64_t& Assignments;
+  std::vector<Decision> Stack;
+  std::vector<std::uint64_t> Others;
+  std::int64_t Budget = 0;
+  std::int64_t ResumeAt = -1;
+  bool Searching = false;
 };
 
 } // namespace detail

@@ -203,12 +203,13 @@ struct Workers
 /// labels exchanged between processes.
 BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<Block>& blocks,
   BlockRunner& runner, Workers& workers, SoftConstraints& soft, SharedModel& shared,
-  SynthesisStatistics& stats)
+  SynthesisStatistics& stats, int attemptOffset = 0)
 {
   BlockSolver& solver = workers[0];
   const Coord n = solver.N;
   BlockRunner::Hooks hooks;
-  hooks.Run = [&options, &blocks, &runner, &workers, &soft](unsigned w, std::size_t i)
+  hooks.Run = [&options, &blocks, &runner, &workers, &soft, attemptOffset](
+                unsigned w, std::size_t i)
   {
     soft.Save(i, blocks[i]);
     BlockSolver& worker = workers[w];
@@ -216,7 +217,7 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
       [&](int attempt, std::int64_t& assignments)
       {
         Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(blocks[i].Index),
-          static_cast<std::uint64_t>(attempt));
+          static_cast<std::uint64_t>(attempt + attemptOffset));
         return worker.RunBlock(blocks[i], rng, assignments);
       });
   };
@@ -261,6 +262,45 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
       });
   };
   return hooks;
+}
+
+/**
+ * The second try at failed blocks (SynthesisOptions::RepairFailedBlocks): once every other
+ * block is done, each failed block runs again, one at a time in block order, in minimum-entropy
+ * order with attempt streams after the first try's. Those that succeed leave the failures.
+ */
+SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
+  const std::vector<Block>& blocks, Workers& workers, SoftConstraints& soft, SharedModel& shared,
+  SynthesisStatistics& stats)
+{
+  std::vector<Block> again;
+  for (const BlockFailure& f : stats.Failures)
+    again.push_back(blocks[static_cast<std::size_t>(f.Block)]);
+  BlockRunner::Policy policy;
+  policy.Threads = 1;
+  policy.Exchange = options.Exchange;
+  policy.Serial = true;
+  if (options.Progress) // the first try reported the whole run: stay at the end
+    policy.Progress = [&options](double) { return options.Progress(1.0); };
+  BlockRunner runner(std::move(policy), again.size());
+  workers[0].Runner = &runner;
+  const SiteOrder order = workers[0].Order;
+  workers[0].Order = SiteOrder::MinimumEntropy;
+  SynthesisStatistics second;
+  const auto hooks =
+    MakeHooks(options, again, runner, workers, soft, shared, second, options.AttemptsPerBlock);
+  std::vector<int> phases(again.size());
+  for (std::size_t i = 0; i < phases.size(); ++i)
+    phases[i] = static_cast<int>(i);
+  const SynthesisStatus status = runner.Run(phases, hooks, second);
+  workers[0].Order = order;
+  stats.BlocksRepaired = second.BlocksAccepted;
+  stats.BlocksAccepted += second.BlocksAccepted;
+  stats.BlocksFailed -= second.BlocksAccepted;
+  stats.Attempts += second.Attempts;
+  stats.Assignments += second.Assignments;
+  stats.Failures = std::move(second.Failures);
+  return status;
 }
 
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
@@ -310,6 +350,12 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   solver.StartSnapshots();
   const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
   result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
+  if (result.Status == SynthesisStatus::Succeeded && !wholeModel && !stats.Failures.empty() &&
+    options.RepairFailedBlocks && !solver.Snapshots() && !options.Soft.Active())
+    result.Status = RepairFailedBlocks(options, blocks, workers, soft, shared, stats);
+  stats.Backtracks = solver.Backtracked;
+  for (const auto& extra : workers.Extra)
+    stats.Backtracks += extra->Backtracked;
   stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (result.Status == SynthesisStatus::Cancelled)
   {

@@ -161,6 +161,18 @@ struct SynthesisOptions
   std::array<std::int64_t, 3> Overlap{ { -1, -1, -1 } };
   /// Attempts per block before the block is left as it was (Algorithm 3.1: attempts overall).
   int AttemptsPerBlock = 10;
+  /**
+   * Choices an attempt may undo when a catalog becomes empty (chronological backtracking, a
+   * deviation from Algorithms 3.1 and 3.4, which end the attempt there). 0: none, as the
+   * dissertation.
+   */
+  std::int64_t BacktracksPerAttempt = 1000;
+  /**
+   * Blocks whose attempts all failed are tried again once every other block is done (their
+   * surroundings have changed), in minimum-entropy order, with new random streams. Not with
+   * catalog snapshots (whose count is fixed before the run) or soft constraints.
+   */
+  bool RepairFailedBlocks = true;
   std::uint64_t Seed = 0;
   LabelChoice Choice = LabelChoice::Uniform;
   /// The example grid, for LabelChoice::Resemblance (not owned; must outlive the call).

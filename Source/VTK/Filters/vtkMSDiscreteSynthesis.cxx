@@ -292,6 +292,8 @@ bool BuildOptions(
 {
   options = SizeOptions(self);
   options.AttemptsPerBlock = self->GetAttemptsPerBlock();
+  options.BacktracksPerAttempt = self->GetBacktracksPerAttempt();
+  options.RepairFailedBlocks = self->GetRepairFailedBlocks();
   options.Threads = self->GetNumberOfThreads();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
@@ -556,6 +558,8 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockSize: " << this->BlockSize[0] << " " << this->BlockSize[1] << " "
      << this->BlockSize[2] << "\n";
   os << indent << "AttemptsPerBlock: " << this->AttemptsPerBlock << "\n";
+  os << indent << "BacktracksPerAttempt: " << this->BacktracksPerAttempt << "\n";
+  os << indent << "RepairFailedBlocks: " << this->RepairFailedBlocks << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";

@@ -136,6 +136,21 @@ public:
   ///@}
 
   ///@{
+  /// Choices an attempt may undo when a catalog becomes empty (chronological backtracking; a
+  /// deviation from the dissertation's algorithms, which end the attempt there: 0). Default 1000.
+  vtkSetClampMacro(BacktracksPerAttempt, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(BacktracksPerAttempt, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Try blocks whose attempts all failed once more after every other block (in minimum-entropy
+  /// order; not with snapshots or soft constraints). Default on.
+  vtkSetMacro(RepairFailedBlocks, bool);
+  vtkGetMacro(RepairFailedBlocks, bool);
+  vtkBooleanMacro(RepairFailedBlocks, bool);
+  ///@}
+
+  ///@{
   /// Random seed (any value; used as 64 bits). Default 0.
   vtkSetMacro(Seed, vtkIdType);
   vtkGetMacro(Seed, vtkIdType);
@@ -332,6 +347,8 @@ private:
   int BlockSize[3] = { 0, 0, 0 };
   int BlockOverlap[3] = { -1, -1, -1 };
   int AttemptsPerBlock = 10;
+  vtkIdType BacktracksPerAttempt = 1000;
+  bool RepairFailedBlocks = true;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;
   int SiteOrder = SCAN_LINE;

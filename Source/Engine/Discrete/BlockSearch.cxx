@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/BlockSolver.h"
+
+// One block attempt's assignments with bounded chronological backtracking (BlockSolver.h).
+
+namespace msynth
+{
+namespace detail
+{
+
+BlockSearch::BlockSearch(
+  BlockSolver& solver, const Block& block, Random& rng, std::int64_t& assignments)
+  : Solver(solver)
+  , Current(block)
+  , Rng(rng)
+  , Assignments(assignments)
+  , Others(static_cast<std::size_t>(solver.Rules.Words()))
+  , Budget(solver.Options.BacktracksPerAttempt)
+  , Searching(solver.Options.BacktracksPerAttempt > 0)
+{
+  this->Solver.Cat.Record(this->Searching);
+}
+
+BlockSearch::~BlockSearch()
+{
+  this->Solver.Cat.Record(false);
+}
+
+std::int64_t BlockSearch::Assign(std::int64_t local)
+{
+  Catalog& cat = this->Solver.Cat;
+  this->ResumeAt = -1;
+  if (cat.Count(local) == 0)
+    return local;
+  if ((this->Assignments & 1023) == 0 && this->Solver.Stopped())
+    return local; // cancelled: the attempt ends here (and no other starts)
+  if (cat.Count(local) == 1)
+    return -1;
+  ++this->Assignments;
+  std::size_t mark = cat.Mark();
+  int label = this->Solver.ChooseLabel(local, this->Rng);
+  cat.Assign(local, label);
+  std::int64_t empty = cat.Propagate();
+  if (empty < 0)
+  {
+    if (this->Searching && cat.Mark() > MaximumTrailWords)
+    {
+      // Too long a trail to keep: go on as Algorithm 3.4 does, without undoing.
+      this->Searching = false;
+      this->Stack.clear();
+      cat.Record(false);
+    }
+    if (this->Searching)
+      this->Stack.push_back({ local, label, mark });
+    this->Solver.MaybeCapture(this->Current, this->Assignments);
+    return -1;
+  }
+  while (this->Searching && this->Budget > 0)
+  {
+    --this->Budget;
+    ++this->Solver.Backtracked;
+    cat.Undo(mark);
+    std::fill(this->Others.begin(), this->Others.end(), ~std::uint64_t(0));
+    this->Others[static_cast<std::size_t>(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
+    cat.Keep(local, this->Others.data());
+    empty = cat.Propagate();
+    if (empty < 0)
+    {
+      this->ResumeAt = local;
+      return -1;
+    }
+    if (this->Stack.empty())
+      break;
+    const Decision d = this->Stack.back();
+    this->Stack.pop_back();
+    local = d.Local;
+    label = d.Label;
+    mark = d.Mark;
+  }
+  return empty;
+}
+
+} // namespace detail
+} // namespace msynth
