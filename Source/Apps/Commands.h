@@ -8,10 +8,11 @@
  *
  *   info        InfoCommand.cxx        an example's labels and transitions (or neighbourhoods)
  *   analyze     AnalyzeCommand.cxx     the same as CSV tables plus the example as .vdb
- *   synthesize  SynthesizeCommand.cxx  discrete synthesis (label grids, tilesets);
+ *   synthesize  SynthesizeCommand.cxx  discrete synthesis (label grids, tilesets, samples);
  *               ContinuousCommand.cxx  continuous synthesis (polyhedral examples)
  *   animate     AnimateCommand.cxx     time-varying synthesis
  *   check       CheckCommand.cxx       the independent checks of a model against its example
+ *   batch       BatchCommand.cxx       every entry of a sample list (samples.xml), checked
  */
 #include <CLI/CLI.hpp>
 
@@ -29,6 +30,7 @@ CommandRunner AddAnalyze(CLI::App& app);
 CommandRunner AddSynthesize(CLI::App& app);
 CommandRunner AddAnimate(CLI::App& app);
 CommandRunner AddCheck(CLI::App& app);
+CommandRunner AddBatch(CLI::App& app);
 
 } // namespace cli
 } // namespace msynth

@@ -112,6 +112,7 @@ int Main(int argc, char* argv[])
   commands["synthesize"] = msynth::cli::AddSynthesize(app);
   commands["animate"] = msynth::cli::AddAnimate(app);
   commands["check"] = msynth::cli::AddCheck(app);
+  commands["batch"] = msynth::cli::AddBatch(app);
   for (CLI::App* command : app.get_subcommands({}))
   {
     command->fallthrough(); // --verbose after the command too

@@ -480,6 +480,63 @@ class CommandLineTest(unittest.TestCase):
             self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
             self.assertFalse(os.path.exists(tmp("cli-sample-bad/picture.png")))
 
+    def test_batch(self):
+        # A sample list laid out as WaveFunctionCollapse and the original program lay theirs out:
+        # samples/NAME.png, tilesets/NAME.xml with tilesets/NAME/, samples/NAME/data.xml with its
+        # images beside it, samples/NAME.txt; an older ground index; one missing sample.
+        root = tmp("cli-batch-list")
+        shutil.rmtree(root, ignore_errors=True)
+        os.makedirs(os.path.join(root, "samples"))
+        os.makedirs(os.path.join(root, "tilesets"))
+        shutil.copy(data("Samples/Meadow.png"), os.path.join(root, "samples", "Flowers.png"))
+        shutil.copy(data("Tilesets/Lines.xml"), os.path.join(root, "tilesets", "Pipes.xml"))
+        shutil.copytree(data("Tilesets/Lines"), os.path.join(root, "tilesets", "Pipes"))
+        shutil.copytree(data("Tilesets/Lines"), os.path.join(root, "samples", "OldPipes"))
+        shutil.copy(data("Tilesets/Lines.xml"), os.path.join(root, "samples", "OldPipes", "data.xml"))
+        shutil.copy(data("Examples/Village.txt"), os.path.join(root, "samples", "village.txt"))
+        with open(os.path.join(root, "samples.xml"), "w") as f:
+            f.write("""<samples>
+  <overlapping name="Flowers" N="3" symmetry="2" ground="-4" periodic="True" width="40" height="30"/>
+  <simpletiled name="Pipes" width="12" height="10" periodic="True" screenshots="1"/>
+  <simpletiled name="OldPipes" subset="straight" width="9" height="8" screenshots="1"/>
+  <tiledmodel name="village.txt" width="14" length="12" height="5" blockWidth="7" blockLength="6"/>
+  <overlapping name="Missing" N="2" screenshots="1"/>
+</samples>""")
+        out = tmp("cli-batch")
+        shutil.rmtree(out, ignore_errors=True)
+        r = run("batch", os.path.join(root, "samples.xml"), "--out", out, "--seed", "4")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)  # the missing sample
+        lines = r.stdout.splitlines()
+        kinds = ("overlapping", "simpletiled", "tiledmodel")
+        summary = {l.split()[0]: l for l in lines
+                   if len(l.split()) > 1 and l.split()[0].isdigit() and l.split()[1] in kinds}
+        self.assertEqual(len(summary), 5)
+        for entry in ("1", "2", "3", "4"):
+            self.assertTrue(summary[entry].endswith(" ok"), summary[entry])
+        self.assertIn("2/2", summary["1"])  # two screenshots by default
+        self.assertIn("error: '%s/samples/Missing.png': no such file" % root, summary["5"])
+        self.assertIn("1 of 5 entries failed", r.stdout)
+        for folder in ("1-Flowers/1", "1-Flowers/2", "2-Pipes/1", "3-OldPipes-straight/1", "4-village.txt/1"):
+            self.assertTrue(os.path.exists(os.path.join(out, folder, "statistics.json")), folder)
+        self.assertTrue(os.path.exists(os.path.join(out, "1-Flowers/1/picture.png")))
+        self.assertTrue(os.path.exists(os.path.join(out, "4-village.txt/1/model.txt")))
+        # Each output is checked independently: the pictures against the sample's windows.
+        r = run("check", os.path.join(root, "samples", "Flowers.png"), os.path.join(out, "1-Flowers/2/picture.png"),
+                "--symmetry", "2", "--translate", "xy", "--ground")
+        self.assertEqual(r.returncode, 0, r.stdout)
+        # The bundled list runs as it is.
+        r = run("batch", data("samples.xml"), "--out", tmp("cli-batch-bundled"))
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("all 6 entries succeeded", r.stdout)
+        # A malformed list: one line naming it and the line, exit 1.
+        bad = os.path.join(root, "bad.xml")
+        with open(bad, "w") as f:
+            f.write("<samples>\n<overlapping name=\"a\" N=\"12\"/></samples>")
+        r = run("batch", bad, "--out", tmp("cli-batch-bad"))
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("bad.xml', line 2: N=\"12\"", r.stderr)
+
     def test_tileset(self):
         tiles = data("Tilesets/Lines.xml")
         r = run("info", tiles)
