@@ -20,8 +20,8 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -72,8 +72,8 @@ std::string CheckOutput(const SampleEntry& e, const std::string& dir)
     o.Symmetry = e.Symmetry;
     o.PeriodicInput = e.PeriodicInput;
     o.Ground = e.Ground;
-    const auto problems = CheckPicture(ReadImage(e.File), o, ReadImage(dir + "/picture.png"),
-      { { e.Periodic, e.Periodic } }, 1);
+    const auto problems = CheckPicture(
+      ReadImage(e.File), o, ReadImage(dir + "/picture.png"), { { e.Periodic, e.Periodic } }, 1);
     return problems.empty() ? std::string() : problems.front();
   }
   const LabelGrid model = GridOf(dir + "/labels.vti");
@@ -153,7 +153,8 @@ Outcome RunOne(const SampleEntry& e, const BatchOptions& b, int k, const std::st
 
 std::string FolderName(std::size_t index, const SampleEntry& e)
 {
-  std::string name = std::to_string(index + 1) + "-" + e.Name + (e.Subset.empty() ? "" : "-" + e.Subset);
+  std::string name =
+    std::to_string(index + 1) + "-" + e.Name + (e.Subset.empty() ? "" : "-" + e.Subset);
   for (char& c : name)
     if (c == '/' || c == '\\')
       c = '_';
@@ -228,8 +229,9 @@ CommandRunner AddBatch(CLI::App& app)
   AddSeedOption(*batch, o->Seed);
   batch->add_option("--threads", o->Threads, "threads for block synthesis (default: one per core)")
     ->check(CLI::Range(0, 1024));
-  batch->add_option("--screenshots", o->Screenshots,
-         "outputs per entry, instead of each entry's screenshots attribute")
+  batch
+    ->add_option("--screenshots", o->Screenshots,
+      "outputs per entry, instead of each entry's screenshots attribute")
     ->check(CLI::Range(0, 1000));
   return [o]() { return RunBatch(*o); };
 }

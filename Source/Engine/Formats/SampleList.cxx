@@ -29,15 +29,15 @@ public:
   {
   }
 
-  [[noreturn]] void Fail(const std::string& key, const std::string& value,
-    const std::string& what) const
+  [[noreturn]] void Fail(
+    const std::string& key, const std::string& value, const std::string& what) const
   {
-    throw Error("'" + this->List + "', line " + std::to_string(this->E.Line) + ": " + key +
-      "=\"" + Printable(value) + "\" is not " + what);
+    throw Error("'" + this->List + "', line " + std::to_string(this->E.Line) + ": " + key + "=\"" +
+      Printable(value) + "\" is not " + what);
   }
 
-  std::int64_t Integer(const std::string& key, std::int64_t fallback, std::int64_t low,
-    std::int64_t high) const
+  std::int64_t Integer(
+    const std::string& key, std::int64_t fallback, std::int64_t low, std::int64_t high) const
   {
     const std::string* v = this->E.Attribute(key);
     if (!v)
@@ -46,8 +46,8 @@ public:
     char* end = nullptr;
     const long long n = std::strtoll(v->c_str(), &end, 10);
     if (v->empty() || *end != '\0' || errno == ERANGE || n < low || n > high)
-      this->Fail(key, *v,
-        "an integer between " + std::to_string(low) + " and " + std::to_string(high));
+      this->Fail(
+        key, *v, "an integer between " + std::to_string(low) + " and " + std::to_string(high));
     return n;
   }
 
@@ -96,8 +96,8 @@ SampleEntry ReadEntry(const detail::XmlElement& e, const std::string& list, cons
   s.Line = e.Line;
   s.Name = a.Text("name");
   if (s.Name.empty())
-    throw Error("'" + list + "', line " + std::to_string(e.Line) + ": <" + e.Name +
-      "> has no name");
+    throw Error(
+      "'" + list + "', line " + std::to_string(e.Line) + ": <" + e.Name + "> has no name");
   s.Subset = a.Text("subset");
   s.Periodic = a.Boolean("periodic", false);
   s.Block = { { a.Integer("blockWidth", 0, 0, maxSize), a.Integer("blockLength", 0, 0, maxSize),
@@ -128,8 +128,9 @@ SampleEntry ReadEntry(const detail::XmlElement& e, const std::string& list, cons
     const std::int64_t length = a.Integer("length", 0, 0, maxSize);
     const std::int64_t height = a.Integer("height", 0, 0, maxSize);
     // As the original program: without a length the height is the second axis (2D).
-    s.Size = length > 0 ? std::array<std::int64_t, 3>{ { width, length, std::max<std::int64_t>(height, 1) } }
-                        : std::array<std::int64_t, 3>{ { width, height, 1 } };
+    s.Size = length > 0
+      ? std::array<std::int64_t, 3>{ { width, length, std::max<std::int64_t>(height, 1) } }
+      : std::array<std::int64_t, 3>{ { width, height, 1 } };
     if (s.Size[0] < 1 || s.Size[1] < 1)
       throw Error("'" + list + "', line " + std::to_string(e.Line) +
         ": <tiledmodel> needs a width and a length (or height) of at least 1");
