@@ -16,6 +16,8 @@
 #include "vtkTable.h"
 #include "vtkVariant.h"
 
+#include "Discrete/OverlappingModel.h"
+#include "Formats/Image.h"
 #include "Formats/Tileset.h"
 
 #include <iostream>
@@ -32,6 +34,8 @@ struct InfoOptions
   std::string Example;
   std::string Subset;
   std::string Types;
+  OverlappingOptions Patterns;
+  bool NoPeriodicInput = false;
 };
 
 int TilesetInfo(const std::string& path, const std::string& subset)
@@ -98,6 +102,28 @@ void PrintTransitions(vtkTable* transitions)
   }
 }
 
+/// An image sample: its colours, the patterns of the given size and symmetry, their pairs.
+int SampleInfo(const std::string& example, const OverlappingOptions& options)
+{
+  const RgbaImage image = ReadImage(example);
+  const PatternSet set = ExtractPatterns(image, options, example);
+  std::cout << "example: " << example << " (image sample)\n"
+            << "size: " << image.Width << " x " << image.Height << " pixels, " << set.Colours.size()
+            << " colours\n"
+            << "patterns: " << set.NumberOfPatterns() << " (" << options.N << " x " << options.N
+            << " windows, " << options.Symmetry << " symmetries, "
+            << (options.PeriodicInput ? "wrapping" : "not wrapping") << ")\n"
+            << "pairs: " << set.Pairs[0].size() << " along x, " << set.Pairs[1].size()
+            << " along y\n";
+  const AdjacencyRules rules = set.Rules();
+  int uniform = 0;
+  for (int t = 0; t < set.NumberOfPatterns(); ++t)
+    uniform += rules.SelfAdjacent(t, { { 2, 2, 1 } });
+  std::cout << "patterns adjacent to themselves (single-pattern starts for blocks): " << uniform
+            << "\n";
+  return 0;
+}
+
 int LabelGridInfo(const std::string& example)
 {
   const ExampleTables a = AnalyzeLabelGrid(example);
@@ -134,15 +160,30 @@ CommandRunner AddInfo(CLI::App& app)
 {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* info = app.add_subcommand("info",
-    "print an example's labels and transition tables; for a polyhedral example (.obj, .vtp, "
-    ".ply, .stl) its neighbourhood labels (continuous model synthesis)");
+    "print an example's labels and transition tables; for an image sample (.png, .bmp) its "
+    "patterns and their pairs; for a polyhedral example (.obj, .vtp, .ply, .stl) its "
+    "neighbourhood labels (continuous model synthesis)");
   info->add_option("EXAMPLE", o->Example, "a label grid, tileset or polyhedral example")
     ->required();
   AddSubsetOption(*info, o->Subset);
   AddTypesOption(*info, o->Types);
+  const char* sample = "Image samples (.png, .bmp)";
+  info->add_option("--pattern", o->Patterns.N, "pattern size N")
+    ->check(CLI::Range(1, 8))
+    ->group(sample);
+  info->add_option("--symmetry", o->Patterns.Symmetry, "symmetries of the windows (1-8)")
+    ->check(CLI::Range(1, 8))
+    ->group(sample);
+  info->add_flag("--no-periodic-input", o->NoPeriodicInput, "windows do not wrap")->group(sample);
   return [o]()
   {
     CheckInputFile(o->Example);
+    if (IsSample(o->Example))
+    {
+      OverlappingOptions patterns = o->Patterns;
+      patterns.PeriodicInput = !o->NoPeriodicInput;
+      return SampleInfo(o->Example, patterns);
+    }
     if (IsTileset(o->Example))
     {
       return TilesetInfo(o->Example, o->Subset);

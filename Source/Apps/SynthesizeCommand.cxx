@@ -387,18 +387,14 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
   vtkImageData* rgba = composer->GetOutput();
   int dims[3];
   rgba->GetDimensions(dims);
-  msynth::RgbaImage image;
-  image.Width = dims[0];
-  image.Height = dims[1];
-  image.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
   auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
-  for (int y = 0; y < dims[1]; ++y) // VTK's rows are bottom first, the PNG's top first
-  {
-    std::copy(pixels->GetPointer(4 * static_cast<vtkIdType>(y) * dims[0]),
-      pixels->GetPointer(4 * static_cast<vtkIdType>(y + 1) * dims[0]),
-      image.Pixels.begin() + 4 * static_cast<std::ptrdiff_t>(dims[1] - 1 - y) * dims[0]);
-  }
-  msynth::WritePng(dir + "/picture.png", image);
+  // VTK's rows are bottom first, the PNG's top first: row y is VTK's row dims[1] - 1 - y.
+  msynth::WritePng(dir + "/picture.png", dims[0], dims[1],
+    [&](int y)
+    {
+      return static_cast<const std::uint8_t*>(
+        pixels->GetPointer(4 * static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0]));
+    });
   written.push_back(dir + "/picture.png");
 }
 

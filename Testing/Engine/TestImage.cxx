@@ -109,6 +109,42 @@ TEST(Image, PngRoundTrips)
   }
 }
 
+TEST(Image, LargePicturesAreWrittenInStripsAndReadBack)
+{
+  // Several strips of about 1 MB each, deflated apart and joined; every filter type is useful
+  // somewhere (flat rows, horizontal ramps, vertical repeats, noise).
+  for (const bool opaque : { true, false })
+  {
+    RgbaImage image;
+    image.Width = 700;
+    image.Height = 1100;
+    std::uint32_t state = 7;
+    for (int y = 0; y < image.Height; ++y)
+      for (int x = 0; x < image.Width; ++x)
+      {
+        state = state * 1664525u + 1013904223u;
+        const int band = (y / 100) % 4;
+        const std::uint8_t v = band == 0 ? 40
+          : band == 1                    ? static_cast<std::uint8_t>(x)
+          : band == 2                    ? static_cast<std::uint8_t>(x % 16 * 9)
+                                         : static_cast<std::uint8_t>(state >> 24);
+        for (const int c : { static_cast<int>(v), v / 2, 255 - v, opaque ? 255 : (x + y) % 256 })
+          image.Pixels.push_back(static_cast<std::uint8_t>(c));
+      }
+    const std::string path = Temp(opaque ? "large-opaque.png" : "large-alpha.png");
+    WritePng(path, image);
+    const RgbaImage back = ReadPng(path); // libpng checks every chunk's CRC and the Adler-32
+    EXPECT_EQ(back.Width, image.Width);
+    EXPECT_EQ(back.Height, image.Height);
+    EXPECT_TRUE(back.Pixels == image.Pixels);
+    // Rows given by a function (bottom-first storage, as VTK's) give the same file.
+    const std::string again = Temp("again.png");
+    WritePng(again, image.Width, image.Height, [&image](int y) { return image.At(0, y); });
+    EXPECT_EQ(Bytes(path), Bytes(again));
+  }
+  EXPECT_THROW(WritePng(Temp("empty.png"), RgbaImage()), Error);
+}
+
 TEST(Image, BmpIsReadAsOlderTilesetsHaveIt)
 {
   const RgbaImage image = Pattern(5, 3, true);

@@ -441,6 +441,10 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(png.GetOutput().GetDimensions(), (64, 40, 1))
         with open(os.path.join(out, "statistics.json")) as f:
             self.assertEqual(json.load(f)["BlocksFailed"], 0)
+        r = run("info", meadow, "--symmetry", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("16 x 10 pixels, 4 colours", r.stdout)
+        self.assertIn("patterns: 33 (3 x 3 windows, 2 symmetries, wrapping)", r.stdout)
         picture = os.path.join(out, "picture.png")
         r = run("check", meadow, picture, "--symmetry", "2", "--translate", "xy", "--ground")
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)

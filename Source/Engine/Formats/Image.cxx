@@ -6,6 +6,13 @@
 #include "Core/Memory.h"
 
 #include <png.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <functional>
+#include <system_error>
+#include <thread>
 
 #include <cctype>
 #include <csetjmp>
@@ -167,59 +174,201 @@ RgbaImage ReadImage(const std::string& path)
 
 namespace
 {
-void WriteToStream(png_structp p, png_bytep data, png_size_t length)
+/// The PNG filter of one row (None, Sub or Up, whichever leaves the smallest sum of absolute
+/// differences, as libpng's heuristic) written to @p out (1 + bytes): filter type, then bytes.
+void FilterRow(
+  const std::uint8_t* row, const std::uint8_t* above, std::size_t bytes, int bpp, std::uint8_t* out)
 {
-  static_cast<std::ostream*>(png_get_io_ptr(p))
-    ->write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
-}
-void FlushStream(png_structp p)
-{
-  static_cast<std::ostream*>(png_get_io_ptr(p))->flush();
+  std::uint64_t cost[3] = { 0, 0, 0 };
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    const auto none = static_cast<std::int8_t>(row[i]);
+    const auto sub =
+      static_cast<std::int8_t>(row[i] - (i >= static_cast<std::size_t>(bpp) ? row[i - bpp] : 0));
+    const auto up = static_cast<std::int8_t>(row[i] - (above ? above[i] : 0));
+    cost[0] += static_cast<std::uint64_t>(none < 0 ? -none : none);
+    cost[1] += static_cast<std::uint64_t>(sub < 0 ? -sub : sub);
+    cost[2] += static_cast<std::uint64_t>(up < 0 ? -up : up);
+  }
+  const int type = cost[2] <= cost[1] && cost[2] <= cost[0] ? 2 : (cost[1] <= cost[0] ? 1 : 0);
+  out[0] = static_cast<std::uint8_t>(type);
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    const std::uint8_t left = i >= static_cast<std::size_t>(bpp) ? row[i - bpp] : 0;
+    const std::uint8_t prior = type == 1 ? left : (type == 2 && above ? above[i] : 0);
+    out[1 + i] = static_cast<std::uint8_t>(row[i] - prior);
+  }
 }
 
-/// The libpng calls in a frame of their own, holding no C++ object, for its longjmp on error.
-bool Encode(png_structp png, png_infop info, const RgbaImage& image, bool opaque, std::uint8_t* row,
-  std::ostream* out, int compression)
+/// One strip of rows, filtered and deflated on its own (a raw deflate stream ending in a sync
+/// flush, or the final block for the last strip), with the Adler-32 of its filtered bytes.
+struct Strip
 {
-  if (setjmp(png_jmpbuf(png)))
-    return false;
-  png_set_write_fn(png, out, WriteToStream, FlushStream);
-  png_set_compression_level(png, compression);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.Width),
-    static_cast<png_uint_32>(image.Height), 8, opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA,
-    PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < image.Height; ++y)
+  std::vector<std::uint8_t> Deflated;
+  uLong Adler = 1;
+  uLong Length = 0;
+  bool Failed = false;
+};
+
+void DeflateStrip(int first, int last, bool final, int width, bool opaque, int level,
+  const std::function<const std::uint8_t*(int)>& row, Strip& strip)
+{
+  const int bpp = opaque ? 3 : 4;
+  const std::size_t bytes = static_cast<std::size_t>(width) * bpp;
+  std::vector<std::uint8_t> packed(bytes), above(bytes), filtered(1 + bytes);
+  z_stream z{};
+  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
   {
-    const std::uint8_t* src = image.At(0, y);
-    if (opaque)
-      for (int x = 0; x < image.Width; ++x)
-        std::memcpy(row + 3 * x, src + 4 * x, 3);
-    else
-      std::memcpy(row, src, 4 * static_cast<std::size_t>(image.Width));
-    png_write_row(png, row);
+    strip.Failed = true;
+    return;
   }
-  png_write_end(png, nullptr);
-  return true;
+  auto pack = [&](int y, std::vector<std::uint8_t>& to)
+  {
+    const std::uint8_t* src = row(y);
+    if (!opaque)
+      std::memcpy(to.data(), src, bytes);
+    else
+      for (int x = 0; x < width; ++x)
+        std::memcpy(to.data() + 3 * x, src + 4 * x, 3);
+  };
+  if (first > 0)
+    pack(first - 1, above);
+  std::vector<std::uint8_t> buffer(1 << 16);
+  for (int y = first; y < last && !strip.Failed; ++y)
+  {
+    pack(y, packed);
+    FilterRow(packed.data(), y > 0 ? above.data() : nullptr, bytes, bpp, filtered.data());
+    strip.Adler = adler32(strip.Adler, filtered.data(), static_cast<uInt>(filtered.size()));
+    strip.Length += static_cast<uLong>(filtered.size());
+    z.next_in = filtered.data();
+    z.avail_in = static_cast<uInt>(filtered.size());
+    const int flush = y + 1 < last ? Z_NO_FLUSH : (final ? Z_FINISH : Z_SYNC_FLUSH);
+    do
+    {
+      z.next_out = buffer.data();
+      z.avail_out = static_cast<uInt>(buffer.size());
+      const int rc = deflate(&z, flush);
+      if (rc == Z_STREAM_ERROR)
+        strip.Failed = true;
+      strip.Deflated.insert(
+        strip.Deflated.end(), buffer.data(), buffer.data() + (buffer.size() - z.avail_out));
+    } while (z.avail_out == 0 && !strip.Failed);
+    std::swap(packed, above);
+  }
+  deflateEnd(&z);
+}
+
+void PutBigEndian(std::ostream& out, std::uint32_t v)
+{
+  const char b[4] = { static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+    static_cast<char>(v >> 8), static_cast<char>(v) };
+  out.write(b, 4);
+}
+
+void PutChunk(std::ostream& out, const char* type, const std::uint8_t* data, std::size_t length,
+  const std::uint8_t* tail = nullptr, std::size_t tailLength = 0)
+{
+  PutBigEndian(out, static_cast<std::uint32_t>(length + tailLength));
+  out.write(type, 4);
+  uLong crc = crc32(0, reinterpret_cast<const Bytef*>(type), 4);
+  if (length)
+  {
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
+    crc = crc32(crc, data, static_cast<uInt>(length));
+  }
+  if (tailLength)
+  {
+    out.write(reinterpret_cast<const char*>(tail), static_cast<std::streamsize>(tailLength));
+    crc = crc32(crc, tail, static_cast<uInt>(tailLength));
+  }
+  PutBigEndian(out, static_cast<std::uint32_t>(crc));
 }
 } // namespace
 
-void WritePng(const std::string& path, const RgbaImage& image, int compression)
+void WritePng(const std::string& path, int width, int height,
+  const std::function<const std::uint8_t*(int)>& row, int compression)
 {
+  if (width < 1 || height < 1)
+    throw Error::InFile(path,
+      "could not be written: a picture of " + std::to_string(width) + " x " +
+        std::to_string(height) + " pixels is empty");
   bool opaque = true;
-  for (std::size_t i = 3; i < image.Pixels.size() && opaque; i += 4)
-    opaque = image.Pixels[i] == 255;
+  for (int y = 0; y < height && opaque; ++y)
+  {
+    const std::uint8_t* r = row(y);
+    for (int x = 0; x < width && opaque; ++x)
+      opaque = r[4 * x + 3] == 255;
+  }
+  // Strips of a fixed height, so the file is the same whatever the number of threads.
+  const int rowsPerStrip = std::max(1, (1 << 20) / (4 * width));
+  std::vector<Strip> strips(static_cast<std::size_t>((height + rowsPerStrip - 1) / rowsPerStrip));
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&]()
+  {
+    for (std::size_t s = next++; s < strips.size(); s = next++)
+    {
+      const int first = static_cast<int>(s) * rowsPerStrip;
+      DeflateStrip(first, std::min(height, first + rowsPerStrip), s + 1 == strips.size(), width,
+        opaque, compression, row, strips[s]);
+    }
+  };
+  std::vector<std::thread> threads;
+  const unsigned extra = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()),
+                           static_cast<unsigned>(strips.size())) -
+    1;
+  for (unsigned t = 0; t < extra; ++t)
+  {
+    try
+    {
+      threads.emplace_back(work);
+    }
+    catch (const std::system_error&)
+    {
+      break; // fewer threads: the same file, later
+    }
+  }
+  work();
+  for (auto& t : threads)
+    t.join();
+  uLong adler = 1;
+  for (const Strip& s : strips)
+  {
+    if (s.Failed)
+      throw Error::InFile(path, "could not be written (deflate failed)");
+    adler = adler32_combine(adler, s.Adler, static_cast<z_off_t>(s.Length));
+  }
   WriteFileAtomically(path,
     [&](std::ostream& out)
     {
-      png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-      png_infop info = png ? png_create_info_struct(png) : nullptr;
-      std::vector<std::uint8_t> row(static_cast<std::size_t>(image.Width) * 4);
-      const bool ok = info && Encode(png, info, image, opaque, row.data(), &out, compression);
-      png_destroy_write_struct(&png, info ? &info : nullptr);
-      if (!ok)
-        throw Error::InFile(path, "could not be written (PNG encoder error)");
+      static const char signature[8] = { '\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n' };
+      out.write(signature, 8);
+      std::uint8_t header[13] = { 0 };
+      for (int i = 0; i < 4; ++i)
+      {
+        header[i] = static_cast<std::uint8_t>(static_cast<std::uint32_t>(width) >> (24 - 8 * i));
+        header[4 + i] =
+          static_cast<std::uint8_t>(static_cast<std::uint32_t>(height) >> (24 - 8 * i));
+      }
+      header[8] = 8;              // bits per channel
+      header[9] = opaque ? 2 : 6; // RGB or RGBA
+      PutChunk(out, "IHDR", header, 13);
+      // The zlib stream: header (32K window, fast), the strips' deflate data, Adler-32.
+      const std::uint8_t zlibHeader[2] = { 0x78, 0x01 };
+      const std::uint8_t check[4] = { static_cast<std::uint8_t>(adler >> 24),
+        static_cast<std::uint8_t>(adler >> 16), static_cast<std::uint8_t>(adler >> 8),
+        static_cast<std::uint8_t>(adler) };
+      PutChunk(out, "IDAT", zlibHeader, 2);
+      for (std::size_t s = 0; s < strips.size(); ++s)
+        PutChunk(out, "IDAT", strips[s].Deflated.data(), strips[s].Deflated.size(),
+          s + 1 == strips.size() ? check : nullptr, s + 1 == strips.size() ? 4 : 0);
+      PutChunk(out, "IEND", nullptr, 0);
     });
+}
+
+void WritePng(const std::string& path, const RgbaImage& image, int compression)
+{
+  WritePng(
+    path, image.Width, image.Height, [&image](int y) { return image.At(0, y); }, compression);
 }
 
 } // namespace msynth

@@ -9,6 +9,7 @@
  * is read here with every size checked against the file. Sizes are checked before allocating.
  */
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,15 @@ RgbaImage ReadImage(const std::string& path);
 
 /**
  * Writes @p image as an 8-bit RGBA (RGB when every pixel is opaque) PNG, atomically;
- * @p compression 0-9 as zlib's levels (1: fast, the default for large pictures).
- * @throw Error naming @p path on failure.
+ * @p compression 0-9 as zlib's levels (1: fast, the default for large pictures). Rows are
+ * filtered (None, Sub or Up per row) and deflated in strips of about 1 MB on all cores; the
+ * strips' streams join into one zlib stream, and the file is the same whatever the number of
+ * threads. @throw Error naming @p path on failure.
  */
 void WritePng(const std::string& path, const RgbaImage& image, int compression = 1);
+/// The same for a picture of @p width × @p height pixels whose row y (from the top) is the
+/// @p width × 4 RGBA bytes at @p row(y): no copy of a picture held elsewhere (VTK's rows).
+void WritePng(const std::string& path, int width, int height,
+  const std::function<const std::uint8_t*(int)>& row, int compression = 1);
 
 } // namespace msynth

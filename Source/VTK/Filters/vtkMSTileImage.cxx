@@ -222,11 +222,10 @@ int vtkMSTileImage::RequestData(
         return 0;
       }
       const Picture& p = pictures[static_cast<std::size_t>(b)];
-      for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i)
-          rgba->SetTypedTuple(
-            (static_cast<vtkIdType>(y) * size + j) * width + static_cast<vtkIdType>(x) * size + i,
-            p.At(i, j));
+      for (int j = 0; j < size; ++j) // one row of the tile at a time
+        std::copy(p.At(0, j), p.At(0, j) + 4 * size,
+          rgba->GetPointer(4 *
+            ((static_cast<vtkIdType>(y) * size + j) * width + static_cast<vtkIdType>(x) * size)));
     }
   }
   output->GetPointData()->SetScalars(rgba);
