@@ -156,14 +156,8 @@ CommandRunner AddCheck(CLI::App& app)
     ->required();
   AddSubsetOption(*check, o->Subset);
   AddTypesOption(*check, o->Types);
+  AddPatternOptions(*check, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   const char* sample = "Image samples (.png, .bmp)";
-  check->add_option("--pattern", o->Patterns.N, "pattern size N of an image sample")
-    ->check(CLI::Range(1, 8))
-    ->group(sample);
-  check->add_option("--symmetry", o->Patterns.Symmetry, "symmetries of the sample's windows (1-8)")
-    ->check(CLI::Range(1, 8))
-    ->group(sample);
-  check->add_flag("--no-periodic-input", o->NoPeriodicInput, "windows did not wrap")->group(sample);
   check->add_option("--translate", o->Translate, "the picture repeats along these axes (x, y)")
     ->group(sample);
   check->add_flag("--ground", o->Patterns.Ground, "the bottom row is the sample's ground")

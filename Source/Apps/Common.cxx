@@ -298,6 +298,24 @@ void AddTypesOption(CLI::App& command, std::string& types)
     "object types of a polyhedral example: object (or base) name N has type T, as N=T,...");
 }
 
+std::vector<CLI::Option*> AddPatternOptions(
+  CLI::App& command, int& n, int& symmetry, bool& noPeriodicInput)
+{
+  const char* group = "Image samples (.png, .bmp)";
+  return { command.add_option("--pattern", n, "pattern size N: the labels are N x N windows")
+             ->check(CLI::Range(1, 8))
+             ->group(group),
+    command
+      .add_option("--symmetry", symmetry,
+        "how many of each window's 8 rotations and reflections are patterns, in "
+        "WaveFunctionCollapse's order (identity, mirror, quarter turn, ...)")
+      ->check(CLI::Range(1, 8))
+      ->group(group),
+    command
+      .add_flag("--no-periodic-input", noPeriodicInput, "windows do not wrap around the sample")
+      ->group(group) };
+}
+
 void AddSubsetOption(CLI::App& command, std::string& subset)
 {
   command.add_option("--subset", subset, "with a tileset: use the tiles of its subset NAME");

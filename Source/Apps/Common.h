@@ -135,6 +135,10 @@ void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what
 void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& what);
 /// `--types NAME=TYPE,...` (object types of a polyhedral example).
 void AddTypesOption(CLI::App& command, std::string& types);
+/// `--pattern N`, `--symmetry S` and `--no-periodic-input` of image samples, in their own group;
+/// returns the three options.
+std::vector<CLI::Option*> AddPatternOptions(
+  CLI::App& command, int& n, int& symmetry, bool& noPeriodicInput);
 /// `--subset NAME` (a tileset's subset).
 void AddSubsetOption(CLI::App& command, std::string& subset);
 /// `--order` from @p allowed (scanline, random, entropy).

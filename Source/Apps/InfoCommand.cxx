@@ -167,14 +167,7 @@ CommandRunner AddInfo(CLI::App& app)
     ->required();
   AddSubsetOption(*info, o->Subset);
   AddTypesOption(*info, o->Types);
-  const char* sample = "Image samples (.png, .bmp)";
-  info->add_option("--pattern", o->Patterns.N, "pattern size N")
-    ->check(CLI::Range(1, 8))
-    ->group(sample);
-  info->add_option("--symmetry", o->Patterns.Symmetry, "symmetries of the windows (1-8)")
-    ->check(CLI::Range(1, 8))
-    ->group(sample);
-  info->add_flag("--no-periodic-input", o->NoPeriodicInput, "windows do not wrap")->group(sample);
+  AddPatternOptions(*info, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   return [o]()
   {
     CheckInputFile(o->Example);

@@ -184,19 +184,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
 void AddSampleOptions(CLI::App& s, Registered& r)
 {
   SynthesizeOptions& o = *r.Options;
-  auto sample = [&r](CLI::Option* option)
+  for (CLI::Option* option : AddPatternOptions(s, o.Pattern, o.Symmetry, o.NoPeriodicInput))
   {
-    r.SampleOnly.push_back(option->group("Image samples (.png, .bmp)"));
+    r.SampleOnly.push_back(option);
     r.DiscreteOnly.push_back(option);
-  };
-  sample(s.add_option("--pattern", o.Pattern, "pattern size N: the labels are N x N windows")
-           ->check(CLI::Range(1, 8)));
-  sample(s.add_option("--symmetry", o.Symmetry,
-            "how many of each window's 8 rotations and reflections are patterns, in "
-            "WaveFunctionCollapse's order (identity, mirror, quarter turn, ...)")
-           ->check(CLI::Range(1, 8)));
-  sample(s.add_flag(
-    "--no-periodic-input", o.NoPeriodicInput, "windows do not wrap around the sample's edges"));
+  }
 }
 
 void AddContinuousOptions(CLI::App& s, Registered& r)

@@ -2,6 +2,7 @@
 #include "vtkMSPatternImage.h"
 
 #include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -79,10 +80,7 @@ int vtkMSPatternImage::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Output pixels are not input sites: always ask for all the sites.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  vtkMSPipeline::RequestWholeExtentOnPieceZero(inputVector[0]->GetInformationObject(0), 0);
   return 1;
 }
 

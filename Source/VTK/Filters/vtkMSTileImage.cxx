@@ -3,6 +3,7 @@
 
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -62,10 +63,7 @@ int vtkMSTileImage::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Output pixels are not input sites: always ask for all the sites.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  vtkMSPipeline::RequestWholeExtentOnPieceZero(inputVector[0]->GetInformationObject(0), 0);
   return 1;
 }
 
