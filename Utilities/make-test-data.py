@@ -250,6 +250,10 @@ SAMPLE_COLOURS = {
     " ": (235, 235, 225, 255),  # floor
     "r": (170, 60, 40, 255),    # brick
     "m": (200, 200, 190, 255),  # mortar
+    "=": (90, 90, 95, 255),     # road
+    "B": (150, 70, 50, 255),    # building wall
+    "R": (200, 120, 80, 255),   # roof
+    "g": (70, 160, 60, 255),    # park
 }
 SAMPLES = {
     # Flowers on stems between sky and earth: for --ground (the earth stays at the bottom).
@@ -292,6 +296,43 @@ SAMPLES = {
         "mmmmmmmm",
         "rrrrrrmr",
         "rrrrrrmr",
+    ],
+    # A maze with corridors one pixel wide (WaveFunctionCollapse's mazes are hard for it).
+    "Maze": [
+        "WWWWWWWWWWWWWWW",
+        "W   W         W",
+        "WWW W WWWWWWW W",
+        "W   W   W   W W",
+        "W WWWWW W W W W",
+        "W   W W W W   W",
+        "WWW W W W WWW W",
+        "W W W W W   W W",
+        "W W W W WWW W W",
+        "W   W   W   W W",
+        "W WWWWW W WWW W",
+        "W W   W W W   W",
+        "W W W WWW W WWW",
+        "W   W     W   W",
+        "WWWWWWWWWWWWWWW",
+    ],
+    # City blocks between roads: buildings (walls around roofs) and parks.
+    "City": [
+        "================",
+        "=BBBB=BBBBB=gggg",
+        "=BRRB=BRRRB=gggg",
+        "=BRRB=BRRRB=gggg",
+        "=BRRB=BRRRB=gggg",
+        "=BBBB=BBBBB=gggg",
+        "================",
+        "=BBBB=ggggg=BBBB",
+        "=BRRB=ggggg=BRRB",
+        "=BRRB=ggggg=BRRB",
+        "=BBBB=ggggg=BBBB",
+        "================",
+        "=BBBB=BBBBB=BBBB",
+        "=BRRB=BRRRB=BRRB",
+        "=BRRB=BRRRB=BRRB",
+        "=BBBB=BBBBB=BBBB",
     ],
 }
 

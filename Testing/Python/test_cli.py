@@ -531,7 +531,7 @@ class CommandLineTest(unittest.TestCase):
         # The bundled list runs as it is.
         r = run("batch", data("samples.xml"), "--out", tmp("cli-batch-bundled"))
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
-        self.assertIn("all 6 entries succeeded", r.stdout)
+        self.assertIn("all 8 entries succeeded", r.stdout)
         # A malformed list: one line naming it and the line, exit 1.
         bad = os.path.join(root, "bad.xml")
         with open(bad, "w") as f:

@@ -147,6 +147,19 @@ class TestSamples(unittest.TestCase):
         check_picture(self, sample, picture_rows(picture), 3, 2)
         assert_varied(self, sample, picture_rows(picture), 3)
 
+    def test_maze_and_city_in_blocks(self):
+        # A maze (one attempt of the whole model fails most seeds at 256²) and city blocks.
+        for name in ("Maze.png", "City.png"):
+            sample = read_png(data("Samples/" + name))
+            for seed in (1, 2):
+                s, labels, errors = synthesize(name, OutputSize=(64, 64, 1), BlockSize=(20, 20, 1),
+                                               Seed=seed, SiteOrder=2, LabelChoice=1)
+                self.assertEqual(errors, "")
+                self.assertEqual(labels.GetFieldData().GetArray("BlocksFailed").GetValue(0), 0)
+                picture, errors = picture_of(s.GetOutputPort())
+                check_picture(self, sample, picture_rows(picture), 3, 8)
+                assert_varied(self, sample, picture_rows(picture), 3)
+
     def test_labels_saved_and_composed_later(self):
         s, labels, errors = synthesize("Rooms.png", OutputSize=(20, 20, 1), PatternSize=2,
                                        PatternSymmetry=4, Seed=2)
