@@ -6,7 +6,9 @@ import os
 import unittest
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
 
@@ -76,6 +78,12 @@ def assert_varied(test, sample, picture, n):
     used = {w.tobytes() for _, _, w in windows(picture, n, (0, 0))}
     own = {w.tobytes() for _, _, w in windows(sample, n, (1, 1))}
     test.assertGreaterEqual(len(used), min(12, len(own) // 2), "too few different windows")
+
+
+def labels_of(image):
+    """The Label array of a 2D image as [y, x]."""
+    nx, ny, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetArray("Label")).reshape(ny, nx)
 
 
 def synthesize(sample, **options):
@@ -159,6 +167,37 @@ class TestSamples(unittest.TestCase):
                 picture, errors = picture_of(s.GetOutputPort())
                 check_picture(self, sample, picture_rows(picture), 3, 8)
                 assert_varied(self, sample, picture_rows(picture), 3)
+
+    def test_snapshots_and_guide(self):
+        # Catalog snapshots as time steps, as for any example.
+        s, labels, errors = synthesize("Rooms.png", OutputSize=(34, 26, 1), BlockSize=(16, 16, 1),
+                                       Seed=4, CatalogSnapshotsPerBlock=2)
+        self.assertEqual(errors, "")
+        blocks = labels.GetFieldData().GetArray("Blocks").GetValue(0)
+        steps = s.GetOutputInformation(0).Get(vtkStreamingDemandDrivenPipeline.TIME_STEPS())
+        self.assertEqual(len(steps), 1 + 2 * blocks)
+        s.UpdateTimeStep(steps[len(steps) // 2])
+        middle = s.GetOutput()
+        self.assertIsNotNone(middle.GetPointData().GetArray("CatalogSize"))
+        # A guide over the pattern grid: the most common pattern (all floor) may not appear in
+        # the left half, and does not; every window is still the sample's.
+        plain = labels_of(synthesize("Rooms.png", OutputSize=(34, 26, 1), Seed=4)[1])
+        floor = int(np.bincount(plain.ravel()).argmax())
+        guide = vtkImageData()
+        guide.SetDimensions(2, 1, 1)
+        weight = numpy_to_vtk(np.array([0.0, 1.0]), deep=True)
+        weight.SetName("Weight_%d" % floor)
+        guide.GetPointData().AddArray(weight)
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetSampleFile(data("Samples/Rooms.png"))
+        s.SetGuideData(guide)
+        out, errors = run_algorithm(s, OutputSize=(34, 26, 1), Seed=4)
+        self.assertEqual(errors, "")
+        guided = labels_of(out)
+        self.assertFalse((guided[:, :16] == floor).any())
+        self.assertTrue((guided[:, 16:] == floor).any())
+        picture, errors = picture_of(s.GetOutputPort())
+        check_picture(self, read_png(data("Samples/Rooms.png")), picture_rows(picture), 3, 8)
 
     def test_labels_saved_and_composed_later(self):
         s, labels, errors = synthesize("Rooms.png", OutputSize=(20, 20, 1), PatternSize=2,

@@ -287,7 +287,9 @@ void PatternSet::Configure(SynthesisOptions& options, const Periodic& periodic) 
   bool blocks = false;
   for (int a = 0; a < 3; ++a)
     blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
-  if (blocks && !options.TrivialLabel && !options.Start)
+  // The sample tiled holds every pattern somewhere, so a guide that forbids one would refuse it:
+  // with a guide the start is the solver's own (a trivial label or layers the guide allows).
+  if (blocks && !options.TrivialLabel && !options.Start && !options.Guide)
     options.Start = this->TiledStart(options.Size, periodic);
 }
 
