@@ -223,6 +223,9 @@ bad = [(x, y) for y in range(28) for x in range(38)
 check(not bad, "pattern picture windows not in the sample: %s" % bad[:3])
 check(len({str([pic[y + j][x:x + 3] for j in range(3)]) for y in range(28) for x in range(38)}) >= 12,
       "the pattern picture is varied")
+patterns_source = ModelSynthImagePatterns(SampleFile=sample)
+check(servermanager.Fetch(patterns_source).GetDimensions() == (3, 3, 113), "the sample's 113 patterns")
+check(servermanager.Fetch(patterns_source, idx=1).GetNumberOfRows() == 652, "pairs along x and y")
 
 # Symmetry (§3.5.2) through the proxies: a tileable village, and a tile picture that looks the
 # same turned a quarter (each tile turns to its next orientation).

@@ -13,7 +13,7 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
 
 import modelsynth
-from msynth_testing import data, run_algorithm, tmp
+from msynth_testing import ErrorObserver, data, run_algorithm, tmp
 
 
 def picture_rows(image):
@@ -198,6 +198,41 @@ class TestSamples(unittest.TestCase):
         self.assertTrue((guided[:, 16:] == floor).any())
         picture, errors = picture_of(s.GetOutputPort())
         check_picture(self, read_png(data("Samples/Rooms.png")), picture_rows(picture), 3, 8)
+
+    def test_patterns_and_pairs_as_data(self):
+        # vtkMSImagePatterns: each slice is a window of the sample (or an image of one), each
+        # pair agrees where the two windows overlap, the counts add up to every window read.
+        reader = modelsynth.vtkMSImagePatterns()
+        reader.SetSampleFile(data("Samples/Rooms.png"))
+        reader.Update()
+        patterns = reader.GetOutputDataObject(0)
+        self.assertEqual(patterns.GetDimensions(), (3, 3, 113))
+        rgba = vtk_to_numpy(patterns.GetPointData().GetArray("RGBA")).reshape(113, 3, 3, 4)
+        rgba = rgba[:, ::-1].astype(np.uint32)  # rows from the top
+        cells = rgba[..., 0] | (rgba[..., 1] << 8) | (rgba[..., 2] << 16) | (rgba[..., 3] << 24)
+        sample = read_png(data("Samples/Rooms.png"))
+        allowed = {dihedral(w, k).tobytes() for _, _, w in windows(sample, 3, (1, 1)) for k in range(8)}
+        self.assertTrue(all(c.tobytes() in allowed for c in cells))
+        self.assertEqual(len({c.tobytes() for c in cells}), 113)
+        pairs = reader.GetOutputDataObject(1)
+        rows = pairs.GetNumberOfRows()
+        self.assertEqual(rows, 2 * 326)
+        for r in range(rows):
+            a, b = int(pairs.GetValueByName(r, "From").ToInt()), int(pairs.GetValueByName(r, "To").ToInt())
+            if int(pairs.GetValueByName(r, "Axis").ToInt()) == 0:
+                self.assertTrue((cells[a][:, 1:] == cells[b][:, :2]).all())
+            else:  # +y is up: b lies above a
+                self.assertTrue((cells[a][:2, :] == cells[b][1:, :]).all())
+        counts = vtk_to_numpy(reader.GetOutputDataObject(2).GetColumnByName("Count"))
+        self.assertEqual(int(counts.sum()), 16 * 16 * 8)
+        bad = modelsynth.vtkMSImagePatterns()
+        observer = ErrorObserver(bad)
+        bad.Update()
+        self.assertIn("No SampleFile", observer.text())
+        bad.SetSampleFile(data("Samples/Bricks.png"))
+        bad.SetPatternSize(7)  # larger than the 8 x 6 sample
+        bad.Update()
+        self.assertIn("smaller than a 7 x 7 pattern", observer.text())
 
     def test_labels_saved_and_composed_later(self):
         s, labels, errors = synthesize("Rooms.png", OutputSize=(20, 20, 1), PatternSize=2,
