@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSImagePatterns.h"
 
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -11,6 +10,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
@@ -89,8 +89,8 @@ void FillPatterns(vtkImageData* image, const msynth::PatternSet& set)
   for (int t = 0; t < set.NumberOfPatterns(); ++t)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        rgba->SetTypedTuple((static_cast<vtkIdType>(t) * n + j) * n + i,
-          set.Colours[set.At(t, i, n - 1 - j)].data());
+        rgba->SetTypedTuple(
+          (static_cast<vtkIdType>(t) * n + j) * n + i, set.Colours[set.At(t, i, n - 1 - j)].data());
   image->GetPointData()->SetScalars(rgba);
 }
 
