@@ -201,23 +201,33 @@ struct Workers
 
 /// The blocks' hooks for the runner: attempts, keep or roll back, snapshots, failures, and the
 /// labels exchanged between processes.
+/// How a pass tries its blocks: the first pass as the options say; the second try at failed
+/// blocks with its own attempt streams, count and site orders.
+struct AttemptPlan
+{
+  int Offset = 0;               ///< added to the attempt number of each generator
+  int Attempts = 0;             ///< attempts per block; 0: the options'
+  std::vector<SiteOrder> Orders; ///< attempt a uses Orders[a % size]; empty: the options'
+};
+
 BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<Block>& blocks,
   BlockRunner& runner, Workers& workers, SoftConstraints& soft, SharedModel& shared,
-  SynthesisStatistics& stats, int attemptOffset = 0)
+  SynthesisStatistics& stats, const AttemptPlan& plan = AttemptPlan())
 {
   BlockSolver& solver = workers[0];
   const Coord n = solver.N;
   BlockRunner::Hooks hooks;
-  hooks.Run = [&options, &blocks, &runner, &workers, &soft, attemptOffset](
-                unsigned w, std::size_t i)
+  hooks.Run = [&options, &blocks, &runner, &workers, &soft, plan](unsigned w, std::size_t i)
   {
     soft.Save(i, blocks[i]);
     BlockSolver& worker = workers[w];
-    return runner.Attempts(w, options.AttemptsPerBlock,
+    return runner.Attempts(w, plan.Attempts > 0 ? plan.Attempts : options.AttemptsPerBlock,
       [&](int attempt, std::int64_t& assignments)
       {
+        if (!plan.Orders.empty())
+          worker.Order = plan.Orders[static_cast<std::size_t>(attempt) % plan.Orders.size()];
         Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(blocks[i].Index),
-          static_cast<std::uint64_t>(attempt + attemptOffset));
+          static_cast<std::uint64_t>(attempt + plan.Offset));
         return worker.RunBlock(blocks[i], rng, assignments);
       });
   };
@@ -266,8 +276,9 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
 
 /**
  * The second try at failed blocks (SynthesisOptions::RepairFailedBlocks): once every other
- * block is done, each failed block runs again, one at a time in block order, in minimum-entropy
- * order with attempt streams after the first try's. Those that succeed leave the failures.
+ * block is done, each failed block runs again, one at a time in block order, with attempt
+ * streams after the first try's and site orders alternating (AttemptPlan). Those that succeed
+ * leave the failures.
  */
 SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   const std::vector<Block>& blocks, Workers& workers, SoftConstraints& soft, SharedModel& shared,
@@ -284,11 +295,18 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
     policy.Progress = [&options](double) { return options.Progress(1.0); };
   BlockRunner runner(std::move(policy), again.size());
   workers[0].Runner = &runner;
+  // Twice the attempts, alternating the order the first pass did not use with minimum entropy
+  // or scan line: a block one order cannot finish the other often can (entropy order closes the
+  // loops of WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
   const SiteOrder order = workers[0].Order;
-  workers[0].Order = SiteOrder::MinimumEntropy;
+  AttemptPlan plan;
+  plan.Offset = options.AttemptsPerBlock;
+  plan.Attempts = 2 * options.AttemptsPerBlock;
+  plan.Orders = order == SiteOrder::MinimumEntropy
+    ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
+    : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order };
   SynthesisStatistics second;
-  const auto hooks =
-    MakeHooks(options, again, runner, workers, soft, shared, second, options.AttemptsPerBlock);
+  const auto hooks = MakeHooks(options, again, runner, workers, soft, shared, second, plan);
   std::vector<int> phases(again.size());
   for (std::size_t i = 0; i < phases.size(); ++i)
     phases[i] = static_cast<int>(i);

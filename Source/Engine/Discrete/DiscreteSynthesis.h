@@ -169,8 +169,9 @@ struct SynthesisOptions
   std::int64_t BacktracksPerAttempt = 1000;
   /**
    * Blocks whose attempts all failed are tried again once every other block is done (their
-   * surroundings have changed), in minimum-entropy order, with new random streams. Not with
-   * catalog snapshots (whose count is fixed before the run) or soft constraints.
+   * surroundings have changed): twice as many attempts, with new random streams, alternating
+   * minimum-entropy and scan-line order. Not with catalog snapshots (whose count is fixed
+   * before the run) or soft constraints.
    */
   bool RepairFailedBlocks = true;
   std::uint64_t Seed = 0;
