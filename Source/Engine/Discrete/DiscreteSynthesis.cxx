@@ -205,8 +205,8 @@ struct Workers
 /// blocks with its own attempt streams, count and site orders.
 struct AttemptPlan
 {
-  int Offset = 0;               ///< added to the attempt number of each generator
-  int Attempts = 0;             ///< attempts per block; 0: the options'
+  int Offset = 0;                ///< added to the attempt number of each generator
+  int Attempts = 0;              ///< attempts per block; 0: the options'
   std::vector<SiteOrder> Orders; ///< attempt a uses Orders[a % size]; empty: the options'
 };
 
