@@ -143,8 +143,9 @@ public:
   ///@}
 
   ///@{
-  /// Try blocks whose attempts all failed once more after every other block (in minimum-entropy
-  /// order; not with snapshots or soft constraints). Default on.
+  /// Try blocks whose attempts all failed once more after every other block (twice the
+  /// attempts, alternating minimum-entropy and scan-line order; not with snapshots or soft
+  /// constraints). Default on.
   vtkSetMacro(RepairFailedBlocks, bool);
   vtkGetMacro(RepairFailedBlocks, bool);
   vtkBooleanMacro(RepairFailedBlocks, bool);
