@@ -275,14 +275,14 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
 }
 
 /**
- * The second try at failed blocks (SynthesisOptions::RepairFailedBlocks): once every other
- * block is done, each failed block runs again, one at a time in block order, with attempt
- * streams after the first try's and site orders alternating (AttemptPlan). Those that succeed
- * leave the failures.
+ * One round of second tries at failed blocks (SynthesisOptions::RepairFailedBlocks): once
+ * every other block is done, each failed block runs again, one at a time in block order, with
+ * attempt streams after the first try's and earlier rounds' and site orders alternating
+ * (AttemptPlan). Those that succeed leave the failures.
  */
 SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   const std::vector<Block>& blocks, Workers& workers, SoftConstraints& soft, SharedModel& shared,
-  SynthesisStatistics& stats)
+  SynthesisStatistics& stats, int round)
 {
   std::vector<Block> again;
   for (const BlockFailure& f : stats.Failures)
@@ -300,7 +300,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   // loops of WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
   const SiteOrder order = workers[0].Order;
   AttemptPlan plan;
-  plan.Offset = options.AttemptsPerBlock;
+  plan.Offset = options.AttemptsPerBlock * (1 + 2 * round);
   plan.Attempts = 2 * options.AttemptsPerBlock;
   plan.Orders = order == SiteOrder::MinimumEntropy
     ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
@@ -312,7 +312,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
     phases[i] = static_cast<int>(i);
   const SynthesisStatus status = runner.Run(phases, hooks, second);
   workers[0].Order = order;
-  stats.BlocksRepaired = second.BlocksAccepted;
+  stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
   stats.Attempts += second.Attempts;
@@ -368,9 +368,18 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   solver.StartSnapshots();
   const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
   result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
-  if (result.Status == SynthesisStatus::Succeeded && !wholeModel && !stats.Failures.empty() &&
-    options.RepairFailedBlocks && !solver.Snapshots() && !options.Soft.Active())
-    result.Status = RepairFailedBlocks(options, blocks, workers, soft, shared, stats);
+  // Up to three rounds of second tries, while they still repair blocks: a block next to one
+  // repaired in a round meets new surroundings in the next.
+  const bool repair =
+    !wholeModel && options.RepairFailedBlocks && !solver.Snapshots() && !options.Soft.Active();
+  for (int round = 0, before = -1;
+       repair && round < 3 && result.Status == SynthesisStatus::Succeeded &&
+       !stats.Failures.empty() && static_cast<int>(stats.Failures.size()) != before;
+       ++round)
+  {
+    before = static_cast<int>(stats.Failures.size());
+    result.Status = RepairFailedBlocks(options, blocks, workers, soft, shared, stats, round);
+  }
   stats.Backtracks = solver.Backtracked;
   for (const auto& extra : workers.Extra)
     stats.Backtracks += extra->Backtracked;

@@ -170,8 +170,9 @@ struct SynthesisOptions
   /**
    * Blocks whose attempts all failed are tried again once every other block is done (their
    * surroundings have changed): twice as many attempts, with new random streams, alternating
-   * minimum-entropy and scan-line order. Not with catalog snapshots (whose count is fixed
-   * before the run) or soft constraints.
+   * minimum-entropy and scan-line order; up to three such rounds while they still repair
+   * blocks. Not with catalog snapshots (whose count is fixed before the run) or soft
+   * constraints.
    */
   bool RepairFailedBlocks = true;
   std::uint64_t Seed = 0;
