@@ -346,7 +346,7 @@ void ConnectGuide(
   synthesis->SetGuideConnection(guide->GetOutputPort());
 }
 
-/// The picture of a tileset model or of an image sample's patterns (libpng at fast
+/// The picture of a tileset model or of an image sample's patterns (msynth::WritePng at fast
 /// compression), when the tile images are there.
 void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
   std::vector<std::string>& written)
@@ -357,14 +357,16 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
   if (IsSample(o.Example))
   {
     composer = patterns;
-    patterns->SetInputData(model);
     patterns->SetPatternSize(o.Pattern);
     patterns->SetPeriodicOutput(
       o.Translate.find('x') != std::string::npos, o.Translate.find('y') != std::string::npos);
   }
-  tiles->SetInputData(model);
-  tiles->SetTilesetFile(o.Example.c_str());
-  tiles->SetTilesetSubset(o.Subset.c_str());
+  else
+  {
+    tiles->SetTilesetFile(o.Example.c_str());
+    tiles->SetTilesetSubset(o.Subset.c_str());
+  }
+  composer->SetInputData(model);
   std::string messages;
   struct stat folder;
   if (!vtkMSEngineBridge::Execute(composer, messages))

@@ -239,7 +239,7 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
     return global(empty);
 
   // Assign the free sites (lines 19-29), in the chosen order, with bounded chronological
-  // backtracking (Search.cxx): a choice that empties a catalog is undone and ruled out there.
+  // backtracking (BlockSearch.cxx): a choice that empties a catalog is undone and ruled out there.
   BlockSearch search(*this, block, rng, assignments);
   if (this->Order == SiteOrder::MinimumEntropy)
   {
@@ -253,10 +253,14 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
       for (std::size_t i = free.size(); i > 1; --i)
         std::swap(free[i - 1], free[static_cast<std::size_t>(rng.Below(i))]);
     }
+    // Where to resume after a backtrack (none without backtracking).
     std::vector<std::int64_t>& position = this->Position;
-    position.assign(static_cast<std::size_t>(cat.NumberOfSites()), -1);
-    for (std::size_t i = 0; i < free.size(); ++i)
-      position[static_cast<std::size_t>(free[i])] = static_cast<std::int64_t>(i);
+    if (this->Options.BacktracksPerAttempt > 0)
+    {
+      position.assign(static_cast<std::size_t>(cat.NumberOfSites()), -1);
+      for (std::size_t i = 0; i < free.size(); ++i)
+        position[static_cast<std::size_t>(free[i])] = static_cast<std::int64_t>(i);
+    }
     for (std::size_t i = 0; i < free.size();)
     {
       empty = search.Assign(free[i]);

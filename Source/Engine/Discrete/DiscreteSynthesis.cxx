@@ -199,8 +199,6 @@ struct Workers
   BlockSolver& operator[](unsigned w) { return w == 0 ? *this->First : *this->Extra[w - 1]; }
 };
 
-/// The blocks' hooks for the runner: attempts, keep or roll back, snapshots, failures, and the
-/// labels exchanged between processes.
 /// How a pass tries its blocks: the first pass as the options say; the second try at failed
 /// blocks with its own attempt streams, count and site orders.
 struct AttemptPlan
@@ -210,6 +208,8 @@ struct AttemptPlan
   std::vector<SiteOrder> Orders; ///< attempt a uses Orders[a % size]; empty: the options'
 };
 
+/// The blocks' hooks for the runner: attempts, keep or roll back, snapshots, failures, and the
+/// labels exchanged between processes.
 BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<Block>& blocks,
   BlockRunner& runner, Workers& workers, SoftConstraints& soft, SharedModel& shared,
   SynthesisStatistics& stats, const AttemptPlan& plan = AttemptPlan())
@@ -294,6 +294,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   if (options.Progress) // the first try reported the whole run: stay at the end
     policy.Progress = [&options](double) { return options.Progress(1.0); };
   BlockRunner runner(std::move(policy), again.size());
+  BlockRunner* const first = workers[0].Runner; // restored below: this runner ends here
   workers[0].Runner = &runner;
   // Twice the attempts, alternating the order the first pass did not use with minimum entropy
   // or scan line: a block one order cannot finish the other often can (entropy order closes the
@@ -312,6 +313,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
     phases[i] = static_cast<int>(i);
   const SynthesisStatus status = runner.Run(phases, hooks, second);
   workers[0].Order = order;
+  workers[0].Runner = first;
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;

@@ -147,6 +147,7 @@ PatternSet ExtractPatterns(
   const int xmax = options.PeriodicInput ? sample.Width : sample.Width - n + 1;
   const int ymax = options.PeriodicInput ? sample.Height : sample.Height - n + 1;
   std::unordered_map<std::string, int> index;
+  set.WindowPatterns.assign(set.Sample.size(), -1);
   for (int y = 0; y < ymax; ++y)
     for (int x = 0; x < xmax; ++x)
     {
@@ -163,6 +164,9 @@ PatternSet ExtractPatterns(
         const WindowCells& p = images[static_cast<std::size_t>(s)];
         const std::string key = Key(p.data(), 0, n, 0, n, n);
         const auto it = index.find(key);
+        if (s == 0)
+          set.WindowPatterns[static_cast<std::size_t>(y * sample.Width + x)] =
+            it != index.end() ? it->second : set.NumberOfPatterns();
         if (it != index.end())
         {
           set.Counts[static_cast<std::size_t>(it->second)] += 1.0;
@@ -206,27 +210,18 @@ std::vector<int> PatternSet::GroundPatterns(bool periodicY) const
   if (periodicY && !this->Options.PeriodicInput && n > 1)
     throw Error("a ground for a repeating output is the sample's window that starts on its "
                 "last row and wraps to its top, which needs a periodic input");
-  std::vector<int> xs;
-  if (periodicY)
-    xs.push_back(this->SampleWidth / 2);
-  else
-    for (int x = 0;
-         x < (this->Options.PeriodicInput ? this->SampleWidth : this->SampleWidth - n + 1); ++x)
-      xs.push_back(x);
+  // The windows read on the ground row (all of it bounded, its middle repeating).
+  const int y = periodicY ? this->SampleHeight - 1 : this->SampleHeight - n;
+  const int first = periodicY ? this->SampleWidth / 2 : 0;
+  const int last = periodicY      ? first + 1
+    : this->Options.PeriodicInput ? this->SampleWidth
+                                  : this->SampleWidth - n + 1;
   std::vector<int> ground;
-  for (const int x : xs)
+  for (int x = first; x < last; ++x)
   {
-    const WindowCells w =
-      Window(*this, x, periodicY ? this->SampleHeight - 1 : this->SampleHeight - n);
-    int found = -1;
-    for (int t = 0; t < this->NumberOfPatterns() && found < 0; ++t)
-      if (std::equal(
-            w.begin(), w.end(), this->Cells.begin() + static_cast<std::ptrdiff_t>(t * n * n)))
-        found = t;
-    if (found < 0)
-      throw Error("the ground window of the sample is not one of its patterns");
-    if (std::find(ground.begin(), ground.end(), found) == ground.end())
-      ground.push_back(found);
+    const int t = this->WindowPatterns[static_cast<std::size_t>(y * this->SampleWidth + x)];
+    if (std::find(ground.begin(), ground.end(), t) == ground.end())
+      ground.push_back(t);
   }
   return ground;
 }
@@ -254,25 +249,15 @@ GuideVolume PatternSet::GroundGuide(const std::array<std::int64_t, 3>& sites, bo
 std::optional<LabelGrid> PatternSet::TiledStart(
   const std::array<std::int64_t, 3>& sites, const Periodic& periodic) const
 {
-  const int n = this->Options.N;
   const std::int64_t sw = this->SampleWidth, sh = this->SampleHeight;
   if (!this->Options.PeriodicInput || this->Options.Ground || (periodic[0] && sites[0] % sw) ||
     (periodic[1] && sites[1] % sh) || sites[2] != 1)
     return std::nullopt;
-  std::unordered_map<std::string, int> index;
-  for (int t = 0; t < this->NumberOfPatterns(); ++t)
-    index.emplace(Key(this->Cells.data() + static_cast<std::size_t>(t * n * n), 0, n, 0, n, n), t);
-  std::vector<int> at(static_cast<std::size_t>(sw * sh));
-  for (int y = 0; y < sh; ++y)
-    for (int x = 0; x < sw; ++x)
-    {
-      const WindowCells w = Window(*this, x, y);
-      at[static_cast<std::size_t>(y * sw + x)] = index.at(Key(w.data(), 0, n, 0, n, n));
-    }
   LabelGrid start(sites[0], sites[1], 1);
   for (std::int64_t y = 0; y < sites[1]; ++y)
     for (std::int64_t x = 0; x < sites[0]; ++x)
-      start.Set(x, y, 0, at[static_cast<std::size_t>(((sites[1] - 1 - y) % sh) * sw + x % sw)]);
+      start.Set(x, y, 0,
+        this->WindowPatterns[static_cast<std::size_t>(((sites[1] - 1 - y) % sh) * sw + x % sw)]);
   return start;
 }
 

@@ -66,6 +66,10 @@ public:
   std::vector<std::uint16_t> Sample;                ///< colour index per pixel, rows from the top
   std::vector<std::uint16_t> Cells;                 ///< N × N colour indices per pattern
   std::vector<double> Counts;                       ///< occurrences of each pattern
+  /// Per sample pixel (rows from the top), the pattern of the window read there as it is (its
+  /// identity image); -1 where no window starts (the last N − 1 rows and columns of a sample
+  /// read without wrapping).
+  std::vector<int> WindowPatterns;
   std::array<std::vector<std::pair<int, int>>, 3> Pairs; ///< (b, c): c may follow b along +axis
 
   int NumberOfPatterns() const { return static_cast<int>(this->Counts.size()); }
