@@ -359,8 +359,252 @@ def sample_images(data):
         writer.Write()
 
 
+# Pattern exemplars (factor-graph synthesis): tilesets whose tiles are drawn as 8 x 8 text art,
+# exemplars as text art over the tiles (top row first; one character a tile). Every tile has
+# symmetry X, so label k is tile k; the pairs come from the exemplars, not from the XML.
+PATTERN_PALETTE = {
+    ".": (160, 205, 250, 255),  # sky / grass / paper
+    "#": (205, 180, 140, 255),  # stone
+    "d": (120, 100, 80, 255),   # dark stone, lines
+    "w": (60, 90, 130, 255),    # glass
+    "f": (240, 240, 235, 255),  # frame
+    "b": (110, 60, 40, 255),    # door wood
+    "r": (150, 50, 40, 255),    # roof
+    "g": (90, 170, 80, 255),    # grass
+    "t": (40, 110, 50, 255),    # tree
+    "a": (70, 70, 75, 255),     # asphalt
+    "y": (235, 210, 80, 255),   # road marking
+    "h": (200, 90, 70, 255),    # house roof
+    "B": (120, 125, 140, 255),  # tall building
+    "k": (30, 30, 30, 255),     # ink
+    "p": (250, 248, 235, 255),  # paper
+}
+WALL = ["########"] * 8
+PATTERN_SETS = {
+    "Facade": {
+        "tiles": [
+            (".", "sky", ["........"] * 8),
+            ("-", "cornice", ["rrrrrrrr", "rrrrrrrr", "dddddddd", "########", "dddddddd",
+                              "########", "########", "########"]),
+            ("#", "wall", WALL),
+            ("T", "window top", ["########", "#dddddd#", "#ffffff#", "#fwwwwf#", "#fwwwwf#",
+                                 "#fwwwwf#", "#fwwwwf#", "#fwwwwf#"]),
+            ("W", "window middle", ["#fwwwwf#", "#fwwwwf#", "#ffffff#", "#fwwwwf#", "#fwwwwf#",
+                                    "#fwwwwf#", "#fwwwwf#", "#fwwwwf#"]),
+            ("_", "window sill", ["#fwwwwf#", "#fwwwwf#", "#ffffff#", "dddddddd", "########",
+                                  "########", "########", "########"]),
+            ("D", "door top", ["##dddd##", "#dffffd#", "#fbbbbf#", "#fbbbbf#", "#fbbbbf#",
+                               "#fbbbbf#", "#fbbbbf#", "#fbbbbf#"]),
+            ("d", "door", ["#fbbbbf#", "#fbbbbf#", "#fbbbbf#", "#fbbyyf#", "#fbbbbf#",
+                           "#fbbbbf#", "#fbbbbf#", "#fbbbbf#"]),
+            ("=", "plinth", ["dddddddd", "########", "dddddddd", "dddddddd", "dddddddd",
+                             "dddddddd", "dddddddd", "dddddddd"]),
+        ],
+        "exemplars": {
+            # Rectangular: windows four tiles high (top, two middles, sill), three tiles apart;
+            # a door four tiles high on the plinth.
+            "facade-rectangular": [
+                "............",
+                "............",
+                "------------",
+                "############",
+                "#T##T##T##T#",
+                "#W##W##W##W#",
+                "#W##W##W##W#",
+                "#_##_##_##_#",
+                "############",
+                "#T##D##T##T#",
+                "#W##d##W##W#",
+                "#W##d##W##W#",
+                "#_##d##_##_#",
+                "============",
+            ],
+            # L-shaped: a tower on the left of a wider ground block.
+            "facade-l-shaped": [
+                "...............",
+                "-------........",
+                "#######........",
+                "#T##T##........",
+                "#W##W##........",
+                "#W##W##........",
+                "#_##_##........",
+                "#######--------",
+                "###############",
+                "#T##T##T##T##T#",
+                "#W##W##W##W##W#",
+                "#W##W##W##W##W#",
+                "#_##_##_##_##_#",
+                "###############",
+                "#T##D##T##T##D#",
+                "#W##d##W##W##d#",
+                "#W##d##W##W##d#",
+                "#_##d##_##_##d#",
+                "===============",
+            ],
+        },
+    },
+    "City": {
+        "tiles": [
+            (".", "grass", ["gggggggg"] * 8),
+            ("-", "road", ["gggggggg", "aaaaaaaa", "aaaaaaaa", "ayyaayya", "aaaaaaaa",
+                           "aaaaaaaa", "gggggggg", "gggggggg"]),
+            ("|", "road north", ["gaaaaaag", "gaaaaaag", "gaayaaag", "gaayaaag", "gaaaaaag",
+                                 "gaayaaag", "gaayaaag", "gaaaaaag"]),
+            ("+", "crossroad", ["gaaaaaag", "aaaaaaaa", "aaaaaaaa", "aaaaaaaa", "aaaaaaaa",
+                                "aaaaaaaa", "aaaaaaaa", "gaaaaaag"]),
+            ("v", "junction south", ["gggggggg", "aaaaaaaa", "aaaaaaaa", "aaaaaaaa",
+                                     "aaaaaaaa", "aaaaaaaa", "aaaaaaaa", "gaaaaaag"]),
+            ("^", "junction north", ["gaaaaaag", "aaaaaaaa", "aaaaaaaa", "aaaaaaaa",
+                                     "aaaaaaaa", "aaaaaaaa", "gggggggg", "gggggggg"]),
+            ("a", "corner east south", ["gggggggg", "gaaaaaaa", "gaaaaaaa", "gaaaaaaa",
+                                        "gaaaaaaa", "gaaaaaaa", "gaaaaaaa", "gaaaaaag"]),
+            ("b", "corner west south", ["gggggggg", "aaaaaaag", "aaaaaaag", "aaaaaaag",
+                                        "aaaaaaag", "aaaaaaag", "aaaaaaag", "gaaaaaag"]),
+            ("c", "corner east north", ["gaaaaaag", "gaaaaaaa", "gaaaaaaa", "gaaaaaaa",
+                                        "gaaaaaaa", "gaaaaaaa", "gggggggg", "gggggggg"]),
+            ("e", "corner west north", ["gaaaaaag", "aaaaaaag", "aaaaaaag", "aaaaaaag",
+                                        "aaaaaaag", "aaaaaaag", "gggggggg", "gggggggg"]),
+            (">", "junction east", ["gaaaaaag", "gaaaaaaa", "gaaaaaaa", "gaaaaaaa",
+                                    "gaaaaaaa", "gaaaaaaa", "gaaaaaaa", "gaaaaaag"]),
+            ("<", "junction west", ["gaaaaaag", "aaaaaaag", "aaaaaaag", "aaaaaaag",
+                                    "aaaaaaag", "aaaaaaag", "aaaaaaag", "gaaaaaag"]),
+            ("1", "dead end east", ["gggggggg", "ggggaaaa", "gggaaaaa", "ggaaaaaa", "ggaaaaaa",
+                                    "gggaaaaa", "ggggaaaa", "gggggggg"]),
+            ("2", "dead end west", ["gggggggg", "aaaagggg", "aaaaaggg", "aaaaaagg", "aaaaaagg",
+                                    "aaaaaggg", "aaaagggg", "gggggggg"]),
+            ("3", "dead end north", ["gaaaaaag", "gaaaaaag", "gaaaaaag", "ggaaaagg", "gggaaggg",
+                                     "gggggggg", "gggggggg", "gggggggg"]),
+            ("4", "dead end south", ["gggggggg", "gggggggg", "gggggggg", "gggaaggg", "ggaaaagg",
+                                     "gaaaaaag", "gaaaaaag", "gaaaaaag"]),
+            ("h", "house", ["gggggggg", "gghhhhgg", "ghhhhhhg", "hhhhhhhh", "g######g",
+                            "g##dd##g", "g##dd##g", "gggggggg"]),
+            ("B", "tower", ["BBBBBBBB", "BkBkBkBB", "BBBBBBBB", "BkBkBkBB", "BBBBBBBB",
+                            "BkBkBkBB", "BBBBBBBB", "BkBkBkBB"]),
+            ("t", "trees", ["gggggggg", "ggttgggg", "gttttggg", "ggttgttg", "gggggttt",
+                            "gttggttg", "ttttgggg", "gttggggg"]),
+        ],
+        "exemplars": {
+            # Urban: a grid of roads every four tiles, blocks of towers.
+            "city-urban": [
+                "BBB|BBB|BBB|",
+                "BBB|BBB|BBB|",
+                "BBB|B.B|BBB|",
+                "---+---+---+",
+                "BBB|BBB|BBB|",
+                "B.B|BBB|.t.|",
+                "BBB|BBB|BBB|",
+                "---+---+---+",
+                "BBB|BBB|BBB|",
+                "BBB|.B.|BBB|",
+                "BBB|BBB|BBB|",
+                "---+---+---+",
+            ],
+            # Suburban: winding roads with junctions and dead ends, houses and trees.
+            "city-suburban": [
+                "h.t.|.h..4.t.h",
+                ".h..|.t..|.h..",
+                "----+----e...t",
+                "..h.|..h...h..",
+                "t...|.t...t...",
+                ".h..c---v--2.h",
+                "..t.....|..t..",
+                "---b.h..|.h...",
+                ".h.|..t.>-----",
+                "t..|.h..|.t.h.",
+                "...c---2|..4..",
+                ".h.t.h..|..|.t",
+                "--------^--^--",
+                "h.t.h.t.h..t.h",
+            ],
+        },
+    },
+    "Border": {
+        "tiles": [
+            (".", "blank", ["pppppppp"] * 8),
+            ("=", "edge top", ["pppppppp", "kkkkkkkk", "pppppppp", "kkkkkkkk", "pppppppp",
+                               "pppppppp", "pppppppp", "pppppppp"]),
+            ("_", "edge bottom", ["pppppppp", "pppppppp", "pppppppp", "pppppppp", "kkkkkkkk",
+                                  "pppppppp", "kkkkkkkk", "pppppppp"]),
+            ("[", "edge left", ["pkpkpppp"] * 8),
+            ("]", "edge right", ["ppppkpkp"] * 8),
+            ("1", "corner top left", ["pppppppp", "pkkkkkkk", "pkpppppp", "pkpkkkkk", "pkpkpppp",
+                                      "pkpkpppp", "pkpkpppp", "pkpkpppp"]),
+            ("2", "corner top right", ["pppppppp", "kkkkkkkp", "ppppppkp", "kkkkpkkp",
+                                       "ppppkpkp", "ppppkpkp", "ppppkpkp", "ppppkpkp"]),
+            ("3", "corner bottom left", ["pkpkpppp", "pkpkpppp", "pkpkpppp", "pkpkpppp",
+                                         "pkpkkkkk", "pkpppppp", "pkkkkkkk", "pppppppp"]),
+            ("4", "corner bottom right", ["ppppkpkp", "ppppkpkp", "ppppkpkp", "ppppkpkp",
+                                          "kkkkkpkp", "ppppppkp", "kkkkkkkp", "pppppppp"]),
+            ("o", "rosette", ["pppppppp", "pppkkppp", "ppkppkpp", "pkpkkpkp", "pkpkkpkp",
+                              "ppkppkpp", "pppkkppp", "pppppppp"]),
+            ("(", "curl left", ["pppppppp", "ppkkkppp", "pkpppppp", "pkppkkkk", "pkppkppp",
+                                "ppkkpppp", "pppppppp", "pppppppp"]),
+            (")", "curl right", ["pppppppp", "pppkkkpp", "ppppppkp", "kkkkppkp", "pppkppkp",
+                                 "ppppkkpp", "pppppppp", "pppppppp"]),
+        ],
+        "mirror": "[],12,34,()",
+        "exemplars": {
+            # A frame: corners, edges, curls in mirrored pairs around rosettes, blank inside.
+            "border": [
+                "1==========2",
+                "[(o)....(o)]",
+                "[..........]",
+                "[o........o]",
+                "[..........]",
+                "[..........]",
+                "[o........o]",
+                "[..........]",
+                "[(o)....(o)]",
+                "3__________4",
+            ],
+        },
+    },
+}
+
+
+def pattern_data(data):
+    """Data/Patterns: NAME.xml with NAME/<tile>.png for each set, and the exemplars as .vti."""
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+
+    folder = os.path.join(data, "Patterns")
+    for set_name, spec in PATTERN_SETS.items():
+        os.makedirs(os.path.join(folder, set_name), exist_ok=True)
+        chars = [c for c, _, _ in spec["tiles"]]
+        lines = ['<?xml version="1.0"?>',
+                 "<!-- Tiles of the bundled %s pattern exemplars (label k is tile k)." % set_name,
+                 "     Pattern synthesis learns the pairs from the exemplars; no neighbor rules. -->",
+                 '<set size="8">', "  <tiles>"]
+        for c, name, art in spec["tiles"]:
+            lines.append('    <tile name="%s" symmetry="X"/>' % name)
+            image = vtkImageData()
+            image.SetDimensions(8, 8, 1)
+            rgba = vtkUnsignedCharArray()
+            rgba.SetNumberOfComponents(4)
+            for row in reversed(art):
+                assert len(row) == 8, (name, row)
+                for p in row:
+                    rgba.InsertNextTuple4(*PATTERN_PALETTE[p])
+            image.GetPointData().SetScalars(rgba)
+            writer = vtkPNGWriter()
+            writer.SetInputData(image)
+            writer.SetFileName(os.path.join(folder, set_name, name + ".png"))
+            writer.Write()
+        lines += ["  </tiles>", "</set>", ""]
+        with open(os.path.join(folder, set_name + ".xml"), "w") as f:
+            f.write("\n".join(lines))
+        for name, rows in spec["exemplars"].items():
+            assert all(len(r) == len(rows[0]) for r in rows), name
+            h = len(rows)
+            write(label_image((len(rows[0]), h, 1),
+                              lambda x, y, z: chars.index(rows[h - 1 - y][x])),
+                  os.path.join(folder, name + ".vti"))
+
+
 if __name__ == "__main__":
     if sys.argv[1:] == ["samples"]:
         sample_images(DATA)
+    elif sys.argv[1:] == ["patterns"]:
+        pattern_data(DATA)
     else:
         main()

@@ -1,0 +1,563 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BlockSampler.cxx
+ * @brief BLOCKSS (Yeh et al. 2012, Algorithms 1–2) and single-site Metropolis–Hastings (§8.2)
+ * on a PatternProblem. See PatternSynthesis.h for the method and its one deviation.
+ */
+#include "Patterns/BlockSampler.h"
+
+#include "Core/Error.h"
+#include "Core/ProgressPoll.h"
+#include "Core/Random.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace msynth
+{
+namespace detail
+{
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The factors of the current slice that are unsatisfied, as an indexable set.
+class FactorSet
+{
+public:
+  explicit FactorSet(std::size_t factors)
+    : Position(factors, -1)
+  {
+  }
+  bool Empty() const { return this->Items.empty(); }
+  std::size_t Size() const { return this->Items.size(); }
+  std::int64_t At(std::size_t i) const { return this->Items[i]; }
+  void Insert(std::int64_t f)
+  {
+    auto& pos = this->Position[static_cast<std::size_t>(f)];
+    if (pos >= 0)
+      return;
+    pos = static_cast<std::int64_t>(this->Items.size());
+    this->Items.push_back(f);
+  }
+  void Erase(std::int64_t f)
+  {
+    auto& pos = this->Position[static_cast<std::size_t>(f)];
+    if (pos < 0)
+      return;
+    const std::int64_t last = this->Items.back();
+    this->Items[static_cast<std::size_t>(pos)] = last;
+    this->Position[static_cast<std::size_t>(last)] = pos;
+    this->Items.pop_back();
+    pos = -1;
+  }
+  void Clear()
+  {
+    for (std::int64_t f : this->Items)
+      this->Position[static_cast<std::size_t>(f)] = -1;
+    this->Items.clear();
+  }
+
+private:
+  std::vector<std::int64_t> Items;
+  std::vector<std::int64_t> Position;
+};
+
+class Sampler
+{
+public:
+  Sampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result)
+    : P(problem)
+    , O(options)
+    , R(result)
+    , Rng(Random::Derived(options.Seed, 0x5a3b1e55))
+    , Unsat(static_cast<std::size_t>(problem.Shapes * problem.N))
+    , Poll(options.Progress)
+  {
+    const auto n = static_cast<std::size_t>(problem.N);
+    const auto factors = static_cast<std::size_t>(problem.Shapes * problem.N);
+    this->InSlice.assign(factors, 0);
+    this->Sat.assign(factors, 0);
+    this->Stamp.assign(factors, 0);
+    this->LastChange.assign(n, 0);
+    this->Tiles.resize(n);
+    for (std::int64_t p = 0; p < problem.N; ++p)
+    {
+      const auto& allowed =
+        problem
+          .ClassTiles[static_cast<std::size_t>(problem.SiteClass[static_cast<std::size_t>(p)])];
+      this->Tiles[static_cast<std::size_t>(p)] =
+        allowed[static_cast<std::size_t>(this->Rng.Below(allowed.size()))];
+    }
+    const std::int64_t moves = options.MovesPerSample >= 0 ? options.MovesPerSample : problem.N;
+    this->MovesPerSample = std::max<std::int64_t>(1, moves);
+    this->MaxMoves =
+      options.MaxMoves > 0 ? options.MaxMoves : std::max<std::int64_t>(10000000, 20000 * problem.N);
+    this->PrepareCovering();
+  }
+
+  /// Runs Algorithm 1 (or MH) and calls @p take(tiles, lastChange) for each kept sample.
+  template <typename Take>
+  bool Run(Take&& take)
+  {
+    const auto start = Clock::now();
+    const int total = this->O.BurnIn + this->O.Samples;
+    for (int n = 0; n < total; ++n)
+    {
+      const std::int64_t minimum = n == 0 ? 1 : this->MovesPerSample;
+      const bool done = this->O.Method == PatternMethod::MetropolisHastings
+        ? this->RunMetropolis(minimum, n, total)
+        : this->RunBlockSampleSAT(minimum, n, total);
+      if (!done)
+        return false;
+      if (n == 0)
+      {
+        this->R.FirstValidMoves = this->R.Moves;
+        this->R.FirstValidSeconds = SecondsSince(start);
+      }
+      if (n >= this->O.BurnIn)
+        take(this->Tiles, this->LastChange, SecondsSince(start));
+    }
+    return true;
+  }
+
+private:
+  // ---------------------------------------------------------------------------------------
+  // Slices (Algorithm 1) and bookkeeping
+  // ---------------------------------------------------------------------------------------
+  void SampleSlice()
+  {
+    const double keep = this->O.Epsilon / (1.0 + this->O.Epsilon);
+    this->Unsat.Clear();
+    const std::int64_t all = this->P.Shapes * this->P.N;
+    for (std::int64_t f = 0; f < all; ++f)
+    {
+      const auto i = static_cast<std::size_t>(f);
+      if (!this->P.Valid[i])
+        continue;
+      const bool sat = this->P.Satisfied(f, this->Tiles);
+      this->Sat[i] = sat ? 1 : 0;
+      if (this->P.IsHard(f))
+        this->InSlice[i] = 1;
+      else // u ~ U[0, φ]: binding only when φ = 1 + ε and u > 1
+        this->InSlice[i] = sat && this->Rng.Uniform() < keep ? 1 : 0;
+      if (this->InSlice[i] && !sat)
+        this->Unsat.Insert(f);
+    }
+  }
+
+  bool Tick(std::int64_t movesThisSample, std::int64_t minimum, int n, int total)
+  {
+    ++this->R.Moves;
+    if ((this->R.Moves & 1023) != 0)
+      return true;
+    const double within = std::min(1.0,
+      static_cast<double>(movesThisSample) /
+        static_cast<double>(std::max<std::int64_t>(minimum, 1)));
+    if (!this->Poll.Continue((n + 0.5 * within) / total))
+    {
+      this->R.Cancelled = true;
+      return false;
+    }
+    return true;
+  }
+
+  [[noreturn]] void OutOfMoves(int n)
+  {
+    const std::int64_t hard = this->P.CountViolatedHard(this->Tiles);
+    if (n == 0 || hard > 0)
+      throw Error("no pattern satisfying the hard factors was found in " +
+        std::to_string(this->MaxMoves) + " moves (" + std::to_string(hard) + " of " +
+        std::to_string(this->P.HardCount) +
+        " pairs still do not fit); the exemplars' pairs, zones or fixed sites may allow none");
+    throw Error("sample " + std::to_string(n + 1) + " found no pattern satisfying its slice in " +
+      std::to_string(this->MaxMoves) + " moves");
+  }
+
+  // ---------------------------------------------------------------------------------------
+  // Blocks
+  // ---------------------------------------------------------------------------------------
+  struct Placement
+  {
+    int Shape = 0;
+    std::array<std::int64_t, 3> Origin{};
+  };
+
+  /// Covering[s][b]: origins of block b, relative to a factor of shape s's anchor, that cover
+  /// the factor's scope (empty when b cannot).
+  void PrepareCovering()
+  {
+    const FactorModel& m = this->P.Model;
+    for (int s = 0; s < this->P.Shapes; ++s)
+    {
+      std::vector<std::array<int, 3>> scope;
+      if (s < 3)
+      {
+        scope.push_back({ { 0, 0, 0 } });
+        std::array<int, 3> e{ { 0, 0, 0 } };
+        e[static_cast<std::size_t>(s)] = 1;
+        scope.push_back(e);
+      }
+      else
+        scope = m.SoftShapes[static_cast<std::size_t>(s - 3)].Offsets;
+      std::vector<std::vector<std::array<int, 3>>> perBlock(m.BlockShapes.size());
+      for (std::size_t b = 0; b < m.BlockShapes.size(); ++b)
+      {
+        const auto& offsets = m.BlockShapes[b].Offsets;
+        for (const auto& ob : offsets)
+        {
+          const std::array<int, 3> d{ { scope[0][0] - ob[0], scope[0][1] - ob[1],
+            scope[0][2] - ob[2] } };
+          bool covers = true;
+          for (const auto& os : scope)
+          {
+            const std::array<int, 3> rel{ { os[0] - d[0], os[1] - d[1], os[2] - d[2] } };
+            if (!std::binary_search(offsets.begin(), offsets.end(), rel))
+            {
+              covers = false;
+              break;
+            }
+          }
+          if (covers)
+            perBlock[b].push_back(d);
+        }
+      }
+      this->Covering.push_back(std::move(perBlock));
+    }
+  }
+
+  /// A block shape at random, placed with a random cell of it on site @p p.
+  Placement RandomPlacement(std::int64_t p)
+  {
+    const FactorModel& m = this->P.Model;
+    Placement pl;
+    pl.Shape = static_cast<int>(this->Rng.Below(m.BlockShapes.size()));
+    const auto& offsets = m.BlockShapes[static_cast<std::size_t>(pl.Shape)].Offsets;
+    const auto& o = offsets[static_cast<std::size_t>(this->Rng.Below(offsets.size()))];
+    const auto c = this->P.Coordinates(p);
+    for (int a = 0; a < 3; ++a)
+      pl.Origin[static_cast<std::size_t>(a)] =
+        c[static_cast<std::size_t>(a)] - o[static_cast<std::size_t>(a)];
+    return pl;
+  }
+
+  /// A block shape covering factor @p f's scope at random, at a random covering origin.
+  Placement CoveringPlacement(std::int64_t f)
+  {
+    const std::int64_t s = f / this->P.N;
+    const std::int64_t p = f - s * this->P.N;
+    const auto& perBlock = this->Covering[static_cast<std::size_t>(s)];
+    std::size_t choices = 0;
+    for (const auto& d : perBlock)
+      choices += d.empty() ? 0 : 1;
+    if (choices == 0)
+      return this->RandomPlacement(p);
+    std::size_t pick = static_cast<std::size_t>(this->Rng.Below(choices));
+    Placement pl;
+    for (std::size_t b = 0; b < perBlock.size(); ++b)
+    {
+      if (perBlock[b].empty())
+        continue;
+      if (pick-- == 0)
+      {
+        pl.Shape = static_cast<int>(b);
+        const auto& d = perBlock[b][static_cast<std::size_t>(this->Rng.Below(perBlock[b].size()))];
+        const auto c = this->P.Coordinates(p);
+        for (int a = 0; a < 3; ++a)
+          pl.Origin[static_cast<std::size_t>(a)] =
+            c[static_cast<std::size_t>(a)] + d[static_cast<std::size_t>(a)];
+        break;
+      }
+    }
+    return pl;
+  }
+
+  /// Collects the sites of @p pl inside the grid (with their cell in the block) and the slice
+  /// factors touching them.
+  void Collect(const Placement& pl)
+  {
+    const auto& offsets = this->P.Model.BlockShapes[static_cast<std::size_t>(pl.Shape)].Offsets;
+    this->Sites.clear();
+    this->Cells.clear();
+    this->Affected.clear();
+    if (++this->CurrentStamp == 0) // wrapped: old stamps could collide
+    {
+      std::fill(this->Stamp.begin(), this->Stamp.end(), 0u);
+      this->CurrentStamp = 1;
+    }
+    for (std::size_t k = 0; k < offsets.size(); ++k)
+    {
+      std::int64_t q[3];
+      bool inside = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        q[a] = pl.Origin[static_cast<std::size_t>(a)] + offsets[k][static_cast<std::size_t>(a)];
+        inside = inside && q[a] >= 0 && q[a] < this->P.Size[static_cast<std::size_t>(a)];
+      }
+      if (!inside)
+        continue;
+      const std::int64_t site = q[0] + this->P.Stride[1] * q[1] + this->P.Stride[2] * q[2];
+      this->Sites.push_back(site);
+      this->Cells.push_back(static_cast<std::int32_t>(k));
+      this->P.ForTouching(site,
+        [this](std::int64_t f)
+        {
+          auto& stamp = this->Stamp[static_cast<std::size_t>(f)];
+          if (stamp == this->CurrentStamp || !this->InSlice[static_cast<std::size_t>(f)])
+            return;
+          stamp = this->CurrentStamp;
+          this->Affected.push_back(f);
+        });
+    }
+    this->Saved.resize(this->Sites.size());
+    for (std::size_t i = 0; i < this->Sites.size(); ++i)
+      this->Saved[i] = this->Tiles[static_cast<std::size_t>(this->Sites[i])];
+  }
+
+  /// Writes block configuration @p config of the collected placement (sites whose class forbids
+  /// a tile keep theirs); returns the satisfied slice factors among the affected.
+  std::int64_t Write(const std::int32_t* config)
+  {
+    for (std::size_t i = 0; i < this->Sites.size(); ++i)
+    {
+      const std::int32_t t = config[this->Cells[i]];
+      const std::int64_t site = this->Sites[i];
+      this->Tiles[static_cast<std::size_t>(site)] = this->P.AllowedAt(site, t) ? t : this->Saved[i];
+    }
+    std::int64_t c = 0;
+    for (std::int64_t f : this->Affected)
+      c += this->P.Satisfied(f, this->Tiles) ? 1 : 0;
+    return c;
+  }
+
+  void Restore()
+  {
+    for (std::size_t i = 0; i < this->Sites.size(); ++i)
+      this->Tiles[static_cast<std::size_t>(this->Sites[i])] = this->Saved[i];
+  }
+
+  std::int64_t SatisfiedBefore() const
+  {
+    std::int64_t c = 0;
+    for (std::int64_t f : this->Affected)
+      c += this->Sat[static_cast<std::size_t>(f)];
+    return c;
+  }
+
+  /// Keeps the written block: updates the slice bookkeeping and the sites' last change.
+  void Commit()
+  {
+    for (std::size_t i = 0; i < this->Sites.size(); ++i)
+      if (this->Tiles[static_cast<std::size_t>(this->Sites[i])] != this->Saved[i])
+        this->LastChange[static_cast<std::size_t>(this->Sites[i])] = this->R.Moves + 1;
+    for (std::int64_t f : this->Affected)
+    {
+      const bool sat = this->P.Satisfied(f, this->Tiles);
+      this->Sat[static_cast<std::size_t>(f)] = sat ? 1 : 0;
+      if (sat)
+        this->Unsat.Erase(f);
+      else
+        this->Unsat.Insert(f);
+    }
+  }
+
+  const std::int32_t* BlockConfig(int shape, std::size_t k) const
+  {
+    const auto& b = this->P.Model.BlockShapes[static_cast<std::size_t>(shape)];
+    return this->P.Model.BlockTiles[static_cast<std::size_t>(shape)].data() + k * b.Offsets.size();
+  }
+  std::size_t BlockCount(int shape) const
+  {
+    const auto& b = this->P.Model.BlockShapes[static_cast<std::size_t>(shape)];
+    return this->P.Model.BlockTiles[static_cast<std::size_t>(shape)].size() / b.Offsets.size();
+  }
+
+  /// A random replacement block at @p pl, kept unconditionally (the p_flip move).
+  void RandomBlock(const Placement& pl)
+  {
+    this->Collect(pl);
+    this->Write(this->BlockConfig(pl.Shape, this->Rng.Below(this->BlockCount(pl.Shape))));
+    this->Commit();
+  }
+
+  /// The block of @p pl's shape that satisfies the most slice factors, ties at random.
+  void BestBlock(const Placement& pl)
+  {
+    this->Collect(pl);
+    const std::size_t count = this->BlockCount(pl.Shape);
+    const std::size_t tries = this->O.CandidatesPerMove > 0
+      ? std::min(count, static_cast<std::size_t>(this->O.CandidatesPerMove))
+      : count;
+    std::int64_t best = -1;
+    std::size_t bestK = 0;
+    std::uint64_t ties = 0;
+    for (std::size_t i = 0; i < tries; ++i)
+    {
+      const std::size_t k = tries == count ? i : static_cast<std::size_t>(this->Rng.Below(count));
+      const std::int64_t c = this->Write(this->BlockConfig(pl.Shape, k));
+      this->Restore();
+      if (c > best)
+      {
+        best = c;
+        bestK = k;
+        ties = 1;
+      }
+      else if (c == best && this->Rng.Below(++ties) == 0)
+        bestK = k;
+    }
+    this->Write(this->BlockConfig(pl.Shape, bestK));
+    this->Commit();
+  }
+
+  /// The annealing move: a random block anywhere, kept with min(1, exp(Δc / T)).
+  void AnnealingMove()
+  {
+    ++this->R.AnnealingMoves;
+    const Placement pl = this->RandomPlacement(
+      static_cast<std::int64_t>(this->Rng.Below(static_cast<std::uint64_t>(this->P.N))));
+    this->Collect(pl);
+    const std::int64_t before = this->SatisfiedBefore();
+    const std::int64_t after =
+      this->Write(this->BlockConfig(pl.Shape, this->Rng.Below(this->BlockCount(pl.Shape))));
+    const double delta = static_cast<double>(after - before);
+    if (delta >= 0 || this->Rng.Uniform() < std::exp(delta / this->O.Temperature))
+    {
+      ++this->R.AcceptedAnnealingMoves;
+      this->Commit();
+    }
+    else
+      this->Restore();
+  }
+
+  bool RunBlockSampleSAT(std::int64_t minimum, int n, int total)
+  {
+    this->SampleSlice();
+    for (std::int64_t moves = 0;; ++moves)
+    {
+      if (moves >= minimum && this->Unsat.Empty())
+        return true;
+      if (moves >= this->MaxMoves)
+        this->OutOfMoves(n);
+      if (!this->Tick(moves, minimum, n, total))
+        return false;
+      if (!this->Unsat.Empty() && this->Rng.Uniform() < this->O.WalkProbability)
+      {
+        ++this->R.WalkMoves;
+        const std::int64_t f =
+          this->Unsat.At(static_cast<std::size_t>(this->Rng.Below(this->Unsat.Size())));
+        if (this->Rng.Uniform() < this->O.FlipProbability)
+          this->RandomBlock(this->RandomPlacement(f % this->P.N));
+        else
+          this->BestBlock(this->CoveringPlacement(f));
+      }
+      else
+        this->AnnealingMove();
+    }
+  }
+
+  // ---------------------------------------------------------------------------------------
+  // Single-site Metropolis–Hastings (§8.2)
+  // ---------------------------------------------------------------------------------------
+  double LogFactor(std::int64_t f) const
+  {
+    const bool sat = this->P.Satisfied(f, this->Tiles);
+    if (this->P.IsHard(f))
+      return sat ? 0.0 : std::log(1e-8);
+    return sat ? std::log1p(this->O.Epsilon) : 0.0;
+  }
+
+  bool RunMetropolis(std::int64_t minimum, int n, int total)
+  {
+    if (n == 0)
+      this->Violated = this->P.CountViolatedHard(this->Tiles);
+    for (std::int64_t moves = 0;; ++moves)
+    {
+      if (moves >= minimum && this->Violated == 0)
+        return true;
+      if (moves >= this->MaxMoves)
+        this->OutOfMoves(n);
+      if (!this->Tick(moves, minimum, n, total))
+        return false;
+      const auto q =
+        static_cast<std::int64_t>(this->Rng.Below(static_cast<std::uint64_t>(this->P.N)));
+      const auto& allowed =
+        this->P
+          .ClassTiles[static_cast<std::size_t>(this->P.SiteClass[static_cast<std::size_t>(q)])];
+      if (allowed.size() < 2)
+        continue;
+      auto& tile = this->Tiles[static_cast<std::size_t>(q)];
+      const std::int32_t old = tile;
+      std::int32_t proposal = old;
+      while (proposal == old)
+        proposal = allowed[static_cast<std::size_t>(this->Rng.Below(allowed.size()))];
+      double before = 0, after = 0;
+      std::int64_t hardBefore = 0, hardAfter = 0;
+      this->P.ForTouching(q,
+        [&](std::int64_t f)
+        {
+          before += this->LogFactor(f);
+          if (this->P.IsHard(f) && !this->P.Satisfied(f, this->Tiles))
+            ++hardBefore;
+        });
+      tile = proposal;
+      this->P.ForTouching(q,
+        [&](std::int64_t f)
+        {
+          after += this->LogFactor(f);
+          if (this->P.IsHard(f) && !this->P.Satisfied(f, this->Tiles))
+            ++hardAfter;
+        });
+      const double delta = after - before;
+      if (delta >= 0 || this->Rng.Uniform() < std::exp(delta))
+      {
+        this->Violated += hardAfter - hardBefore;
+        this->LastChange[static_cast<std::size_t>(q)] = this->R.Moves + 1;
+      }
+      else
+        tile = old;
+    }
+  }
+
+  const PatternProblem& P;
+  const PatternOptions& O;
+  PatternResult& R;
+  Random Rng;
+  FactorSet Unsat;
+  ProgressPoll Poll;
+  std::int64_t MovesPerSample = 1;
+  std::int64_t MaxMoves = 0;
+  std::int64_t Violated = 0;
+
+  std::vector<std::int32_t> Tiles;
+  std::vector<std::int64_t> LastChange;
+  std::vector<std::uint8_t> InSlice;
+  std::vector<std::uint8_t> Sat;
+  std::vector<std::uint32_t> Stamp;
+  std::uint32_t CurrentStamp = 0;
+  std::vector<std::vector<std::vector<std::array<int, 3>>>> Covering;
+
+  std::vector<std::int64_t> Sites;
+  std::vector<std::int32_t> Cells;
+  std::vector<std::int32_t> Saved;
+  std::vector<std::int64_t> Affected;
+};
+
+} // namespace
+
+bool RunSampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result,
+  const SampleSink& take)
+{
+  Sampler sampler(problem, options, result);
+  return sampler.Run(take);
+}
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file BlockSampler.h
+ * @brief The samplers on a PatternProblem (internal to Patterns/): BLOCKSS and single-site
+ * Metropolis–Hastings, chosen by PatternOptions::Method.
+ */
+#include "Patterns/PatternProblem.h"
+
+#include <functional>
+
+namespace msynth
+{
+namespace detail
+{
+
+/// Receives each kept sample: tile indices, per-site last change, seconds since the start.
+using SampleSink =
+  std::function<void(const std::vector<std::int32_t>&, const std::vector<std::int64_t>&, double)>;
+
+/**
+ * Runs the burn-in and the samples of @p options on @p problem, counting moves in @p result.
+ * @return false when the progress callback cancelled. @throw Error when MaxMoves runs out.
+ */
+bool RunSampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result,
+  const SampleSink& take);
+
+} // namespace detail
+} // namespace msynth

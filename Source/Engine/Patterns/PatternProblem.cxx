@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Patterns/PatternProblem.h"
+
+#include "Core/Error.h"
+
+#include <map>
+#include <tuple>
+
+namespace msynth
+{
+namespace detail
+{
+
+namespace
+{
+
+std::int32_t MirrorTile(const FactorModel& m, const PatternOptions& o, std::int32_t t)
+{
+  const auto it = o.MirrorMap.find(m.Tiles[static_cast<std::size_t>(t)]);
+  return it == o.MirrorMap.end() ? t : m.TileIndex(it->second);
+}
+
+} // namespace
+
+PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& options,
+  const std::array<std::int64_t, 3>& size, bool seams)
+  : Model(model)
+  , Size(size)
+{
+  this->N = size[0] * size[1] * size[2];
+  this->Stride = { { 1, size[0], size[0] * size[1] } };
+  this->T = model.NumberOfTiles();
+  this->Shapes = 3 + static_cast<int>(model.SoftShapes.size());
+  const auto& full = options.Size;
+  const std::int64_t fullN = full[0] * full[1] * full[2];
+  const auto n = static_cast<std::size_t>(this->N);
+
+  // Factors and their validity.
+  this->Valid.assign(static_cast<std::size_t>(this->Shapes) * n, 0);
+  for (std::int64_t p = 0; p < this->N; ++p)
+  {
+    const auto c = this->Coordinates(p);
+    for (int a = 0; a < 3; ++a)
+      if (c[static_cast<std::size_t>(a)] + 1 < size[static_cast<std::size_t>(a)])
+      {
+        this->Valid[static_cast<std::size_t>(a * this->N + p)] = 1;
+        ++this->HardCount;
+      }
+    for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
+    {
+      const auto& e = model.SoftShapes[k].Extent;
+      if (c[0] + e[0] <= size[0] && c[1] + e[1] <= size[1] && c[2] + e[2] <= size[2])
+      {
+        this->Valid[static_cast<std::size_t>(static_cast<std::int64_t>(3 + k) * this->N + p)] = 1;
+        ++this->SoftCount;
+      }
+    }
+  }
+  for (const Stencil& s : model.SoftShapes)
+  {
+    std::vector<std::int64_t> steps;
+    for (const auto& o : s.Offsets)
+      steps.push_back(o[0] + o[1] * this->Stride[1] + o[2] * this->Stride[2]);
+    this->SoftSteps.push_back(std::move(steps));
+  }
+
+  // Zone tiles, fixed sites and seams make each site's class of allowed tiles.
+  if (!options.SiteZone.empty() && static_cast<std::int64_t>(options.SiteZone.size()) != fullN)
+    throw Error("the zoning has " + std::to_string(options.SiteZone.size()) +
+      " sites, the output " + std::to_string(fullN));
+  if (!options.Fixed.empty() && static_cast<std::int64_t>(options.Fixed.size()) != fullN)
+    throw Error("the fixed sites have " + std::to_string(options.Fixed.size()) +
+      " sites, the output " + std::to_string(fullN));
+  std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
+  for (const auto& [zone, values] : options.ZoneTiles)
+  {
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 0);
+    for (Label v : values)
+    {
+      const int t = model.TileIndex(v);
+      if (t < 0)
+        throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
+          ", which no exemplar holds");
+      mask[static_cast<std::size_t>(t)] = 1;
+    }
+    zoneMask[zone] = std::move(mask);
+  }
+  std::map<std::int32_t, std::int32_t> zoneGroup; // zone → group
+  std::map<std::vector<int>, std::int32_t> groups;
+  std::vector<std::vector<int>> groupMembers;
+  auto groupOf = [&](std::vector<int> members)
+  {
+    const auto it = groups.find(members);
+    if (it != groups.end())
+      return it->second;
+    const auto g = static_cast<std::int32_t>(groupMembers.size());
+    groups.emplace(members, g);
+    groupMembers.push_back(std::move(members));
+    return g;
+  };
+  std::vector<int> all;
+  for (int e = 0; e < model.NumberOfExemplars; ++e)
+    all.push_back(e);
+  const std::int32_t allGroup = groupOf(all);
+  for (const auto& [zone, members] : options.ZoneExemplars)
+  {
+    std::vector<int> sorted = members;
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    for (int e : sorted)
+      if (e < 0 || e >= model.NumberOfExemplars)
+        throw Error("zone " + std::to_string(zone) + " takes its factors from exemplar " +
+          std::to_string(e + 1) + ", but there are " + std::to_string(model.NumberOfExemplars));
+    if (sorted.empty())
+      throw Error("zone " + std::to_string(zone) + " takes its factors from no exemplar");
+    zoneGroup[zone] = groupOf(sorted);
+  }
+
+  std::map<std::tuple<std::int32_t, std::int32_t, int>, std::int32_t> classes;
+  this->SiteClass.resize(n);
+  this->SiteGroup.assign(n, allGroup);
+  for (std::int64_t p = 0; p < this->N; ++p)
+  {
+    const auto c = this->Coordinates(p);
+    const std::int64_t fp = c[0] + full[0] * (c[1] + full[1] * c[2]);
+    const std::int32_t zone =
+      options.SiteZone.empty() ? 0 : options.SiteZone[static_cast<std::size_t>(fp)];
+    const std::int32_t fixed =
+      options.Fixed.empty() ? -1 : model.TileIndex(options.Fixed[static_cast<std::size_t>(fp)]);
+    int seam = 0;
+    if (seams)
+      for (int a = 0; a < 3; ++a)
+        if (options.Mirror[static_cast<std::size_t>(a)] &&
+          c[static_cast<std::size_t>(a)] == size[static_cast<std::size_t>(a)] - 1)
+          seam |= (full[static_cast<std::size_t>(a)] % 2 == 0 ? 1 : 8) << a;
+    const auto key = std::make_tuple(zoneMask.count(zone) ? zone : -1, fixed, seam);
+    auto it = classes.find(key);
+    if (it == classes.end())
+    {
+      std::vector<std::uint8_t> mask = zoneMask.count(zone)
+        ? zoneMask[zone]
+        : std::vector<std::uint8_t>(static_cast<std::size_t>(this->T), 1);
+      for (std::int32_t t = 0; t < this->T; ++t)
+      {
+        if (fixed >= 0 && t != fixed)
+          mask[static_cast<std::size_t>(t)] = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          const std::int32_t f = MirrorTile(model, options, t);
+          if ((seam & (1 << a)) && !model.Allowed(a, t, f))
+            mask[static_cast<std::size_t>(t)] = 0;
+          if ((seam & (8 << a)) && f != t)
+            mask[static_cast<std::size_t>(t)] = 0;
+        }
+      }
+      std::vector<std::int32_t> tiles;
+      for (std::int32_t t = 0; t < this->T; ++t)
+        if (mask[static_cast<std::size_t>(t)])
+          tiles.push_back(t);
+      if (tiles.empty())
+      {
+        std::string where = "site (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+          std::to_string(c[2]) + ")";
+        if (fixed >= 0 && zoneMask.count(zone))
+          throw Error(where + " is fixed to a label that its zone " + std::to_string(zone) +
+            " does not allow");
+        if (seam)
+          throw Error(where +
+            " is on the mirror seam and no tile it allows can meet its mirror "
+            "image there");
+        throw Error("zone " + std::to_string(zone) + " allows no tile");
+      }
+      it = classes.emplace(key, static_cast<std::int32_t>(this->ClassTiles.size())).first;
+      this->ClassAllowed.push_back(std::move(mask));
+      this->ClassTiles.push_back(std::move(tiles));
+    }
+    this->SiteClass[static_cast<std::size_t>(p)] = it->second;
+    const auto zg = zoneGroup.find(zone);
+    if (zg != zoneGroup.end())
+      this->SiteGroup[static_cast<std::size_t>(p)] = zg->second;
+  }
+  for (const auto& members : groupMembers)
+  {
+    std::vector<std::unordered_set<std::uint64_t>> perShape(model.SoftShapes.size());
+    for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
+      for (int e : members)
+        perShape[k].insert(model.Observed[k][static_cast<std::size_t>(e)].begin(),
+          model.Observed[k][static_cast<std::size_t>(e)].end());
+    this->GroupObserved.push_back(std::move(perShape));
+  }
+}
+
+std::int64_t PatternProblem::CountSoft(
+  const std::vector<std::int32_t>& tiles, std::vector<std::int32_t>* perSite) const
+{
+  if (perSite)
+    perSite->assign(static_cast<std::size_t>(this->N), 0);
+  std::int64_t total = 0;
+  for (std::int64_t f = 3 * this->N; f < this->Shapes * this->N; ++f)
+    if (this->Valid[static_cast<std::size_t>(f)] && this->Satisfied(f, tiles))
+    {
+      ++total;
+      if (perSite)
+        ++(*perSite)[static_cast<std::size_t>(f % this->N)];
+    }
+  return total;
+}
+
+std::int64_t PatternProblem::CountViolatedHard(const std::vector<std::int32_t>& tiles) const
+{
+  std::int64_t violated = 0;
+  for (std::int64_t f = 0; f < 3 * this->N; ++f)
+    if (this->Valid[static_cast<std::size_t>(f)] && !this->Satisfied(f, tiles))
+      ++violated;
+  return violated;
+}
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Patterns/PatternSynthesis.h"
+
+#include "Core/Error.h"
+#include "Core/Random.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Patterns/BlockSampler.h"
+
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+
+namespace msynth
+{
+
+namespace
+{
+
+using detail::PatternProblem;
+
+void CheckOptions(const FactorModel& m, const PatternOptions& o)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (o.Size[static_cast<std::size_t>(a)] < 1)
+      throw Error("the output size must be at least 1 along every axis");
+    if (o.Size[static_cast<std::size_t>(a)] > 1 && !m.AxisSeen[static_cast<std::size_t>(a)])
+      throw Error(std::string("the output extends along ") + "xyz"[a] +
+        " but no exemplar does, so no pair along it is known" +
+        (a == 2 ? " (a 3D output needs 3D exemplars)" : ""));
+  }
+  LabelGrid::CheckDimensions(o.Size[0], o.Size[1], o.Size[2]);
+  if (!(o.Epsilon >= 0) || !std::isfinite(o.Epsilon))
+    throw Error("epsilon must be a finite number at least 0");
+  if (!(o.Temperature > 0) || !std::isfinite(o.Temperature))
+    throw Error("the temperature must be a finite number above 0");
+  for (double p : { o.WalkProbability, o.FlipProbability })
+    if (!(p >= 0 && p <= 1))
+      throw Error("p_walk and p_flip must be probabilities (0 to 1)");
+  if (o.Samples < 1 || o.BurnIn < 0)
+    throw Error("at least one sample is needed, and the burn-in cannot be negative");
+  bool mirrored = false;
+  for (int a = 0; a < 3; ++a)
+    if (o.Mirror[static_cast<std::size_t>(a)])
+    {
+      mirrored = true;
+      if (o.Size[static_cast<std::size_t>(a)] < 2)
+        throw Error(std::string("mirroring along ") + "xyz"[a] + " needs at least 2 sites");
+    }
+  if (!mirrored)
+    return;
+  const int t = m.NumberOfTiles();
+  std::vector<std::int32_t> f(static_cast<std::size_t>(t));
+  for (int b = 0; b < t; ++b)
+  {
+    const auto it = o.MirrorMap.find(m.Tiles[static_cast<std::size_t>(b)]);
+    f[static_cast<std::size_t>(b)] = it == o.MirrorMap.end() ? b : m.TileIndex(it->second);
+    if (f[static_cast<std::size_t>(b)] < 0)
+      throw Error("the mirror map sends label " + std::to_string(it->first) + " to " +
+        std::to_string(it->second) + ", which no exemplar holds");
+  }
+  for (int b = 0; b < t; ++b)
+    if (f[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])] != b)
+      throw Error("the mirror map is not its own inverse at label " +
+        std::to_string(m.Tiles[static_cast<std::size_t>(b)]));
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < t; ++b)
+      for (int c = 0; c < t; ++c)
+      {
+        const bool along = o.Mirror[static_cast<std::size_t>(a)];
+        const int fb = f[static_cast<std::size_t>(b)], fc = f[static_cast<std::size_t>(c)];
+        if (m.Allowed(a, b, c) != (along ? m.Allowed(a, fc, fb) : m.Allowed(a, fb, fc)))
+          throw Error(std::string("the mirror map does not keep the exemplars' pairs along ") +
+            "xyz"[a] + " (labels " + std::to_string(m.Tiles[static_cast<std::size_t>(b)]) + ", " +
+            std::to_string(m.Tiles[static_cast<std::size_t>(c)]) + ")");
+      }
+}
+
+/// The lower half (rounded up) along mirrored axes.
+std::array<std::int64_t, 3> SolvedSize(const PatternOptions& o)
+{
+  std::array<std::int64_t, 3> s = o.Size;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (o.Mirror[a])
+      s[a] = (s[a] + 1) / 2;
+  return s;
+}
+
+/// The full pattern from the synthesized part (mirrored along the options' axes).
+template <typename T, typename Map>
+std::vector<T> Unfold(const std::vector<T>& part, const std::array<std::int64_t, 3>& partSize,
+  const PatternOptions& o, Map&& map)
+{
+  const auto& full = o.Size;
+  std::vector<T> out(static_cast<std::size_t>(full[0] * full[1] * full[2]));
+  for (std::int64_t z = 0; z < full[2]; ++z)
+    for (std::int64_t y = 0; y < full[1]; ++y)
+      for (std::int64_t x = 0; x < full[0]; ++x)
+      {
+        std::int64_t c[3] = { x, y, z };
+        int flips = 0;
+        for (std::size_t a = 0; a < 3; ++a)
+          if (c[a] >= partSize[a])
+          {
+            c[a] = full[a] - 1 - c[a];
+            ++flips;
+          }
+        T v = part[static_cast<std::size_t>(c[0] + partSize[0] * (c[1] + partSize[1] * c[2]))];
+        for (int k = 0; k < flips; ++k)
+          v = map(v);
+        out[static_cast<std::size_t>(x + full[0] * (y + full[1] * z))] = v;
+      }
+  return out;
+}
+
+PatternSample MakeSample(const PatternProblem& scorer, const FactorModel& m,
+  const PatternOptions& o, std::vector<std::int32_t> tiles, std::vector<std::int64_t> last)
+{
+  PatternSample s;
+  const std::int64_t soft = scorer.CountSoft(tiles, &s.SatisfiedSoft);
+  s.LogProbability = static_cast<double>(soft) * std::log1p(o.Epsilon);
+  std::vector<Label> values(tiles.size());
+  for (std::size_t i = 0; i < tiles.size(); ++i)
+    values[i] = m.Tiles[static_cast<std::size_t>(tiles[i])];
+  s.Labels = LabelGrid(o.Size, std::move(values));
+  s.LastChange = std::move(last);
+  return s;
+}
+
+/// §8.1's pure constraint solver: discrete model synthesis with the hard pairs as its rules,
+/// zones and fixed sites as a guide of zero weights, the mirror as its reflection symmetry.
+void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
+  const PatternOptions& o, PatternResult& result)
+{
+  const auto start = std::chrono::steady_clock::now();
+  std::array<std::vector<std::pair<int, int>>, 3> pairs;
+  const int t = m.NumberOfTiles();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < t; ++b)
+      for (int c = 0; c < t; ++c)
+        if (m.Allowed(a, b, c))
+          pairs[static_cast<std::size_t>(a)].emplace_back(b, c);
+  const AdjacencyRules rules = AdjacencyRules::FromPairs(
+    m.Tiles, std::vector<double>(static_cast<std::size_t>(t), 1.0), pairs);
+  SynthesisOptions so;
+  so.Size = o.Size;
+  so.Order = SiteOrder::Random; // as §8.1 randomised MINION's variable order
+  so.AttemptsPerBlock = 20;
+  so.Threads = 1;
+  if (scorer.ClassTiles.size() > 1 || scorer.ClassTiles[0].size() != static_cast<std::size_t>(t))
+  {
+    GuideVolume guide;
+    guide.Dims = o.Size;
+    for (int b = 0; b < t; ++b)
+    {
+      std::vector<float> w(static_cast<std::size_t>(scorer.N), 1.0f);
+      for (std::int64_t p = 0; p < scorer.N; ++p)
+        if (!scorer.AllowedAt(p, b))
+          w[static_cast<std::size_t>(p)] = 0.0f;
+      guide.Weights[m.Tiles[static_cast<std::size_t>(b)]] = std::move(w);
+    }
+    so.Guide = std::move(guide);
+  }
+  for (std::size_t a = 0; a < 3; ++a)
+    if (o.Mirror[a])
+    {
+      so.Symmetry[a].Enabled = true;
+      so.Symmetry[a].Map = o.MirrorMap;
+    }
+  so.Progress = o.Progress;
+  for (int n = 0; n < o.Samples; ++n)
+  {
+    so.Seed = Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next();
+    SynthesisResult r = Synthesize(rules, so);
+    result.Moves += r.Statistics.Assignments;
+    if (r.Status == SynthesisStatus::Cancelled)
+    {
+      result.Cancelled = true;
+      return;
+    }
+    if (!r.Succeeded())
+      throw Error("the constraint solver found no pattern: " + r.Message);
+    std::vector<std::int32_t> tiles(r.Model.Data().size());
+    for (std::size_t i = 0; i < tiles.size(); ++i)
+      tiles[i] = m.TileIndex(r.Model.Data()[i]);
+    std::vector<std::int64_t> last(tiles.size(), 0);
+    PatternSample s = MakeSample(scorer, m, o, std::move(tiles), std::move(last));
+    s.Moves = result.Moves;
+    s.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (n == 0)
+    {
+      result.FirstValidMoves = s.Moves;
+      result.FirstValidSeconds = s.Seconds;
+    }
+    result.Samples.push_back(std::move(s));
+  }
+}
+
+bool ParseInt(const std::string& text, std::int32_t& value)
+{
+  if (text.empty() || text.size() > 11)
+    return false;
+  std::size_t used = 0;
+  try
+  {
+    const long v = std::stol(text, &used);
+    if (used != text.size() || v < INT32_MIN || v > INT32_MAX)
+      return false;
+    value = static_cast<std::int32_t>(v);
+    return true;
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
+std::vector<std::string> SplitOn(const std::string& text, char sep)
+{
+  std::vector<std::string> parts;
+  std::string item;
+  for (char c : text)
+  {
+    if (c == sep)
+    {
+      parts.push_back(item);
+      item.clear();
+    }
+    else if (c != ' ')
+      item += c;
+  }
+  parts.push_back(item);
+  return parts;
+}
+
+} // namespace
+
+std::map<std::int32_t, std::vector<std::int32_t>> ParseZoneLists(
+  const std::string& text, const std::string& what)
+{
+  std::map<std::int32_t, std::vector<std::int32_t>> lists;
+  for (const std::string& item : SplitOn(text, ';'))
+  {
+    if (item.empty())
+      continue;
+    const std::size_t colon = item.find(':');
+    std::int32_t zone = 0;
+    if (colon == std::string::npos || !ParseInt(item.substr(0, colon), zone))
+      throw Error(what + ": '" + item + "' is not 'zone:a,b,...'");
+    auto& values = lists[zone];
+    for (const std::string& v : SplitOn(item.substr(colon + 1), ','))
+    {
+      std::int32_t value = 0;
+      if (!ParseInt(v, value))
+        throw Error(what + ": '" + item + "' is not 'zone:a,b,...' ('" + v + "' is not a number)");
+      values.push_back(value);
+    }
+  }
+  return lists;
+}
+
+std::map<Label, Label> ParseMirrorSwaps(const std::string& text)
+{
+  std::map<Label, Label> map;
+  for (const std::string& item : SplitOn(text, ','))
+  {
+    if (item.empty())
+      continue;
+    const std::vector<std::string> ab = SplitOn(item, ':');
+    Label a = 0, b = 0;
+    if (ab.size() != 2 || !ParseInt(ab[0], a) || !ParseInt(ab[1], b))
+      throw Error("mirror swaps: '" + item + "' is not a pair 'a:b' of labels");
+    map[a] = b;
+    map[b] = a;
+  }
+  return map;
+}
+
+PatternResult SynthesizePattern(
+  const std::vector<LabelGrid>& exemplars, const PatternOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const bool threeD = options.Size[2] > 1;
+  const std::vector<Stencil> blocks =
+    options.Blocks.empty() ? BlockScheme(6, threeD) : options.Blocks;
+  const FactorModel model = LearnFactors(exemplars, options.SoftFactors, blocks);
+  CheckOptions(model, options);
+
+  PatternResult result;
+  result.Tiles = model.NumberOfTiles();
+  for (const auto& b : model.BlockTiles)
+    result.ReplacementBlocks += static_cast<std::int64_t>(b.size());
+  // The whole output, for scoring samples (and for the constraint solver's guide).
+  const PatternProblem scorer(model, options, options.Size, false);
+  result.HardFactors = scorer.HardCount;
+  result.SoftFactors = scorer.SoftCount;
+
+  if (options.Method == PatternMethod::ConstraintSolver)
+    RunConstraintSolver(model, scorer, options, result);
+  else
+  {
+    const std::array<std::int64_t, 3> part = SolvedSize(options);
+    const bool mirrored = part != options.Size;
+    std::optional<PatternProblem> half;
+    if (mirrored)
+      half.emplace(model, options, part, true);
+    const PatternProblem& problem = mirrored ? *half : scorer;
+    std::vector<std::int32_t> mirror(static_cast<std::size_t>(model.NumberOfTiles()));
+    for (int b = 0; b < model.NumberOfTiles(); ++b)
+    {
+      const auto it = options.MirrorMap.find(model.Tiles[static_cast<std::size_t>(b)]);
+      mirror[static_cast<std::size_t>(b)] =
+        it == options.MirrorMap.end() ? b : model.TileIndex(it->second);
+    }
+    detail::RunSampler(problem, options, result,
+      [&](const std::vector<std::int32_t>& tiles, const std::vector<std::int64_t>& last,
+        double seconds)
+      {
+        std::vector<std::int32_t> fullTiles = mirrored
+          ? Unfold(tiles, part, options,
+              [&](std::int32_t b) { return mirror[static_cast<std::size_t>(b)]; })
+          : tiles;
+        std::vector<std::int64_t> fullLast =
+          mirrored ? Unfold(last, part, options, [](std::int64_t v) { return v; }) : last;
+        PatternSample s =
+          MakeSample(scorer, model, options, std::move(fullTiles), std::move(fullLast));
+        s.Moves = result.Moves;
+        s.Seconds = seconds;
+        result.Samples.push_back(std::move(s));
+      });
+  }
+  result.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+} // namespace msynth
