@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 
@@ -31,12 +32,32 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
   this->Stride = { { 1, size[0], size[0] * size[1] } };
   this->T = model.NumberOfTiles();
   this->Shapes = 3 + static_cast<int>(model.SoftShapes.size());
-  const auto& full = options.Size;
-  const std::int64_t fullN = full[0] * full[1] * full[2];
-  const auto n = static_cast<std::size_t>(this->N);
+  const std::int64_t fullN = options.Size[0] * options.Size[1] * options.Size[2];
+  if (!options.SiteZone.empty() && static_cast<std::int64_t>(options.SiteZone.size()) != fullN)
+    throw Error("the zoning has " + std::to_string(options.SiteZone.size()) +
+      " sites, the output " + std::to_string(fullN));
+  if (!options.Fixed.empty() && static_cast<std::int64_t>(options.Fixed.size()) != fullN)
+    throw Error("the fixed sites have " + std::to_string(options.Fixed.size()) +
+      " sites, the output " + std::to_string(fullN));
+  this->MarkFactors();
+  this->BuildSiteClasses(options, seams);
+  const std::vector<std::vector<int>> members = this->BuildSoftGroups(options);
+  for (const auto& group : members)
+  {
+    std::vector<std::unordered_set<std::uint64_t>> perShape(model.SoftShapes.size());
+    for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
+      for (int e : group)
+        perShape[k].insert(model.Observed[k][static_cast<std::size_t>(e)].begin(),
+          model.Observed[k][static_cast<std::size_t>(e)].end());
+    this->GroupObserved.push_back(std::move(perShape));
+  }
+}
 
-  // Factors and their validity.
-  this->Valid.assign(static_cast<std::size_t>(this->Shapes) * n, 0);
+void PatternProblem::MarkFactors()
+{
+  const FactorModel& model = this->Model;
+  const auto& size = this->Size;
+  this->Valid.assign(static_cast<std::size_t>(this->Shapes * this->N), 0);
   for (std::int64_t p = 0; p < this->N; ++p)
   {
     const auto c = this->Coordinates(p);
@@ -63,28 +84,10 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
       steps.push_back(o[0] + o[1] * this->Stride[1] + o[2] * this->Stride[2]);
     this->SoftSteps.push_back(std::move(steps));
   }
+}
 
-  // Zone tiles, fixed sites and seams make each site's class of allowed tiles.
-  if (!options.SiteZone.empty() && static_cast<std::int64_t>(options.SiteZone.size()) != fullN)
-    throw Error("the zoning has " + std::to_string(options.SiteZone.size()) +
-      " sites, the output " + std::to_string(fullN));
-  if (!options.Fixed.empty() && static_cast<std::int64_t>(options.Fixed.size()) != fullN)
-    throw Error("the fixed sites have " + std::to_string(options.Fixed.size()) +
-      " sites, the output " + std::to_string(fullN));
-  std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
-  for (const auto& [zone, values] : options.ZoneTiles)
-  {
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 0);
-    for (Label v : values)
-    {
-      const int t = model.TileIndex(v);
-      if (t < 0)
-        throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
-          ", which no exemplar holds");
-      mask[static_cast<std::size_t>(t)] = 1;
-    }
-    zoneMask[zone] = std::move(mask);
-  }
+std::vector<std::vector<int>> PatternProblem::BuildSoftGroups(const PatternOptions& options)
+{
   std::map<std::int32_t, std::int32_t> zoneGroup; // zone → group
   std::map<std::vector<int>, std::int32_t> groups;
   std::vector<std::vector<int>> groupMembers;
@@ -99,7 +102,7 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
     return g;
   };
   std::vector<int> all;
-  for (int e = 0; e < model.NumberOfExemplars; ++e)
+  for (int e = 0; e < this->Model.NumberOfExemplars; ++e)
     all.push_back(e);
   const std::int32_t allGroup = groupOf(all);
   for (const auto& [zone, members] : options.ZoneExemplars)
@@ -108,17 +111,49 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
     for (int e : sorted)
-      if (e < 0 || e >= model.NumberOfExemplars)
+      if (e < 0 || e >= this->Model.NumberOfExemplars)
         throw Error("zone " + std::to_string(zone) + " takes its factors from exemplar " +
-          std::to_string(e + 1) + ", but there are " + std::to_string(model.NumberOfExemplars));
+          std::to_string(e + 1) + ", but there are " +
+          std::to_string(this->Model.NumberOfExemplars));
     if (sorted.empty())
       throw Error("zone " + std::to_string(zone) + " takes its factors from no exemplar");
     zoneGroup[zone] = groupOf(sorted);
   }
+  const auto& full = options.Size;
+  this->SiteGroup.assign(static_cast<std::size_t>(this->N), allGroup);
+  if (!options.SiteZone.empty() && !zoneGroup.empty())
+    for (std::int64_t p = 0; p < this->N; ++p)
+    {
+      const auto c = this->Coordinates(p);
+      const std::int64_t fp = c[0] + full[0] * (c[1] + full[1] * c[2]);
+      const auto zg = zoneGroup.find(options.SiteZone[static_cast<std::size_t>(fp)]);
+      if (zg != zoneGroup.end())
+        this->SiteGroup[static_cast<std::size_t>(p)] = zg->second;
+    }
+  return groupMembers;
+}
 
+void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
+{
+  const FactorModel& model = this->Model;
+  const auto& size = this->Size;
+  const auto& full = options.Size;
+  std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
+  for (const auto& [zone, values] : options.ZoneTiles)
+  {
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 0);
+    for (Label v : values)
+    {
+      const int t = model.TileIndex(v);
+      if (t < 0)
+        throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
+          ", which no exemplar holds");
+      mask[static_cast<std::size_t>(t)] = 1;
+    }
+    zoneMask[zone] = std::move(mask);
+  }
   std::map<std::tuple<std::int32_t, std::int32_t, int>, std::int32_t> classes;
-  this->SiteClass.resize(n);
-  this->SiteGroup.assign(n, allGroup);
+  this->SiteClass.resize(static_cast<std::size_t>(this->N));
   for (std::int64_t p = 0; p < this->N; ++p)
   {
     const auto c = this->Coordinates(p);
@@ -175,18 +210,6 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
       this->ClassTiles.push_back(std::move(tiles));
     }
     this->SiteClass[static_cast<std::size_t>(p)] = it->second;
-    const auto zg = zoneGroup.find(zone);
-    if (zg != zoneGroup.end())
-      this->SiteGroup[static_cast<std::size_t>(p)] = zg->second;
-  }
-  for (const auto& members : groupMembers)
-  {
-    std::vector<std::unordered_set<std::uint64_t>> perShape(model.SoftShapes.size());
-    for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
-      for (int e : members)
-        perShape[k].insert(model.Observed[k][static_cast<std::size_t>(e)].begin(),
-          model.Observed[k][static_cast<std::size_t>(e)].end());
-    this->GroupObserved.push_back(std::move(perShape));
   }
 }
 

@@ -119,6 +119,11 @@ public:
     const std::vector<std::int32_t>& tiles, std::vector<std::int32_t>* perSite) const;
   /// Hard factors @p tiles violates.
   std::int64_t CountViolatedHard(const std::vector<std::int32_t>& tiles) const;
+
+private:
+  void MarkFactors();
+  void BuildSiteClasses(const PatternOptions& options, bool seams);
+  std::vector<std::vector<int>> BuildSoftGroups(const PatternOptions& options);
 };
 
 } // namespace detail

@@ -144,49 +144,8 @@ int vtkMSPatternSynthesis::RequestData(
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  if (vtkImageData* zones = vtkImageData::GetData(inputVector[1], 0))
-  {
-    msynth::LabelGrid grid;
-    if (!ReadIntegers(zones, "Zone", grid, problem))
-    {
-      vtkErrorMacro(<< "Zones (" << vtkMSFieldData::ExampleName(zones) << "): " << problem);
-      return 0;
-    }
-    options.SiteZone.resize(static_cast<std::size_t>(sites));
-    const auto& d = grid.Dimensions();
-    for (std::int64_t z = 0; z < options.Size[2]; ++z)
-      for (std::int64_t y = 0; y < options.Size[1]; ++y)
-        for (std::int64_t x = 0; x < options.Size[0]; ++x)
-        {
-          const std::int64_t p[3] = { x, y, z };
-          std::int64_t c[3];
-          for (int a = 0; a < 3; ++a)
-            c[a] = std::min(d[a] - 1, ((2 * p[a] + 1) * d[a]) / (2 * options.Size[a]));
-          options
-            .SiteZone[static_cast<std::size_t>(x + options.Size[0] * (y + options.Size[1] * z))] =
-            grid.At(c[0], c[1], c[2]);
-        }
-    inputs.push_back(zones);
-  }
-  if (vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0))
-  {
-    msynth::LabelGrid grid;
-    if (!ReadIntegers(fixed, "Label", grid, problem))
-    {
-      vtkErrorMacro(<< "Fixed sites (" << vtkMSFieldData::ExampleName(fixed) << "): " << problem);
-      return 0;
-    }
-    if (grid.Dimensions() != options.Size)
-    {
-      vtkErrorMacro(<< "Fixed sites (" << vtkMSFieldData::ExampleName(fixed) << "): the image has "
-                    << grid.Size(0) << " x " << grid.Size(1) << " x " << grid.Size(2)
-                    << " sites, the output " << options.Size[0] << " x " << options.Size[1] << " x "
-                    << options.Size[2] << ".");
-      return 0;
-    }
-    options.Fixed = grid.Data();
-    inputs.push_back(fixed);
-  }
+  if (!this->ReadZonesAndFixed(inputVector, options, inputs))
+    return 0;
   for (int a = 0; a < 3; ++a)
     options.Mirror[static_cast<std::size_t>(a)] = this->Mirror[a] != 0;
   options.Epsilon = this->Epsilon;
@@ -250,7 +209,66 @@ int vtkMSPatternSynthesis::RequestData(
   output->GetPointData()->AddArray(last);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
 
-  vtkFieldData* fd = output->GetFieldData();
+  this->AddFields(output->GetFieldData(), result, sample);
+  return 1;
+}
+
+bool vtkMSPatternSynthesis::ReadZonesAndFixed(vtkInformationVector** inputVector,
+  msynth::PatternOptions& options, std::vector<vtkDataObject*>& inputs)
+{
+  std::string problem;
+  const std::int64_t sites = options.Size[0] * options.Size[1] * options.Size[2];
+  if (vtkImageData* zones = vtkImageData::GetData(inputVector[1], 0))
+  {
+    msynth::LabelGrid grid;
+    if (!ReadIntegers(zones, "Zone", grid, problem))
+    {
+      vtkErrorMacro(<< "Zones (" << vtkMSFieldData::ExampleName(zones) << "): " << problem);
+      return false;
+    }
+    options.SiteZone.resize(static_cast<std::size_t>(sites));
+    const auto& d = grid.Dimensions();
+    for (std::int64_t z = 0; z < options.Size[2]; ++z)
+      for (std::int64_t y = 0; y < options.Size[1]; ++y)
+        for (std::int64_t x = 0; x < options.Size[0]; ++x)
+        {
+          const std::int64_t p[3] = { x, y, z };
+          std::int64_t c[3];
+          for (int a = 0; a < 3; ++a)
+            c[a] = std::min(d[a] - 1, ((2 * p[a] + 1) * d[a]) / (2 * options.Size[a]));
+          options
+            .SiteZone[static_cast<std::size_t>(x + options.Size[0] * (y + options.Size[1] * z))] =
+            grid.At(c[0], c[1], c[2]);
+        }
+    inputs.push_back(zones);
+  }
+  if (vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0))
+  {
+    msynth::LabelGrid grid;
+    if (!ReadIntegers(fixed, "Label", grid, problem))
+    {
+      vtkErrorMacro(<< "Fixed sites (" << vtkMSFieldData::ExampleName(fixed) << "): " << problem);
+      return false;
+    }
+    if (grid.Dimensions() != options.Size)
+    {
+      vtkErrorMacro(<< "Fixed sites (" << vtkMSFieldData::ExampleName(fixed) << "): the image has "
+                    << grid.Size(0) << " x " << grid.Size(1) << " x " << grid.Size(2)
+                    << " sites, the output " << options.Size[0] << " x " << options.Size[1] << " x "
+                    << options.Size[2] << ".");
+      return false;
+    }
+    options.Fixed = grid.Data();
+    inputs.push_back(fixed);
+  }
+  return true;
+}
+
+void vtkMSPatternSynthesis::AddFields(
+  vtkFieldData* fd, const msynth::PatternResult& result, const msynth::PatternSample& sample)
+{
+  const Cache& cache = *this->Cached;
+  const std::size_t step = static_cast<std::size_t>(&sample - result.Samples.data());
   vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Sample", static_cast<int>(step));
   vtkMSFieldData::AddFieldValue<vtkIntArray>(
     fd, "Samples", static_cast<int>(result.Samples.size()));
@@ -275,7 +293,6 @@ int vtkMSPatternSynthesis::RequestData(
   method->InsertNextValue(MethodName(this->Method));
   fd->AddArray(method);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
-  return 1;
 }
 
 void vtkMSPatternSynthesis::PrintSelf(ostream& os, vtkIndent indent)

@@ -37,6 +37,15 @@
 
 #include <memory> // for the cache
 #include <string> // for ivars
+#include <vector> // for inputs
+
+class vtkFieldData;
+namespace msynth
+{
+struct PatternOptions;
+struct PatternResult;
+struct PatternSample;
+}
 
 class MODELSYNTHFILTERS_EXPORT vtkMSPatternSynthesis : public vtkImageAlgorithm
 {
@@ -126,6 +135,12 @@ protected:
 
 private:
   vtkMSPatternSynthesis(const vtkMSPatternSynthesis&) = delete;
+  /// Zones (port 1) and fixed sites (port 2) into @p options; their images join @p inputs.
+  bool ReadZonesAndFixed(vtkInformationVector** inputVector, msynth::PatternOptions& options,
+    std::vector<vtkDataObject*>& inputs);
+  /// The field data of @p sample of @p result.
+  void AddFields(
+    vtkFieldData* fd, const msynth::PatternResult& result, const msynth::PatternSample& sample);
   void operator=(const vtkMSPatternSynthesis&) = delete;
 
   int OutputSize[3] = { 20, 20, 1 };
