@@ -399,20 +399,22 @@ PATTERN_SETS = {
                            "#fbbbbf#", "#fbbbbf#", "#fbbbbf#"]),
             ("=", "plinth", ["dddddddd", "########", "dddddddd", "dddddddd", "dddddddd",
                              "dddddddd", "dddddddd", "dddddddd"]),
+            ("~", "string course", ["########", "dddddddd", "ffffffff", "ffffffff", "dddddddd",
+                                    "########", "########", "########"]),
         ],
         "exemplars": {
-            # Rectangular: windows four tiles high (top, two middles, sill), three tiles apart;
-            # a door four tiles high on the plinth.
+            # Rectangular: windows four tiles high (top, two middles, sill), three tiles apart,
+            # under a cornice; a string course between the floors; a door four tiles high on the
+            # plinth. Plain wall never spans four tiles in a row.
             "facade-rectangular": [
                 "............",
                 "............",
                 "------------",
-                "############",
                 "#T##T##T##T#",
                 "#W##W##W##W#",
                 "#W##W##W##W#",
                 "#_##_##_##_#",
-                "############",
+                "~~~~~~~~~~~~",
                 "#T##D##T##T#",
                 "#W##d##W##W#",
                 "#W##d##W##W#",
@@ -423,18 +425,16 @@ PATTERN_SETS = {
             "facade-l-shaped": [
                 "...............",
                 "-------........",
-                "#######........",
                 "#T##T##........",
                 "#W##W##........",
                 "#W##W##........",
                 "#_##_##........",
-                "#######--------",
-                "###############",
+                "~~~~~~~--------",
                 "#T##T##T##T##T#",
                 "#W##W##W##W##W#",
                 "#W##W##W##W##W#",
                 "#_##_##_##_##_#",
-                "###############",
+                "~~~~~~~~~~~~~~~",
                 "#T##D##T##T##D#",
                 "#W##d##W##W##d#",
                 "#W##d##W##W##d#",
@@ -562,6 +562,17 @@ PATTERN_SETS = {
 }
 
 
+# Zonings (zone ids as digits, top row first). An L-shaped facade as Fig. 9(b) zones one: 0 the
+# facade, 1 sky, 2 the plinth, 3 string courses (the floors' heights). A frame: 1 its ring, 2 a
+# band that may hold ornaments, 0 blank paper inside.
+PATTERN_ZONES = {
+    "facade-l-zones": ["1" * 28] * 2 + ["0" * 14 + "1" * 14] * 5 + ["0" * 28] * 5 + ["3" * 28]
+    + ["0" * 28] * 4 + ["2" * 28],
+    "border-zones": ["1" * 24] + ["1" + "2" * 22 + "1"] * 2 + ["1" + "22" + "0" * 18 + "22" + "1"] * 10
+    + ["1" + "2" * 22 + "1"] * 2 + ["1" * 24],
+}
+
+
 def pattern_data(data):
     """Data/Patterns: NAME.xml with NAME/<tile>.png for each set, and the exemplars as .vti."""
     from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -599,6 +610,14 @@ def pattern_data(data):
             write(label_image((len(rows[0]), h, 1),
                               lambda x, y, z: chars.index(rows[h - 1 - y][x])),
                   os.path.join(folder, name + ".vti"))
+    for name, rows in PATTERN_ZONES.items():
+        assert all(len(r) == len(rows[0]) for r in rows), name
+        h = len(rows)
+        write(label_image((len(rows[0]), h, 1), lambda x, y, z: int(rows[h - 1 - y][x]), name="Zone"),
+              os.path.join(folder, name + ".vti"))
+    # Crossroads every 20 tiles over a 170 x 170 city (-1: free), as Yeh et al. fix them.
+    write(label_image((170, 170, 1), lambda x, y, z: 3 if x % 20 == 10 and y % 20 == 10 else -1),
+          os.path.join(folder, "city-crossroads-170.vti"))
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@
  *   animate     AnimateCommand.cxx     time-varying synthesis
  *   check       CheckCommand.cxx       the independent checks of a model against its example
  *   batch       BatchCommand.cxx       every entry of a sample list (samples.xml), checked
+ *   pattern     PatternCommand.cxx     factor-graph pattern synthesis (Yeh 2012, BLOCKSS)
+ *   quality     PatternCommand.cxx     the KL divergence of a pattern to its exemplars
  */
 #include <CLI/CLI.hpp>
 
@@ -31,6 +33,8 @@ CommandRunner AddSynthesize(CLI::App& app);
 CommandRunner AddAnimate(CLI::App& app);
 CommandRunner AddCheck(CLI::App& app);
 CommandRunner AddBatch(CLI::App& app);
+CommandRunner AddPattern(CLI::App& app);
+CommandRunner AddQuality(CLI::App& app);
 
 } // namespace cli
 } // namespace msynth

@@ -9,12 +9,16 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVariant.h"
 
 #include "Core/Error.h"
 #include "Core/OutputFolder.h"
+#include "Formats/Image.h"
 
 #include <cctype>
 #include <cmath>
@@ -247,6 +251,22 @@ void ProgressBar::OnProgress(double f)
             << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
             << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
   this->Shown = true;
+}
+
+void WritePicturePng(vtkImageData* rgba, const std::string& path)
+{
+  int dims[3];
+  rgba->GetDimensions(dims);
+  auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
+  if (!pixels || pixels->GetNumberOfComponents() != 4)
+    throw std::runtime_error("'" + path + "': the picture is not an RGBA image");
+  // VTK's rows are bottom first, the PNG's top first: row y is VTK's row dims[1] - 1 - y.
+  msynth::WritePng(path, dims[0], dims[1],
+    [&](int y)
+    {
+      return static_cast<const std::uint8_t*>(
+        pixels->GetPointer(4 * static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0]));
+    });
 }
 
 void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel,

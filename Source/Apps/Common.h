@@ -27,6 +27,7 @@
 
 class vtkAlgorithm;
 class vtkFieldData;
+class vtkImageData;
 class vtkTable;
 
 namespace msynth
@@ -115,6 +116,9 @@ private:
   unsigned long Observer = 0;
   bool Shown = false;
 };
+
+/// The RGBA image @p rgba (VTK rows bottom first) as a PNG, top row first (msynth::WritePng).
+void WritePicturePng(vtkImageData* rgba, const std::string& path);
 
 /// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
 /// 0: the writer's default) with file metadata @p key = @p value.

@@ -378,17 +378,7 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
     }
     throw std::runtime_error(messages);
   }
-  vtkImageData* rgba = composer->GetOutput();
-  int dims[3];
-  rgba->GetDimensions(dims);
-  auto* pixels = vtkUnsignedCharArray::SafeDownCast(rgba->GetPointData()->GetScalars());
-  // VTK's rows are bottom first, the PNG's top first: row y is VTK's row dims[1] - 1 - y.
-  msynth::WritePng(dir + "/picture.png", dims[0], dims[1],
-    [&](int y)
-    {
-      return static_cast<const std::uint8_t*>(
-        pixels->GetPointer(4 * static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0]));
-    });
+  WritePicturePng(composer->GetOutput(), dir + "/picture.png");
   written.push_back(dir + "/picture.png");
 }
 

@@ -113,6 +113,8 @@ int Main(int argc, char* argv[])
   commands["animate"] = msynth::cli::AddAnimate(app);
   commands["check"] = msynth::cli::AddCheck(app);
   commands["batch"] = msynth::cli::AddBatch(app);
+  commands["pattern"] = msynth::cli::AddPattern(app);
+  commands["quality"] = msynth::cli::AddQuality(app);
   for (CLI::App* command : app.get_subcommands({}))
   {
     command->fallthrough(); // --verbose after the command too

@@ -34,7 +34,7 @@ LabelGrid Art(const std::vector<std::string>& rows, const std::string& chars)
 }
 
 const std::string FacadeTiles = ".-#TW_Dd=";
-// The bundled rectangular facade (Utilities/make-test-data.py).
+// A rectangular facade with windows of four tiles and a door (cf. Data/Patterns).
 LabelGrid Facade()
 {
   return Art({ "............", "............", "------------", "############", "#T##T##T##T#",
@@ -137,7 +137,7 @@ TEST(PatternSynthesis, BaselinesSatisfyTheHardFactors)
   ExpectValid(ex, csp);
 }
 
-// The bundled L-shaped facade.
+// An L-shaped facade: a tower beside a wider block.
 static LabelGrid LShapedFacade()
 {
   return Art(

@@ -74,7 +74,8 @@ private:
 class Sampler
 {
 public:
-  Sampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result)
+  Sampler(const PatternProblem& problem, const PatternOptions& options,
+    const std::vector<std::int32_t>& start, PatternResult& result)
     : P(problem)
     , O(options)
     , R(result)
@@ -88,8 +89,10 @@ public:
     this->Sat.assign(factors, 0);
     this->Stamp.assign(factors, 0);
     this->LastChange.assign(n, 0);
-    this->Tiles.resize(n);
-    for (std::int64_t p = 0; p < problem.N; ++p)
+    this->Tiles = start;
+    if (this->Tiles.size() != n)
+      this->Tiles.resize(n);
+    for (std::int64_t p = 0; start.size() != n && p < problem.N; ++p)
     {
       const auto& allowed =
         problem
@@ -288,6 +291,7 @@ private:
     this->Sites.clear();
     this->Cells.clear();
     this->Affected.clear();
+    this->Free.clear();
     if (++this->CurrentStamp == 0) // wrapped: old stamps could collide
     {
       std::fill(this->Stamp.begin(), this->Stamp.end(), 0u);
@@ -311,10 +315,13 @@ private:
         [this](std::int64_t f)
         {
           auto& stamp = this->Stamp[static_cast<std::size_t>(f)];
-          if (stamp == this->CurrentStamp || !this->InSlice[static_cast<std::size_t>(f)])
+          if (stamp == this->CurrentStamp)
             return;
           stamp = this->CurrentStamp;
-          this->Affected.push_back(f);
+          if (this->InSlice[static_cast<std::size_t>(f)])
+            this->Affected.push_back(f);
+          else if (!this->P.IsHard(f))
+            this->Free.push_back(f);
         });
     }
     this->Saved.resize(this->Sites.size());
@@ -399,10 +406,14 @@ private:
     std::int64_t best = -1;
     std::size_t bestK = 0;
     std::uint64_t ties = 0;
+    const std::int64_t weight = static_cast<std::int64_t>(this->Free.size()) + 1;
     for (std::size_t i = 0; i < tries; ++i)
     {
       const std::size_t k = tries == count ? i : static_cast<std::size_t>(this->Rng.Below(count));
-      const std::int64_t c = this->Write(this->BlockConfig(pl.Shape, k));
+      // The slice's factors first; among ties, the soft factors outside it (see the header).
+      std::int64_t c = this->Write(this->BlockConfig(pl.Shape, k)) * weight;
+      for (std::int64_t f : this->Free)
+        c += this->P.Satisfied(f, this->Tiles) ? 1 : 0;
       this->Restore();
       if (c > best)
       {
@@ -415,6 +426,22 @@ private:
     }
     this->Write(this->BlockConfig(pl.Shape, bestK));
     this->Commit();
+  }
+
+  /// A soft factor whose configuration no exemplar shows, found by a few random draws; -1 if
+  /// none was found.
+  std::int64_t UnsatisfiedSoftFactor()
+  {
+    if (this->P.Shapes == 3)
+      return -1;
+    const auto soft = static_cast<std::uint64_t>((this->P.Shapes - 3) * this->P.N);
+    for (int tries = 0; tries < 16; ++tries)
+    {
+      const std::int64_t f = 3 * this->P.N + static_cast<std::int64_t>(this->Rng.Below(soft));
+      if (this->P.Valid[static_cast<std::size_t>(f)] && !this->P.Satisfied(f, this->Tiles))
+        return f;
+    }
+    return -1;
   }
 
   /// The annealing move: a random block anywhere, kept with min(1, exp(Δc / T)).
@@ -448,6 +475,16 @@ private:
         this->OutOfMoves(n);
       if (!this->Tick(moves, minimum, n, total))
         return false;
+      if (this->Unsat.Empty() && this->O.SoftWalk && this->Rng.Uniform() < this->O.WalkProbability)
+      {
+        const std::int64_t f = this->UnsatisfiedSoftFactor();
+        if (f >= 0)
+        {
+          ++this->R.WalkMoves;
+          this->BestBlock(this->CoveringPlacement(f));
+          continue;
+        }
+      }
       if (!this->Unsat.Empty() && this->Rng.Uniform() < this->O.WalkProbability)
       {
         ++this->R.WalkMoves;
@@ -548,14 +585,15 @@ private:
   std::vector<std::int32_t> Cells;
   std::vector<std::int32_t> Saved;
   std::vector<std::int64_t> Affected;
+  std::vector<std::int64_t> Free; ///< soft factors outside the slice touching the block
 };
 
 } // namespace
 
-bool RunSampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result,
-  const SampleSink& take)
+bool RunSampler(const PatternProblem& problem, const PatternOptions& options,
+  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take)
 {
-  Sampler sampler(problem, options, result);
+  Sampler sampler(problem, options, start, result);
   return sampler.Run(take);
 }
 

@@ -19,11 +19,12 @@ using SampleSink =
   std::function<void(const std::vector<std::int32_t>&, const std::vector<std::int64_t>&, double)>;
 
 /**
- * Runs the burn-in and the samples of @p options on @p problem, counting moves in @p result.
+ * Runs the burn-in and the samples of @p options on @p problem from @p start (tile indices; empty:
+ * drawn at random), counting moves in @p result.
  * @return false when the progress callback cancelled. @throw Error when MaxMoves runs out.
  */
-bool RunSampler(const PatternProblem& problem, const PatternOptions& options, PatternResult& result,
-  const SampleSink& take);
+bool RunSampler(const PatternProblem& problem, const PatternOptions& options,
+  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take);
 
 } // namespace detail
 } // namespace msynth

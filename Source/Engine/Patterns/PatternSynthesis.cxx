@@ -129,12 +129,9 @@ PatternSample MakeSample(const PatternProblem& scorer, const FactorModel& m,
   return s;
 }
 
-/// §8.1's pure constraint solver: discrete model synthesis with the hard pairs as its rules,
-/// zones and fixed sites as a guide of zero weights, the mirror as its reflection symmetry.
-void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
-  const PatternOptions& o, PatternResult& result)
+/// The discrete solver's rules from the hard pairs.
+AdjacencyRules PairRules(const FactorModel& m)
 {
-  const auto start = std::chrono::steady_clock::now();
   std::array<std::vector<std::pair<int, int>>, 3> pairs;
   const int t = m.NumberOfTiles();
   for (int a = 0; a < 3; ++a)
@@ -142,49 +139,79 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
       for (int c = 0; c < t; ++c)
         if (m.Allowed(a, b, c))
           pairs[static_cast<std::size_t>(a)].emplace_back(b, c);
-  const AdjacencyRules rules = AdjacencyRules::FromPairs(
+  return AdjacencyRules::FromPairs(
     m.Tiles, std::vector<double>(static_cast<std::size_t>(t), 1.0), pairs);
+}
+
+/// Discrete synthesis options for @p problem's sites: zones, fixed sites and seams as a guide of
+/// zero weights; with @p mirror the options' mirrors as reflection symmetry (over the output).
+SynthesisOptions SolverOptions(
+  const FactorModel& m, const PatternProblem& problem, const PatternOptions& o, bool mirror)
+{
   SynthesisOptions so;
-  so.Size = o.Size;
+  so.Size = problem.Size;
   so.Order = SiteOrder::Random; // as §8.1 randomised MINION's variable order
   so.AttemptsPerBlock = 20;
   so.Threads = 1;
-  if (scorer.ClassTiles.size() > 1 || scorer.ClassTiles[0].size() != static_cast<std::size_t>(t))
+  const int t = m.NumberOfTiles();
+  if (problem.ClassTiles.size() > 1 || problem.ClassTiles[0].size() != static_cast<std::size_t>(t))
   {
     GuideVolume guide;
-    guide.Dims = o.Size;
+    guide.Dims = problem.Size;
     for (int b = 0; b < t; ++b)
     {
-      std::vector<float> w(static_cast<std::size_t>(scorer.N), 1.0f);
-      for (std::int64_t p = 0; p < scorer.N; ++p)
-        if (!scorer.AllowedAt(p, b))
+      std::vector<float> w(static_cast<std::size_t>(problem.N), 1.0f);
+      for (std::int64_t p = 0; p < problem.N; ++p)
+        if (!problem.AllowedAt(p, b))
           w[static_cast<std::size_t>(p)] = 0.0f;
       guide.Weights[m.Tiles[static_cast<std::size_t>(b)]] = std::move(w);
     }
     so.Guide = std::move(guide);
   }
-  for (std::size_t a = 0; a < 3; ++a)
-    if (o.Mirror[a])
-    {
-      so.Symmetry[a].Enabled = true;
-      so.Symmetry[a].Map = o.MirrorMap;
-    }
+  if (mirror)
+    for (std::size_t a = 0; a < 3; ++a)
+      if (o.Mirror[a])
+      {
+        so.Symmetry[a].Enabled = true;
+        so.Symmetry[a].Map = o.MirrorMap;
+      }
   so.Progress = o.Progress;
+  return so;
+}
+
+/// One run of the discrete solver as tile indices; empty when cancelled.
+std::vector<std::int32_t> SolveOnce(const FactorModel& m, const AdjacencyRules& rules,
+  SynthesisOptions& so, std::uint64_t seed, PatternResult& result)
+{
+  so.Seed = seed;
+  SynthesisResult r = Synthesize(rules, so);
+  result.Moves += r.Statistics.Assignments;
+  if (r.Status == SynthesisStatus::Cancelled)
+  {
+    result.Cancelled = true;
+    return {};
+  }
+  if (!r.Succeeded())
+    throw Error("the constraint solver found no pattern: " + r.Message);
+  std::vector<std::int32_t> tiles(r.Model.Data().size());
+  for (std::size_t i = 0; i < tiles.size(); ++i)
+    tiles[i] = m.TileIndex(r.Model.Data()[i]);
+  return tiles;
+}
+
+/// §8.1's pure constraint solver: discrete model synthesis on the hard pairs, one run a sample.
+void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
+  const PatternOptions& o, PatternResult& result)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const AdjacencyRules rules = PairRules(m);
+  SynthesisOptions so = SolverOptions(m, scorer, o, true);
   for (int n = 0; n < o.Samples; ++n)
   {
-    so.Seed = Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next();
-    SynthesisResult r = Synthesize(rules, so);
-    result.Moves += r.Statistics.Assignments;
-    if (r.Status == SynthesisStatus::Cancelled)
-    {
-      result.Cancelled = true;
+    std::vector<std::int32_t> tiles = SolveOnce(
+      m, rules, so, Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(), result);
+    if (result.Cancelled)
       return;
-    }
-    if (!r.Succeeded())
-      throw Error("the constraint solver found no pattern: " + r.Message);
-    std::vector<std::int32_t> tiles(r.Model.Data().size());
-    for (std::size_t i = 0; i < tiles.size(); ++i)
-      tiles[i] = m.TileIndex(r.Model.Data()[i]);
     std::vector<std::int64_t> last(tiles.size(), 0);
     PatternSample s = MakeSample(scorer, m, o, std::move(tiles), std::move(last));
     s.Moves = result.Moves;
@@ -314,7 +341,16 @@ PatternResult SynthesizePattern(
       mirror[static_cast<std::size_t>(b)] =
         it == options.MirrorMap.end() ? b : model.TileIndex(it->second);
     }
-    detail::RunSampler(problem, options, result,
+    std::vector<std::int32_t> initial;
+    if (options.Start == PatternStart::Solver && options.Method == PatternMethod::BlockSS)
+    {
+      SynthesisOptions so = SolverOptions(model, problem, options, false);
+      initial = SolveOnce(
+        model, PairRules(model), so, Random::Derived(options.Seed, 0x57a27).Next(), result);
+      if (result.Cancelled)
+        return result;
+    }
+    detail::RunSampler(problem, options, initial, result,
       [&](const std::vector<std::int32_t>& tiles, const std::vector<std::int64_t>& last,
         double seconds)
       {

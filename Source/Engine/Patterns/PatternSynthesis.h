@@ -44,6 +44,15 @@ enum class PatternMethod
   ConstraintSolver    ///< discrete model synthesis on the hard factors only (§8.1)
 };
 
+/// Where BLOCKSS starts.
+enum class PatternStart
+{
+  Random, ///< tiles drawn uniformly from those each site allows (Algorithm 1)
+  /// a pattern of the constraint solver, which satisfies the hard factors from the start: the
+  /// slices then only move it towards the soft factors (our addition; see PatternSynthesis.h)
+  Solver
+};
+
 struct PatternOptions
 {
   /// Output size in sites (nz = 1 for 2D).
@@ -75,6 +84,7 @@ struct PatternOptions
   std::map<Label, Label> MirrorMap;
 
   PatternMethod Method = PatternMethod::BlockSS;
+  PatternStart Start = PatternStart::Random;
   int Samples = 1;
   int BurnIn = 5; ///< samples discarded first (§8: the paper discards five)
   double Temperature = 0.25;
@@ -84,6 +94,13 @@ struct PatternOptions
   std::int64_t MovesPerSample = -1;
   /// Moves allowed in all before the run fails; -1: 20,000 per site (at least 10^7).
   std::int64_t MaxMoves = -1;
+  /**
+   * Soft walk (our addition): while the slice is satisfied, a WalkSAT move may go to a soft
+   * factor whose configuration no exemplar shows and place the covering block that satisfies
+   * the most slice factors and, among those, the most soft factors. Off: Algorithm 2 as
+   * published, whose moves then are all annealing moves.
+   */
+  bool SoftWalk = true;
   /// Candidates the WalkSAT move compares (0: every block of the chosen shape).
   int CandidatesPerMove = 0;
   std::uint64_t Seed = 0;

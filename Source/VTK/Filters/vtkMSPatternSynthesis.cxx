@@ -152,6 +152,8 @@ int vtkMSPatternSynthesis::RequestData(
   options.Method = this->Method == METROPOLIS_HASTINGS ? msynth::PatternMethod::MetropolisHastings
     : this->Method == CONSTRAINT_SOLVER                ? msynth::PatternMethod::ConstraintSolver
                                                        : msynth::PatternMethod::BlockSS;
+  options.Start =
+    this->Start == SOLVER_START ? msynth::PatternStart::Solver : msynth::PatternStart::Random;
   options.Samples = this->Samples;
   options.BurnIn = this->BurnIn;
   options.Temperature = this->Temperature;
@@ -305,6 +307,7 @@ void vtkMSPatternSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockScheme: " << this->BlockScheme << "\n";
   os << indent << "BlockShapes: " << this->BlockShapes << "\n";
   os << indent << "Method: " << MethodName(this->Method) << "\n";
+  os << indent << "Start: " << (this->Start == SOLVER_START ? "solver" : "random") << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "BurnIn: " << this->BurnIn << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -54,6 +54,11 @@ public:
   vtkTypeMacro(vtkMSPatternSynthesis, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  enum Starts
+  {
+    RANDOM_START = 0,
+    SOLVER_START = 1
+  };
   enum Methods
   {
     BLOCKSS = 0,
@@ -91,6 +96,9 @@ public:
   ///@{
   vtkSetClampMacro(Method, int, BLOCKSS, CONSTRAINT_SOLVER);
   vtkGetMacro(Method, int);
+  /// Where BLOCKSS starts: random tiles (Algorithm 1, default) or a constraint-solver pattern.
+  vtkSetClampMacro(Start, int, RANDOM_START, SOLVER_START);
+  vtkGetMacro(Start, int);
   vtkSetClampMacro(Samples, int, 1, 100000);
   vtkGetMacro(Samples, int);
   vtkSetClampMacro(BurnIn, int, 0, 100000);
@@ -149,6 +157,7 @@ private:
   int BlockScheme = 6;
   std::string BlockShapes;
   int Method = BLOCKSS;
+  int Start = RANDOM_START;
   int Samples = 1;
   int BurnIn = 5;
   vtkIdType Seed = 0;

@@ -1,0 +1,420 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth pattern EXEMPLAR... --size NX NY [NZ]`: factor-graph pattern synthesis (Yeh et al.
+// 2012) through vtkMSPatternSynthesis, writing DIR/labels.vti (the last sample; with --samples
+// also labels_0001.vti ...), DIR/picture.png with --tileset, and DIR/statistics.json with the KL
+// divergence per factor shape and the log probability of each sample. Every sample is checked
+// against the exemplars' pairs (PatternQuality.h) before anything is written.
+// `msynth quality EXEMPLAR... MODEL --factors 4H,4V`: the KL divergence of any model.
+#include "Commands.h"
+#include "Common.h"
+#include "vtkMSLabelArrays.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSPatternSynthesis.h"
+#include "vtkMSTileImage.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include "Patterns/PatternQuality.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+const std::vector<std::string> Methods{ "blockss", "mh", "csp" };
+const std::vector<std::string> Starts{ "random", "solver" };
+
+struct PatternCommandOptions
+{
+  std::vector<std::string> Exemplars;
+  std::vector<int> Size;
+  std::string Factors = "2H,2V";
+  std::string Measure;
+  double Epsilon = 0.1;
+  std::string Blocks = "B6";
+  std::string Zones;
+  std::vector<std::string> ZoneTiles;
+  std::vector<std::string> ZoneExemplars;
+  std::string Fixed;
+  std::string Mirror;
+  std::vector<std::string> Swaps;
+  std::string Tileset;
+  int Samples = 1;
+  int BurnIn = 5;
+  std::string Method = "blockss";
+  std::string Start = "random";
+  double Temperature = 0.25;
+  double PWalk = 0.6;
+  double PFlip = 0.1;
+  std::int64_t MovesPerSample = -1;
+  std::int64_t MaxMoves = -1;
+  std::int64_t Seed = 0;
+  std::string Out = "msynth-output";
+};
+
+/// The soft shapes of a --factors list: every shape but the pairs, which are always hard.
+std::string SoftOf(const std::string& factors)
+{
+  std::string soft;
+  for (const msynth::Stencil& s : msynth::ParseStencils(factors))
+  {
+    if (s.Offsets.size() == 2 && (s.Name == "2H" || s.Name == "2V" || s.Name == "2D"))
+      continue;
+    soft += (soft.empty() ? "" : ",") + s.Name;
+  }
+  return soft;
+}
+
+std::string Joined(const std::vector<std::string>& items, const char* sep)
+{
+  std::string out;
+  for (const auto& item : items)
+    out += (out.empty() ? "" : sep) + item;
+  return out;
+}
+
+vtkSmartPointer<vtkMSLabelGridReader> OpenGrid(const std::string& path, const char* array = "Label")
+{
+  auto reader = vtkSmartPointer<vtkMSLabelGridReader>::New();
+  reader->SetFileName(path.c_str());
+  reader->SetLabelArrayName(array);
+  Run(reader);
+  return reader;
+}
+
+/// A zoning: its `Zone` array, else its labels.
+vtkSmartPointer<vtkMSLabelGridReader> OpenZones(const std::string& path)
+{
+  try
+  {
+    return OpenGrid(path, "Zone");
+  }
+  catch (const std::exception&)
+  {
+    return OpenGrid(path);
+  }
+}
+
+msynth::LabelGrid GridOf(vtkImageData* image, const std::string& path)
+{
+  msynth::LabelGrid grid;
+  std::string problem;
+  if (!vtkMSLabelArrays::ReadLabels(image, nullptr, grid, problem))
+    throw std::runtime_error("'" + path + "': " + problem);
+  return grid;
+}
+
+void Configure(vtkMSPatternSynthesis* s, const PatternCommandOptions& o)
+{
+  s->SetOutputSize(o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1);
+  s->SetSoftFactors(SoftOf(o.Factors).c_str());
+  s->SetEpsilon(o.Epsilon);
+  if (o.Blocks.size() == 2 && (o.Blocks[0] == 'B' || o.Blocks[0] == 'b') &&
+    std::isdigit(static_cast<unsigned char>(o.Blocks[1])))
+    s->SetBlockScheme(o.Blocks[1] - '0');
+  else
+    s->SetBlockShapes(o.Blocks.c_str());
+  s->SetZoneTiles(Joined(o.ZoneTiles, ";").c_str());
+  s->SetZoneExemplars(Joined(o.ZoneExemplars, ";").c_str());
+  s->SetMirror(o.Mirror.find('x') != std::string::npos, o.Mirror.find('y') != std::string::npos,
+    o.Mirror.find('z') != std::string::npos);
+  s->SetMirrorSwaps(Joined(o.Swaps, ",").c_str());
+  s->SetSamples(o.Samples);
+  s->SetBurnIn(o.BurnIn);
+  s->SetMethod(IndexIn(o.Method, Methods));
+  s->SetStart(IndexIn(o.Start, Starts));
+  s->SetTemperature(o.Temperature);
+  s->SetWalkProbability(o.PWalk);
+  s->SetFlipProbability(o.PFlip);
+  s->SetMovesPerSample(static_cast<vtkIdType>(o.MovesPerSample));
+  s->SetMaxMoves(static_cast<vtkIdType>(o.MaxMoves));
+  s->SetSeed(static_cast<vtkIdType>(o.Seed));
+}
+
+double FieldValue(vtkFieldData* fd, const std::string& name)
+{
+  vtkDataArray* a = fd->GetArray(name.c_str());
+  return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+}
+
+std::string Number(double v)
+{
+  std::ostringstream s;
+  s << std::setprecision(6) << v;
+  return s.str();
+}
+
+int Pattern(const PatternCommandOptions& o, const std::string& dir)
+{
+  vtkNew<vtkMSPatternSynthesis> synthesis;
+  std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
+  std::vector<msynth::LabelGrid> exemplars;
+  for (const auto& path : o.Exemplars)
+  {
+    readers.push_back(OpenGrid(path));
+    exemplars.push_back(GridOf(readers.back()->GetOutput(), path));
+    synthesis->AddInputConnection(0, readers.back()->GetOutputPort());
+  }
+  if (!o.Zones.empty())
+  {
+    readers.push_back(OpenZones(o.Zones));
+    synthesis->SetZonesConnection(readers.back()->GetOutputPort());
+  }
+  if (!o.Fixed.empty())
+  {
+    readers.push_back(OpenGrid(o.Fixed));
+    synthesis->SetFixedConnection(readers.back()->GetOutputPort());
+  }
+  Configure(synthesis, o);
+  {
+    ProgressBar bar(synthesis);
+    synthesis->UpdateInformation();
+    Run(synthesis); // all samples at once; the steps below come from the filter's cache
+  }
+  const std::vector<msynth::Stencil> soft =
+    msynth::ParseStencils(o.Measure.empty() ? SoftOf(o.Factors) : o.Measure);
+  std::ostringstream samples;
+  std::vector<double> kl(soft.size(), 0.0);
+  double logp = 0.0;
+  vtkSmartPointer<vtkImageData> last;
+  for (int k = 0; k < o.Samples; ++k)
+  {
+    synthesis->UpdateTimeStep(k);
+    Run(synthesis);
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(synthesis->GetOutput());
+    const msynth::LabelGrid model = GridOf(image, "sample " + std::to_string(k + 1));
+    const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 1);
+    if (!problems.empty())
+      throw std::runtime_error(
+        "sample " + std::to_string(k + 1) + " breaks the exemplars' pairs: " + problems.front());
+    vtkFieldData* fd = image->GetFieldData();
+    samples << (k ? ",\n" : "") << "    {\"sample\": " << k + 1
+            << ", \"LogProbability\": " << Number(FieldValue(fd, "LogProbability"));
+    for (std::size_t i = 0; i < soft.size(); ++i)
+    {
+      const double v = msynth::PatternKL(exemplars, model, soft[i]);
+      kl[i] += v / o.Samples;
+      samples << ", \"KL_" << soft[i].Name << "\": " << Number(v);
+    }
+    logp += FieldValue(fd, "LogProbability") / o.Samples;
+    samples << ", \"Moves\": " << static_cast<long long>(FieldValue(fd, "SampleMoves"))
+            << ", \"Seconds\": " << Number(FieldValue(fd, "SampleSeconds")) << "}";
+    if (o.Samples > 1)
+    {
+      char name[32];
+      std::snprintf(name, sizeof(name), "/labels_%04d.vti", k + 1);
+      WriteXML<vtkXMLImageDataWriter>(dir + name, image.GetPointer());
+    }
+    last = image;
+  }
+  WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", last.GetPointer());
+  std::string picture;
+  if (!o.Tileset.empty())
+  {
+    vtkNew<vtkMSTileImage> tiles;
+    tiles->SetTilesetFile(o.Tileset.c_str());
+    tiles->SetInputData(last);
+    Run(tiles);
+    picture = dir + "/picture.png";
+    WritePicturePng(tiles->GetOutput(), picture);
+  }
+  vtkFieldData* fd = last->GetFieldData();
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"exemplars\": [";
+      for (std::size_t i = 0; i < o.Exemplars.size(); ++i)
+        out << (i ? ", " : "") << JsonString(o.Exemplars[i]);
+      out << "],\n  \"size\": [" << o.Size[0] << ", " << o.Size[1] << ", "
+          << (o.Size.size() > 2 ? o.Size[2] : 1) << "],\n  \"method\": " << JsonString(o.Method)
+          << ",\n  \"factors\": " << JsonString(o.Factors) << ",\n  \"epsilon\": " << o.Epsilon
+          << ",\n  \"seed\": " << o.Seed << ",\n  \"burnIn\": " << o.BurnIn
+          << ",\n  \"LogProbability\": " << Number(logp) << ",\n";
+      for (std::size_t i = 0; i < soft.size(); ++i)
+        out << "  \"KL_" << soft[i].Name << "\": " << Number(kl[i]) << ",\n";
+      for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
+             "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
+        out << "  \"" << name << "\": " << static_cast<long long>(FieldValue(fd, name)) << ",\n";
+      out << "  \"FirstValidSeconds\": " << Number(FieldValue(fd, "FirstValidSeconds"))
+          << ",\n  \"Seconds\": " << Number(FieldValue(fd, "Seconds")) << ",\n  \"samples\": [\n"
+          << samples.str() << "\n  ]\n}\n";
+    });
+  std::cout << o.Samples << " sample(s) of " << o.Size[0] << " x " << o.Size[1]
+            << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
+            << o.Method << " in " << Number(FieldValue(fd, "Seconds")) << " s (first valid after "
+            << Number(FieldValue(fd, "FirstValidSeconds"))
+            << " s); every pair occurs in an exemplar\n";
+  for (std::size_t i = 0; i < soft.size(); ++i)
+    std::cout << "KL " << soft[i].Name << ": " << Number(kl[i]) << "\n";
+  std::cout << "wrote " << dir << "/labels.vti" << (o.Samples > 1 ? ", labels_0001.vti ..." : "")
+            << (picture.empty() ? "" : ", " + picture) << ", " << dir << "/statistics.json\n";
+  return 0;
+}
+
+struct QualityOptions
+{
+  std::vector<std::string> Files;
+  std::string Factors = "4H,4V";
+  double Epsilon = 0.1;
+};
+
+int Quality(const QualityOptions& o)
+{
+  std::vector<msynth::LabelGrid> exemplars;
+  for (std::size_t i = 0; i + 1 < o.Files.size(); ++i)
+    exemplars.push_back(GridOf(OpenGrid(o.Files[i])->GetOutput(), o.Files[i]));
+  const std::string& path = o.Files.back();
+  const msynth::LabelGrid model = GridOf(OpenGrid(path)->GetOutput(), path);
+  const std::vector<msynth::Stencil> shapes = msynth::ParseStencils(o.Factors);
+  const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 5);
+  std::cout << path << ": " << model.Size(0) << " x " << model.Size(1) << " x " << model.Size(2)
+            << "\n";
+  double mean = 0.0;
+  for (const msynth::Stencil& s : shapes)
+  {
+    const double kl = msynth::PatternKL(exemplars, model, s);
+    mean += kl / static_cast<double>(shapes.size());
+    std::cout << "KL " << s.Name << ": " << Number(kl) << "\n";
+  }
+  if (shapes.size() > 1)
+    std::cout << "KL mean: " << Number(mean) << "\n";
+  std::vector<msynth::Stencil> soft;
+  for (const msynth::Stencil& s : shapes)
+    if (s.Offsets.size() > 2)
+      soft.push_back(s);
+  std::cout << "log probability: "
+            << Number(msynth::PatternLogProbability(exemplars, model, soft, o.Epsilon)) << "\n";
+  if (problems.empty())
+  {
+    std::cout << "every pair of neighbours occurs in an exemplar\n";
+    return 0;
+  }
+  for (const auto& p : problems)
+    std::cout << "seam: " << p << "\n";
+  return 1;
+}
+} // namespace
+
+CommandRunner AddPattern(CLI::App& app)
+{
+  auto o = std::make_shared<PatternCommandOptions>();
+  CLI::App* p = app.add_subcommand("pattern",
+    "factor-graph pattern synthesis (Yeh et al. 2012, BLOCKSS) from EXEMPLAR label grids; writes "
+    "DIR/labels.vti (the last sample; with --samples also labels_0001.vti ...), DIR/picture.png "
+    "with --tileset, and DIR/statistics.json (KL per factor shape, log probability)");
+  p->add_option("EXEMPLAR", o->Exemplars, "exemplar label grids (.vti, .txt, .vox) of one tile set")
+    ->required();
+  p->add_option("--size", o->Size, "output size NX NY [NZ] in tiles")
+    ->expected(2, 3)
+    ->required()
+    ->check(CLI::Range(1, 1000000000));
+  p->add_option("--factors", o->Factors,
+    "factor shapes: 2H, 2V (and 2D) are the hard pairs, always on; others are soft: NH, NV, ND, "
+    "AxB, AxBxC, or offsets like 0:0+1:0+1:1");
+  p->add_option("--measure", o->Measure,
+    "shapes whose KL divergence statistics.json reports (default: the soft factors)");
+  p->add_option("--epsilon", o->Epsilon, "a soft factor is 1 + E where an exemplar shows it")
+    ->check(NonNegativeReal());
+  p->add_option(
+    "--blocks", o->Blocks, "replacement blocks: scheme B1 ... B6, or shapes as --factors");
+  p->add_option("--zones", o->Zones, "zone ids per site (a label grid, stretched over the output)");
+  p->add_option("--zone-tiles", o->ZoneTiles, "zone Z allows only labels L1, L2, ... (Z:L1,L2)")
+    ->allow_extra_args(false);
+  p->add_option("--zone-exemplars", o->ZoneExemplars,
+     "zone Z takes its soft factors from exemplars E1, E2, ... numbered from 1 (Z:E1,E2)")
+    ->allow_extra_args(false);
+  p->add_option("--fixed", o->Fixed,
+    "a label grid of the output's size: sites holding an exemplar label are fixed to it");
+  p->add_option("--mirror", o->Mirror, "synthesize half and mirror it along AXES (x, y, z)")
+    ->check(CLI::IsMember({ "x", "y", "z", "xy", "xz", "yz", "xyz" }));
+  p->add_option("--swap", o->Swaps, "labels A and B are each other's mirror images (A:B)")
+    ->allow_extra_args(false);
+  p->add_option("--tileset", o->Tileset, "the tileset (.xml) whose images draw DIR/picture.png");
+  p->add_option("--samples", o->Samples, "samples to keep after the burn-in")
+    ->check(CLI::Range(1, 100000));
+  p->add_option("--burn-in", o->BurnIn, "samples discarded first")->check(CLI::Range(0, 100000));
+  p->add_option("--method", o->Method,
+     "blockss, mh (single-site Metropolis-Hastings) or csp "
+     "(the discrete solver on the hard pairs)")
+    ->check(CLI::IsMember(Methods));
+  p->add_option("--start", o->Start,
+     "where BLOCKSS starts: random tiles (the paper) or a pattern "
+     "of the constraint solver")
+    ->check(CLI::IsMember(Starts));
+  p->add_option("--temperature", o->Temperature, "T of the annealing moves")
+    ->check(CLI::Range(1e-6, 1e6));
+  p->add_option("--p-walk", o->PWalk, "probability of a WalkSAT move")->check(CLI::Range(0.0, 1.0));
+  p->add_option("--p-flip", o->PFlip, "probability that a WalkSAT move is a random block")
+    ->check(CLI::Range(0.0, 1.0));
+  p->add_option("--moves-per-sample", o->MovesPerSample,
+     "moves before a sample may end (-1: one per site; 0: the paper's Algorithm 2)")
+    ->check(CLI::Range(std::int64_t(-1), std::int64_t(1) << 50));
+  p->add_option("--max-moves", o->MaxMoves,
+     "moves allowed for a sample before the run fails "
+     "(-1: 20,000 per site, at least 10^7)")
+    ->check(CLI::Range(std::int64_t(-1), std::int64_t(1) << 50));
+  AddSeedOption(*p, o->Seed);
+  AddOutOption(*p, o->Out);
+  return [o]()
+  {
+    for (const auto& path : o->Exemplars)
+      CheckInputFile(path);
+    for (const std::string* path : { &o->Zones, &o->Fixed, &o->Tileset })
+      if (!path->empty())
+        CheckInputFile(*path);
+    try
+    {
+      SoftOf(o->Factors);
+      msynth::ParseStencils(o->Measure);
+    }
+    catch (const std::exception& e)
+    {
+      throw UsageError{ e.what() };
+    }
+    return IntoFolder(o->Out, [&](const std::string& dir) { return Pattern(*o, dir); });
+  };
+}
+
+CommandRunner AddQuality(CLI::App& app)
+{
+  auto o = std::make_shared<QualityOptions>();
+  CLI::App* q = app.add_subcommand("quality",
+    "how much MODEL looks like the EXEMPLARs (Yeh et al. 2012, §7): the KL divergence of its "
+    "configurations of each factor shape, its log probability, and whether every pair of "
+    "neighbours occurs in an exemplar (exit 1 if not)");
+  q->add_option("FILES", o->Files, "EXEMPLAR... MODEL: label grids (.vti, .txt, .vox)")
+    ->required()
+    ->expected(2, -1);
+  q->add_option("--factors", o->Factors, "factor shapes to measure (as msynth pattern --factors)");
+  q->add_option("--epsilon", o->Epsilon, "epsilon of the log probability")
+    ->check(NonNegativeReal());
+  return [o]()
+  {
+    for (const auto& path : o->Files)
+      CheckInputFile(path);
+    try
+    {
+      msynth::ParseStencils(o->Factors);
+    }
+    catch (const std::exception& e)
+    {
+      throw UsageError{ e.what() };
+    }
+    return Quality(*o);
+  };
+}
+
+} // namespace cli
+} // namespace msynth
