@@ -342,4 +342,25 @@ surface = servermanager.Fetch(ModelSynthOpenVDBReader(FileName=os.path.join(fold
 values = surface.GetPointData().GetArray("surface")
 check(values is not None and values.GetRange()[0] < 0 < values.GetRange()[1], "a signed level set")
 
+# Factor-graph pattern synthesis (Yeh et al. 2012): two facade exemplars through one multiple
+# input, samples as time steps, each checked here against the exemplars' pairs; the picture.
+patterns = os.path.join(DATA, "Patterns")
+facades = [ModelSynthLabelGridReader(FileName=os.path.join(patterns, name))
+           for name in ("facade-rectangular.vti", "facade-l-shaped.vti")]
+allowed = set()
+for f in facades:
+    allowed |= set(pair_counts(servermanager.Fetch(f)))
+pattern = ModelSynthPatternSynthesis(Exemplars=facades, OutputSize=[20, 13, 1], SoftFactors="4H,4V",
+                                     Samples=3, BurnIn=1, Seed=5)
+pattern.UpdatePipelineInformation()
+check(len(pattern.TimestepValues) == 3, "3 samples as time steps, got %s" % (pattern.TimestepValues,))
+for t in range(3):
+    pattern.UpdatePipeline(float(t))
+    sample = servermanager.Fetch(pattern)
+    check(sample.GetFieldData().GetArray("Sample").GetValue(0) == t, "sample %d" % t)
+    pairs = set(pair_counts(sample))
+    check(pairs <= allowed, "sample %d: pairs no exemplar shows: %s" % (t, sorted(pairs - allowed)[:3]))
+facade = servermanager.Fetch(ModelSynthTileImage(Input=pattern, TilesetFile=os.path.join(patterns, "Facade.xml")))
+check(facade.GetDimensions()[:2] == (160, 104), "facade picture %s" % (facade.GetDimensions(),))
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -62,16 +62,20 @@ int vtkMSPatternSynthesis::RequestInformation(
   vtkMSPipeline::SetOutputLabelGrid(
     inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
   vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(this->Samples));
+  outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 
 int vtkMSPatternSynthesis::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Inputs are exemplars, zones and fixed sites, not pieces of the output: read them whole.
+  // Inputs are exemplars, zones and fixed sites, not pieces of the output: piece 0 reads them
+  // whole and does the work (in parallel, other pieces are empty).
+  const int piece = vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0));
   for (int port = 0; port < 3; ++port)
     for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
-      vtkMSPipeline::RequestWholeExtentOnPieceZero(inputVector[port]->GetInformationObject(i), 0);
+      vtkMSPipeline::RequestWholeExtentOnPieceZero(
+        inputVector[port]->GetInformationObject(i), piece);
   return 1;
 }
 
@@ -100,6 +104,11 @@ int vtkMSPatternSynthesis::RequestData(
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (vtkMSPipeline::UpdatePiece(outInfo) != 0)
+  {
+    output->Initialize(); // piece 0 holds the pattern
+    return 1;
+  }
   const int exemplarCount = inputVector[0]->GetNumberOfInformationObjects();
   if (exemplarCount == 0)
   {

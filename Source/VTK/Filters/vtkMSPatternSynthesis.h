@@ -68,6 +68,8 @@ public:
 
   /// Adds an exemplar (data, not a pipeline connection).
   void AddExemplarData(vtkDataObject* exemplar) { this->AddInputDataObject(0, exemplar); }
+  /// Removes every exemplar (port 0), keeping the zones and fixed sites.
+  void RemoveAllExemplars() { this->SetInputConnection(0, nullptr); }
   void SetZonesData(vtkDataObject* zones) { this->SetInputDataObject(1, zones); }
   void SetFixedData(vtkDataObject* fixed) { this->SetInputDataObject(2, fixed); }
   void SetZonesConnection(vtkAlgorithmOutput* zones) { this->SetInputConnection(1, zones); }

@@ -169,6 +169,12 @@ int vtkMSTileImage::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (input->GetNumberOfPoints() == 0 &&
+    vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) != 0)
+  {
+    output->Initialize(); // an empty piece of a parallel run: the model is on piece 0
+    return 1;
+  }
   vtkDataArray* labels = vtkMSLabelArrays::FindLabelArray(input, nullptr);
   std::string problem;
   if (!labels || !vtkMSLabelArrays::CheckLabelArray(input, labels, problem))
