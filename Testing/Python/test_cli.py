@@ -21,6 +21,22 @@ def run(*args):
     return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=120)
 
 
+def labels_of(path):
+    """The Label array of a .vti as a [y, x] array (2D)."""
+    reader = modelsynth.vtkMSLabelGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return labels_zyx(reader.GetOutput())[0]
+
+
+def violations_free_pairs(path):
+    """Every (axis, a, b) of neighbours along x and y in a 2D label grid."""
+    g = labels_of(path)
+    pairs = set(zip([0] * g[:, :-1].size, g[:, :-1].ravel().tolist(), g[:, 1:].ravel().tolist()))
+    pairs |= set(zip([1] * g[:-1, :].size, g[:-1, :].ravel().tolist(), g[1:, :].ravel().tolist()))
+    return pairs
+
+
 class CommandLineTest(unittest.TestCase):
     def test_analyze_writes_outputs(self):
         out = tmp("cli-out")
@@ -675,6 +691,57 @@ class CommandLineTest(unittest.TestCase):
         r = run("animate", tmp("ball.vti"), singles[0], "--size", "4", "1", "1", "--frames", "3")
         self.assertEqual(r.returncode, 1)  # frames of different sizes
         self.assertIn("frame 1", r.stderr)
+
+    def test_pattern_and_quality(self):
+        """msynth pattern on the bundled city with fixed crossroads, then msynth quality; every
+        sample's pairs are checked here against the exemplars with numpy."""
+        out = tmp("cli-pattern")
+        shutil.rmtree(out, ignore_errors=True)
+        exemplars = [data("Patterns/city-suburban.vti"), data("Patterns/city-urban.vti")]
+        r = run("pattern", *exemplars, "--size", "40", "30", "--factors", "2H,2V,3x3", "--samples", "2",
+                "--burn-in", "1", "--seed", "4", "--tileset", data("Patterns/City.xml"), "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("KL 3x3", r.stdout)
+        for name in ("labels.vti", "labels_0001.vti", "labels_0002.vti", "picture.png", "statistics.json"):
+            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+        with open(os.path.join(out, "statistics.json")) as f:
+            stats = json.load(f)
+        self.assertEqual(len(stats["samples"]), 2)
+        self.assertGreaterEqual(stats["KL_3x3"], 0.0)
+        allowed = set()
+        for e in exemplars:
+            allowed |= set(violations_free_pairs(e))
+        for name in ("labels_0001.vti", "labels_0002.vti"):
+            self.assertLessEqual(set(violations_free_pairs(os.path.join(out, name))), allowed, name)
+        # The 170 x 170 city with crossroads fixed every 20 tiles (Yeh et al. §8.2).
+        big = tmp("cli-pattern-170")
+        shutil.rmtree(big, ignore_errors=True)
+        r = run("pattern", *exemplars, "--size", "170", "170", "--fixed", data("Patterns/city-crossroads-170.vti"),
+                "--burn-in", "0", "--seed", "1", "--out", big)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        city = labels_of(os.path.join(big, "labels.vti"))
+        self.assertTrue((city[10::20, 10::20] == 3).all(), "crossroads stay fixed")
+        self.assertLessEqual(set(violations_free_pairs(os.path.join(big, "labels.vti"))), allowed)
+        # quality: any model against the exemplars; a model with a seam exits 1.
+        r = run("quality", *exemplars, os.path.join(out, "labels.vti"), "--factors", "3x3,4H")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("KL 3x3:", r.stdout)
+        self.assertIn("every pair of neighbours occurs in an exemplar", r.stdout)
+        r = run("quality", *exemplars, data("Patterns/facade-rectangular.vti"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("seam:", r.stdout)
+        # One-line errors.
+        for args, message in ((("--size", "10", "10", "--factors", "2H,5Q"), "5Q"),
+                              (("--size", "10", "10", "--zone-tiles", "1:99"), "99"),
+                              (("--size", "10", "10", "10"), "3D")):
+            r = run("pattern", *exemplars, *args, "--out", tmp("cli-pattern-bad"))
+            self.assertNotEqual(r.returncode, 0, args)
+            self.assertIn(message, r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        r = run("pattern", *exemplars, "--size", "10", "10", "--fixed", data("Patterns/city-crossroads-170.vti"),
+                "--out", tmp("cli-pattern-bad"))
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("the output 10 x 10 x 1", r.stderr)
 
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
