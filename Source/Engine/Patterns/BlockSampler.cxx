@@ -283,6 +283,17 @@ private:
     return pl;
   }
 
+  /// A block shape at random placed on a random site of soft factor @p f's scope: blocks that
+  /// cannot cover the scope (a window column across a row of wall) may still satisfy it.
+  Placement OverlappingPlacement(std::int64_t f)
+  {
+    const std::int64_t k = f / this->P.N - 3;
+    const std::int64_t anchor = f % this->P.N;
+    const auto& steps = this->P.SoftSteps[static_cast<std::size_t>(k)];
+    return this->RandomPlacement(
+      anchor + steps[static_cast<std::size_t>(this->Rng.Below(steps.size()))]);
+  }
+
   /// Collects the sites of @p pl inside the grid (with their cell in the block) and the slice
   /// factors touching them.
   void Collect(const Placement& pl)
@@ -481,7 +492,7 @@ private:
         if (f >= 0)
         {
           ++this->R.WalkMoves;
-          this->BestBlock(this->CoveringPlacement(f));
+          this->BestBlock(this->OverlappingPlacement(f));
           continue;
         }
       }
