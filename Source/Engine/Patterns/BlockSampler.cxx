@@ -421,10 +421,12 @@ private:
     for (std::size_t i = 0; i < tries; ++i)
     {
       const std::size_t k = tries == count ? i : static_cast<std::size_t>(this->Rng.Below(count));
-      // The slice's factors first; among ties, the soft factors outside it (see the header).
+      // The slice's factors first; among ties, the soft factors outside it (see the header),
+      // counted only for candidates that can still be best.
       std::int64_t c = this->Write(this->BlockConfig(pl.Shape, k)) * weight;
-      for (std::int64_t f : this->Free)
-        c += this->P.Satisfied(f, this->Tiles) ? 1 : 0;
+      if (c + weight > best)
+        for (std::int64_t f : this->Free)
+          c += this->P.Satisfied(f, this->Tiles) ? 1 : 0;
       this->Restore();
       if (c > best)
       {
