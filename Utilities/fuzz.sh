@@ -33,13 +33,14 @@ declare -A seeds=(
   [FuzzVTKXML]="Examples/*.vti Malformed/*.vti"
   [FuzzVDB]=""
   [FuzzSynthesis]=""
+  [FuzzPatterns]=""
 )
 export ASAN_OPTIONS="detect_leaks=0:allocator_may_return_null=1:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
 total=0
 failed=0
 printf '%-16s %12s %s\n' harness executions result
-for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis; do
+for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis FuzzPatterns; do
   corpus="$dir/corpus/$harness"
   crashes="$dir/crashes/$harness"
   mkdir -p "$corpus" "$crashes"

@@ -568,6 +568,9 @@ PATTERN_SETS = {
 PATTERN_ZONES = {
     "facade-l-zones": ["1" * 28] * 2 + ["0" * 14 + "1" * 14] * 5 + ["0" * 28] * 5 + ["3" * 28]
     + ["0" * 28] * 4 + ["2" * 28],
+    # Style mixing (Fig. 15): the left half takes its soft factors from exemplar 1, the right half
+    # from exemplar 2 (stretched over the output).
+    "city-halves-zones": ["12"],
     "border-zones": ["1" * 24] + ["1" + "2" * 22 + "1"] * 2 + ["1" + "22" + "0" * 18 + "22" + "1"] * 10
     + ["1" + "2" * 22 + "1"] * 2 + ["1" * 24],
 }

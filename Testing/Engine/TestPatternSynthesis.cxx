@@ -184,6 +184,41 @@ TEST(PatternSynthesis, ZonesAndFixedSitesHold)
   }
 }
 
+TEST(PatternSynthesis, ZonesTakeTheirStyleFromTheirExemplars)
+{
+  // Checkerboard and stripes share their pairs but not their 2 x 2 configurations.
+  const LabelGrid checker = Art({ "abab", "baba", "abab", "baba" }, "ab");
+  const LabelGrid stripes = Art({ "aaaa", "bbbb", "aaaa", "bbbb" }, "ab");
+  PatternOptions o = Options(12, 8, "2x2");
+  o.SiteZone.assign(96, 0);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 12; ++x)
+      o.SiteZone[static_cast<std::size_t>(x + 12 * y)] = x < 6 ? 1 : 2;
+  o.ZoneExemplars[1] = { 0 };
+  o.ZoneExemplars[2] = { 1 };
+  const PatternResult r = SynthesizePattern({ checker, stripes }, o);
+  ExpectValid({ checker, stripes }, r);
+  const PatternSample& s = r.Samples[0];
+  // SatisfiedSoft recomputed: the 2 x 2 window at each anchor against its zone's exemplar.
+  const Stencil square = ParseStencil("2x2");
+  const auto seen = [&](const LabelGrid& e) { return CountConfigurations({ e }, square); };
+  const ConfigurationHistogram left = seen(checker), right = seen(stripes);
+  int satisfiedLeft = 0, satisfiedRight = 0;
+  for (int y = 0; y + 1 < 8; ++y)
+    for (int x = 0; x + 1 < 12; ++x)
+    {
+      std::vector<Label> c;
+      for (const auto& off : square.Offsets) // the stencil's order, as CountConfigurations
+        c.push_back(s.Labels.At(x + off[0], y + off[1], 0));
+      const bool ok = (x < 6 ? left : right).count(c) > 0;
+      EXPECT_EQ(s.SatisfiedSoft[static_cast<std::size_t>(x + 12 * y)], ok ? 1 : 0) << x << "," << y;
+      (x < 6 ? satisfiedLeft : satisfiedRight) += ok ? 1 : 0;
+    }
+  // Each half mostly looks like its own exemplar.
+  EXPECT_GT(satisfiedLeft, 25);  // of 42 anchors
+  EXPECT_GT(satisfiedRight, 20); // of 35
+}
+
 TEST(PatternSynthesis, MirroredOutputsAreSymmetric)
 {
   const std::string tiles = ".=_[]1234o()";

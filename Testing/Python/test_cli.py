@@ -733,7 +733,8 @@ class CommandLineTest(unittest.TestCase):
         # One-line errors.
         for args, message in ((("--size", "10", "10", "--factors", "2H,5Q"), "5Q"),
                               (("--size", "10", "10", "--zone-tiles", "1:99"), "99"),
-                              (("--size", "10", "10", "10"), "3D")):
+                              (("--size", "10", "10", "10"), "3D"),
+                              (("--size", "40000", "40000"), "memory available")):
             r = run("pattern", *exemplars, *args, "--out", tmp("cli-pattern-bad"))
             self.assertNotEqual(r.returncode, 0, args)
             self.assertIn(message, r.stderr)

@@ -2,6 +2,7 @@
 #include "Patterns/PatternSynthesis.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Core/Random.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Patterns/BlockSampler.h"
@@ -314,6 +315,15 @@ PatternResult SynthesizePattern(
     options.Blocks.empty() ? BlockScheme(6, threeD) : options.Blocks;
   const FactorModel model = LearnFactors(exemplars, options.SoftFactors, blocks);
   CheckOptions(model, options);
+  {
+    // Per factor: validity, slice, satisfaction (bytes), stamp (4) and set position (8); per
+    // site: tiles, classes, groups, last change; each sample kept: labels, two fields.
+    const auto sites =
+      static_cast<std::uint64_t>(options.Size[0] * options.Size[1] * options.Size[2]);
+    const std::uint64_t factors = sites * (3 + options.SoftFactors.size());
+    CheckMemory(factors * 15 + sites * (24 + 16 * static_cast<std::uint64_t>(options.Samples)),
+      "A pattern of " + std::to_string(sites) + " sites");
+  }
 
   PatternResult result;
   result.Tiles = model.NumberOfTiles();
