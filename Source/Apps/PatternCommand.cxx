@@ -17,6 +17,7 @@
 #include "vtkMSTileImage.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 
 #include <cmath>
@@ -160,8 +161,22 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   vtkNew<vtkMSPatternSynthesis> synthesis;
   std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
   std::vector<msynth::LabelGrid> exemplars;
+  std::string tileset; // an EXEMPLAR that is a tileset: its rules are hard pairs too
+  msynth::LabelPairs rules;
   for (const auto& path : o.Exemplars)
   {
+    if (IsTileset(path))
+    {
+      if (!tileset.empty())
+        throw UsageError{ "give at most one tileset" };
+      tileset = path;
+      const msynth::Tileset set = msynth::ReadTilesetFile(path);
+      for (std::size_t a = 0; a < 3; ++a)
+        for (const auto& [b, c] : set.Pairs[a])
+          rules[a].emplace_back(b, c);
+      synthesis->SetTilesetFile(path.c_str());
+      continue;
+    }
     readers.push_back(OpenGrid(path));
     exemplars.push_back(GridOf(readers.back()->GetOutput(), path));
     synthesis->AddInputConnection(0, readers.back()->GetOutputPort());
@@ -195,7 +210,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(synthesis->GetOutput());
     const msynth::LabelGrid model = GridOf(image, "sample " + std::to_string(k + 1));
-    const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 1);
+    const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 1, rules);
     if (!problems.empty())
       throw std::runtime_error(
         "sample " + std::to_string(k + 1) + " breaks the exemplars' pairs: " + problems.front());
@@ -221,10 +236,11 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   }
   WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", last.GetPointer());
   std::string picture;
-  if (!o.Tileset.empty())
+  const std::string& drawing = o.Tileset.empty() ? tileset : o.Tileset;
+  if (!drawing.empty())
   {
     vtkNew<vtkMSTileImage> tiles;
-    tiles->SetTilesetFile(o.Tileset.c_str());
+    tiles->SetTilesetFile(drawing.c_str());
     tiles->SetInputData(last);
     Run(tiles);
     picture = dir + "/picture.png";
@@ -255,7 +271,8 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
             << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
             << o.Method << " in " << Number(FieldValue(fd, "Seconds")) << " s (first valid after "
             << Number(FieldValue(fd, "FirstValidSeconds"))
-            << " s); every pair occurs in an exemplar\n";
+            << " s); every pair occurs in an exemplar"
+            << (tileset.empty() ? "" : " or the tileset's rules") << "\n";
   for (std::size_t i = 0; i < soft.size(); ++i)
     std::cout << "KL " << soft[i].Name << ": " << Number(kl[i]) << "\n";
   std::cout << "wrote " << dir << "/labels.vti" << (o.Samples > 1 ? ", labels_0001.vti ..." : "")
@@ -314,7 +331,9 @@ CommandRunner AddPattern(CLI::App& app)
     "factor-graph pattern synthesis (Yeh et al. 2012, BLOCKSS) from EXEMPLAR label grids; writes "
     "DIR/labels.vti (the last sample; with --samples also labels_0001.vti ...), DIR/picture.png "
     "with --tileset, and DIR/statistics.json (KL per factor shape, log probability)");
-  p->add_option("EXEMPLAR", o->Exemplars, "exemplar label grids (.vti, .txt, .vox) of one tile set")
+  p->add_option("EXEMPLAR", o->Exemplars,
+     "exemplar label grids (.vti, .txt, .vox) of one tile set; a tileset (.xml) among them adds "
+     "its neighbor rules as hard pairs and draws DIR/picture.png")
     ->required();
   p->add_option("--size", o->Size, "output size NX NY [NZ] in tiles")
     ->expected(2, 3)

@@ -219,6 +219,25 @@ TEST(PatternSynthesis, ZonesTakeTheirStyleFromTheirExemplars)
   EXPECT_GT(satisfiedRight, 20); // of 35
 }
 
+TEST(PatternSynthesis, TilesetRulesAloneOrBesideExemplars)
+{
+  // Pipes: 0 empty, 1 horizontal, 2 vertical; a pipe must continue or meet the border.
+  LabelPairs rules;
+  rules[0] = { { 0, 0 }, { 0, 2 }, { 2, 0 }, { 2, 2 }, { 1, 1 } };
+  rules[1] = { { 0, 0 }, { 0, 1 }, { 1, 0 }, { 1, 1 }, { 2, 2 } };
+  PatternOptions o = Options(12, 9);
+  o.ExtraPairs = rules;
+  const PatternResult r = SynthesizePattern({}, o);
+  ASSERT_EQ(r.Samples.size(), 1u);
+  EXPECT_TRUE(CheckPatternPairs({}, r.Samples[0].Labels, 10, rules).empty());
+  EXPECT_FALSE(CheckPatternPairs({}, r.Samples[0].Labels).empty()); // no rules: no pair known
+  // Beside an exemplar, the rules add pairs (and tiles) the exemplar never shows.
+  const LabelGrid empty = Art({ "...", "..." }, ".");
+  const PatternResult both = SynthesizePattern({ empty }, o);
+  EXPECT_TRUE(CheckPatternPairs({ empty }, both.Samples[0].Labels, 10, rules).empty());
+  EXPECT_THROW(SynthesizePattern({}, Options(4, 4)), Error); // nothing to learn from
+}
+
 TEST(PatternSynthesis, MirroredOutputsAreSymmetric)
 {
   const std::string tiles = ".=_[]1234o()";

@@ -730,6 +730,15 @@ class CommandLineTest(unittest.TestCase):
         r = run("quality", *exemplars, data("Patterns/facade-rectangular.vti"))
         self.assertEqual(r.returncode, 1)
         self.assertIn("seam:", r.stdout)
+        # A tileset alone: its neighbor rules are the hard pairs; msynth check verifies them.
+        lines = tmp("cli-pattern-lines")
+        shutil.rmtree(lines, ignore_errors=True)
+        r = run("pattern", data("Tilesets/Lines.xml"), "--size", "24", "16", "--seed", "2", "--out", lines)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("or the tileset's rules", r.stdout)
+        self.assertTrue(os.path.isfile(os.path.join(lines, "picture.png")))
+        r = run("check", data("Tilesets/Lines.xml"), os.path.join(lines, "labels.vti"))
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         # One-line errors.
         for args, message in ((("--size", "10", "10", "--factors", "2H,5Q"), "5Q"),
                               (("--size", "10", "10", "--zone-tiles", "1:99"), "99"),

@@ -206,10 +206,11 @@ void ForEachConfiguration(const LabelGrid& g, const Stencil& s, const FactorMode
 } // namespace
 
 FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
-  const std::vector<Stencil>& softShapes, const std::vector<Stencil>& blockShapes)
+  const std::vector<Stencil>& softShapes, const std::vector<Stencil>& blockShapes,
+  const LabelPairs& extra)
 {
-  if (exemplars.empty())
-    throw Error("pattern synthesis needs at least one exemplar");
+  if (exemplars.empty() && extra[0].empty() && extra[1].empty() && extra[2].empty())
+    throw Error("pattern synthesis needs at least one exemplar or a tileset");
   FactorModel m;
   m.NumberOfExemplars = static_cast<int>(exemplars.size());
   {
@@ -220,12 +221,26 @@ FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
       if (values.size() > 65536)
         throw Error("the exemplars hold more than 65536 distinct labels");
     }
+    for (const auto& pairs : extra)
+      for (const auto& [b, c] : pairs)
+      {
+        values.insert(b);
+        values.insert(c);
+      }
+    if (values.size() > 65536)
+      throw Error("the exemplars and the tileset hold more than 65536 distinct labels");
     m.Tiles.assign(values.begin(), values.end());
   }
   const std::size_t t = m.Tiles.size();
   for (int a = 0; a < 3; ++a)
   {
     m.Pairs[a].assign(t * t, 0);
+    for (const auto& [b, c] : extra[static_cast<std::size_t>(a)])
+    {
+      m.Pairs[a][static_cast<std::size_t>(m.TileIndex(b)) * t +
+        static_cast<std::size_t>(m.TileIndex(c))] = 1;
+      m.AxisSeen[a] = true;
+    }
     for (const LabelGrid& g : exemplars)
     {
       if (g.Size(a) < 2)
@@ -262,6 +277,9 @@ FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
     for (const LabelGrid& g : exemplars)
       ForEachConfiguration(
         g, b, m, [&](const std::vector<std::int32_t>& tiles) { distinct.insert(tiles); });
+    if (b.Offsets.size() == 1)
+      for (std::int32_t k = 0; k < static_cast<std::int32_t>(t); ++k)
+        distinct.insert({ k });
     if (distinct.empty())
       continue;
     std::vector<std::int32_t> flat;
@@ -272,7 +290,7 @@ FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
     m.BlockTiles.push_back(std::move(flat));
   }
   if (m.BlockShapes.empty())
-    throw Error("no replacement block shape fits in any exemplar");
+    throw Error("no replacement block shape fits in any exemplar (give single tiles, 1x1)");
   return m;
 }
 

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace msynth
@@ -97,13 +98,20 @@ inline std::uint64_t ConfigurationKey(const std::int32_t* tiles, std::size_t n)
   return h;
 }
 
+/// Label pairs (first, second) allowed along +x, +y, +z besides the exemplars' (a tileset's
+/// neighbor rules, as label values).
+using LabelPairs = std::array<std::vector<std::pair<Label, Label>>, 3>;
+
 /**
- * Learns the factors from @p exemplars (§5): the tiles are every label value an exemplar holds.
- * A shape that fits in no exemplar learns nothing (a soft factor that is never 1 + ε; a block
- * shape with no blocks, which is dropped). @throw Error for no exemplars, more than 65536
- * tiles, or no block shape that fits in an exemplar.
+ * Learns the factors from @p exemplars (§5): the tiles are every label value an exemplar or
+ * @p extra holds, the hard pairs the exemplars' and @p extra's. A shape that fits in no exemplar
+ * learns nothing (a soft factor that is never 1 + ε; a block shape with no blocks, which is
+ * dropped); single tiles (1x1, when a block shape) are blocks for every tile, so tiles that only
+ * @p extra names can be placed. @throw Error for no exemplars and no extra pairs, more than
+ * 65536 tiles, or no block shape with blocks.
  */
 FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
-  const std::vector<Stencil>& softShapes, const std::vector<Stencil>& blockShapes);
+  const std::vector<Stencil>& softShapes, const std::vector<Stencil>& blockShapes,
+  const LabelPairs& extra = LabelPairs());
 
 } // namespace msynth

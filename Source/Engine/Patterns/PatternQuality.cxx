@@ -79,10 +79,13 @@ double PatternLogProbability(const std::vector<LabelGrid>& exemplars, const Labe
   return static_cast<double>(satisfied) * std::log1p(epsilon);
 }
 
-std::vector<std::string> CheckPatternPairs(
-  const std::vector<LabelGrid>& exemplars, const LabelGrid& model, std::size_t limit)
+std::vector<std::string> CheckPatternPairs(const std::vector<LabelGrid>& exemplars,
+  const LabelGrid& model, std::size_t limit, const LabelPairs& extra)
 {
   std::set<std::pair<Label, Label>> seen[3];
+  for (int a = 0; a < 3; ++a)
+    seen[a].insert(
+      extra[static_cast<std::size_t>(a)].begin(), extra[static_cast<std::size_t>(a)].end());
   for (const LabelGrid& g : exemplars)
     for (std::int64_t z = 0; z < g.Size(2); ++z)
       for (std::int64_t y = 0; y < g.Size(1); ++y)

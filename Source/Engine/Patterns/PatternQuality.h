@@ -49,9 +49,10 @@ double PatternLogProbability(const std::vector<LabelGrid>& exemplars, const Labe
 
 /**
  * The hard factors (§5.1) checked from scratch: every pair of neighbours along each axis must
- * occur along that axis in an exemplar. Returns one line per violation (at most @p limit).
+ * occur along that axis in an exemplar, or be one of @p extra (a tileset's rules). Returns one
+ * line per violation (at most @p limit).
  */
-std::vector<std::string> CheckPatternPairs(
-  const std::vector<LabelGrid>& exemplars, const LabelGrid& model, std::size_t limit = 10);
+std::vector<std::string> CheckPatternPairs(const std::vector<LabelGrid>& exemplars,
+  const LabelGrid& model, std::size_t limit = 10, const LabelPairs& extra = LabelPairs());
 
 } // namespace msynth

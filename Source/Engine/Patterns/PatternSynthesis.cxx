@@ -313,7 +313,8 @@ PatternResult SynthesizePattern(
   const bool threeD = options.Size[2] > 1;
   const std::vector<Stencil> blocks =
     options.Blocks.empty() ? BlockScheme(6, threeD) : options.Blocks;
-  const FactorModel model = LearnFactors(exemplars, options.SoftFactors, blocks);
+  const FactorModel model =
+    LearnFactors(exemplars, options.SoftFactors, blocks, options.ExtraPairs);
   CheckOptions(model, options);
   {
     // Per factor: validity, slice, satisfaction (bytes), stamp (4) and set position (8); per

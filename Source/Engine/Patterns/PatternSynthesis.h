@@ -59,6 +59,9 @@ struct PatternOptions
   std::array<std::int64_t, 3> Size{ { 1, 1, 1 } };
   /// Soft higher-order factor shapes (§5.2); pair shapes (2H, 2V, 2D) are always hard.
   std::vector<Stencil> SoftFactors;
+  /// Pairs allowed besides the exemplars' (a tileset's neighbor rules); with them the
+  /// exemplars may be none.
+  LabelPairs ExtraPairs;
   double Epsilon = 0.1;
   /// Replacement-block shapes; empty: BlockScheme(6).
   std::vector<Stencil> Blocks;

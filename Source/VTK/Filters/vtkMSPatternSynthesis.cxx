@@ -7,6 +7,7 @@
 #include "vtkMSSynthesisRun.h"
 
 #include "Core/Error.h"
+#include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 #include "Patterns/PatternSynthesis.h"
 
@@ -110,9 +111,9 @@ int vtkMSPatternSynthesis::RequestData(
     return 1;
   }
   const int exemplarCount = inputVector[0]->GetNumberOfInformationObjects();
-  if (exemplarCount == 0)
+  if (exemplarCount == 0 && this->TilesetFile.empty())
   {
-    vtkErrorMacro(<< "Pattern synthesis needs at least one exemplar.");
+    vtkErrorMacro(<< "Pattern synthesis needs at least one exemplar or a tileset.");
     return 0;
   }
   std::vector<vtkDataObject*> inputs;
@@ -146,6 +147,13 @@ int vtkMSPatternSynthesis::RequestData(
       for (std::int32_t e : numbers)
         options.ZoneExemplars[zone].push_back(e - 1); // numbered from 1 in the interface
     options.MirrorMap = msynth::ParseMirrorSwaps(this->MirrorSwaps);
+    if (!this->TilesetFile.empty())
+    {
+      const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      for (std::size_t a = 0; a < 3; ++a)
+        for (const auto& [b, c] : tiles.Pairs[a])
+          options.ExtraPairs[a].emplace_back(b, c);
+    }
     msynth::LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   }
   catch (const msynth::Error& e)
@@ -309,6 +317,7 @@ void vtkMSPatternSynthesis::AddFields(
 void vtkMSPatternSynthesis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "TilesetFile: " << this->TilesetFile << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
      << this->OutputSize[2] << "\n";
   os << indent << "SoftFactors: " << this->SoftFactors << "\n";

@@ -5,7 +5,7 @@
  *
  * Inputs:
  *  - port 0, one or more connections: the exemplars, label images (`Label`, else the active
- *    scalars) over one set of tiles, 2D or 3D;
+ *    scalars) over one set of tiles, 2D or 3D (none when TilesetFile gives the pairs);
  *  - port 1, optional: the zoning, an integer image of zone ids (`Zone`, else `Label`, else the
  *    active scalars), stretched over the output as guides are (cell floor((p + ½) · D / S));
  *  - port 2, optional: fixed sites, a label image of the output's size; sites holding a tile
@@ -75,6 +75,15 @@ public:
   void SetZonesConnection(vtkAlgorithmOutput* zones) { this->SetInputConnection(1, zones); }
   void SetFixedConnection(vtkAlgorithmOutput* fixed) { this->SetInputConnection(2, fixed); }
 
+  ///@{
+  /// A WaveFunctionCollapse simple-tiled tileset (.xml) whose neighbor rules are hard pairs
+  /// besides the exemplars' (label k is the tileset's label k); with it no exemplar is needed.
+  /// Default none. TilesetSubset picks a <subset>.
+  vtkSetStdStringFromCharMacro(TilesetFile);
+  vtkGetCharFromStdStringMacro(TilesetFile);
+  vtkSetStdStringFromCharMacro(TilesetSubset);
+  vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
   ///@{
   /// Output size in sites. Default 20 20 1.
   vtkSetVector3Macro(OutputSize, int);
@@ -153,6 +162,8 @@ private:
     vtkFieldData* fd, const msynth::PatternResult& result, const msynth::PatternSample& sample);
   void operator=(const vtkMSPatternSynthesis&) = delete;
 
+  std::string TilesetFile;
+  std::string TilesetSubset;
   int OutputSize[3] = { 20, 20, 1 };
   std::string SoftFactors;
   double Epsilon = 0.1;
