@@ -1,16 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/OutputFolder.h"
 
 #include "Fixtures.h"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <dirent.h>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
+#include <thread>
+#include <vector>
 
 namespace
 {
@@ -94,4 +101,43 @@ TEST(AtomicFile, AFullDiskIsSeenAndLeavesNothing)
     << what;
   EXPECT_FALSE(std::ifstream(path).good());
   EXPECT_FALSE(AnyTemporaryLeftIn(MSYNTH_TEST_TMP, "full-disk.txt"));
+}
+
+// A signal-handling thread discards the staging folders while the run still writes into them
+// (msynth's interruption path): nothing of the stage may remain, however the two interleave.
+TEST(OutputFolder, DiscardWhileAnotherThreadWritesLeavesNothing)
+{
+  const std::string dir = std::string(MSYNTH_TEST_TMP) + "/discard-race";
+  msynth::RemoveTree(dir);
+  ::mkdir(dir.c_str(), 0755); // exists beforehand, so it stays and can be listed
+  for (int round = 0; round < 50; ++round)
+  {
+    std::atomic<bool> stop{ false };
+    auto folder = std::make_unique<msynth::OutputFolder>(dir);
+    const std::string stage = folder->Stage();
+    std::thread writer(
+      [&]
+      {
+        for (int i = 0; !stop; ++i)
+        {
+          std::ofstream(stage + "/file" + std::to_string(i % 64) + ".tmp-1") << i;
+          ::mkdir((stage + "/sub").c_str(), 0755);
+          std::ofstream(stage + "/sub/x") << i;
+        }
+      });
+    std::this_thread::sleep_for(std::chrono::microseconds(200 * (round % 5)));
+    EXPECT_EQ(msynth::OutputFolder::DiscardAll(), 1);
+    stop = true;
+    writer.join();
+    folder.reset();
+    DIR* d = ::opendir(dir.c_str());
+    ASSERT_NE(d, nullptr);
+    std::vector<std::string> left;
+    while (const dirent* e = ::readdir(d))
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..")
+        left.push_back(e->d_name);
+    ::closedir(d);
+    EXPECT_TRUE(left.empty()) << left.front();
+  }
+  msynth::RemoveTree(dir);
 }

@@ -180,8 +180,15 @@ int OutputFolder::DiscardAll(int* published)
 {
   std::lock_guard<std::mutex> lock(RegistryMutex());
   const int discarded = static_cast<int>(Registry().size());
+  static std::atomic<unsigned> counter{ 0 };
   for (const auto& stage : Registry())
-    RemoveTree(stage);
+  {
+    // Other threads may still be writing into the stage: move it away first, so that no file
+    // can appear in it after it is listed (their paths no longer resolve), then remove it.
+    const std::string doomed = stage.substr(0, stage.rfind('/') + 1) + ".msynth-discard-" +
+      std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    RemoveTree(std::rename(stage.c_str(), doomed.c_str()) == 0 ? doomed : stage);
+  }
   Registry().clear();
   if (published)
     *published = PublishedCount();
