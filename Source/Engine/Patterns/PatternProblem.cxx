@@ -4,8 +4,9 @@
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <climits>
+#include <cstdint>
 #include <map>
-#include <tuple>
 
 namespace msynth
 {
@@ -152,33 +153,63 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
     }
     zoneMask[zone] = std::move(mask);
   }
-  std::map<std::tuple<std::int32_t, std::int32_t, int>, std::int32_t> classes;
+  // A site's class: its seam, and the zone and fixed label of each of its images in the full
+  // output (itself, and with mirroring its mirror images, whose tiles are its tiles mapped).
+  std::map<std::vector<std::int32_t>, std::int32_t> classes;
   this->SiteClass.resize(static_cast<std::size_t>(this->N));
+  std::vector<std::int32_t> key;
   for (std::int64_t p = 0; p < this->N; ++p)
   {
     const auto c = this->Coordinates(p);
-    const std::int64_t fp = c[0] + full[0] * (c[1] + full[1] * c[2]);
-    const std::int32_t zone =
-      options.SiteZone.empty() ? 0 : options.SiteZone[static_cast<std::size_t>(fp)];
-    const std::int32_t fixed =
-      options.Fixed.empty() ? -1 : model.TileIndex(options.Fixed[static_cast<std::size_t>(fp)]);
     int seam = 0;
+    int mirrored = 0; // bit a: axis a is mirrored
     if (seams)
       for (int a = 0; a < 3; ++a)
-        if (options.Mirror[static_cast<std::size_t>(a)] &&
-          c[static_cast<std::size_t>(a)] == size[static_cast<std::size_t>(a)] - 1)
-          seam |= (full[static_cast<std::size_t>(a)] % 2 == 0 ? 1 : 8) << a;
-    const auto key = std::make_tuple(zoneMask.count(zone) ? zone : -1, fixed, seam);
+        if (options.Mirror[static_cast<std::size_t>(a)])
+        {
+          mirrored |= 1 << a;
+          if (c[static_cast<std::size_t>(a)] == size[static_cast<std::size_t>(a)] - 1)
+            seam |= (full[static_cast<std::size_t>(a)] % 2 == 0 ? 1 : 8) << a;
+        }
+    key.assign(1, seam);
+    for (int flips = 0; flips < 8; ++flips)
+    {
+      if ((flips & ~mirrored) != 0)
+        continue;
+      std::int64_t q[3] = { c[0], c[1], c[2] };
+      int parity = 0;
+      for (int a = 0; a < 3; ++a)
+        if (flips & (1 << a))
+        {
+          q[a] = full[static_cast<std::size_t>(a)] - 1 - q[a];
+          parity ^= 1;
+        }
+      const std::int64_t fq = q[0] + full[0] * (q[1] + full[1] * q[2]);
+      const std::int32_t zone =
+        options.SiteZone.empty() ? 0 : options.SiteZone[static_cast<std::size_t>(fq)];
+      key.push_back(zoneMask.count(zone) ? zone : INT32_MIN);
+      key.push_back(
+        options.Fixed.empty() ? -1 : model.TileIndex(options.Fixed[static_cast<std::size_t>(fq)]));
+      key.push_back(parity);
+    }
     auto it = classes.find(key);
     if (it == classes.end())
     {
-      std::vector<std::uint8_t> mask = zoneMask.count(zone)
-        ? zoneMask[zone]
-        : std::vector<std::uint8_t>(static_cast<std::size_t>(this->T), 1);
-      for (std::int32_t t = 0; t < this->T; ++t)
+      std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 1);
+      bool fixedAndZoned = false;
+      for (std::size_t i = 1; i < key.size(); i += 3)
       {
-        if (fixed >= 0 && t != fixed)
-          mask[static_cast<std::size_t>(t)] = 0;
+        const std::int32_t zone = key[i], fixed = key[i + 1];
+        fixedAndZoned = fixedAndZoned || (fixed >= 0 && zone != INT32_MIN);
+        for (std::int32_t t = 0; t < this->T; ++t)
+        {
+          const std::int32_t image = key[i + 2] ? MirrorTile(model, options, t) : t;
+          if ((zone != INT32_MIN && !zoneMask[zone][static_cast<std::size_t>(image)]) ||
+            (fixed >= 0 && image != fixed))
+            mask[static_cast<std::size_t>(t)] = 0;
+        }
+      }
+      for (std::int32_t t = 0; t < this->T; ++t)
         for (int a = 0; a < 3; ++a)
         {
           const std::int32_t f = MirrorTile(model, options, t);
@@ -187,7 +218,6 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
           if ((seam & (8 << a)) && f != t)
             mask[static_cast<std::size_t>(t)] = 0;
         }
-      }
       std::vector<std::int32_t> tiles;
       for (std::int32_t t = 0; t < this->T; ++t)
         if (mask[static_cast<std::size_t>(t)])
@@ -196,14 +226,14 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
       {
         std::string where = "site (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
           std::to_string(c[2]) + ")";
-        if (fixed >= 0 && zoneMask.count(zone))
-          throw Error(where + " is fixed to a label that its zone " + std::to_string(zone) +
-            " does not allow");
+        if (fixedAndZoned)
+          throw Error(where + " is fixed to a label that its zone does not allow");
         if (seam)
-          throw Error(where +
-            " is on the mirror seam and no tile it allows can meet its mirror "
-            "image there");
-        throw Error("zone " + std::to_string(zone) + " allows no tile");
+          throw Error(
+            where + " is on the mirror seam and no tile it allows can meet its mirror image there");
+        if (key.size() > 4)
+          throw Error(where + " and its mirror images have zones or fixed labels no tile meets");
+        throw Error("zone " + std::to_string(key[1]) + " allows no tile");
       }
       it = classes.emplace(key, static_cast<std::int32_t>(this->ClassTiles.size())).first;
       this->ClassAllowed.push_back(std::move(mask));

@@ -80,8 +80,9 @@ struct PatternOptions
    * Symmetry by mirroring (§8.4, Fig. 14): along each enabled axis the lower half is
    * synthesized and mirrored, M(n − 1 − x) = f(M(x)) with f the label map (identity where not
    * listed). f must be an involution that keeps the exemplars' pairs (T[b, c] = T[f(c), f(b)]
-   * along the axis, T[b, c] = T[f(b), f(c)] across it). Zones and fixed sites are read in the
-   * synthesized half.
+   * along the axis, T[b, c] = T[f(b), f(c)] across it). Zones and fixed sites hold over the whole
+   * output (a site of the half meets those of its mirror images, mapped); style zones are read
+   * in the synthesized half.
    */
   std::array<bool, 3> Mirror{ { false, false, false } };
   std::map<Label, Label> MirrorMap;
