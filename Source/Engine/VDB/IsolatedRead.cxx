@@ -7,10 +7,15 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <new>
+#include <poll.h>
+#include <sstream>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <tbb/global_control.h>
+#include <tuple>
 #include <unistd.h>
 
 namespace msynth
@@ -82,7 +87,69 @@ void SendBlock(int fd, const std::string& bytes)
   WriteAll(fd, bytes.data(), bytes.size());
 }
 
+namespace
+{
+/// (state, CPU ticks, threads) of process @p pid from /proc/PID/stat; state 0 when unknown.
+std::tuple<char, unsigned long long, long> ProcessState(pid_t pid)
+{
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t close = text.rfind(')'); // the command name may hold spaces
+  if (close == std::string::npos)
+    return { 0, 0, 0 };
+  std::istringstream fields(text.substr(close + 2));
+  char state = 0;
+  std::string skip;
+  unsigned long long user = 0, system = 0;
+  long threads = 0;
+  fields >> state;
+  for (int i = 4; i <= 13; ++i) // fields 4-13
+    fields >> skip;
+  fields >> user >> system;
+  for (int i = 16; i <= 19; ++i)
+    fields >> skip;
+  fields >> threads;
+  return { fields ? state : '\0', user + system, threads };
+}
+
+/**
+ * Waits until the child's first byte can be read. False when the child is deadlocked: forked
+ * from a multithreaded process, it can inherit a lock another thread held (an allocator's, seen
+ * with the sanitizers' allocator); one thread asleep without using the CPU for 2 s cannot wake.
+ */
+bool FirstByteComes(int fd, pid_t pid)
+{
+  unsigned long long lastTicks = ~0ull;
+  int still = 0;
+  for (;;)
+  {
+    pollfd p{ fd, POLLIN, 0 };
+    const int ready = ::poll(&p, 1, 500);
+    if (ready != 0)
+      return true; // data, the end of the pipe, or an error: the reader sees which
+    const auto [state, ticks, threads] = ProcessState(pid);
+    if (state == 'S' && threads == 1 && ticks == lastTicks)
+    {
+      if (++still >= 4)
+        return false;
+    }
+    else
+      still = 0;
+    lastTicks = ticks;
+  }
+}
+} // namespace
+
 void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
+  const std::function<void(int)>& child, const std::function<void(PipeReader&)>& parent)
+{
+  for (int attempt = 0; attempt < 5; ++attempt)
+    if (RunIsolatedOnce(path, memoryBudget, child, parent))
+      return;
+  throw Error::InFile(path, "could not be read: the reading process deadlocked five times");
+}
+
+bool RunIsolatedOnce(const std::string& path, std::uint64_t memoryBudget,
   const std::function<void(int)>& child, const std::function<void(PipeReader&)>& parent)
 {
   int fds[2];
@@ -150,6 +217,11 @@ void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
           std::to_string(WTERMSIG(status)) + ")"
                           : std::string("is corrupt: the OpenVDB library failed reading it"));
   };
+  if (!FirstByteComes(fds[0], pid))
+  {
+    finish(true); // deadlocked at birth: try again
+    return false;
+  }
   char kind = 0;
   if (reader.Some(&kind, 1) != 1 || (kind != 'O' && kind != 'E'))
     throw crashed(finish(false));
@@ -176,6 +248,7 @@ void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
       throw crashed(status);
     throw;
   }
+  return true;
 }
 
 } // namespace detail

@@ -159,6 +159,10 @@ void SendBlock(int fd, const std::string& bytes);
  */
 void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
   const std::function<void(int)>& child, const std::function<void(PipeReader&)>& parent);
+/// One attempt of RunIsolated: false when the child deadlocked before sending anything (it is
+/// killed; RunIsolated tries again, up to five times).
+bool RunIsolatedOnce(const std::string& path, std::uint64_t memoryBudget,
+  const std::function<void(int)>& child, const std::function<void(PipeReader&)>& parent);
 
 } // namespace detail
 } // namespace vdb
