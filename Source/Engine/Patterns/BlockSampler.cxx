@@ -294,9 +294,9 @@ private:
       anchor + steps[static_cast<std::size_t>(this->Rng.Below(steps.size()))]);
   }
 
-  /// Collects the sites of @p pl inside the grid (with their cell in the block) and the slice
-  /// factors touching them.
-  void Collect(const Placement& pl)
+  /// Collects the sites of @p pl inside the grid (with their cell in the block), the slice
+  /// factors touching them and, with @p free (for BestBlock's ties), the other soft factors.
+  void Collect(const Placement& pl, bool free = false)
   {
     const auto& offsets = this->P.Model.BlockShapes[static_cast<std::size_t>(pl.Shape)].Offsets;
     this->Sites.clear();
@@ -323,7 +323,7 @@ private:
       this->Sites.push_back(site);
       this->Cells.push_back(static_cast<std::int32_t>(k));
       this->P.ForTouching(site,
-        [this](std::int64_t f)
+        [this, free](std::int64_t f)
         {
           auto& stamp = this->Stamp[static_cast<std::size_t>(f)];
           if (stamp == this->CurrentStamp)
@@ -331,7 +331,7 @@ private:
           stamp = this->CurrentStamp;
           if (this->InSlice[static_cast<std::size_t>(f)])
             this->Affected.push_back(f);
-          else if (!this->P.IsHard(f))
+          else if (free && !this->P.IsHard(f))
             this->Free.push_back(f);
         });
     }
@@ -409,7 +409,7 @@ private:
   /// The block of @p pl's shape that satisfies the most slice factors, ties at random.
   void BestBlock(const Placement& pl)
   {
-    this->Collect(pl);
+    this->Collect(pl, true);
     const std::size_t count = this->BlockCount(pl.Shape);
     const std::size_t tries = this->O.CandidatesPerMove > 0
       ? std::min(count, static_cast<std::size_t>(this->O.CandidatesPerMove))

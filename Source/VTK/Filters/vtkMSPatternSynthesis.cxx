@@ -7,6 +7,7 @@
 #include "vtkMSSynthesisRun.h"
 
 #include "Core/Error.h"
+#include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 #include "Patterns/PatternSynthesis.h"
@@ -246,19 +247,14 @@ bool vtkMSPatternSynthesis::ReadZonesAndFixed(vtkInformationVector** inputVector
       return false;
     }
     options.SiteZone.resize(static_cast<std::size_t>(sites));
-    const auto& d = grid.Dimensions();
+    msynth::GuideVolume stretch; // zones are stretched over the output as guides are
+    stretch.Dims = grid.Dimensions();
     for (std::int64_t z = 0; z < options.Size[2]; ++z)
       for (std::int64_t y = 0; y < options.Size[1]; ++y)
         for (std::int64_t x = 0; x < options.Size[0]; ++x)
-        {
-          const std::int64_t p[3] = { x, y, z };
-          std::int64_t c[3];
-          for (int a = 0; a < 3; ++a)
-            c[a] = std::min(d[a] - 1, ((2 * p[a] + 1) * d[a]) / (2 * options.Size[a]));
           options
             .SiteZone[static_cast<std::size_t>(x + options.Size[0] * (y + options.Size[1] * z))] =
-            grid.At(c[0], c[1], c[2]);
-        }
+            grid.Data()[static_cast<std::size_t>(stretch.CellOf({ { x, y, z } }, options.Size))];
     inputs.push_back(zones);
   }
   if (vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0))
