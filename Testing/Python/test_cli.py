@@ -713,6 +713,15 @@ class CommandLineTest(unittest.TestCase):
             allowed |= set(violations_free_pairs(e))
         for name in ("labels_0001.vti", "labels_0002.vti"):
             self.assertLessEqual(set(violations_free_pairs(os.path.join(out, name))), allowed, name)
+        # The same inputs and seed give byte-identical labels (no timings in the file).
+        again = tmp("cli-pattern-again")
+        shutil.rmtree(again, ignore_errors=True)
+        r = run("pattern", *exemplars, "--size", "40", "30", "--factors", "2H,2V,3x3", "--samples", "2",
+                "--burn-in", "1", "--seed", "4", "--out", again)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for name in ("labels.vti", "labels_0001.vti"):
+            with open(os.path.join(out, name), "rb") as a, open(os.path.join(again, name), "rb") as b:
+                self.assertEqual(a.read(), b.read(), name)
         # The 170 x 170 city with crossroads fixed every 20 tiles (Yeh et al. §8.2).
         big = tmp("cli-pattern-170")
         shutil.rmtree(big, ignore_errors=True)
