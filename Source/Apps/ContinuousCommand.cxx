@@ -19,6 +19,7 @@
 #include "vtkMSPolyhedralExampleReader.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include "Continuous/ContinuousMesh.h"
@@ -133,6 +134,22 @@ void WriteStatistics(
           << ",\n  \"seed\": " << o.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
           << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
       msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
+      out << "  \"Grounded\": " << (o.Grounded ? "true" : "false")
+          << ",\n  \"Components\": " << CountOf(fd, "Components")
+          << ",\n  \"GroundedComponents\": " << CountOf(fd, "GroundedComponents")
+          << ",\n  \"FloatingPartsRemoved\": " << CountOf(fd, "FloatingPartsRemoved")
+          << ",\n  \"TypeShares\": {";
+      const char* separator = "";
+      for (int i = 0; i < fd->GetNumberOfArrays(); ++i)
+      {
+        const std::string name = fd->GetArrayName(i) ? fd->GetArrayName(i) : "";
+        if (name.rfind("TypeShare_", 0) == 0)
+        {
+          out << separator << JsonString(name.substr(10)) << ": " << fd->GetArray(i)->GetTuple1(0);
+          separator = ", ";
+        }
+      }
+      out << "},\n";
       out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
     });
 }
@@ -165,6 +182,22 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);
+  synthesis->SetGrounded(o.Grounded);
+  synthesis->SetKeepProportions(!o.NoProportions);
+  synthesis->SetBlockCandidates(o.Candidates);
+  auto joined = [](const std::vector<std::string>& items)
+  {
+    std::string out;
+    for (const auto& item : items)
+      out += (out.empty() ? "" : ",") + item;
+    return out;
+  };
+  synthesis->SetThickness(joined(o.Thickness).c_str());
+  synthesis->SetConnected(joined(o.Connected).c_str());
+  synthesis->SetTargetFractions(joined(o.Targets).c_str());
+  vtkNew<vtkXMLImageDataReader> guide;
+  if (!o.Guide.empty())
+    ConnectGuide(synthesis, 2, guide, o.Guide);
   vtkNew<vtkMSArrangementMesh> mesh;
   mesh->SetInputConnection(0, reader->GetOutputPort());
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
@@ -199,7 +232,8 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   vtkFieldData* fd = labelled->GetFieldData();
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
-            << CountOf(fd, "Blocks") << " blocks left unchanged\n"
+            << CountOf(fd, "Blocks") << " blocks left unchanged, " << CountOf(fd, "Components")
+            << " solid parts (" << CountOf(fd, "GroundedComponents") << " on the ground)\n"
             << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir
             << "/model.vdb, " << dir << "/statistics.json" << sequence << "\n";
   return 0;

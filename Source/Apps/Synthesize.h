@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
+class vtkXMLImageDataReader;
+
 namespace msynth
 {
 namespace cli
@@ -53,10 +56,18 @@ struct SynthesizeOptions
   double Spacing = 0;
   double Blocks = 4;
   double Voxel = 0;
+  bool Grounded = false;
+  std::vector<std::string> Thickness, Connected;
+  bool NoProportions = false;
+  int Candidates = 1;
 };
 
 /// Discrete synthesis into the staging folder @p dir.
 int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir);
+/// Reads the guide volume (.vti) at @p path with @p guide (errors name the file) and connects it
+/// to input @p port of @p synthesis.
+void ConnectGuide(
+  vtkAlgorithm* synthesis, int port, vtkXMLImageDataReader* guide, const std::string& path);
 /// Continuous synthesis into the staging folder @p dir.
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir);
 

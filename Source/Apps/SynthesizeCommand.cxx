@@ -60,7 +60,8 @@ std::string LabelPair(const std::string& text)
   return std::string();
 }
 
-/// "L:F" with an integer label and a fraction.
+/// "L:F" with a label (an integer; an object type's name too for continuous synthesis) and a
+/// fraction.
 std::string LabelFraction(const std::string& text)
 {
   const auto colon = text.find(':');
@@ -68,8 +69,7 @@ std::string LabelFraction(const std::string& text)
   if (colon != std::string::npos)
   {
     const std::string label = text.substr(0, colon), fraction = text.substr(colon + 1);
-    std::strtol(label.c_str(), &end, 10);
-    const bool labelOk = !label.empty() && *end == '\0';
+    const bool labelOk = !label.empty();
     const double f = std::strtod(fraction.c_str(), &end);
     if (labelOk && !fraction.empty() && *end == '\0' && f >= 0 && f <= 1)
       return std::string();
@@ -169,16 +169,19 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
              ->allow_extra_args(false)
              ->check(LabelPair, "A:B"));
   discrete(s.add_option("--subset", o.Subset, "with a tileset: use the tiles of its subset NAME"));
-  discrete(s.add_option("--target", o.Targets,
-              "soft constraint: aim for fraction F of label L (L:F; needs --block)")
-             ->allow_extra_args(false)
-             ->check(LabelFraction, "L:F"));
+  s.add_option("--target", o.Targets,
+     "soft constraint: aim for fraction F of label L (L:F; needs --block); continuous: share F "
+     "of the solid volume for object type L (a number or name)")
+    ->allow_extra_args(false)
+    ->check(LabelFraction, "L:F")
+    ->group("Constraints (both kinds)");
   discrete(s.add_option("--temperature", o.Temperature,
               "temperature of the soft constraints' Metropolis acceptance")
              ->check(CLI::PositiveNumber));
-  discrete(s.add_option("--guide", o.Guide,
-    "large-scale constraints: image data over the output box whose point arrays Weight_<label> "
-    "weight each label (0 forbids it there)"));
+  s.add_option("--guide", o.Guide,
+     "large-scale constraints: image data (.vti) over the output box whose point arrays "
+     "Weight_<label> (continuous: Weight_<type>) weight each label (0 forbids it there)")
+    ->group("Constraints (both kinds)");
 }
 
 void AddSampleOptions(CLI::App& s, Registered& r)
@@ -208,6 +211,23 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                ->check(NonNegativeReal()));
   continuous(s.add_option("--types", o.Types,
     "object types of a polyhedral example: object (or base) name N has type T, as N=T,..."));
+  continuous(s.add_flag("--grounded", o.Grounded,
+    "every solid part stands on the ground: the example's ground labels only on the bottom of the "
+    "box, objects grown up from it, floating parts removed"));
+  continuous(s.add_option("--thickness", o.Thickness,
+                "dimensional constraint: object type TYPE is exactly N plane spacings thick "
+                "across AXIS (x, y, z or hK for plane family K; N defaults to 1)")
+               ->allow_extra_args(false));
+  continuous(s.add_option("--connected", o.Connected,
+                "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
+                "(default 1), so it forms that many connected objects")
+               ->allow_extra_args(false));
+  continuous(s.add_option("--candidates", o.Candidates,
+                "with proportions steered: labellings tried per block, the one closest to the "
+                "example's proportions kept (default 1)")
+               ->check(CLI::Range(1, 64)));
+  continuous(s.add_flag("--no-proportions", o.NoProportions,
+    "do not steer the label choice toward the example's proportions of object types"));
 }
 
 /// Options of label grids that an image sample does not take, and the forms of --ground.
@@ -252,6 +272,13 @@ void CheckKind(const Registered& r, bool polyhedral)
     if (o.Choice == "resemblance")
       throw UsageError{ "--choice resemblance applies to label grids, not to '" + o.Example + "'" };
     return;
+  }
+  for (const auto& target : o.Targets)
+  {
+    char* end = nullptr;
+    std::strtol(target.substr(0, target.find(':')).c_str(), &end, 10);
+    if (*end != ':')
+      throw UsageError{ "--target " + Printable(target) + ": a label grid's labels are integers" };
   }
   for (std::size_t a = 0; a < 3; ++a)
   {
@@ -327,9 +354,10 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   }
 }
 
-/// Reads the guide volume into @p guide and connects it.
+} // namespace
+
 void ConnectGuide(
-  vtkMSDiscreteSynthesis* synthesis, vtkXMLImageDataReader* guide, const std::string& path)
+  vtkAlgorithm* synthesis, int port, vtkXMLImageDataReader* guide, const std::string& path)
 {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0)
@@ -343,8 +371,11 @@ void ConnectGuide(
   {
     throw std::runtime_error("'" + path + "': not a readable guide volume: " + messages);
   }
-  synthesis->SetGuideConnection(guide->GetOutputPort());
+  synthesis->SetInputConnection(port, guide->GetOutputPort());
 }
+
+namespace
+{
 
 /// The picture of a tileset model or of an image sample's patterns (msynth::WritePng at fast
 /// compression), when the tile images are there.
@@ -503,7 +534,7 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   vtkNew<vtkXMLImageDataReader> guide;
   if (!o.Guide.empty())
   {
-    ConnectGuide(synthesis, guide, o.Guide);
+    ConnectGuide(synthesis, 1, guide, o.Guide);
   }
   {
     ProgressBar bar(synthesis);

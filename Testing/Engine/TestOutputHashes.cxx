@@ -189,9 +189,17 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     const ContinuousSynthesisResult r = SynthesizeContinuous(a, arrangement, o);
     EXPECT_TRUE(r.Succeeded()) << r.Message;
     got["continuous house, blocks"] = Hash(r.Labels);
+    o.Constraints.KeepProportions = false; // the uniform draw of the dissertation
+    got["continuous house, blocks, uniform"] = Hash(SynthesizeContinuous(a, arrangement, o).Labels);
+    o.Constraints.Grounded = true;
+    o.Constraints.Thickness.push_back({ 1, FamilyAlongAxis(a.Families(), 2), 1 });
+    got["continuous house, grounded, walls one spacing high"] =
+      Hash(SynthesizeContinuous(a, arrangement, o).Labels);
   }
   const std::map<std::string, std::string> expected = {
-    { "continuous house, blocks", "9a403552fe60dd2b" },
+    { "continuous house, blocks", "38d7cb199312c63f" },
+    { "continuous house, blocks, uniform", "9a403552fe60dd2b" },
+    { "continuous house, grounded, walls one spacing high", "56d4135e541e305b" },
     { "time-varying", "f1eeebd4ae9d53c2" },
   };
   ExpectHashes(got, expected);

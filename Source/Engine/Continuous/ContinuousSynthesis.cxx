@@ -4,6 +4,8 @@
 #include "Core/BlockSynthesis.h"
 #include "Core/Error.h"
 
+#include "Continuous/ConstraintPlan.h"
+#include "Continuous/SolverParts.h"
 #include "Core/Random.h"
 
 #include <algorithm>
@@ -127,179 +129,6 @@ int ArrangementRules::InitialCount(std::int64_t v) const
 
 namespace
 {
-
-/// Vertices grouped into overlapping blocks: cells of half the block edge, a block is 2×2×2 cells.
-struct BlockLayout
-{
-  std::array<std::int64_t, 3> Cells{ { 1, 1, 1 } };
-  std::vector<std::vector<std::int64_t>> CellVertices;
-  std::array<std::int64_t, 3> Blocks{ { 1, 1, 1 } };
-
-  BlockLayout(const PlaneArrangement& arrangement, double edge)
-  {
-    const auto& p = arrangement.Parameters();
-    const int dims = arrangement.Planar() ? 2 : 3;
-    const double half = edge / 2;
-    std::array<double, 3> lo{};
-    for (int c = 0; c < 3; ++c)
-    {
-      lo[static_cast<std::size_t>(c)] =
-        p.Origin[static_cast<std::size_t>(c)] + p.Quantum * static_cast<double>(p.BoxLow[c]);
-      if (c < dims && edge > 0)
-      {
-        const double extent = p.Quantum * static_cast<double>(p.BoxHigh[c] - p.BoxLow[c]);
-        this->Cells[static_cast<std::size_t>(c)] =
-          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent / half - 1e-9)));
-        this->Blocks[static_cast<std::size_t>(c)] =
-          std::max<std::int64_t>(1, this->Cells[static_cast<std::size_t>(c)] - 1);
-      }
-    }
-    this->CellVertices.resize(
-      static_cast<std::size_t>(this->Cells[0] * this->Cells[1] * this->Cells[2]));
-    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
-    {
-      std::array<std::int64_t, 3> cell{ { 0, 0, 0 } };
-      for (int c = 0; c < dims; ++c)
-      {
-        if (edge > 0)
-        {
-          const double t = (arrangement.Position(v)[static_cast<std::size_t>(c)] -
-                             lo[static_cast<std::size_t>(c)]) /
-            half;
-          cell[static_cast<std::size_t>(c)] =
-            std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(t)), 0,
-              this->Cells[static_cast<std::size_t>(c)] - 1);
-        }
-      }
-      this
-        ->CellVertices[static_cast<std::size_t>(
-          cell[0] + this->Cells[0] * (cell[1] + this->Cells[1] * cell[2]))]
-        .push_back(v);
-    }
-  }
-
-  std::int64_t NumberOfBlocks() const
-  {
-    return this->Blocks[0] * this->Blocks[1] * this->Blocks[2];
-  }
-
-  /// Vertices of block @p b in ascending (scan) order.
-  std::vector<std::int64_t> Vertices(std::int64_t b) const
-  {
-    const std::int64_t bx = b % this->Blocks[0], by = (b / this->Blocks[0]) % this->Blocks[1],
-                       bz = b / (this->Blocks[0] * this->Blocks[1]);
-    std::vector<std::int64_t> out;
-    for (std::int64_t z = bz; z < std::min(bz + 2, this->Cells[2]); ++z)
-    {
-      for (std::int64_t y = by; y < std::min(by + 2, this->Cells[1]); ++y)
-      {
-        for (std::int64_t x = bx; x < std::min(bx + 2, this->Cells[0]); ++x)
-        {
-          const auto& c = this->CellVertices[static_cast<std::size_t>(
-            x + this->Cells[0] * (y + this->Cells[1] * z))];
-          out.insert(out.end(), c.begin(), c.end());
-        }
-      }
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-};
-
-/// A label of @p domain: uniformly, or proportionally to @p weights when not empty.
-int PickLabel(const std::uint64_t* domain, int words, int count, const std::vector<double>& weights,
-  Random& rng)
-{
-  if (weights.empty())
-  {
-    auto r = static_cast<int>(rng.Below(static_cast<std::uint64_t>(count)));
-    for (int w = 0; w < words; ++w)
-    {
-      for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-      {
-        if (r-- == 0)
-        {
-          return w * 64 + __builtin_ctzll(bits);
-        }
-      }
-    }
-    return -1;
-  }
-  double total = 0;
-  int last = -1;
-  for (int w = 0; w < words; ++w)
-  {
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-    {
-      total += weights[static_cast<std::size_t>(w * 64 + __builtin_ctzll(bits))];
-    }
-  }
-  double r = rng.Uniform() * total;
-  for (int w = 0; w < words; ++w)
-  {
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-    {
-      last = w * 64 + __builtin_ctzll(bits);
-      r -= weights[static_cast<std::size_t>(last)];
-      if (r < 0)
-      {
-        return last;
-      }
-    }
-  }
-  return last;
-}
-
-/// The undecided vertices of a block in the order they are labelled.
-class SiteQueue
-{
-public:
-  SiteQueue(SiteOrder order, std::int64_t n, Random& rng)
-    : Order(order)
-    , Counts(static_cast<std::size_t>(n), 0)
-    , Key(static_cast<std::size_t>(n))
-  {
-    for (std::int64_t i = 0; i < n; ++i)
-    {
-      this->Key[static_cast<std::size_t>(i)] =
-        order == SiteOrder::ScanLine ? static_cast<std::uint64_t>(i) : rng.Next();
-    }
-  }
-
-  void Update(std::int64_t i, int count)
-  {
-    auto& old = this->Counts[static_cast<std::size_t>(i)];
-    if (old > 1)
-    {
-      this->Pending.erase({ this->Order == SiteOrder::MinimumEntropy ? old : 0,
-        this->Key[static_cast<std::size_t>(i)], i });
-    }
-    old = count;
-    if (count > 1)
-    {
-      this->Pending.insert({ this->Order == SiteOrder::MinimumEntropy ? count : 0,
-        this->Key[static_cast<std::size_t>(i)], i });
-    }
-  }
-
-  /// The next undecided vertex, or -1.
-  std::int64_t Next() const
-  {
-    return this->Pending.empty() ? -1 : std::get<2>(*this->Pending.begin());
-  }
-  std::int64_t Remaining() const { return static_cast<std::int64_t>(this->Pending.size()); }
-
-private:
-  SiteOrder Order;
-  std::vector<int> Counts;
-  std::vector<std::uint64_t> Key;
-  std::set<std::tuple<int, std::uint64_t, std::int64_t>> Pending;
-};
-
-} // namespace
-
-namespace
-{
 /**
  * One run of continuous synthesis (D§4.5, Algorithm 4.1; T§4.5.6 for the blocks): the model's
  * labels, each block's vertices and catalog, the attempt with one level of backtracking, and the
@@ -322,8 +151,8 @@ public:
     for (int f = 0; f < arrangement.Families().Size(); ++f)
       reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
     this->Whole = options.BlockSize == 0;
-    this->Layout =
-      std::make_unique<BlockLayout>(arrangement, this->Whole ? 0.0 : options.BlockSize * reference);
+    this->Layout = std::make_unique<detail::BlockLayout>(
+      arrangement, this->Whole ? 0.0 : options.BlockSize * reference);
     this->Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
     result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
     this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
@@ -341,6 +170,24 @@ public:
         "continuous synthesis: only uniform and frequency-weighted label choice are available");
     }
     this->LocalOf.assign(static_cast<std::size_t>(this->N), -1);
+    this->Plan = std::make_unique<detail::ConstraintPlan>(
+      analysis, arrangement, options.Constraints, options.Seed);
+    if (options.Constraints.RestrictsCatalog())
+      for (std::int64_t v = 0; v < this->N; ++v)
+        this->Plan->Restrict(v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words);
+    this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
+    this->Tally.assign(static_cast<std::size_t>(this->Plan->NumberOfTypes()), 0.0);
+    this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
+  }
+
+  /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
+  std::int64_t BlockAt(std::size_t position) const { return this->Order[position]; }
+  /// Grounded runs: empties the solid parts that do not touch the ground.
+  std::int64_t RemoveFloating()
+  {
+    return this->Options.Constraints.Grounded
+      ? this->Plan->RemoveFloating(this->Result.Labels, this->Rules.EmptyLabel())
+      : 0;
   }
 
   bool WholeModel() const { return this->Whole; }
@@ -372,6 +219,9 @@ public:
     for (std::size_t i = 0; i < this->Verts.size(); ++i)
       this->LocalOf[static_cast<std::size_t>(this->Verts[i])] = static_cast<std::int32_t>(i);
     this->BlockStart = CatalogSnapshot();
+    this->BlockTally = this->Tally; // the shares without the block's current labels
+    for (std::int64_t v : this->Verts)
+      this->AddShares(this->BlockTally, this->Result.Labels[static_cast<std::size_t>(v)], -1);
   }
 
   /// One attempt at the current block @p b: -1 when solved (its labels are written to the
@@ -381,6 +231,8 @@ public:
   /// After block @p b: its vertices leave, and its snapshots are emitted.
   void Leave(std::int64_t b)
   {
+    b = static_cast<std::int64_t>(
+      std::find(this->Order.begin(), this->Order.end(), b) - this->Order.begin());
     for (std::int64_t v : this->Verts)
       this->LocalOf[static_cast<std::size_t>(v)] = -1;
     if (this->Whole || !this->Snapshots())
@@ -415,6 +267,25 @@ private:
   /// Labels the undecided vertices; a label whose propagation empties a set is removed and
   /// another tried (one level of backtracking). Returns -1, or the emptied local vertex.
   std::int64_t AssignAll(std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assigned);
+  /// A label for local vertex @p i under the constraints: connectivity (types that grow only
+  /// next to themselves, seeds), guide weights and type proportions.
+  int Choose(std::int64_t i, Random& rng);
+  /// Puts the undecided neighbours of the decided local vertex @p i that its growing types
+  /// reach on the growth front.
+  void Spread(std::int64_t i, detail::SiteQueue& queue) const;
+  /// The model's shares with the block labelled @p labels.
+  std::vector<double> Tallied(const std::vector<std::int32_t>& labels) const
+  {
+    std::vector<double> tally = this->BlockTally;
+    for (int label : labels)
+      this->AddShares(tally, label, 1);
+    return tally;
+  }
+  void AddShares(std::vector<double>& tally, int label, double sign) const
+  {
+    for (int t = 1; t < this->Plan->NumberOfTypes(); ++t)
+      tally[static_cast<std::size_t>(t)] += sign * this->Plan->Occupancy(label, t);
+  }
   template <typename Visit>
   void ForEachNeighbour(std::int64_t local, Visit&& visit) const
   {
@@ -437,12 +308,20 @@ private:
   const std::int64_t N;
   const int K, Words;
   bool Whole = true;
-  std::unique_ptr<BlockLayout> Layout;
+  std::unique_ptr<detail::BlockLayout> Layout;
   std::int64_t Blocks = 1;
   std::vector<std::uint64_t> Initial; ///< [vertex][word]: the catalog before anything is chosen
   std::vector<double> Weights;        ///< per label; empty: uniform
-  std::vector<std::int32_t> LocalOf;  ///< per vertex: its number in the current block, or -1
-  std::vector<std::int64_t> Verts;    ///< the current block's vertices, ascending
+  std::unique_ptr<detail::ConstraintPlan> Plan;
+  bool Guided = false;              ///< labels drawn by Choose (constraints active)
+  std::vector<std::int64_t> Order;  ///< blocks in the order they are labelled
+  std::vector<double> Tally;        ///< solid shares of the model (per type bit)
+  std::vector<double> BlockTally;   ///< the same without the current block's labels
+  std::vector<double> AttemptTally; ///< BlockTally plus the attempt's choices so far
+  std::vector<int> Candidates;      ///< scratch of Choose
+  std::vector<double> CandidateWeights;
+  std::vector<std::int32_t> LocalOf; ///< per vertex: its number in the current block, or -1
+  std::vector<std::int64_t> Verts;   ///< the current block's vertices, ascending
   LabelDomains Domains;
   std::vector<CatalogSnapshot> Pending; ///< whole model: the current attempt's snapshots
   CatalogSnapshot BlockStart;           ///< blocks: the block's catalog after propagation
@@ -524,9 +403,32 @@ std::int64_t ContinuousRun::AssignAll(
   { this->ForEachNeighbour(local, visit); };
   int taken = 0;
   std::vector<std::uint64_t> exclude(static_cast<std::size_t>(this->Words));
-  SiteQueue queue(this->Options.Order, m, rng);
+  detail::SiteQueue queue(this->Options.Order, m, rng);
   for (std::int64_t i = 0; i < m; ++i)
     queue.Update(i, this->Domains.Count(i));
+  this->AttemptTally = this->BlockTally;
+  if (this->Plan->GrowMask())
+  {
+    // The growth front: seeds, the ground, and vertices the labels around them reach.
+    for (std::int64_t i = 0; i < m; ++i)
+    {
+      const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+      bool front = (this->Plan->StartTypes(v) & this->Plan->GrowMask()) != 0;
+      for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+      {
+        if (l->Vertex >= 0 && this->LocalOf[static_cast<std::size_t>(l->Vertex)] < 0)
+          front = front ||
+            (this->Plan->EdgeTypes(
+               l->Direction ^ 1, this->Result.Labels[static_cast<std::size_t>(l->Vertex)]) &
+              this->Plan->GrowMask()) != 0;
+      }
+      if (front)
+        queue.SetFront(i);
+    }
+    for (std::int64_t i = 0; i < m; ++i)
+      if (this->Domains.Count(i) == 1)
+        this->Spread(i, queue);
+  }
   this->Domains.ClearChanged();
   this->Domains.Record(true);
   std::int64_t empty = -1;
@@ -540,8 +442,9 @@ std::int64_t ContinuousRun::AssignAll(
     for (;;)
     {
       this->Domains.Record(true);
-      const int label =
-        PickLabel(this->Domains.Domain(i), this->Words, this->Domains.Count(i), this->Weights, rng);
+      const int label = this->Guided ? this->Choose(i, rng)
+                                     : detail::PickLabel(this->Domains.Domain(i), this->Words,
+                                         this->Domains.Count(i), this->Weights, rng);
       this->Domains.Assign(i, label);
       ++assigned;
       empty = this->Domains.Propagate(this->Rules, neighbours);
@@ -556,8 +459,16 @@ std::int64_t ContinuousRun::AssignAll(
       if (empty >= 0 || this->Domains.Count(i) == 1)
         break;
     }
+    if (empty < 0 && this->Domains.Count(i) == 1)
+      this->AddShares(this->AttemptTally, this->Domains.Single(i), 1);
     for (std::int64_t c : this->Domains.Changed())
+    {
       queue.Update(c, this->Domains.Count(c));
+      if (empty < 0 && this->Plan->GrowMask() && this->Domains.Count(c) == 1)
+        this->Spread(c, queue);
+    }
+    if (empty < 0 && this->Plan->GrowMask() && this->Domains.Count(i) == 1)
+      this->Spread(i, queue);
     this->Domains.ClearChanged();
     if (empty >= 0)
       return empty;
@@ -572,6 +483,85 @@ std::int64_t ContinuousRun::AssignAll(
       }
     }
   }
+}
+
+void ContinuousRun::Spread(std::int64_t i, detail::SiteQueue& queue) const
+{
+  const int label = this->Domains.Single(i);
+  this->ForEachNeighbour(i,
+    [&](std::int64_t u, int d)
+    {
+      if (this->Domains.Count(u) > 1 && (this->Plan->EdgeTypes(d, label) & this->Plan->GrowMask()))
+        queue.SetFront(u);
+      return true;
+    });
+}
+
+int ContinuousRun::Choose(std::int64_t i, Random& rng)
+{
+  const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+  std::uint64_t forbidden = 0, seeded = 0;
+  if (this->Plan->GrowMask())
+  {
+    // Growing types only next to themselves (TVCG §4.6), or where a seed or the ground starts them.
+    std::uint64_t reach = this->Plan->StartTypes(v);
+    for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+    {
+      if (l->Vertex < 0)
+        continue;
+      const std::int32_t u = this->LocalOf[static_cast<std::size_t>(l->Vertex)];
+      if (u >= 0 && this->Domains.Count(u) != 1)
+        continue;
+      const int label =
+        u >= 0 ? this->Domains.Single(u) : this->Result.Labels[static_cast<std::size_t>(l->Vertex)];
+      reach |= this->Plan->EdgeTypes(l->Direction ^ 1, label);
+    }
+    forbidden = this->Plan->GrowMask() & ~reach;
+    seeded = this->Plan->SeedTypes(v);
+  }
+  auto& c = this->Candidates;
+  const std::uint64_t* domain = this->Domains.Domain(i);
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    // Pass 0: a seed's own types; 1: labels the growth allows; 2: any label of the catalog.
+    if (pass == 0 && !seeded)
+      continue;
+    c.clear();
+    for (int w = 0; w < this->Words; ++w)
+    {
+      for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
+      {
+        const int a = w * 64 + __builtin_ctzll(bits);
+        const std::uint64_t types = this->Plan->LabelTypes(a);
+        if ((pass == 0 && !(types & seeded)) || (pass < 2 && (types & forbidden)))
+          continue;
+        c.push_back(a);
+      }
+    }
+    if (!c.empty())
+      break;
+  }
+  if (!this->Plan->Weighted() && this->Weights.empty())
+    return c[static_cast<std::size_t>(rng.Below(c.size()))];
+  auto& weight = this->CandidateWeights;
+  weight.resize(c.size());
+  double total = 0;
+  for (std::size_t k = 0; k < c.size(); ++k)
+  {
+    weight[k] = (this->Weights.empty() ? 1.0 : this->Weights[static_cast<std::size_t>(c[k])]) *
+      this->Plan->Factor(v, c[k], this->AttemptTally);
+    total += weight[k];
+  }
+  if (!(total > 0))
+    return c[static_cast<std::size_t>(rng.Below(c.size()))];
+  double r = rng.Uniform() * total;
+  for (std::size_t k = 0; k < c.size(); ++k)
+  {
+    r -= weight[k];
+    if (r < 0)
+      return c[k];
+  }
+  return c.back();
 }
 
 std::int64_t ContinuousRun::Attempt(
@@ -594,9 +584,33 @@ std::int64_t ContinuousRun::Attempt(
       ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
     return empty;
   }
+  std::vector<std::int32_t> best(this->Verts.size());
   for (std::size_t i = 0; i < this->Verts.size(); ++i)
-    this->Result.Labels[static_cast<std::size_t>(this->Verts[i])] =
-      this->Domains.Single(static_cast<std::int64_t>(i));
+    best[i] = this->Domains.Single(static_cast<std::int64_t>(i));
+  const int candidates = this->Snapshots() ? 1 : this->Plan->Candidates();
+  double bestScore = candidates > 1 ? this->Plan->Mismatch(this->Tallied(best)) : 0;
+  for (int c = 1; c < candidates; ++c)
+  {
+    // Other labellings of the block; the one whose type shares come closest to the targets wins.
+    Random other = Random::Derived(rng.Next(), static_cast<std::uint64_t>(c));
+    std::int64_t more = 0;
+    if (this->ConstrainFromOutside() >= 0 || this->AssignAll(b, other, runner, more) >= 0)
+      continue;
+    assignments += more;
+    this->AssignmentsSoFar += more;
+    std::vector<std::int32_t> labels(this->Verts.size());
+    for (std::size_t i = 0; i < this->Verts.size(); ++i)
+      labels[i] = this->Domains.Single(static_cast<std::int64_t>(i));
+    const double score = this->Plan->Mismatch(this->Tallied(labels));
+    if (score < bestScore)
+    {
+      bestScore = score;
+      best.swap(labels);
+    }
+  }
+  for (std::size_t i = 0; i < this->Verts.size(); ++i)
+    this->Result.Labels[static_cast<std::size_t>(this->Verts[i])] = best[i];
+  this->Tally = this->Tallied(best);
   while (this->Whole && this->Snapshots() &&
     static_cast<int>(this->Pending.size()) < this->Options.Snapshots)
     this->Pending.push_back(this->Capture(b, true)); // decided by propagation before the last marks
@@ -633,7 +647,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   BlockRunner::Hooks hooks;
   hooks.Run = [&](unsigned, std::size_t i)
   {
-    const auto b = static_cast<std::int64_t>(i);
+    const std::int64_t b = run.BlockAt(i);
     run.Enter(b);
     return runner.Attempts(0, options.Attempts,
       [&](int attempt, std::int64_t& assignments)
@@ -648,12 +662,12 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     if (!out.Solved())
     {
       BlockFailure f;
-      f.Block = static_cast<std::int64_t>(i);
+      f.Block = run.BlockAt(i);
       f.EmptyIndex = run.Vertex(out.Empty);
       f.Attempts = out.Attempts;
       stats.Failures.push_back(f);
     }
-    run.Leave(static_cast<std::int64_t>(i));
+    run.Leave(run.BlockAt(i));
   };
   std::vector<int> phases(static_cast<std::size_t>(blocks));
   std::iota(phases.begin(), phases.end(), 0);
@@ -675,8 +689,12 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     run.EmptyModel();
     return result;
   }
+  result.FloatingPartsRemoved = run.RemoveFloating();
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
+  if (options.Constraints.Grounded)
+    result.Message +=
+      ", " + std::to_string(result.FloatingPartsRemoved) + " floating parts emptied";
   return result;
 }
 

@@ -11,6 +11,7 @@
  * CompatibilityRelation with two direction classes per line direction, and solved by the same
  * propagation engine as discrete synthesis (Propagation.h).
  */
+#include "Continuous/ContinuousConstraints.h"
 #include "Continuous/PlaneArrangement.h"
 #include "Continuous/PolyhedralAnalysis.h"
 #include "Core/BlockSynthesis.h"
@@ -63,6 +64,8 @@ struct ContinuousSynthesisOptions
   SiteOrder Order = SiteOrder::MinimumEntropy;
   /// Uniform (the dissertation) or weighted by how often the label occurs in the example.
   LabelChoice Choice = LabelChoice::Uniform;
+  /// Dimensional, connectivity, ground, guide and proportion constraints (TVCG §4.5–4.7).
+  ContinuousConstraints Constraints;
   int Snapshots = 0; ///< catalog snapshots after the start, at even fractions of the work
   std::function<void(const CatalogSnapshot&)> OnSnapshot;
   /// Called with the fraction done; return false to cancel (Status Cancelled, no labels).
@@ -78,6 +81,8 @@ struct ContinuousSynthesisResult
   /// emptied), assignments, backtracks (labels withdrawn because their propagation failed).
   SynthesisStatistics Statistics;
   std::string Message; ///< why it failed, or a summary
+  /// Grounded runs: solid parts that did not touch the ground and were emptied.
+  std::int64_t FloatingPartsRemoved = 0;
 };
 
 /**

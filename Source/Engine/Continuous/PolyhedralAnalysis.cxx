@@ -578,6 +578,42 @@ private:
 };
 } // namespace
 
+namespace
+{
+/// Volume (3D, divergence theorem over the outward faces) or area (2D, shoelace over the
+/// counter-clockwise polygons) per object type, and the bounding box.
+void MeasureTypes(
+  const PolyhedralExample& example, std::map<int, double>& volumes, Point3& low, Point3& high)
+{
+  for (std::size_t i = 0; i < example.Points.size(); ++i)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      low[c] = i == 0 ? example.Points[i][c] : std::min(low[c], example.Points[i][c]);
+      high[c] = i == 0 ? example.Points[i][c] : std::max(high[c], example.Points[i][c]);
+    }
+  }
+  for (std::size_t f = 0; f < example.Faces.size(); ++f)
+  {
+    const auto& face = example.Faces[f];
+    const int type = example.ObjectTypes.at(static_cast<std::size_t>(example.FaceObject[f]));
+    double sum = 0;
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+    {
+      const Point3& a = example.Points[static_cast<std::size_t>(face[0])];
+      const Point3& b = example.Points[static_cast<std::size_t>(face[k])];
+      const Point3& c = example.Points[static_cast<std::size_t>(face[k + 1])];
+      sum += example.Planar
+        ? ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2
+        : (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+            a[2] * (b[0] * c[1] - b[1] * c[0])) /
+          6;
+    }
+    volumes[type] += example.Planar ? std::abs(sum) : sum;
+  }
+}
+} // namespace
+
 PolyhedralAnalysis PolyhedralAnalysis::Analyze(
   const PolyhedralExample& example, const Options& options)
 {
@@ -619,6 +655,7 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
   {
     feature.Label = idOf[feature.Label];
   }
+  MeasureTypes(example, analysis.Volumes, analysis.BoundsLow, analysis.BoundsHigh);
   analysis.ElementLabels.assign(analysis.Elements.size(), -1);
   for (std::size_t e = 0; e < analysis.Elements.size(); ++e)
   {

@@ -134,6 +134,12 @@ public:
   /// families all pass through it.
   std::vector<int> AllowedLabels(std::vector<int> families) const;
 
+  /// Volume (area in 2D) of each object type of the example, by the divergence theorem.
+  const std::map<int, double>& TypeVolumes() const { return this->Volumes; }
+  /// The example's bounding box.
+  const Point3& Low() const { return this->BoundsLow; }
+  const Point3& High() const { return this->BoundsHigh; }
+
 private:
   bool IsPlanar = false;
   std::shared_ptr<PlaneFamilySet> Set;
@@ -144,6 +150,8 @@ private:
   std::vector<LabelInfo> Catalog;
   std::map<NeighbourhoodLabel, int> IdOf;
   std::vector<Feature> Samples;
+  std::map<int, double> Volumes;
+  Point3 BoundsLow{}, BoundsHigh{};
 };
 
 } // namespace msynth

@@ -12,6 +12,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -26,18 +27,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 
 struct vtkMSContinuousSynthesis::Cache
 {
   vtkMSSynthesisCache<msynth::ContinuousSynthesisResult> Run;
   std::vector<msynth::CatalogSnapshot> Snapshots;
+  msynth::ArrangementMeasures Measures;
 };
 
 vtkStandardNewMacro(vtkMSContinuousSynthesis);
 
 vtkMSContinuousSynthesis::vtkMSContinuousSynthesis()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
 }
 
 vtkMSContinuousSynthesis::~vtkMSContinuousSynthesis() = default;
@@ -51,11 +55,19 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "NumberOfSnapshots: " << this->NumberOfSnapshots << "\n";
+  os << indent << "Grounded: " << this->Grounded << "\n";
+  os << indent << "Thickness: " << this->Thickness << "\n";
+  os << indent << "Connected: " << this->Connected << "\n";
+  os << indent << "KeepProportions: " << this->KeepProportions << "\n";
+  os << indent << "TargetFractions: " << this->TargetFractions << "\n";
+  os << indent << "BlockCandidates: " << this->BlockCandidates << "\n";
 }
 
-int vtkMSContinuousSynthesis::FillInputPortInformation(int, vtkInformation* info)
+int vtkMSContinuousSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 2 ? "vtkImageData" : "vtkPolyData");
+  if (port == 2)
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
@@ -69,10 +81,72 @@ int vtkMSContinuousSynthesis::RequestInformation(
 
 namespace
 {
+/// Entries of a property list: separated by commas, semicolons or spaces.
+std::vector<std::string> Entries(const char* text)
+{
+  std::string s = text ? text : "";
+  for (char& c : s)
+    c = c == ',' || c == ';' ? ' ' : c;
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string e; in >> e;)
+    out.push_back(e);
+  return out;
+}
+
+/// The constraints of the filter's properties and guide input (msynth::Error on bad entries).
+msynth::ContinuousConstraints Constraints(vtkMSContinuousSynthesis* self, vtkImageData* guide,
+  const msynth::PolyhedralExample& ex, const msynth::PlaneFamilySet& families)
+{
+  msynth::ContinuousConstraints c;
+  c.Grounded = self->GetGrounded();
+  c.KeepProportions = self->GetKeepProportions();
+  c.BlockCandidates = self->GetBlockCandidates();
+  for (const auto& e : Entries(self->GetThickness()))
+    c.Thickness.push_back(msynth::ParseThickness(e, families, ex.TypeNames));
+  for (const auto& e : Entries(self->GetConnected()))
+    c.Connected.push_back(msynth::ParseConnected(e, ex.TypeNames));
+  for (const auto& e : Entries(self->GetTargetFractions()))
+  {
+    const auto colon = e.rfind(':');
+    char* end = nullptr;
+    const double f = colon == std::string::npos ? 0 : std::strtod(e.c_str() + colon + 1, &end);
+    if (colon == std::string::npos || end == e.c_str() + colon + 1 || *end != '\0')
+      throw msynth::Error("TargetFractions: '" + e + "' is not TYPE:FRACTION");
+    c.TargetFractions[msynth::ParseObjectType(e.substr(0, colon), ex.TypeNames)] = f;
+  }
+  if (guide)
+  {
+    msynth::ContinuousGuide g;
+    int dims[3];
+    guide->GetDimensions(dims);
+    g.Dims = { { dims[0], dims[1], dims[2] } };
+    vtkPointData* pd = guide->GetPointData();
+    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* array = pd->GetArray(i);
+      const std::string name = array && array->GetName() ? array->GetName() : "";
+      if (name.rfind("Weight_", 0) != 0)
+        continue;
+      if (array->GetNumberOfComponents() != 1)
+        throw msynth::Error("guide array '" + name + "' must have one component");
+      std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
+      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+        weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
+      g.Weights[msynth::ParseObjectType(name.substr(7), ex.TypeNames)] = std::move(weights);
+    }
+    if (g.Weights.empty())
+      throw msynth::Error("the guide has no point array Weight_<type> (a type number or name)");
+    c.Guide = std::move(g);
+  }
+  return c;
+}
+
 /// The arrangement rebuilt exactly from its field data, checked against the example, and the
 /// solver run on it.
 msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyData* example,
-  vtkPolyData* arrangementData, std::vector<msynth::CatalogSnapshot>& snapshots)
+  vtkPolyData* arrangementData, vtkImageData* guide,
+  std::vector<msynth::CatalogSnapshot>& snapshots, msynth::ArrangementMeasures& measures)
 {
   const auto record = vtkMSArrangementStorage::LoadArrangement(arrangementData->GetFieldData(),
     vtkMSFieldData::ExampleName(arrangementData) + " (arrangement)");
@@ -99,10 +173,14 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   options.Choice =
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   options.Snapshots = self->GetNumberOfSnapshots();
+  options.Constraints = Constraints(self, guide, ex, analysis.Families());
   snapshots.clear();
   options.OnSnapshot = [&snapshots](const msynth::CatalogSnapshot& s) { snapshots.push_back(s); };
   options.Progress = vtkMSSynthesisRun::Progress(self);
-  return msynth::SynthesizeContinuous(analysis, arrangement, options);
+  auto result = msynth::SynthesizeContinuous(analysis, arrangement, options);
+  if (result.Succeeded())
+    measures = msynth::MeasureArrangement(analysis, arrangement, result.Labels);
+  return result;
 }
 } // namespace
 
@@ -112,6 +190,7 @@ int vtkMSContinuousSynthesis::RequestData(
   vtkPolyData* example = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* arrangementData = vtkPolyData::GetData(inputVector[1], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkImageData* guide = vtkImageData::GetData(inputVector[2], 0);
   if (!arrangementData)
   {
     vtkErrorMacro(
@@ -128,17 +207,21 @@ int vtkMSContinuousSynthesis::RequestData(
     this->Cached.reset(new Cache);
   }
   Cache& cache = *this->Cached;
-  if (cache.Run.Fresh(this, { example, arrangementData }))
+  if (cache.Run.Fresh(this, { example, arrangementData, guide }))
   {
     cache.Run.Clear();
     const std::string what = "Synthesis on an arrangement of " +
       std::to_string(arrangementData->GetNumberOfPoints()) + " vertices";
     if (!vtkMSSynthesisRun::Solve(this, what,
-          [&]() { cache.Run.Result = Solve(this, example, arrangementData, cache.Snapshots); }))
+          [&]()
+          {
+            cache.Run.Result =
+              Solve(this, example, arrangementData, guide, cache.Snapshots, cache.Measures);
+          }))
     {
       return 0;
     }
-    cache.Run.Keep(this, { example, arrangementData }, cache.Run.Result.Succeeded());
+    cache.Run.Keep(this, { example, arrangementData, guide }, cache.Run.Result.Succeeded());
   }
   const auto& result = cache.Run.Result;
   if (!vtkMSSynthesisRun::Report(
@@ -199,4 +282,14 @@ void vtkMSContinuousSynthesis::FillOutput(
   vtkMSFieldData::AddFieldValue<vtkIntArray>(fields, "Success", 1);
   vtkMSFieldData::AddStatistics(fields, result.Statistics, result.Status, result.Message);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  const auto& m = cache.Measures;
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "Components", static_cast<vtkIdType>(m.Components));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "GroundedComponents", static_cast<vtkIdType>(m.GroundedComponents));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "FloatingPartsRemoved", static_cast<vtkIdType>(result.FloatingPartsRemoved));
+  for (const auto& [type, share] : m.TypeShares)
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      fields, ("TypeShare_" + std::to_string(type)).c_str(), share);
 }

@@ -16,6 +16,13 @@
  * can animate it shrinking; `Label` is then −1 where undecided and `ModelLabel` holds the finished
  * model at every step.
  *
+ * Constraints beyond adjacency (TVCG 2010 §4.5–4.7, msynth::ContinuousConstraints): Grounded
+ * outputs, Thickness (dimensional constraints), Connected (growth from seeds), proportions of
+ * object types (on by default; TargetFractions), and a guide (input port 2, optional): image data
+ * stretched over the output box whose point arrays `Weight_<type>` (a type number or name) weight
+ * the labels holding that type, 0 removing them there. The field data then also has `Components`,
+ * `GroundedComponents`, `FloatingPartsRemoved` and `TypeShare_<type>`.
+ *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
  *
@@ -28,6 +35,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for std::string
 
 class MODELSYNTHFILTERS_EXPORT vtkMSContinuousSynthesis : public vtkPolyDataAlgorithm
 {
@@ -51,6 +59,8 @@ public:
 
   /// The arrangement input (port 1).
   void SetArrangementConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  /// The optional guide (port 2): image data with point arrays Weight_<type>.
+  void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
 
   ///@{
   /// Random seed; equal seeds give equal models. Default 0.
@@ -94,6 +104,42 @@ public:
   vtkGetMacro(NumberOfSnapshots, int);
   ///@}
 
+  ///@{
+  /// Grounded output: ground labels only on the ground, objects grown from it, floating parts
+  /// emptied. Default off.
+  vtkSetMacro(Grounded, bool);
+  vtkGetMacro(Grounded, bool);
+  vtkBooleanMacro(Grounded, bool);
+  ///@}
+  ///@{
+  /// Dimensional constraints, "TYPE:AXIS[:N],..." (AXIS x, y, z or hK; N plane spacings).
+  /// Default "".
+  vtkSetStdStringFromCharMacro(Thickness);
+  vtkGetCharFromStdStringMacro(Thickness);
+  ///@}
+  ///@{
+  /// Connectivity constraints, "TYPE[:SEEDS],..." (TYPE "solid" for every type). Default "".
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
+  ///@}
+  ///@{
+  /// Keep the example's proportions of object types (by volume). Default on.
+  vtkSetMacro(KeepProportions, bool);
+  vtkGetMacro(KeepProportions, bool);
+  vtkBooleanMacro(KeepProportions, bool);
+  ///@}
+  ///@{
+  /// Target shares of the solid volume per object type, "TYPE:F,..." (others keep the example's
+  /// proportions among themselves). Default "".
+  vtkSetStdStringFromCharMacro(TargetFractions);
+  vtkGetCharFromStdStringMacro(TargetFractions);
+  ///@}
+  ///@{
+  /// With proportions steered: labellings tried per block, the best kept. Default 1.
+  vtkSetClampMacro(BlockCandidates, int, 1, 64);
+  vtkGetMacro(BlockCandidates, int);
+  ///@}
+
 protected:
   vtkMSContinuousSynthesis();
   ~vtkMSContinuousSynthesis() override;
@@ -115,6 +161,12 @@ private:
   int SiteOrder = MINIMUM_ENTROPY;
   int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;
+  bool Grounded = false;
+  std::string Thickness;
+  std::string Connected;
+  bool KeepProportions = true;
+  std::string TargetFractions;
+  int BlockCandidates = 1;
 
   struct Cache;
   std::unique_ptr<Cache> Cached;

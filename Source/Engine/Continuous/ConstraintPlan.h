@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The constraints of ContinuousConstraints compiled for one arrangement (internal header of the
+// continuous solver): label masks per vertex, the types each label and each edge evaluation
+// holds, the seeds, and the label weights.
+#include "Continuous/ContinuousConstraints.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace msynth
+{
+namespace detail
+{
+
+class ConstraintPlan
+{
+public:
+  ConstraintPlan(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+    const ContinuousConstraints& constraints, std::uint64_t seed);
+
+  /// ANDs every label removal of the constraints into vertex @p v's catalog (Words() words).
+  void Restrict(std::int64_t v, std::uint64_t* domain) const;
+
+  /// Object types as bits: bit t for the t-th type in ascending order (bit 0: empty space).
+  int NumberOfTypes() const { return static_cast<int>(this->Types.size()); }
+  int TypeAt(int t) const { return this->Types[static_cast<std::size_t>(t)]; }
+  std::uint64_t SolidMask() const { return this->Solid; }
+  std::uint64_t LabelTypes(int label) const
+  {
+    return this->TypesOfLabel[static_cast<std::size_t>(label)];
+  }
+  /// The types of label @p label evaluated along direction class @p d (what the edge touches).
+  std::uint64_t EdgeTypes(int d, int label) const
+  {
+    return this
+      ->TypesOfEdge[static_cast<std::size_t>(d) * this->K + static_cast<std::size_t>(label)];
+  }
+  /// Fraction of label @p label's cones holding type bit @p t.
+  double Occupancy(int label, int t) const
+  {
+    return this
+      ->Share[static_cast<std::size_t>(label) * this->Types.size() + static_cast<std::size_t>(t)];
+  }
+
+  /// Connectivity: the types that only grow next to themselves (0: none).
+  std::uint64_t GrowMask() const { return this->Grow; }
+  /// Types that may start at vertex @p v (seeds; the ground when grounded).
+  std::uint64_t StartTypes(std::int64_t v) const;
+  /// Types a seed at @p v should start (the pick prefers labels holding them).
+  std::uint64_t SeedTypes(std::int64_t v) const;
+  bool OnGround(std::int64_t v) const;
+  /// The seed vertices (ascending).
+  const std::vector<std::int64_t>& Seeds() const { return this->SeedVertices; }
+
+  /// Whether labels are drawn with weights from the constraints.
+  bool Weighted() const { return this->HasGuideWeights || this->Proportions; }
+  /**
+   * The constraints' factor for label @p label at vertex @p v, given the solid shares so far
+   * (@p tally: occupancy per type bit, summed over the labelled vertices).
+   */
+  double Factor(std::int64_t v, int label, const std::vector<double>& tally) const;
+  /// Labellings tried per block, the best kept (ContinuousConstraints::BlockCandidates when
+  /// proportions are steered, else 1).
+  int Candidates() const { return this->Proportions ? this->Constraints.BlockCandidates : 1; }
+  /// How far the solid shares of @p tally are from the targets (sum of squared differences).
+  double Mismatch(const std::vector<double>& tally) const;
+
+  /**
+   * Grounded runs: empties every connected solid part that does not touch the ground (always
+   * consistent: a part's vertices see only empty space once it is gone). Returns the number of
+   * parts removed.
+   */
+  std::int64_t RemoveFloating(std::vector<std::int32_t>& labels, int emptyLabel) const;
+
+private:
+  std::int64_t CellOf(std::int64_t v) const;
+
+  const PolyhedralAnalysis& Analysis;
+  const PlaneArrangement& Arrangement;
+  const ContinuousConstraints& Constraints;
+  std::size_t K = 0;
+  int Words = 0;
+  std::vector<int> Types;
+  std::uint64_t Solid = 0, Grow = 0;
+  std::vector<std::uint64_t> TypesOfLabel, TypesOfEdge;
+  std::vector<double> Share;
+  int GroundAxis = 2;
+  double GroundLevel = 0, GroundTolerance = 0;
+  std::vector<std::uint64_t> GroundAllowed, AboveAllowed; ///< label bit sets
+  struct Slabs
+  {
+    int Family = 0, Spacings = 1;
+    std::int64_t Lowest = 0;
+    std::vector<std::uint64_t> OuterAllowed, InnerAllowed; ///< label bit sets
+  };
+  std::vector<Slabs> Thickness;
+  std::vector<std::vector<std::uint64_t>> WithType; ///< per type bit: labels holding it
+  std::vector<std::pair<int, const std::vector<float>*>> GuideWeights; ///< type bit → weights
+  bool HasGuideWeights = false;
+  bool Proportions = false;
+  std::vector<double> Target; ///< per type bit: share of the solid
+  std::vector<std::int64_t> SeedVertices;
+  std::vector<std::uint64_t> SeedMask; ///< per seed vertex
+};
+
+/// Connected solid parts of a labelled arrangement: a component id per vertex (−1: no solid),
+/// vertices joined along every edge whose evaluation holds solid. Returns the number of parts.
+std::int64_t SolidComponents(const PlaneArrangement& arrangement,
+  const std::vector<std::int32_t>& labels, const std::function<std::uint64_t(int, int)>& edgeSolid,
+  std::uint64_t solidMask, const std::vector<std::uint64_t>& labelTypes,
+  std::vector<std::int64_t>& component);
+
+} // namespace detail
+} // namespace msynth

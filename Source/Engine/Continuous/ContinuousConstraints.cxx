@@ -1,0 +1,614 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Continuous/ContinuousConstraints.h"
+
+#include "Continuous/ConstraintPlan.h"
+#include "Core/Error.h"
+#include "Core/Random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+namespace msynth
+{
+
+int FamilyAlongAxis(const PlaneFamilySet& families, int axis)
+{
+  for (int f = 0; f < families.Size(); ++f)
+  {
+    const IntVec3& n = families.Normal(f);
+    if (n[static_cast<std::size_t>(axis)] != 0 &&
+      n[static_cast<std::size_t>((axis + 1) % 3)] == 0 &&
+      n[static_cast<std::size_t>((axis + 2) % 3)] == 0)
+    {
+      return f;
+    }
+  }
+  return -1;
+}
+
+namespace
+{
+std::vector<std::string> SplitColons(const std::string& text)
+{
+  std::vector<std::string> parts(1);
+  for (char c : text)
+  {
+    if (c == ':')
+      parts.emplace_back();
+    else
+      parts.back() += c;
+  }
+  return parts;
+}
+
+bool ParseInt(const std::string& text, long long low, long long high, long long& out)
+{
+  if (text.empty() || text.size() > 12 ||
+    !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return false;
+  out = std::stoll(text);
+  return out >= low && out <= high;
+}
+} // namespace
+
+int ParseObjectType(const std::string& text, const std::map<int, std::string>& typeNames)
+{
+  long long value = 0;
+  if (ParseInt(text, 1, 1 << 30, value))
+    return static_cast<int>(value);
+  for (const auto& [type, name] : typeNames)
+  {
+    if (name == text)
+      return type;
+  }
+  std::string known;
+  for (const auto& [type, name] : typeNames)
+    known += (known.empty() ? "" : ", ") + name + "=" + std::to_string(type);
+  throw Error("'" + text + "' is not an object type (a number ≥ 1" +
+    (known.empty() ? std::string(")") : ", or one of " + known + ")"));
+}
+
+ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet& families,
+  const std::map<int, std::string>& typeNames)
+{
+  const auto parts = SplitColons(text);
+  if (parts.size() < 2 || parts.size() > 3)
+    throw Error("thickness '" + text + "' is not TYPE:AXIS[:N]");
+  ThicknessConstraint c;
+  c.Type = ParseObjectType(parts[0], typeNames);
+  const std::string& axis = parts[1];
+  long long value = 0;
+  if (axis == "x" || axis == "y" || axis == "z")
+  {
+    c.Family = FamilyAlongAxis(families, axis[0] - 'x');
+    if (c.Family < 0)
+      throw Error("thickness '" + text + "': the example has no planes across " + axis +
+        " (no face with a normal along " + axis + "); name a family as h1..h" +
+        std::to_string(families.Size()));
+  }
+  else if (axis.size() > 1 && axis[0] == 'h' && ParseInt(axis.substr(1), 1, families.Size(), value))
+  {
+    c.Family = static_cast<int>(value) - 1;
+  }
+  else
+  {
+    throw Error("thickness '" + text + "': the axis must be x, y, z or h1..h" +
+      std::to_string(families.Size()) + ", not '" + axis + "'");
+  }
+  if (parts.size() == 3 && !ParseInt(parts[2], 1, 1000000, value))
+    throw Error("thickness '" + text + "': N must be a whole number of plane spacings ≥ 1");
+  c.Spacings = parts.size() == 3 ? static_cast<int>(value) : 1;
+  return c;
+}
+
+ConnectivityConstraint ParseConnected(
+  const std::string& text, const std::map<int, std::string>& typeNames)
+{
+  const auto parts = SplitColons(text);
+  if (parts.size() > 2 || parts[0].empty())
+    throw Error("connectivity '" + text + "' is not TYPE[:SEEDS]");
+  ConnectivityConstraint c;
+  c.Type = parts[0] == "solid" ? 0 : ParseObjectType(parts[0], typeNames);
+  long long value = 1;
+  if (parts.size() == 2 && !ParseInt(parts[1], 0, 1000000, value))
+    throw Error("connectivity '" + text + "': SEEDS must be a whole number ≥ 0");
+  c.Seeds = static_cast<int>(value);
+  return c;
+}
+
+namespace detail
+{
+namespace
+{
+std::uint64_t Bit(int t)
+{
+  return std::uint64_t(1) << t;
+}
+void SetLabel(std::vector<std::uint64_t>& set, std::size_t label)
+{
+  set[label >> 6] |= std::uint64_t(1) << (label & 63);
+}
+} // namespace
+
+std::int64_t SolidComponents(const PlaneArrangement& arrangement,
+  const std::vector<std::int32_t>& labels, const std::function<std::uint64_t(int, int)>& edgeTypes,
+  std::uint64_t solidMask, const std::vector<std::uint64_t>& labelTypes,
+  std::vector<std::int64_t>& component)
+{
+  const std::int64_t n = arrangement.NumberOfVertices();
+  component.assign(static_cast<std::size_t>(n), -1);
+  std::int64_t parts = 0;
+  std::vector<std::int64_t> stack;
+  for (std::int64_t s = 0; s < n; ++s)
+  {
+    if (component[static_cast<std::size_t>(s)] >= 0 ||
+      !(labelTypes[static_cast<std::size_t>(labels[static_cast<std::size_t>(s)])] & solidMask))
+      continue;
+    component[static_cast<std::size_t>(s)] = parts;
+    stack.push_back(s);
+    while (!stack.empty())
+    {
+      const std::int64_t v = stack.back();
+      stack.pop_back();
+      const int a = labels[static_cast<std::size_t>(v)];
+      for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
+      {
+        if (l->Vertex >= 0 && component[static_cast<std::size_t>(l->Vertex)] < 0 &&
+          (edgeTypes(l->Direction, a) & solidMask))
+        {
+          component[static_cast<std::size_t>(l->Vertex)] = parts;
+          stack.push_back(l->Vertex);
+        }
+      }
+    }
+    ++parts;
+  }
+  return parts;
+}
+
+ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const ContinuousConstraints& constraints, std::uint64_t seed)
+  : Analysis(analysis)
+  , Arrangement(arrangement)
+  , Constraints(constraints)
+  , K(static_cast<std::size_t>(analysis.NumberOfLabels()))
+  , Words(static_cast<int>((analysis.NumberOfLabels() + 63) / 64))
+{
+  const PlaneFamilySet& set = arrangement.Families();
+  std::set<int> types{ 0 };
+  for (const auto& info : analysis.Labels())
+    for (int t : info.Label.TypesPresent())
+      types.insert(t);
+  this->Types.assign(types.begin(), types.end());
+  if (this->Types.size() > 64)
+    throw Error("continuous synthesis: constraints handle at most 63 object types");
+  auto bitOf = [this](int type) -> int
+  {
+    const auto it = std::lower_bound(this->Types.begin(), this->Types.end(), type);
+    return it != this->Types.end() && *it == type ? static_cast<int>(it - this->Types.begin()) : -1;
+  };
+  const std::size_t nt = this->Types.size();
+  for (std::size_t t = 1; t < nt; ++t)
+    this->Solid |= Bit(static_cast<int>(t));
+  this->TypesOfLabel.resize(this->K);
+  this->Share.assign(this->K * nt, 0.0);
+  this->WithType.assign(nt, std::vector<std::uint64_t>(static_cast<std::size_t>(this->Words), 0));
+  for (std::size_t a = 0; a < this->K; ++a)
+  {
+    const NeighbourhoodLabel& label = analysis.Label(static_cast<int>(a)).Label;
+    int cones = 0;
+    for (auto type : label.Types)
+    {
+      if (type < 0)
+        continue;
+      ++cones;
+      const int t = bitOf(type);
+      this->TypesOfLabel[a] |= Bit(t);
+      this->Share[a * nt + static_cast<std::size_t>(t)] += 1;
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+    {
+      this->Share[a * nt + t] /= std::max(cones, 1);
+      if ((this->TypesOfLabel[a] >> t) & 1u)
+        SetLabel(this->WithType[t], a);
+    }
+  }
+  const int directions = arrangement.NumberOfDirections();
+  this->TypesOfEdge.resize(static_cast<std::size_t>(directions) * this->K);
+  for (int d = 0; d < directions; ++d)
+  {
+    for (std::size_t a = 0; a < this->K; ++a)
+    {
+      std::uint64_t mask = 0;
+      for (int type : analysis.Label(static_cast<int>(a))
+                        .Label.Evaluate(set, arrangement.Direction(d))
+                        .TypesPresent())
+        mask |= Bit(bitOf(type));
+      this->TypesOfEdge[static_cast<std::size_t>(d) * this->K + a] = mask;
+    }
+  }
+
+  // Grounded: which labels the example has on its ground, and above it.
+  const auto& params = arrangement.Parameters();
+  this->GroundAxis = arrangement.Planar() ? 1 : 2;
+  const auto g = static_cast<std::size_t>(this->GroundAxis);
+  this->GroundLevel = params.Origin[g] + params.Quantum * static_cast<double>(params.BoxLow[g]);
+  this->GroundTolerance =
+    1e-6 * params.Quantum * static_cast<double>(params.BoxHigh[g] - params.BoxLow[g]) +
+    1e-9 * params.Quantum;
+  if (constraints.Grounded)
+  {
+    const double level = analysis.Low()[g];
+    const double tolerance = 1e-6 * std::max(analysis.High()[g] - level, 1e-300);
+    std::vector<char> onGround(this->K, 0), above(this->K, 0);
+    for (const auto& f : analysis.Features())
+    {
+      const bool ground =
+        std::abs(f.A[g] - level) <= tolerance && std::abs(f.B[g] - level) <= tolerance;
+      (ground ? onGround : above)[static_cast<std::size_t>(f.Label)] = 1;
+    }
+    this->GroundAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    this->AboveAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    for (std::size_t a = 0; a < this->K; ++a)
+    {
+      const bool volume = analysis.Label(static_cast<int>(a)).Kind == FeatureKind::Volume;
+      if (volume || onGround[a])
+        SetLabel(this->GroundAllowed, a);
+      if (volume || above[a])
+        SetLabel(this->AboveAllowed, a);
+    }
+    this->Grow |= this->Solid;
+  }
+
+  // Dimensional constraints: per label, whether the type passes through (or ends on) a plane of
+  // the family next to the vertex, from pairs of cones on either side of it.
+  for (const auto& c : constraints.Thickness)
+  {
+    if (c.Family < 0 || c.Family >= set.Size())
+      throw Error("thickness: there is no plane family h" + std::to_string(c.Family + 1));
+    if (c.Spacings < 1)
+      throw Error("thickness: a type must be at least one plane spacing thick");
+    const int t = bitOf(c.Type);
+    if (t <= 0)
+      throw Error("thickness: the example has no object type " + std::to_string(c.Type));
+    Slabs s;
+    s.Family = c.Family;
+    s.Spacings = c.Spacings;
+    s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    s.InnerAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    for (std::size_t a = 0; a < this->K; ++a)
+    {
+      const NeighbourhoodLabel& label = analysis.Label(static_cast<int>(a)).Label;
+      const auto it = std::find(label.Families.begin(), label.Families.end(), c.Family);
+      bool through = false, ends = false;
+      if (it == label.Families.end())
+      {
+        through = ((this->TypesOfLabel[a] >> t) & 1u) != 0;
+      }
+      else
+      {
+        const unsigned bit = 1u << (it - label.Families.begin());
+        for (std::size_t m = 0; m < label.Types.size(); ++m)
+        {
+          if ((m & bit) || label.Types[m] < 0 || label.Types[m ^ bit] < 0)
+            continue;
+          const bool here = label.Types[m] == c.Type, there = label.Types[m ^ bit] == c.Type;
+          through = through || (here && there);
+          ends = ends || (here != there);
+        }
+      }
+      if (!through)
+        SetLabel(s.OuterAllowed, a);
+      if (!ends)
+        SetLabel(s.InnerAllowed, a);
+    }
+    // Slabs are counted from the lowest plane of the family in the box.
+    s.Lowest = std::numeric_limits<std::int64_t>::max();
+    const IntVec3& n = set.Normal(c.Family);
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+    {
+      if (!((arrangement.FamilyMask(v) >> c.Family) & 1u))
+        continue;
+      const Point3& p = arrangement.Position(v);
+      double dot = 0;
+      for (std::size_t k = 0; k < 3; ++k)
+        dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
+      s.Lowest = std::min(s.Lowest,
+        static_cast<std::int64_t>(std::llround(
+          (dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(c.Family)])) /
+          static_cast<double>(params.Spacings[static_cast<std::size_t>(c.Family)]))));
+    }
+    this->Thickness.push_back(std::move(s));
+  }
+
+  // The guide's weights by type bit.
+  if (constraints.Guide)
+  {
+    const auto& guide = *constraints.Guide;
+    const std::int64_t cells = guide.Dims[0] * guide.Dims[1] * guide.Dims[2];
+    for (const auto& [type, weights] : guide.Weights)
+    {
+      if (type < 1)
+        throw Error("guide: weights are for object types ≥ 1 (empty space cannot be removed)");
+      if (static_cast<std::int64_t>(weights.size()) != cells)
+        throw Error("guide: the weights of type " + std::to_string(type) + " have " +
+          std::to_string(weights.size()) + " values for " + std::to_string(cells) + " cells");
+      for (float w : weights)
+        if (!(w >= 0) || !std::isfinite(w))
+          throw Error(
+            "guide: the weights of type " + std::to_string(type) + " must be finite and ≥ 0");
+      const int t = bitOf(type);
+      if (t > 0)
+      {
+        this->GuideWeights.emplace_back(t, &weights);
+        this->HasGuideWeights = this->HasGuideWeights ||
+          std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0 && w != 1; });
+      }
+    }
+  }
+
+  // Proportions: the example's volume fractions, replaced by the targets given.
+  this->Target.assign(nt, 0.0);
+  double given = 0, rest = 0;
+  for (const auto& [type, fraction] : constraints.TargetFractions)
+  {
+    const int t = bitOf(type);
+    if (t <= 0)
+      throw Error("target: the example has no object type " + std::to_string(type));
+    if (!(fraction >= 0 && fraction <= 1))
+      throw Error("target: the fraction of type " + std::to_string(type) + " must be in [0, 1]");
+    this->Target[static_cast<std::size_t>(t)] = fraction;
+    given += fraction;
+  }
+  if (given > 1 + 1e-9)
+    throw Error("target: the fractions add up to more than 1");
+  for (const auto& [type, volume] : analysis.TypeVolumes())
+  {
+    const int t = bitOf(type);
+    if (t > 0 && !constraints.TargetFractions.count(type))
+      rest += std::max(volume, 0.0);
+  }
+  for (const auto& [type, volume] : analysis.TypeVolumes())
+  {
+    const int t = bitOf(type);
+    if (t > 0 && !constraints.TargetFractions.count(type) && rest > 0)
+      this->Target[static_cast<std::size_t>(t)] = (1 - given) * std::max(volume, 0.0) / rest;
+  }
+  this->Proportions =
+    !constraints.TargetFractions.empty() || (constraints.KeepProportions && nt > 2);
+
+  // Connectivity seeds: random vertices that can hold the type's interior.
+  Random rng = Random::Derived(seed, 0x5eed5, 0);
+  std::map<std::int64_t, std::uint64_t> seeds;
+  std::vector<std::uint64_t> domain(static_cast<std::size_t>(this->Words));
+  for (const auto& c : constraints.Connected)
+  {
+    if (c.Seeds < 0)
+      throw Error("connectivity: the number of seeds must be ≥ 0");
+    const int t = c.Type == 0 ? 0 : bitOf(c.Type);
+    if (c.Type != 0 && t <= 0)
+      throw Error("connectivity: the example has no object type " + std::to_string(c.Type));
+    if (c.Seeds == 0)
+      continue;
+    const std::uint64_t mask = c.Type == 0 ? this->Solid : Bit(t);
+    this->Grow |= mask;
+    const int interior =
+      analysis.Find(NeighbourhoodLabel::Constant(c.Type == 0 ? this->Types.back() : c.Type));
+    std::vector<std::int64_t> candidates;
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+    {
+      if (interior >= 0 && arrangement.FamilyMask(v) == 0)
+        candidates.push_back(v); // inside a cell: only volume labels
+    }
+    if (candidates.empty())
+    {
+      for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+        candidates.push_back(v);
+    }
+    for (int s = 0; s < c.Seeds && !candidates.empty(); ++s)
+    {
+      const auto i = static_cast<std::size_t>(rng.Below(candidates.size()));
+      seeds[candidates[i]] |= mask;
+      candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+  }
+  for (const auto& [v, mask] : seeds)
+  {
+    this->SeedVertices.push_back(v);
+    this->SeedMask.push_back(mask);
+  }
+}
+
+bool ConstraintPlan::OnGround(std::int64_t v) const
+{
+  return this->Arrangement.Position(v)[static_cast<std::size_t>(this->GroundAxis)] <=
+    this->GroundLevel + this->GroundTolerance;
+}
+
+std::uint64_t ConstraintPlan::SeedTypes(std::int64_t v) const
+{
+  const auto it = std::lower_bound(this->SeedVertices.begin(), this->SeedVertices.end(), v);
+  return it != this->SeedVertices.end() && *it == v
+    ? this->SeedMask[static_cast<std::size_t>(it - this->SeedVertices.begin())]
+    : 0;
+}
+
+std::uint64_t ConstraintPlan::StartTypes(std::int64_t v) const
+{
+  std::uint64_t mask = this->SeedTypes(v);
+  if (this->Constraints.Grounded && this->OnGround(v))
+    mask |= this->Solid;
+  return mask;
+}
+
+std::int64_t ConstraintPlan::CellOf(std::int64_t v) const
+{
+  const auto& guide = *this->Constraints.Guide;
+  const auto& params = this->Arrangement.Parameters();
+  const Point3& p = this->Arrangement.Position(v);
+  std::int64_t cell[3] = { 0, 0, 0 };
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    const double low = params.Origin[c] + params.Quantum * static_cast<double>(params.BoxLow[c]);
+    const double extent =
+      params.Quantum * static_cast<double>(params.BoxHigh[c] - params.BoxLow[c]);
+    if (extent > 0)
+      cell[c] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[c] - low) /
+                                           extent * static_cast<double>(guide.Dims[c]))),
+        0, guide.Dims[c] - 1);
+  }
+  return cell[0] + guide.Dims[0] * (cell[1] + guide.Dims[1] * cell[2]);
+}
+
+void ConstraintPlan::Restrict(std::int64_t v, std::uint64_t* domain) const
+{
+  auto keep = [&](const std::vector<std::uint64_t>& allowed)
+  {
+    for (int w = 0; w < this->Words; ++w)
+      domain[w] &= allowed[static_cast<std::size_t>(w)];
+  };
+  if (this->Constraints.Grounded)
+    keep(this->OnGround(v) ? this->GroundAllowed : this->AboveAllowed);
+  const auto& params = this->Arrangement.Parameters();
+  for (const auto& s : this->Thickness)
+  {
+    if (!((this->Arrangement.FamilyMask(v) >> s.Family) & 1u))
+      continue;
+    if (s.Spacings == 1)
+    {
+      keep(s.OuterAllowed);
+      continue;
+    }
+    const IntVec3& n = this->Arrangement.Families().Normal(s.Family);
+    const Point3& p = this->Arrangement.Position(v);
+    double dot = 0;
+    for (std::size_t k = 0; k < 3; ++k)
+      dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
+    const std::int64_t c =
+      std::llround((dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(s.Family)])) /
+        static_cast<double>(params.Spacings[static_cast<std::size_t>(s.Family)]));
+    keep((c - s.Lowest) % s.Spacings == 0 ? s.OuterAllowed : s.InnerAllowed);
+  }
+  if (!this->GuideWeights.empty())
+  {
+    const auto cell = static_cast<std::size_t>(this->CellOf(v));
+    for (const auto& [t, weights] : this->GuideWeights)
+    {
+      if ((*weights)[cell] == 0)
+      {
+        const auto& with = this->WithType[static_cast<std::size_t>(t)];
+        for (int w = 0; w < this->Words; ++w)
+          domain[w] &= ~with[static_cast<std::size_t>(w)];
+      }
+    }
+  }
+}
+
+double ConstraintPlan::Factor(std::int64_t v, int label, const std::vector<double>& tally) const
+{
+  double factor = 1;
+  const std::uint64_t types = this->LabelTypes(label);
+  if (this->HasGuideWeights)
+  {
+    const auto cell = static_cast<std::size_t>(this->CellOf(v));
+    for (const auto& [t, weights] : this->GuideWeights)
+      if ((types >> t) & 1u)
+        factor *= (*weights)[cell];
+  }
+  if (this->Proportions && (types & this->Solid))
+  {
+    // Shares so far, with a prior of 32 vertices' worth at the targets.
+    const double prior = 32;
+    double total = prior;
+    for (std::size_t t = 1; t < this->Types.size(); ++t)
+      total += tally[t];
+    for (std::size_t t = 1; t < this->Types.size(); ++t)
+    {
+      if (!((types >> t) & 1u))
+        continue;
+      const double share = (tally[t] + prior * this->Target[t]) / total;
+      const double ratio = this->Target[t] / std::max(share, 1e-12);
+      factor *= std::pow(
+        std::clamp(ratio * ratio, 1.0 / 64, 64.0), this->Occupancy(label, static_cast<int>(t)));
+    }
+  }
+  return factor;
+}
+
+double ConstraintPlan::Mismatch(const std::vector<double>& tally) const
+{
+  double total = 0, sum = 0;
+  for (std::size_t t = 1; t < this->Types.size(); ++t)
+    total += tally[t];
+  if (!(total > 0))
+    return 0;
+  for (std::size_t t = 1; t < this->Types.size(); ++t)
+  {
+    const double d = tally[t] / total - this->Target[t];
+    sum += d * d;
+  }
+  return sum;
+}
+
+std::int64_t ConstraintPlan::RemoveFloating(std::vector<std::int32_t>& labels, int emptyLabel) const
+{
+  std::vector<std::int64_t> component;
+  const std::int64_t parts = SolidComponents(
+    this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
+    this->TypesOfLabel, component);
+  std::vector<char> grounded(static_cast<std::size_t>(parts), 0);
+  for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
+  {
+    const std::int64_t c = component[static_cast<std::size_t>(v)];
+    if (c >= 0 && this->OnGround(v))
+      grounded[static_cast<std::size_t>(c)] = 1;
+  }
+  for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
+  {
+    const std::int64_t c = component[static_cast<std::size_t>(v)];
+    if (c >= 0 && !grounded[static_cast<std::size_t>(c)])
+      labels[static_cast<std::size_t>(v)] = emptyLabel;
+  }
+  return parts - std::count(grounded.begin(), grounded.end(), 1);
+}
+
+} // namespace detail
+
+ArrangementMeasures MeasureArrangement(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels)
+{
+  ContinuousConstraints none;
+  none.KeepProportions = false;
+  const detail::ConstraintPlan plan(analysis, arrangement, none, 0);
+  ArrangementMeasures m;
+  std::vector<std::int64_t> component;
+  std::vector<std::uint64_t> types(static_cast<std::size_t>(analysis.NumberOfLabels()));
+  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+    types[static_cast<std::size_t>(a)] = plan.LabelTypes(a);
+  m.Components = detail::SolidComponents(
+    arrangement, labels, [&plan](int d, int a) { return plan.EdgeTypes(d, a); }, plan.SolidMask(),
+    types, component);
+  std::set<std::int64_t> grounded;
+  std::vector<double> tally(static_cast<std::size_t>(plan.NumberOfTypes()), 0.0);
+  double solid = 0;
+  for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+  {
+    const auto c = component[static_cast<std::size_t>(v)];
+    if (c >= 0 && plan.OnGround(v))
+      grounded.insert(c);
+    for (int t = 1; t < plan.NumberOfTypes(); ++t)
+    {
+      const double o = plan.Occupancy(labels[static_cast<std::size_t>(v)], t);
+      tally[static_cast<std::size_t>(t)] += o;
+      solid += o;
+    }
+  }
+  m.GroundedComponents = static_cast<std::int64_t>(grounded.size());
+  for (int t = 1; t < plan.NumberOfTypes(); ++t)
+    m.TypeShares[plan.TypeAt(t)] = solid > 0 ? tally[static_cast<std::size_t>(t)] / solid : 0.0;
+  return m;
+}
+
+} // namespace msynth
