@@ -76,6 +76,13 @@ public:
 
 private:
   std::int64_t CellOf(std::int64_t v) const;
+  /// The type bit of object type @p type, or −1.
+  int BitOf(int type) const;
+  void PlanGround();
+  void PlanThickness();
+  void PlanGuide();
+  void PlanTargets();
+  void PlanSeeds(std::uint64_t seed);
 
   const PolyhedralAnalysis& Analysis;
   const PlaneArrangement& Arrangement;

@@ -184,11 +184,6 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
   this->Types.assign(types.begin(), types.end());
   if (this->Types.size() > 64)
     throw Error("continuous synthesis: constraints handle at most 63 object types");
-  auto bitOf = [this](int type) -> int
-  {
-    const auto it = std::lower_bound(this->Types.begin(), this->Types.end(), type);
-    return it != this->Types.end() && *it == type ? static_cast<int>(it - this->Types.begin()) : -1;
-  };
   const std::size_t nt = this->Types.size();
   for (std::size_t t = 1; t < nt; ++t)
     this->Solid |= Bit(static_cast<int>(t));
@@ -204,7 +199,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
       if (type < 0)
         continue;
       ++cones;
-      const int t = bitOf(type);
+      const int t = this->BitOf(type);
       this->TypesOfLabel[a] |= Bit(t);
       this->Share[a * nt + static_cast<std::size_t>(t)] += 1;
     }
@@ -225,25 +220,34 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
       for (int type : analysis.Label(static_cast<int>(a))
                         .Label.Evaluate(set, arrangement.Direction(d))
                         .TypesPresent())
-        mask |= Bit(bitOf(type));
+        mask |= Bit(this->BitOf(type));
       this->TypesOfEdge[static_cast<std::size_t>(d) * this->K + a] = mask;
     }
   }
 
+  this->PlanGround();
+  this->PlanThickness();
+  this->PlanGuide();
+  this->PlanTargets();
+  this->PlanSeeds(seed);
+}
+
+void ConstraintPlan::PlanGround()
+{
   // Grounded: which labels the example has on its ground, and above it.
-  const auto& params = arrangement.Parameters();
-  this->GroundAxis = arrangement.Planar() ? 1 : 2;
+  const auto& params = this->Arrangement.Parameters();
+  this->GroundAxis = this->Arrangement.Planar() ? 1 : 2;
   const auto g = static_cast<std::size_t>(this->GroundAxis);
   this->GroundLevel = params.Origin[g] + params.Quantum * static_cast<double>(params.BoxLow[g]);
   this->GroundTolerance =
     1e-6 * params.Quantum * static_cast<double>(params.BoxHigh[g] - params.BoxLow[g]) +
     1e-9 * params.Quantum;
-  if (constraints.Grounded)
+  if (this->Constraints.Grounded)
   {
-    const double level = analysis.Low()[g];
-    const double tolerance = 1e-6 * std::max(analysis.High()[g] - level, 1e-300);
+    const double level = this->Analysis.Low()[g];
+    const double tolerance = 1e-6 * std::max(this->Analysis.High()[g] - level, 1e-300);
     std::vector<char> onGround(this->K, 0), above(this->K, 0);
-    for (const auto& f : analysis.Features())
+    for (const auto& f : this->Analysis.Features())
     {
       const bool ground =
         std::abs(f.A[g] - level) <= tolerance && std::abs(f.B[g] - level) <= tolerance;
@@ -253,7 +257,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     this->AboveAllowed.assign(static_cast<std::size_t>(this->Words), 0);
     for (std::size_t a = 0; a < this->K; ++a)
     {
-      const bool volume = analysis.Label(static_cast<int>(a)).Kind == FeatureKind::Volume;
+      const bool volume = this->Analysis.Label(static_cast<int>(a)).Kind == FeatureKind::Volume;
       if (volume || onGround[a])
         SetLabel(this->GroundAllowed, a);
       if (volume || above[a])
@@ -261,16 +265,21 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     }
     this->Grow |= this->Solid;
   }
+}
 
+void ConstraintPlan::PlanThickness()
+{
+  const PlaneFamilySet& set = this->Arrangement.Families();
+  const auto& params = this->Arrangement.Parameters();
   // Dimensional constraints: per label, whether the type passes through (or ends on) a plane of
   // the family next to the vertex, from pairs of cones on either side of it.
-  for (const auto& c : constraints.Thickness)
+  for (const auto& c : this->Constraints.Thickness)
   {
     if (c.Family < 0 || c.Family >= set.Size())
       throw Error("thickness: there is no plane family h" + std::to_string(c.Family + 1));
     if (c.Spacings < 1)
       throw Error("thickness: a type must be at least one plane spacing thick");
-    const int t = bitOf(c.Type);
+    const int t = this->BitOf(c.Type);
     if (t <= 0)
       throw Error("thickness: the example has no object type " + std::to_string(c.Type));
     Slabs s;
@@ -280,7 +289,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     s.InnerAllowed.assign(static_cast<std::size_t>(this->Words), 0);
     for (std::size_t a = 0; a < this->K; ++a)
     {
-      const NeighbourhoodLabel& label = analysis.Label(static_cast<int>(a)).Label;
+      const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
       const auto it = std::find(label.Families.begin(), label.Families.end(), c.Family);
       bool through = false, ends = false;
       if (it == label.Families.end())
@@ -307,11 +316,11 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     // Slabs are counted from the lowest plane of the family in the box.
     s.Lowest = std::numeric_limits<std::int64_t>::max();
     const IntVec3& n = set.Normal(c.Family);
-    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+    for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
-      if (!((arrangement.FamilyMask(v) >> c.Family) & 1u))
+      if (!((this->Arrangement.FamilyMask(v) >> c.Family) & 1u))
         continue;
-      const Point3& p = arrangement.Position(v);
+      const Point3& p = this->Arrangement.Position(v);
       double dot = 0;
       for (std::size_t k = 0; k < 3; ++k)
         dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
@@ -322,11 +331,14 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     }
     this->Thickness.push_back(std::move(s));
   }
+}
 
+void ConstraintPlan::PlanGuide()
+{
   // The guide's weights by type bit.
-  if (constraints.Guide)
+  if (this->Constraints.Guide)
   {
-    const auto& guide = *constraints.Guide;
+    const auto& guide = *this->Constraints.Guide;
     const std::int64_t cells = guide.Dims[0] * guide.Dims[1] * guide.Dims[2];
     for (const auto& [type, weights] : guide.Weights)
     {
@@ -339,7 +351,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
         if (!(w >= 0) || !std::isfinite(w))
           throw Error(
             "guide: the weights of type " + std::to_string(type) + " must be finite and ≥ 0");
-      const int t = bitOf(type);
+      const int t = this->BitOf(type);
       if (t > 0)
       {
         this->GuideWeights.emplace_back(t, &weights);
@@ -348,13 +360,17 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
       }
     }
   }
+}
 
+void ConstraintPlan::PlanTargets()
+{
+  const std::size_t nt = this->Types.size();
   // Proportions: the example's volume fractions, replaced by the targets given.
   this->Target.assign(nt, 0.0);
   double given = 0, rest = 0;
-  for (const auto& [type, fraction] : constraints.TargetFractions)
+  for (const auto& [type, fraction] : this->Constraints.TargetFractions)
   {
-    const int t = bitOf(type);
+    const int t = this->BitOf(type);
     if (t <= 0)
       throw Error("target: the example has no object type " + std::to_string(type));
     if (!(fraction >= 0 && fraction <= 1))
@@ -364,30 +380,33 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
   }
   if (given > 1 + 1e-9)
     throw Error("target: the fractions add up to more than 1");
-  for (const auto& [type, volume] : analysis.TypeVolumes())
+  for (const auto& [type, volume] : this->Analysis.TypeVolumes())
   {
-    const int t = bitOf(type);
-    if (t > 0 && !constraints.TargetFractions.count(type))
+    const int t = this->BitOf(type);
+    if (t > 0 && !this->Constraints.TargetFractions.count(type))
       rest += std::max(volume, 0.0);
   }
-  for (const auto& [type, volume] : analysis.TypeVolumes())
+  for (const auto& [type, volume] : this->Analysis.TypeVolumes())
   {
-    const int t = bitOf(type);
-    if (t > 0 && !constraints.TargetFractions.count(type) && rest > 0)
+    const int t = this->BitOf(type);
+    if (t > 0 && !this->Constraints.TargetFractions.count(type) && rest > 0)
       this->Target[static_cast<std::size_t>(t)] = (1 - given) * std::max(volume, 0.0) / rest;
   }
   this->Proportions =
-    !constraints.TargetFractions.empty() || (constraints.KeepProportions && nt > 2);
+    !this->Constraints.TargetFractions.empty() || (this->Constraints.KeepProportions && nt > 2);
+}
 
+void ConstraintPlan::PlanSeeds(std::uint64_t seed)
+{
   // Connectivity seeds: random vertices that can hold the type's interior.
   Random rng = Random::Derived(seed, 0x5eed5, 0);
   std::map<std::int64_t, std::uint64_t> seeds;
   std::vector<std::uint64_t> domain(static_cast<std::size_t>(this->Words));
-  for (const auto& c : constraints.Connected)
+  for (const auto& c : this->Constraints.Connected)
   {
     if (c.Seeds < 0)
       throw Error("connectivity: the number of seeds must be ≥ 0");
-    const int t = c.Type == 0 ? 0 : bitOf(c.Type);
+    const int t = c.Type == 0 ? 0 : this->BitOf(c.Type);
     if (c.Type != 0 && t <= 0)
       throw Error("connectivity: the example has no object type " + std::to_string(c.Type));
     if (c.Seeds == 0)
@@ -395,16 +414,16 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     const std::uint64_t mask = c.Type == 0 ? this->Solid : Bit(t);
     this->Grow |= mask;
     const int interior =
-      analysis.Find(NeighbourhoodLabel::Constant(c.Type == 0 ? this->Types.back() : c.Type));
+      this->Analysis.Find(NeighbourhoodLabel::Constant(c.Type == 0 ? this->Types.back() : c.Type));
     std::vector<std::int64_t> candidates;
-    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+    for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
-      if (interior >= 0 && arrangement.FamilyMask(v) == 0)
+      if (interior >= 0 && this->Arrangement.FamilyMask(v) == 0)
         candidates.push_back(v); // inside a cell: only volume labels
     }
     if (candidates.empty())
     {
-      for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+      for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
         candidates.push_back(v);
     }
     for (int s = 0; s < c.Seeds && !candidates.empty(); ++s)
@@ -419,6 +438,12 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     this->SeedVertices.push_back(v);
     this->SeedMask.push_back(mask);
   }
+}
+
+int ConstraintPlan::BitOf(int type) const
+{
+  const auto it = std::lower_bound(this->Types.begin(), this->Types.end(), type);
+  return it != this->Types.end() && *it == type ? static_cast<int>(it - this->Types.begin()) : -1;
 }
 
 bool ConstraintPlan::OnGround(std::int64_t v) const
