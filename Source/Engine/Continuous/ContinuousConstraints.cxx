@@ -77,7 +77,14 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
   if (parts.size() < 2 || parts.size() > 3)
     throw Error("thickness '" + text + "' is not TYPE:AXIS[:N]");
   ThicknessConstraint c;
-  c.Type = ParseObjectType(parts[0], typeNames);
+  try
+  {
+    c.Type = ParseObjectType(parts[0], typeNames);
+  }
+  catch (const Error& e)
+  {
+    throw Error("thickness '" + text + "': " + e.what());
+  }
   const std::string& axis = parts[1];
   long long value = 0;
   if (axis == "x" || axis == "y" || axis == "z")
@@ -110,7 +117,14 @@ ConnectivityConstraint ParseConnected(
   if (parts.size() > 2 || parts[0].empty())
     throw Error("connectivity '" + text + "' is not TYPE[:SEEDS]");
   ConnectivityConstraint c;
-  c.Type = parts[0] == "solid" ? 0 : ParseObjectType(parts[0], typeNames);
+  try
+  {
+    c.Type = parts[0] == "solid" ? 0 : ParseObjectType(parts[0], typeNames);
+  }
+  catch (const Error& e)
+  {
+    throw Error("connectivity '" + text + "': " + e.what());
+  }
   long long value = 1;
   if (parts.size() == 2 && !ParseInt(parts[1], 0, 1000000, value))
     throw Error("connectivity '" + text + "': SEEDS must be a whole number ≥ 0");

@@ -1,0 +1,317 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The TVCG constraints of continuous synthesis (ContinuousConstraints.h), each checked on the
+// model a user sees: the mesh is voxelized and measured (thickness, floating parts, what lies on
+// the ground, where a guide forbids a type, volume fractions), sharing nothing with the solver.
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/ContinuousSynthesis.h"
+#include "Core/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace msynth;
+
+namespace
+{
+
+struct Loaded
+{
+  PolyhedralExample Example;
+  PolyhedralAnalysis Analysis;
+};
+
+Loaded Load(const std::string& name)
+{
+  Loaded l;
+  l.Example = ReadOBJExample(std::string(MSYNTH_DATA) + "/Continuous/" + name);
+  ValidateExample(l.Example);
+  l.Analysis = PolyhedralAnalysis::Analyze(l.Example);
+  return l;
+}
+
+/// A synthesized model as voxels of object types (0 empty), checked model and all.
+struct Voxels
+{
+  LabelGrid Types{ 1, 1, 1, 0 };
+  double Voxel = 0.25;
+  Point3 Origin{};
+  ContinuousSynthesisResult Result;
+
+  Label At(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return this->Types.Contains(x, y, z) ? this->Types.At(x, y, z) : 0;
+  }
+  /// Solid parts (26-connected voxels) and whether each touches the bottom layer.
+  std::vector<bool> PartsOnGround() const
+  {
+    const auto nx = this->Types.Size(0), ny = this->Types.Size(1), nz = this->Types.Size(2);
+    std::vector<std::int64_t> part(static_cast<std::size_t>(nx * ny * nz), -1);
+    std::vector<bool> ground;
+    std::vector<std::array<std::int64_t, 3>> stack;
+    for (std::int64_t z = 0; z < nz; ++z)
+      for (std::int64_t y = 0; y < ny; ++y)
+        for (std::int64_t x = 0; x < nx; ++x)
+        {
+          if (this->At(x, y, z) == 0 || part[static_cast<std::size_t>(x + nx * (y + ny * z))] >= 0)
+            continue;
+          const auto id = static_cast<std::int64_t>(ground.size());
+          ground.push_back(false);
+          part[static_cast<std::size_t>(x + nx * (y + ny * z))] = id;
+          stack.push_back({ { x, y, z } });
+          while (!stack.empty())
+          {
+            const auto p = stack.back();
+            stack.pop_back();
+            if (p[2] == 0)
+              ground[static_cast<std::size_t>(id)] = true;
+            for (int dz = -1; dz <= 1; ++dz)
+              for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                {
+                  const std::int64_t qx = p[0] + dx, qy = p[1] + dy, qz = p[2] + dz;
+                  if (this->At(qx, qy, qz) == 0)
+                    continue;
+                  auto& q = part[static_cast<std::size_t>(qx + nx * (qy + ny * qz))];
+                  if (q < 0)
+                  {
+                    q = id;
+                    stack.push_back({ { qx, qy, qz } });
+                  }
+                }
+          }
+        }
+    return ground;
+  }
+  /// Volume fraction of each solid type.
+  std::map<int, double> Fractions() const
+  {
+    std::map<int, double> f;
+    double solid = 0;
+    for (Label t : this->Types.Data())
+      if (t != 0)
+      {
+        f[t] += 1;
+        solid += 1;
+      }
+    for (auto& [t, v] : f)
+      v /= solid;
+    return f;
+  }
+};
+
+Voxels Synthesize(const Loaded& l, const Point3& size, const ContinuousSynthesisOptions& options,
+  double voxel = 0.25)
+{
+  const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis, size, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  Voxels v;
+  v.Result = SynthesizeContinuous(l.Analysis, arrangement, options);
+  EXPECT_TRUE(v.Result.Succeeded()) << v.Result.Message;
+  EXPECT_EQ(CheckArrangementLabels(l.Analysis, arrangement, v.Result.Labels), "");
+  const ContinuousMesh mesh = ExtractMesh(l.Analysis, arrangement, v.Result.Labels);
+  const auto report = CheckContinuousModel(l.Analysis, mesh, l.Example.TypeNames);
+  EXPECT_TRUE(report.Valid) << report.Problem;
+  v.Voxel = voxel;
+  for (std::size_t c = 0; c < 3; ++c)
+    v.Origin[c] = p.Origin[c] + p.Quantum * static_cast<double>(p.BoxLow[c]);
+  std::array<std::int64_t, 3> dims{};
+  for (std::size_t c = 0; c < 3; ++c)
+    dims[c] = static_cast<std::int64_t>(
+      std::llround(p.Quantum * static_cast<double>(p.BoxHigh[c] - p.BoxLow[c]) / voxel));
+  v.Types = VoxelizeModel(mesh, v.Origin, voxel, dims);
+  return v;
+}
+
+constexpr Label Wall = 1, Roof = 2;
+
+} // namespace
+
+TEST(ContinuousConstraints, GroundedHousesStandOnTheGround)
+{
+  const Loaded house = Load("house.obj");
+  int floatingWithout = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = seed;
+    o.BlockSize = 4;
+    const Voxels free = Synthesize(house, { 18, 18, 8 }, o);
+    for (bool g : free.PartsOnGround())
+      floatingWithout += g ? 0 : 1;
+
+    o.Constraints.Grounded = true;
+    const Voxels v = Synthesize(house, { 18, 18, 8 }, o);
+    const auto parts = v.PartsOnGround();
+    EXPECT_GT(parts.size(), 2u) << "seed " << seed;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      EXPECT_TRUE(parts[i]) << "seed " << seed << ": part " << i << " floats";
+    for (std::int64_t z = 0; z < v.Types.Size(2); ++z)
+      for (std::int64_t y = 0; y < v.Types.Size(1); ++y)
+        for (std::int64_t x = 0; x < v.Types.Size(0); ++x)
+        {
+          // The example's wall bottoms are on the ground, its roofs above the walls.
+          if (z > 0 && v.At(x, y, z) == Wall)
+          {
+            ASSERT_NE(v.At(x, y, z - 1), 0) << "seed " << seed << ": a wall bottom in the air";
+          }
+          if (z == 0)
+          {
+            ASSERT_NE(v.At(x, y, z), Roof) << "seed " << seed << ": a roof on the ground";
+          }
+        }
+  }
+  EXPECT_GT(floatingWithout, 0) << "the check would not have seen floating parts";
+}
+
+TEST(ContinuousConstraints, ThicknessIsExactAndStacks)
+{
+  const Loaded house = Load("house.obj");
+  const int z = FamilyAlongAxis(house.Analysis.Families(), 2);
+  ASSERT_GE(z, 0);
+  const ArrangementParameters p =
+    DefaultArrangementParameters(house.Example, house.Analysis, { 18, 18, 8 }, 0, {});
+  const double spacing = p.Spacing(house.Analysis.Families(), z);
+  for (int n : { 1, 2 })
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = 4;
+    o.BlockSize = 4;
+    o.Constraints.Grounded = true;
+    o.Constraints.Thickness.push_back({ Wall, z, n });
+    const Voxels v = Synthesize(house, { 18, 18, 8 }, o);
+    const auto expected = static_cast<std::int64_t>(std::llround(n * spacing / v.Voxel));
+    std::map<std::int64_t, std::int64_t> runs; // wall run length along z → count
+    for (std::int64_t y = 0; y < v.Types.Size(1); ++y)
+      for (std::int64_t x = 0; x < v.Types.Size(0); ++x)
+        for (std::int64_t k = 0; k < v.Types.Size(2);)
+        {
+          std::int64_t e = k;
+          while (e < v.Types.Size(2) && v.At(x, y, e) == Wall)
+            ++e;
+          if (e > k)
+            ++runs[e - k];
+          k = std::max(e, k + 1);
+        }
+    ASSERT_FALSE(runs.empty()) << n << " spacings: no walls";
+    EXPECT_EQ(runs.size(), 1u) << n << " spacings: walls of several heights";
+    EXPECT_EQ(runs.begin()->first, expected) << n << " spacings of " << spacing;
+  }
+}
+
+TEST(ContinuousConstraints, GuideZerosHoldNoSuchType)
+{
+  const Loaded house = Load("house.obj");
+  ContinuousSynthesisOptions o;
+  o.Seed = 2;
+  o.BlockSize = 4;
+  ContinuousGuide guide;
+  guide.Dims = { { 2, 1, 1 } };
+  guide.Weights[Roof] = { 0.0f, 1.0f }; // no roofs in the left half (so no walls either)
+  o.Constraints.Guide = guide;
+  const Voxels v = Synthesize(house, { 18, 18, 8 }, o);
+  std::int64_t left = 0, right = 0;
+  for (std::int64_t z = 0; z < v.Types.Size(2); ++z)
+    for (std::int64_t y = 0; y < v.Types.Size(1); ++y)
+      for (std::int64_t x = 0; x < v.Types.Size(0); ++x)
+      {
+        const double cx = v.Origin[0] + (static_cast<double>(x) + 0.5) * v.Voxel;
+        if (v.At(x, y, z) == Roof)
+          (cx < v.Origin[0] + 9 ? left : right) += 1;
+      }
+  EXPECT_EQ(left, 0);
+  EXPECT_GT(right, 0);
+  // Weights above 1 favour the type: more roof than with the plain draw.
+  guide.Weights[Roof] = { 1.0f, 1.0f };
+  o.Constraints.Guide = guide;
+  const double plain = Synthesize(house, { 18, 18, 8 }, o).Fractions()[Roof];
+  guide.Weights[Roof] = { 20.0f, 20.0f };
+  o.Constraints.Guide = guide;
+  EXPECT_GT(Synthesize(house, { 18, 18, 8 }, o).Fractions()[Roof], plain);
+}
+
+TEST(ContinuousConstraints, ConnectedObjectsGrowFromTheirSeeds)
+{
+  const Loaded cube = Load("cube.obj");
+  for (int seeds : { 1, 3 })
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = 11;
+    o.BlockSize = 0;
+    o.Constraints.Connected.push_back({ 0, seeds });
+    const Voxels v = Synthesize(cube, { 12, 12, 4 }, o);
+    const auto parts = v.PartsOnGround();
+    EXPECT_GE(parts.size(), 1u);
+    EXPECT_LE(parts.size(), static_cast<std::size_t>(seeds)) << seeds << " seeds";
+  }
+  ContinuousSynthesisOptions o;
+  o.Seed = 11;
+  o.BlockSize = 0;
+  EXPECT_GT(Synthesize(cube, { 12, 12, 4 }, o).PartsOnGround().size(), 3u)
+    << "without the constraint the cubes would be scattered";
+}
+
+TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
+{
+  const Loaded cottage = Load("cottage.obj");
+  std::map<int, double> example;
+  double total = 0;
+  for (const auto& [t, volume] : cottage.Analysis.TypeVolumes())
+    total += volume;
+  for (const auto& [t, volume] : cottage.Analysis.TypeVolumes())
+    example[t] = volume / total;
+  auto mismatch = [&](const std::map<int, double>& f)
+  {
+    double sum = 0;
+    for (const auto& [t, target] : example)
+      sum += std::abs((f.count(t) ? f.at(t) : 0.0) - target);
+    return sum;
+  };
+  ContinuousSynthesisOptions o;
+  o.Seed = 5;
+  o.BlockSize = 4;
+  o.Constraints.Grounded = true; // free-standing chimneys otherwise float everywhere
+  o.Constraints.KeepProportions = false;
+  const double without = mismatch(Synthesize(cottage, { 10, 10, 5 }, o).Fractions());
+  o.Constraints.KeepProportions = true;
+  const auto steered = Synthesize(cottage, { 10, 10, 5 }, o).Fractions();
+  EXPECT_LT(mismatch(steered), without);
+  // A target moves its type's share.
+  o.Constraints.TargetFractions[1] = 0.8;
+  const auto targeted = Synthesize(cottage, { 10, 10, 5 }, o).Fractions();
+  EXPECT_GT(targeted.count(1) ? targeted.at(1) : 0.0, steered.count(1) ? steered.at(1) : 0.0);
+}
+
+TEST(ContinuousConstraints, ParsingNamesTheProblem)
+{
+  const Loaded house = Load("house.obj");
+  const auto& names = house.Example.TypeNames;
+  const auto& families = house.Analysis.Families();
+  const ThicknessConstraint t = ParseThickness("wall:z:3", families, names);
+  EXPECT_EQ(t.Type, 1);
+  EXPECT_EQ(t.Family, FamilyAlongAxis(families, 2));
+  EXPECT_EQ(t.Spacings, 3);
+  EXPECT_EQ(ParseThickness("2:h1", families, names).Family, 0);
+  EXPECT_EQ(ParseConnected("roof:4", names).Seeds, 4);
+  EXPECT_EQ(ParseConnected("solid", names).Type, 0);
+  for (const char* bad : { "wall", "wall:w", "wall:z:0", "wall:z:x", "chimney:z", "wall:h99" })
+  {
+    try
+    {
+      ParseThickness(bad, families, names);
+      ADD_FAILURE() << bad << " was accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(ParseConnected("roof:-1", names), Error);
+  ContinuousSynthesisOptions o;
+  o.Constraints.TargetFractions[7] = 0.5;
+  const ArrangementParameters p =
+    DefaultArrangementParameters(house.Example, house.Analysis, { 8, 8, 6 }, 0, {});
+  const PlaneArrangement arrangement(families, p);
+  EXPECT_THROW(SynthesizeContinuous(house.Analysis, arrangement, o), Error);
+}
