@@ -327,6 +327,29 @@ sizes = start.GetPointData().GetArray("CatalogSize")
 check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumberOfTuples())) > 1,
       "the catalog at the start has several labels per vertex")
 
+# The TVCG constraints through the proxy: grounded houses with walls one spacing high.
+house = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "house.obj"))
+houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1",
+                                       KeepProportions=1, TargetFractions="", Connected="",
+                                       Arrangement=ModelSynthPlaneArrangement(Input=house,
+                                                                              OutputSize=[12, 12, 8]))
+housemesh = ModelSynthArrangementMesh(Input=house, Arrangement=houses, CheckModel=1)
+housemesh.UpdatePipeline()
+fields = servermanager.Fetch(houses).GetFieldData()
+check(fields.GetArray("Components").GetValue(0) == fields.GetArray("GroundedComponents").GetValue(0)
+      and fields.GetArray("Components").GetValue(0) > 0, "grounded houses all on the ground")
+housemodel = servermanager.Fetch(housemesh)
+check(housemodel.GetFieldData().GetAbstractArray("ModelCheck").GetValue(0) == "valid",
+      "grounded model check")
+zs = set()
+for c in range(housemodel.GetNumberOfCells()):
+    b = housemodel.GetCell(c).GetBounds()
+    inside = housemodel.GetCellData().GetArray("InsideType").GetValue(c)
+    outside = housemodel.GetCellData().GetArray("OutsideType").GetValue(c)
+    if b[4] == b[5] and 1 in (inside, outside) and 0 in (inside, outside):
+        zs.add(round(b[4], 6))
+check(zs <= {0.0, 2.0} and zs, "wall floors and ceilings at z = 0 and 2 only: %s" % sorted(zs))
+
 # OpenVDB from the continuous chain: the mesh as level sets, the catalog as a sequence.
 folder = os.path.join(TMP, "pvbatch-vdb-%s" % suffix)
 os.makedirs(folder, exist_ok=True)

@@ -360,6 +360,89 @@ class ContinuousSynthesisTest(unittest.TestCase):
         arrangement.Update()
         self.assertIn("vertices", errors.text())
 
+    def test_constraints_through_the_filter_and_the_command_line(self):
+        """Grounded houses with walls one plane spacing (2 units) high and no roofs in the left
+        half (a guide), checked on the mesh: every connected part reaches the ground, wall floors
+        and ceilings lie only at z = 0 and 2, no roof polygon in the left half of the box."""
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        guide = vtkImageData()
+        guide.SetDimensions(2, 1, 1)
+        weights = numpy_to_vtk(np.array([0.0, 1.0]), deep=True)
+        weights.SetName("Weight_roof")
+        guide.GetPointData().AddArray(weights)
+        reader, arrangement, solver, mesh, _ = chain("house.obj", (16, 16, 8), seed=2)
+        solver.SetGrounded(True)
+        solver.SetThickness("wall:z:1")
+        solver.SetInputData(2, guide)
+        errors = ErrorObserver(solver)
+        mesh.Update()
+        self.assertEqual(errors.text(), "")
+        fields = solver.GetOutput().GetFieldData()
+        self.assertEqual(fields.GetArray("Components").GetValue(0),
+                         fields.GetArray("GroundedComponents").GetValue(0))
+        self.assertIsNotNone(fields.GetArray("TypeShare_2"))
+        model = mesh.GetOutput()
+        middle = arrangement.GetOutput().GetBounds()[0] + 8  # the box starts at the eaves, x = -0.5
+        points, polys = polygons_of(model)
+        inside = vtk_to_numpy(model.GetCellData().GetArray("InsideType"))
+        outside = vtk_to_numpy(model.GetCellData().GetArray("OutsideType"))
+        self.assertGreater(len(polys), 0)
+        for poly, a, b in zip(polys, inside, outside):
+            corners = points[poly]
+            flat = np.ptp(corners[:, 2]) < 1e-9
+            if 1 in (a, b) and flat and 0 in (a, b):
+                self.assertIn(round(corners[0, 2], 6), (0.0, 2.0), "a wall floor or ceiling")
+            if 2 in (a, b):
+                self.assertGreaterEqual(corners[:, 0].mean(), middle, "a roof in the left half")
+        parts = vtkPolyDataConnectivityFilter()
+        parts.SetInputData(model)
+        parts.SetExtractionModeToAllRegions()
+        parts.ColorRegionsOn()
+        parts.Update()
+        region = vtk_to_numpy(parts.GetOutput().GetPointData().GetArray("RegionId"))
+        z = vtk_to_numpy(parts.GetOutput().GetPoints().GetData())[:, 2]
+        for r in np.unique(region):
+            self.assertAlmostEqual(z[region == r].min(), 0.0, msg="part %d floats" % r)
+        # The same from the command line, and its one-line errors.
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+        folder = tmp("constraints-cli")
+        os.makedirs(folder, exist_ok=True)
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(guide)
+        writer.SetFileName(os.path.join(folder, "guide.vti"))
+        writer.Write()
+        msynth = os.path.join(os.environ["MSYNTH_BIN"], "msynth")
+        out = os.path.join(folder, "out")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "16", "16",
+                               "8", "--seed", "2", "--grounded", "--thickness", "wall:z",
+                               "--guide", os.path.join(folder, "guide.vti"), "--out", out],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("on the ground", done.stdout)
+        stats = open(os.path.join(out, "statistics.json")).read()
+        self.assertIn('"FloatingPartsRemoved"', stats)
+        self.assertIn('"TypeShares"', stats)
+        for args, message in (
+                (["--thickness", "wall:q"], "the axis must be x, y, z or h1"),
+                (["--connected", "tower:2"], "'tower' is not an object type"),
+                (["--target", "roof:2"], "LABEL:FRACTION"),
+                (["--thickness", "wall:z", "--no-proportions"], None)):
+            done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "8",
+                                   "8", "6", "--out", out + "-x"] + args, capture_output=True,
+                                  text=True)
+            if message is None:
+                self.assertEqual(done.returncode, 0, done.stderr)
+                continue
+            self.assertNotEqual(done.returncode, 0, args)
+            self.assertIn(message, done.stderr)
+            self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        done = subprocess.run([msynth, "synthesize", data("Examples/Village.vti"), "--size", "8", "8",
+                               "4", "--grounded", "--out", out + "-y"], capture_output=True, text=True)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("--grounded applies to polyhedral examples", done.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()
