@@ -197,7 +197,7 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
       Hash(SynthesizeContinuous(a, arrangement, o).Labels);
   }
   const std::map<std::string, std::string> expected = {
-    { "continuous house, blocks", "38d7cb199312c63f" },
+    { "continuous house, blocks", "fc6f6c02a1156150" },
     { "continuous house, blocks, uniform", "9a403552fe60dd2b" },
     { "continuous house, grounded, walls one spacing high", "56d4135e541e305b" },
     { "time-varying", "f1eeebd4ae9d53c2" },

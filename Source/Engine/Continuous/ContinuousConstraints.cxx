@@ -569,8 +569,9 @@ double ConstraintPlan::Factor(std::int64_t v, int label, const std::vector<doubl
         continue;
       const double share = (tally[t] + prior * this->Target[t]) / total;
       const double ratio = this->Target[t] / std::max(share, 1e-12);
-      factor *= std::pow(
-        std::clamp(ratio * ratio, 1.0 / 64, 64.0), this->Occupancy(label, static_cast<int>(t)));
+      // By presence, not by the label's share of the type: labels that start an object (a
+      // corner holds an eighth of it) decide the proportions as much as those inside one.
+      factor *= std::clamp(ratio * ratio, 1.0 / 64, 64.0);
     }
   }
   return factor;
