@@ -26,6 +26,7 @@
 #include "Continuous/PlaneArrangement.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 
@@ -122,8 +123,8 @@ void WriteModelVDB(
   Run(vdb);
 }
 
-void WriteStatistics(
-  vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o, const std::string& dir)
+void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
+  const std::string& dir, const std::vector<std::pair<std::string, double>>& stages)
 {
   vtkFieldData* fd = labelled->GetFieldData();
   msynth::WriteFileAtomically(dir + "/statistics.json",
@@ -149,6 +150,13 @@ void WriteStatistics(
           separator = ", ";
         }
       }
+      out << "},\n  \"StageSeconds\": {";
+      separator = "";
+      for (const auto& [stage, seconds] : stages)
+      {
+        out << separator << JsonString(stage) << ": " << seconds;
+        separator = ", ";
+      }
       out << "},\n";
       out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
     });
@@ -157,6 +165,15 @@ void WriteStatistics(
 
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
 {
+  // Seconds per stage, for statistics.json (a user sees where a run's time goes).
+  std::vector<std::pair<std::string, double>> stages;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* stage)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    stages.emplace_back(stage, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   reader->SetFileName(o.Example.c_str());
   reader->SetObjectTypes(o.Types.c_str());
@@ -202,11 +219,14 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   mesh->SetInputConnection(0, reader->GetOutputPort());
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
   Run(arrangement);
+  lap("example and arrangement");
   {
     ProgressBar bar(synthesis);
     Run(synthesis);
   }
+  lap("synthesis");
   Run(mesh);
+  lap("mesh");
   vtkPolyData* model = mesh->GetOutput();
   vtkPolyData* labelled = synthesis->GetOutput();
 
@@ -218,8 +238,10 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   saved->SetFieldData(fields);
   WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
   WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
+  lap("vtp files");
   const Voxels voxels = ChooseVoxels(labelled, model, o);
   WriteModelVDB(model, voxels, o, dir);
+  lap("model.vdb");
   std::string sequence;
   if (o.Snapshots > 0)
   {
@@ -228,7 +250,9 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" +
       std::to_string(10000 + o.Snapshots + 1).substr(1) + ".vdb";
   }
-  WriteStatistics(labelled, model, o, dir);
+  if (o.Snapshots > 0)
+    lap("catalog sequence");
+  WriteStatistics(labelled, model, o, dir, stages);
   vtkFieldData* fd = labelled->GetFieldData();
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "

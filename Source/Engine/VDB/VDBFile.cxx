@@ -15,6 +15,7 @@
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Composite.h>
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -425,8 +426,45 @@ void WriteFile(
 namespace
 {
 /// The level set (and fog volume) of one mesh.
+/// The union of level sets already in @p out (and its fog volume), as MakeMeshGrids makes them.
+void MakeUnionGrid(const MeshGridView& mesh, openvdb::GridPtrVec& out)
+{
+  openvdb::FloatGrid::Ptr grid;
+  for (const auto& name : mesh.UnionOf)
+  {
+    openvdb::FloatGrid::Ptr part;
+    for (const auto& g : out)
+      if (g->getName() == name)
+        part = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
+    if (!part || part->getGridClass() != openvdb::GRID_LEVEL_SET)
+      throw Error("mesh grid '" + mesh.Name + "': no level set '" + name + "' to unite");
+    grid = grid ? openvdb::tools::csgUnionCopy(*grid, *part) : part->deepCopy();
+  }
+  if (!grid)
+    throw Error("mesh grid '" + mesh.Name + "': a union of no level sets");
+  grid->clearMetadata();
+  grid->setName(mesh.Name);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  for (const auto& kv : mesh.Metadata)
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  out.push_back(grid);
+  if (!mesh.FogName.empty())
+  {
+    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
+    openvdb::tools::sdfToFogVolume(*fog);
+    fog->setName(mesh.FogName);
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    out.push_back(fog);
+  }
+}
+
 void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
 {
+  if (!mesh.UnionOf.empty())
+  {
+    MakeUnionGrid(mesh, out);
+    return;
+  }
   if (!mesh.Points || !mesh.Polygons)
   {
     throw Error("mesh grid '" + mesh.Name + "' has no points or polygons");

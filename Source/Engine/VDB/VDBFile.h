@@ -78,6 +78,9 @@ struct MeshGridView
   double HalfWidth = 3.0; ///< narrow band half width, in voxels (≥ 1)
   std::string FogName;    ///< also a fog volume of this name when set
   MetadataMap Metadata;   ///< extra string metadata on the grid(s)
+  /// When not empty: the level set is the CSG union of these level sets made before it in the
+  /// same file (Points and Polygons are not used), which costs far less than voxelizing again.
+  std::vector<std::string> UnionOf;
 };
 
 /// A grid read from a file.

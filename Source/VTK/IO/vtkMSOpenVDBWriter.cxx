@@ -521,7 +521,6 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
     whole.VoxelSize = voxel;
     whole.HalfWidth = this->BandWidth;
     whole.FogName = this->WriteFog ? "density" : "";
-    meshes.push_back(whole);
     for (const auto& [type, polygons] : perType)
     {
       msynth::vdb::MeshGridView view = whole;
@@ -533,10 +532,13 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
       view.Name = "surface_" + name;
       view.Polygons = &polygons;
       view.FogName.clear();
+      view.UnionOf.clear();
       view.Metadata["object_type"] = std::to_string(type);
       view.Metadata["object_type_name"] = name;
       meshes.push_back(view);
+      whole.UnionOf.push_back(view.Name);
     }
+    meshes.push_back(whole); // with types: the union of theirs (voxelized once, not twice)
     msynth::vdb::WriteFile(this->CurrentFileName, {}, meshes,
       FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
