@@ -8,6 +8,8 @@
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPolyhedra.h"
 
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPolyhedralExampleReader.h"
@@ -86,9 +88,21 @@ int CheckContinuous(
   {
     throw std::runtime_error("'" + modelPath + "': not a readable VTP model: " + messages);
   }
+  // The example analyzed with the direction snapping its arrangement used (recorded in the
+  // model by the mesh filter; a rotated polygon's directions may have been snapped to fit exact
+  // arithmetic), else the defaults.
+  vtkFieldData* fields = modelReader->GetOutput()->GetFieldData();
+  vtkDataArray* tolerance = fields->GetArray("AngleTolerance");
+  vtkDataArray* integer = fields->GetArray("MaximumSmallInteger");
+  const double degrees =
+    tolerance && tolerance->GetNumberOfTuples() == 1 ? tolerance->GetTuple1(0) : 0.01;
+  const double largest = integer && integer->GetNumberOfTuples() == 1 ? integer->GetTuple1(0) : 12;
+  if (!(degrees > 0 && degrees <= 10) || !(largest >= 1 && largest <= 1000000))
+    throw std::runtime_error(
+      "'" + modelPath + "': AngleTolerance or MaximumSmallInteger out of range");
   msynth::PolyhedralExample ex;
   const msynth::PolyhedralAnalysis analysis =
-    vtkMSPolyhedra::AnalyzeExample(reader->GetOutput(), 0.01, 12, ex);
+    vtkMSPolyhedra::AnalyzeExample(reader->GetOutput(), degrees, static_cast<int>(largest), ex);
   const auto mesh = vtkMSPolyhedra::ToContinuousMesh(modelReader->GetOutput(), modelPath);
   const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
   if (report.Valid)

@@ -382,7 +382,7 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
     report.Problem = std::string("the output is not a valid closed model: ") + e.what();
     return report;
   }
-  const PolyhedralAnalysis found = PolyhedralAnalysis::Analyze(model);
+  const PolyhedralAnalysis found = PolyhedralAnalysis::Analyze(model, example.AnalysisOptions());
   // Families of the model's analysis → the example's, by their exact normals (up to sign: a
   // family's normal points whichever way the first face seen did).
   std::vector<int> familyMap;
@@ -396,6 +396,24 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
     if (it == all.end())
     {
       it = std::find(all.begin(), all.end(), minus);
+    }
+    if (it == all.end())
+    {
+      // Directions snapped to small integers (a rotated example) may snap to a neighbouring
+      // integer direction when re-derived from the output: the example's family within the
+      // analysis' angle tolerance is the same plane direction.
+      const double tolerance = example.AnalysisOptions().AngleTolerance;
+      for (auto k = all.begin(); k != all.end() && it == all.end(); ++k)
+      {
+        const Point3 a{ double(n[0]), double(n[1]), double(n[2]) };
+        const Point3 b{ double((*k)[0]), double((*k)[1]), double((*k)[2]) };
+        const double sine = point3::Norm(point3::Cross(a, b)) / (point3::Norm(a) * point3::Norm(b));
+        if (sine <= std::sin(tolerance) * 2)
+        {
+          it = k;
+          flipped.back() = point3::Dot(a, b) < 0;
+        }
+      }
     }
     if (it == all.end())
     {

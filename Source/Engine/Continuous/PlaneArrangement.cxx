@@ -111,10 +111,23 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
              static_cast<double>(n[2]) * r[2]) /
       p.Quantum;
   };
+  // A face's position along its family's exact normal: the mean over its corners. When the
+  // normal was snapped (a direction of large integers), the corners spread a little around it;
+  // the spread widens the tolerance of the spacing so it does not split the face's plane.
+  std::vector<double> spread(static_cast<std::size_t>(m), 0.0);
   for (std::size_t e = 0; e < elements.size(); ++e)
   {
     const int f = analysis.ElementFamily()[e];
-    const double v = valueOf(f, example.Points[static_cast<std::size_t>(elements[e].Points[0])]);
+    double v = 0, low = 0, high = 0;
+    for (std::size_t k = 0; k < elements[e].Points.size(); ++k)
+    {
+      const double x = valueOf(f, example.Points[static_cast<std::size_t>(elements[e].Points[k])]);
+      v += x;
+      low = k == 0 ? x : std::min(low, x);
+      high = k == 0 ? x : std::max(high, x);
+    }
+    v /= static_cast<double>(std::max<std::size_t>(elements[e].Points.size(), 1));
+    spread[static_cast<std::size_t>(f)] = std::max(spread[static_cast<std::size_t>(f)], high - low);
     if (values[static_cast<std::size_t>(f)].empty())
     {
       first[static_cast<std::size_t>(f)] = v;
@@ -135,7 +148,7 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
     vs.push_back(vmin);
     vs.push_back(vmax);
     const double extent = vmax - vmin;
-    double g = ApproximateGcd(vs, 1e-4 * extent + 0.5);
+    double g = ApproximateGcd(vs, 1e-4 * extent + 0.5 + 2 * spread[static_cast<std::size_t>(f)]);
     g = std::max(g, extent / 256.0);
     p.Spacings.push_back(std::max<std::int64_t>(1, std::llround(g)));
     world[static_cast<std::size_t>(f)] = p.Spacing(set, f);

@@ -618,6 +618,7 @@ PolyhedralAnalysis PolyhedralAnalysis::Analyze(
   const PolyhedralExample& example, const Options& options)
 {
   PolyhedralAnalysis analysis;
+  analysis.Used = options;
   analysis.IsPlanar = example.Planar;
   analysis.Set =
     std::make_shared<PlaneFamilySet>(FindFamilies(example, options, analysis.UnitNormals));

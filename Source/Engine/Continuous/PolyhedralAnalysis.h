@@ -134,6 +134,8 @@ public:
   /// families all pass through it.
   std::vector<int> AllowedLabels(std::vector<int> families) const;
 
+  /// The options the analysis was made with (a model checked against it is analyzed alike).
+  const Options& AnalysisOptions() const { return this->Used; }
   /// Volume (area in 2D) of each object type of the example, by the divergence theorem.
   const std::map<int, double>& TypeVolumes() const { return this->Volumes; }
   /// The example's bounding box.
@@ -152,6 +154,7 @@ private:
   std::vector<Feature> Samples;
   std::map<int, double> Volumes;
   Point3 BoundsLow{}, BoundsHigh{};
+  Options Used;
 };
 
 } // namespace msynth

@@ -11,6 +11,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -178,6 +179,12 @@ int vtkMSArrangementMesh::RequestData(
 
     FillMesh(output, mesh);
     AddTypeNames(output, ex);
+    // The direction snapping the example was analyzed with, so a check of the model (msynth
+    // check) analyzes it the same way.
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      output->GetFieldData(), "AngleTolerance", record.AngleToleranceDegrees);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      output->GetFieldData(), "MaximumSmallInteger", record.MaximumSmallInteger);
     if (this->CheckModel)
     {
       const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);

@@ -9,6 +9,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -25,6 +26,9 @@
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <string>
 
 vtkStandardNewMacro(vtkMSPlaneArrangement);
 
@@ -98,6 +102,58 @@ void FillArrangement(vtkPolyData* output, const msynth::PlaneArrangement& arrang
 }
 } // namespace
 
+void vtkMSPlaneArrangement::Build(
+  vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger)
+{
+  msynth::PolyhedralExample example;
+  const auto analysis =
+    vtkMSPolyhedra::AnalyzeExample(input, angleTolerance, maximumSmallInteger, example);
+  msynth::Point3 size{};
+  double bounds[6];
+  input->GetBounds(bounds);
+  for (int c = 0; c < 3; ++c)
+  {
+    size[static_cast<std::size_t>(c)] =
+      this->OutputSize[c] > 0 ? this->OutputSize[c] : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
+  }
+  vtkMSArrangementStorage::ArrangementRecord record;
+  record.Parameters =
+    msynth::DefaultArrangementParameters(example, analysis, size, this->Spacing, {});
+  record.Parameters.MaxVertices = this->MaximumVertices;
+  record.Normals = analysis.Families().AllNormals();
+  record.AngleToleranceDegrees = angleTolerance;
+  record.MaximumSmallInteger = maximumSmallInteger;
+  const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
+  const msynth::ArrangementRules rules(analysis, arrangement);
+
+  output->Initialize();
+  FillArrangement(output, arrangement, rules);
+  vtkMSArrangementStorage::StoreArrangement(record, output->GetFieldData());
+  vtkNew<vtkStringArray> file;
+  file->SetName("ExampleFile");
+  file->InsertNextValue(vtkMSFieldData::ExampleName(input));
+  output->GetFieldData()->AddArray(file);
+  // How far the exact plane directions are from the example's faces.
+  double worst = 0;
+  const auto& set = analysis.Families();
+  for (int f = 0; f < set.Size(); ++f)
+  {
+    const auto& n = set.Normal(f);
+    const auto& u = analysis.FamilyUnitNormals()[static_cast<std::size_t>(f)];
+    const double len = std::sqrt(
+      double(n[0]) * double(n[0]) + double(n[1]) * double(n[1]) + double(n[2]) * double(n[2]));
+    const double dot = std::abs(n[0] * u[0] + n[1] * u[1] + n[2] * u[2]) / len;
+    worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / 3.14159265358979323846);
+  }
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+    output->GetFieldData(), "DirectionChangeDegrees", worst);
+  if (maximumSmallInteger != this->MaximumSmallInteger)
+    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input)
+                    << ": plane directions snapped to integers up to " << maximumSmallInteger
+                    << " so that exact coordinates fit; faces turn by up to " << worst
+                    << " degrees");
+}
+
 int vtkMSPlaneArrangement::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -109,33 +165,31 @@ int vtkMSPlaneArrangement::RequestData(
   }
   try
   {
-    msynth::PolyhedralExample example;
-    const auto analysis = vtkMSPolyhedra::AnalyzeExample(
-      input, this->AngleTolerance, this->MaximumSmallInteger, example);
-    msynth::Point3 size{};
-    double bounds[6];
-    input->GetBounds(bounds);
-    for (int c = 0; c < 3; ++c)
+    // Directions as given first; when exact coordinates would exceed 128-bit integers (plane
+    // directions of large integers, e.g. a rotated polygon), again with directions snapped to
+    // ever smaller integers, within tolerances that grow accordingly (the change is reported).
+    struct Snap
     {
-      size[static_cast<std::size_t>(c)] =
-        this->OutputSize[c] > 0 ? this->OutputSize[c] : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
+      double Degrees;
+      int Integer;
+    };
+    const Snap snaps[] = { { this->AngleTolerance, this->MaximumSmallInteger },
+      { std::max(this->AngleTolerance, 0.012), 4096 },
+      { std::max(this->AngleTolerance, 0.09), 512 }, { std::max(this->AngleTolerance, 0.7), 64 } };
+    for (std::size_t level = 0;; ++level)
+    {
+      try
+      {
+        this->Build(input, output, snaps[level].Degrees, snaps[level].Integer);
+        break;
+      }
+      catch (const msynth::Error& e)
+      {
+        if (level + 1 == std::size(snaps) ||
+          std::string(e.what()).find("128-bit") == std::string::npos)
+          throw;
+      }
     }
-    vtkMSArrangementStorage::ArrangementRecord record;
-    record.Parameters =
-      msynth::DefaultArrangementParameters(example, analysis, size, this->Spacing, {});
-    record.Parameters.MaxVertices = this->MaximumVertices;
-    record.Normals = analysis.Families().AllNormals();
-    record.AngleToleranceDegrees = this->AngleTolerance;
-    record.MaximumSmallInteger = this->MaximumSmallInteger;
-    const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
-    const msynth::ArrangementRules rules(analysis, arrangement);
-
-    FillArrangement(output, arrangement, rules);
-    vtkMSArrangementStorage::StoreArrangement(record, output->GetFieldData());
-    vtkNew<vtkStringArray> file;
-    file->SetName("ExampleFile");
-    file->InsertNextValue(vtkMSFieldData::ExampleName(input));
-    output->GetFieldData()->AddArray(file);
   }
   catch (const msynth::Error& e)
   {

@@ -74,6 +74,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  /// Analyzes the example with the given direction snapping and fills @p output.
+  void Build(
+    vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger);
   vtkMSPlaneArrangement(const vtkMSPlaneArrangement&) = delete;
   void operator=(const vtkMSPlaneArrangement&) = delete;
 
