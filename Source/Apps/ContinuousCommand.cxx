@@ -9,6 +9,7 @@
 #include "vtkMSPolyhedra.h"
 
 #include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -220,6 +221,20 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
   Run(arrangement);
   lap("example and arrangement");
+  {
+    // What the arrangement had to give up, said once on the terminal (as the filter warns).
+    vtkFieldData* fd = arrangement->GetOutput()->GetFieldData();
+    const long long without = CountOf(fd, "NonTrihedralLabelsWithoutSites");
+    if (without > 0)
+      std::cerr << "msynth: note: over-constrained plane spacing: " << without << " of "
+                << CountOf(fd, "NonTrihedralLabels")
+                << " vertices where four or more planes meet cannot appear in the output\n";
+    vtkDataArray* change = fd->GetArray("DirectionChangeDegrees");
+    if (change && CountOf(fd, "MaximumSmallInteger") > 12)
+      std::cerr << "msynth: note: plane directions snapped to fit exact arithmetic; faces turn by "
+                   "up to "
+                << change->GetTuple1(0) << " degrees\n";
+  }
   {
     ProgressBar bar(synthesis);
     Run(synthesis);

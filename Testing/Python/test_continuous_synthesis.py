@@ -470,6 +470,36 @@ class ContinuousSynthesisTest(unittest.TestCase):
         self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
         self.assertIn("valid", check.stdout)
 
+    def test_non_trihedral_vertices(self):
+        """Pyramids and octahedra: four planes meet at their apexes (TVCG 4.4). The output has
+        such vertices, found on the mesh (points where faces of four or more directions meet);
+        a pentagonal pyramid's five-plane apex is reported as over-constrained."""
+        for name, size in (("pyramid.obj", (16, 16, 6)), ("octahedron.obj", (16, 16, 8))):
+            reader, arrangement, solver, mesh, errors = chain(name, size, seed=1)
+            self.assertEqual(errors, "")
+            fields = arrangement.GetOutput().GetFieldData()
+            self.assertGreater(fields.GetArray("NonTrihedralLabels").GetValue(0), 0)
+            self.assertEqual(fields.GetArray("NonTrihedralLabelsWithoutSites").GetValue(0), 0)
+            points, polys = polygons_of(mesh.GetOutput())
+            directions = {}
+            for poly in polys:
+                c = points[poly]
+                n = np.cross(c[1] - c[0], c[2] - c[0])
+                n = n / np.linalg.norm(n)
+                for i in poly:
+                    directions.setdefault(i, set()).add(tuple(np.round(n, 6)))
+            apexes = [i for i, d in directions.items() if len(d) >= 4]
+            self.assertGreater(len(apexes), 0, name + ": no vertex where four planes meet")
+        reader, arrangement, solver, mesh, errors = chain("pyramid-pentagonal.obj", (16, 16, 8))
+        fields = arrangement.GetOutput().GetFieldData()
+        self.assertEqual(fields.GetArray("NonTrihedralLabelsWithoutSites").GetValue(0), 1)
+        msynth = os.path.join(os.environ["MSYNTH_BIN"], "msynth")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/pyramid-pentagonal.obj"), "--size",
+                               "16", "16", "8", "--out", tmp("pyramid-pentagonal")],
+                              capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("over-constrained plane spacing", done.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -698,6 +698,29 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   return result;
 }
 
+std::vector<NonTrihedralSites> FindNonTrihedralSites(
+  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
+{
+  std::vector<NonTrihedralSites> out;
+  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+  {
+    const auto& info = analysis.Label(a);
+    if (info.Kind != FeatureKind::Vertex ||
+      info.Label.Families.size() < (analysis.Planar() ? 3u : 4u))
+      continue;
+    std::uint64_t mask = 0;
+    for (int f : info.Label.Families)
+      mask |= std::uint64_t(1) << f;
+    NonTrihedralSites s;
+    s.Label = a;
+    s.Planes = static_cast<int>(info.Label.Families.size());
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+      s.Sites += (arrangement.FamilyMask(v) & mask) == mask ? 1 : 0;
+    out.push_back(s);
+  }
+  return out;
+}
+
 std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels)
 {

@@ -94,6 +94,21 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);
 
 /**
+ * Non-trihedral vertex labels (TVCG §4.4: four or more planes through a point, as at a
+ * pyramid's apex) and how many arrangement vertices could hold each: those through which a plane
+ * of every family of the label passes. A label without sites is an over-constrained system of
+ * spacing equations (Eq. 4.25): that feature cannot appear in the output.
+ */
+struct NonTrihedralSites
+{
+  int Label = -1;
+  int Planes = 0;         ///< plane families through the vertex
+  std::int64_t Sites = 0; ///< arrangement vertices where it may go
+};
+std::vector<NonTrihedralSites> FindNonTrihedralSites(
+  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement);
+
+/**
  * Checks labels on an arrangement against the rules, edge by edge, with the evaluation code
  * (not the compiled bit sets). Returns an empty string when consistent, else the first problem.
  */

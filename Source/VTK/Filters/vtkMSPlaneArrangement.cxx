@@ -11,6 +11,7 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -147,6 +148,32 @@ void vtkMSPlaneArrangement::Build(
   }
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
     output->GetFieldData(), "DirectionChangeDegrees", worst);
+  // Non-trihedral vertices (four or more planes, TVCG §4.4): where they can go.
+  const auto nonTrihedral = msynth::FindNonTrihedralSites(analysis, arrangement);
+  vtkIdType without = 0;
+  std::string missing;
+  for (const auto& n : nonTrihedral)
+  {
+    if (n.Sites == 0)
+    {
+      ++without;
+      missing += (missing.empty() ? "" : "; ") + analysis.Label(n.Label).Expression + " (" +
+        std::to_string(n.Planes) + " planes)";
+    }
+  }
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    output->GetFieldData(), "NonTrihedralLabels", static_cast<vtkIdType>(nonTrihedral.size()));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    output->GetFieldData(), "NonTrihedralLabelsWithoutSites", without);
+  if (without > 0)
+    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input) << ": over-constrained plane spacing: "
+                    << without << " of " << nonTrihedral.size()
+                    << " vertices where four or more planes meet have no place in the arrangement, "
+                       "so the output cannot have them: "
+                    << missing
+                    << ". Their planes meet only where the example has them; try another plane "
+                       "spacing (a divisor of the derived one) or an example whose faces fit a "
+                       "lattice.");
   if (maximumSmallInteger != this->MaximumSmallInteger)
     vtkWarningMacro(<< vtkMSFieldData::ExampleName(input)
                     << ": plane directions snapped to integers up to " << maximumSmallInteger
