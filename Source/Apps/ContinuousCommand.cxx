@@ -203,6 +203,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   synthesis->SetGrounded(o.Grounded);
   synthesis->SetKeepProportions(!o.NoProportions);
   synthesis->SetBlockCandidates(o.Candidates);
+  synthesis->SetMirrorAxis(o.Mirror.empty() ? -1 : o.Mirror[0] - 'x');
   auto joined = [](const std::vector<std::string>& items)
   {
     std::string out;

@@ -149,8 +149,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_option("--pieces", o.Pieces,
     "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels); with a tileset "
     "also DIR/<tile>.obj, turned for each orientation"));
-  discrete(s.add_option("--mirror", o.Mirror, "make the output mirror-symmetric along AXES")
-             ->check(Axes, "AXES"));
+  s.add_option("--mirror", o.Mirror,
+     "make the output mirror-symmetric along AXES (continuous: one axis, mirrored across a "
+     "plane near the middle of the box)")
+    ->check(Axes, "AXES")
+    ->group("Constraints (both kinds)");
   discrete(s.add_option("--swap", o.Swaps, "labels A and B are each other's mirror images (A:B)")
              ->allow_extra_args(false)
              ->check(LabelPair, "A:B"));
@@ -271,6 +274,8 @@ void CheckKind(const Registered& r, bool polyhedral)
       o.Attempts = 20;
     if (o.Choice == "resemblance")
       throw UsageError{ "--choice resemblance applies to label grids, not to '" + o.Example + "'" };
+    if (o.Mirror.size() > 1)
+      throw UsageError{ "--mirror of a polyhedral example takes one axis, not '" + o.Mirror + "'" };
     return;
   }
   for (const auto& target : o.Targets)

@@ -500,6 +500,36 @@ class ContinuousSynthesisTest(unittest.TestCase):
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertIn("over-constrained plane spacing", done.stderr)
 
+    def test_mirrored_models(self):
+        """Reflection symmetry (TVCG 7): the model's polygons, reflected across the middle of
+        their bounding box, are the model's polygons (same points and object types), checked on
+        the mesh; an axis with no symmetric planes is a clear error."""
+        for axis in (0, 1):
+            reader, arrangement, solver, mesh, _ = chain("house.obj", (20, 20, 8), seed=4)
+            solver.SetMirrorAxis(axis)
+            solver.SetGrounded(True)
+            errors = ErrorObserver(solver)
+            mesh.Update()
+            self.assertEqual(errors.text(), "")
+            model = mesh.GetOutput()
+            points, polys = polygons_of(model)
+            self.assertGreater(len(polys), 0)
+            inside = vtk_to_numpy(model.GetCellData().GetArray("InsideType"))
+            outside = vtk_to_numpy(model.GetCellData().GetArray("OutsideType"))
+            middle = (points[:, axis].min() + points[:, axis].max()) / 2
+            def key(poly, flip):
+                c = points[poly].copy()
+                if flip:
+                    c[:, axis] = 2 * middle - c[:, axis]
+                return tuple(sorted(tuple(np.round(p, 5)) for p in c))
+            faces = {(key(p, False), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
+            mirrored = {(key(p, True), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
+            self.assertEqual(faces, mirrored, "axis %d" % axis)
+        solver.SetMirrorAxis(2)  # the roofs' slopes have no reflection across z
+        errors = ErrorObserver(solver)
+        solver.Update()
+        self.assertIn("mirror", errors.text())
+
 
 if __name__ == "__main__":
     unittest.main()

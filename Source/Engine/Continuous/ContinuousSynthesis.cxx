@@ -5,6 +5,7 @@
 #include "Core/Error.h"
 
 #include "Continuous/ConstraintPlan.h"
+#include "Continuous/ContinuousMirror.h"
 #include "Continuous/SolverParts.h"
 #include "Core/Random.h"
 
@@ -89,7 +90,7 @@ ArrangementRules::ArrangementRules(
   this->Finish();
 }
 
-void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out) const
+void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxis) const
 {
   const int w = this->Words();
   std::fill(out, out + w, 0);
@@ -103,7 +104,9 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out) const
   }
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
   {
-    if (l->Vertex < 0)
+    if (l->Vertex < 0 &&
+      !(seamAxis >= 0 &&
+        this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(seamAxis)] > 0))
     {
       const std::uint64_t* e =
         this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
@@ -156,9 +159,12 @@ public:
     this->Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
     result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
     this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
+    const int seam = options.HalfOf ? options.HalfOf->Axis : -1;
     for (std::int64_t v = 0; v < this->N; ++v)
       this->Rules.InitialDomain(
-        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words);
+        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words, seam);
+    if (options.HalfOf)
+      this->RestrictToMirrorImages(*options.HalfOf);
     if (options.Choice == LabelChoice::Frequency)
     {
       for (const auto& info : analysis.Labels())
@@ -178,6 +184,34 @@ public:
     this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
     this->Tally.assign(static_cast<std::size_t>(this->Plan->NumberOfTypes()), 0.0);
     this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
+  }
+
+  /// Half of a mirrored model: only labels whose mirror image the example has, and on the seam
+  /// only labels that are their own image.
+  void RestrictToMirrorImages(const MirrorPlan& plan)
+  {
+    std::vector<std::uint64_t> imaged(static_cast<std::size_t>(this->Words), 0),
+      symmetric(static_cast<std::size_t>(this->Words), 0);
+    for (int a = 0; a < this->K; ++a)
+    {
+      const int image = plan.LabelImage[static_cast<std::size_t>(a)];
+      if (image >= 0)
+        imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+      if (image == a)
+        symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+    }
+    const auto& p = this->Arrangement.Parameters();
+    const auto axis = static_cast<std::size_t>(plan.Axis);
+    const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan.Seam);
+    for (std::int64_t v = 0; v < this->N; ++v)
+    {
+      const bool onSeam = ((this->Arrangement.FamilyMask(v) >> plan.Family) & 1u) &&
+        std::abs(this->Arrangement.Position(v)[axis] - seam) <
+          0.25 * p.Spacing(this->Arrangement.Families(), plan.Family);
+      std::uint64_t* d = this->Initial.data() + static_cast<std::size_t>(v) * this->Words;
+      for (int w = 0; w < this->Words; ++w)
+        d[w] &= (onSeam ? symmetric : imaged)[static_cast<std::size_t>(w)];
+    }
   }
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
@@ -623,6 +657,8 @@ std::int64_t ContinuousRun::Attempt(
 ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options)
 {
+  if (options.MirrorAxis >= 0 && !options.HalfOf)
+    return SynthesizeMirrored(analysis, arrangement, options);
   const auto start = std::chrono::steady_clock::now();
   if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))
   {

@@ -61,6 +61,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KeepProportions: " << this->KeepProportions << "\n";
   os << indent << "TargetFractions: " << this->TargetFractions << "\n";
   os << indent << "BlockCandidates: " << this->BlockCandidates << "\n";
+  os << indent << "MirrorAxis: " << this->MirrorAxis << "\n";
 }
 
 int vtkMSContinuousSynthesis::FillInputPortInformation(int port, vtkInformation* info)
@@ -174,6 +175,7 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
+  options.MirrorAxis = self->GetMirrorAxis();
   snapshots.clear();
   options.OnSnapshot = [&snapshots](const msynth::CatalogSnapshot& s) { snapshots.push_back(s); };
   options.Progress = vtkMSSynthesisRun::Progress(self);

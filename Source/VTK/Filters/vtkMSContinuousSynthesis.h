@@ -135,6 +135,12 @@ public:
   vtkGetCharFromStdStringMacro(TargetFractions);
   ///@}
   ///@{
+  /// Reflection symmetry: the model is its own mirror image across a plane near the middle of
+  /// the box, normal to this axis (0 x, 1 y, 2 z; -1 none). Default -1.
+  vtkSetClampMacro(MirrorAxis, int, -1, 2);
+  vtkGetMacro(MirrorAxis, int);
+  ///@}
+  ///@{
   /// With proportions steered: labellings tried per block, the best kept. Default 1.
   vtkSetClampMacro(BlockCandidates, int, 1, 64);
   vtkGetMacro(BlockCandidates, int);
@@ -167,6 +173,7 @@ private:
   bool KeepProportions = true;
   std::string TargetFractions;
   int BlockCandidates = 1;
+  int MirrorAxis = -1;
 
   struct Cache;
   std::unique_ptr<Cache> Cached;

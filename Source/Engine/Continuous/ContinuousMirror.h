@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file ContinuousMirror.h
+ * @brief Reflection symmetry of continuous models (the papers' open item, TVCG §7): the output
+ * is its own mirror image across a plane of the arrangement near the middle of the box.
+ *
+ * The reflection R across the seam X_axis = M (exact units; M on a plane of the family normal to
+ * the axis, the last such plane at or before the middle of the box) must map the arrangement onto
+ * itself: every family's reflected normal is a family's normal (up to sign) with the same
+ * spacing, and reflected planes are planes. Labels map to their mirror images (the cones
+ * reflected, the object types kept); a label whose image is not among the example's cannot be
+ * used where its image would be needed.
+ *
+ * The half box up to the seam is synthesized: vertices on the seam hold labels that are their own
+ * mirror images, and their edges across the seam need not be empty (the far side is the mirror
+ * of the near side, so those edges agree). The other half is the reflection; beyond twice the
+ * seam the box stays empty.
+ */
+#include "Continuous/ContinuousSynthesis.h"
+#include "Continuous/PlaneArrangement.h"
+#include "Continuous/PolyhedralAnalysis.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace msynth
+{
+
+struct MirrorPlan
+{
+  int Axis = 0;
+  int Family = 0;               ///< the plane family normal to the axis
+  std::int64_t Seam = 0;        ///< M, in exact units along the axis
+  std::vector<int> FamilyImage; ///< family → family of its reflected normal
+  std::vector<char> Flipped;    ///< the reflected normal is minus that family's normal
+  std::vector<int> LabelImage;  ///< label → its mirror image's id, −1 when the example lacks it
+};
+
+/**
+ * The reflection of @p arrangement's planes across the axis (0, 1, 2).
+ * @throw Error when the plane families or their planes are not symmetric, or no plane of the
+ * axis' family lies in the box.
+ */
+MirrorPlan PlanMirror(
+  const PolyhedralAnalysis& analysis, const ArrangementParameters& parameters, int axis);
+
+/// The mirror image of @p label under the plan's family map.
+NeighbourhoodLabel MirrorLabel(
+  const PlaneFamilySet& families, const NeighbourhoodLabel& label, const MirrorPlan& plan);
+
+/**
+ * Continuous synthesis with reflection symmetry (options.MirrorAxis): the half box labelled with
+ * the seam's rules, then reflected onto @p arrangement (the whole box). Called by
+ * SynthesizeContinuous. @throw Error as PlanMirror, or with snapshots.
+ */
+ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);
+
+} // namespace msynth
