@@ -146,6 +146,35 @@ NeighbourhoodLabel MirrorLabel(
     });
 }
 
+void RestrictToMirrorImages(
+  const MirrorPlan& plan, const PlaneArrangement& half, std::vector<std::uint64_t>& catalogs)
+{
+  const int k = static_cast<int>(plan.LabelImage.size());
+  const auto words = static_cast<std::size_t>((k + 63) / 64);
+  std::vector<std::uint64_t> imaged(words, 0), symmetric(words, 0);
+  for (int a = 0; a < k; ++a)
+  {
+    const int image = plan.LabelImage[static_cast<std::size_t>(a)];
+    if (image >= 0)
+      imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+    if (image == a)
+      symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+  }
+  const auto& p = half.Parameters();
+  const auto axis = static_cast<std::size_t>(plan.Axis);
+  const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan.Seam);
+  const double near = 0.25 * p.Spacing(half.Families(), plan.Family);
+  for (std::int64_t v = 0; v < half.NumberOfVertices(); ++v)
+  {
+    // On the seam: on a plane of the family across the axis, and nearer than its spacing.
+    const bool onSeam =
+      ((half.FamilyMask(v) >> plan.Family) & 1u) && std::abs(half.Position(v)[axis] - seam) < near;
+    std::uint64_t* d = catalogs.data() + static_cast<std::size_t>(v) * words;
+    for (std::size_t w = 0; w < words; ++w)
+      d[w] &= (onSeam ? symmetric : imaged)[w];
+  }
+}
+
 namespace
 {
 /// Vertices by position (cells of a quarter of the smallest spacing), to find a vertex's mirror.

@@ -50,6 +50,14 @@ NeighbourhoodLabel MirrorLabel(
   const PlaneFamilySet& families, const NeighbourhoodLabel& label, const MirrorPlan& plan);
 
 /**
+ * Half of a mirrored model: keeps in each vertex's catalog (@p catalogs, one bit set per vertex,
+ * (labels + 63) / 64 words each) only labels whose mirror image the example has, and on the seam
+ * only labels that are their own image.
+ */
+void RestrictToMirrorImages(
+  const MirrorPlan& plan, const PlaneArrangement& half, std::vector<std::uint64_t>& catalogs);
+
+/**
  * Continuous synthesis with reflection symmetry (options.MirrorAxis): the half box labelled with
  * the seam's rules, then reflected onto @p arrangement (the whole box). Called by
  * SynthesizeContinuous. @throw Error as PlanMirror, or with snapshots.

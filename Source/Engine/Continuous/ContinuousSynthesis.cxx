@@ -164,7 +164,7 @@ public:
       this->Rules.InitialDomain(
         v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words, seam);
     if (options.HalfOf)
-      this->RestrictToMirrorImages(*options.HalfOf);
+      RestrictToMirrorImages(*options.HalfOf, arrangement, this->Initial);
     if (options.Choice == LabelChoice::Frequency)
     {
       for (const auto& info : analysis.Labels())
@@ -184,34 +184,6 @@ public:
     this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
     this->Tally.assign(static_cast<std::size_t>(this->Plan->NumberOfTypes()), 0.0);
     this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
-  }
-
-  /// Half of a mirrored model: only labels whose mirror image the example has, and on the seam
-  /// only labels that are their own image.
-  void RestrictToMirrorImages(const MirrorPlan& plan)
-  {
-    std::vector<std::uint64_t> imaged(static_cast<std::size_t>(this->Words), 0),
-      symmetric(static_cast<std::size_t>(this->Words), 0);
-    for (int a = 0; a < this->K; ++a)
-    {
-      const int image = plan.LabelImage[static_cast<std::size_t>(a)];
-      if (image >= 0)
-        imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
-      if (image == a)
-        symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
-    }
-    const auto& p = this->Arrangement.Parameters();
-    const auto axis = static_cast<std::size_t>(plan.Axis);
-    const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan.Seam);
-    for (std::int64_t v = 0; v < this->N; ++v)
-    {
-      const bool onSeam = ((this->Arrangement.FamilyMask(v) >> plan.Family) & 1u) &&
-        std::abs(this->Arrangement.Position(v)[axis] - seam) <
-          0.25 * p.Spacing(this->Arrangement.Families(), plan.Family);
-      std::uint64_t* d = this->Initial.data() + static_cast<std::size_t>(v) * this->Words;
-      for (int w = 0; w < this->Words; ++w)
-        d[w] &= (onSeam ? symmetric : imaged)[static_cast<std::size_t>(w)];
-    }
   }
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
