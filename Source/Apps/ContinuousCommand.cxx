@@ -220,6 +220,17 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   vtkNew<vtkMSArrangementMesh> mesh;
   mesh->SetInputConnection(0, reader->GetOutputPort());
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
+  vtkNew<vtkMSPolyhedralExampleReader> detail;
+  if (!o.Detail.empty())
+  {
+    const auto equals = o.Detail.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == o.Detail.size())
+      throw std::runtime_error("--detail '" + o.Detail + "' is not TYPE=FILE");
+    detail->SetFileName(o.Detail.substr(equals + 1).c_str());
+    Run(detail);
+    mesh->SetDetailType(o.Detail.substr(0, equals).c_str());
+    mesh->SetDetailConnection(detail->GetOutputPort());
+  }
   Run(arrangement);
   lap("example and arrangement");
   {

@@ -60,6 +60,7 @@ struct SynthesizeOptions
   std::vector<std::string> Thickness, Connected;
   bool NoProportions = false;
   int Candidates = 1;
+  std::string Detail; ///< TYPE=FILE
 };
 
 /// Discrete synthesis into the staging folder @p dir.

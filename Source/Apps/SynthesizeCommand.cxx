@@ -225,6 +225,9 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
                 "(default 1), so it forms that many connected objects")
                ->allow_extra_args(false));
+  continuous(s.add_option("--detail", o.Detail,
+    "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
+    "the output, mapped onto the part's bounding box from the example's (TYPE=FILE)"));
   continuous(s.add_option("--candidates", o.Candidates,
                 "with proportions steered: labellings tried per block, the one closest to the "
                 "example's proportions kept (default 1)")

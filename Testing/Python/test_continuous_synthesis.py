@@ -531,6 +531,46 @@ class ContinuousSynthesisTest(unittest.TestCase):
         solver.Update()
         self.assertIn("mirror", errors.text())
 
+    def test_bounding_volume_substitution(self):
+        """Bounding volumes (TVCG 4.8): domes synthesized as a box cut through three corners come
+        out as scaled copies, and the hemisphere substituted into each is scaled the same in x,
+        y and z; measured on the output polygons of the dome type."""
+        reader, arrangement, solver, mesh, _ = chain("domed-building.obj", (24, 24, 10), seed=2)
+        solver.SetGrounded(True)
+        detail = modelsynth.vtkMSPolyhedralExampleReader()
+        detail.SetFileName(data("Continuous/dome.obj"))
+        mesh.SetDetailConnection(detail.GetOutputPort())
+        mesh.SetDetailType("dome")
+        mesh.CheckModelOn()
+        errors = ErrorObserver(mesh)
+        mesh.Update()
+        self.assertEqual(errors.text(), "")
+        model = mesh.GetOutput()
+        fields = model.GetFieldData()
+        self.assertEqual(fields.GetAbstractArray("ModelCheck").GetValue(0), "valid")
+        scales = vtk_to_numpy(fields.GetArray("DetailScales"))
+        self.assertGreater(len(scales), 0)
+        points, polys = polygons_of(model)
+        inside = vtk_to_numpy(model.GetCellData().GetArray("InsideType"))
+        dome = [p for p, t in zip(polys, inside) if t == 2]
+        detail.Update()
+        self.assertEqual(len(dome), len(scales) * detail.GetOutput().GetNumberOfPolys())
+        # Each copy (its polygons are consecutive) has a hemisphere's extents, 2 : 2 : 1.
+        per = detail.GetOutput().GetNumberOfPolys()
+        for k in range(len(scales)):
+            corners = points[np.concatenate([np.array(p) for p in dome[k * per:(k + 1) * per]])]
+            extent = corners.max(axis=0) - corners.min(axis=0)
+            self.assertAlmostEqual(extent[0], extent[1], places=6)
+            self.assertAlmostEqual(extent[0], 2 * extent[2], places=6)
+        for s in scales:
+            self.assertAlmostEqual(s[0], s[1], places=9)
+            self.assertAlmostEqual(s[0], s[2], places=9)
+        self.assertEqual(fields.GetArray("DetailAnisotropy").GetValue(0), 0.0)
+        mesh.SetDetailType("tower")
+        errors = ErrorObserver(mesh)
+        mesh.Update()
+        self.assertIn("'tower' is not an object type", errors.text())
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -24,14 +24,16 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include "Continuous/ContinuousConstraints.h"
 #include "Continuous/ContinuousMesh.h"
+#include "Continuous/DetailSubstitution.h"
 #include "Core/Error.h"
 
 vtkStandardNewMacro(vtkMSArrangementMesh);
 
 vtkMSArrangementMesh::vtkMSArrangementMesh()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
 }
 
 vtkMSArrangementMesh::~vtkMSArrangementMesh() = default;
@@ -42,9 +44,11 @@ void vtkMSArrangementMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckModel: " << this->CheckModel << "\n";
 }
 
-int vtkMSArrangementMesh::FillInputPortInformation(int, vtkInformation* info)
+int vtkMSArrangementMesh::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (port == 2)
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
@@ -122,6 +126,55 @@ void AddTypeNames(vtkPolyData* output, const msynth::PolyhedralExample& ex)
 }
 } // namespace
 
+namespace
+{
+/// The detail mesh (port 2) substituted for every part of object type @p typeText.
+msynth::DetailResult Substitute(const msynth::ContinuousMesh& mesh,
+  const msynth::PolyhedralExample& ex, vtkPolyData* detail, const std::string& typeText)
+{
+  if (typeText.empty())
+    throw msynth::Error("a detail mesh is connected but DetailType names no object type");
+  const int type = msynth::ParseObjectType(typeText, ex.TypeNames);
+  // The bounding volume: the example's objects of that type, their bounding box.
+  msynth::Point3 low{}, high{};
+  bool any = false;
+  for (std::size_t f = 0; f < ex.Faces.size(); ++f)
+  {
+    if (ex.ObjectTypes[static_cast<std::size_t>(ex.FaceObject[f])] != type)
+      continue;
+    for (int i : ex.Faces[f])
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        const double x = ex.Points[static_cast<std::size_t>(i)][c];
+        low[c] = any ? std::min(low[c], x) : x;
+        high[c] = any ? std::max(high[c], x) : x;
+      }
+    any = true;
+  }
+  if (!any)
+    throw msynth::Error(ex.Source + ": no object of type " + typeText + " to substitute");
+  const auto detailModel = vtkMSPolyhedra::ToPolyhedralExample(detail, "detail mesh");
+  return msynth::SubstituteDetail(mesh, type, detailModel, low, high);
+}
+
+/// Field data: `DetailScales` (x, y, z scale per substituted part) and `DetailAnisotropy` (the
+/// largest relative difference of a part's scales).
+void AddPlacements(vtkPolyData* output, const std::vector<msynth::DetailPlacement>& placements)
+{
+  vtkNew<vtkDoubleArray> scales;
+  scales->SetName("DetailScales");
+  scales->SetNumberOfComponents(3);
+  double worst = 0;
+  for (const auto& p : placements)
+  {
+    scales->InsertNextTuple(p.Scale.data());
+    worst = std::max(worst, p.Anisotropy);
+  }
+  output->GetFieldData()->AddArray(scales);
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(), "DetailAnisotropy", worst);
+}
+} // namespace
+
 int vtkMSArrangementMesh::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -175,9 +228,22 @@ int vtkMSArrangementMesh::RequestData(
     {
       labels[static_cast<std::size_t>(v)] = static_cast<std::int32_t>(labelArray->GetTuple1(v));
     }
-    const msynth::ContinuousMesh mesh = msynth::ExtractMesh(analysis, arrangement, labels);
+    msynth::ContinuousMesh mesh = msynth::ExtractMesh(analysis, arrangement, labels);
+    vtkPolyData* detail = vtkPolyData::GetData(inputVector[2], 0);
+    msynth::ContinuousMesh synthesized;
+    std::vector<msynth::DetailPlacement> placements;
+    if (detail)
+    {
+      // Bounding volumes (TVCG 4.8): the detailed object replaces every part of its type.
+      synthesized = mesh;
+      auto substituted = Substitute(mesh, ex, detail, this->DetailType);
+      mesh = std::move(substituted.Mesh);
+      placements = std::move(substituted.Placements);
+    }
 
     FillMesh(output, mesh);
+    if (detail)
+      AddPlacements(output, placements);
     AddTypeNames(output, ex);
     // The direction snapping the example was analyzed with, so a check of the model (msynth
     // check) analyzes it the same way.
@@ -187,7 +253,9 @@ int vtkMSArrangementMesh::RequestData(
       output->GetFieldData(), "MaximumSmallInteger", record.MaximumSmallInteger);
     if (this->CheckModel)
     {
-      const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
+      // The synthesized model (before any substitution) against the example.
+      const auto report =
+        msynth::CheckContinuousModel(analysis, detail ? synthesized : mesh, ex.TypeNames);
       vtkNew<vtkStringArray> check;
       check->SetName("ModelCheck");
       check->InsertNextValue(report.Valid ? "valid" : report.Problem);

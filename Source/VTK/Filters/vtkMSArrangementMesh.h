@@ -29,6 +29,7 @@
 
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include <string> // for std::string
 
 class MODELSYNTHFILTERS_EXPORT vtkMSArrangementMesh : public vtkPolyDataAlgorithm
 {
@@ -47,6 +48,17 @@ public:
   vtkBooleanMacro(CheckModel, bool);
   ///@}
 
+  ///@{
+  /// Bounding volumes (TVCG §4.8): with a detail mesh on input port 2 (closed surfaces, authored
+  /// inside the example's bounding volume of this object type, a number or name), every part of
+  /// that type in the output is replaced by a copy of it mapped onto the part's bounding box.
+  /// The field data then has `DetailScales` (per part) and `DetailAnisotropy`. Default "".
+  vtkSetStdStringFromCharMacro(DetailType);
+  vtkGetCharFromStdStringMacro(DetailType);
+  ///@}
+  /// The optional detail mesh (port 2).
+  void SetDetailConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
+
 protected:
   vtkMSArrangementMesh();
   ~vtkMSArrangementMesh() override;
@@ -59,6 +71,7 @@ private:
   void operator=(const vtkMSArrangementMesh&) = delete;
 
   bool CheckModel = false;
+  std::string DetailType;
 };
 
 #endif
