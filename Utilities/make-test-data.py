@@ -623,10 +623,41 @@ def pattern_data(data):
           os.path.join(folder, "city-crossroads-170.vti"))
 
 
+# "MS" in a 5-row bitmap font, one character per 5 columns with a gap column.
+LETTERS = [
+    "X...X.XXXXX",
+    "XX.XX.X....",
+    "X.X.X.XXXXX",
+    "X...X.....X",
+    "X...X.XXXXX",
+]
+
+
+def continuous_data(data):
+    """Data/Continuous/letters-guide.vti: a large-scale guide (TVCG 4.7) spelling "MS" over the
+    output box of a continuous run: Weight_1 and Weight_2 (the first two object types) are 1 on
+    the letters and 0
+    elsewhere (one layer in z: the guide is stretched over the box)."""
+    rows, cols = len(LETTERS), len(LETTERS[0])
+    border = 1
+    dims = (cols + 2 * border, rows + 2 * border, 1)
+
+    def on(x, y, z):
+        r, c = dims[1] - 1 - y - border, x - border  # row 0 at the top (+y)
+        return 1.0 if 0 <= r < rows and 0 <= c < cols and LETTERS[r][c] == "X" else 0.0
+
+    image = label_image(dims, on, name="Weight_1", array_type=vtkFloatArray)
+    roof = label_image(dims, on, name="Weight_2", array_type=vtkFloatArray)
+    image.GetPointData().AddArray(roof.GetPointData().GetArray("Weight_2"))
+    write(image, os.path.join(data, "Continuous", "letters-guide.vti"))
+
+
 if __name__ == "__main__":
     if sys.argv[1:] == ["samples"]:
         sample_images(DATA)
     elif sys.argv[1:] == ["patterns"]:
         pattern_data(DATA)
+    elif sys.argv[1:] == ["continuous"]:
+        continuous_data(DATA)
     else:
         main()

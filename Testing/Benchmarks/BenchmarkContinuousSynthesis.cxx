@@ -73,6 +73,37 @@ void BM_ContinuousChain(benchmark::State& state)
 }
 BENCHMARK(BM_ContinuousChain)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMillisecond);
 
+/// The TVCG constraints on the house (24 × 24 × 10, blocks of 4): arg 0 none (proportions off,
+/// the dissertation's draw), 1 grounded, 2 grounded + walls one storey, 3 the same mirrored.
+void BM_ContinuousConstraints(benchmark::State& state)
+{
+  const Example& e = Load("house.obj");
+  const auto p =
+    msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { 24, 24, 10 }, 0, {});
+  const msynth::PlaneArrangement arrangement(e.Analysis.Families(), p);
+  msynth::ContinuousSynthesisOptions options;
+  options.BlockSize = 4;
+  options.Constraints.KeepProportions = state.range(0) > 0;
+  options.Constraints.Grounded = state.range(0) >= 1;
+  if (state.range(0) >= 2)
+    options.Constraints.Thickness.push_back(
+      { 1, msynth::FamilyAlongAxis(e.Analysis.Families(), 2), 1 });
+  options.MirrorAxis = state.range(0) >= 3 ? 0 : -1;
+  std::uint64_t seed = 1;
+  std::int64_t parts = 0;
+  for (auto _ : state)
+  {
+    options.Seed = seed++;
+    const auto r = msynth::SynthesizeContinuous(e.Analysis, arrangement, options);
+    if (!r.Succeeded())
+      state.SkipWithError(r.Message.c_str());
+    parts = msynth::MeasureArrangement(e.Analysis, arrangement, r.Labels).Components;
+  }
+  state.counters["vertices"] = static_cast<double>(arrangement.NumberOfVertices());
+  state.counters["parts"] = static_cast<double>(parts);
+}
+BENCHMARK(BM_ContinuousConstraints)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+
 /// The independent check of a model (the example analysis run on the output).
 void BM_ContinuousCheck(benchmark::State& state)
 {

@@ -24,8 +24,8 @@ std::int64_t Root(std::vector<std::int64_t>& parent, std::int64_t i)
 }
 } // namespace
 
-DetailResult SubstituteDetail(const ContinuousMesh& model, int type, const PolyhedralExample& detail,
-  const Point3& low, const Point3& high)
+DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
+  const PolyhedralExample& detail, const Point3& low, const Point3& high)
 {
   if (model.Planar)
     throw Error("detail substitution: the model is 2D; bounding volumes are for 3D models");
@@ -78,7 +78,8 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, int type, const Polyh
       for (std::size_t c = 0; c < 3; ++c)
       {
         placement.Low[c] = std::min(placement.Low[c], model.Points[static_cast<std::size_t>(i)][c]);
-        placement.High[c] = std::max(placement.High[c], model.Points[static_cast<std::size_t>(i)][c]);
+        placement.High[c] =
+          std::max(placement.High[c], model.Points[static_cast<std::size_t>(i)][c]);
       }
     // A face shared with another object stays as that object's face toward empty space.
     const int other = model.InsideType[f] == type ? model.OutsideType[f] : model.InsideType[f];

@@ -19,8 +19,8 @@ namespace msynth
 
 struct DetailPlacement
 {
-  Point3 Low{}, High{};           ///< the part's bounding box in the output
-  std::array<double, 3> Scale{};  ///< per axis, from the example's bounding volume
+  Point3 Low{}, High{};          ///< the part's bounding box in the output
+  std::array<double, 3> Scale{}; ///< per axis, from the example's bounding volume
   /// The largest relative difference between the scales (0: scaled uniformly in all three
   /// directions; in 2D, x and y).
   double Anisotropy = 0;
@@ -40,7 +40,7 @@ struct DetailResult
  * types' faces toward empty space. @throw Error for a 2D model, an empty box or a detail
  * without polygons.
  */
-DetailResult SubstituteDetail(const ContinuousMesh& model, int type, const PolyhedralExample& detail,
-  const Point3& low, const Point3& high);
+DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
+  const PolyhedralExample& detail, const Point3& low, const Point3& high);
 
 } // namespace msynth
