@@ -571,6 +571,39 @@ class ContinuousSynthesisTest(unittest.TestCase):
         mesh.Update()
         self.assertIn("'tower' is not an object type", errors.text())
 
+    def test_oil_platform_grows_from_a_few_seeds(self):
+        """The oil platform with dimensional constraints (decks one spacing thick, beams one across
+        x and y) grown from three seeds on the ground, the whole model at once: at most three
+        connected parts on the mesh, each on the ground, decks one unit thick at height 4."""
+        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
+        for seed in (1, 2):
+            reader, arrangement, solver, mesh, _ = chain("oil-platform.obj", (24, 24, 12), seed=seed,
+                                                         block=0)
+            solver.SetGrounded(True)
+            solver.SetThickness("platform:z beam:x beam:y")
+            solver.SetConnected("solid:3")
+            errors = ErrorObserver(solver)
+            mesh.Update()
+            self.assertEqual(errors.text(), "")
+            parts = vtkPolyDataConnectivityFilter()
+            parts.SetInputData(mesh.GetOutput())
+            parts.SetExtractionModeToAllRegions()
+            parts.ColorRegionsOn()
+            parts.Update()
+            region = vtk_to_numpy(parts.GetOutput().GetPointData().GetArray("RegionId"))
+            z = vtk_to_numpy(parts.GetOutput().GetPoints().GetData())[:, 2]
+            self.assertGreaterEqual(len(np.unique(region)), 1)
+            self.assertLessEqual(len(np.unique(region)), 3, "seed %d" % seed)
+            for r in np.unique(region):
+                self.assertAlmostEqual(z[region == r].min(), 0.0)
+            points, polys = polygons_of(mesh.GetOutput())
+            inside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("InsideType"))
+            outside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("OutsideType"))
+            for poly, a, b in zip(polys, inside, outside):
+                c = points[poly]
+                if 2 in (a, b) and 0 in (a, b) and np.ptp(c[:, 2]) < 1e-9:
+                    self.assertIn(round(c[0, 2], 6), (4.0, 5.0), "a deck not one unit thick at 4")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -108,6 +108,7 @@ private:
   bool HasGuideWeights = false;
   bool Proportions = false;
   std::vector<double> Target; ///< per type bit: share of the solid
+  bool GroundSeeded = false;  ///< grounded with seeds: objects start at the seeds, on the ground
   std::vector<std::int64_t> SeedVertices;
   std::vector<std::uint64_t> SeedMask; ///< per seed vertex
 };

@@ -432,9 +432,11 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
     std::vector<std::int64_t> candidates;
     for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
-      if (interior >= 0 && this->Arrangement.FamilyMask(v) == 0)
-        candidates.push_back(v); // inside a cell: only volume labels
+      if (this->Constraints.Grounded ? this->OnGround(v)
+                                     : interior >= 0 && this->Arrangement.FamilyMask(v) == 0)
+        candidates.push_back(v); // on the ground; else inside a cell, where interiors can go
     }
+    this->GroundSeeded = this->GroundSeeded || this->Constraints.Grounded;
     if (candidates.empty())
     {
       for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
@@ -477,7 +479,7 @@ std::uint64_t ConstraintPlan::SeedTypes(std::int64_t v) const
 std::uint64_t ConstraintPlan::StartTypes(std::int64_t v) const
 {
   std::uint64_t mask = this->SeedTypes(v);
-  if (this->Constraints.Grounded && this->OnGround(v))
+  if (this->Constraints.Grounded && !this->GroundSeeded && this->OnGround(v))
     mask |= this->Solid;
   return mask;
 }
