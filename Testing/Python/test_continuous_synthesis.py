@@ -599,10 +599,15 @@ class ContinuousSynthesisTest(unittest.TestCase):
             points, polys = polygons_of(mesh.GetOutput())
             inside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("InsideType"))
             outside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("OutsideType"))
+            bottoms, tops = set(), set()
             for poly, a, b in zip(polys, inside, outside):
                 c = points[poly]
-                if 2 in (a, b) and 0 in (a, b) and np.ptp(c[:, 2]) < 1e-9:
-                    self.assertIn(round(c[0, 2], 6), (4.0, 5.0), "a deck not one unit thick at 4")
+                if 2 not in (a, b) or np.ptp(c[:, 2]) > 1e-9:
+                    continue
+                up = np.cross(c[1] - c[0], c[2] - c[0])[2] * (1 if a == 2 else -1) > 0
+                (tops if up else bottoms).add(round(c[0, 2], 6))
+            self.assertTrue(bottoms)
+            self.assertEqual({z + 1 for z in bottoms}, tops, "decks one unit thick")
 
 
 if __name__ == "__main__":
