@@ -1,14 +1,33 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Example grids and helpers shared by the engine tests.
 #pragma once
+#include "Continuous/PolyhedralAnalysis.h"
 #include "Core/LabelGrid.h"
+#include "Formats/PolyhedralExample.h"
 
 #include <csignal>
+#include <string>
 #include <sys/resource.h>
 #include <vector>
 
 namespace msynth_test
 {
+/// A bundled polyhedral example (Data/Continuous/NAME), validated, and its analysis.
+struct LoadedPolyhedra
+{
+  msynth::PolyhedralExample Example;
+  msynth::PolyhedralAnalysis Analysis;
+};
+
+inline LoadedPolyhedra LoadPolyhedra(const std::string& name)
+{
+  LoadedPolyhedra l;
+  l.Example = msynth::ReadOBJExample(std::string(MSYNTH_DATA) + "/Continuous/" + name);
+  msynth::ValidateExample(l.Example);
+  l.Analysis = msynth::PolyhedralAnalysis::Analyze(l.Example);
+  return l;
+}
+
 /// A 2D grid from rows written top (largest y) first, as in the dissertation's figures.
 inline msynth::LabelGrid Grid2D(const std::vector<std::vector<msynth::Label>>& rowsTopToBottom)
 {

@@ -6,6 +6,8 @@
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,20 +18,8 @@ using namespace msynth;
 namespace
 {
 
-struct Loaded
-{
-  PolyhedralExample Example;
-  PolyhedralAnalysis Analysis;
-};
-
-Loaded Load(const std::string& name)
-{
-  Loaded l;
-  l.Example = ReadOBJExample(std::string(MSYNTH_DATA) + "/Continuous/" + name);
-  ValidateExample(l.Example);
-  l.Analysis = PolyhedralAnalysis::Analyze(l.Example);
-  return l;
-}
+using Loaded = msynth_test::LoadedPolyhedra;
+const auto Load = msynth_test::LoadPolyhedra;
 
 /// A synthesized model as voxels of object types (0 empty), checked model and all.
 struct Voxels

@@ -426,6 +426,26 @@ void WriteFile(
 namespace
 {
 /// The level set (and fog volume) of one mesh.
+/// @p grid named and classed as the level set of @p mesh (with its metadata), and its fog volume
+/// when the mesh asks for one, appended to @p out.
+void AddLevelSet(
+  const MeshGridView& mesh, const openvdb::FloatGrid::Ptr& grid, openvdb::GridPtrVec& out)
+{
+  grid->setName(mesh.Name);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  for (const auto& kv : mesh.Metadata)
+    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
+  out.push_back(grid);
+  if (!mesh.FogName.empty())
+  {
+    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
+    openvdb::tools::sdfToFogVolume(*fog);
+    fog->setName(mesh.FogName);
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    out.push_back(fog);
+  }
+}
+
 /// The union of level sets already in @p out (and its fog volume), as MakeMeshGrids makes them.
 void MakeUnionGrid(const MeshGridView& mesh, openvdb::GridPtrVec& out)
 {
@@ -443,19 +463,7 @@ void MakeUnionGrid(const MeshGridView& mesh, openvdb::GridPtrVec& out)
   if (!grid)
     throw Error("mesh grid '" + mesh.Name + "': a union of no level sets");
   grid->clearMetadata();
-  grid->setName(mesh.Name);
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  for (const auto& kv : mesh.Metadata)
-    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
-  out.push_back(grid);
-  if (!mesh.FogName.empty())
-  {
-    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
-    openvdb::tools::sdfToFogVolume(*fog);
-    fog->setName(mesh.FogName);
-    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
-    out.push_back(fog);
-  }
+  AddLevelSet(mesh, grid, out);
 }
 
 void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
@@ -512,21 +520,7 @@ void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
   const auto transform = openvdb::math::Transform::createLinearTransform(mesh.VoxelSize);
   openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(
     *transform, points, triangles, quads, static_cast<float>(mesh.HalfWidth));
-  grid->setName(mesh.Name);
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  for (const auto& kv : mesh.Metadata)
-  {
-    grid->insertMeta(kv.first, openvdb::StringMetadata(kv.second));
-  }
-  out.push_back(grid);
-  if (!mesh.FogName.empty())
-  {
-    openvdb::FloatGrid::Ptr fog = grid->deepCopy();
-    openvdb::tools::sdfToFogVolume(*fog);
-    fog->setName(mesh.FogName);
-    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
-    out.push_back(fog);
-  }
+  AddLevelSet(mesh, grid, out);
 }
 } // namespace
 

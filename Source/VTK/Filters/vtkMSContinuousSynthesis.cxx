@@ -122,20 +122,8 @@ msynth::ContinuousConstraints Constraints(vtkMSContinuousSynthesis* self, vtkIma
     int dims[3];
     guide->GetDimensions(dims);
     g.Dims = { { dims[0], dims[1], dims[2] } };
-    vtkPointData* pd = guide->GetPointData();
-    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
-    {
-      vtkDataArray* array = pd->GetArray(i);
-      const std::string name = array && array->GetName() ? array->GetName() : "";
-      if (name.rfind("Weight_", 0) != 0)
-        continue;
-      if (array->GetNumberOfComponents() != 1)
-        throw msynth::Error("guide array '" + name + "' must have one component");
-      std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
-      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
-        weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
-      g.Weights[msynth::ParseObjectType(name.substr(7), ex.TypeNames)] = std::move(weights);
-    }
+    for (auto& [suffix, weights] : vtkMSSynthesisRun::GuideWeights(guide))
+      g.Weights[msynth::ParseObjectType(suffix, ex.TypeNames)] = std::move(weights);
     if (g.Weights.empty())
       throw msynth::Error("the guide has no point array Weight_<type> (a type number or name)");
     c.Guide = std::move(g);

@@ -29,6 +29,8 @@
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 
+#include "Core/Error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -257,24 +259,26 @@ bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::Synthe
   int dims[3];
   guide->GetDimensions(dims);
   volume.Dims = { { dims[0], dims[1], dims[2] } };
-  vtkPointData* pd = guide->GetPointData();
-  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  std::vector<std::pair<std::string, std::vector<float>>> arrays;
+  try
   {
-    vtkDataArray* array = pd->GetArray(i);
-    const std::string name = array && array->GetName() ? array->GetName() : "";
-    if (name.rfind("Weight_", 0) != 0)
-      continue;
+    arrays = vtkMSSynthesisRun::GuideWeights(guide);
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << "The " << e.what() << " (Weight_<label>).");
+    return false;
+  }
+  for (auto& [suffix, weights] : arrays)
+  {
     char* end = nullptr;
-    const long value = std::strtol(name.c_str() + 7, &end, 10);
-    if (end == name.c_str() + 7 || *end != '\0' || array->GetNumberOfComponents() != 1)
+    const long value = std::strtol(suffix.c_str(), &end, 10);
+    if (end == suffix.c_str() || *end != '\0')
     {
-      vtkErrorWithObjectMacro(
-        self, << "Guide array '" << name << "' must be named Weight_<label> with one component.");
+      vtkErrorWithObjectMacro(self, << "Guide array 'Weight_" << suffix
+                                    << "' must be named Weight_<label> with one component.");
       return false;
     }
-    std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
-    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
-      weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
     volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
   }
   if (volume.Weights.empty())

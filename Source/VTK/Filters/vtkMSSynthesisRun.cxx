@@ -11,11 +11,32 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
+#include "Core/Error.h"
+
 #include <algorithm>
 #include <new>
 
 namespace vtkMSSynthesisRun
 {
+std::vector<std::pair<std::string, std::vector<float>>> GuideWeights(vtkDataSet* guide)
+{
+  std::vector<std::pair<std::string, std::vector<float>>> out;
+  vtkPointData* pd = guide->GetPointData();
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* array = pd->GetArray(i);
+    const std::string name = array && array->GetName() ? array->GetName() : "";
+    if (name.rfind("Weight_", 0) != 0)
+      continue;
+    if (array->GetNumberOfComponents() != 1)
+      throw msynth::Error("guide array '" + name + "' must have one component");
+    std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
+    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+      weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
+    out.emplace_back(name.substr(7), std::move(weights));
+  }
+  return out;
+}
 
 std::function<bool(double)> Progress(vtkAlgorithm* filter)
 {

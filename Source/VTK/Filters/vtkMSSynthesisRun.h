@@ -14,6 +14,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
+#include "vtkDataSet.h"
 
 #include "Core/BlockSynthesis.h"
 
@@ -66,6 +67,10 @@ namespace vtkMSSynthesisRun
 {
 /// The engine's progress callback for @p filter: its progress, and false once it is aborted.
 std::function<bool(double)> Progress(vtkAlgorithm* filter);
+
+/// A guide's point arrays named Weight_<suffix>, as (suffix, one weight per point), in array
+/// order. @throw msynth::Error naming an array that has more than one component.
+std::vector<std::pair<std::string, std::vector<float>>> GuideWeights(vtkDataSet* guide);
 
 /**
  * Calls @p solve; an exception becomes an error of @p filter (running out of memory says that
