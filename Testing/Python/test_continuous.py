@@ -228,6 +228,8 @@ class ContinuousAnalysisTest(unittest.TestCase):
             "garbage.obj": ("v a b c\n", "not a finite number"),
             "empty.obj": ("", "contains no faces"),
             "bowtie.obj": ("v 0 0 0\nv 3 2 0\nv 3 0 0\nv 0 1 0\nf 1 2 3 4\n", "intersects itself"),
+            "touching.obj": ("v 0 0 0\nv 4 0 0\nv 4 3 0\nv 2 0 0\nv 0 3 0\nf 1 2 3 4 5\n",
+                             "intersects itself"),
         }
         for name, (text, problem) in cases.items():
             path = tmp(name)
@@ -237,6 +239,16 @@ class ContinuousAnalysisTest(unittest.TestCase):
             self.assertIn(problem, errors, name)
             self.assertIn(name, errors)
             self.assertEqual(labels.GetLabelTable().GetNumberOfRows(), 0)
+        # A plus shape: edges on one line but apart (x = 3 from y 0 to 2 and from 3 to 5) do
+        # not meet, so it is a simple polygon and loads.
+        path = tmp("plus.obj")
+        with open(path, "w") as f:
+            f.write("o road\n" + "".join("v %d %d 0\n" % p for p in (
+                (2, 0), (3, 0), (3, 2), (5, 2), (5, 3), (3, 3), (3, 5), (2, 5), (2, 3), (0, 3),
+                (0, 2), (2, 2))) + "f 1 2 3 4 5 6 7 8 9 10 11 12\n")
+        reader, labels, errors = analyze(path)
+        self.assertEqual(errors, "")
+        self.assertGreater(labels.GetLabelTable().GetNumberOfRows(), 0)
         _, _, errors = analyze(tmp("does-not-exist.obj"))
         self.assertIn("no such file", errors)
         with open(tmp("bad.stl"), "w") as f:

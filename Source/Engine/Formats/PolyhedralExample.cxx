@@ -315,10 +315,21 @@ void Validate2D(PolyhedralExample& e)
         const Point3& d = e.Points[face[(j + 1) % m]];
         auto orient = [](const Point3& p, const Point3& q, const Point3& r)
         { return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]); };
+        // p on segment qr, given that the three are collinear.
+        auto within = [](const Point3& q, const Point3& r, const Point3& p)
+        {
+          return std::min(q[0], r[0]) <= p[0] && p[0] <= std::max(q[0], r[0]) &&
+            std::min(q[1], r[1]) <= p[1] && p[1] <= std::max(q[1], r[1]);
+        };
         const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
                      o4 = orient(c, d, b);
-        if (((o1 > 0) != (o2 > 0) || o1 == 0 || o2 == 0) &&
-          ((o3 > 0) != (o4 > 0) || o3 == 0 || o4 == 0))
+        const bool crossing =
+          ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+        // Touching or overlapping: an endpoint on the other segment (collinear edges of a plus
+        // shape that lie on one line but apart are not).
+        const bool touching = (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
+          (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
+        if (crossing || touching)
         {
           throw Error::InFile(e.Source,
             where + " intersects itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
