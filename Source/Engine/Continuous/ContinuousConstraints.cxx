@@ -415,7 +415,6 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
   // Connectivity seeds: random vertices that can hold the type's interior.
   Random rng = Random::Derived(seed, 0x5eed5, 0);
   std::map<std::int64_t, std::uint64_t> seeds;
-  std::vector<std::uint64_t> domain(static_cast<std::size_t>(this->Words));
   for (const auto& c : this->Constraints.Connected)
   {
     if (c.Seeds < 0)

@@ -289,6 +289,8 @@ private:
   }
   void AddShares(std::vector<double>& tally, int label, double sign) const
   {
+    if (!this->Plan->Weighted())
+      return; // the shares only steer weighted draws (Factor, Mismatch)
     for (int t = 1; t < this->Plan->NumberOfTypes(); ++t)
       tally[static_cast<std::size_t>(t)] += sign * this->Plan->Occupancy(label, t);
   }
