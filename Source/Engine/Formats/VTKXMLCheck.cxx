@@ -193,9 +193,12 @@ private:
           // The counts size-check the piece's arrays; an extent too large to count is left
           // to the reader's own limit (its message names the limit).
           points = cells = 1;
+          constexpr long long bound = 1LL << 40; // no overflow in the differences below
           for (int a = 0; a < 3; ++a)
           {
-            const long long n = x[2 * a + 1] - x[2 * a] + 1;
+            const auto inBound = [](long long v) { return v >= -bound && v <= bound; };
+            const bool inRange = inBound(x[2 * a]) && inBound(x[2 * a + 1]);
+            const long long n = inRange ? x[2 * a + 1] - x[2 * a] + 1 : 0;
             if (n < 1 || n > (1LL << 20) || points > (std::uint64_t(1) << 40))
             {
               points = cells = 0;
