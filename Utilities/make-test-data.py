@@ -650,6 +650,70 @@ def continuous_data(data):
     roof = label_image(dims, on, name="Weight_2", array_type=vtkFloatArray)
     image.GetPointData().AddArray(roof.GetPointData().GetArray("Weight_2"))
     write(image, os.path.join(data, "Continuous", "letters-guide.vti"))
+    network_examples(os.path.join(data, "Continuous"))
+
+
+def network_examples(folder):
+    """Data/Continuous/roads.obj (2D) and pipes.obj (3D): networks one unit wide on a lattice of
+    period 4 (roads) and 6 (pipes), for connectivity from one seed with a width (TVCG 4.5, 4.6,
+    Figs. 10 and 11)."""
+    def write_obj(path, comment, name, points, faces):
+        with open(path, "w") as f:
+            f.write("".join("# %s\n" % line for line in comment))
+            f.write("o %s\n" % name)
+            f.write("".join("v %d %d %d\n" % p for p in points))
+            f.write("".join("f %s\n" % " ".join(str(i + 1) for i in face) for face in faces))
+
+    def grid(cells, axes):
+        """Boundary faces of unit cells (a set of integer tuples, 2 or 3 axes), outward."""
+        index, points, faces = {}, [], []
+
+        def at(p):
+            p = tuple(p) + (0,) * (3 - len(p))
+            if p not in index:
+                index[p] = len(points)
+                points.append(p)
+            return index[p]
+
+        if axes == 2:  # each cell is a square polygon, counter-clockwise
+            for x, y in sorted(cells):
+                faces.append([at((x, y)), at((x + 1, y)), at((x + 1, y + 1)), at((x, y + 1))])
+            return points, faces
+        for c in sorted(cells):
+            for axis in range(3):
+                for d in (-1, 1):
+                    n = list(c)
+                    n[axis] += d
+                    if tuple(n) in cells:
+                        continue
+                    o = list(c)
+                    o[axis] += d == 1
+                    a, b = (axis + 1) % 3, (axis + 2) % 3
+                    quad = []
+                    for u, v in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = list(o)
+                        p[a] += u
+                        p[b] += v
+                        quad.append(at(p))
+                    faces.append(quad if d == 1 else quad[::-1])
+        return points, faces
+
+    roads = {(x, y) for x in range(9) for y in range(9) if x % 4 == 0 or y % 4 == 0}
+    write_obj(os.path.join(folder, "roads.obj"), [
+        "A road network (TVCG Fig. 10, in spirit): roads one unit wide on a 9 x 9 lattice of",
+        "period 4, with corners, T junctions and a crossing, as unit squares of one object. Grow",
+        "one network from a single seed, one plane spacing wide (never two across x and y):",
+        "msynth synthesize Data/Continuous/roads.obj --size 40 40 0 --blocks 0",
+        "  --connected road:1 --thickness road:xy"], "road", *grid(roads, 2))
+    pipes = {(x, y, z) for x in range(13) for y in range(7) for z in range(7)
+             if (x % 6 == 0) + (y % 6 == 0) + (z % 6 == 0) >= 2}
+    write_obj(os.path.join(folder, "pipes.obj"), [
+        "Pipes (TVCG Fig. 11, in spirit): square pipes one unit across along the edges of two",
+        "cubes of side 7 sharing a face (corners and junctions). Grow one network from a single",
+        "seed, one spacing across in every direction but the pipe's own:",
+        "msynth synthesize Data/Continuous/pipes.obj --size 24 24 12 --blocks 0",
+        "  --connected pipe:1 --thickness pipe:xy --thickness pipe:yz --thickness pipe:xz"],
+        "pipe", *grid(pipes, 3))
 
 
 if __name__ == "__main__":

@@ -87,7 +87,7 @@ void BM_ContinuousConstraints(benchmark::State& state)
   options.Constraints.Grounded = state.range(0) >= 1;
   if (state.range(0) >= 2)
     options.Constraints.Thickness.push_back(
-      { 1, msynth::FamilyAlongAxis(e.Analysis.Families(), 2), 1 });
+      { 1, msynth::FamilyAlongAxis(e.Analysis.Families(), 2), 1, {} });
   options.MirrorAxis = state.range(0) >= 3 ? 0 : -1;
   std::uint64_t seed = 1;
   std::int64_t parts = 0;

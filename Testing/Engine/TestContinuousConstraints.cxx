@@ -108,7 +108,7 @@ Voxels Synthesize(const Loaded& l, const Point3& size, const ContinuousSynthesis
     v.Origin[c] = p.Origin[c] + p.Quantum * static_cast<double>(p.BoxLow[c]);
   std::array<std::int64_t, 3> dims{};
   for (std::size_t c = 0; c < 3; ++c)
-    dims[c] = static_cast<std::int64_t>(
+    dims[c] = std::max<std::int64_t>(1, // planar models: one layer
       std::llround(p.Quantum * static_cast<double>(p.BoxHigh[c] - p.BoxLow[c]) / voxel));
   v.Types = VoxelizeModel(mesh, v.Origin, voxel, dims);
   return v;
@@ -169,7 +169,7 @@ TEST(ContinuousConstraints, ThicknessIsExactAndStacks)
     o.Seed = 4;
     o.BlockSize = 4;
     o.Constraints.Grounded = true;
-    o.Constraints.Thickness.push_back({ Wall, z, n });
+    o.Constraints.Thickness.push_back({ Wall, z, n, {} });
     const Voxels v = Synthesize(house, { 18, 18, 8 }, o);
     const auto expected = static_cast<std::int64_t>(std::llround(n * spacing / v.Voxel));
     std::map<std::int64_t, std::int64_t> runs; // wall run length along z → count
@@ -242,6 +242,91 @@ TEST(ContinuousConstraints, ConnectedObjectsGrowFromTheirSeeds)
     << "without the constraint the cubes would be scattered";
 }
 
+namespace
+{
+/// Whether some square of @p side voxels in the plane of axes @p a and @p b is all solid (an
+/// object two spacings across both), by summed-area tables per slice.
+bool HasSolidSquare(const Voxels& v, int a, int b, std::int64_t side)
+{
+  const int c = 3 - a - b;
+  const std::int64_t na = v.Types.Size(a), nb = v.Types.Size(b), nc = v.Types.Size(c);
+  std::vector<std::int64_t> sum(static_cast<std::size_t>((na + 1) * (nb + 1)));
+  auto s = [&](std::int64_t i, std::int64_t j) -> std::int64_t&
+  { return sum[static_cast<std::size_t>(i + (na + 1) * j)]; };
+  for (std::int64_t k = 0; k < nc; ++k)
+  {
+    for (std::int64_t j = 0; j < nb; ++j)
+      for (std::int64_t i = 0; i < na; ++i)
+      {
+        std::int64_t p[3];
+        p[a] = i;
+        p[b] = j;
+        p[c] = k;
+        s(i + 1, j + 1) = s(i, j + 1) + s(i + 1, j) - s(i, j) + (v.At(p[0], p[1], p[2]) != 0);
+      }
+    for (std::int64_t j = 0; j + side <= nb; ++j)
+      for (std::int64_t i = 0; i + side <= na; ++i)
+        if (s(i + side, j + side) - s(i, j + side) - s(i + side, j) + s(i, j) == side * side)
+          return true;
+  }
+  return false;
+}
+} // namespace
+
+TEST(ContinuousConstraints, RoadsAndPipesAreOneNetworkOfFixedWidth)
+{
+  // One seed and a width (TVCG Figs. 10, 11): one connected part, never two spacings across
+  // in the width's directions, and spread over the box (grown toward the example's fill).
+  struct Case
+  {
+    const char* File;
+    Point3 Size;
+    std::vector<std::pair<int, int>> Planes; ///< axis pairs of the width constraints
+  };
+  for (const Case& c : { Case{ "roads.obj", { 24, 24, 0 }, { { 0, 1 } } },
+         Case{ "pipes.obj", { 12, 12, 6 }, { { 0, 1 }, { 1, 2 }, { 0, 2 } } } })
+  {
+    const Loaded l = Load(c.File);
+    ContinuousSynthesisOptions o;
+    o.Seed = 3;
+    o.BlockSize = 0;
+    o.Constraints.Connected.push_back({ 1, 1 });
+    const double voxel = 0.5; // two voxels per spacing
+    const Voxels wide = Synthesize(l, c.Size, o, voxel);
+    bool anyWide = false;
+    for (const auto& [a, b] : c.Planes)
+      anyWide = anyWide || HasSolidSquare(wide, a, b, 4);
+    EXPECT_TRUE(anyWide) << c.File << ": without a width the check would see nothing";
+    for (const auto& [a, b] : c.Planes)
+      o.Constraints.Thickness.push_back({ 1, FamilyAlongAxis(l.Analysis.Families(), a), 1,
+        { FamilyAlongAxis(l.Analysis.Families(), b) } });
+    const Voxels v = Synthesize(l, c.Size, o, voxel);
+    EXPECT_EQ(v.PartsOnGround().size(), 1u) << c.File;
+    for (const auto& [a, b] : c.Planes)
+      EXPECT_FALSE(HasSolidSquare(v, a, b, 4))
+        << c.File << ": two spacings across axes " << a << " and " << b;
+    // Spread: the network's voxels reach within two spacings of every side of the box.
+    std::array<std::int64_t, 3> low{ { 1 << 30, 1 << 30, 1 << 30 } }, high{ { -1, -1, -1 } };
+    for (std::int64_t z = 0; z < v.Types.Size(2); ++z)
+      for (std::int64_t y = 0; y < v.Types.Size(1); ++y)
+        for (std::int64_t x = 0; x < v.Types.Size(0); ++x)
+          if (v.At(x, y, z) != 0)
+          {
+            const std::int64_t p[3] = { x, y, z };
+            for (std::size_t k = 0; k < 3; ++k)
+            {
+              low[k] = std::min(low[k], p[k]);
+              high[k] = std::max(high[k], p[k]);
+            }
+          }
+    for (int k = 0; k < (c.Size[2] > 0 ? 3 : 2); ++k)
+    {
+      EXPECT_LE(low[static_cast<std::size_t>(k)], 4) << c.File << " axis " << k;
+      EXPECT_GE(high[static_cast<std::size_t>(k)], v.Types.Size(k) - 5) << c.File << " axis " << k;
+    }
+  }
+}
+
 TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
 {
   const Loaded cottage = Load("cottage.obj");
@@ -285,7 +370,10 @@ TEST(ContinuousConstraints, ParsingNamesTheProblem)
   EXPECT_EQ(ParseThickness("2:h1", families, names).Family, 0);
   EXPECT_EQ(ParseConnected("roof:4", names).Seeds, 4);
   EXPECT_EQ(ParseConnected("solid", names).Type, 0);
-  for (const char* bad : { "wall", "wall:w", "wall:z:0", "wall:z:x", "chimney:z", "wall:h99" })
+  const ThicknessConstraint width = ParseThickness("wall:yxh1", families, names);
+  EXPECT_EQ(width.OrFamilies.size(), 2u); // three families, each once
+  for (const char* bad :
+    { "wall", "wall:w", "wall:z:0", "wall:z:x", "chimney:z", "wall:h99", "wall:xy:2", "wall:xq" })
   {
     try
     {

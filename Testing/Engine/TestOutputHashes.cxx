@@ -192,7 +192,7 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     o.Constraints.KeepProportions = false; // the uniform draw of the dissertation
     got["continuous house, blocks, uniform"] = Hash(SynthesizeContinuous(a, arrangement, o).Labels);
     o.Constraints.Grounded = true;
-    o.Constraints.Thickness.push_back({ 1, FamilyAlongAxis(a.Families(), 2), 1 });
+    o.Constraints.Thickness.push_back({ 1, FamilyAlongAxis(a.Families(), 2), 1, {} });
     got["continuous house, grounded, walls one spacing high"] =
       Hash(SynthesizeContinuous(a, arrangement, o).Labels);
   }

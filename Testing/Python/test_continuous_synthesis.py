@@ -4,6 +4,7 @@ here without the C++ code: the vertex figure (the object type met in many direct
 vertex, edge and face of the output is recomputed by point-in-polygon tests (2D) or generalized
 winding numbers (3D) and must be a figure of the example computed the same way (Eq. 4.1); each
 object type's surface must be closed and consistently oriented."""
+import json
 import math
 import os
 import subprocess
@@ -570,6 +571,46 @@ class ContinuousSynthesisTest(unittest.TestCase):
         errors = ErrorObserver(mesh)
         mesh.Update()
         self.assertIn("'tower' is not an object type", errors.text())
+
+    def test_road_and_pipe_networks(self):
+        """The bundled roads (2D) and pipes (3D), each grown from one seed with a width, through
+        the filter and the command line: one connected part on the mesh that spans most of the
+        box, and a model msynth check accepts."""
+        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
+        for name, size, width in (("roads.obj", (24, 24, 0), "road:xy"),
+                                  ("pipes.obj", (12, 12, 6), "pipe:xy pipe:yz pipe:xz")):
+            reader, arrangement, solver, mesh, _ = chain(name, size, seed=2, block=0)
+            solver.SetThickness(width)
+            solver.SetConnected(width.split(":")[0] + ":1")
+            errors = ErrorObserver(solver)
+            mesh.Update()
+            self.assertEqual(errors.text(), "")
+            parts = vtkPolyDataConnectivityFilter()
+            parts.SetInputData(mesh.GetOutput())
+            parts.SetExtractionModeToAllRegions()
+            parts.Update()
+            self.assertEqual(parts.GetNumberOfExtractedRegions(), 1, name)
+            bounds = mesh.GetOutput().GetBounds()
+            for axis, extent in enumerate(size):
+                if extent:
+                    self.assertGreater(bounds[2 * axis + 1] - bounds[2 * axis], 0.6 * extent, name)
+        msynth = os.path.join(os.environ["MSYNTH_BIN"], "msynth")
+        out = tmp("pipes-cli")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/pipes.obj"), "--size", "12", "12",
+                               "6", "--blocks", "0", "--connected", "pipe:1", "--thickness", "pipe:xy",
+                               "--thickness", "pipe:yz", "--thickness", "pipe:xz", "--out", out],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        stats = json.load(open(os.path.join(out, "statistics.json")))
+        self.assertEqual(stats["Components"], 1)
+        done = subprocess.run([msynth, "check", data("Continuous/pipes.obj"),
+                               os.path.join(out, "model.vtp")], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+        done = subprocess.run([msynth, "synthesize", data("Continuous/pipes.obj"), "--size", "8", "8",
+                               "4", "--thickness", "pipe:xy:2", "--out", out + "-x"],
+                              capture_output=True, text=True)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("a width across several axes is one spacing", done.stderr)
 
     def test_oil_platform_grows_from_a_few_seeds(self):
         """The oil platform with dimensional constraints (decks one spacing thick, beams one across

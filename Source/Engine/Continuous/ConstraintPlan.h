@@ -55,7 +55,10 @@ public:
   const std::vector<std::int64_t>& Seeds() const { return this->SeedVertices; }
 
   /// Whether labels are drawn with weights from the constraints.
-  bool Weighted() const { return this->HasGuideWeights || this->Proportions; }
+  bool Weighted() const
+  {
+    return this->HasGuideWeights || this->Proportions || this->FillTarget > 0;
+  }
   /**
    * The constraints' factor for label @p label at vertex @p v, given the solid shares so far
    * (@p tally: occupancy per type bit, summed over the labelled vertices).
@@ -80,9 +83,11 @@ private:
   int BitOf(int type) const;
   void PlanGround();
   void PlanThickness();
+  void PlanWidth(const ThicknessConstraint& c);
   void PlanGuide();
   void PlanTargets();
   void PlanSeeds(std::uint64_t seed);
+  void PlanFill();
 
   const PolyhedralAnalysis& Analysis;
   const PlaneArrangement& Arrangement;
@@ -100,6 +105,7 @@ private:
   {
     int Family = 0, Spacings = 1;
     std::int64_t Lowest = 0;
+    std::uint64_t Needs = 0; ///< a width: its families (bits); applies at vertices on all of them
     std::vector<std::uint64_t> OuterAllowed, InnerAllowed; ///< label bit sets
   };
   std::vector<Slabs> Thickness;
@@ -108,6 +114,8 @@ private:
   bool HasGuideWeights = false;
   bool Proportions = false;
   std::vector<double> Target; ///< per type bit: share of the solid
+  std::uint64_t FillMask = 0; ///< connected types (type bits), steered toward FillTarget
+  double FillTarget = 0;      ///< their share of the example's bounding box
   bool GroundSeeded = false;  ///< grounded with seeds: objects start at the seeds, on the ground
   std::vector<std::int64_t> SeedVertices;
   std::vector<std::uint64_t> SeedMask; ///< per seed vertex

@@ -6,6 +6,7 @@
 #include "Core/Random.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -85,25 +86,40 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
   {
     throw Error("thickness '" + text + "': " + e.what());
   }
-  const std::string& axis = parts[1];
+  // AXES: x, y, z and hK, one after the other.
+  std::vector<int> across;
   long long value = 0;
-  if (axis == "x" || axis == "y" || axis == "z")
+  for (std::size_t at = 0; at < parts[1].size();)
   {
-    c.Family = FamilyAlongAxis(families, axis[0] - 'x');
-    if (c.Family < 0)
-      throw Error("thickness '" + text + "': the example has no planes across " + axis +
-        " (no face with a normal along " + axis + "); name a family as h1..h" +
-        std::to_string(families.Size()));
+    const char a = parts[1][at];
+    if (a == 'x' || a == 'y' || a == 'z')
+    {
+      const int family = FamilyAlongAxis(families, a - 'x');
+      if (family < 0)
+        throw Error("thickness '" + text + "': the example has no planes across " +
+          std::string(1, a) + " (no face with a normal along " + std::string(1, a) +
+          "); name a family as h1..h" + std::to_string(families.Size()));
+      across.push_back(family);
+      ++at;
+      continue;
+    }
+    std::size_t end = at + 1;
+    while (end < parts[1].size() && std::isdigit(static_cast<unsigned char>(parts[1][end])))
+      ++end;
+    if (a != 'h' || !ParseInt(parts[1].substr(at + 1, end - at - 1), 1, families.Size(), value))
+      throw Error("thickness '" + text + "': the axis must be x, y, z or h1..h" +
+        std::to_string(families.Size()) + " (or several for a width), not '" + parts[1] + "'");
+    across.push_back(static_cast<int>(value) - 1);
+    at = end;
   }
-  else if (axis.size() > 1 && axis[0] == 'h' && ParseInt(axis.substr(1), 1, families.Size(), value))
-  {
-    c.Family = static_cast<int>(value) - 1;
-  }
-  else
-  {
-    throw Error("thickness '" + text + "': the axis must be x, y, z or h1..h" +
-      std::to_string(families.Size()) + ", not '" + axis + "'");
-  }
+  if (across.empty())
+    throw Error("thickness '" + text + "' names no axis");
+  std::sort(across.begin(), across.end());
+  across.erase(std::unique(across.begin(), across.end()), across.end());
+  c.Family = across[0];
+  c.OrFamilies.assign(across.begin() + 1, across.end());
+  if (!c.OrFamilies.empty() && parts.size() == 3)
+    throw Error("thickness '" + text + "': a width across several axes is one spacing (no :N)");
   if (parts.size() == 3 && !ParseInt(parts[2], 1, 1000000, value))
     throw Error("thickness '" + text + "': N must be a whole number of plane spacings ≥ 1");
   c.Spacings = parts.size() == 3 ? static_cast<int>(value) : 1;
@@ -296,6 +312,11 @@ void ConstraintPlan::PlanThickness()
     const int t = this->BitOf(c.Type);
     if (t <= 0)
       throw Error("thickness: the example has no object type " + std::to_string(c.Type));
+    if (!c.OrFamilies.empty())
+    {
+      this->PlanWidth(c);
+      continue;
+    }
     Slabs s;
     s.Family = c.Family;
     s.Spacings = c.Spacings;
@@ -345,6 +366,49 @@ void ConstraintPlan::PlanThickness()
     }
     this->Thickness.push_back(std::move(s));
   }
+}
+
+void ConstraintPlan::PlanWidth(const ThicknessConstraint& c)
+{
+  // A label is removed where, on one side, the type fills every cone around the vertex in the
+  // directions of the width's families (a block two spacings across each of them); such labels
+  // are only placed at vertices on all those families.
+  Slabs s;
+  s.Family = c.Family;
+  s.Needs = std::uint64_t(1) << c.Family;
+  for (int f : c.OrFamilies)
+  {
+    if (f < 0 || f >= this->Arrangement.Families().Size())
+      throw Error("thickness: there is no plane family h" + std::to_string(f + 1));
+    s.Needs |= std::uint64_t(1) << f;
+  }
+  if (c.Spacings != 1)
+    throw Error("thickness: a width across several plane families is one spacing");
+  s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+  for (std::size_t a = 0; a < this->K; ++a)
+  {
+    const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
+    unsigned across = 0; // the label's cone bits of the width's families
+    for (std::size_t k = 0; k < label.Families.size(); ++k)
+      if ((s.Needs >> label.Families[k]) & 1u)
+        across |= 1u << k;
+    bool filled = false;
+    for (std::size_t m = 0; m < label.Types.size() && !filled; ++m)
+    {
+      if (m & across)
+        continue; // each block once, from its corner with those bits clear
+      filled = true;
+      for (unsigned sub = across;; sub = (sub - 1) & across)
+      {
+        filled = filled && label.Types[m | sub] == c.Type;
+        if (sub == 0)
+          break;
+      }
+    }
+    if (!filled)
+      SetLabel(s.OuterAllowed, a);
+  }
+  this->Thickness.push_back(std::move(s));
 }
 
 void ConstraintPlan::PlanGuide()
@@ -426,6 +490,7 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
       continue;
     const std::uint64_t mask = c.Type == 0 ? this->Solid : Bit(t);
     this->Grow |= mask;
+    this->FillMask |= mask;
     const int interior =
       this->Analysis.Find(NeighbourhoodLabel::Constant(c.Type == 0 ? this->Types.back() : c.Type));
     std::vector<std::int64_t> candidates;
@@ -453,6 +518,29 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
     this->SeedVertices.push_back(v);
     this->SeedMask.push_back(mask);
   }
+  this->PlanFill();
+}
+
+void ConstraintPlan::PlanFill()
+{
+  // Grown objects keep growing until they fill the example's share of its bounding box (a
+  // road network spreads over the box instead of closing its first loop).
+  if (!this->FillMask)
+    return;
+  double box = 1, grown = 0;
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    const double extent = this->Analysis.High()[c] - this->Analysis.Low()[c];
+    if (extent > 0)
+      box *= extent;
+  }
+  for (const auto& [type, volume] : this->Analysis.TypeVolumes())
+  {
+    const int t = this->BitOf(type);
+    if (t > 0 && ((this->FillMask >> t) & 1u))
+      grown += std::max(volume, 0.0);
+  }
+  this->FillTarget = box > 0 ? std::clamp(grown / box, 0.0, 1.0) : 0.0;
 }
 
 int ConstraintPlan::BitOf(int type) const
@@ -514,6 +602,12 @@ void ConstraintPlan::Restrict(std::int64_t v, std::uint64_t* domain) const
   const auto& params = this->Arrangement.Parameters();
   for (const auto& s : this->Thickness)
   {
+    if (s.Needs)
+    {
+      if ((this->Arrangement.FamilyMask(v) & s.Needs) == s.Needs)
+        keep(s.OuterAllowed);
+      continue;
+    }
     if (!((this->Arrangement.FamilyMask(v) >> s.Family) & 1u))
       continue;
     if (s.Spacings == 1)
@@ -556,6 +650,24 @@ double ConstraintPlan::Factor(std::int64_t v, int label, const std::vector<doubl
     for (const auto& [t, weights] : this->GuideWeights)
       if ((types >> t) & 1u)
         factor *= (*weights)[cell];
+  }
+  if (this->FillTarget > 0 && (types & this->FillMask))
+  {
+    // Labels holding more of a grown type weigh more while the grown types fill less of the
+    // whole box than they fill of the example's (vertices of the arrangement stand for equal
+    // parts of the box).
+    double grown = 0, held = 0;
+    for (std::size_t t = 0; t < this->Types.size(); ++t)
+    {
+      if ((this->FillMask >> t) & 1u)
+      {
+        grown += tally[t];
+        held += this->Occupancy(label, static_cast<int>(t));
+      }
+    }
+    grown /= static_cast<double>(std::max<std::int64_t>(this->Arrangement.NumberOfVertices(), 1));
+    const double ratio = std::clamp(this->FillTarget / std::max(grown, 1e-12), 1.0 / 64, 64.0);
+    factor *= std::pow(ratio, 2 * held);
   }
   if (this->Proportions && (types & this->Solid))
   {

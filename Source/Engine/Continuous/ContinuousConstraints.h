@@ -42,6 +42,13 @@ struct ThicknessConstraint
   int Type = 1;
   int Family = 0;
   int Spacings = 1;
+  /**
+   * A width instead (roads, pipes): with further families here, the type is one spacing thick
+   * across at least one of Family and these at every point; it may run along any of them, but
+   * never fills the whole neighbourhood of a vertex on all of them in their directions (no
+   * two-by-two block). Spacings must be 1.
+   */
+  std::vector<int> OrFamilies;
 };
 
 /**
@@ -109,7 +116,9 @@ int FamilyAlongAxis(const PlaneFamilySet& families, int axis);
 
 /**
  * Parses "TYPE:AXIS:N" (AXIS x, y, z or hK for the K-th plane family, N ≥ 1 spacings; ":N"
- * may be left out for 1). TYPE is a number or an object type's name in @p typeNames.
+ * may be left out for 1), or a width "TYPE:AXES" with two or more axes ("xy", "h1h2": one
+ * spacing thick across at least one of them). TYPE is a number or an object type's name in
+ * @p typeNames.
  * @throw Error naming the text.
  */
 ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet& families,

@@ -291,7 +291,7 @@ private:
   {
     if (!this->Plan->Weighted())
       return; // the shares only steer weighted draws (Factor, Mismatch)
-    for (int t = 1; t < this->Plan->NumberOfTypes(); ++t)
+    for (int t = 0; t < this->Plan->NumberOfTypes(); ++t)
       tally[static_cast<std::size_t>(t)] += sign * this->Plan->Occupancy(label, t);
   }
   template <typename Visit>
