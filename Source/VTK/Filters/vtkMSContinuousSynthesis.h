@@ -112,8 +112,8 @@ public:
   vtkBooleanMacro(Grounded, bool);
   ///@}
   ///@{
-  /// Dimensional constraints, "TYPE:AXIS[:N],..." (AXIS x, y, z or hK; N plane spacings).
-  /// Default "".
+  /// Dimensional constraints, "TYPE:AXIS[:N],..." (AXIS x, y, z or hK; N plane spacings), or
+  /// widths "TYPE:AXES" with several axes (one spacing across at least one). Default "".
   vtkSetStdStringFromCharMacro(Thickness);
   vtkGetCharFromStdStringMacro(Thickness);
   ///@}
