@@ -219,11 +219,13 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
     "box, objects grown up from it, floating parts removed"));
   continuous(s.add_option("--thickness", o.Thickness,
                 "dimensional constraint: object type TYPE is exactly N plane spacings thick "
-                "across AXIS (x, y, z or hK for plane family K; N defaults to 1)")
+                "across AXIS (x, y, z or hK for plane family K; N defaults to 1); several "
+                "axes (TYPE:xy) make a width: one spacing across at least one of them")
                ->allow_extra_args(false));
   continuous(s.add_option("--connected", o.Connected,
                 "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
-                "(default 1), so it forms that many connected objects")
+                "(default 1), so it forms that many connected objects, growing until it fills "
+                "as much of the box as of the example's")
                ->allow_extra_args(false));
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
