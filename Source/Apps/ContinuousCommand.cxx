@@ -212,6 +212,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     return out;
   };
   synthesis->SetThickness(joined(o.Thickness).c_str());
+  synthesis->SetOverhang(joined(o.Overhang).c_str());
   synthesis->SetConnected(joined(o.Connected).c_str());
   synthesis->SetTargetFractions(joined(o.Targets).c_str());
   vtkNew<vtkXMLImageDataReader> guide;

@@ -57,7 +57,7 @@ struct SynthesizeOptions
   double Blocks = 4;
   double Voxel = 0;
   bool Grounded = false;
-  std::vector<std::string> Thickness, Connected;
+  std::vector<std::string> Thickness, Overhang, Connected;
   bool NoProportions = false;
   int Candidates = 1;
   std::string Detail; ///< TYPE=FILE

@@ -222,6 +222,10 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "across AXIS (x, y, z or hK for plane family K; N defaults to 1); several "
                 "axes (TYPE:xy) make a width: one spacing across at least one of them")
                ->allow_extra_args(false));
+  continuous(s.add_option("--overhang", o.Overhang,
+                "TYPE reaches at most one plane spacing past what holds it up (its undersides "
+                "are one spacing wide at most: eaves, no roofs spanning thin columns)")
+               ->allow_extra_args(false));
   continuous(s.add_option("--connected", o.Connected,
                 "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
                 "(default 1), so it forms that many connected objects, growing until it fills "

@@ -244,9 +244,10 @@ TEST(ContinuousConstraints, ConnectedObjectsGrowFromTheirSeeds)
 
 namespace
 {
-/// Whether some square of @p side voxels in the plane of axes @p a and @p b is all solid (an
-/// object two spacings across both), by summed-area tables per slice.
-bool HasSolidSquare(const Voxels& v, int a, int b, std::int64_t side)
+/// Whether some square of @p side voxels in the plane of axes @p a and @p b has @p inside at
+/// every voxel, by summed-area tables per slice.
+template <typename Inside>
+bool HasSquare(const Voxels& v, int a, int b, std::int64_t side, Inside&& inside)
 {
   const int c = 3 - a - b;
   const std::int64_t na = v.Types.Size(a), nb = v.Types.Size(b), nc = v.Types.Size(c);
@@ -262,7 +263,7 @@ bool HasSolidSquare(const Voxels& v, int a, int b, std::int64_t side)
         p[a] = i;
         p[b] = j;
         p[c] = k;
-        s(i + 1, j + 1) = s(i, j + 1) + s(i + 1, j) - s(i, j) + (v.At(p[0], p[1], p[2]) != 0);
+        s(i + 1, j + 1) = s(i, j + 1) + s(i + 1, j) - s(i, j) + (inside(p[0], p[1], p[2]) ? 1 : 0);
       }
     for (std::int64_t j = 0; j + side <= nb; ++j)
       for (std::int64_t i = 0; i + side <= na; ++i)
@@ -270,6 +271,14 @@ bool HasSolidSquare(const Voxels& v, int a, int b, std::int64_t side)
           return true;
   }
   return false;
+}
+
+/// Whether some square of @p side voxels in the plane of axes @p a and @p b is all solid (an
+/// object two spacings across both).
+bool HasSolidSquare(const Voxels& v, int a, int b, std::int64_t side)
+{
+  return HasSquare(v, a, b, side,
+    [&v](std::int64_t x, std::int64_t y, std::int64_t z) { return v.At(x, y, z) != 0; });
 }
 } // namespace
 
@@ -325,6 +334,38 @@ TEST(ContinuousConstraints, RoadsAndPipesAreOneNetworkOfFixedWidth)
       EXPECT_GE(high[static_cast<std::size_t>(k)], v.Types.Size(k) - 5) << c.File << " axis " << k;
     }
   }
+}
+
+TEST(ContinuousConstraints, OverhangsReachOneSpacingPastTheirSupport)
+{
+  // Undersides of roofs (roof voxels over empty ones) at most one spacing wide: no square two
+  // spacings across of them, where unconstrained runs have some.
+  const Loaded house = Load("house.obj");
+  const ArrangementParameters p =
+    DefaultArrangementParameters(house.Example, house.Analysis, { 18, 18, 8 }, 0, {});
+  const double spacing =
+    p.Spacing(house.Analysis.Families(), FamilyAlongAxis(house.Analysis.Families(), 0));
+  const double voxel = spacing / 2;
+  int wideWithout = 0;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed)
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = seed;
+    o.BlockSize = 4;
+    o.Constraints.Grounded = true;
+    auto underside = [](const Voxels& v)
+    {
+      return [&v](std::int64_t x, std::int64_t y, std::int64_t z)
+      { return z > 0 && v.At(x, y, z) == Roof && v.At(x, y, z - 1) == 0; };
+    };
+    const Voxels free = Synthesize(house, { 18, 18, 8 }, o, voxel);
+    wideWithout += HasSquare(free, 0, 1, 4, underside(free)) ? 1 : 0;
+    o.Constraints.Overhang.push_back(Roof);
+    const Voxels v = Synthesize(house, { 18, 18, 8 }, o, voxel);
+    EXPECT_FALSE(HasSquare(v, 0, 1, 4, underside(v))) << "seed " << seed;
+    EXPECT_GT(v.Fractions()[Wall], 0.2) << "seed " << seed << ": houses still have walls";
+  }
+  EXPECT_GT(wideWithout, 0) << "the check would not have seen wide overhangs";
 }
 
 TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)

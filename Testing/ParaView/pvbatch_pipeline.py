@@ -327,9 +327,10 @@ sizes = start.GetPointData().GetArray("CatalogSize")
 check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumberOfTuples())) > 1,
       "the catalog at the start has several labels per vertex")
 
-# The TVCG constraints through the proxy: grounded houses with walls one spacing high.
+# The TVCG constraints through the proxy: grounded houses with walls one spacing high, eaves one
+# spacing wide.
 house = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "house.obj"))
-houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1",
+houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1", Overhang="roof",
                                        KeepProportions=1, TargetFractions="", Connected="",
                                        Arrangement=ModelSynthPlaneArrangement(Input=house,
                                                                               OutputSize=[12, 12, 8]))

@@ -428,6 +428,8 @@ class ContinuousSynthesisTest(unittest.TestCase):
         for args, message in (
                 (["--thickness", "wall:q"], "the axis must be x, y, z or h1"),
                 (["--connected", "tower:2"], "'tower' is not an object type"),
+                (["--overhang", "tower"], "'tower' is not an object type"),
+                (["--overhang", "roof", "--grounded"], None),
                 (["--target", "roof:2"], "LABEL:FRACTION"),
                 (["--thickness", "wall:z", "--no-proportions"], None)):
             done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "8",

@@ -84,6 +84,7 @@ private:
   void PlanGround();
   void PlanThickness();
   void PlanWidth(const ThicknessConstraint& c);
+  void PlanOverhang();
   void PlanGuide();
   void PlanTargets();
   void PlanSeeds(std::uint64_t seed);

@@ -160,6 +160,65 @@ void SetLabel(std::vector<std::uint64_t>& set, std::size_t label)
 {
   set[label >> 6] |= std::uint64_t(1) << (label & 63);
 }
+/// The families of bit set @p mask, ascending.
+std::vector<int> FamiliesOf(std::uint64_t mask)
+{
+  std::vector<int> out;
+  for (int f = 0; f < 64; ++f)
+    if ((mask >> f) & 1u)
+      out.push_back(f);
+  return out;
+}
+
+/**
+ * Whether @p label fills a block around its vertex: with J its families and @p needs (sorted)
+ * together, some side of the families of J outside @p needs on which every cone of J's
+ * arrangement exists for each side of @p needs and passes @p test(type, sides of @p needs as
+ * bits). Families of @p needs absent from the label may cut its cones, so the cones are those of
+ * J, not the label's own.
+ */
+template <typename Test>
+bool HasBlock(const PlaneFamilySet& set, const NeighbourhoodLabel& label,
+  const std::vector<int>& needs, Test&& test)
+{
+  std::vector<int> joint;
+  std::set_union(label.Families.begin(), label.Families.end(), needs.begin(), needs.end(),
+    std::back_inserter(joint));
+  if (static_cast<int>(joint.size()) > PlaneFamilySet::MaxFamiliesPerLabel)
+    return false;
+  std::vector<int> inLabel(joint.size(), -1), inNeeds(joint.size(), -1);
+  for (std::size_t j = 0; j < joint.size(); ++j)
+  {
+    const auto l = std::lower_bound(label.Families.begin(), label.Families.end(), joint[j]);
+    if (l != label.Families.end() && *l == joint[j])
+      inLabel[j] = static_cast<int>(l - label.Families.begin());
+    const auto n = std::lower_bound(needs.begin(), needs.end(), joint[j]);
+    if (n != needs.end() && *n == joint[j])
+      inNeeds[j] = static_cast<int>(n - needs.begin());
+  }
+  std::map<unsigned, std::pair<std::size_t, bool>> groups; // rest sides → (cones, all pass)
+  for (const auto& cone : set.Cones(joint))
+  {
+    unsigned own = 0, sides = 0, rest = 0;
+    for (std::size_t j = 0; j < joint.size(); ++j)
+    {
+      const bool plus = (cone.Mask >> j) & 1u;
+      if (inLabel[j] >= 0 && plus)
+        own |= 1u << inLabel[j];
+      if (inNeeds[j] >= 0)
+        sides |= plus ? 1u << inNeeds[j] : 0u;
+      else if (plus)
+        rest |= 1u << j;
+    }
+    const int type = label.Types[own];
+    auto& g = groups.try_emplace(rest, 0, true).first->second;
+    g.first += 1;
+    g.second = g.second && type >= 0 && test(type, sides);
+  }
+  const std::size_t block = std::size_t(1) << needs.size();
+  return std::any_of(groups.begin(), groups.end(),
+    [block](const auto& g) { return g.second.first == block && g.second.second; });
+}
 } // namespace
 
 std::int64_t SolidComponents(const PlaneArrangement& arrangement,
@@ -257,6 +316,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
 
   this->PlanGround();
   this->PlanThickness();
+  this->PlanOverhang();
   this->PlanGuide();
   this->PlanTargets();
   this->PlanSeeds(seed);
@@ -384,31 +444,63 @@ void ConstraintPlan::PlanWidth(const ThicknessConstraint& c)
   }
   if (c.Spacings != 1)
     throw Error("thickness: a width across several plane families is one spacing");
+  const PlaneFamilySet& set = this->Arrangement.Families();
+  const std::vector<int> needs = FamiliesOf(s.Needs);
   s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
   for (std::size_t a = 0; a < this->K; ++a)
   {
     const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
-    unsigned across = 0; // the label's cone bits of the width's families
-    for (std::size_t k = 0; k < label.Families.size(); ++k)
-      if ((s.Needs >> label.Families[k]) & 1u)
-        across |= 1u << k;
-    bool filled = false;
-    for (std::size_t m = 0; m < label.Types.size() && !filled; ++m)
-    {
-      if (m & across)
-        continue; // each block once, from its corner with those bits clear
-      filled = true;
-      for (unsigned sub = across;; sub = (sub - 1) & across)
-      {
-        filled = filled && label.Types[m | sub] == c.Type;
-        if (sub == 0)
-          break;
-      }
-    }
-    if (!filled)
+    if (!HasBlock(set, label, needs, [&](int type, unsigned) { return type == c.Type; }))
       SetLabel(s.OuterAllowed, a);
   }
   this->Thickness.push_back(std::move(s));
+}
+
+void ConstraintPlan::PlanOverhang()
+{
+  // Undersides at most one spacing wide: at vertices on planes across every axis, no label with
+  // the type above and empty space below all around the vertex horizontally.
+  if (this->Constraints.Overhang.empty())
+    return;
+  const PlaneFamilySet& set = this->Arrangement.Families();
+  const int up = FamilyAlongAxis(set, this->GroundAxis);
+  if (up < 0)
+    throw Error(std::string("overhang: the example has no planes across ") +
+      (this->GroundAxis == 2 ? "z" : "y") + " (no face facing up or down)");
+  std::uint64_t horizontal = 0;
+  for (int axis = 0; axis < (this->Arrangement.Planar() ? 2 : 3); ++axis)
+  {
+    const int f = axis == this->GroundAxis ? -1 : FamilyAlongAxis(set, axis);
+    if (axis != this->GroundAxis && f < 0)
+      throw Error(std::string("overhang: the example has no planes across ") + char('x' + axis));
+    if (f >= 0)
+      horizontal |= std::uint64_t(1) << f;
+  }
+  // Which side of the up family's planes is above (its normal may point down).
+  const bool upIsPositive = set.Normal(up)[static_cast<std::size_t>(this->GroundAxis)] > 0;
+  for (int type : this->Constraints.Overhang)
+  {
+    if (this->BitOf(type) <= 0)
+      throw Error("overhang: the example has no object type " + std::to_string(type));
+    Slabs s;
+    s.Needs = horizontal | (std::uint64_t(1) << up);
+    const std::vector<int> needs = FamiliesOf(s.Needs);
+    const unsigned vertical = 1u << (std::find(needs.begin(), needs.end(), up) - needs.begin());
+    s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    for (std::size_t a = 0; a < this->K; ++a)
+    {
+      const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
+      const bool wide = HasBlock(set, label, needs,
+        [&](int t, unsigned sides)
+        {
+          const bool above = ((sides & vertical) != 0) == upIsPositive;
+          return t == (above ? type : 0);
+        });
+      if (!wide)
+        SetLabel(s.OuterAllowed, a);
+    }
+    this->Thickness.push_back(std::move(s));
+  }
 }
 
 void ConstraintPlan::PlanGuide()

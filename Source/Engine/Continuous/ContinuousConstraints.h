@@ -89,6 +89,14 @@ struct ContinuousConstraints
    */
   bool Grounded = false;
   std::vector<ThicknessConstraint> Thickness;
+  /**
+   * Object types whose undersides (the type above, empty space below, along the ground's
+   * normal: z, or y in 2D) are at most one plane spacing wide across the horizontal axes: they
+   * reach at most one spacing past whatever holds them up, as the eaves of a roof, and never
+   * span between thin columns. Labels with such a face across a block two spacings wide are
+   * removed at vertices on planes across every axis.
+   */
+  std::vector<int> Overhang;
   std::vector<ConnectivityConstraint> Connected;
   std::optional<ContinuousGuide> Guide;
   /**
@@ -107,7 +115,8 @@ struct ContinuousConstraints
 
   bool RestrictsCatalog() const
   {
-    return this->Grounded || !this->Thickness.empty() || this->Guide.has_value();
+    return this->Grounded || !this->Thickness.empty() || !this->Overhang.empty() ||
+      this->Guide.has_value();
   }
 };
 

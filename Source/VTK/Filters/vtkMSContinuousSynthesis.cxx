@@ -57,6 +57,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSnapshots: " << this->NumberOfSnapshots << "\n";
   os << indent << "Grounded: " << this->Grounded << "\n";
   os << indent << "Thickness: " << this->Thickness << "\n";
+  os << indent << "Overhang: " << this->Overhang << "\n";
   os << indent << "Connected: " << this->Connected << "\n";
   os << indent << "KeepProportions: " << this->KeepProportions << "\n";
   os << indent << "TargetFractions: " << this->TargetFractions << "\n";
@@ -105,6 +106,8 @@ msynth::ContinuousConstraints Constraints(vtkMSContinuousSynthesis* self, vtkIma
   c.BlockCandidates = self->GetBlockCandidates();
   for (const auto& e : Entries(self->GetThickness()))
     c.Thickness.push_back(msynth::ParseThickness(e, families, ex.TypeNames));
+  for (const auto& e : Entries(self->GetOverhang()))
+    c.Overhang.push_back(msynth::ParseObjectType(e, ex.TypeNames));
   for (const auto& e : Entries(self->GetConnected()))
     c.Connected.push_back(msynth::ParseConnected(e, ex.TypeNames));
   for (const auto& e : Entries(self->GetTargetFractions()))

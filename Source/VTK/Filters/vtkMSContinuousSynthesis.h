@@ -118,6 +118,12 @@ public:
   vtkGetCharFromStdStringMacro(Thickness);
   ///@}
   ///@{
+  /// Overhang limits, "TYPE,...": each type's undersides are at most one plane spacing wide (it
+  /// reaches one spacing past what holds it up, as eaves). Default "".
+  vtkSetStdStringFromCharMacro(Overhang);
+  vtkGetCharFromStdStringMacro(Overhang);
+  ///@}
+  ///@{
   /// Connectivity constraints, "TYPE[:SEEDS],..." (TYPE "solid" for every type). Default "".
   vtkSetStdStringFromCharMacro(Connected);
   vtkGetCharFromStdStringMacro(Connected);
@@ -169,6 +175,7 @@ private:
   int NumberOfSnapshots = 0;
   bool Grounded = false;
   std::string Thickness;
+  std::string Overhang;
   std::string Connected;
   bool KeepProportions = true;
   std::string TargetFractions;
