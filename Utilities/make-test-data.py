@@ -4,6 +4,7 @@
 Run with /usr/bin/python3 (ParaView's vtkmodules). The files are committed; rerun after changing
 this script. All files are ASCII VTK XML so that reviews can read them.
 """
+import math
 import os
 import sys
 
@@ -651,6 +652,41 @@ def continuous_data(data):
     image.GetPointData().AddArray(roof.GetPointData().GetArray("Weight_2"))
     write(image, os.path.join(data, "Continuous", "letters-guide.vti"))
     network_examples(os.path.join(data, "Continuous"))
+    silo_example(os.path.join(data, "Continuous"))
+
+
+def silo_example(folder):
+    """Data/Continuous/silo.obj, the box [0, 2] x [0, 2] x [0, 4] cut along its vertical diagonal
+    into two triangular prisms of types "silo" and "silo2" (the cut is a face synthesis keeps),
+    as the bounding volume of a cylinder, and cylinder.obj, the detail in that box (TVCG 4.8):
+    the diagonal makes synthesis scale the box uniformly in x and y, freely in z, so every
+    substituted cylinder stays round."""
+    with open(os.path.join(folder, "silo.obj"), "w") as f:
+        f.write("# Silos for bounding volumes (TVCG 4.8): the box [0, 2] x [0, 2] x [0, 4] cut along\n"
+                "# its vertical diagonal into two triangular prisms of types silo and silo2, which\n"
+                "# model synthesis can only scale uniformly in x and y. Substitute a cylinder:\n"
+                "# msynth synthesize Data/Continuous/silo.obj --size 16 16 8 --grounded\n"
+                "#   --detail silo+silo2=Data/Continuous/cylinder.obj\n")
+        for name, corners, first in (("silo", ((0, 0), (2, 0), (0, 2)), 0),
+                                     ("silo2", ((2, 0), (2, 2), (0, 2)), 6)):
+            f.write("o %s\n" % name)
+            for z in (0, 4):
+                f.write("".join("v %d %d %d\n" % (x, y, z) for x, y in corners))
+            f.write("".join("f %s\n" % " ".join(str(first + i) for i in face) for face in
+                            ((1, 3, 2), (4, 5, 6), (1, 2, 5, 4), (2, 3, 6, 5), (3, 1, 4, 6))))
+    n = 32
+    with open(os.path.join(folder, "cylinder.obj"), "w") as f:
+        f.write("# A cylinder of radius 1 and height 4 in the box of silo.obj's bounding volume\n"
+                "# ([0, 2] x [0, 2] x [0, 4]), %d sides.\no silo\n" % n)
+        for z in (0, 4):
+            for k in range(n):
+                a = 2 * math.pi * k / n
+                f.write("v %.9f %.9f %d\n" % (1 + math.cos(a), 1 + math.sin(a), z))
+        f.write("f %s\n" % " ".join(str(n - k) for k in range(n)))
+        f.write("f %s\n" % " ".join(str(n + 1 + k) for k in range(n)))
+        for k in range(n):
+            j = (k + 1) % n
+            f.write("f %d %d %d %d\n" % (1 + k, 1 + j, n + 1 + j, n + 1 + k))
 
 
 def network_examples(folder):

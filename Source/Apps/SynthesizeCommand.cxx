@@ -233,7 +233,8 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                ->allow_extra_args(false));
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
-    "the output, mapped onto the part's bounding box from the example's (TYPE=FILE)"));
+    "the output, mapped onto the part's bounding box from the example's (TYPE=FILE; "
+    "TYPE+TYPE=FILE for a bounding volume of several pieces)"));
   continuous(s.add_option("--candidates", o.Candidates,
                 "with proportions steered: labellings tried per block, the one closest to the "
                 "example's proportions kept (default 1)")

@@ -574,6 +574,44 @@ class ContinuousSynthesisTest(unittest.TestCase):
         mesh.Update()
         self.assertIn("'tower' is not an object type", errors.text())
 
+    def test_prism_bounding_volume_keeps_cylinders_round(self):
+        """Bounding volumes (TVCG 4.8) cut into triangular prisms: silos synthesized as a box
+        cut along its vertical diagonal into two prisms of two types scale the same in x and y
+        but freely in z, so each cylinder substituted for a pair is round (equal x and y extents)
+        while heights vary; the boxes do not overlap, so neither do the cylinders."""
+        reader, arrangement, solver, mesh, _ = chain("silo.obj", (16, 16, 8), seed=3)
+        solver.SetGrounded(True)
+        detail = modelsynth.vtkMSPolyhedralExampleReader()
+        detail.SetFileName(data("Continuous/cylinder.obj"))
+        mesh.SetDetailConnection(detail.GetOutputPort())
+        mesh.SetDetailType("silo+silo2")
+        errors = ErrorObserver(mesh)
+        mesh.Update()
+        self.assertEqual(errors.text(), "")
+        model = mesh.GetOutput()
+        scales = vtk_to_numpy(model.GetFieldData().GetArray("DetailScales"))
+        self.assertGreater(len(scales), 2)
+        for s in scales:
+            self.assertAlmostEqual(s[0], s[1], places=9)
+        self.assertTrue(any(abs(s[2] - s[0]) > 1e-6 for s in scales), "heights scale freely")
+        points, polys = polygons_of(model)
+        detail.Update()
+        per = detail.GetOutput().GetNumberOfPolys()
+        self.assertEqual(len(polys), len(scales) * per)
+        for k in range(len(scales)):
+            corners = points[np.concatenate([np.array(p) for p in polys[k * per:(k + 1) * per]])]
+            extent = corners.max(axis=0) - corners.min(axis=0)
+            self.assertAlmostEqual(extent[0], extent[1], places=6)
+            self.assertAlmostEqual(extent[0], 2 * scales[k][0], places=6)
+            self.assertAlmostEqual(extent[2], 4 * scales[k][2], places=6)
+        boxes = [(points[np.concatenate([np.array(p) for p in polys[k * per:(k + 1) * per]])])
+                 for k in range(len(scales))]
+        boxes = [(b.min(axis=0), b.max(axis=0)) for b in boxes]
+        for i in range(len(boxes)):
+            for j in range(i):
+                overlap = np.minimum(boxes[i][1], boxes[j][1]) - np.maximum(boxes[i][0], boxes[j][0])
+                self.assertFalse((overlap[:2] > 1e-6).all(), "cylinders %d and %d overlap" % (i, j))
+
     def test_road_and_pipe_networks(self):
         """The bundled roads (2D) and pipes (3D), each grown from one seed with a width, through
         the filter and the command line: one connected part on the mesh that spans most of the
@@ -603,8 +641,8 @@ class ContinuousSynthesisTest(unittest.TestCase):
                                "--thickness", "pipe:yz", "--thickness", "pipe:xz", "--out", out],
                               capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr)
-        stats = json.load(open(os.path.join(out, "statistics.json")))
-        self.assertEqual(stats["Components"], 1)
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["Components"], 1)
         done = subprocess.run([msynth, "check", data("Continuous/pipes.obj"),
                                os.path.join(out, "model.vtp")], capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)

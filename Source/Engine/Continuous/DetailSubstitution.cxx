@@ -24,9 +24,13 @@ std::int64_t Root(std::vector<std::int64_t>& parent, std::int64_t i)
 }
 } // namespace
 
-DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
+DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int>& types,
   const PolyhedralExample& detail, const Point3& low, const Point3& high)
 {
+  if (types.empty())
+    throw Error("detail substitution: no object type to substitute");
+  const int type = types[0];
+  auto inSet = [&types](int t) { return std::find(types.begin(), types.end(), t) != types.end(); };
   if (model.Planar)
     throw Error("detail substitution: the model is 2D; bounding volumes are for 3D models");
   if (detail.Faces.empty())
@@ -44,7 +48,7 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
   std::vector<std::int64_t> parent(model.Points.size());
   std::iota(parent.begin(), parent.end(), std::int64_t(0));
   auto ofType = [&](std::size_t f)
-  { return model.InsideType[f] == type || model.OutsideType[f] == type; };
+  { return inSet(model.InsideType[f]) || inSet(model.OutsideType[f]); };
   for (std::size_t f = 0; f < model.Polygons.size(); ++f)
   {
     if (!ofType(f))
@@ -82,11 +86,12 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
           std::max(placement.High[c], model.Points[static_cast<std::size_t>(i)][c]);
       }
     // A face shared with another object stays as that object's face toward empty space.
-    const int other = model.InsideType[f] == type ? model.OutsideType[f] : model.InsideType[f];
-    if (other == 0)
-      continue;
+    const bool inside = inSet(model.InsideType[f]);
+    const int other = inside ? model.OutsideType[f] : model.InsideType[f];
+    if (other == 0 || inSet(other))
+      continue; // toward empty space, or between pieces of the bounding volume
     out.Polygons.push_back(poly);
-    if (model.InsideType[f] == type)
+    if (inside)
       std::reverse(out.Polygons.back().begin(), out.Polygons.back().end());
     out.InsideType.push_back(other);
     out.OutsideType.push_back(0);

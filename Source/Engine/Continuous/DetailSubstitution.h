@@ -33,14 +33,16 @@ struct DetailResult
 };
 
 /**
- * Replaces every connected part of object type @p type in @p model (3D) by @p detail, a mesh
- * authored in the example's coordinates inside the bounding volume's box [@p low, @p high]:
- * each part gets a copy mapped from that box onto its own bounding box. The part's faces
- * toward empty space are removed; faces it shares with other object types stay, as those
- * types' faces toward empty space. @throw Error for a 2D model, an empty box or a detail
- * without polygons.
+ * Replaces every connected part of the object types @p types in @p model (3D) by @p detail, a
+ * mesh authored in the example's coordinates inside the bounding volume's box [@p low, @p high]:
+ * each part gets a copy mapped from that box onto its own bounding box, of type types[0].
+ * Several types make one bounding volume of several pieces (a box cut into two prisms, each
+ * piece its own type so that the cut is a face synthesis keeps): faces between them go with
+ * the part. The part's faces toward empty space are removed; faces it shares with other object
+ * types stay, as those types' faces toward empty space. @throw Error for a 2D model, no type,
+ * an empty box or a detail without polygons.
  */
-DetailResult SubstituteDetail(const ContinuousMesh& model, int type,
+DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int>& types,
   const PolyhedralExample& detail, const Point3& low, const Point3& high);
 
 } // namespace msynth

@@ -134,13 +134,21 @@ msynth::DetailResult Substitute(const msynth::ContinuousMesh& mesh,
 {
   if (typeText.empty())
     throw msynth::Error("a detail mesh is connected but DetailType names no object type");
-  const int type = msynth::ParseObjectType(typeText, ex.TypeNames);
-  // The bounding volume: the example's objects of that type, their bounding box.
+  // TYPE or TYPE+TYPE...: the pieces of one bounding volume.
+  std::vector<int> types;
+  for (std::size_t at = 0; at <= typeText.size();)
+  {
+    const std::size_t plus = std::min(typeText.find('+', at), typeText.size());
+    types.push_back(msynth::ParseObjectType(typeText.substr(at, plus - at), ex.TypeNames));
+    at = plus + 1;
+  }
+  // The bounding volume: the example's objects of those types, their bounding box.
   msynth::Point3 low{}, high{};
   bool any = false;
   for (std::size_t f = 0; f < ex.Faces.size(); ++f)
   {
-    if (ex.ObjectTypes[static_cast<std::size_t>(ex.FaceObject[f])] != type)
+    const int type = ex.ObjectTypes[static_cast<std::size_t>(ex.FaceObject[f])];
+    if (std::find(types.begin(), types.end(), type) == types.end())
       continue;
     for (int i : ex.Faces[f])
       for (std::size_t c = 0; c < 3; ++c)
@@ -154,7 +162,7 @@ msynth::DetailResult Substitute(const msynth::ContinuousMesh& mesh,
   if (!any)
     throw msynth::Error(ex.Source + ": no object of type " + typeText + " to substitute");
   const auto detailModel = vtkMSPolyhedra::ToPolyhedralExample(detail, "detail mesh");
-  return msynth::SubstituteDetail(mesh, type, detailModel, low, high);
+  return msynth::SubstituteDetail(mesh, types, detailModel, low, high);
 }
 
 /// Field data: `DetailScales` (x, y, z scale per substituted part) and `DetailAnisotropy` (the

@@ -52,6 +52,7 @@ public:
   /// Bounding volumes (TVCG §4.8): with a detail mesh on input port 2 (closed surfaces, authored
   /// inside the example's bounding volume of this object type, a number or name), every part of
   /// that type in the output is replaced by a copy of it mapped onto the part's bounding box.
+  /// "TYPE+TYPE": a bounding volume made of pieces of several types (a box cut into prisms).
   /// The field data then has `DetailScales` (per part) and `DetailAnisotropy`. Default "".
   vtkSetStdStringFromCharMacro(DetailType);
   vtkGetCharFromStdStringMacro(DetailType);
