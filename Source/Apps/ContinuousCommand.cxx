@@ -247,6 +247,11 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
       std::cerr << "msynth: note: plane directions snapped to fit exact arithmetic; faces turn by "
                    "up to "
                 << change->GetTuple1(0) << " degrees\n";
+    else if (vtkDataArray* tolerance = fd->GetArray("AngleTolerance");
+             change && tolerance && tolerance->GetTuple1(0) > arrangement->GetAngleTolerance())
+      std::cerr << "msynth: note: four or more planes meet at a corner of the example, so plane "
+                   "directions were snapped to small integers; faces turn by up to "
+                << change->GetTuple1(0) << " degrees\n";
   }
   {
     ProgressBar bar(synthesis);

@@ -62,3 +62,14 @@ TEST(VTKXMLCheck, ExtentsBeyondAnyCountAreLeftToTheReaderWithoutOverflow)
     }
   }
 }
+
+TEST(ErrorMessages, AreOneLineOfValidUtf8)
+{
+  // Text quoted from a damaged file reaches the message as is; control characters and bytes
+  // that are no UTF-8 become '?', while the engine's own symbols (≥, ×, °) stay.
+  EXPECT_EQ(Printable("a\nb\x1b[31m"), "a?b?[31m");
+  EXPECT_EQ(Printable("≥ 2 × 3°"), "≥ 2 × 3°");
+  EXPECT_EQ(Printable("\xd6\xd6\xff\x7f ok \xe2\x89"), "???? ok ??");
+  EXPECT_EQ(Printable("\xc0\xaf"), "??"); // an overlong '/', no valid start byte
+  EXPECT_EQ(std::string(Error("x \xff y").what()), "x ? y");
+}

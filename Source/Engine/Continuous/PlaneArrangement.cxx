@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 #include <string>
 
 namespace msynth
@@ -60,6 +61,42 @@ double ArrangementParameters::Spacing(const PlaneFamilySet& families, int family
   return static_cast<double>(this->Spacings.at(static_cast<std::size_t>(family))) * this->Quantum /
     len;
 }
+
+namespace
+{
+/// Per family, its position through the first corner of the example where four or more families'
+/// faces meet (the corner rounded to the lattice of @p quantum from @p lo), or NaN.
+std::vector<double> CornerAnchors(const PolyhedralExample& example,
+  const PolyhedralAnalysis& analysis, double quantum, const Point3& lo)
+{
+  const PlaneFamilySet& set = analysis.Families();
+  std::vector<double> anchors(static_cast<std::size_t>(set.Size()), std::nan(""));
+  const auto& elements = analysis.Boundary();
+  std::map<std::int32_t, std::set<int>> familiesAt; // example point → families of its faces
+  for (std::size_t e = 0; e < elements.size(); ++e)
+    for (auto i : elements[e].Points)
+      familiesAt[i].insert(analysis.ElementFamily()[e]);
+  for (const auto& [point, families] : familiesAt)
+  {
+    if (families.size() < 4)
+      continue;
+    const Point3& q = example.Points[static_cast<std::size_t>(point)];
+    double x[3];
+    for (std::size_t c = 0; c < 3; ++c)
+      x[c] = std::round((q[c] - lo[c]) / quantum);
+    for (int f : families)
+    {
+      auto& a = anchors[static_cast<std::size_t>(f)];
+      if (!std::isnan(a))
+        continue; // a family through two such corners keeps the first
+      const IntVec3& n = set.Normal(f);
+      a = static_cast<double>(n[0]) * x[0] + static_cast<double>(n[1]) * x[1] +
+        static_cast<double>(n[2]) * x[2];
+    }
+  }
+  return anchors;
+}
+} // namespace
 
 ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& example,
   const PolyhedralAnalysis& analysis, const Point3& size, double spacing,
@@ -194,10 +231,17 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
       p.BoxHigh[c] = static_cast<std::int64_t>(units);
     }
   }
+  // Where four or more families meet at a corner of the example (a pyramid's apex, TVCG §4.4),
+  // their planes go through that corner's exact lattice point, so they meet there in the output
+  // too; with offsets from face means they would miss one another by rounding (and by the
+  // snapping of large-integer directions).
+  const std::vector<double> anchors = CornerAnchors(example, analysis, p.Quantum, lo);
   for (int f = 0; f < m; ++f)
   {
     const std::int64_t s = p.Spacings[static_cast<std::size_t>(f)];
-    const std::int64_t v = std::llround(first[static_cast<std::size_t>(f)]);
+    const double anchor = anchors[static_cast<std::size_t>(f)];
+    const std::int64_t v =
+      std::llround(std::isnan(anchor) ? first[static_cast<std::size_t>(f)] : anchor);
     p.Offsets.push_back(((v % s) + s) % s);
   }
   return p;

@@ -6,10 +6,29 @@ namespace msynth
 
 std::string Printable(const std::string& text)
 {
-  std::string out = text;
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      c = '?';
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();)
+  {
+    const auto c = static_cast<unsigned char>(text[i]);
+    // Bytes a UTF-8 sequence starting with c needs after it (0: ASCII; -1: never a start).
+    const int more = c < 0x80  ? 0
+      : c >= 0xc2 && c <= 0xdf ? 1
+      : c >= 0xe0 && c <= 0xef ? 2
+      : c >= 0xf0 && c <= 0xf4 ? 3
+                               : -1;
+    bool valid = more >= 0 && i + static_cast<std::size_t>(more) < text.size() + (more == 0);
+    for (int k = 1; valid && k <= more; ++k)
+      valid = (static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) & 0xc0) == 0x80;
+    if (!valid || c < 0x20 || c == 0x7f)
+    {
+      out += '?'; // a control character, or a byte that is no UTF-8 (from a damaged file)
+      ++i;
+      continue;
+    }
+    out.append(text, i, static_cast<std::size_t>(more) + 1);
+    i += static_cast<std::size_t>(more) + 1;
+  }
   return out;
 }
 

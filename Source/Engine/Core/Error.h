@@ -11,8 +11,8 @@
 namespace msynth
 {
 
-/// @p text with control characters (from a damaged file, say) shown as '?': messages are one
-/// line and never carry terminal escapes.
+/// @p text with control characters and bytes that are no valid UTF-8 (from a damaged file, say)
+/// shown as '?': messages are one line of valid UTF-8 and never carry terminal escapes.
 std::string Printable(const std::string& text);
 
 class Error : public std::runtime_error

@@ -103,8 +103,8 @@ void FillArrangement(vtkPolyData* output, const msynth::PlaneArrangement& arrang
 }
 } // namespace
 
-void vtkMSPlaneArrangement::Build(
-  vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger)
+vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(vtkPolyData* input, vtkPolyData* output,
+  double angleTolerance, int maximumSmallInteger, bool warn)
 {
   msynth::PolyhedralExample example;
   const auto analysis =
@@ -134,18 +134,23 @@ void vtkMSPlaneArrangement::Build(
   file->SetName("ExampleFile");
   file->InsertNextValue(vtkMSFieldData::ExampleName(input));
   output->GetFieldData()->AddArray(file);
-  // How far the exact plane directions are from the example's faces.
+  // How far the exact plane directions are from the example's faces (each face's own normal
+  // against its family's direction), and whether the directions are small integers.
   double worst = 0;
+  bool offLattice = false;
   const auto& set = analysis.Families();
-  for (int f = 0; f < set.Size(); ++f)
+  for (std::size_t e = 0; e < analysis.Boundary().size(); ++e)
   {
-    const auto& n = set.Normal(f);
-    const auto& u = analysis.FamilyUnitNormals()[static_cast<std::size_t>(f)];
+    const auto& n = set.Normal(analysis.ElementFamily()[e]);
+    const auto& u = analysis.Boundary()[e].Normal;
     const double len = std::sqrt(
       double(n[0]) * double(n[0]) + double(n[1]) * double(n[1]) + double(n[2]) * double(n[2]));
     const double dot = std::abs(n[0] * u[0] + n[1] * u[1] + n[2] * u[2]) / len;
     worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / 3.14159265358979323846);
   }
+  for (int f = 0; f < set.Size(); ++f)
+    for (auto c : set.Normal(f))
+      offLattice = offLattice || std::abs(static_cast<double>(c)) > this->MaximumSmallInteger;
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
     output->GetFieldData(), "DirectionChangeDegrees", worst);
   // Non-trihedral vertices (four or more planes, TVCG §4.4): where they can go.
@@ -165,6 +170,11 @@ void vtkMSPlaneArrangement::Build(
     output->GetFieldData(), "NonTrihedralLabels", static_cast<vtkIdType>(nonTrihedral.size()));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     output->GetFieldData(), "NonTrihedralLabelsWithoutSites", without);
+  Corners corners;
+  corners.NonTrihedral = !nonTrihedral.empty();
+  corners.OnLattice = !offLattice && without == 0;
+  if (!warn)
+    return corners;
   if (without > 0)
     vtkWarningMacro(<< vtkMSFieldData::ExampleName(input) << ": over-constrained plane spacing: "
                     << without << " of " << nonTrihedral.size()
@@ -179,6 +189,52 @@ void vtkMSPlaneArrangement::Build(
                     << ": plane directions snapped to integers up to " << maximumSmallInteger
                     << " so that exact coordinates fit; faces turn by up to " << worst
                     << " degrees");
+  else if (angleTolerance > this->AngleTolerance)
+    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input)
+                    << ": four or more planes meet at a corner of the example, so plane "
+                       "directions were snapped to small integers (TVCG 4.4: normals modified "
+                       "to fit a lattice); faces turn by up to "
+                    << worst << " degrees");
+  return corners;
+}
+
+bool vtkMSPlaneArrangement::BuildOnLattice(vtkPolyData* input, vtkPolyData* output)
+{
+  // Four or more planes meeting at a corner need directions on a small-integer lattice (with
+  // large integers the planes only nearly meet, and the arrangement fills with slivers). When
+  // the directions as given are not, they are snapped to small integers within growing
+  // tolerances (the paper's second way out of Eq. 4.25), and the change is reported.
+  try
+  {
+    const Corners as =
+      this->Build(input, output, this->AngleTolerance, this->MaximumSmallInteger, false);
+    if (!as.NonTrihedral || as.OnLattice)
+      return false;
+  }
+  catch (const msynth::Error& e)
+  {
+    if (std::string(e.what()).find("128-bit") == std::string::npos)
+      throw; // directions of large integers overflowed: try the lattice first
+  }
+  for (double degrees : { 0.5, 1.0, 2.0, 3.0 })
+  {
+    if (degrees <= this->AngleTolerance)
+      continue;
+    try
+    {
+      const Corners c = this->Build(input, output, degrees, this->MaximumSmallInteger, false);
+      if (c.NonTrihedral && c.OnLattice)
+      {
+        this->Build(input, output, degrees, this->MaximumSmallInteger, true);
+        return true;
+      }
+    }
+    catch (const msynth::Error&)
+    {
+      // e.g. the coarser directions merge faces into a non-planar family: try the next
+    }
+  }
+  return false;
 }
 
 int vtkMSPlaneArrangement::RequestData(
@@ -207,7 +263,9 @@ int vtkMSPlaneArrangement::RequestData(
     {
       try
       {
-        this->Build(input, output, snaps[level].Degrees, snaps[level].Integer);
+        if (level == 0 && this->BuildOnLattice(input, output))
+          break;
+        this->Build(input, output, snaps[level].Degrees, snaps[level].Integer, true);
         break;
       }
       catch (const msynth::Error& e)

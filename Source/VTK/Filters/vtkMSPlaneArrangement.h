@@ -74,9 +74,18 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
-  /// Analyzes the example with the given direction snapping and fills @p output.
-  void Build(
-    vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger);
+  struct Corners
+  {
+    bool NonTrihedral = false; ///< four or more planes meet at a corner of the example
+    bool OnLattice = false;    ///< small-integer directions, and every such corner has sites
+  };
+  /// Analyzes the example with the given direction snapping and fills @p output (warnings
+  /// only with @p warn).
+  Corners Build(vtkPolyData* input, vtkPolyData* output, double angleTolerance,
+    int maximumSmallInteger, bool warn);
+  /// Builds with directions snapped to small integers within up to 3 degrees when the example
+  /// needs four or more planes to meet and they would not otherwise; false to build as usual.
+  bool BuildOnLattice(vtkPolyData* input, vtkPolyData* output);
   vtkMSPlaneArrangement(const vtkMSPlaneArrangement&) = delete;
   void operator=(const vtkMSPlaneArrangement&) = delete;
 
