@@ -14,6 +14,17 @@ namespace msynth
 namespace detail
 {
 
+/// Bit @p t of a type or family set.
+inline std::uint64_t Bit(int t)
+{
+  return std::uint64_t(1) << t;
+}
+/// Adds label @p label to the label bit set @p set.
+inline void SetLabel(std::vector<std::uint64_t>& set, std::size_t label)
+{
+  set[label >> 6] |= std::uint64_t(1) << (label & 63);
+}
+
 class ConstraintPlan
 {
 public:
