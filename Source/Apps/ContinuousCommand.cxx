@@ -140,19 +140,31 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
           << ",\n  \"Components\": " << CountOf(fd, "Components")
           << ",\n  \"GroundedComponents\": " << CountOf(fd, "GroundedComponents")
           << ",\n  \"FloatingPartsRemoved\": " << CountOf(fd, "FloatingPartsRemoved")
-          << ",\n  \"TypeShares\": {";
-      const char* separator = "";
-      for (int i = 0; i < fd->GetNumberOfArrays(); ++i)
+          << ",\n  \"ModelCandidates\": " << o.Models
+          << ",\n  \"ModelChosen\": " << CountOf(fd, "ModelChosen") << ",\n  \"MatchError\": "
+          << (fd->GetArray("MatchError") ? fd->GetArray("MatchError")->GetTuple1(0) : 0.0) << ",\n";
+      // Shares of the solid per object type: by volume of the model written, and by vertex
+      // occupancy (what the proportions steer).
+      auto shares = [&out](const char* key, vtkFieldData* from, const std::string& prefix)
       {
-        const std::string name = fd->GetArrayName(i) ? fd->GetArrayName(i) : "";
-        if (name.rfind("TypeShare_", 0) == 0)
+        out << "  \"" << key << "\": {";
+        const char* separator = "";
+        for (int i = 0; i < from->GetNumberOfArrays(); ++i)
         {
-          out << separator << JsonString(name.substr(10)) << ": " << fd->GetArray(i)->GetTuple1(0);
-          separator = ", ";
+          const std::string name = from->GetArrayName(i) ? from->GetArrayName(i) : "";
+          if (name.rfind(prefix, 0) == 0)
+          {
+            out << separator << JsonString(name.substr(prefix.size())) << ": "
+                << from->GetArray(i)->GetTuple1(0);
+            separator = ", ";
+          }
         }
-      }
-      out << "},\n  \"StageSeconds\": {";
-      separator = "";
+        out << "},\n";
+      };
+      shares("TypeShares", model->GetFieldData(), "VolumeShare_");
+      shares("VertexShares", fd, "TypeShare_");
+      out << "  \"StageSeconds\": {";
+      const char* separator = "";
       for (const auto& [stage, seconds] : stages)
       {
         out << separator << JsonString(stage) << ": " << seconds;
@@ -203,6 +215,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   synthesis->SetGrounded(o.Grounded);
   synthesis->SetKeepProportions(!o.NoProportions);
   synthesis->SetBlockCandidates(o.Candidates);
+  synthesis->SetModelCandidates(o.Models);
   synthesis->SetMirrorAxis(o.Mirror.empty() ? -1 : o.Mirror[0] - 'x');
   auto joined = [](const std::vector<std::string>& items)
   {

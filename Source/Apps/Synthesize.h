@@ -60,6 +60,7 @@ struct SynthesizeOptions
   std::vector<std::string> Thickness, Overhang, Connected;
   bool NoProportions = false;
   int Candidates = 1;
+  int Models = 1;     ///< whole-model candidates
   std::string Detail; ///< TYPE=FILE
 };
 

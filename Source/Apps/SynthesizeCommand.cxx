@@ -239,6 +239,10 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "with proportions steered: labellings tried per block, the one closest to the "
                 "example's proportions kept (default 1)")
                ->check(CLI::Range(1, 64)));
+  continuous(s.add_option("--models", o.Models,
+                "generate several, keep the best match: N whole models (seeds SEED, SEED+1, ...), "
+                "the one closest to the guide, the proportions and the seeds kept")
+               ->check(CLI::Range(1, 1000)));
   continuous(s.add_flag("--no-proportions", o.NoProportions,
     "do not steer the label choice toward the example's proportions of object types"));
 }

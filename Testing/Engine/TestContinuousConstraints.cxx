@@ -368,6 +368,42 @@ TEST(ContinuousConstraints, OverhangsReachOneSpacingPastTheirSupport)
   EXPECT_GT(wideWithout, 0) << "the check would not have seen wide overhangs";
 }
 
+TEST(ContinuousConstraints, SeveralModelsTheBestMatchKept)
+{
+  // "Generate several, keep the best match" (§4.7): the model kept is the run, among seeds
+  // S..S+3 made one by one, with the smallest match error.
+  const Loaded house = Load("house.obj");
+  const ArrangementParameters p =
+    DefaultArrangementParameters(house.Example, house.Analysis, { 18, 18, 8 }, 0, {});
+  const PlaneArrangement arrangement(house.Analysis.Families(), p);
+  ContinuousSynthesisOptions o;
+  o.Seed = 7;
+  o.BlockSize = 4;
+  ContinuousGuide guide;
+  guide.Dims = { { 2, 1, 1 } };
+  guide.Weights[Roof] = { 0.25f, 1.0f }; // roofs four times as likely on the right
+  o.Constraints.Guide = guide;
+  std::vector<double> errors;
+  std::vector<std::vector<std::int32_t>> labels;
+  for (std::uint64_t k = 0; k < 4; ++k)
+  {
+    ContinuousSynthesisOptions one = o;
+    one.Seed = o.Seed + k;
+    const auto r = SynthesizeContinuous(house.Analysis, arrangement, one);
+    ASSERT_TRUE(r.Succeeded()) << r.Message;
+    labels.push_back(r.Labels);
+    errors.push_back(MatchError(house.Analysis, arrangement, o.Constraints, r.Labels));
+  }
+  const auto best = std::min_element(errors.begin(), errors.end()) - errors.begin();
+  o.Constraints.ModelCandidates = 4;
+  const auto r = SynthesizeContinuous(house.Analysis, arrangement, o);
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
+  EXPECT_EQ(r.ModelChosen, best);
+  EXPECT_EQ(r.Labels, labels[static_cast<std::size_t>(best)]);
+  EXPECT_DOUBLE_EQ(r.MatchError, errors[static_cast<std::size_t>(best)]);
+  EXPECT_GT(*std::max_element(errors.begin(), errors.end()), r.MatchError);
+}
+
 TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
 {
   const Loaded cottage = Load("cottage.obj");

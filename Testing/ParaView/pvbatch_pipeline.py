@@ -330,13 +330,15 @@ check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumber
 # The TVCG constraints through the proxy: grounded houses with walls one spacing high, eaves one
 # spacing wide.
 house = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "house.obj"))
-houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1", Overhang="roof",
+houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1", Overhang="roof", ModelCandidates=2,
                                        KeepProportions=1, TargetFractions="", Connected="",
                                        Arrangement=ModelSynthPlaneArrangement(Input=house,
                                                                               OutputSize=[12, 12, 8]))
 housemesh = ModelSynthArrangementMesh(Input=house, Arrangement=houses, CheckModel=1)
 housemesh.UpdatePipeline()
 fields = servermanager.Fetch(houses).GetFieldData()
+check(fields.GetArray("ModelChosen") is not None and fields.GetArray("MatchError") is not None,
+      "two model candidates, the best kept")
 check(fields.GetArray("Components").GetValue(0) == fields.GetArray("GroundedComponents").GetValue(0)
       and fields.GetArray("Components").GetValue(0) > 0, "grounded houses all on the ground")
 housemodel = servermanager.Fetch(housemesh)

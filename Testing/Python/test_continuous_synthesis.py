@@ -632,6 +632,45 @@ class ContinuousSynthesisTest(unittest.TestCase):
                 overlap = np.minimum(boxes[i][1], boxes[j][1]) - np.maximum(boxes[i][0], boxes[j][0])
                 self.assertFalse((overlap[:2] > 1e-6).all(), "cylinders %d and %d overlap" % (i, j))
 
+    def test_several_models_and_volume_shares(self):
+        """--models N keeps the best of N whole models (statistics name which and its match
+        error); TypeShares in statistics.json are the model's volume fractions, recomputed here
+        from model.vtp by the divergence theorem."""
+        msynth = os.path.join(os.environ["MSYNTH_BIN"], "msynth")
+        out = tmp("models-cli")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "12", "12",
+                               "8", "--seed", "4", "--grounded", "--models", "3", "--out", out],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(out, "statistics.json")) as f:
+            stats = json.load(f)
+        self.assertEqual(stats["ModelCandidates"], 3)
+        self.assertIn(stats["ModelChosen"], (0, 1, 2))
+        self.assertGreater(stats["MatchError"], 0)
+        self.assertIn("of 3 kept (match error", stats["Message"])
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(out, "model.vtp"))
+        reader.Update()
+        points, polys = polygons_of(reader.GetOutput())
+        inside = vtk_to_numpy(reader.GetOutput().GetCellData().GetArray("InsideType"))
+        outside = vtk_to_numpy(reader.GetOutput().GetCellData().GetArray("OutsideType"))
+        volume = {}
+        for poly, a, b in zip(polys, inside, outside):
+            c = points[poly]
+            v = sum(np.dot(c[0], np.cross(c[k], c[k + 1])) for k in range(1, len(c) - 1)) / 6
+            volume[int(a)] = volume.get(int(a), 0) + v
+            volume[int(b)] = volume.get(int(b), 0) - v
+        volume.pop(0, None)
+        total = sum(volume.values())
+        for t, v in volume.items():
+            self.assertAlmostEqual(stats["TypeShares"][str(t)], v / total, places=4)
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "8", "8", "6",
+                               "--models", "2", "--snapshots", "2", "--out", out + "-x"],
+                              capture_output=True, text=True)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("snapshots are of one model", done.stderr)
+
     def test_road_and_pipe_networks(self):
         """The bundled roads (2D) and pipes (3D), each grown from one seed with a width, through
         the filter and the command line: one connected part on the mesh that spans most of the

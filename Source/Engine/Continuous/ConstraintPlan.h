@@ -80,6 +80,8 @@ public:
   int Candidates() const { return this->Proportions ? this->Constraints.BlockCandidates : 1; }
   /// How far the solid shares of @p tally are from the targets (sum of squared differences).
   double Mismatch(const std::vector<double>& tally) const;
+  /// MatchError (ContinuousConstraints.h) of a labelling of the whole arrangement.
+  double MatchError(const std::vector<std::int32_t>& labels) const;
 
   /**
    * Grounded runs: empties every connected solid part that does not touch the ground (always

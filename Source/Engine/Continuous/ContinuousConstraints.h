@@ -112,6 +112,9 @@ struct ContinuousConstraints
   /// one whose shares come closest to the targets kept ("generate several, keep the best match",
   /// §4.7, block by block).
   int BlockCandidates = 1;
+  /// "Generate several, keep the best match" (§4.7) for whole models: this many models are
+  /// synthesized, with seeds Seed, Seed + 1, ..., and the one with the smallest MatchError kept.
+  int ModelCandidates = 1;
 
   bool RestrictsCatalog() const
   {
@@ -152,5 +155,16 @@ struct ArrangementMeasures
 };
 ArrangementMeasures MeasureArrangement(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels);
+
+/**
+ * How far a labelled arrangement is from what @p constraints ask, recomputed from the labels
+ * (0: exactly): the sum of
+ * - with proportions kept or targets given, |share − target| over the solid types;
+ * - per type with guide weights, the part of its volume away from the guide's favoured places:
+ *   1 − Σ occupancy · weight / (largest weight · Σ occupancy);
+ * - with connectivity from seeds for every solid type, the solid parts beyond the seeds' count.
+ */
+double MatchError(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+  const ContinuousConstraints& constraints, const std::vector<std::int32_t>& labels);
 
 } // namespace msynth

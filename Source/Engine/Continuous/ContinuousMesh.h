@@ -48,6 +48,9 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
  */
 std::map<int, std::vector<std::vector<std::int32_t>>> SurfacesByType(const ContinuousMesh& mesh);
 
+/// Each solid object type's volume (area in 2D) enclosed by its surfaces (divergence theorem).
+std::map<int, double> TypeVolumes(const ContinuousMesh& mesh);
+
 /**
  * The mesh as a polyhedral model: per object type, its closed surfaces (connected components)
  * as objects, type names from @p typeNames.

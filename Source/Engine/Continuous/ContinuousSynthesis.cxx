@@ -631,6 +631,8 @@ std::int64_t ContinuousRun::Attempt(
 ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options)
 {
+  if (options.Constraints.ModelCandidates != 1)
+    return SynthesizeCandidates(analysis, arrangement, options);
   if (options.MirrorAxis >= 0 && !options.HalfOf)
     return SynthesizeMirrored(analysis, arrangement, options);
   const auto start = std::chrono::steady_clock::now();

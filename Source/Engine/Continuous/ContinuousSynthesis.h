@@ -92,6 +92,10 @@ struct ContinuousSynthesisResult
   std::string Message; ///< why it failed, or a summary
   /// Grounded runs: solid parts that did not touch the ground and were emptied.
   std::int64_t FloatingPartsRemoved = 0;
+  /// With several model candidates: which was kept (0-based; its seed is Seed + this) and its
+  /// MatchError; −1 and 0 otherwise.
+  int ModelChosen = -1;
+  double MatchError = 0;
 };
 
 /**
@@ -100,6 +104,15 @@ struct ContinuousSynthesisResult
  * the result is always consistent. Seeded and deterministic.
  */
 ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);
+
+/**
+ * Constraints.ModelCandidates whole models (seeds Seed, Seed + 1, ...), the successful one
+ * with the smallest MatchError kept (the first on ties); SynthesizeContinuous calls it when
+ * there are several. Progress covers all of them. @throw Error with snapshots (they are of one
+ * run).
+ */
+ContinuousSynthesisResult SynthesizeCandidates(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);
 
 /**

@@ -253,6 +253,14 @@ int vtkMSArrangementMesh::RequestData(
     if (detail)
       AddPlacements(output, placements);
     AddTypeNames(output, ex);
+    // Each type's share of the solid volume (area in 2D) of the mesh as it is.
+    const auto volumes = msynth::TypeVolumes(mesh);
+    double solid = 0;
+    for (const auto& [type, volume] : volumes)
+      solid += volume;
+    for (const auto& [type, volume] : volumes)
+      vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(),
+        ("VolumeShare_" + std::to_string(type)).c_str(), solid > 0 ? volume / solid : 0.0);
     // The direction snapping the example was analyzed with, so a check of the model (msynth
     // check) analyzes it the same way.
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(

@@ -62,6 +62,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KeepProportions: " << this->KeepProportions << "\n";
   os << indent << "TargetFractions: " << this->TargetFractions << "\n";
   os << indent << "BlockCandidates: " << this->BlockCandidates << "\n";
+  os << indent << "ModelCandidates: " << this->ModelCandidates << "\n";
   os << indent << "MirrorAxis: " << this->MirrorAxis << "\n";
 }
 
@@ -104,6 +105,7 @@ msynth::ContinuousConstraints Constraints(vtkMSContinuousSynthesis* self, vtkIma
   c.Grounded = self->GetGrounded();
   c.KeepProportions = self->GetKeepProportions();
   c.BlockCandidates = self->GetBlockCandidates();
+  c.ModelCandidates = self->GetModelCandidates();
   for (const auto& e : Entries(self->GetThickness()))
     c.Thickness.push_back(msynth::ParseThickness(e, families, ex.TypeNames));
   for (const auto& e : Entries(self->GetOverhang()))
@@ -285,4 +287,9 @@ void vtkMSContinuousSynthesis::FillOutput(
   for (const auto& [type, share] : m.TypeShares)
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       fields, ("TypeShare_" + std::to_string(type)).c_str(), share);
+  if (result.ModelChosen >= 0)
+  {
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(fields, "ModelChosen", result.ModelChosen);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fields, "MatchError", result.MatchError);
+  }
 }

@@ -151,6 +151,13 @@ public:
   vtkSetClampMacro(BlockCandidates, int, 1, 64);
   vtkGetMacro(BlockCandidates, int);
   ///@}
+  ///@{
+  /// Whole models synthesized (seeds Seed, Seed + 1, ...), the one closest to the guide, the
+  /// proportions and the seeds kept ("generate several, keep the best match", TVCG §4.7); the
+  /// field data then has `ModelChosen` and `MatchError`. Not with snapshots. Default 1.
+  vtkSetClampMacro(ModelCandidates, int, 1, 1000);
+  vtkGetMacro(ModelCandidates, int);
+  ///@}
 
 protected:
   vtkMSContinuousSynthesis();
@@ -180,6 +187,7 @@ private:
   bool KeepProportions = true;
   std::string TargetFractions;
   int BlockCandidates = 1;
+  int ModelCandidates = 1;
   int MirrorAxis = -1;
 
   struct Cache;
