@@ -140,6 +140,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
           << ",\n  \"Components\": " << CountOf(fd, "Components")
           << ",\n  \"GroundedComponents\": " << CountOf(fd, "GroundedComponents")
           << ",\n  \"FloatingPartsRemoved\": " << CountOf(fd, "FloatingPartsRemoved")
+          << ",\n  \"PartsBeyondSeedsRemoved\": " << CountOf(fd, "PartsBeyondSeedsRemoved")
           << ",\n  \"ModelCandidates\": " << o.Models
           << ",\n  \"ModelChosen\": " << CountOf(fd, "ModelChosen") << ",\n  \"MatchError\": "
           << (fd->GetArray("MatchError") ? fd->GetArray("MatchError")->GetTuple1(0) : 0.0) << ",\n";

@@ -225,16 +225,18 @@ TEST(ContinuousConstraints, ConnectedObjectsGrowFromTheirSeeds)
 {
   const Loaded cube = Load("cube.obj");
   for (int seeds : { 1, 3 })
-  {
-    ContinuousSynthesisOptions o;
-    o.Seed = 11;
-    o.BlockSize = 0;
-    o.Constraints.Connected.push_back({ 0, seeds });
-    const Voxels v = Synthesize(cube, { 12, 12, 4 }, o);
-    const auto parts = v.PartsOnGround();
-    EXPECT_GE(parts.size(), 1u);
-    EXPECT_LE(parts.size(), static_cast<std::size_t>(seeds)) << seeds << " seeds";
-  }
+    for (double block : { 0.0, 4.0 }) // with blocks, parts a later block split off are emptied
+    {
+      ContinuousSynthesisOptions o;
+      o.Seed = 13; // with blocks of 4 and 3 seeds, one part split off is emptied
+      o.BlockSize = block;
+      o.Constraints.Connected.push_back({ 0, seeds });
+      const Voxels v = Synthesize(cube, { 12, 12, 4 }, o);
+      const auto parts = v.PartsOnGround();
+      EXPECT_GE(parts.size(), 1u);
+      EXPECT_LE(parts.size(), static_cast<std::size_t>(seeds))
+        << seeds << " seeds, block " << block;
+    }
   ContinuousSynthesisOptions o;
   o.Seed = 11;
   o.BlockSize = 0;

@@ -83,12 +83,22 @@ public:
   /// MatchError (ContinuousConstraints.h) of a labelling of the whole arrangement.
   double MatchError(const std::vector<std::int32_t>& labels) const;
 
+  struct Removed
+  {
+    std::int64_t Floating = 0;    ///< grounded runs: parts that did not touch the ground
+    std::int64_t BeyondSeeds = 0; ///< connectivity: parts beyond the seeds' count
+  };
   /**
-   * Grounded runs: empties every connected solid part that does not touch the ground (always
-   * consistent: a part's vertices see only empty space once it is gone). Returns the number of
-   * parts removed.
+   * Empties stray connected solid parts (always consistent: a part's vertices see only empty
+   * space once it is gone): in grounded runs every part that does not touch the ground; when
+   * every solid type grows from seeds, all but the largest parts (by vertices), as many as the
+   * seeds (with blocks, a later block can split a grown part).
    */
-  std::int64_t RemoveFloating(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  Removed RemoveStrayParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  /// Whether RemoveStrayParts has anything to do.
+  bool RemovesStrayParts() const;
+  /// When every solid type grows from seeds, the number of seeds; else 0.
+  std::int64_t SeedsOfAllSolid() const;
 
 private:
   std::int64_t CellOf(std::int64_t v) const;

@@ -48,24 +48,12 @@ double ConstraintPlan::MatchError(const std::vector<std::int32_t>& labels) const
       error += 1 - fit[k] / (static_cast<double>(highest[k]) * tally[k]);
   }
   // Connectivity of every solid type from seeds: parts beyond the seeds.
-  std::uint64_t seeded = 0;
-  std::int64_t seeds = 0;
-  for (const auto& c : this->Constraints.Connected)
+  if (const std::int64_t seeds = this->SeedsOfAllSolid())
   {
-    if (c.Seeds <= 0)
-      continue;
-    seeded |= c.Type == 0 ? this->Solid : Bit(this->BitOf(c.Type));
-    seeds += c.Seeds;
-  }
-  if (seeded != 0 && seeded == this->Solid)
-  {
-    std::vector<std::uint64_t> types(this->K);
-    for (std::size_t a = 0; a < this->K; ++a)
-      types[a] = this->TypesOfLabel[a];
     std::vector<std::int64_t> component;
     const std::int64_t parts = SolidComponents(
       this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); },
-      this->Solid, types, component);
+      this->Solid, this->TypesOfLabel, component);
     error += static_cast<double>(std::max<std::int64_t>(parts - seeds, 0));
   }
   return error;

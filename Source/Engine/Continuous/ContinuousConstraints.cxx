@@ -581,26 +581,70 @@ double ConstraintPlan::Mismatch(const std::vector<double>& tally) const
   return sum;
 }
 
-std::int64_t ConstraintPlan::RemoveFloating(std::vector<std::int32_t>& labels, int emptyLabel) const
+std::int64_t ConstraintPlan::SeedsOfAllSolid() const
 {
+  std::uint64_t seeded = 0;
+  std::int64_t seeds = 0;
+  for (const auto& c : this->Constraints.Connected)
+  {
+    if (c.Seeds <= 0)
+      continue;
+    seeded |= c.Type == 0 ? this->Solid : Bit(this->BitOf(c.Type));
+    seeds += c.Seeds;
+  }
+  return seeded != 0 && seeded == this->Solid ? seeds : 0;
+}
+
+bool ConstraintPlan::RemovesStrayParts() const
+{
+  return this->Constraints.Grounded || this->SeedsOfAllSolid() > 0;
+}
+
+ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
+  std::vector<std::int32_t>& labels, int emptyLabel) const
+{
+  Removed removed;
+  if (!this->RemovesStrayParts())
+    return removed;
   std::vector<std::int64_t> component;
   const std::int64_t parts = SolidComponents(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
     this->TypesOfLabel, component);
-  std::vector<char> grounded(static_cast<std::size_t>(parts), 0);
+  std::vector<char> keep(static_cast<std::size_t>(parts), this->Constraints.Grounded ? 0 : 1);
+  std::vector<std::int64_t> size(static_cast<std::size_t>(parts), 0);
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
     const std::int64_t c = component[static_cast<std::size_t>(v)];
-    if (c >= 0 && this->OnGround(v))
-      grounded[static_cast<std::size_t>(c)] = 1;
+    if (c < 0)
+      continue;
+    size[static_cast<std::size_t>(c)] += 1;
+    if (this->Constraints.Grounded && this->OnGround(v))
+      keep[static_cast<std::size_t>(c)] = 1;
+  }
+  removed.Floating = parts - std::count(keep.begin(), keep.end(), 1);
+  if (const std::int64_t seeds = this->SeedsOfAllSolid())
+  {
+    // The largest parts kept, as many as the seeds (ties: the part found first).
+    std::vector<std::int64_t> order;
+    for (std::int64_t c = 0; c < parts; ++c)
+      if (keep[static_cast<std::size_t>(c)])
+        order.push_back(c);
+    std::stable_sort(order.begin(), order.end(),
+      [&size](std::int64_t x, std::int64_t y)
+      { return size[static_cast<std::size_t>(x)] > size[static_cast<std::size_t>(y)]; });
+    for (std::size_t k = static_cast<std::size_t>(seeds); k < order.size(); ++k)
+    {
+      keep[static_cast<std::size_t>(order[k])] = 0;
+      ++removed.BeyondSeeds;
+    }
   }
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
     const std::int64_t c = component[static_cast<std::size_t>(v)];
-    if (c >= 0 && !grounded[static_cast<std::size_t>(c)])
+    if (c >= 0 && !keep[static_cast<std::size_t>(c)])
       labels[static_cast<std::size_t>(v)] = emptyLabel;
   }
-  return parts - std::count(grounded.begin(), grounded.end(), 1);
+  return removed;
 }
 
 } // namespace detail

@@ -188,12 +188,10 @@ public:
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
   std::int64_t BlockAt(std::size_t position) const { return this->Order[position]; }
-  /// Grounded runs: empties the solid parts that do not touch the ground.
-  std::int64_t RemoveFloating()
+  /// Empties stray solid parts: floating (grounded runs), beyond the seeds (connectivity).
+  detail::ConstraintPlan::Removed RemoveStrayParts()
   {
-    return this->Options.Constraints.Grounded
-      ? this->Plan->RemoveFloating(this->Result.Labels, this->Rules.EmptyLabel())
-      : 0;
+    return this->Plan->RemoveStrayParts(this->Result.Labels, this->Rules.EmptyLabel());
   }
 
   bool WholeModel() const { return this->Whole; }
@@ -701,12 +699,17 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     run.EmptyModel();
     return result;
   }
-  result.FloatingPartsRemoved = run.RemoveFloating();
+  const auto removed = run.RemoveStrayParts();
+  result.FloatingPartsRemoved = removed.Floating;
+  result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
     result.Message +=
       ", " + std::to_string(result.FloatingPartsRemoved) + " floating parts emptied";
+  if (removed.BeyondSeeds > 0)
+    result.Message +=
+      ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";
   return result;
 }
 

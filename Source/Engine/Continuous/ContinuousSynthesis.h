@@ -92,6 +92,9 @@ struct ContinuousSynthesisResult
   std::string Message; ///< why it failed, or a summary
   /// Grounded runs: solid parts that did not touch the ground and were emptied.
   std::int64_t FloatingPartsRemoved = 0;
+  /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
+  /// (with blocks, a later block can split a grown part).
+  std::int64_t PartsBeyondSeedsRemoved = 0;
   /// With several model candidates: which was kept (0-based; its seed is Seed + this) and its
   /// MatchError; −1 and 0 otherwise.
   int ModelChosen = -1;

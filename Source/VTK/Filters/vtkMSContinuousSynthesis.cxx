@@ -284,6 +284,8 @@ void vtkMSContinuousSynthesis::FillOutput(
     fields, "GroundedComponents", static_cast<vtkIdType>(m.GroundedComponents));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "FloatingPartsRemoved", static_cast<vtkIdType>(result.FloatingPartsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "PartsBeyondSeedsRemoved", static_cast<vtkIdType>(result.PartsBeyondSeedsRemoved));
   for (const auto& [type, share] : m.TypeShares)
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       fields, ("TypeShare_" + std::to_string(type)).c_str(), share);

@@ -21,7 +21,8 @@
  * object types (on by default; TargetFractions), and a guide (input port 2, optional): image data
  * stretched over the output box whose point arrays `Weight_<type>` (a type number or name) weight
  * the labels holding that type, 0 removing them there. The field data then also has `Components`,
- * `GroundedComponents`, `FloatingPartsRemoved` and `TypeShare_<type>`.
+ * `GroundedComponents`, `FloatingPartsRemoved`, `PartsBeyondSeedsRemoved` and `TypeShare_<type>`
+ * (vertex occupancy; the mesh filter gives volume shares).
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
