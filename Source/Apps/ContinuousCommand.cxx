@@ -217,7 +217,8 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   synthesis->SetKeepProportions(!o.NoProportions);
   synthesis->SetBlockCandidates(o.Candidates);
   synthesis->SetModelCandidates(o.Models);
-  synthesis->SetMirrorAxis(o.Mirror.empty() ? -1 : o.Mirror[0] - 'x');
+  synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,
+    o.Mirror.find('y') != std::string::npos, o.Mirror.find('z') != std::string::npos);
   auto joined = [](const std::vector<std::string>& items)
   {
     std::string out;

@@ -150,8 +150,8 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels); with a tileset "
     "also DIR/<tile>.obj, turned for each orientation"));
   s.add_option("--mirror", o.Mirror,
-     "make the output mirror-symmetric along AXES (continuous: one axis, mirrored across a "
-     "plane near the middle of the box)")
+     "make the output mirror-symmetric along AXES (continuous: across a plane near the middle "
+     "of the box for each axis)")
     ->check(Axes, "AXES")
     ->group("Constraints (both kinds)");
   discrete(s.add_option("--swap", o.Swaps, "labels A and B are each other's mirror images (A:B)")
@@ -288,8 +288,6 @@ void CheckKind(const Registered& r, bool polyhedral)
       o.Attempts = 20;
     if (o.Choice == "resemblance")
       throw UsageError{ "--choice resemblance applies to label grids, not to '" + o.Example + "'" };
-    if (o.Mirror.size() > 1)
-      throw UsageError{ "--mirror of a polyhedral example takes one axis, not '" + o.Mirror + "'" };
     return;
   }
   for (const auto& target : o.Targets)

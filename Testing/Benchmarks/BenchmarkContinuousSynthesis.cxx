@@ -88,7 +88,7 @@ void BM_ContinuousConstraints(benchmark::State& state)
   if (state.range(0) >= 2)
     options.Constraints.Thickness.push_back(
       { 1, msynth::FamilyAlongAxis(e.Analysis.Families(), 2), 1, {} });
-  options.MirrorAxis = state.range(0) >= 3 ? 0 : -1;
+  options.MirrorAxes = state.range(0) >= 3 ? 1 : 0;
   std::uint64_t seed = 1;
   std::int64_t parts = 0;
   for (auto _ : state)

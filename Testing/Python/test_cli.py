@@ -790,8 +790,6 @@ class CommandLineTest(unittest.TestCase):
                             (("synthesize", village, "--size", "4", "4", "4", "--spacing", "2"),
                              "--spacing applies to polyhedral examples"),
                             (("synthesize", data("Continuous/cube.obj"), "--size", "4", "4", "4",
-                              "--mirror", "xy"), "--mirror of a polyhedral example takes one axis"),
-                            (("synthesize", data("Continuous/cube.obj"), "--size", "4", "4", "4",
                               "--block", "2", "2", "2"), "--block applies to label grids"),
                             (("synthesize", village, "--size", "4.5", "4", "4"), "in sites"),
                             (("synthesize", village, "--size", "4", "4", "4", "--swap", "1-2"),

@@ -526,10 +526,10 @@ class ContinuousSynthesisTest(unittest.TestCase):
     def test_mirrored_models(self):
         """Reflection symmetry (TVCG 7): the model's polygons, reflected across the middle of
         their bounding box, are the model's polygons (same points and object types), checked on
-        the mesh; an axis with no symmetric planes is a clear error."""
-        for axis in (0, 1):
+        the mesh, for x, y and both at once; an axis with no symmetric planes is a clear error."""
+        for axes in ((0,), (1,), (0, 1)):
             reader, arrangement, solver, mesh, _ = chain("house.obj", (20, 20, 8), seed=4)
-            solver.SetMirrorAxis(axis)
+            solver.SetMirror(*[int(a in axes) for a in range(3)])
             solver.SetGrounded(True)
             errors = ErrorObserver(solver)
             mesh.Update()
@@ -539,17 +539,18 @@ class ContinuousSynthesisTest(unittest.TestCase):
             self.assertGreater(len(polys), 0)
             inside = vtk_to_numpy(model.GetCellData().GetArray("InsideType"))
             outside = vtk_to_numpy(model.GetCellData().GetArray("OutsideType"))
-            middle = (points[:, axis].min() + points[:, axis].max()) / 2
-            def key(poly, flip):
-                c = points[poly].copy()
-                if flip:
-                    c[:, axis] = 2 * middle - c[:, axis]
-                return tuple(sorted(tuple(np.round(p, 5)) for p in c))
-            faces = {(key(p, False), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
-            mirrored = {(key(p, True), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
-            self.assertEqual(faces, mirrored, "axis %d" % axis)
+            for axis in axes:
+                middle = (points[:, axis].min() + points[:, axis].max()) / 2
+                def key(poly, flip):
+                    c = points[poly].copy()
+                    if flip:
+                        c[:, axis] = 2 * middle - c[:, axis]
+                    return tuple(sorted(tuple(np.round(p, 5)) for p in c))
+                faces = {(key(p, False), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
+                mirrored = {(key(p, True), int(a), int(b)) for p, a, b in zip(polys, inside, outside)}
+                self.assertEqual(faces, mirrored, "axes %s, axis %d" % (axes, axis))
         reader, arrangement, solver, mesh, _ = chain("tetrahedron.obj", (12, 12, 6), seed=1)
-        solver.SetMirrorAxis(0)  # the slanted face (1, 1, 1) has no image (-1, 1, 1)
+        solver.SetMirror(1, 0, 0)  # the slanted face (1, 1, 1) has no image (-1, 1, 1)
         errors = ErrorObserver(solver)
         solver.Update()
         self.assertIn("mirror", errors.text())

@@ -146,32 +146,48 @@ NeighbourhoodLabel MirrorLabel(
     });
 }
 
-void RestrictToMirrorImages(
-  const MirrorPlan& plan, const PlaneArrangement& half, std::vector<std::uint64_t>& catalogs)
+void RestrictToMirrorImages(const std::vector<const MirrorPlan*>& plans,
+  const PlaneArrangement& part, std::vector<std::uint64_t>& catalogs)
 {
-  const int k = static_cast<int>(plan.LabelImage.size());
+  if (plans.empty())
+    return;
+  const int k = static_cast<int>(plans[0]->LabelImage.size());
   const auto words = static_cast<std::size_t>((k + 63) / 64);
-  std::vector<std::uint64_t> imaged(words, 0), symmetric(words, 0);
+  // Labels whose image under every product of the reflections exists (the reflections commute).
+  std::vector<std::uint64_t> imaged(words, 0);
   for (int a = 0; a < k; ++a)
   {
-    const int image = plan.LabelImage[static_cast<std::size_t>(a)];
-    if (image >= 0)
+    bool all = true;
+    for (unsigned subset = 1; all && subset < (1u << plans.size()); ++subset)
+    {
+      int image = a;
+      for (std::size_t j = 0; j < plans.size() && image >= 0; ++j)
+        if ((subset >> j) & 1u)
+          image = plans[j]->LabelImage[static_cast<std::size_t>(image)];
+      all = image >= 0;
+    }
+    if (all)
       imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
-    if (image == a)
-      symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
   }
-  const auto& p = half.Parameters();
-  const auto axis = static_cast<std::size_t>(plan.Axis);
-  const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan.Seam);
-  const double near = 0.25 * p.Spacing(half.Families(), plan.Family);
-  for (std::int64_t v = 0; v < half.NumberOfVertices(); ++v)
+  const auto& p = part.Parameters();
+  for (const MirrorPlan* plan : plans)
   {
-    // On the seam: on a plane of the family across the axis, and nearer than its spacing.
-    const bool onSeam =
-      ((half.FamilyMask(v) >> plan.Family) & 1u) && std::abs(half.Position(v)[axis] - seam) < near;
-    std::uint64_t* d = catalogs.data() + static_cast<std::size_t>(v) * words;
-    for (std::size_t w = 0; w < words; ++w)
-      d[w] &= (onSeam ? symmetric : imaged)[w];
+    std::vector<std::uint64_t> symmetric(words, 0);
+    for (int a = 0; a < k; ++a)
+      if (plan->LabelImage[static_cast<std::size_t>(a)] == a)
+        symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+    const auto axis = static_cast<std::size_t>(plan->Axis);
+    const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan->Seam);
+    const double near = 0.25 * p.Spacing(part.Families(), plan->Family);
+    for (std::int64_t v = 0; v < part.NumberOfVertices(); ++v)
+    {
+      // On the seam: on a plane of the family across the axis, and nearer than its spacing.
+      const bool onSeam = ((part.FamilyMask(v) >> plan->Family) & 1u) &&
+        std::abs(part.Position(v)[axis] - seam) < near;
+      std::uint64_t* d = catalogs.data() + static_cast<std::size_t>(v) * words;
+      for (std::size_t w = 0; w < words; ++w)
+        d[w] &= onSeam ? symmetric[w] : imaged[w];
+    }
   }
 }
 
@@ -228,13 +244,19 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
 {
   if (options.Snapshots > 0)
     throw Error("mirror: catalog snapshots are not available with reflection symmetry");
-  const MirrorPlan plan = PlanMirror(analysis, arrangement.Parameters(), options.MirrorAxis);
+  if (options.MirrorAxes < 0 || options.MirrorAxes > 7)
+    throw Error("mirror: the axes are bits 0 (x), 1 (y) and 2 (z)");
+  int first = 0;
+  while (!((options.MirrorAxes >> first) & 1))
+    ++first;
+  const MirrorPlan plan = PlanMirror(analysis, arrangement.Parameters(), first);
   ArrangementParameters half = arrangement.Parameters();
   const auto axis = static_cast<std::size_t>(plan.Axis);
   half.BoxHigh[axis] = plan.Seam;
   const PlaneArrangement halfArrangement(arrangement.Families(), half);
   ContinuousSynthesisOptions o = options;
-  o.HalfOf = &plan;
+  o.MirrorAxes &= ~(1 << first); // the other axes mirror the half in turn
+  o.PartOf.push_back(&plan);
   ContinuousSynthesisResult result = SynthesizeContinuous(analysis, halfArrangement, o);
   const std::vector<std::int32_t> halfLabels = std::move(result.Labels);
   const int empty = analysis.Find(NeighbourhoodLabel::Constant(0));

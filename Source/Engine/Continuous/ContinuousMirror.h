@@ -50,17 +50,19 @@ NeighbourhoodLabel MirrorLabel(
   const PlaneFamilySet& families, const NeighbourhoodLabel& label, const MirrorPlan& plan);
 
 /**
- * Half of a mirrored model: keeps in each vertex's catalog (@p catalogs, one bit set per vertex,
- * (labels + 63) / 64 words each) only labels whose mirror image the example has, and on the seam
- * only labels that are their own image.
+ * The part of a model mirrored across the plans' axes: keeps in each vertex's catalog
+ * (@p catalogs, one bit set per vertex, (labels + 63) / 64 words each) only labels whose images
+ * under every combination of the reflections the example has, and on a plan's seam only labels
+ * that are their own image under that reflection.
  */
-void RestrictToMirrorImages(
-  const MirrorPlan& plan, const PlaneArrangement& half, std::vector<std::uint64_t>& catalogs);
+void RestrictToMirrorImages(const std::vector<const MirrorPlan*>& plans,
+  const PlaneArrangement& part, std::vector<std::uint64_t>& catalogs);
 
 /**
- * Continuous synthesis with reflection symmetry (options.MirrorAxis): the half box labelled with
- * the seam's rules, then reflected onto @p arrangement (the whole box). Called by
- * SynthesizeContinuous. @throw Error as PlanMirror, or with snapshots.
+ * Continuous synthesis with reflection symmetry (options.MirrorAxes): the half box up to the seam
+ * of the lowest axis labelled (recursively mirrored across the other axes) with the seams'
+ * rules, then reflected onto @p arrangement (the whole box). Called by SynthesizeContinuous.
+ * @throw Error as PlanMirror, or with snapshots.
  */
 ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);

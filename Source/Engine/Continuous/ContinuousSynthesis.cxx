@@ -90,7 +90,7 @@ ArrangementRules::ArrangementRules(
   this->Finish();
 }
 
-void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxis) const
+void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes) const
 {
   const int w = this->Words();
   std::fill(out, out + w, 0);
@@ -104,9 +104,12 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
   }
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
   {
-    if (l->Vertex < 0 &&
-      !(seamAxis >= 0 &&
-        this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(seamAxis)] > 0))
+    bool acrossSeam = false;
+    for (int a = 0; a < 3; ++a)
+      acrossSeam = acrossSeam ||
+        (((seamAxes >> a) & 1) &&
+          this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(a)] > 0);
+    if (l->Vertex < 0 && !acrossSeam)
     {
       const std::uint64_t* e =
         this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
@@ -159,12 +162,14 @@ public:
     this->Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
     result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
     this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
-    const int seam = options.HalfOf ? options.HalfOf->Axis : -1;
+    int seams = 0;
+    for (const MirrorPlan* plan : options.PartOf)
+      seams |= 1 << plan->Axis;
     for (std::int64_t v = 0; v < this->N; ++v)
       this->Rules.InitialDomain(
-        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words, seam);
-    if (options.HalfOf)
-      RestrictToMirrorImages(*options.HalfOf, arrangement, this->Initial);
+        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words, seams);
+    if (!options.PartOf.empty())
+      RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
     if (options.Choice == LabelChoice::Frequency)
     {
       for (const auto& info : analysis.Labels())
@@ -631,7 +636,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
 {
   if (options.Constraints.ModelCandidates != 1)
     return SynthesizeCandidates(analysis, arrangement, options);
-  if (options.MirrorAxis >= 0 && !options.HalfOf)
+  if (options.MirrorAxes != 0)
     return SynthesizeMirrored(analysis, arrangement, options);
   const auto start = std::chrono::steady_clock::now();
   if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))

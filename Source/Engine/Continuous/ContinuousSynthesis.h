@@ -34,10 +34,10 @@ public:
   /**
    * The catalog a vertex starts with (Words() words): labels whose families all have a plane
    * through @p v, and that are empty along every edge of @p v leaving the output box — but for
-   * edges leaving with a positive component along @p seamAxis (a mirror seam, ≥ 0), which may
-   * hold anything.
+   * edges leaving with a positive component along an axis of @p seamAxes (bits: mirror seams),
+   * which may hold anything.
    */
-  void InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxis = -1) const;
+  void InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes = 0) const;
   /// Number of labels in InitialDomain(v).
   int InitialCount(std::int64_t v) const;
   /// Id of eval(label, direction class d) among all evaluated neighbourhoods.
@@ -70,11 +70,12 @@ struct ContinuousSynthesisOptions
   LabelChoice Choice = LabelChoice::Uniform;
   /// Dimensional, connectivity, ground, guide and proportion constraints (TVCG §4.5–4.7).
   ContinuousConstraints Constraints;
-  /// Reflection symmetry across this axis (0 x, 1 y, 2 z; −1 none): see ContinuousMirror.h.
-  /// Not with snapshots.
-  int MirrorAxis = -1;
-  /// Internal: set by the mirrored run on the half arrangement it labels (the seam's rules).
-  const MirrorPlan* HalfOf = nullptr;
+  /// Reflection symmetry across these axes (bit 0 x, bit 1 y, bit 2 z; 0 none): see
+  /// ContinuousMirror.h. Not with snapshots.
+  int MirrorAxes = 0;
+  /// Internal: set by the mirrored runs on the part of the arrangement they label (the seams'
+  /// rules), outermost first.
+  std::vector<const MirrorPlan*> PartOf;
   int Snapshots = 0; ///< catalog snapshots after the start, at even fractions of the work
   std::function<void(const CatalogSnapshot&)> OnSnapshot;
   /// Called with the fraction done; return false to cancel (Status Cancelled, no labels).

@@ -63,7 +63,8 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TargetFractions: " << this->TargetFractions << "\n";
   os << indent << "BlockCandidates: " << this->BlockCandidates << "\n";
   os << indent << "ModelCandidates: " << this->ModelCandidates << "\n";
-  os << indent << "MirrorAxis: " << this->MirrorAxis << "\n";
+  os << indent << "Mirror: " << this->Mirror[0] << " " << this->Mirror[1] << " " << this->Mirror[2]
+     << "\n";
 }
 
 int vtkMSContinuousSynthesis::FillInputPortInformation(int port, vtkInformation* info)
@@ -168,7 +169,8 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
-  options.MirrorAxis = self->GetMirrorAxis();
+  const int* mirror = self->GetMirror();
+  options.MirrorAxes = (mirror[0] ? 1 : 0) | (mirror[1] ? 2 : 0) | (mirror[2] ? 4 : 0);
   snapshots.clear();
   options.OnSnapshot = [&snapshots](const msynth::CatalogSnapshot& s) { snapshots.push_back(s); };
   options.Progress = vtkMSSynthesisRun::Progress(self);

@@ -142,10 +142,10 @@ public:
   vtkGetCharFromStdStringMacro(TargetFractions);
   ///@}
   ///@{
-  /// Reflection symmetry: the model is its own mirror image across a plane near the middle of
-  /// the box, normal to this axis (0 x, 1 y, 2 z; -1 none). Default -1.
-  vtkSetClampMacro(MirrorAxis, int, -1, 2);
-  vtkGetMacro(MirrorAxis, int);
+  /// Reflection symmetry: flags (x, y, z); the model is its own mirror image across a plane near
+  /// the middle of the box normal to each axis flagged. Default (0, 0, 0).
+  vtkSetVector3Macro(Mirror, int);
+  vtkGetVector3Macro(Mirror, int);
   ///@}
   ///@{
   /// With proportions steered: labellings tried per block, the best kept. Default 1.
@@ -189,7 +189,7 @@ private:
   std::string TargetFractions;
   int BlockCandidates = 1;
   int ModelCandidates = 1;
-  int MirrorAxis = -1;
+  int Mirror[3] = { 0, 0, 0 };
 
   struct Cache;
   std::unique_ptr<Cache> Cached;
