@@ -27,6 +27,18 @@ ANGLES = 2 * np.pi * (np.arange(N2D) + 0.5) / N2D
 DIRS2D = np.stack([np.cos(ANGLES), np.sin(ANGLES)], axis=1)
 
 
+def regions_of(polydata):
+    """The mesh's connected parts, as vtkPolyDataConnectivityFilter finds them (RegionId per
+    point)."""
+    from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
+    parts = vtkPolyDataConnectivityFilter()
+    parts.SetInputData(polydata)
+    parts.SetExtractionModeToAllRegions()
+    parts.ColorRegionsOn()
+    parts.Update()
+    return parts
+
+
 def chain(example, size, seed=1, spacing=0.0, snapshots=0, block=4.0):
     reader = modelsynth.vtkMSPolyhedralExampleReader()
     reader.SetFileName(data("Continuous/" + example))
@@ -366,7 +378,6 @@ class ContinuousSynthesisTest(unittest.TestCase):
         half (a guide), checked on the mesh: every connected part reaches the ground, wall floors
         and ceilings lie only at z = 0 and 2, no roof polygon in the left half of the box."""
         from vtkmodules.vtkCommonDataModel import vtkImageData
-        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
         from vtkmodules.util.numpy_support import numpy_to_vtk
         guide = vtkImageData()
         guide.SetDimensions(2, 1, 1)
@@ -397,11 +408,7 @@ class ContinuousSynthesisTest(unittest.TestCase):
                 self.assertIn(round(corners[0, 2], 6), (0.0, 2.0), "a wall floor or ceiling")
             if 2 in (a, b):
                 self.assertGreaterEqual(corners[:, 0].mean(), middle, "a roof in the left half")
-        parts = vtkPolyDataConnectivityFilter()
-        parts.SetInputData(model)
-        parts.SetExtractionModeToAllRegions()
-        parts.ColorRegionsOn()
-        parts.Update()
+        parts = regions_of(model)
         region = vtk_to_numpy(parts.GetOutput().GetPointData().GetArray("RegionId"))
         z = vtk_to_numpy(parts.GetOutput().GetPoints().GetData())[:, 2]
         for r in np.unique(region):
@@ -676,7 +683,6 @@ class ContinuousSynthesisTest(unittest.TestCase):
         """The bundled roads (2D) and pipes (3D), each grown from one seed with a width, through
         the filter and the command line: one connected part on the mesh that spans most of the
         box, and a model msynth check accepts."""
-        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
         for name, size, width in (("roads.obj", (24, 24, 0), "road:xy"),
                                   ("pipes.obj", (12, 12, 6), "pipe:xy pipe:yz pipe:xz")):
             reader, arrangement, solver, mesh, _ = chain(name, size, seed=2, block=0)
@@ -685,11 +691,7 @@ class ContinuousSynthesisTest(unittest.TestCase):
             errors = ErrorObserver(solver)
             mesh.Update()
             self.assertEqual(errors.text(), "")
-            parts = vtkPolyDataConnectivityFilter()
-            parts.SetInputData(mesh.GetOutput())
-            parts.SetExtractionModeToAllRegions()
-            parts.Update()
-            self.assertEqual(parts.GetNumberOfExtractedRegions(), 1, name)
+            self.assertEqual(regions_of(mesh.GetOutput()).GetNumberOfExtractedRegions(), 1, name)
             bounds = mesh.GetOutput().GetBounds()
             for axis, extent in enumerate(size):
                 if extent:
@@ -716,7 +718,6 @@ class ContinuousSynthesisTest(unittest.TestCase):
         """The oil platform with dimensional constraints (decks one spacing thick, beams one across
         x and y) grown from three seeds on the ground, the whole model at once: at most three
         connected parts on the mesh, each on the ground, decks one unit thick at height 4."""
-        from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
         for seed in (1, 2):
             reader, arrangement, solver, mesh, _ = chain("oil-platform.obj", (24, 24, 12), seed=seed,
                                                          block=0)
@@ -726,11 +727,7 @@ class ContinuousSynthesisTest(unittest.TestCase):
             errors = ErrorObserver(solver)
             mesh.Update()
             self.assertEqual(errors.text(), "")
-            parts = vtkPolyDataConnectivityFilter()
-            parts.SetInputData(mesh.GetOutput())
-            parts.SetExtractionModeToAllRegions()
-            parts.ColorRegionsOn()
-            parts.Update()
+            parts = regions_of(mesh.GetOutput())
             region = vtk_to_numpy(parts.GetOutput().GetPointData().GetArray("RegionId"))
             z = vtk_to_numpy(parts.GetOutput().GetPoints().GetData())[:, 2]
             self.assertGreaterEqual(len(np.unique(region)), 1)

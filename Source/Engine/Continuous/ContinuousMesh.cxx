@@ -283,21 +283,7 @@ std::map<int, double> TypeVolumes(const ContinuousMesh& mesh)
   {
     double sum = 0;
     for (const auto& poly : polygons)
-    {
-      double part = 0; // 2D: the face's area; 3D: the signed cone volume from the origin
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k)
-      {
-        const Point3& a = mesh.Points[static_cast<std::size_t>(poly[0])];
-        const Point3& b = mesh.Points[static_cast<std::size_t>(poly[k])];
-        const Point3& c = mesh.Points[static_cast<std::size_t>(poly[k + 1])];
-        part += mesh.Planar
-          ? ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2
-          : (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-              a[2] * (b[0] * c[1] - b[1] * c[0])) /
-            6;
-      }
-      sum += mesh.Planar ? std::abs(part) : part;
-    }
+      sum += point3::FanMeasure(mesh.Points, poly, mesh.Planar);
     volumes[type] = sum;
   }
   return volumes;

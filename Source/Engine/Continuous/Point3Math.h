@@ -4,6 +4,7 @@
 #include "Formats/PolyhedralExample.h"
 
 #include <cmath>
+#include <vector>
 
 namespace msynth
 {
@@ -40,6 +41,26 @@ inline Point3 Unit(const Point3& a)
 {
   const double n = Norm(a);
   return { a[0] / n, a[1] / n, a[2] / n };
+}
+
+/**
+ * The measure of polygon @p poly (indices into @p points) by a fan from its first corner: in 2D
+ * (@p planar, x and y) its area, unsigned; in 3D the signed volume of the cone from the origin
+ * (summed over a closed, outward surface: the enclosed volume).
+ */
+template <typename Index>
+double FanMeasure(const std::vector<Point3>& points, const std::vector<Index>& poly, bool planar)
+{
+  double sum = 0;
+  for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+  {
+    const Point3& a = points[static_cast<std::size_t>(poly[0])];
+    const Point3& b = points[static_cast<std::size_t>(poly[k])];
+    const Point3& c = points[static_cast<std::size_t>(poly[k + 1])];
+    sum += planar ? ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2
+                  : Dot(a, Cross(b, c)) / 6;
+  }
+  return planar ? std::abs(sum) : sum;
 }
 
 } // namespace point3

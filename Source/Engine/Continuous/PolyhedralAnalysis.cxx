@@ -595,21 +595,8 @@ void MeasureTypes(
   }
   for (std::size_t f = 0; f < example.Faces.size(); ++f)
   {
-    const auto& face = example.Faces[f];
     const int type = example.ObjectTypes.at(static_cast<std::size_t>(example.FaceObject[f]));
-    double sum = 0;
-    for (std::size_t k = 1; k + 1 < face.size(); ++k)
-    {
-      const Point3& a = example.Points[static_cast<std::size_t>(face[0])];
-      const Point3& b = example.Points[static_cast<std::size_t>(face[k])];
-      const Point3& c = example.Points[static_cast<std::size_t>(face[k + 1])];
-      sum += example.Planar
-        ? ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2
-        : (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-            a[2] * (b[0] * c[1] - b[1] * c[0])) /
-          6;
-    }
-    volumes[type] += example.Planar ? std::abs(sum) : sum;
+    volumes[type] += point3::FanMeasure(example.Points, example.Faces[f], example.Planar);
   }
 }
 } // namespace
