@@ -57,6 +57,12 @@ def village(x, y, z):
     return EMPTY
 
 
+def ball(x, y, z):
+    """The rolling ball of dissertation Fig. 3.27 for time-varying synthesis: z is time; the
+    ball (1) moves one site to the right per frame, leaving a trail (2) behind it."""
+    return 1 if x == z else (2 if x == z - 1 else 0)
+
+
 def main():
     examples = os.path.join(DATA, "Examples")
     malformed = os.path.join(DATA, "Malformed")
@@ -69,6 +75,7 @@ def main():
     tileset_example(DATA)
     sample_images(DATA)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
+    write(label_image((6, 1, 8), ball), os.path.join(examples, "Ball.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
     cells = vtkImageData()

@@ -141,7 +141,10 @@ msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const 
   vdb->SetFileName((dir + name).c_str());
   vdb->AddMetadata("msynth_command", "animate");
   vdb->AddMetadata("frame", std::to_string(t).c_str());
-  Run(vdb);
+  {
+    ProgressBar bar(vdb, name + 1);
+    Run(vdb);
+  }
   return frame;
 }
 

@@ -180,8 +180,14 @@ int RunBatch(const BatchOptions& b)
     // The list's folder, then the entry's; IntoFolder makes each output's own.
     const std::string entryDir = b.Out + "/" + FolderName(i, e);
     for (const std::string& d : { b.Out, entryDir })
+    {
+      // As mkdir -p: --out output/batch in a fresh checkout.
+      for (std::size_t slash = d.find('/', 1); slash != std::string::npos;
+           slash = d.find('/', slash + 1))
+        ::mkdir(d.substr(0, slash).c_str(), 0777);
       if (::mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
         throw std::runtime_error("'" + d + "': cannot create folder: " + std::strerror(errno));
+    }
     int good = 0;
     long long failedBlocks = 0;
     double seconds = 0.0;

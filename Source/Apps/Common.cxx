@@ -218,13 +218,15 @@ long long CountOf(vtkFieldData* fd, const char* name)
   return array && array->GetNumberOfTuples() > 0 ? static_cast<long long>(array->GetTuple1(0)) : 0;
 }
 
-ProgressBar::ProgressBar(vtkAlgorithm* algorithm)
+ProgressBar::ProgressBar(vtkAlgorithm* algorithm, const char* stage)
   : Algorithm(algorithm)
+  , Stage(stage)
 {
   if (::isatty(STDERR_FILENO) == 0)
   {
     return;
   }
+  this->OnProgress(0);
   vtkNew<vtkCallbackCommand> callback;
   callback->SetClientData(this);
   callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data)
@@ -247,7 +249,7 @@ ProgressBar::~ProgressBar()
 void ProgressBar::OnProgress(double f)
 {
   const int width = 40, filled = static_cast<int>(f * width + 0.5);
-  std::cerr << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+  std::cerr << "\r" << this->Stage << " [" << std::string(static_cast<std::size_t>(filled), '#')
             << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
             << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
   this->Shown = true;

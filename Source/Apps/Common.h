@@ -105,7 +105,9 @@ void WriteXML(const std::string& path, DataT* data)
 class ProgressBar
 {
 public:
-  explicit ProgressBar(vtkAlgorithm* algorithm);
+  /// Shows "STAGE [####    ] 45%" on a terminal from @p algorithm's progress, from the start
+  /// (so a stage without progress events still says what runs).
+  explicit ProgressBar(vtkAlgorithm* algorithm, const char* stage = "synthesis");
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -113,6 +115,7 @@ public:
 private:
   void OnProgress(double fraction);
   vtkAlgorithm* Algorithm;
+  std::string Stage;
   unsigned long Observer = 0;
   bool Shown = false;
 };

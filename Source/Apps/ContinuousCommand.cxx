@@ -121,7 +121,10 @@ void WriteModelVDB(
   vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
   vdb->AddMetadata("block_spacings", std::to_string(o.Blocks).c_str());
   vdb->AddMetadata("plane_spacing", o.Spacing > 0 ? std::to_string(o.Spacing).c_str() : "derived");
-  Run(vdb);
+  {
+    ProgressBar bar(vdb, "model.vdb");
+    Run(vdb);
+  }
 }
 
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
@@ -132,7 +135,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     [&](std::ostream& out)
     {
       out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size[0]
-          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"blocks\": " << o.Blocks
+          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"blockSize\": " << o.Blocks
           << ",\n  \"seed\": " << o.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
           << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
       msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
@@ -273,7 +276,10 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     Run(synthesis);
   }
   lap("synthesis");
-  Run(mesh);
+  {
+    ProgressBar bar(mesh, "mesh");
+    Run(mesh);
+  }
   lap("mesh");
   vtkPolyData* model = mesh->GetOutput();
   vtkPolyData* labelled = synthesis->GetOutput();

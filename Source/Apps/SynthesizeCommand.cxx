@@ -6,6 +6,7 @@
 #include "Common.h"
 #include "Synthesize.h"
 
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSDiscreteSynthesis.h"
@@ -28,9 +29,11 @@
 #include "Formats/VTKXMLCheck.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <sys/stat.h>
 
@@ -525,6 +528,7 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
     vdb->WriteFloatLabelsOn();
     vdb->AddMetadata("msynth_command", "synthesize");
     vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
+    ProgressBar bar(vdb, "model.vdb");
     Run(vdb);
     written.push_back(dir + "/model.vdb");
   }
@@ -533,6 +537,7 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
 
 int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
 {
+  const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkMSLabelGridReader> reader;
   vtkNew<vtkMSDiscreteSynthesis> synthesis;
   const bool tileset = IsTileset(o.Example);
@@ -571,7 +576,20 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   {
     written.push_back(dir + "/catalog_0001.vdb ...");
   }
-  std::cout << MessageOf(model->GetFieldData()) << "\n"
+  // A summary a user reads first: the size, the labels used, blocks and the whole time.
+  std::set<long long> used;
+  if (vtkDataArray* labels = model->GetPointData()->GetArray("Label"))
+    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+      used.insert(static_cast<long long>(labels->GetTuple1(i)));
+  int dims[3];
+  model->GetDimensions(dims);
+  vtkFieldData* fd = model->GetFieldData();
+  std::cout << MessageOf(fd) << "\n"
+            << dims[0] << " x " << dims[1] << " x " << dims[2] << " sites, " << used.size()
+            << " distinct labels, " << CountOf(fd, "Blocks") << " blocks ("
+            << CountOf(fd, "BlocksFailed") << " failed), "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+            << " s in all\n"
             << "wrote ";
   for (std::size_t i = 0; i < written.size(); ++i)
   {

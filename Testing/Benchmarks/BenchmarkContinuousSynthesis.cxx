@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Continuous model synthesis (issue 5 targets): a ~30-polygon example giving ~10,000 output
+// Continuous model synthesis (targets): a ~30-polygon example giving ~10,000 output
 // polygons in under 5 s, and a plane arrangement of 10^6 vertices in under 10 s (time and
 // memory against the number of vertices, §4.5.7).
 #include "Continuous/ContinuousMesh.h"

@@ -95,7 +95,7 @@ static void BM_SynthesizeResemblance(benchmark::State& state)
 }
 BENCHMARK(BM_SynthesizeResemblance)->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);
 
-// 2D tileset at 128 x 128 (issue 3 target: under 20 ms). A small set of 3 tiles (7 labels:
+// 2D tileset at 128 x 128 (target: under 20 ms). A small set of 3 tiles (7 labels:
 // empty, a line and a corner in all orientations) until the published sets are bundled.
 static void BM_Tileset128(benchmark::State& state)
 {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Continuous example analysis (issue 4 target: a 1,000-polygon example with 10 plane families
+// Continuous example analysis (target: a 1,000-polygon example with 10 plane families
 // in under 1 s).
 #include "Continuous/PolyhedralAnalysis.h"
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <sys/stat.h>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -140,4 +141,25 @@ TEST(OutputFolder, DiscardWhileAnotherThreadWritesLeavesNothing)
     EXPECT_TRUE(left.empty()) << left.front();
   }
   msynth::RemoveTree(dir);
+}
+
+TEST(OutputFolder, MissingParentsAreMadeAndRemovedWhenNothingIsPublished)
+{
+  // --out output/village in a fresh checkout: the parents are made as with mkdir -p; a run
+  // that publishes nothing leaves no trace of them, one that publishes keeps them.
+  const std::string top = std::string(MSYNTH_TEST_TMP) + "/parents-" + std::to_string(::getpid());
+  const std::string dir = top + "/a/b";
+  {
+    msynth::OutputFolder folder(dir);
+    struct stat info;
+    EXPECT_EQ(::stat((top + "/a").c_str(), &info), 0);
+  }
+  struct stat info;
+  EXPECT_NE(::stat(top.c_str(), &info), 0) << "unpublished: the parents are removed";
+  {
+    msynth::OutputFolder folder(dir);
+    msynth::WriteFileAtomically(folder.Stage() + "/x.txt", [](std::ostream& out) { out << "x"; });
+    folder.Publish();
+  }
+  EXPECT_EQ(Slurp(dir + "/x.txt"), "x");
 }

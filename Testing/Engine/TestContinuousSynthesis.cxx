@@ -138,7 +138,7 @@ TEST(ContinuousSynthesis, BundledExamplesPassTheCheck)
     Point3 Size;
     double Spacing;
   };
-  // Every bundled example (issue 5's list), in a box a few times its size.
+  // Every bundled example, in a box a few times its size.
   const Case cases[] = { { "triangle2d.obj", { 16, 12, 0 }, 1 },
     { "two-objects2d.obj", { 18, 12, 0 }, 0 }, { "concave2d.obj", { 12, 12, 0 }, 0 },
     { "cube.obj", { 5, 5, 3 }, 0 }, { "box-building.obj", { 16, 12, 10 }, 1 },

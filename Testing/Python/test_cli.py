@@ -361,6 +361,10 @@ class CommandLineTest(unittest.TestCase):
         r = run("synthesize", example, "--size", "30", "24", "5", "--block", "10", "10", "5",
                 "--seed", "9", "--ground", "1", "--empty", "0", "--order", "entropy", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
+        # The end summary: size, labels, blocks and the time of the whole run.
+        summary = [line for line in r.stdout.splitlines() if line.startswith("30 x 24 x 5 sites, ")]
+        self.assertEqual(len(summary), 1, r.stdout)
+        self.assertRegex(summary[0], r"sites, \d+ distinct labels, \d+ blocks \(0 failed\), [0-9.e-]+ s in all$")
         for name in ("labels.vti", "mesh.vtp", "model.vdb", "statistics.json"):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
         from vtkmodules.vtkIOXML import vtkXMLPolyDataReader

@@ -1,4 +1,4 @@
-"""Continuous model synthesis, example analysis (issue 4) from plain vtkmodules Python: the
+"""Continuous model synthesis, example analysis from plain vtkmodules Python: the
 polyhedral example reader and the neighbourhood-label filter, checked against the
 dissertation's counts and, for 2D examples, against an independent brute-force recomputation
 of every vertex figure (Eq. 4.22) by sampling directions around each point."""

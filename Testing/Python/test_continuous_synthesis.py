@@ -1,4 +1,4 @@
-"""Continuous model synthesis II (issue 5) from plain vtkmodules Python: the chain example reader
+"""Continuous model synthesis II from plain vtkmodules Python: the chain example reader
 -> plane arrangement -> label solver -> mesh extraction, and every synthesized model checked
 here without the C++ code: the vertex figure (the object type met in many directions) at every
 vertex, edge and face of the output is recomputed by point-in-polygon tests (2D) or generalized

@@ -2,7 +2,7 @@
 #pragma once
 /**
  * @file ArrangementBuilder.h
- * @brief How a PlaneArrangement is built (internal; D§4.5.1-4.5.2, design note §3), in named
+ * @brief How a PlaneArrangement is built (internal; D§4.5.1-4.5.2), in named
  * steps: check the parameters, find each family's planes through the box, list the generating
  * tuples of families, (1) generate the vertices exactly, (2) number them in scan-line order,
  * (3) list the line directions, (4) link every vertex to the next one along each line.

@@ -2,8 +2,8 @@
 #pragma once
 /**
  * @file ContinuousMesh.h
- * @brief Mesh extraction from a labelled plane arrangement (dissertation §4.5.8; design notes
- * §5) and the independent check of a synthesized model (Eq. 4.1).
+ * @brief Mesh extraction from a labelled plane arrangement (dissertation §4.5.8) and the
+ * independent check of a synthesized model (Eq. 4.1).
  *
  * 3D: every face of the arrangement across which the object type changes becomes one convex
  * polygon. Faces are traced around their boundary in the arrangement (the next edge at each

@@ -2,8 +2,8 @@
 #pragma once
 /**
  * @file ContinuousSynthesis.h
- * @brief The label solver of continuous model synthesis (dissertation §4.5, Algorithm 4.1;
- * design notes §2 and §4) on the vertices of a PlaneArrangement.
+ * @brief The label solver of continuous model synthesis (dissertation §4.5, Algorithm 4.1) on
+ * the vertices of a PlaneArrangement.
  *
  * The constraint: two vertices joined by an edge along d are compatible when their labels
  * evaluate to the same neighbourhood along the edge (eval(L_u, d) = eval(L_v, −d), §4.5.5), and

@@ -2,7 +2,7 @@
 #pragma once
 /**
  * @file ExactArithmetic.h
- * @brief Exact arithmetic of the plane arrangement (internal; design note §2): 128-bit integers
+ * @brief Exact arithmetic of the plane arrangement (internal): 128-bit integers
  * that refuse to overflow, exact rational points, and integer directions.
  */
 #include "Continuous/Neighbourhood.h"

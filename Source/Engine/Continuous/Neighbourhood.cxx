@@ -147,7 +147,7 @@ const std::vector<PlaneFamilySet::Cone>& PlaneFamilySet::Cones(
   {
     normals.push_back(Widen(this->Normals.at(f)));
   }
-  // The rays of the spherical arrangement (design note §1): each cone's closure is spanned by
+  // The rays of the spherical arrangement: each cone's closure is spanned by
   // the rays it contains, so the sum of those rays is interior exactly when the cone exists.
   std::vector<WideVec3> rays;
   const int rank = this->Rank(families);

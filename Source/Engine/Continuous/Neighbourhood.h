@@ -4,7 +4,7 @@
  * @file Neighbourhood.h
  * @brief Labels of continuous model synthesis: the neighbourhood (vertex figure, dissertation
  * Eq. 4.22) of a point, as a function on the cones of a central plane arrangement (§4.5.1–4.5.5,
- * TVCG §4.2–4.3; ../shared/design/continuous-synthesis.md §1–2).
+ * TVCG §4.2–4.3).
  *
  * Plane families are directions up to sign. Each family i has an exact integer normal n_i and
  * the half-space h_i = { x : n_i·(x − p) < 0 } at the point p considered ("behind" n_i; the
@@ -58,7 +58,7 @@ public:
   };
   /// The non-empty open cones of the arrangement of the planes n_i·d = 0, i ∈ @p families
   /// (sorted family indices, at most MaxFamiliesPerLabel), by ascending mask. Computed exactly
-  /// from the arrangement's rays (design note §1) and cached.
+  /// from the arrangement's rays and cached.
   const std::vector<Cone>& Cones(const std::vector<int>& families) const;
   /// Rank of the normals of @p families (0–3): the codimension of the feature they meet in.
   int Rank(const std::vector<int>& families) const;
@@ -96,7 +96,7 @@ public:
   /// The constant label: every direction has @p type (∅ for 0).
   static NeighbourhoodLabel Constant(int type);
 
-  /// Drops every family whose plane has no type change (design note §1); unique result.
+  /// Drops every family whose plane has no type change; unique result.
   void Canonicalize();
   /// The label met when travelling from the point in direction @p d (§4.5.5), canonical.
   NeighbourhoodLabel Evaluate(const PlaneFamilySet& set, const IntVec3& d) const;

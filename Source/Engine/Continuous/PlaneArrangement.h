@@ -3,7 +3,7 @@
 /**
  * @file PlaneArrangement.h
  * @brief The arrangement of evenly spaced parallel planes that continuous model synthesis
- * labels (dissertation §4.5.1–4.5.2, §4.5.7; design notes §3).
+ * labels (dissertation §4.5.1–4.5.2, §4.5.7).
  *
  * Family i (normal n_i, an exact integer vector from the example analysis) has the planes
  * n_i·X = Offset_i + c·Spacing_i, c ∈ Z, where X are exact coordinates: world = Origin +

@@ -4,8 +4,8 @@
  * @file PolyhedralAnalysis.h
  * @brief Example analysis of continuous model synthesis (dissertation §4.5.1–4.5.5, TVCG
  * §4.2–4.3): the plane families of a polyhedral example, and its catalog of neighbourhood
- * labels, each found by probing the example around sample points of every vertex, edge and face
- * (design note §1).
+ * labels, each found by probing the example around sample points of every vertex, edge and
+ * face.
  *
  * Plane families (§4.5.1): face normals within AngleTolerance of each other (either sign) form
  * one family. Its exact normal is the first face's outward normal snapped to a small integer

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The one CGAL translation unit of the engine (compile time, see ../shared/PLATFORM.md): point
+// The one CGAL translation unit of the engine (CGAL compiles slowly: keep it in one place): point
 // classification against closed polyhedra and the self-intersection test of the validation.
 #include "Formats/PolyhedralExample.h"
 

@@ -110,7 +110,7 @@ OutputFolder::OutputFolder(const std::string& dir)
     if (!S_ISDIR(info.st_mode))
       throw Error::InFile(this->Dir, "exists and is not a folder");
   }
-  else if (::mkdir(this->Dir.c_str(), 0755) == 0)
+  else if (this->MakeParents(), ::mkdir(this->Dir.c_str(), 0755) == 0)
   {
     this->Created = true;
   }
@@ -125,8 +125,7 @@ OutputFolder::OutputFolder(const std::string& dir)
   if (::mkdir(this->StagePath.c_str(), 0755) != 0)
   {
     const std::string reason = std::strerror(errno);
-    if (this->Created)
-      ::rmdir(this->Dir.c_str());
+    this->RemoveCreated();
     throw Error::InFile(this->Dir, "cannot be written to: " + reason);
   }
   Registry().insert(this->StagePath);
@@ -137,8 +136,40 @@ OutputFolder::~OutputFolder()
   std::lock_guard<std::mutex> lock(RegistryMutex());
   if (Registry().erase(this->StagePath))
     RemoveTree(this->StagePath);
-  if (this->Created && !this->Published)
+  if (!this->Published)
+    this->RemoveCreated();
+}
+
+void OutputFolder::MakeParents()
+{
+  // Each missing ancestor of the folder, outermost first (as mkdir -p; removed again when
+  // nothing is published).
+  std::vector<std::string> missing;
+  for (std::string parent = this->Dir;;)
+  {
+    const auto slash = parent.find_last_of('/');
+    if (slash == std::string::npos || slash == 0)
+      break;
+    parent.resize(slash);
+    struct stat info;
+    if (::stat(parent.c_str(), &info) == 0)
+      break;
+    missing.push_back(parent);
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it)
+  {
+    if (::mkdir(it->c_str(), 0755) != 0 && errno != EEXIST)
+      break; // the folder's own mkdir reports why
+    this->CreatedParents.push_back(*it);
+  }
+}
+
+void OutputFolder::RemoveCreated()
+{
+  if (this->Created)
     ::rmdir(this->Dir.c_str()); // only if empty
+  for (auto it = this->CreatedParents.rbegin(); it != this->CreatedParents.rend(); ++it)
+    ::rmdir(it->c_str());
 }
 
 void OutputFolder::Publish()

@@ -21,11 +21,11 @@ namespace msynth
 class OutputFolder
 {
 public:
-  /// Creates @p dir when missing (its parent must exist) and a staging folder inside it.
-  /// @throw Error naming @p dir when it is not a folder or not writable.
+  /// Creates @p dir when missing (and its missing parents, as mkdir -p) and a staging folder
+  /// inside it. @throw Error naming @p dir when it is not a folder or not writable.
   explicit OutputFolder(const std::string& dir);
-  /// Discards the staging folder unless Publish() succeeded (and the folder too, when this
-  /// object created it and it is empty).
+  /// Discards the staging folder unless Publish() succeeded (and the folder and its parents
+  /// too, when this object created them and they are empty).
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
@@ -43,10 +43,14 @@ public:
   static int DiscardAll(int* published = nullptr);
 
 private:
+  void MakeParents();
+  void RemoveCreated();
+
   std::string Dir;
   std::string StagePath;
   bool Published = false;
   bool Created = false; ///< the folder did not exist: removed again if nothing is published
+  std::vector<std::string> CreatedParents; ///< missing parents made for it (outermost first)
 };
 
 /// Removes @p path and, if it is a folder, everything in it. Errors are ignored.

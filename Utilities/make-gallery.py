@@ -1,0 +1,153 @@
+"""Makes the gallery (Documentation/gallery.md): every bundled example of every kind, synthesized
+with the command shown beside its preview. Run from the repository root after building:
+
+    xvfb-run -a pvpython Utilities/make-gallery.py [NAME ...]
+
+Each command runs as written (outputs in output/gallery/NAME); previews go to
+Documentation/images/gallery/NAME.png: meshes and models rendered offscreen (render-model.py),
+pictures copied, and an animation's frames stacked top to bottom. With names, only those
+entries are remade (the page lists all)."""
+import glob
+import os
+import shutil
+import subprocess
+import sys
+
+
+
+def render_model():
+    """Utilities/render-model.py, imported when pictures are made (it needs paraview.simple)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    return __import__("render-model")
+
+M = "build/bin/msynth"
+D = "Data/Continuous"
+# name, kind of example, what it shows, command (after "msynth"), preview
+ENTRIES = [
+    ("village", "Label grid (.vti)", "Discrete synthesis in blocks, ground below and empty space "
+     "around (dissertation ch. 3)", "synthesize Data/Examples/Village.vti --size 48 48 5 "
+     "--block 12 12 5 --ground 1 --empty 0 --seed 7", "mesh"),
+    ("village-vox", "MagicaVoxel (.vox)", "The same village as MagicaVoxel writes it",
+     "synthesize Data/Examples/Village.vox --size 32 32 5 --block 16 16 5 --seed 2", "mesh"),
+    ("lines", "Simple-tiled tileset (.xml)", "WaveFunctionCollapse's tileset format, 3 tiles",
+     "synthesize Data/Tilesets/Lines.xml --size 24 16 1 --order entropy --choice frequency "
+     "--seed 3", "picture"),
+    ("meadow", "Image sample (.png)", "Overlapping 3 × 3 windows, ground row, repeating in x",
+     "synthesize Data/Samples/Meadow.png --pattern 3 --symmetry 2 --ground --translate x "
+     "--size 192 64 1 --block 32 32 1 --choice frequency --seed 4", "picture"),
+    ("rooms", "Image sample (.png)", "Rooms, fewest choices first",
+     "synthesize Data/Samples/Rooms.png --size 128 128 1 --block 32 32 1 --order entropy --seed 2",
+     "picture"),
+    ("ball", "Time-varying (.vti, z = time)", "A rolling ball: 24 frames of a 32-site row, "
+     "looping (dissertation §3.5.4); frames top to bottom",
+     "animate Data/Examples/Ball.vti --size 32 1 1 --frames 24 --loop --seed 1", "frames"),
+    ("houses", "Polyhedral (.obj)", "Continuous synthesis, no constraints: houses float",
+     "synthesize %s/house.obj --size 24 24 10 --seed 3" % D, "model"),
+    ("houses-constrained", "Polyhedral (.obj)", "Grounded, walls one storey, eaves one spacing, "
+     "mirrored across x and y", "synthesize %s/house.obj --size 24 24 10 --seed 3 --grounded "
+     "--thickness wall:z --overhang roof --mirror xy" % D, "model"),
+    ("cottages", "Polyhedral (.obj)", "Five object types, grounded, walls 8 spacings high",
+     "synthesize %s/cottage.obj --size 16 16 8 --seed 5 --grounded --thickness wall:z:8" % D,
+     "model"),
+    ("oil", "Polyhedral (.obj)", "Decks one unit thick on beams, grown from three seeds",
+     "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "
+     "--thickness platform:z --thickness beam:x --thickness beam:y --connected solid:3" % D,
+     "model"),
+    ("roads", "Polyhedral, 2D (.obj)", "One road network from one seed, one lane wide",
+     "synthesize %s/roads.obj --size 40 40 0 --seed 1 --blocks 0 --connected road:1 "
+     "--thickness road:xy" % D, "top"),
+    ("pipes", "Polyhedral (.obj)", "One pipe network, one spacing across",
+     "synthesize %s/pipes.obj --size 24 24 12 --seed 1 --blocks 0 --connected pipe:1 "
+     "--thickness pipe:xy --thickness pipe:yz --thickness pipe:xz" % D, "model"),
+    ("domes", "Polyhedral + detail (.obj)", "Hemispheres substituted into bounding volumes",
+     "synthesize %s/domed-building.obj --size 24 24 10 --seed 2 --grounded "
+     "--detail dome=%s/dome.obj" % (D, D), "model"),
+    ("silos", "Polyhedral + detail (.obj)", "Cylinders in boxes cut into two prisms",
+     "synthesize %s/silo.obj --size 16 16 8 --seed 3 --grounded "
+     "--detail silo+silo2=%s/cylinder.obj" % (D, D), "model"),
+    ("pyramids", "Polyhedral (.obj)", "Four planes at every apex (TVCG §4.4)",
+     "synthesize %s/pyramid.obj --size 20 20 6 --seed 1 --grounded" % D, "model"),
+    ("octahedra", "Polyhedral (.obj)", "Four planes at the top and bottom vertices",
+     "synthesize %s/octahedron.obj --size 16 16 8 --seed 1" % D, "model"),
+    ("letters", "Polyhedral + guide (.vti)", "Houses only where the guide spells \"MS\"",
+     "synthesize %s/house.obj --size 100 56 6 --seed 1 --grounded --thickness wall:z "
+     "--guide %s/letters-guide.vti" % (D, D), "top"),
+    ("facade", "Pattern exemplars (.vti)", "Factor-graph synthesis (BLOCKSS) with zones",
+     "pattern Data/Patterns/facade-rectangular.vti Data/Patterns/facade-l-shaped.vti --size 28 18 "
+     "--factors 2H,2V,4H,4V --zones Data/Patterns/facade-l-zones.vti --zone-tiles 0:1,2,3,4,5,6,7,9 "
+     "--zone-tiles 1:0 --zone-tiles 2:8 --zone-tiles 3:9 --tileset Data/Patterns/Facade.xml --seed 1",
+     "picture"),
+    ("city", "Pattern exemplars (.vti)", "A city with a crossroad fixed every 20 tiles",
+     "pattern Data/Patterns/city-suburban.vti Data/Patterns/city-urban.vti --size 170 170 "
+     "--fixed Data/Patterns/city-crossroads-170.vti --tileset Data/Patterns/City.xml --seed 1",
+     "picture"),
+    ("border", "Pattern exemplar (.vti)", "A mirrored border around a free middle",
+     "pattern Data/Patterns/border.vti --size 24 16 --factors 2H,2V,3x3 "
+     "--zones Data/Patterns/border-zones.vti --zone-tiles 1:1,2,3,4,5,6,7,8 --zone-tiles 0:0 "
+     "--zone-tiles 2:0,9,10,11 --mirror x --swap 3:4 --swap 5:6 --swap 7:8 --swap 10:11 "
+     "--tileset Data/Patterns/Border.xml --seed 2", "picture"),
+]
+
+
+def frames_picture(folder, png):
+    """The frames of an animation (frame_0000.vti ..., one row of sites each) stacked top to
+    bottom, each site a square of 8 pixels, labels coloured as render-model.py colours them."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+    import numpy as np
+    rows = []
+    for path in sorted(glob.glob(os.path.join(folder, "frame_*.vti"))):
+        reader = vtkXMLImageDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        rows.append(vtk_to_numpy(reader.GetOutput().GetPointData().GetArray("Label")).copy())
+    labels = np.array(rows)
+    palette = render_model().COLOURS + render_model().MORE
+    colours = np.array([[255, 255, 255]] + [[int(255 * c) for c in palette[3 * i:3 * i + 3]]
+                                            for i in range(12)], dtype=np.uint8)
+    rgb = colours[np.clip(labels, 0, 12)]
+    rgb = np.repeat(np.repeat(rgb, 8, axis=0), 8, axis=1)[::-1]  # VTK rows: bottom first
+    image = vtkImageData()
+    image.SetDimensions(rgb.shape[1], rgb.shape[0], 1)
+    image.GetPointData().SetScalars(numpy_to_vtk(rgb.reshape(-1, 3), deep=1))
+    writer = vtkPNGWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(png)
+    writer.Write()
+
+
+def main(names):
+    images = os.path.join("Documentation", "images", "gallery")
+    os.makedirs(images, exist_ok=True)
+    for name, kind, what, command, preview in ENTRIES:
+        if names and name not in names:
+            continue
+        out = os.path.join("output", "gallery", name)
+        os.makedirs(os.path.dirname(out), exist_ok=True)
+        done = subprocess.run([M] + command.split() + ["--out", out], capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit("%s: %s" % (name, done.stderr.strip()))
+        png = os.path.join(images, name + ".png")
+        if preview == "picture":
+            shutil.copyfile(os.path.join(out, "picture.png"), png)
+        elif preview == "frames":
+            frames_picture(out, png)
+        else:
+            model = os.path.join(out, "mesh.vtp" if preview == "mesh" else "model.vtp")
+            render_model().render(model, png, top=preview == "top", size=(480, 360))
+        print("made", png)
+    with open(os.path.join("Documentation", "gallery.md"), "w") as f:
+        f.write("# Gallery\n\nEvery bundled example, synthesized by the command beside it (run "
+                "from the repository root after building; add `--out DIR`). The pictures are "
+                "made by `xvfb-run -a pvpython Utilities/make-gallery.py`, which runs these "
+                "commands and renders their outputs.\n\n")
+        f.write("| preview | example | command |\n|---|---|---|\n")
+        for name, kind, what, command, preview in ENTRIES:
+            f.write("| ![%s](images/gallery/%s.png) | **%s** (%s): %s | `build/bin/msynth %s` |\n" % (
+                name, name, name, kind, what, command))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
