@@ -26,6 +26,50 @@ try:
     Render()
     model = servermanager.Fetch(mesh)
     check = model.GetFieldData().GetAbstractArray("ModelCheck").GetValue(0)
+    # The Seed as the panel sets it (the proxy property its widget edits): another seed gives
+    # another model, and the picture of a fixed seed matches the baseline.
+    polygons = model.GetNumberOfPolys()
+    house = ModelSynthPolyhedralExampleReader(FileName=os.path.join(os.environ["MSYNTH_DATA"], "Continuous", "house.obj"))
+    houses = ModelSynthContinuousSynthesis(Input=house, Arrangement=ModelSynthPlaneArrangement(
+        Input=house, OutputSize=[12, 12, 6]), Grounded=1)
+    houses.Seed = 5
+    housemesh = ModelSynthArrangementMesh(Input=house, Arrangement=houses)
+    housemesh.UpdatePipeline()
+    first = servermanager.Fetch(housemesh).GetNumberOfPolys()
+    houses.Seed = 6
+    housemesh.UpdatePipeline()
+    reseeded = servermanager.Fetch(housemesh).GetNumberOfPolys() != first
+    houses.Seed = 5
+    view = GetActiveViewOrCreate("RenderView")  # the one in the window's layout
+    for source in GetSources().values():
+        Hide(source, view)
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [1, 1, 1]
+    shown = Show(housemesh, view)
+    ColorBy(shown, ("CELLS", "InsideType"))
+    view.CameraPosition = [30, -20, 25]
+    view.CameraFocalPoint = [6, 6, 2]
+    view.CameraViewUp = [0, 0, 1]
+    view.ResetCamera()
+    picture = os.path.join(os.environ["MSYNTH_TMP"], "gui-houses.png")
+    SaveScreenshot(picture, view, ImageResolution=[400, 300])
+    baseline = os.environ["MSYNTH_GUI_BASELINE"]
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.vtkImagingCore import vtkImageDifference
+    images = []
+    for path in (picture, baseline):
+        r = vtkPNGReader()
+        r.SetFileName(path)
+        r.Update()
+        images.append(r.GetOutput())
+    difference = vtkImageDifference()
+    difference.SetInputData(images[0])
+    difference.SetImageData(images[1])
+    difference.Update()
+    # VTK's regression-test measure: thresholded error per pixel, 0 for identical pictures.
+    error = difference.GetThresholdedError() if images[1].GetNumberOfPoints() else 1e9
+    matches = error < 10
     # A rotation-symmetric discrete model and an animation (the village's z layers as frames),
     # shown as a user would.
     turned = ModelSynthDiscreteSynthesis(Input=reader, OutputSize=[16, 16, 5], BlockSize=[8, 8, 5], Rotate=1)
@@ -37,8 +81,9 @@ try:
     Render()  # (GetAnimationScene().UpdateAnimationUsingDataTimeSteps() from a --script never
     # returns in this GUI, even for ParaView's own TimeSource; pvbatch tests the scene instead)
     frames = len(movie.TimestepValues)
-    result = "OK labels=%d continuous=%d model=%s frames=%d" % (
-        rows, continuous, check if model.GetNumberOfPolys() > 0 else "empty", frames)
+    result = "OK labels=%d continuous=%d model=%s frames=%d reseeded=%s picture=%s" % (
+        rows, continuous, check if polygons > 0 else "empty", frames, reseeded,
+        "matches" if matches else "differs (error %g; see %s)" % (error, picture))
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
 with open(report, "w") as f:
