@@ -17,12 +17,16 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 BUILD = os.path.dirname(os.environ["MSYNTH_BIN"])
 
 
+GUIDES = ("README.md", os.path.join("Documentation", "scripting.md"))
+
+
 def blocks():
-    """(language, text, first line number) of every fenced block of the README."""
-    with open(os.path.join(ROOT, "README.md")) as f:
-        text = f.read()
-    for m in re.finditer(r"^```(\w+)\n(.*?)^```", text, re.S | re.M):
-        yield m.group(1), m.group(2), text[:m.start()].count("\n") + 1
+    """(language, text, "file:line") of every fenced block of the README and the guides."""
+    for name in GUIDES:
+        with open(os.path.join(ROOT, name)) as f:
+            text = f.read()
+        for m in re.finditer(r"^```(\w+)\n(.*?)^```", text, re.S | re.M):
+            yield m.group(1), m.group(2), "%s:%d" % (name, text[:m.start()].count("\n") + 1)
 
 
 class ReadmeExamplesTest(unittest.TestCase):
@@ -42,17 +46,17 @@ class ReadmeExamplesTest(unittest.TestCase):
             if language == "sh":
                 command = ["bash", "-e", "-o", "pipefail", "-c", text]
             elif language == "python":
-                script = os.path.join(scratch, "readme_line_%d.py" % line)
+                script = os.path.join(scratch, "block_%d.py" % ran)
                 with open(script, "w") as f:
                     f.write(text)
                 command = ["pvbatch", script] if "paraview.simple" in text else [sys.executable, script]
             else:
                 continue
             done = subprocess.run(command, cwd=scratch, capture_output=True, text=True, timeout=600)
-            self.assertEqual(done.returncode, 0, "README line %d:\n%s\n%s%s" % (
+            self.assertEqual(done.returncode, 0, "%s:\n%s\n%s%s" % (
                 line, text, done.stdout[-2000:], done.stderr[-2000:]))
             ran += 1
-        self.assertGreaterEqual(ran, 8)
+        self.assertGreaterEqual(ran, 11)
 
     def test_every_gallery_command_runs(self):
         """The gallery's commands (Utilities/make-gallery.py) as the page shows them."""
