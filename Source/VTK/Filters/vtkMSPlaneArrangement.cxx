@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkMSPlaneArrangement);
@@ -103,9 +104,10 @@ void FillArrangement(vtkPolyData* output, const msynth::PlaneArrangement& arrang
 }
 } // namespace
 
-vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(vtkPolyData* input, vtkPolyData* output,
-  double angleTolerance, int maximumSmallInteger, bool warn)
+vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(
+  vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger)
 {
+  this->Warnings.clear();
   msynth::PolyhedralExample example;
   const auto analysis =
     vtkMSPolyhedra::AnalyzeExample(input, angleTolerance, maximumSmallInteger, example);
@@ -173,29 +175,37 @@ vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(vtkPolyData* input, 
   Corners corners;
   corners.NonTrihedral = !nonTrihedral.empty();
   corners.OnLattice = !offLattice && without == 0;
-  if (!warn)
-    return corners;
+  const std::string name = vtkMSFieldData::ExampleName(input);
+  std::ostringstream text;
   if (without > 0)
-    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input) << ": over-constrained plane spacing: "
-                    << without << " of " << nonTrihedral.size()
-                    << " vertices where four or more planes meet have no place in the arrangement, "
-                       "so the output cannot have them: "
-                    << missing
-                    << ". Their planes meet only where the example has them; try another plane "
-                       "spacing (a divisor of the derived one) or an example whose faces fit a "
-                       "lattice.");
+  {
+    text << name << ": over-constrained plane spacing: " << without << " of " << nonTrihedral.size()
+         << " vertices where four or more planes meet have no place in the arrangement, so the "
+            "output cannot have them: "
+         << missing
+         << ". Their planes meet only where the example has them; try another plane spacing (a "
+            "divisor of the derived one) or an example whose faces fit a lattice.";
+    this->Warnings.push_back(text.str());
+    text.str("");
+  }
   if (maximumSmallInteger != this->MaximumSmallInteger)
-    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input)
-                    << ": plane directions snapped to integers up to " << maximumSmallInteger
-                    << " so that exact coordinates fit; faces turn by up to " << worst
-                    << " degrees");
+    text << name << ": plane directions snapped to integers up to " << maximumSmallInteger
+         << " so that exact coordinates fit; faces turn by up to " << worst << " degrees";
   else if (angleTolerance > this->AngleTolerance)
-    vtkWarningMacro(<< vtkMSFieldData::ExampleName(input)
-                    << ": four or more planes meet at a corner of the example, so plane "
-                       "directions were snapped to small integers (TVCG 4.4: normals modified "
-                       "to fit a lattice); faces turn by up to "
-                    << worst << " degrees");
+    text << name
+         << ": four or more planes meet at a corner of the example, so plane directions were "
+            "snapped to small integers (TVCG 4.4: normals modified to fit a lattice); faces turn "
+            "by up to "
+         << worst << " degrees";
+  if (!text.str().empty())
+    this->Warnings.push_back(text.str());
   return corners;
+}
+
+void vtkMSPlaneArrangement::Warn()
+{
+  for (const auto& w : this->Warnings)
+    vtkWarningMacro(<< w);
 }
 
 bool vtkMSPlaneArrangement::BuildOnLattice(vtkPolyData* input, vtkPolyData* output)
@@ -204,17 +214,18 @@ bool vtkMSPlaneArrangement::BuildOnLattice(vtkPolyData* input, vtkPolyData* outp
   // large integers the planes only nearly meet, and the arrangement fills with slivers). When
   // the directions as given are not, they are snapped to small integers within growing
   // tolerances (the paper's second way out of Eq. 4.25), and the change is reported.
+  std::string overflow;
   try
   {
-    const Corners as =
-      this->Build(input, output, this->AngleTolerance, this->MaximumSmallInteger, false);
+    const Corners as = this->Build(input, output, this->AngleTolerance, this->MaximumSmallInteger);
     if (!as.NonTrihedral || as.OnLattice)
-      return false;
+      return true; // as given
   }
   catch (const msynth::Error& e)
   {
     if (std::string(e.what()).find("128-bit") == std::string::npos)
-      throw; // directions of large integers overflowed: try the lattice first
+      throw;
+    overflow = e.what(); // directions of large integers overflowed: try the lattice first
   }
   for (double degrees : { 0.5, 1.0, 2.0, 3.0 })
   {
@@ -222,18 +233,17 @@ bool vtkMSPlaneArrangement::BuildOnLattice(vtkPolyData* input, vtkPolyData* outp
       continue;
     try
     {
-      const Corners c = this->Build(input, output, degrees, this->MaximumSmallInteger, false);
+      const Corners c = this->Build(input, output, degrees, this->MaximumSmallInteger);
       if (c.NonTrihedral && c.OnLattice)
-      {
-        this->Build(input, output, degrees, this->MaximumSmallInteger, true);
         return true;
-      }
     }
     catch (const msynth::Error&)
     {
       // e.g. the coarser directions merge faces into a non-planar family: try the next
     }
   }
+  if (!overflow.empty())
+    throw msynth::Error(overflow); // on to the coarser snapping levels
   return false;
 }
 
@@ -263,9 +273,9 @@ int vtkMSPlaneArrangement::RequestData(
     {
       try
       {
-        if (level == 0 && this->BuildOnLattice(input, output))
-          break;
-        this->Build(input, output, snaps[level].Degrees, snaps[level].Integer, true);
+        if (level > 0 || !this->BuildOnLattice(input, output))
+          this->Build(input, output, snaps[level].Degrees, snaps[level].Integer);
+        this->Warn();
         break;
       }
       catch (const msynth::Error& e)

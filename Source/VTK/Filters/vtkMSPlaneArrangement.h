@@ -27,6 +27,9 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <string>
+#include <vector>
+
 class MODELSYNTHFILTERS_EXPORT vtkMSPlaneArrangement : public vtkPolyDataAlgorithm
 {
 public:
@@ -79,12 +82,14 @@ private:
     bool NonTrihedral = false; ///< four or more planes meet at a corner of the example
     bool OnLattice = false;    ///< small-integer directions, and every such corner has sites
   };
-  /// Analyzes the example with the given direction snapping and fills @p output (warnings
-  /// only with @p warn).
-  Corners Build(vtkPolyData* input, vtkPolyData* output, double angleTolerance,
-    int maximumSmallInteger, bool warn);
+  /// Analyzes the example with the given direction snapping and fills @p output; what to warn
+  /// of goes to Warnings (shown by Warn() for the build that is kept).
+  Corners Build(
+    vtkPolyData* input, vtkPolyData* output, double angleTolerance, int maximumSmallInteger);
+  void Warn();
   /// Builds with directions snapped to small integers within up to 3 degrees when the example
   /// needs four or more planes to meet and they would not otherwise; false to build as usual.
+  /// Returns whether @p output holds the build to keep (as given, or on the lattice).
   bool BuildOnLattice(vtkPolyData* input, vtkPolyData* output);
   vtkMSPlaneArrangement(const vtkMSPlaneArrangement&) = delete;
   void operator=(const vtkMSPlaneArrangement&) = delete;
@@ -93,6 +98,7 @@ private:
   double Spacing = 0;
   double AngleTolerance = 0.01;
   int MaximumSmallInteger = 12;
+  std::vector<std::string> Warnings; ///< of the last Build
   vtkIdType MaximumVertices = 20000000;
 };
 
