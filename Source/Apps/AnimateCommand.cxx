@@ -104,6 +104,7 @@ msynth::TimeVaryingGrid ReadFrames(const std::vector<std::string>& examples)
   {
     vtkNew<vtkMSLabelGridReader> reader;
     reader->SetFileName(path.c_str());
+    reader->GenerateGeometryOff();
     Run(reader);
     msynth::LabelGrid grid;
     std::string problem;
@@ -151,8 +152,10 @@ msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const 
 int Animate(const AnimateOptions& o, const std::string& dir)
 {
   vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
   vtkNew<vtkMSFrameSeries> series;
   vtkNew<vtkMSTimeVaryingSynthesis> synthesis;
+  synthesis->GenerateGeometryOff(); // frames are written as label images
   if (o.Examples.size() == 1)
   {
     reader->SetFileName(o.Examples[0].c_str());
@@ -166,6 +169,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
     {
       vtkNew<vtkMSLabelGridReader> frame;
       frame->SetFileName(path.c_str());
+      frame->GenerateGeometryOff();
       Run(frame);
       series->AddFrame(frame->GetOutput());
     }

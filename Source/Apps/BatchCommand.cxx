@@ -56,6 +56,7 @@ LabelGrid GridOf(const std::string& path)
 {
   vtkNew<vtkMSLabelGridReader> reader;
   reader->SetFileName(path.c_str());
+  reader->GenerateGeometryOff();
   Run(reader);
   vtkImageData* image = reader->GetOutput();
   return vtkMSLabelArrays::ToLabelGrid(image, image->GetPointData()->GetArray("Label"));

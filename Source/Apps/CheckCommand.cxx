@@ -121,6 +121,8 @@ int CheckDiscrete(
   const std::string& example, const std::string& modelPath, const std::string& subset)
 {
   vtkNew<vtkMSLabelGridReader> e, m;
+  e->GenerateGeometryOff(); // the labels are checked, not shown
+  m->GenerateGeometryOff();
   m->SetFileName(modelPath.c_str());
   Run(m);
   auto grid = [](vtkImageData* image)

@@ -218,15 +218,20 @@ long long CountOf(vtkFieldData* fd, const char* name)
   return array && array->GetNumberOfTuples() > 0 ? static_cast<long long>(array->GetTuple1(0)) : 0;
 }
 
-ProgressBar::ProgressBar(vtkAlgorithm* algorithm, const char* stage)
+ProgressBar::ProgressBar(vtkAlgorithm* algorithm, const char* stage, double delay)
   : Algorithm(algorithm)
   , Stage(stage)
+  , Delay(delay)
+  , Start(std::chrono::steady_clock::now())
 {
   if (::isatty(STDERR_FILENO) == 0)
   {
     return;
   }
-  this->OnProgress(0);
+  if (delay <= 0)
+  {
+    this->OnProgress(0);
+  }
   vtkNew<vtkCallbackCommand> callback;
   callback->SetClientData(this);
   callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data)
@@ -248,6 +253,12 @@ ProgressBar::~ProgressBar()
 
 void ProgressBar::OnProgress(double f)
 {
+  if (!this->Shown && this->Delay > 0 &&
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count() <
+      this->Delay)
+  {
+    return;
+  }
   const int width = 40, filled = static_cast<int>(f * width + 0.5);
   std::cerr << "\r" << this->Stage << " [" << std::string(static_cast<std::size_t>(filled), '#')
             << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "

@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -76,6 +77,29 @@ std::string MessageOf(vtkFieldData* fd);
 /// The one-value count @p name of field data (0 when it is not there).
 long long CountOf(vtkFieldData* fd, const char* name);
 
+/// A progress bar on stderr while @p algorithm runs, when stderr is a terminal.
+class ProgressBar
+{
+public:
+  /// Shows "STAGE [####    ] 45%" on a terminal from @p algorithm's progress, from the start
+  /// (so a stage without progress events still says what runs); with @p delay > 0, only once
+  /// the stage has run that many seconds (quick writes stay quiet).
+  explicit ProgressBar(
+    vtkAlgorithm* algorithm, const char* stage = "synthesis", double delay = 0.0);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+private:
+  void OnProgress(double fraction);
+  vtkAlgorithm* Algorithm;
+  std::string Stage;
+  double Delay;
+  std::chrono::steady_clock::time_point Start;
+  unsigned long Observer = 0;
+  bool Shown = false;
+};
+
 /// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically.
 template <typename WriterT, typename DataT>
 void WriteXML(const std::string& path, DataT* data)
@@ -88,6 +112,9 @@ void WriteXML(const std::string& path, DataT* data)
   writer->SetCompressorTypeToZLib();
   std::string messages;
   errno = 0;
+  // The bar names the file: writing a large model can take longer than making it.
+  const std::string name = path.substr(path.find_last_of('/') + 1);
+  ProgressBar bar(writer, name.c_str(), 0.5);
   const bool ran = vtkMSEngineBridge::Execute(writer, messages);
   const int saved = errno; // the system's reason, read before anything else can change it
   if (!ran || writer->GetErrorCode() != 0)
@@ -100,25 +127,6 @@ void WriteXML(const std::string& path, DataT* data)
   }
   msynth::CommitTemporaryFile(tmp, path);
 }
-
-/// A progress bar on stderr while @p algorithm runs, when stderr is a terminal.
-class ProgressBar
-{
-public:
-  /// Shows "STAGE [####    ] 45%" on a terminal from @p algorithm's progress, from the start
-  /// (so a stage without progress events still says what runs).
-  explicit ProgressBar(vtkAlgorithm* algorithm, const char* stage = "synthesis");
-  ~ProgressBar();
-  ProgressBar(const ProgressBar&) = delete;
-  ProgressBar& operator=(const ProgressBar&) = delete;
-
-private:
-  void OnProgress(double fraction);
-  vtkAlgorithm* Algorithm;
-  std::string Stage;
-  unsigned long Observer = 0;
-  bool Shown = false;
-};
 
 /// The RGBA image @p rgba (VTK rows bottom first) as a PNG, top row first (msynth::WritePng).
 void WritePicturePng(vtkImageData* rgba, const std::string& path);

@@ -18,6 +18,7 @@ ExampleTables AnalyzeLabelGrid(const std::string& example)
   ExampleTables a;
   a.Reader = vtkSmartPointer<vtkMSLabelGridReader>::New();
   a.Reader->SetFileName(example.c_str());
+  a.Reader->GenerateGeometryOff(); // the command line needs the labels only
   Run(a.Reader);
   a.Tables = vtkSmartPointer<vtkMSTransitionTables>::New();
   a.Tables->SetInputConnection(a.Reader->GetOutputPort());

@@ -90,6 +90,7 @@ vtkSmartPointer<vtkMSLabelGridReader> OpenGrid(const std::string& path, const ch
   auto reader = vtkSmartPointer<vtkMSLabelGridReader>::New();
   reader->SetFileName(path.c_str());
   reader->SetLabelArrayName(array);
+  reader->GenerateGeometryOff();
   Run(reader);
   return reader;
 }

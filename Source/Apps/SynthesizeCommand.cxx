@@ -445,7 +445,10 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
     geometry->SetTilesetFile(o.Example.c_str()); // pieces may be named by tile and turned
     geometry->SetTilesetSubset(o.Subset.c_str());
   }
-  Run(geometry);
+  {
+    ProgressBar bar(geometry, "mesh");
+    Run(geometry);
+  }
   WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
   written.push_back(dir + "/mesh.vtp");
 }
@@ -539,7 +542,9 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
 {
   const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
   vtkNew<vtkMSDiscreteSynthesis> synthesis;
+  synthesis->GenerateGeometryOff(); // the mesh is made by vtkMSLabelGeometry, with any pieces
   const bool tileset = IsTileset(o.Example);
   if (tileset)
   {

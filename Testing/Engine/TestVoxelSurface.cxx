@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
+#include <set>
 
 using namespace msynth;
 
@@ -96,5 +98,44 @@ TEST(VoxelSurface, RandomGridsGiveClosedOutwardSurfacesPerLabel)
     for (auto& v : g.Data())
       v = static_cast<Label>(rng() % 4);
     ExpectClosedOutward(g, 0, { { 0.5, 2.0, 1.5 } });
+  }
+}
+
+TEST(VoxelSurface, PiecesPutTogetherAreTheWholeSurface)
+{
+  // The faces of every slab, as sets of corner positions with their label, add up to the whole
+  // grid's faces: none lost or doubled at the seams between pieces.
+  std::mt19937 rng(11);
+  auto faces = [](const VoxelSurface& s)
+  {
+    std::multiset<std::pair<std::array<std::array<double, 3>, 4>, Label>> out;
+    for (std::size_t q = 0; q < s.Quads.size(); ++q)
+    {
+      std::array<std::array<double, 3>, 4> corners;
+      for (std::size_t v = 0; v < 4; ++v)
+        corners[v] = s.Points[static_cast<std::size_t>(s.Quads[q][v])];
+      out.insert({ corners, s.QuadLabels[q] });
+    }
+    return out;
+  };
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    LabelGrid g(1 + rng() % 6, 1 + rng() % 6, 1 + rng() % 6);
+    for (auto& v : g.Data())
+      v = static_cast<Label>(rng() % 3);
+    const auto whole = faces(ExtractVoxelSurface(g, 0, { { 0, 0, 0 } }, { { 1, 1, 1 } }));
+    for (int pieces : { 1, 2, 3, 7 })
+    {
+      std::multiset<std::pair<std::array<std::array<double, 3>, 4>, Label>> joined;
+      for (int p = 0; p < pieces; ++p)
+      {
+        const SiteSlab slab = PieceSlab(g, p, pieces);
+        EXPECT_EQ(g.Dimensions()[static_cast<std::size_t>(slab.Axis)],
+          *std::max_element(g.Dimensions().begin(), g.Dimensions().end()));
+        for (auto& f : faces(ExtractVoxelSurface(g, 0, { { 0, 0, 0 } }, { { 1, 1, 1 } }, slab)))
+          joined.insert(f);
+      }
+      EXPECT_EQ(joined, whole) << pieces << " pieces";
+    }
   }
 }

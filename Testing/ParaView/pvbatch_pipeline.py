@@ -120,6 +120,29 @@ check(words[:3] == ["24", "20", "5"], "text model dimensions")
 check([int(w) for w in words[3:]] == [int(mlabels.GetValue(x + 24 * (y + 20 * z)))
                                       for z in range(5) for x in range(24) for y in range(20)],
       "text model values for z, for x, for y")
+# The second port, Geometry: the model's voxel surface, which Apply shows in place of an outline
+# (each rank holds a slab of it under MPI; fetched, they make one surface). Its faces are counted
+# here from the labels: a non-empty site's side that meets another label or the outside.
+mvalue = lambda x, y, z: int(mlabels.GetValue(x + 24 * (y + 20 * z)))
+faces = 0
+for z in range(5):
+    for y in range(20):
+        for x in range(24):
+            here = mvalue(x, y, z)
+            for dx, dy, dz in ((1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)):
+                qx, qy, qz = x + dx, y + dy, z + dz
+                inside = 0 <= qx < 24 and 0 <= qy < 20 and 0 <= qz < 5
+                faces += here != 0 and (not inside or mvalue(qx, qy, qz) != here)
+surface = servermanager.Fetch(synthesis, None, None, 1)
+check(surface.IsA("vtkPolyData") and surface.GetNumberOfCells() == faces,
+      "the Geometry port has the model's %d voxel faces (got %d)" % (faces, surface.GetNumberOfCells()))
+render_view = CreateRenderView()
+shown = Show(OutputPort(synthesis, 1), render_view)
+check(shown.Representation == "Surface" and list(shown.ColorArrayName) == ["CELLS", "Label"],
+      "Apply shows the geometry coloured by Label: %s %s" % (shown.Representation, shown.ColorArrayName))
+Delete(render_view)
+del render_view
+
 # Under MPI the blocks of each phase are spread over the ranks; the model is the one-process one.
 processes = model.GetFieldData().GetArray("Processes").GetValue(0)
 check(processes == ranks, "blocks spread over %d processes, expected %d" % (processes, ranks))

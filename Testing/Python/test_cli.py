@@ -769,6 +769,36 @@ class CommandLineTest(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("the output 10 x 10 x 1", r.stderr)
 
+    def test_progress_names_each_stage_on_a_terminal(self):
+        # stderr on a terminal (a pty): the bar names the stage it is in; piped, no bar.
+        import pty
+        out = os.path.join(tmp("cli"), "progress")
+        shutil.rmtree(out, ignore_errors=True)
+        controller, terminal = pty.openpty()
+        proc = subprocess.Popen([MSYNTH, "synthesize", data("Examples/Village.vti"), "--size", "40", "40", "5",
+                                 "--block", "10", "10", "5", "--seed", "3", "--out", out],
+                                stdout=subprocess.DEVNULL, stderr=terminal)
+        os.close(terminal)
+        shown = b""
+        while True:
+            try:
+                chunk = os.read(controller, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            shown += chunk
+        proc.wait(timeout=120)
+        os.close(controller)
+        self.assertEqual(proc.returncode, 0)
+        text = shown.decode()
+        for stage in ("synthesis [", "mesh [", "model.vdb ["):
+            self.assertIn(stage, text)
+        self.assertIn("100%", text)
+        piped = run("synthesize", data("Examples/Village.vti"), "--size", "8", "8", "3", "--out", out + "-piped")
+        self.assertEqual(piped.returncode, 0, piped.stderr)
+        self.assertNotIn("[", piped.stderr)
+
     def test_synthesize_errors(self):
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
                 "--block", "3", "3", "1", "--out", tmp("cli-fail"))

@@ -5,10 +5,12 @@ import shutil
 import unittest
 
 import numpy as np
+from vtkmodules.vtkCommonDataModel import vtkDataObject
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import modelsynth
-from msynth_testing import data, labels_zyx, run_algorithm, tmp
+from msynth_testing import ErrorObserver, data, labels_zyx, run_algorithm, tmp
 
 
 def geometry(port, **options):
@@ -80,6 +82,128 @@ class GeometryTest(unittest.TestCase):
         _, errors = geometry(self.reader.GetOutputPort(), PieceDirectory=folder)
         self.assertIn("2.vtp", errors)
         self.assertIn("could not be read", errors)
+
+
+
+def face_counts(mesh):
+    cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+    return {int(v): int(n) for v, n in zip(*np.unique(cell_labels, return_counts=True))}
+
+
+def update_port(algorithm, port, **request):
+    """Updates output `port` alone with the given pipeline request keys; its data."""
+    info = algorithm.GetOutputInformation(port)
+    for key, value in request.items():
+        info.Set(getattr(vtkStreamingDemandDrivenPipeline, key)(), value)
+    algorithm.Update(port)
+    return algorithm.GetOutputDataObject(port)
+
+
+class GeometryPortTest(unittest.TestCase):
+    """The solvers' second output: the model's voxel surface, so a viewer shows the model."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.reader = modelsynth.vtkMSLabelGridReader()
+        cls.reader.SetFileName(data("Examples/Village.vti"))
+
+    def synthesis(self, **options):
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetInputConnection(self.reader.GetOutputPort())
+        s.SetOutputSize(14, 12, 5)
+        s.SetBlockSize(7, 6, 5)
+        s.SetSeed(4)
+        for name, value in options.items():
+            getattr(s, "Set" + name)(*(value if isinstance(value, (list, tuple)) else [value]))
+        return s
+
+    def test_model_surface(self):
+        s = self.synthesis()
+        errors = ErrorObserver(s)
+        s.Update()
+        self.assertEqual(errors.text(), "")
+        mesh = s.GetGeometryOutput()
+        self.assertEqual(mesh.GetCellData().GetScalars().GetName(), "Label")
+        model = labels_zyx(s.GetOutput())
+        self.assertEqual(face_counts(mesh), expected_faces(model))
+        self.assertGreater(mesh.GetNumberOfCells(), 0)
+        # Another empty label, and none at all.
+        s.SetEmptyLabel(-1)
+        s.Update()
+        self.assertEqual(face_counts(s.GetGeometryOutput()), expected_faces(model, empty=-1))
+        s.GenerateGeometryOff()
+        s.Update()
+        self.assertEqual(s.GetGeometryOutput().GetNumberOfCells(), 0)
+        self.assertEqual(labels_zyx(s.GetOutput()).tolist(), model.tolist())
+
+    def test_snapshots_show_decided_sites(self):
+        s = self.synthesis(CatalogSnapshotsPerBlock=3)
+        s.UpdateInformation()
+        steps = s.GetOutputInformation(1).Get(vtkStreamingDemandDrivenPipeline.TIME_STEPS())
+        self.assertGreater(len(steps), 4)
+        undecided = -2**31
+        for step in (1, len(steps) // 2, len(steps) - 1):
+            # Asked for through the geometry port alone: it follows that port's time.
+            mesh = update_port(s, 1, UPDATE_TIME_STEP=float(step))
+            self.assertEqual(mesh.GetInformation().Get(vtkDataObject.DATA_TIME_STEP()), step)
+            s.UpdateTimeStep(float(step))
+            model = labels_zyx(s.GetOutput())
+            if step < len(steps) - 1:
+                self.assertIn(undecided, model)
+            labels = np.where(model == undecided, 0, model)
+            self.assertEqual(face_counts(mesh), expected_faces(labels), step)
+
+    def test_pieces_put_together_are_the_whole_surface(self):
+        s = self.synthesis()
+        s.Update()
+        whole = face_counts(s.GetGeometryOutput())
+        for pieces in (2, 3, 16):
+            joined = {}
+            for piece in range(pieces):
+                mesh = update_port(s, 1, UPDATE_PIECE_NUMBER=piece, UPDATE_NUMBER_OF_PIECES=pieces)
+                for label, n in face_counts(mesh).items():
+                    joined[label] = joined.get(label, 0) + n
+            self.assertEqual(joined, whole, pieces)
+
+    def test_reader_shows_the_example(self):
+        for name in ("Village.vti", "Village.vox", "Village.txt"):
+            reader = modelsynth.vtkMSLabelGridReader()
+            reader.SetFileName(data("Examples/" + name))
+            reader.Update()
+            labels = labels_zyx(reader.GetOutput())
+            self.assertEqual(face_counts(reader.GetGeometryOutput()), expected_faces(labels), name)
+            whole = face_counts(reader.GetGeometryOutput())
+            joined = {}
+            for piece in range(3):
+                mesh = update_port(reader, 1, UPDATE_PIECE_NUMBER=piece, UPDATE_NUMBER_OF_PIECES=3)
+                for label, n in face_counts(mesh).items():
+                    joined[label] = joined.get(label, 0) + n
+            self.assertEqual(joined, whole, name)
+        # A bad file fails both outputs.
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(data("Malformed/truncated.vti"))
+        errors = ErrorObserver(reader)
+        reader.Update()
+        self.assertIn("truncated.vti", errors.text())
+        self.assertEqual(reader.GetGeometryOutput().GetNumberOfCells(), 0)
+        self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0)
+
+    def test_time_varying_frames(self):
+        ball = modelsynth.vtkMSLabelGridReader()
+        ball.SetFileName(data("Examples/Ball.vti"))
+        s = modelsynth.vtkMSTimeVaryingSynthesis()
+        s.SetInputConnection(ball.GetOutputPort())
+        s.SetExampleTimeFromZ(1)
+        s.SetOutputSize(24, 1, 1)
+        s.SetNumberOfFrames(6)
+        s.SetLoop(1)
+        s.SetSeed(2)
+        errors = ErrorObserver(s)
+        for t in range(6):
+            s.UpdateTimeStep(float(t))
+            frame = labels_zyx(s.GetOutput())
+            self.assertEqual(face_counts(s.GetGeometryOutput()), expected_faces(frame), t)
+        self.assertEqual(errors.text(), "")
 
 
 if __name__ == "__main__":

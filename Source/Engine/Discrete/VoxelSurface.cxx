@@ -6,8 +6,27 @@
 namespace msynth
 {
 
+SiteSlab PieceSlab(const LabelGrid& grid, int piece, int pieces)
+{
+  const auto& n = grid.Dimensions();
+  SiteSlab slab;
+  slab.Axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (n[a] > n[slab.Axis])
+      slab.Axis = a;
+  if (pieces < 1 || piece < 0 || piece >= pieces)
+  {
+    slab.Begin = slab.End = 0;
+    return slab;
+  }
+  const std::int64_t length = n[slab.Axis];
+  slab.Begin = length * piece / pieces;
+  slab.End = length * (piece + 1) / pieces;
+  return slab;
+}
+
 VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
-  const std::array<double, 3>& origin, const std::array<double, 3>& spacing)
+  const std::array<double, 3>& origin, const std::array<double, 3>& spacing, const SiteSlab& slab)
 {
   VoxelSurface surface;
   const auto& n = grid.Dimensions();
@@ -41,6 +60,9 @@ VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
     for (std::int64_t y = 0; y < n[1]; ++y)
       for (std::int64_t x = 0; x < n[0]; ++x)
       {
+        const std::int64_t along = slab.Axis == 0 ? x : slab.Axis == 1 ? y : z;
+        if (along < slab.Begin || along >= slab.End)
+          continue;
         const Label b = grid.At(x, y, z);
         if (b == empty)
           continue;

@@ -23,8 +23,23 @@ struct VoxelSurface
   std::vector<Label> QuadLabels;                  ///< label of the voxel each quad bounds
 };
 
-/// Extracts the voxel surface of @p grid; sites with label @p empty produce nothing.
+/// The sites with Begin <= coordinate < End along Axis (a piece of a grid split in slabs).
+struct SiteSlab
+{
+  int Axis = 2;
+  std::int64_t Begin = 0;
+  std::int64_t End = INT64_MAX;
+};
+
+/// Extracts the voxel surface of @p grid; sites with label @p empty produce nothing, and
+/// neither do sites outside @p slab. Faces are decided by the whole grid, so the surfaces of
+/// slabs that tile the grid put together are the surface of the grid.
 VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
-  const std::array<double, 3>& origin, const std::array<double, 3>& spacing);
+  const std::array<double, 3>& origin, const std::array<double, 3>& spacing,
+  const SiteSlab& slab = SiteSlab());
+
+/// The slab of piece @p piece of @p pieces (0 <= piece < pieces) that splits @p grid evenly
+/// along its longest axis (pieces beyond the axis's length get empty slabs).
+SiteSlab PieceSlab(const LabelGrid& grid, int piece, int pieces);
 
 } // namespace msynth

@@ -21,6 +21,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
@@ -62,6 +63,7 @@ vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
   : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
 }
 
@@ -101,6 +103,17 @@ int vtkMSDiscreteSynthesis::FillInputPortInformation(int port, vtkInformation* i
   return 1;
 }
 
+int vtkMSDiscreteSynthesis::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
+  return 1;
+}
+
+vtkPolyData* vtkMSDiscreteSynthesis::GetGeometryOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
 int vtkMSDiscreteSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -133,7 +146,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     outInfo->Set(vtkMSPatternImage::PATTERN_PICTURE(), pattern, 3);
   }
 
+  vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
+  geometryInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   vtkMSPipeline::SetTimeSteps(outInfo, 0);
+  vtkMSPipeline::SetTimeSteps(geometryInfo, 0);
   if (this->CatalogSnapshotsPerBlock > 0)
   {
     const msynth::SynthesisOptions options = SizeOptions(this);
@@ -150,6 +166,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
       return 0;
     }
     vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
+    vtkMSPipeline::SetTimeSteps(geometryInfo, static_cast<std::size_t>(steps));
   }
   return 1;
 }
@@ -449,8 +466,7 @@ void vtkMSDiscreteSynthesis::SolveSample(msynth::SynthesisOptions& options)
   this->Internal->Cache.Result = msynth::Synthesize(patterns.Rules(), options);
 }
 
-void vtkMSDiscreteSynthesis::FillOutput(
-  vtkImageData* input, vtkImageData* output, vtkInformation* outInfo)
+void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step)
 {
   const Internals& run = *this->Internal;
   const msynth::SynthesisResult& result = run.Cache.Result;
@@ -465,8 +481,6 @@ void vtkMSDiscreteSynthesis::FillOutput(
   output->GetPointData()->SetScalars(label);
   if (!run.Snapshots.empty())
   {
-    // The time step asked for (steps are 0, 1, 2, ...).
-    const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, run.Snapshots.size());
     const msynth::CatalogSnapshot& snap = run.Snapshots[step];
     for (std::size_t i = 0; i < snap.Labels.size(); ++i)
       label->SetValue(static_cast<vtkIdType>(i),
@@ -502,7 +516,7 @@ void vtkMSDiscreteSynthesis::FillOutput(
 }
 
 int vtkMSDiscreteSynthesis::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
@@ -538,6 +552,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   msynth::SynthesisOptions options;
   if (!BuildOptions(this, guide, options))
     return 0;
+  const Internals& run = *this->Internal;
   auto& cache = this->Internal->Cache;
   const bool fresh = cache.Fresh(this, { input, guide });
   SetUpExchange(this, labels, fresh, options);
@@ -550,7 +565,26 @@ int vtkMSDiscreteSynthesis::RequestData(
   }
   if (!vtkMSSynthesisRun::Report(this, cache.Result.Status, cache.Result.Message))
     return 0;
-  this->FillOutput(input, output, outputVector->GetInformationObject(0));
+  // The time step asked for (steps are 0, 1, 2, ...), on the port that asked.
+  const std::size_t step = run.Snapshots.empty()
+    ? 0
+    : vtkMSPipeline::RequestedStep(
+        vtkMSPipeline::RequestingPort(request, outputVector), run.Snapshots.size());
+  this->FillOutput(input, output, step);
+  vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
+  vtkPolyData* geometry = vtkPolyData::GetData(geometryInfo);
+  std::string problem;
+  if (this->GenerateGeometry &&
+    !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel,
+      vtkMSPipeline::UpdatePiece(geometryInfo), vtkMSPipeline::UpdateNumberOfPieces(geometryInfo),
+      geometry, problem))
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "The model's geometry: " << problem);
+    return 0;
+  }
+  if (!run.Snapshots.empty())
+    geometry->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   return 1;
 }
 
@@ -575,6 +609,8 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
      << this->TranslationMap << "')\n";
   os << indent << "DistributeBlocks: " << this->DistributeBlocks << "\n";
   os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
+  os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
+     << this->EmptyLabel << ")\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

@@ -71,7 +71,15 @@
  * Field data adds `Step`, `ActiveBlock` and `StepAssignments`. The run is done once and cached;
  * changing the time step only picks another snapshot.
  *
- * @sa vtkMSLabelGridReader, vtkMSTransitionTables
+ * Geometry: output port 1 (GetGeometryOutput) is the model's voxel surface, vtkPolyData with
+ * the cell scalars `Label`, so that a viewer shows the model itself rather than the outline of
+ * a label image: each non-empty site is a cube, with a face wherever it meets another label
+ * (vtkMSLabelArrays::VoxelSurface). Sites holding EmptyLabel, and in a snapshot the sites not
+ * decided yet, give none. It follows the requested time step, and under MPI each piece holds a
+ * slab of the sites. GenerateGeometry off leaves it empty (it costs about as much as writing
+ * the model). For model pieces in place of voxels, use vtkMSLabelGeometry on port 0.
+ *
+ * @sa vtkMSLabelGridReader, vtkMSTransitionTables, vtkMSLabelGeometry
  */
 #ifndef vtkMSDiscreteSynthesis_h
 #define vtkMSDiscreteSynthesis_h
@@ -83,6 +91,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkPolyData;
 namespace msynth
 {
 struct SynthesisOptions;
@@ -319,6 +328,22 @@ public:
   vtkGetMacro(MaximumSnapshotMemory, vtkIdType);
   ///@}
 
+  ///@{
+  /// Whether output port 1 holds the model's voxel surface. Default on.
+  vtkSetMacro(GenerateGeometry, bool);
+  vtkGetMacro(GenerateGeometry, bool);
+  vtkBooleanMacro(GenerateGeometry, bool);
+  ///@}
+
+  ///@{
+  /// The label that gives no geometry on port 1 (the example's empty space). Default 0.
+  vtkSetMacro(EmptyLabel, int);
+  vtkGetMacro(EmptyLabel, int);
+  ///@}
+
+  /// Output port 1: the model's voxel surface.
+  vtkPolyData* GetGeometryOutput();
+
   /// The label grid's size along @p axis: OutputSize, or with a SampleFile the number of
   /// pattern sites a picture of OutputSize pixels needs.
   int GridSize(int axis) const;
@@ -328,6 +353,7 @@ protected:
   ~vtkMSDiscreteSynthesis() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -342,7 +368,7 @@ private:
   /// The patterns of SampleFile and their synthesis, into the cache.
   void SolveSample(msynth::SynthesisOptions& options);
   /// The model (or the requested snapshot), LastBlock and the field data on @p output.
-  void FillOutput(vtkImageData* input, vtkImageData* output, vtkInformation* outInfo);
+  void FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step);
 
   int OutputSize[3] = { 32, 32, 8 };
   int BlockSize[3] = { 0, 0, 0 };
@@ -378,6 +404,8 @@ private:
   bool PeriodicInput = true;
   bool Ground = false;
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
+  bool GenerateGeometry = true;
+  int EmptyLabel = 0;
 
   struct Internals;
   Internals* Internal;

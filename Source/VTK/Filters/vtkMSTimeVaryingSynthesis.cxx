@@ -20,6 +20,7 @@
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <exception>
@@ -39,7 +40,7 @@ vtkMSTimeVaryingSynthesis::vtkMSTimeVaryingSynthesis()
   : Cached(new Cache)
 {
   this->SetNumberOfInputPorts(1);
-  this->SetNumberOfOutputPorts(1);
+  this->SetNumberOfOutputPorts(2);
 }
 
 vtkMSTimeVaryingSynthesis::~vtkMSTimeVaryingSynthesis() = default;
@@ -49,15 +50,20 @@ vtkImageData* vtkMSTimeVaryingSynthesis::GetOutput()
   return vtkImageData::SafeDownCast(this->GetOutputDataObject(0));
 }
 
+vtkPolyData* vtkMSTimeVaryingSynthesis::GetGeometryOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
 int vtkMSTimeVaryingSynthesis::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
 }
 
-int vtkMSTimeVaryingSynthesis::FillOutputPortInformation(int, vtkInformation* info)
+int vtkMSTimeVaryingSynthesis::FillOutputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkImageData");
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
   return 1;
 }
 
@@ -67,8 +73,12 @@ int vtkMSTimeVaryingSynthesis::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkMSPipeline::SetOutputLabelGrid(
     inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
-  vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(this->NumberOfFrames));
-  outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* info = outputVector->GetInformationObject(port);
+    vtkMSPipeline::SetTimeSteps(info, static_cast<std::size_t>(this->NumberOfFrames));
+    info->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  }
   return 1;
 }
 
@@ -157,11 +167,13 @@ msynth::TimeVaryingOptions OptionsOf(vtkMSTimeVaryingSynthesis* self)
 }
 } // namespace
 
-int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
+int vtkMSTimeVaryingSynthesis::Execute(vtkInformation* request,
   const std::vector<vtkSmartPointer<vtkDataObject>>& inputs, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkPolyData* geometry = vtkPolyData::GetData(outputVector, 1);
+  geometry->Initialize();
   if (vtkMSPipeline::UpdatePiece(outInfo) != 0)
   {
     output->Initialize(); // piece 0 holds the model
@@ -200,7 +212,8 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
   {
     return 0;
   }
-  const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, result.Model.Frames.size());
+  const std::size_t step = vtkMSPipeline::RequestedStep(
+    vtkMSPipeline::RequestingPort(request, outputVector), result.Model.Frames.size());
   const msynth::LabelGrid& frame = result.Model.Frames[step];
   output->SetExtent(
     0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
@@ -222,6 +235,14 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation*,
     fd, "ExampleFrames", static_cast<int>(cache.Example.size()));
   vtkMSFieldData::AddStatistics(fd, s, result.Status, result.Message);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", static_cast<vtkIdType>(this->Seed));
+  if (this->GenerateGeometry &&
+    !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel, 0, 1, geometry, problem))
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "The frame's geometry: " << problem);
+    return 0;
+  }
+  geometry->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   return 1;
 }
 
@@ -236,4 +257,6 @@ void vtkMSTimeVaryingSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Loop: " << this->Loop << "\n";
   os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";
+  os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
+     << this->EmptyLabel << ")\n";
 }

@@ -15,6 +15,10 @@
  * start; all 0 is Algorithm 3.1. A whole-model failure is an error, never an output. The model
  * is synthesized once and cached: asking for other time steps does not solve again.
  *
+ * Output port 1 (GetGeometryOutput) is the frame's voxel surface with the cell scalars `Label`
+ * (vtkMSLabelArrays::VoxelSurface), so a viewer shows the model rather than the outline of a
+ * label image; sites holding EmptyLabel give none. GenerateGeometry off leaves it empty.
+ *
  * In parallel (pvbatch --mpi) piece 0 does the work; other pieces output empty images.
  *
  * @sa msynth/TimeVarying.h, vtkMSDiscreteSynthesis
@@ -28,6 +32,7 @@
 #include <memory>
 
 class vtkImageData;
+class vtkPolyData;
 
 class MODELSYNTHFILTERS_EXPORT vtkMSTimeVaryingSynthesis : public vtkMultiTimeStepAlgorithm
 {
@@ -40,6 +45,16 @@ public:
   void SetInputData(vtkDataObject* example) { this->SetInputDataObject(0, example); }
   /// The frame of the last update.
   vtkImageData* GetOutput();
+  /// Output port 1: the frame's voxel surface.
+  vtkPolyData* GetGeometryOutput();
+
+  /// Whether output port 1 holds the frame's voxel surface. Default on.
+  vtkSetMacro(GenerateGeometry, bool);
+  vtkGetMacro(GenerateGeometry, bool);
+  vtkBooleanMacro(GenerateGeometry, bool);
+  /// The label that gives no geometry on port 1. Default 0.
+  vtkSetMacro(EmptyLabel, int);
+  vtkGetMacro(EmptyLabel, int);
 
   /// The values of vtkMSDiscreteSynthesis's LabelChoices and SiteOrders that apply here.
   enum LabelChoices
@@ -127,6 +142,8 @@ private:
   int SiteOrder = SCAN_LINE;
   bool Loop = false;
   bool ExampleTimeFromZ = false;
+  bool GenerateGeometry = true;
+  int EmptyLabel = 0;
 
   struct Cache;
   std::unique_ptr<Cache> Cached;

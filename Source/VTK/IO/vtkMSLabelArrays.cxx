@@ -31,7 +31,9 @@
 #include "vtkTypeInt64Array.h"
 
 #include "Core/Error.h"
+#include "Discrete/VoxelSurface.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -149,4 +151,55 @@ vtkIntArray* vtkMSLabelArrays::NewLabelArray(const msynth::LabelGrid& grid, cons
   array->SetNumberOfTuples(grid.NumberOfSites());
   std::copy(grid.Data().begin(), grid.Data().end(), array->GetPointer(0));
   return array;
+}
+
+bool vtkMSLabelArrays::VoxelSurface(
+  vtkImageData* image, int empty, int piece, int pieces, vtkPolyData* output, std::string& problem)
+{
+  output->Initialize();
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    return true;
+  }
+  msynth::LabelGrid grid;
+  if (!ReadLabels(image, nullptr, grid, problem))
+  {
+    return false;
+  }
+  for (auto& label : grid.Data())
+  {
+    label = label == VTK_INT_MIN ? empty : label;
+  }
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  int extent[6];
+  image->GetExtent(extent);
+  const std::array<double, 3> start{ { origin[0] + extent[0] * spacing[0],
+    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2] } };
+  const msynth::VoxelSurface surface = msynth::ExtractVoxelSurface(grid, empty, start,
+    { { spacing[0], spacing[1], spacing[2] } }, msynth::PieceSlab(grid, piece, pieces));
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
+  for (std::size_t i = 0; i < surface.Points.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), surface.Points[i].data());
+  }
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(
+    static_cast<vtkIdType>(surface.Quads.size()), 4 * static_cast<vtkIdType>(surface.Quads.size()));
+  vtkNew<vtkIntArray> labels;
+  labels->SetName("Label");
+  labels->SetNumberOfTuples(static_cast<vtkIdType>(surface.Quads.size()));
+  for (std::size_t q = 0; q < surface.Quads.size(); ++q)
+  {
+    const vtkIdType ids[4] = { surface.Quads[q][0], surface.Quads[q][1], surface.Quads[q][2],
+      surface.Quads[q][3] };
+    quads->InsertNextCell(4, ids);
+    labels->SetValue(static_cast<vtkIdType>(q), surface.QuadLabels[q]);
+  }
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  output->GetCellData()->SetScalars(labels);
+  return true;
 }

@@ -17,6 +17,7 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkIntArray;
+class vtkPolyData;
 
 class MODELSYNTHIO_EXPORT vtkMSLabelArrays
 {
@@ -49,6 +50,17 @@ public:
 
   /// A new vtkIntArray named @p name holding @p grid's labels.
   static vtkIntArray* NewLabelArray(const msynth::LabelGrid& grid, const char* name);
+
+  /**
+   * The voxel surface of @p image's labels into @p output (quads with the cell scalars
+   * `Label`): sites holding @p empty, or VTK_INT_MIN (a site a catalog snapshot has not yet
+   * decided), give none. Piece @p piece of @p pieces holds the faces of its slab of sites along
+   * the longest axis; the pieces put together give the whole surface, with no faces at the
+   * seams. An empty image gives an empty output. False, with @p problem, when the image has no
+   * usable label array.
+   */
+  static bool VoxelSurface(vtkImageData* image, int empty, int piece, int pieces,
+    vtkPolyData* output, std::string& problem);
 };
 
 #endif

@@ -3,6 +3,7 @@
 
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArraySelection.h"
@@ -14,6 +15,7 @@
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -63,6 +65,18 @@ vtkMSLabelGridReader::vtkMSLabelGridReader()
   , Internal(new Internals)
 {
   this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkMSLabelGridReader::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
+  return 1;
+}
+
+vtkPolyData* vtkMSLabelGridReader::GetGeometryOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
 }
 
 vtkMSLabelGridReader::~vtkMSLabelGridReader()
@@ -214,6 +228,8 @@ bool vtkMSLabelGridReader::ReadHeader()
 int vtkMSLabelGridReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  // The geometry (port 1) comes in pieces: a slab of the sites each.
+  outputVector->GetInformationObject(1)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   if (!this->ReadHeader())
   {
     return 0;
@@ -358,9 +374,32 @@ int vtkMSLabelGridReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
+  vtkPolyData* geometry = vtkPolyData::GetData(geometryInfo);
+  geometry->Initialize();
+  if (!this->ReadGrid(output))
+  {
+    output->Initialize();
+    return 0;
+  }
+  std::string problem;
+  if (this->GenerateGeometry &&
+    !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel,
+      vtkMSPipeline::UpdatePiece(geometryInfo), vtkMSPipeline::UpdateNumberOfPieces(geometryInfo),
+      geometry, problem))
+  {
+    output->Initialize();
+    this->Fail(problem);
+    return 0;
+  }
+  return 1;
+}
+
+bool vtkMSLabelGridReader::ReadGrid(vtkImageData* output)
+{
   if (!this->ReadHeader())
   {
-    return 0;
+    return false;
   }
   vtkNew<vtkStringArray> source;
   source->SetName("ExampleFile");
@@ -369,7 +408,7 @@ int vtkMSLabelGridReader::RequestData(
   {
     FillFromTextModel(output, this->Internal->Text, this->Internal->Palette);
     output->GetFieldData()->AddArray(source);
-    return 1;
+    return true;
   }
   std::string messages;
   const bool ok = vtkMSEngineBridge::Execute(this->Reader, messages);
@@ -377,7 +416,7 @@ int vtkMSLabelGridReader::RequestData(
   if (!ok || !image)
   {
     this->Fail("could not be read: " + messages);
-    return 0;
+    return false;
   }
   vtkDataArray* labels = this->LabelsOnCells
     ? image->GetCellData()->GetArray(this->LabelArrayName.c_str())
@@ -385,7 +424,7 @@ int vtkMSLabelGridReader::RequestData(
   if (!labels)
   {
     this->Fail("array '" + this->LabelArrayName + "' is not a numeric array");
-    return 0;
+    return false;
   }
 
   vtkNew<vtkImageData> sites;
@@ -394,7 +433,7 @@ int vtkMSLabelGridReader::RequestData(
   if (!vtkMSLabelArrays::CheckLabelArray(sites, labels, problem))
   {
     this->Fail(problem);
-    return 0;
+    return false;
   }
   vtkNew<vtkIntArray> out;
   out->SetName("Label");
@@ -406,12 +445,14 @@ int vtkMSLabelGridReader::RequestData(
   output->CopyStructure(sites);
   output->GetPointData()->SetScalars(out);
   output->GetFieldData()->AddArray(source);
-  return 1;
+  return true;
 }
 
 void vtkMSLabelGridReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
+     << this->EmptyLabel << ")\n";
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "LabelArrayName: " << this->LabelArrayName << "\n";
   os << indent << "MaximumNumberOfSites: " << this->MaximumNumberOfSites << "\n";

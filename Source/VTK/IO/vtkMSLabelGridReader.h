@@ -18,6 +18,12 @@
  *
  * Dissertation §3.1: labels are integers; 2D examples have one layer in z.
  *
+ * Output port 1 (GetGeometryOutput) is the example's voxel surface, vtkPolyData with the cell
+ * scalars `Label` (vtkMSLabelArrays::VoxelSurface), so a viewer shows the model rather than the
+ * outline of a label image; sites holding EmptyLabel (0: the empty voxel of .vox and of the text
+ * format) give none. Under MPI each piece holds a slab of the sites. GenerateGeometry off leaves
+ * it empty.
+ *
  * @warning A file claiming more than MaximumNumberOfSites sites is refused before any array is
  * allocated.
  *
@@ -32,6 +38,7 @@
 
 #include <string> // for ivar
 
+class vtkPolyData;
 class vtkXMLImageDataReader;
 
 class MODELSYNTHIO_EXPORT vtkMSLabelGridReader : public vtkImageAlgorithm
@@ -60,6 +67,19 @@ public:
   vtkGetMacro(MaximumNumberOfSites, vtkIdType);
   ///@}
 
+  ///@{
+  /// Whether output port 1 holds the example's voxel surface. Default on.
+  vtkSetMacro(GenerateGeometry, bool);
+  vtkGetMacro(GenerateGeometry, bool);
+  vtkBooleanMacro(GenerateGeometry, bool);
+  /// The label that gives no geometry on port 1. Default 0.
+  vtkSetMacro(EmptyLabel, int);
+  vtkGetMacro(EmptyLabel, int);
+  ///@}
+
+  /// Output port 1: the example's voxel surface.
+  vtkPolyData* GetGeometryOutput();
+
   /// True when @p name looks like a file this reader opens (.vti, .txt or .vox).
   static int CanReadFile(const char* name);
 
@@ -69,6 +89,7 @@ protected:
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
 
 private:
   vtkMSLabelGridReader(const vtkMSLabelGridReader&) = delete;
@@ -79,10 +100,14 @@ private:
   /// Reads a text-format example (cached while the file is unchanged).
   bool ReadText();
   void Fail(const std::string& problem);
+  /// Reads the labels into @p output; false after an error.
+  bool ReadGrid(vtkImageData* output);
 
   std::string FileName;
   std::string LabelArrayName = "Label";
   vtkIdType MaximumNumberOfSites = vtkIdType(1) << 27;
+  bool GenerateGeometry = true;
+  int EmptyLabel = 0;
 
   vtkSmartPointer<vtkXMLImageDataReader> Reader;
   bool LabelsOnCells = false;

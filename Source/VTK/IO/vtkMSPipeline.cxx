@@ -18,6 +18,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -32,6 +33,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -43,6 +45,23 @@ int vtkMSPipeline::UpdatePiece(vtkInformation* outInfo)
   return outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     : 0;
+}
+
+int vtkMSPipeline::UpdateNumberOfPieces(vtkInformation* outInfo)
+{
+  return outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()), 1)
+    : 1;
+}
+
+vtkInformation* vtkMSPipeline::RequestingPort(
+  vtkInformation* request, vtkInformationVector* outputs)
+{
+  const int port = request && request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    : 0;
+  return outputs->GetInformationObject(
+    port >= 0 && port < outputs->GetNumberOfInformationObjects() ? port : 0);
 }
 
 void vtkMSPipeline::RequestWholeExtentOnPieceZero(vtkInformation* inInfo, int piece)

@@ -14,6 +14,7 @@
 #include <cstddef>
 
 class vtkInformation;
+class vtkInformationVector;
 
 class MODELSYNTHIO_EXPORT vtkMSPipeline
 {
@@ -27,6 +28,13 @@ public:
 
   /// The piece an output information object asks for (UPDATE_PIECE_NUMBER), 0 when unset.
   static int UpdatePiece(vtkInformation* outInfo);
+
+  /// The number of pieces an output information object asks for, 1 when unset.
+  static int UpdateNumberOfPieces(vtkInformation* outInfo);
+
+  /// The information of the output port whose update asked for this REQUEST_DATA @p request
+  /// (FROM_OUTPUT_PORT), port 0's when it names none: where the requested time step is.
+  static vtkInformation* RequestingPort(vtkInformation* request, vtkInformationVector* outputs);
 
   /**
    * Announces a label image of @p size sites on @p outInfo: its whole extent, the spacing and
