@@ -660,6 +660,65 @@ def continuous_data(data):
     write(image, os.path.join(data, "Continuous", "letters-guide.vti"))
     network_examples(os.path.join(data, "Continuous"))
     silo_example(os.path.join(data, "Continuous"))
+    blender_example(os.path.join(data, "Continuous"))
+
+
+def blender_example(folder):
+    """Data/Continuous/house-blender.obj (and .mtl): house.obj as Blender 4.1's OBJ exporter
+    writes it with its default settings: Forward -Z, Up Y (Blender's (x, y, z) is the file's
+    (x, z, -y)), each object's vertices, then its normals and UVs, smoothing off, a material per
+    object, faces as v/vt/vn, objects named as a Blender user names them. Read with --up y (the
+    reader's UpAxis Y) it is house.obj."""
+    objects, points = [], []
+    with open(os.path.join(folder, "house.obj")) as f:
+        for line in f:
+            words = line.split()
+            if words and words[0] == "o":
+                objects.append((words[1].capitalize(), []))
+            elif words and words[0] == "v":
+                points.append(tuple(float(w) for w in words[1:4]))
+            elif words and words[0] == "f":
+                objects[-1][1].append([int(w) for w in words[1:]])
+    lines = ["# Blender 4.1.1", "# www.blender.org", "mtllib house-blender.mtl"]
+    normals, uvs, written = [], 0, 0
+    for name, faces in objects:
+        used = sorted({i for face in faces for i in face})
+        index = {i: written + k + 1 for k, i in enumerate(used)}
+        written += len(used)
+        lines.append("o " + name)
+        lines += ["v %.6f %.6f %.6f" % (points[i - 1][0], points[i - 1][2], -points[i - 1][1] + 0.0)
+                  for i in used]
+        corners = []
+        for face in faces:
+            p = [points[i - 1] for i in face]
+            a = [p[1][c] - p[0][c] for c in range(3)]
+            b = [p[2][c] - p[0][c] for c in range(3)]
+            n = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+            length = math.sqrt(sum(c * c for c in n))
+            n = (n[0] / length, n[2] / length, -n[1] / length)
+            text = "vn %.4f %.4f %.4f" % n
+            if text not in normals:
+                normals.append(text)
+                lines.append(text)
+            corners.append(normals.index(text) + 1)
+        for face in faces:
+            for k in range(len(face)):
+                lines.append("vt %.6f %.6f" % (0.125 * ((uvs + k) % 8), 0.25 * ((uvs + k) % 4)))
+            uvs += len(face)
+        lines += ["s 0", "usemtl " + ("Brick" if name == "Wall" else "Tiles")]
+        first_uv = uvs - sum(len(face) for face in faces) + 1
+        for face, n in zip(faces, corners):
+            lines.append("f " + " ".join("%d/%d/%d" % (index[i], first_uv + k, n)
+                                         for k, i in enumerate(face)))
+            first_uv += len(face)
+    with open(os.path.join(folder, "house-blender.obj"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(folder, "house-blender.mtl"), "w") as f:
+        f.write("# Blender 4.1.1 MTL File: 'house.blend'\n# www.blender.org\n")
+        for name, colour in (("Brick", "0.600000 0.250000 0.150000"), ("Tiles", "0.300000 0.300000 0.350000")):
+            f.write("\nnewmtl %s\nNs 250.000000\nKa 1.000000 1.000000 1.000000\nKd %s\n"
+                    "Ks 0.500000 0.500000 0.500000\nKe 0.000000 0.000000 0.000000\nNi 1.450000\n"
+                    "d 1.000000\nillum 2\n" % (name, colour))
 
 
 def silo_example(folder):

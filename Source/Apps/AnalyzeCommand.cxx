@@ -25,7 +25,7 @@ struct AnalyzeOptions
 {
   std::string Example;
   std::string Out = "msynth-output";
-  std::string Types;
+  PolyhedralReading Reading;
 };
 
 int LabelGridToFolder(const std::string& example, const std::string& dir)
@@ -51,9 +51,9 @@ int LabelGridToFolder(const std::string& example, const std::string& dir)
 
 /// DIR/labels.csv (the catalog) and DIR/marked-example.vtp.
 int PolyhedralToFolder(
-  const std::string& path, const std::string& objectTypes, const std::string& dir)
+  const std::string& path, const PolyhedralReading& reading, const std::string& dir)
 {
-  auto labels = PolyhedralLabels(path, objectTypes);
+  auto labels = PolyhedralLabels(path, reading);
   WriteCSV(dir + "/labels.csv", labels->GetLabelTable());
   WriteXML<vtkXMLPolyDataWriter>(dir + "/marked-example.vtp", labels->GetMarkedExample());
   std::cout << "wrote " << dir << "/labels.csv, " << dir << "/marked-example.vtp\n";
@@ -69,7 +69,7 @@ CommandRunner AddAnalyze(CLI::App& app)
     "DIR/labels.csv and DIR/marked-example.vtp (label ids on its features)");
   analyze->add_option("EXAMPLE", o->Example, "a label grid or polyhedral example")->required();
   AddOutOption(*analyze, o->Out);
-  AddTypesOption(*analyze, o->Types);
+  AddTypesOption(*analyze, o->Reading);
   return [o]()
   {
     CheckInputFile(o->Example);
@@ -80,7 +80,7 @@ CommandRunner AddAnalyze(CLI::App& app)
     if (IsPolyhedral(o->Example))
     {
       return IntoFolder(o->Out,
-        [&](const std::string& dir) { return PolyhedralToFolder(o->Example, o->Types, dir); });
+        [&](const std::string& dir) { return PolyhedralToFolder(o->Example, o->Reading, dir); });
     }
     return IntoFolder(
       o->Out, [&](const std::string& dir) { return LabelGridToFolder(o->Example, dir); });

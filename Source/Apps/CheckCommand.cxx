@@ -5,6 +5,7 @@
 // the windows of its image sample.
 #include "Commands.h"
 #include "Common.h"
+#include "Examples.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPolyhedra.h"
 
@@ -40,7 +41,7 @@ struct CheckOptions
   std::string Example;
   std::string Model;
   std::string Subset;
-  std::string Types;
+  PolyhedralReading Reading;
   OverlappingOptions Patterns;
   bool NoPeriodicInput = false;
   std::string Translate;
@@ -74,11 +75,10 @@ int CheckSamplePicture(const CheckOptions& o)
 
 /// A continuous model (.vtp) against its polyhedral example.
 int CheckContinuous(
-  const std::string& example, const std::string& modelPath, const std::string& objectTypes)
+  const std::string& example, const std::string& modelPath, const PolyhedralReading& reading)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
-  reader->SetFileName(example.c_str());
-  reader->SetObjectTypes(objectTypes.c_str());
+  ConfigureReader(reader, example, reading);
   Run(reader);
   msynth::CheckVTKXMLFile(modelPath);
   vtkNew<vtkXMLPolyDataReader> modelReader;
@@ -171,7 +171,7 @@ CommandRunner AddCheck(CLI::App& app)
       "MODEL", o->Model, "the model (.vti, .txt, .vox; .vtp for continuous; .png for a sample)")
     ->required();
   AddSubsetOption(*check, o->Subset);
-  AddTypesOption(*check, o->Types);
+  AddTypesOption(*check, o->Reading);
   AddPatternOptions(*check, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   const char* sample = "Image samples (.png, .bmp)";
   check->add_option("--translate", o->Translate, "the picture repeats along these axes (x, y)")
@@ -184,7 +184,7 @@ CommandRunner AddCheck(CLI::App& app)
     CheckInputFile(o->Model, true);
     if (IsPolyhedral(o->Example))
     {
-      return CheckContinuous(o->Example, o->Model, o->Types);
+      return CheckContinuous(o->Example, o->Model, o->Reading);
     }
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);

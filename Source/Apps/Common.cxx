@@ -325,10 +325,15 @@ void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& wh
   command.add_option("--snapshots", snapshots, what)->check(CLI::Range(0, 9998));
 }
 
-void AddTypesOption(CLI::App& command, std::string& types)
+void AddTypesOption(CLI::App& command, PolyhedralReading& reading)
 {
-  command.add_option("--types", types,
+  command.add_option("--types", reading.Types,
     "object types of a polyhedral example: object (or base) name N has type T, as N=T,...");
+  command
+    .add_option("--up", reading.Up,
+      "the polyhedral example's up axis: z (default), or y for a file modelled with y up (OBJ "
+      "as Blender exports it by default), turned so that y becomes z")
+    ->check(CLI::IsMember({ "y", "z" }));
 }
 
 std::vector<CLI::Option*> AddPatternOptions(

@@ -3,6 +3,7 @@
 // arrangement (vtkMSPlaneArrangement) → label solver (vtkMSContinuousSynthesis) → mesh
 // (vtkMSArrangementMesh) → model.vtp, arrangement.vtp, model.vdb and statistics.json.
 #include "Common.h"
+#include "Examples.h"
 #include "Synthesize.h"
 #include "vtkMSArrangementStorage.h"
 #include "vtkMSLabelArrays.h"
@@ -192,8 +193,10 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     clock = now;
   };
   vtkNew<vtkMSPolyhedralExampleReader> reader;
-  reader->SetFileName(o.Example.c_str());
-  reader->SetObjectTypes(o.Types.c_str());
+  PolyhedralReading reading;
+  reading.Types = o.Types;
+  reading.Up = o.Up;
+  ConfigureReader(reader, o.Example, reading);
   Run(reader);
   double exampleBounds[6];
   reader->GetOutput()->GetBounds(exampleBounds);
@@ -246,6 +249,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     if (equals == std::string::npos || equals == 0 || equals + 1 == o.Detail.size())
       throw std::runtime_error("--detail '" + o.Detail + "' is not TYPE=FILE");
     detail->SetFileName(o.Detail.substr(equals + 1).c_str());
+    detail->SetUpAxis(reader->GetUpAxis()); // modelled in the same tool as the example
     Run(detail);
     mesh->SetDetailType(o.Detail.substr(0, equals).c_str());
     mesh->SetDetailConnection(detail->GetOutputPort());

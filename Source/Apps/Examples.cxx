@@ -26,12 +26,19 @@ ExampleTables AnalyzeLabelGrid(const std::string& example)
   return a;
 }
 
+void ConfigureReader(
+  vtkMSPolyhedralExampleReader* reader, const std::string& path, const PolyhedralReading& reading)
+{
+  reader->SetFileName(path.c_str());
+  reader->SetObjectTypes(reading.Types.c_str());
+  reader->SetUpAxis(reading.Up == "y" ? 1 : 2);
+}
+
 vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(
-  const std::string& path, const std::string& objectTypes)
+  const std::string& path, const PolyhedralReading& reading)
 {
   vtkNew<vtkMSPolyhedralExampleReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->SetObjectTypes(objectTypes.c_str());
+  ConfigureReader(reader, path, reading);
   Run(reader); // so that the reader's own error (naming the file) is the one reported
   auto labels = vtkSmartPointer<vtkMSNeighbourhoodLabels>::New();
   labels->SetInputConnection(reader->GetOutputPort());

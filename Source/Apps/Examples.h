@@ -11,6 +11,7 @@
 
 class vtkMSLabelGridReader;
 class vtkMSNeighbourhoodLabels;
+class vtkMSPolyhedralExampleReader;
 class vtkMSTransitionTables;
 
 namespace msynth
@@ -27,9 +28,15 @@ struct ExampleTables
 /// Reads the label grid @p example and computes its tables (errors as exceptions).
 ExampleTables AnalyzeLabelGrid(const std::string& example);
 
+struct PolyhedralReading;
+
+/// Sets @p reader to read the polyhedral example @p path as @p reading says.
+void ConfigureReader(
+  vtkMSPolyhedralExampleReader* reader, const std::string& path, const PolyhedralReading& reading);
+
 /// Reads a polyhedral example and computes its neighbourhood labels (errors as exceptions).
 vtkSmartPointer<vtkMSNeighbourhoodLabels> PolyhedralLabels(
-  const std::string& path, const std::string& objectTypes);
+  const std::string& path, const PolyhedralReading& reading);
 
 } // namespace cli
 } // namespace msynth

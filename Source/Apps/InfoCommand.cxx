@@ -33,7 +33,7 @@ struct InfoOptions
 {
   std::string Example;
   std::string Subset;
-  std::string Types;
+  PolyhedralReading Reading;
   OverlappingOptions Patterns;
   bool NoPeriodicInput = false;
 };
@@ -56,9 +56,9 @@ int TilesetInfo(const std::string& path, const std::string& subset)
 }
 
 /// "labels: N", one line per label with its kind and Boolean expression, then the families.
-int PolyhedralInfo(const std::string& path, const std::string& objectTypes)
+int PolyhedralInfo(const std::string& path, const PolyhedralReading& reading)
 {
-  auto labels = PolyhedralLabels(path, objectTypes);
+  auto labels = PolyhedralLabels(path, reading);
   vtkTable* table = labels->GetLabelTable();
   std::cout << "labels: " << table->GetNumberOfRows() << "\n";
   for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
@@ -166,7 +166,7 @@ CommandRunner AddInfo(CLI::App& app)
   info->add_option("EXAMPLE", o->Example, "a label grid, tileset or polyhedral example")
     ->required();
   AddSubsetOption(*info, o->Subset);
-  AddTypesOption(*info, o->Types);
+  AddTypesOption(*info, o->Reading);
   AddPatternOptions(*info, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   return [o]()
   {
@@ -183,7 +183,7 @@ CommandRunner AddInfo(CLI::App& app)
     }
     if (IsPolyhedral(o->Example))
     {
-      return PolyhedralInfo(o->Example, o->Types);
+      return PolyhedralInfo(o->Example, o->Reading);
     }
     return LabelGridInfo(o->Example);
   };

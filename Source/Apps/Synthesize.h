@@ -53,6 +53,7 @@ struct SynthesizeOptions
   bool SampleGround = false; ///< --ground without a label, for an image sample
   // Continuous.
   std::string Types;
+  std::string Up = "z"; ///< the example's up axis: z, or y (turned to z)
   double Spacing = 0;
   double Blocks = 4;
   double Voxel = 0;

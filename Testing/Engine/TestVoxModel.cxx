@@ -50,7 +50,119 @@ std::vector<std::uint8_t> Sample(bool palette)
   Chunk(file, "MAIN", {}, children);
   return file;
 }
+/// A DICT of the scene chunks: a count, then key and value as (length, bytes) strings.
+std::vector<std::uint8_t> Dict(const std::vector<std::pair<std::string, std::string>>& entries)
+{
+  std::vector<std::uint8_t> b;
+  U32(b, static_cast<std::uint32_t>(entries.size()));
+  for (const auto& [key, value] : entries)
+    for (const std::string* text : { &key, &value })
+    {
+      U32(b, static_cast<std::uint32_t>(text->size()));
+      b.insert(b.end(), text->begin(), text->end());
+    }
+  return b;
+}
+
+/// A file laid out as MagicaVoxel 0.99.7 saves it (version 200): the models first (SIZE, XYZI,
+/// each), then the scene graph (nTRN, nGRP, nSHP with DICT attributes and frames), eight LAYR,
+/// RGBA, IMAP, a MATL per palette entry, render objects (rOBJ), cameras (rCAM) and NOTE.
+std::vector<std::uint8_t> SavedByMagicaVoxel()
+{
+  std::vector<std::uint8_t> children, content;
+  for (int model = 0; model < 2; ++model)
+  {
+    content.clear();
+    for (std::uint32_t n : { 3u, 2u, 2u })
+      U32(content, n);
+    Chunk(children, "SIZE", content);
+    content.clear();
+    const std::vector<std::uint8_t> voxels = model == 0
+      ? std::vector<std::uint8_t>{ 0, 0, 0, 5, 2, 1, 1, 7 }
+      : std::vector<std::uint8_t>{ 1, 1, 1, 9 };
+    U32(content, static_cast<std::uint32_t>(voxels.size() / 4));
+    content.insert(content.end(), voxels.begin(), voxels.end());
+    Chunk(children, "XYZI", content);
+  }
+  auto node =
+    [](std::uint32_t id, const std::vector<std::pair<std::string, std::string>>& attributes)
+  {
+    std::vector<std::uint8_t> b;
+    U32(b, id);
+    const auto dict = Dict(attributes);
+    b.insert(b.end(), dict.begin(), dict.end());
+    return b;
+  };
+  content = node(0, {}); // the root transform: child 1, no layer, one frame
+  for (std::uint32_t v : { 1u, 0xffffffffu, 0xffffffffu, 1u })
+    U32(content, v);
+  auto frame = Dict({ { "_t", "0 0 1" } });
+  content.insert(content.end(), frame.begin(), frame.end());
+  Chunk(children, "nTRN", content);
+  content = node(1, {}); // a group of two shapes' transforms
+  U32(content, 2);
+  U32(content, 2);
+  U32(content, 4);
+  Chunk(children, "nGRP", content);
+  for (std::uint32_t t : { 2u, 4u })
+  {
+    content = node(t, { { "_name", "house" }, { "_hidden", "0" } });
+    for (std::uint32_t v : { t + 1, 0xffffffffu, 0u, 1u })
+      U32(content, v);
+    frame = Dict({ { "_t", t == 2 ? "0 0 0" : "8 0 0" }, { "_r", "4" } });
+    content.insert(content.end(), frame.begin(), frame.end());
+    Chunk(children, "nTRN", content);
+    content = node(t + 1, {});
+    U32(content, 1); // one model
+    U32(content, t == 2 ? 0 : 1);
+    frame = Dict({ { "_f", "0" } });
+    content.insert(content.end(), frame.begin(), frame.end());
+    Chunk(children, "nSHP", content);
+  }
+  for (std::uint32_t layer = 0; layer < 8; ++layer)
+  {
+    content = node(layer, { { "_name", "layer" } });
+    U32(content, 0xffffffffu);
+    Chunk(children, "LAYR", content);
+  }
+  content.clear();
+  for (int i = 0; i < 256; ++i)
+    for (int c = 0; c < 4; ++c)
+      content.push_back(static_cast<std::uint8_t>(255 - i));
+  Chunk(children, "RGBA", content);
+  content.clear();
+  for (int i = 0; i < 256; ++i)
+    content.push_back(static_cast<std::uint8_t>(i));
+  Chunk(children, "IMAP", content);
+  for (std::uint32_t m = 0; m < 256; ++m)
+    Chunk(children, "MATL", node(m, { { "_type", "_diffuse" }, { "_weight", "1" } }));
+  Chunk(children, "rOBJ", Dict({ { "_type", "_bloom" }, { "_mix", "0.5" } }));
+  Chunk(children, "rCAM", node(0, { { "_mode", "pers" }, { "_focus", "0 0 0" } }));
+  content.clear();
+  U32(content, 1);
+  U32(content, 4);
+  for (char c : std::string("note"))
+    content.push_back(static_cast<std::uint8_t>(c));
+  Chunk(children, "NOTE", content);
+  std::vector<std::uint8_t> file = { 'V', 'O', 'X', ' ' };
+  U32(file, 200);
+  Chunk(file, "MAIN", {}, children);
+  return file;
+}
 } // namespace
+
+TEST(VoxModel, FilesAsMagicaVoxelSavesThemRead)
+{
+  // Version 200 with the scene graph, layers, materials, render settings and a second model:
+  // the first model and the palette are read, everything else is skipped.
+  const VoxModel m = ReadVoxModel(SavedByMagicaVoxel(), "scene.vox", 1000);
+  EXPECT_EQ(m.NumberOfModels, 2);
+  EXPECT_EQ(m.Grid.Dimensions(), (std::array<std::int64_t, 3>{ { 3, 2, 2 } }));
+  EXPECT_EQ(m.Grid.At(0, 0, 0), 5);
+  EXPECT_EQ(m.Grid.At(2, 1, 1), 7);
+  EXPECT_EQ(m.Grid.At(1, 0, 0), 0);
+  EXPECT_EQ(m.Palette[5], (std::array<std::uint8_t, 4>{ { 251, 251, 251, 251 } }));
+}
 
 TEST(VoxModel, PaletteIndexIsTheLabel)
 {

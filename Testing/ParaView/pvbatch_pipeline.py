@@ -353,6 +353,11 @@ check(sizes is not None and max(sizes.GetValue(i) for i in range(sizes.GetNumber
 # The TVCG constraints through the proxy: grounded houses with walls one spacing high, eaves one
 # spacing wide.
 house = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "house.obj"))
+# The house as Blender exports it by default (y up), read with Up Axis Y: the same bounds.
+blender = ModelSynthPolyhedralExampleReader(FileName=os.path.join(DATA, "Continuous", "house-blender.obj"),
+                                            UpAxis="Y")
+check(servermanager.Fetch(blender).GetBounds() == servermanager.Fetch(house).GetBounds(),
+      "a y-up export read with Up Axis Y is the z-up house")
 houses = ModelSynthContinuousSynthesis(Input=house, Seed=3, Grounded=1, Thickness="wall:z:1", Overhang="roof", ModelCandidates=2,
                                        KeepProportions=1, TargetFractions="", Connected="",
                                        Arrangement=ModelSynthPlaneArrangement(Input=house,

@@ -769,6 +769,27 @@ class CommandLineTest(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("the output 10 x 10 x 1", r.stderr)
 
+    def test_up_axis_of_a_blender_export(self):
+        # Blender's default OBJ export is y up: --up y reads it as the z-up house.obj, in every
+        # command that reads a polyhedral example.
+        blender, house = data("Continuous/house-blender.obj"), data("Continuous/house.obj")
+        turned, original = run("info", blender, "--up", "y"), run("info", house)
+        self.assertEqual(turned.returncode, 0, turned.stderr)
+        self.assertEqual(turned.stdout, original.stdout)
+        self.assertNotEqual(run("info", blender).stdout, original.stdout)
+        out = os.path.join(tmp("cli"), "blender-house")
+        shutil.rmtree(out, ignore_errors=True)
+        r = run("synthesize", blender, "--up", "y", "--size", "12", "12", "6", "--grounded",
+                "--thickness", "Wall:z", "--seed", "3", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("on the ground", r.stdout)
+        model = os.path.join(out, "model.vtp")
+        self.assertEqual(run("check", blender, model, "--up", "y").returncode, 0)
+        self.assertEqual(run("check", blender, model).returncode, 1)  # read lying down: not its model
+        bad = run("info", blender, "--up", "x")
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("--up", bad.stderr)
+
     def test_progress_names_each_stage_on_a_terminal(self):
         # stderr on a terminal (a pty): the bar names the stage it is in; piped, no bar.
         import pty

@@ -219,6 +219,35 @@ class ContinuousAnalysisTest(unittest.TestCase):
         _, labels, errors = analyze(data("Continuous/two-objects2d.obj"), ObjectTypes="roof")
         self.assertIn("not name=type", errors)
 
+    def test_blender_export_with_y_up(self):
+        # house-blender.obj is house.obj as Blender exports it by default (y up, normals, UVs,
+        # materials, v/vt/vn faces): with UpAxis Y it is the same example, point for point.
+        def polygons(reader):
+            mesh = reader.GetOutput()
+            points = mesh.GetPoints()
+            out = set()
+            for c in range(mesh.GetNumberOfCells()):
+                ids = mesh.GetCell(c).GetPointIds()
+                corners = [tuple(round(v, 6) + 0.0 for v in points.GetPoint(ids.GetId(i)))
+                           for i in range(ids.GetNumberOfIds())]
+                first = corners.index(min(corners))  # the same polygon from any start
+                out.add((tuple(corners[first:] + corners[:first]),
+                         mesh.GetCellData().GetArray("ObjectType").GetValue(c)))
+            return out
+        original, labels, errors = analyze(data("Continuous/house.obj"))
+        self.assertEqual(errors, "")
+        turned, turned_labels, errors = analyze(data("Continuous/house-blender.obj"), UpAxis=1)
+        self.assertEqual(errors, "")
+        self.assertEqual(polygons(turned), polygons(original))
+        self.assertEqual(turned_labels.GetLabelTable().GetNumberOfRows(),
+                         labels.GetLabelTable().GetNumberOfRows())
+        names = turned.GetOutput().GetFieldData().GetAbstractArray("TypeNames")
+        self.assertEqual([names.GetValue(i) for i in range(names.GetNumberOfValues())], ["Wall", "Roof"])
+        # As the file is, the house lies on its side: its roof points along +y.
+        lying, _, errors = analyze(data("Continuous/house-blender.obj"))
+        self.assertEqual(errors, "")
+        self.assertEqual(lying.GetOutput().GetBounds()[2:], (0.0, 4.0, -3.5, 0.5))
+
     def test_malformed_examples(self):
         cases = {
             "open.obj": ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n", "not closed"),

@@ -1,4 +1,4 @@
-"""Every example in the README and the gallery runs as written from the repository root: each ```sh block as a
+"""Every example in the README, the guides and the gallery runs as written from the repository root: each ```sh block as a
 bash script and each ```python block with the interpreter it names (plain vtkmodules Python, or
 pvbatch for paraview.simple), in a scratch folder laid out like a checkout (Data, Utilities and
 build/ linked), so the outputs do not land in the sources. The two commands of a fresh machine
@@ -17,7 +17,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 BUILD = os.path.dirname(os.environ["MSYNTH_BIN"])
 
 
-GUIDES = ("README.md", os.path.join("Documentation", "scripting.md"))
+GUIDES = ("README.md", os.path.join("Documentation", "scripting.md"),
+          os.path.join("Documentation", "authoring.md"))
 
 
 def blocks():

@@ -489,6 +489,14 @@ void Validate3D(PolyhedralExample& e)
 
 } // namespace
 
+void TurnYUpToZUp(PolyhedralExample& example)
+{
+  for (Point3& p : example.Points)
+  {
+    p = { p[0], p[2] == 0.0 ? 0.0 : -p[2], p[1] }; // no −0 in a flat example's y
+  }
+}
+
 void ValidateExample(PolyhedralExample& example)
 {
   if (example.Faces.empty())

@@ -62,6 +62,11 @@ PolyhedralExample ReadOBJExample(
 /// per object type. @p faceTypes gives each face's type.
 void AssignObjectsByConnectivity(PolyhedralExample& example, const std::vector<int>& faceTypes);
 
+/// Turns an example modelled with y up (as most tools write OBJ, Blender's default export among
+/// them: Forward −Z, Up Y) to ModelSynth's z up: (x, y, z) → (x, −z, y), a rotation, so faces
+/// keep their orientation. Run it before ValidateExample, which decides 2D or 3D.
+void TurnYUpToZUp(PolyhedralExample& example);
+
 /// Decides 2D or 3D (all z = 0 and every face flat in z), checks the example and orients it:
 /// degenerate or non-planar faces, open or non-manifold surfaces, inconsistent orientation and
 /// self-intersections are errors; an object whose faces all point inward is turned outward, and

@@ -151,6 +151,10 @@ int vtkMSPolyhedralExampleReader::RequestData(
                     << "' (expected .obj, .vtp, .ply or .stl).");
       return 0;
     }
+    if (this->UpAxis == 1)
+    {
+      msynth::TurnYUpToZUp(example);
+    }
     msynth::ValidateExample(example);
     vtkMSPolyhedra::FromPolyhedralExample(example, output);
     vtkNew<vtkStringArray> file;
@@ -183,4 +187,5 @@ void vtkMSPolyhedralExampleReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "ObjectTypes: " << this->ObjectTypes << "\n";
+  os << indent << "UpAxis: " << (this->UpAxis == 1 ? "y" : "z") << "\n";
 }

@@ -14,6 +14,10 @@
  * The output holds the polygons, oriented outward (counter-clockwise in 2D), with cell arrays
  * `ObjectType` and `ObjectId`, and field data `ExampleFile`, `TypeIds`/`TypeNames`.
  *
+ * Up axis: ModelSynth takes z as up (the ground, Grounded, overhangs). A file modelled with y
+ * up (OBJ as most tools write it, Blender's default export: Forward −Z, Up Y) is read with
+ * UpAxis = 1 and turned, (x, y, z) → (x, −z, y) (msynth::TurnYUpToZUp).
+ *
  * Validation (msynth::ValidateExample): degenerate or non-planar faces, surfaces that are not
  * closed, non-manifold edges or vertices, inconsistent orientation and self-intersections are
  * errors naming the file, object and face; the request fails.
@@ -48,6 +52,12 @@ public:
   vtkGetCharFromStdStringMacro(ObjectTypes);
   ///@}
 
+  ///@{
+  /// The file's up axis: 2 (z, default) or 1 (y, turned to z on reading).
+  vtkSetClampMacro(UpAxis, int, 1, 2);
+  vtkGetMacro(UpAxis, int);
+  ///@}
+
   /// True for the extensions this reader opens.
   static int CanReadFile(const char* name);
 
@@ -63,6 +73,7 @@ private:
 
   std::string FileName;
   std::string ObjectTypes;
+  int UpAxis = 2;
 };
 
 #endif
