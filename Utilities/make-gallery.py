@@ -46,6 +46,9 @@ ENTRIES = [
     ("houses-constrained", "Polyhedral (.obj)", "Grounded, walls one storey, eaves one spacing, "
      "mirrored across x and y", "synthesize %s/house.obj --size 24 24 10 --seed 3 --grounded "
      "--thickness wall:z --overhang roof --mirror xy" % D, "model"),
+    ("house-blender", "Blender OBJ export (y up)", "The house as Blender exports it by default, "
+     "read with --up y", "synthesize %s/house-blender.obj --up y --size 24 24 10 --seed 3 "
+     "--grounded --thickness Wall:z --overhang Roof" % D, "model"),
     ("cottages", "Polyhedral (.obj)", "Five object types, grounded, walls 8 spacings high",
      "synthesize %s/cottage.obj --size 16 16 8 --seed 5 --grounded --thickness wall:z:8" % D,
      "model"),
