@@ -571,20 +571,18 @@ int vtkMSDiscreteSynthesis::RequestData(
     : vtkMSPipeline::RequestedStep(
         vtkMSPipeline::RequestingPort(request, outputVector), run.Snapshots.size());
   this->FillOutput(input, output, step);
-  vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
-  vtkPolyData* geometry = vtkPolyData::GetData(geometryInfo);
   std::string problem;
-  if (this->GenerateGeometry &&
-    !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel,
-      vtkMSPipeline::UpdatePiece(geometryInfo), vtkMSPipeline::UpdateNumberOfPieces(geometryInfo),
-      geometry, problem))
+  if (!vtkMSLabelArrays::FillGeometryPort(output, this->GenerateGeometry, this->EmptyLabel,
+        outputVector->GetInformationObject(1), problem))
   {
     output->Initialize();
     vtkErrorMacro(<< "The model's geometry: " << problem);
     return 0;
   }
   if (!run.Snapshots.empty())
-    geometry->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
+    vtkPolyData::GetData(outputVector, 1)
+      ->GetInformation()
+      ->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   return 1;
 }
 

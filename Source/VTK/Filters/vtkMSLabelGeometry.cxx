@@ -305,12 +305,7 @@ int vtkMSLabelGeometry::RequestData(
     return 0;
   }
   const double* spacing = input->GetSpacing();
-  const double* origin = input->GetOrigin();
-  int extent[6];
-  input->GetExtent(extent);
-  // World position of site (0, 0, 0) of the grid.
-  const std::array<double, 3> start{ { origin[0] + extent[0] * spacing[0],
-    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2] } };
+  const std::array<double, 3> start = vtkMSLabelArrays::FirstSitePosition(input);
   Pieces pieces;
   if (!this->PieceDirectory.empty() &&
     !LoadPieces(grid, this->PieceDirectory, this->TilesetFile, this->TilesetSubset,

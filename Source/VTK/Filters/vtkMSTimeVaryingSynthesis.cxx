@@ -235,6 +235,7 @@ int vtkMSTimeVaryingSynthesis::Execute(vtkInformation* request,
     fd, "ExampleFrames", static_cast<int>(cache.Example.size()));
   vtkMSFieldData::AddStatistics(fd, s, result.Status, result.Message);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", static_cast<vtkIdType>(this->Seed));
+  // Piece 0 holds the whole model, and so the whole surface.
   if (this->GenerateGeometry &&
     !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel, 0, 1, geometry, problem))
   {

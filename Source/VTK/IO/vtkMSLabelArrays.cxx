@@ -4,6 +4,7 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSPipeline.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -171,13 +172,9 @@ bool vtkMSLabelArrays::VoxelSurface(
     label = label == VTK_INT_MIN ? empty : label;
   }
   const double* spacing = image->GetSpacing();
-  const double* origin = image->GetOrigin();
-  int extent[6];
-  image->GetExtent(extent);
-  const std::array<double, 3> start{ { origin[0] + extent[0] * spacing[0],
-    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2] } };
-  const msynth::VoxelSurface surface = msynth::ExtractVoxelSurface(grid, empty, start,
-    { { spacing[0], spacing[1], spacing[2] } }, msynth::PieceSlab(grid, piece, pieces));
+  const msynth::VoxelSurface surface =
+    msynth::ExtractVoxelSurface(grid, empty, FirstSitePosition(image),
+      { { spacing[0], spacing[1], spacing[2] } }, msynth::PieceSlab(grid, piece, pieces));
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
@@ -202,4 +199,24 @@ bool vtkMSLabelArrays::VoxelSurface(
   output->SetPolys(quads);
   output->GetCellData()->SetScalars(labels);
   return true;
+}
+
+bool vtkMSLabelArrays::FillGeometryPort(
+  vtkImageData* image, bool generate, int empty, vtkInformation* geometryInfo, std::string& problem)
+{
+  vtkPolyData* geometry = vtkPolyData::GetData(geometryInfo);
+  geometry->Initialize();
+  return !generate ||
+    VoxelSurface(image, empty, vtkMSPipeline::UpdatePiece(geometryInfo),
+      vtkMSPipeline::UpdateNumberOfPieces(geometryInfo), geometry, problem);
+}
+
+std::array<double, 3> vtkMSLabelArrays::FirstSitePosition(vtkImageData* image)
+{
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  int extent[6];
+  image->GetExtent(extent);
+  return { { origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
+    origin[2] + extent[4] * spacing[2] } };
 }

@@ -12,10 +12,12 @@
 #include "Core/LabelGrid.h"     // for msynth::LabelGrid
 #include "ModelSynthIOModule.h" // for export macro
 
+#include <array>
 #include <string>
 
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 class vtkIntArray;
 class vtkPolyData;
 
@@ -61,6 +63,17 @@ public:
    */
   static bool VoxelSurface(vtkImageData* image, int empty, int piece, int pieces,
     vtkPolyData* output, std::string& problem);
+
+  /**
+   * The Geometry output port (@p geometryInfo) of a filter whose port 0 is the label image
+   * @p image: its VoxelSurface for the piece that port asks for, or nothing when @p generate is
+   * off. False, with @p problem, when the image has no usable label array.
+   */
+  static bool FillGeometryPort(vtkImageData* image, bool generate, int empty,
+    vtkInformation* geometryInfo, std::string& problem);
+
+  /// The world position of @p image's first site (its origin moved to the extent's start).
+  static std::array<double, 3> FirstSitePosition(vtkImageData* image);
 };
 
 #endif

@@ -3,7 +3,6 @@
 
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelArrays.h"
-#include "vtkMSPipeline.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArraySelection.h"
@@ -374,19 +373,15 @@ int vtkMSLabelGridReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
-  vtkPolyData* geometry = vtkPolyData::GetData(geometryInfo);
-  geometry->Initialize();
+  vtkPolyData::GetData(outputVector, 1)->Initialize();
   if (!this->ReadGrid(output))
   {
     output->Initialize();
     return 0;
   }
   std::string problem;
-  if (this->GenerateGeometry &&
-    !vtkMSLabelArrays::VoxelSurface(output, this->EmptyLabel,
-      vtkMSPipeline::UpdatePiece(geometryInfo), vtkMSPipeline::UpdateNumberOfPieces(geometryInfo),
-      geometry, problem))
+  if (!vtkMSLabelArrays::FillGeometryPort(output, this->GenerateGeometry, this->EmptyLabel,
+        outputVector->GetInformationObject(1), problem))
   {
     output->Initialize();
     this->Fail(problem);
