@@ -87,7 +87,7 @@ void Sphere(int n, std::vector<std::array<double, 3>>& points,
 }
 } // namespace
 
-// Issue 6 target: a 100,000-triangle mesh to a narrow-band level set at 512³ (voxel = the
+// Target: a 100,000-triangle mesh to a narrow-band level set at 512³ (voxel = the
 // mesh's extent / 512) in under 10 s, written to a .vdb file with its fog volume.
 static void BM_VDBMeshLevelSet(benchmark::State& state)
 {

@@ -17,8 +17,12 @@ from msynth_testing import BIN, data, labels_zyx, tmp, violations
 MSYNTH = os.path.join(BIN, "msynth")
 
 
+# The sanitizer build runs several times slower, and beside other tests.
+TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
+
+
 def run(*args):
-    return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=120)
+    return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=TIMEOUT)
 
 
 def labels_of(path):
@@ -261,7 +265,7 @@ class CommandLineTest(unittest.TestCase):
         # ends (a model, or one line refusing the arrangement) well within the limit.
         # The sanitizer build runs several times slower, beside other tests: a hang is still
         # minutes, so the limit grows with it.
-        limit = 120 if os.environ.get("MSYNTH_SANITIZED") else 30
+        limit = 240 if os.environ.get("MSYNTH_SANITIZED") else 30
         with open(data("Continuous/tetrahedron.obj")) as f:
             lines = f.read().splitlines()
         vertices = [i for i, line in enumerate(lines) if line.startswith("v ")]
