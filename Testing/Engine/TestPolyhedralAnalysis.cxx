@@ -328,6 +328,41 @@ f 2 5 4
 f 3 4 5
 )";
   EXPECT_NE(ValidationError(crossing).find("self-intersecting"), std::string::npos);
+  // A pyramid whose base is pinched: two of its corners at one point (distinct vertices). The
+  // face is planar and uses no vertex twice, but is no simple polygon; CGAL's triangulation of
+  // it (in the self-intersection test) overran its mesh (found by FuzzPolyhedral).
+  const std::string pinched = R"(
+v 4 2 0
+v 2 4 0
+v 3 2 0
+v 2 4 0
+v 0 3 0
+v 2 2 2
+f 5 4 3 2 1
+f 1 2 6
+f 2 3 6
+f 3 4 6
+f 4 5 6
+f 5 1 6
+)";
+  EXPECT_NE(ValidationError(pinched).find("intersects itself"), std::string::npos)
+    << ValidationError(pinched);
+  // The same check on a face seen along x (its normal's largest component): a lopsided bow
+  // tie, whose halves do not cancel (no zero area).
+  const std::string bowTie = R"(
+v 0 0 0
+v 0 3 3
+v 0 3 0
+v 0 0 1
+v 1 1 1
+f 1 2 3 4
+f 1 5 2
+f 2 5 3
+f 3 5 4
+f 4 5 1
+)";
+  EXPECT_NE(ValidationError(bowTie).find("intersects itself"), std::string::npos)
+    << ValidationError(bowTie);
   // Messages name the file.
   EXPECT_EQ(ValidationError(without(cubeText, "f 5 6 7 8\n")).rfind("'test.obj'", 0), 0u);
   // Reader errors name the line.

@@ -179,6 +179,31 @@ class GeometryPortTest(unittest.TestCase):
                 for label, n in face_counts(mesh).items():
                     joined[label] = joined.get(label, 0) + n
             self.assertEqual(joined, whole, name)
+        # A .vox example's palette colours its geometry (PaletteColor), read here from the file:
+        # the RGBA chunk's entry i is the colour of palette index i + 1.
+        with open(data("Examples/Village.vox"), "rb") as f:
+            raw = f.read()
+        at = raw.index(b"RGBA") + 12
+        palette = {i + 1: tuple(raw[at + 4 * i:at + 4 * i + 4]) for i in range(255)}
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(data("Examples/Village.vox"))
+        reader.Update()
+        mesh = reader.GetGeometryOutput()
+        colours = vtk_to_numpy(mesh.GetCellData().GetArray("PaletteColor"))
+        cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+        self.assertEqual([tuple(int(v) for v in c) for c in colours],
+                         [palette[int(label)] for label in cell_labels])
+        self.assertIsNone(update_port(self.reader, 1).GetCellData().GetArray("PaletteColor"))
+        model = modelsynth.vtkMSDiscreteSynthesis()  # the model keeps the example's colours
+        model.SetInputConnection(reader.GetOutputPort())
+        model.SetOutputSize(12, 12, 5)
+        model.SetBlockSize(6, 6, 5)
+        model.Update()
+        mesh = model.GetGeometryOutput()
+        colours = vtk_to_numpy(mesh.GetCellData().GetArray("PaletteColor"))
+        cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+        self.assertEqual([tuple(int(v) for v in c) for c in colours],
+                         [palette[int(label)] for label in cell_labels])
         # A bad file fails both outputs.
         reader = modelsynth.vtkMSLabelGridReader()
         reader.SetFileName(data("Malformed/truncated.vti"))

@@ -278,6 +278,62 @@ void AssignObjectsByConnectivity(PolyhedralExample& example, const std::vector<i
 namespace
 {
 
+/// A face is a simple polygon in its plane (seen along axis @p drop, its normal's largest
+/// component): no repeated vertex and no two non-adjacent edges meet. CGAL's face triangulation
+/// (for the self-intersection test) needs it: a pinched face corrupts its mesh. @throw Error.
+void CheckSimplePolygon(
+  const PolyhedralExample& e, const std::vector<int>& face, int drop, const std::string& where)
+{
+  const int u = drop == 0 ? 1 : 0, v = drop == 2 ? 1 : 2;
+  std::vector<Point3> points;
+  points.reserve(face.size());
+  for (int index : face)
+  {
+    points.push_back({ e.Points[index][u], e.Points[index][v], 0.0 });
+  }
+  const std::size_t m = face.size();
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    const Point3& a = points[i];
+    const Point3& b = points[(i + 1) % m];
+    if (Norm(Sub(a, b)) <= 1e-12 * e.Diagonal())
+    {
+      throw Error::InFile(e.Source, where + " has a repeated vertex");
+    }
+    for (std::size_t j = i + 2; j < m; ++j)
+    {
+      if (i == 0 && j == m - 1)
+      {
+        continue;
+      }
+      const Point3& c = points[j];
+      const Point3& d = points[(j + 1) % m];
+      auto orient = [](const Point3& p, const Point3& q, const Point3& r)
+      { return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]); };
+      // p on segment qr, given that the three are collinear.
+      auto within = [](const Point3& q, const Point3& r, const Point3& p)
+      {
+        return std::min(q[0], r[0]) <= p[0] && p[0] <= std::max(q[0], r[0]) &&
+          std::min(q[1], r[1]) <= p[1] && p[1] <= std::max(q[1], r[1]);
+      };
+      const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+                   o4 = orient(c, d, b);
+      const bool crossing =
+        ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+      // Touching or overlapping: an endpoint on the other segment (collinear edges of a plus
+      // shape that lie on one line but apart are not).
+      const bool touching = (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
+        (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
+      if (crossing || touching)
+      {
+        throw Error::InFile(e.Source,
+          where + " intersects itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
+            ")");
+      }
+    }
+  }
+}
+
 void Validate2D(PolyhedralExample& e)
 {
   const double areaTolerance = 1e-12 * e.Diagonal() * e.Diagonal();
@@ -295,48 +351,7 @@ void Validate2D(PolyhedralExample& e)
     {
       std::reverse(face.begin(), face.end());
     }
-    // Simple polygon: no two non-adjacent edges meet.
-    const std::size_t m = face.size();
-    for (std::size_t i = 0; i < m; ++i)
-    {
-      const Point3& a = e.Points[face[i]];
-      const Point3& b = e.Points[face[(i + 1) % m]];
-      if (Norm(Sub(a, b)) <= 1e-12 * e.Diagonal())
-      {
-        throw Error::InFile(e.Source, where + " has a repeated vertex");
-      }
-      for (std::size_t j = i + 2; j < m; ++j)
-      {
-        if (i == 0 && j == m - 1)
-        {
-          continue;
-        }
-        const Point3& c = e.Points[face[j]];
-        const Point3& d = e.Points[face[(j + 1) % m]];
-        auto orient = [](const Point3& p, const Point3& q, const Point3& r)
-        { return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]); };
-        // p on segment qr, given that the three are collinear.
-        auto within = [](const Point3& q, const Point3& r, const Point3& p)
-        {
-          return std::min(q[0], r[0]) <= p[0] && p[0] <= std::max(q[0], r[0]) &&
-            std::min(q[1], r[1]) <= p[1] && p[1] <= std::max(q[1], r[1]);
-        };
-        const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
-                     o4 = orient(c, d, b);
-        const bool crossing =
-          ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
-        // Touching or overlapping: an endpoint on the other segment (collinear edges of a plus
-        // shape that lie on one line but apart are not).
-        const bool touching = (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
-          (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
-        if (crossing || touching)
-        {
-          throw Error::InFile(e.Source,
-            where + " intersects itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
-              ")");
-        }
-      }
-    }
+    CheckSimplePolygon(e, face, 2, where);
   }
 }
 
@@ -374,6 +389,12 @@ void Validate3D(PolyhedralExample& e)
             " off its plane");
       }
     }
+    int drop = 0;
+    for (int c = 1; c < 3; ++c)
+    {
+      drop = std::abs(unit[c]) > std::abs(unit[drop]) ? c : drop;
+    }
+    CheckSimplePolygon(e, face, drop, where);
   }
   for (int o = 0; o < e.NumberOfObjects(); ++o)
   {

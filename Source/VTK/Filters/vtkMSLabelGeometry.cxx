@@ -330,6 +330,7 @@ int vtkMSLabelGeometry::RequestData(
   output->SetPoints(geometry.Points);
   output->SetPolys(geometry.Polys);
   output->GetCellData()->SetScalars(geometry.Labels);
+  vtkMSLabelArrays::AddPaletteColors(input->GetFieldData(), output);
   return 1;
 }
 

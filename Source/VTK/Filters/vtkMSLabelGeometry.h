@@ -20,7 +20,9 @@
  * reversed so they stay outward). `<tile> <k>.obj` gives orientation k as it is. Lookup order
  * per label: `<label>.ext`, `<tile> <k>.ext`, `<tile>.ext` (turned).
  *
- * Output: vtkPolyData with the cell array `Label`. Sites with EmptyLabel produce nothing.
+ * Output: vtkPolyData with the cell array `Label`, and `PaletteColor` (RGBA) when the input
+ * carries a palette (a `.vox` example, or a model made from one). Sites with EmptyLabel produce
+ * nothing.
  *
  * @sa vtkMSDiscreteSynthesis, vtkMSLabelGridReader
  */

@@ -30,6 +30,7 @@
 #include "vtkStringArray.h"
 #include "vtkType.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "Core/Error.h"
 #include "Discrete/VoxelSurface.h"
@@ -198,7 +199,31 @@ bool vtkMSLabelArrays::VoxelSurface(
   output->SetPoints(points);
   output->SetPolys(quads);
   output->GetCellData()->SetScalars(labels);
+  AddPaletteColors(image->GetFieldData(), output);
   return true;
+}
+
+void vtkMSLabelArrays::AddPaletteColors(vtkFieldData* fields, vtkPolyData* mesh)
+{
+  auto* palette =
+    vtkUnsignedCharArray::SafeDownCast(fields ? fields->GetAbstractArray("PaletteRGBA") : nullptr);
+  auto* labels = vtkIntArray::SafeDownCast(mesh->GetCellData()->GetArray("Label"));
+  if (!palette || palette->GetNumberOfComponents() != 4 || !labels)
+  {
+    return;
+  }
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("PaletteColor");
+  colours->SetNumberOfComponents(4);
+  colours->SetNumberOfTuples(labels->GetNumberOfTuples());
+  const unsigned char none[4] = { 0, 0, 0, 0 };
+  for (vtkIdType c = 0; c < labels->GetNumberOfTuples(); ++c)
+  {
+    const int label = labels->GetValue(c);
+    colours->SetTypedTuple(c,
+      label >= 0 && label < palette->GetNumberOfTuples() ? palette->GetPointer(4 * label) : none);
+  }
+  mesh->GetCellData()->AddArray(colours);
 }
 
 bool vtkMSLabelArrays::FillGeometryPort(

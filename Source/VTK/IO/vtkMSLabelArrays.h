@@ -16,6 +16,7 @@
 #include <string>
 
 class vtkDataArray;
+class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
@@ -71,6 +72,14 @@ public:
    */
   static bool FillGeometryPort(vtkImageData* image, bool generate, int empty,
     vtkInformation* geometryInfo, std::string& problem);
+
+  /**
+   * With a palette (field data `PaletteRGBA` of @p fields, as a `.vox` example and the models
+   * made from it carry), adds to @p mesh the cell array `PaletteColor`: the RGBA of each cell's
+   * `Label`, so the model can be shown in the example's colours (colour by it with Map Scalars
+   * off). Labels beyond the palette get transparent black. Nothing without a palette.
+   */
+  static void AddPaletteColors(vtkFieldData* fields, vtkPolyData* mesh);
 
   /// The world position of @p image's first site (its origin moved to the extent's start).
   static std::array<double, 3> FirstSitePosition(vtkImageData* image);
