@@ -280,9 +280,10 @@ namespace
 
 /// A face is a simple polygon in its plane (seen along axis @p drop, its normal's largest
 /// component): no repeated vertex and no two non-adjacent edges meet. CGAL's face triangulation
-/// (for the self-intersection test) needs it: a pinched face corrupts its mesh. @throw Error.
-void CheckSimplePolygon(
-  const PolyhedralExample& e, const std::vector<int>& face, int drop, const std::string& where)
+/// (for the self-intersection test) needs it: a pinched face corrupts its mesh. @p diagonal is
+/// the example's bounding-box diagonal. @throw Error.
+void CheckSimplePolygon(const PolyhedralExample& e, const std::vector<int>& face, int drop,
+  double diagonal, const std::string& where)
 {
   const int u = drop == 0 ? 1 : 0, v = drop == 2 ? 1 : 2;
   std::vector<Point3> points;
@@ -296,7 +297,7 @@ void CheckSimplePolygon(
   {
     const Point3& a = points[i];
     const Point3& b = points[(i + 1) % m];
-    if (Norm(Sub(a, b)) <= 1e-12 * e.Diagonal())
+    if (Norm(Sub(a, b)) <= 1e-12 * diagonal)
     {
       throw Error::InFile(e.Source, where + " has a repeated vertex");
     }
@@ -336,7 +337,8 @@ void CheckSimplePolygon(
 
 void Validate2D(PolyhedralExample& e)
 {
-  const double areaTolerance = 1e-12 * e.Diagonal() * e.Diagonal();
+  const double diagonal = e.Diagonal();
+  const double areaTolerance = 1e-12 * diagonal * diagonal;
   for (std::size_t f = 0; f < e.Faces.size(); ++f)
   {
     auto& face = e.Faces[f];
@@ -351,50 +353,57 @@ void Validate2D(PolyhedralExample& e)
     {
       std::reverse(face.begin(), face.end());
     }
-    CheckSimplePolygon(e, face, 2, where);
+    CheckSimplePolygon(e, face, 2, diagonal, where);
   }
+}
+
+/// Face @p f of a 3D example (of bounding-box diagonal @p diagonal): no vertex twice, an area,
+/// planar, a simple polygon. @throw Error.
+void CheckFace3D(const PolyhedralExample& e, std::size_t f, double diagonal)
+{
+  const double planarTolerance = 1e-5 * diagonal;
+  const double areaTolerance = 1e-12 * diagonal * diagonal;
+  const auto& face = e.Faces[f];
+  const std::string where =
+    "face " + std::to_string(f) + " of " + ObjectDescription(e, e.FaceObject[f]);
+  std::vector<int> sorted = face;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+  {
+    throw Error::InFile(e.Source, where + " is degenerate: it uses a vertex twice");
+  }
+  const Point3 n = NewellNormal(e.Points, face);
+  const double length = Norm(n);
+  if (length <= areaTolerance)
+  {
+    throw Error::InFile(e.Source, where + " is degenerate (zero area)");
+  }
+  const Point3 unit{ n[0] / length, n[1] / length, n[2] / length };
+  const Point3& origin = e.Points[face[0]];
+  for (int v : face)
+  {
+    const double off = std::abs(Dot(unit, Sub(e.Points[v], origin)));
+    if (off > planarTolerance)
+    {
+      throw Error::InFile(e.Source,
+        where + " is not planar: vertex " + std::to_string(v + 1) + " is " + std::to_string(off) +
+          " off its plane");
+    }
+  }
+  int drop = 0;
+  for (int c = 1; c < 3; ++c)
+  {
+    drop = std::abs(unit[c]) > std::abs(unit[drop]) ? c : drop;
+  }
+  CheckSimplePolygon(e, face, drop, diagonal, where);
 }
 
 void Validate3D(PolyhedralExample& e)
 {
   const double diagonal = e.Diagonal();
-  const double planarTolerance = 1e-5 * diagonal;
-  const double areaTolerance = 1e-12 * diagonal * diagonal;
   for (std::size_t f = 0; f < e.Faces.size(); ++f)
   {
-    const auto& face = e.Faces[f];
-    const std::string where =
-      "face " + std::to_string(f) + " of " + ObjectDescription(e, e.FaceObject[f]);
-    std::vector<int> sorted = face;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-    {
-      throw Error::InFile(e.Source, where + " is degenerate: it uses a vertex twice");
-    }
-    const Point3 n = NewellNormal(e.Points, face);
-    const double length = Norm(n);
-    if (length <= areaTolerance)
-    {
-      throw Error::InFile(e.Source, where + " is degenerate (zero area)");
-    }
-    const Point3 unit{ n[0] / length, n[1] / length, n[2] / length };
-    const Point3& origin = e.Points[face[0]];
-    for (int v : face)
-    {
-      const double off = std::abs(Dot(unit, Sub(e.Points[v], origin)));
-      if (off > planarTolerance)
-      {
-        throw Error::InFile(e.Source,
-          where + " is not planar: vertex " + std::to_string(v + 1) + " is " + std::to_string(off) +
-            " off its plane");
-      }
-    }
-    int drop = 0;
-    for (int c = 1; c < 3; ++c)
-    {
-      drop = std::abs(unit[c]) > std::abs(unit[drop]) ? c : drop;
-    }
-    CheckSimplePolygon(e, face, drop, where);
+    CheckFace3D(e, f, diagonal);
   }
   for (int o = 0; o < e.NumberOfObjects(); ++o)
   {
