@@ -90,6 +90,14 @@ def face_counts(mesh):
     return {int(v): int(n) for v, n in zip(*np.unique(cell_labels, return_counts=True))}
 
 
+def palette_colours(mesh, palette):
+    """(the mesh's PaletteColor per cell, the palette's colour of each cell's Label)."""
+    colours = vtk_to_numpy(mesh.GetCellData().GetArray("PaletteColor"))
+    cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+    return ([tuple(int(v) for v in c) for c in colours],
+            [palette[int(label)] for label in cell_labels])
+
+
 def update_port(algorithm, port, **request):
     """Updates output `port` alone with the given pipeline request keys; its data."""
     info = algorithm.GetOutputInformation(port)
@@ -188,22 +196,14 @@ class GeometryPortTest(unittest.TestCase):
         reader = modelsynth.vtkMSLabelGridReader()
         reader.SetFileName(data("Examples/Village.vox"))
         reader.Update()
-        mesh = reader.GetGeometryOutput()
-        colours = vtk_to_numpy(mesh.GetCellData().GetArray("PaletteColor"))
-        cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
-        self.assertEqual([tuple(int(v) for v in c) for c in colours],
-                         [palette[int(label)] for label in cell_labels])
+        self.assertEqual(*palette_colours(reader.GetGeometryOutput(), palette))
         self.assertIsNone(update_port(self.reader, 1).GetCellData().GetArray("PaletteColor"))
         model = modelsynth.vtkMSDiscreteSynthesis()  # the model keeps the example's colours
         model.SetInputConnection(reader.GetOutputPort())
         model.SetOutputSize(12, 12, 5)
         model.SetBlockSize(6, 6, 5)
         model.Update()
-        mesh = model.GetGeometryOutput()
-        colours = vtk_to_numpy(mesh.GetCellData().GetArray("PaletteColor"))
-        cell_labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
-        self.assertEqual([tuple(int(v) for v in c) for c in colours],
-                         [palette[int(label)] for label in cell_labels])
+        self.assertEqual(*palette_colours(model.GetGeometryOutput(), palette))
         # A bad file fails both outputs.
         reader = modelsynth.vtkMSLabelGridReader()
         reader.SetFileName(data("Malformed/truncated.vti"))
