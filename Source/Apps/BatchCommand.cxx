@@ -12,6 +12,7 @@
 #include "vtkPointData.h"
 
 #include "Core/Error.h"
+#include "Core/OutputFolder.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
@@ -182,10 +183,7 @@ int RunBatch(const BatchOptions& b)
     const std::string entryDir = b.Out + "/" + FolderName(i, e);
     for (const std::string& d : { b.Out, entryDir })
     {
-      // As mkdir -p: --out output/batch in a fresh checkout.
-      for (std::size_t slash = d.find('/', 1); slash != std::string::npos;
-           slash = d.find('/', slash + 1))
-        ::mkdir(d.substr(0, slash).c_str(), 0777);
+      msynth::MakeMissingFolders(d); // --out output/batch in a fresh checkout
       if (::mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
         throw std::runtime_error("'" + d + "': cannot create folder: " + std::strerror(errno));
     }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Common.h"
+#include "Examples.h"
 
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSPolyhedralExampleReader.h"
@@ -325,15 +326,16 @@ void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& wh
   command.add_option("--snapshots", snapshots, what)->check(CLI::Range(0, 9998));
 }
 
-void AddTypesOption(CLI::App& command, PolyhedralReading& reading)
+std::vector<CLI::Option*> AddTypesOption(CLI::App& command, PolyhedralReading& reading)
 {
-  command.add_option("--types", reading.Types,
-    "object types of a polyhedral example: object (or base) name N has type T, as N=T,...");
-  command
-    .add_option("--up", reading.Up,
-      "the polyhedral example's up axis: z (default), or y for a file modelled with y up (OBJ "
-      "as Blender exports it by default), turned so that y becomes z")
-    ->check(CLI::IsMember({ "y", "z" }));
+  return { command.add_option("--types", reading.Types,
+             "object types of a polyhedral example: object (or base) name N has type T, as "
+             "N=T,..."),
+    command
+      .add_option("--up", reading.Up,
+        "the polyhedral example's up axis: z (default), or y for a file modelled with y up (OBJ "
+        "as Blender exports it by default), turned so that y becomes z")
+      ->check(CLI::IsMember({ "y", "z" })) };
 }
 
 std::vector<CLI::Option*> AddPatternOptions(

@@ -148,14 +148,10 @@ void AddSeedOption(CLI::App& command, std::int64_t& seed);
 void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what);
 /// `--snapshots N` with @p what.
 void AddSnapshotsOption(CLI::App& command, int& snapshots, const std::string& what);
-/// How a polyhedral example is read: its object types and its up axis.
-struct PolyhedralReading
-{
-  std::string Types;    ///< NAME=TYPE,... (vtkMSPolyhedralExampleReader::ObjectTypes)
-  std::string Up = "z"; ///< "z", or "y" for a file modelled with y up
-};
-/// `--types NAME=TYPE,...` (object types of a polyhedral example) and `--up y|z`.
-void AddTypesOption(CLI::App& command, PolyhedralReading& reading);
+struct PolyhedralReading;
+/// `--types NAME=TYPE,...` (object types of a polyhedral example) and `--up y|z`; returns the two
+/// options.
+std::vector<CLI::Option*> AddTypesOption(CLI::App& command, PolyhedralReading& reading);
 /// `--pattern N`, `--symmetry S` and `--no-periodic-input` of image samples, in their own group;
 /// returns the three options.
 std::vector<CLI::Option*> AddPatternOptions(

@@ -193,10 +193,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     clock = now;
   };
   vtkNew<vtkMSPolyhedralExampleReader> reader;
-  PolyhedralReading reading;
-  reading.Types = o.Types;
-  reading.Up = o.Up;
-  ConfigureReader(reader, o.Example, reading);
+  ConfigureReader(reader, o.Example, o.Reading);
   Run(reader);
   double exampleBounds[6];
   reader->GetOutput()->GetBounds(exampleBounds);

@@ -28,7 +28,12 @@ struct ExampleTables
 /// Reads the label grid @p example and computes its tables (errors as exceptions).
 ExampleTables AnalyzeLabelGrid(const std::string& example);
 
-struct PolyhedralReading;
+/// How a polyhedral example is read: its object types and its up axis.
+struct PolyhedralReading
+{
+  std::string Types;    ///< NAME=TYPE,... (vtkMSPolyhedralExampleReader::ObjectTypes)
+  std::string Up = "z"; ///< "z", or "y" for a file modelled with y up
+};
 
 /// Sets @p reader to read the polyhedral example @p path as @p reading says.
 void ConfigureReader(

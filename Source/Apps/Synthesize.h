@@ -6,6 +6,8 @@
  * label grid, tileset or image sample (SynthesizeCommand.cxx) and continuous synthesis of a
  * polyhedral example (ContinuousCommand.cxx).
  */
+#include "Examples.h" // for PolyhedralReading
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -52,8 +54,7 @@ struct SynthesizeOptions
   bool NoPeriodicInput = false;
   bool SampleGround = false; ///< --ground without a label, for an image sample
   // Continuous.
-  std::string Types;
-  std::string Up = "z"; ///< the example's up axis: z, or y (turned to z)
+  PolyhedralReading Reading; ///< --types and --up
   double Spacing = 0;
   double Blocks = 4;
   double Voxel = 0;

@@ -215,12 +215,8 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "voxel size of model.vdb (default: a quarter of the smallest plane spacing, at "
                 "least 1/256 of the model's extent)")
                ->check(NonNegativeReal()));
-  continuous(s.add_option("--types", o.Types,
-    "object types of a polyhedral example: object (or base) name N has type T, as N=T,..."));
-  continuous(s.add_option("--up", o.Up,
-                "the polyhedral example's up axis: z (default), or y for a file modelled with y "
-                "up (OBJ as Blender exports it by default), turned so that y becomes z")
-               ->check(CLI::IsMember({ "y", "z" })));
+  for (CLI::Option* option : AddTypesOption(s, o.Reading))
+    continuous(option);
   continuous(s.add_flag("--grounded", o.Grounded,
     "every solid part stands on the ground: the example's ground labels only on the bottom of the "
     "box, objects grown up from it, floating parts removed"));

@@ -110,13 +110,16 @@ OutputFolder::OutputFolder(const std::string& dir)
     if (!S_ISDIR(info.st_mode))
       throw Error::InFile(this->Dir, "exists and is not a folder");
   }
-  else if (this->MakeParents(), ::mkdir(this->Dir.c_str(), 0755) == 0)
+  else
   {
-    this->Created = true;
-  }
-  else if (errno != EEXIST)
-  {
-    throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
+    // Missing parents too, as mkdir -p (removed again when nothing is published).
+    const auto slash = this->Dir.find_last_of('/');
+    if (slash != std::string::npos && slash > 0)
+      this->CreatedParents = MakeMissingFolders(this->Dir.substr(0, slash));
+    if (::mkdir(this->Dir.c_str(), 0755) == 0)
+      this->Created = true;
+    else if (errno != EEXIST)
+      throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
   }
   static std::atomic<unsigned> counter{ 0 };
   this->StagePath =
@@ -140,28 +143,28 @@ OutputFolder::~OutputFolder()
     this->RemoveCreated();
 }
 
-void OutputFolder::MakeParents()
+std::vector<std::string> MakeMissingFolders(const std::string& path)
 {
-  // Each missing ancestor of the folder, outermost first (as mkdir -p; removed again when
-  // nothing is published).
-  std::vector<std::string> missing;
-  for (std::string parent = this->Dir;;)
+  std::vector<std::string> missing; // innermost first
+  for (std::string folder = path;;)
   {
-    const auto slash = parent.find_last_of('/');
+    struct stat info;
+    if (folder.empty() || ::stat(folder.c_str(), &info) == 0)
+      break;
+    missing.push_back(folder);
+    const auto slash = folder.find_last_of('/');
     if (slash == std::string::npos || slash == 0)
       break;
-    parent.resize(slash);
-    struct stat info;
-    if (::stat(parent.c_str(), &info) == 0)
-      break;
-    missing.push_back(parent);
+    folder.resize(slash);
   }
+  std::vector<std::string> made;
   for (auto it = missing.rbegin(); it != missing.rend(); ++it)
   {
     if (::mkdir(it->c_str(), 0755) != 0 && errno != EEXIST)
-      break; // the folder's own mkdir reports why
-    this->CreatedParents.push_back(*it);
+      break;
+    made.push_back(*it);
   }
+  return made;
 }
 
 void OutputFolder::RemoveCreated()

@@ -43,7 +43,6 @@ public:
   static int DiscardAll(int* published = nullptr);
 
 private:
-  void MakeParents();
   void RemoveCreated();
 
   std::string Dir;
@@ -52,6 +51,11 @@ private:
   bool Created = false; ///< the folder did not exist: removed again if nothing is published
   std::vector<std::string> CreatedParents; ///< missing parents made for it (outermost first)
 };
+
+/// Makes @p path and each of its missing ancestors, as `mkdir -p`; returns the folders it made,
+/// outermost first. It stops at the first that cannot be made: a later mkdir of @p path says
+/// why.
+std::vector<std::string> MakeMissingFolders(const std::string& path);
 
 /// Removes @p path and, if it is a folder, everything in it. Errors are ignored.
 void RemoveTree(const std::string& path);
