@@ -162,4 +162,11 @@ TEST(OutputFolder, MissingParentsAreMadeAndRemovedWhenNothingIsPublished)
     folder.Publish();
   }
   EXPECT_EQ(Slurp(dir + "/x.txt"), "x");
+  // Interrupted (DiscardAll, as the signal thread calls it, while the folder object lives on):
+  // the folders made for the run go too, so an interrupted run leaves nothing either.
+  const std::string other = top + "-interrupted";
+  msynth::OutputFolder interrupted(other + "/c/d");
+  EXPECT_EQ(::stat((other + "/c/d").c_str(), &info), 0);
+  msynth::OutputFolder::DiscardAll();
+  EXPECT_NE(::stat(other.c_str(), &info), 0) << "interrupted: the folders made are removed";
 }

@@ -12,8 +12,8 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <fstream>
+#include <map>
 #include <mutex>
-#include <set>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -32,9 +32,11 @@ std::mutex& RegistryMutex()
   static std::mutex* m = new std::mutex;
   return *m;
 }
-std::set<std::string>& Registry()
+/// Each staging folder, with the folders made for it (the output folder, its missing parents;
+/// innermost first), which an interrupted run removes again when they are empty.
+std::map<std::string, std::vector<std::string>>& Registry()
 {
-  static std::set<std::string>* r = new std::set<std::string>;
+  static auto* r = new std::map<std::string, std::vector<std::string>>;
   return *r;
 }
 /// Folders published by this process (under RegistryMutex).
@@ -131,7 +133,10 @@ OutputFolder::OutputFolder(const std::string& dir)
     this->RemoveCreated();
     throw Error::InFile(this->Dir, "cannot be written to: " + reason);
   }
-  Registry().insert(this->StagePath);
+  std::vector<std::string> made(this->CreatedParents.rbegin(), this->CreatedParents.rend());
+  if (this->Created)
+    made.insert(made.begin(), this->Dir);
+  Registry().emplace(this->StagePath, std::move(made));
 }
 
 OutputFolder::~OutputFolder()
@@ -215,13 +220,15 @@ int OutputFolder::DiscardAll(int* published)
   std::lock_guard<std::mutex> lock(RegistryMutex());
   const int discarded = static_cast<int>(Registry().size());
   static std::atomic<unsigned> counter{ 0 };
-  for (const auto& stage : Registry())
+  for (const auto& [stage, made] : Registry())
   {
     // Other threads may still be writing into the stage: move it away first, so that no file
     // can appear in it after it is listed (their paths no longer resolve), then remove it.
     const std::string doomed = stage.substr(0, stage.rfind('/') + 1) + ".msynth-discard-" +
       std::to_string(::getpid()) + "-" + std::to_string(counter++);
     RemoveTree(std::rename(stage.c_str(), doomed.c_str()) == 0 ? doomed : stage);
+    for (const auto& folder : made)
+      ::rmdir(folder.c_str()); // only if empty: the folder was as it is now before the run
   }
   Registry().clear();
   if (published)

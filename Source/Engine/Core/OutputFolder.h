@@ -37,8 +37,9 @@ public:
   /// Moves every staged file into the folder (see above). @throw Error on failure.
   void Publish();
 
-  /// Removes the staging folders of every OutputFolder not yet published; for a signal-handling
-  /// thread that then ends the process (not for signal handlers themselves). Returns how many
+  /// Removes the staging folders of every OutputFolder not yet published, and the folders made
+  /// for them when empty; for a signal-handling thread that then ends the process (not for
+  /// signal handlers themselves). Returns how many
   /// it removed; @p published gets how many folders this process has published.
   static int DiscardAll(int* published = nullptr);
 
