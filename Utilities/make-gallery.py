@@ -1,11 +1,12 @@
 """Makes the gallery (Documentation/gallery.md): every bundled example of every kind, synthesized
 with the command shown beside its preview. Run from the repository root after building:
 
-    xvfb-run -a pvpython Utilities/make-gallery.py [NAME ...]
+    pvpython Utilities/make-gallery.py [NAME ...]
 
 Each command runs as written (outputs in output/gallery/NAME); previews go to
-Documentation/images/gallery/NAME.png: meshes and models rendered offscreen (render-model.py),
-pictures copied, and an animation's frames stacked top to bottom. With names, only those
+Documentation/images/gallery/NAME.png: meshes and models rendered offscreen (render-model.py, on
+a private Xvfb when there is no display), pictures copied, and an animation's frames stacked top
+to bottom. With names, only those
 entries are remade (the page lists all)."""
 import glob
 import os
@@ -18,6 +19,8 @@ import sys
 def render_model():
     """Utilities/render-model.py, imported when pictures are made (it needs paraview.simple)."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from xserver import ensure_display
+    ensure_display()
     return __import__("render-model")
 
 M = "build/bin/msynth"
@@ -144,7 +147,7 @@ def main(names):
     with open(os.path.join("Documentation", "gallery.md"), "w") as f:
         f.write("# Gallery\n\nEvery bundled example, synthesized by the command beside it (run "
                 "from the repository root after building; add `--out DIR`). The pictures are "
-                "made by `xvfb-run -a pvpython Utilities/make-gallery.py`, which runs these "
+                "made by `pvpython Utilities/make-gallery.py`, which runs these "
                 "commands and renders their outputs.\n\n")
         f.write("| preview | example | command |\n|---|---|---|\n")
         for name, kind, what, command, preview in ENTRIES:

@@ -104,9 +104,9 @@ def main():
     os.makedirs(out, exist_ok=True)
     plugin = os.path.join(build, "lib", "paraview-5.11", "plugins", "ModelSynthPlugin",
                           "ModelSynthPlugin.so")
-    display = ":%d" % (70 + os.getpid() % 20)
-    xvfb = subprocess.Popen(["Xvfb", display, "-screen", "0", "%dx%dx24" % SIZE, "-nolisten", "tcp"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from xserver import start_private_display
+    display = start_private_display(*SIZE)
     # Fresh settings, the GUI as a new user sees it, without the welcome dialog (modal: it
     # would stop the script).
     home = os.path.join(out, ".paraview-home")
@@ -114,7 +114,6 @@ def main():
     with open(os.path.join(home, ".config", "ParaView", "ParaView5.11.0.ini"), "w") as f:
         f.write("[General]\nGeneralSettings.ShowWelcomeDialog=0\n")
     try:
-        time.sleep(2)
         for step in STEPS:
             ready = os.path.join(out, ".ready")
             if os.path.exists(ready):
@@ -138,8 +137,6 @@ def main():
                 gui.wait()
             os.remove(ready)
     finally:
-        xvfb.kill()
-        xvfb.wait()
         subprocess.run(["rm", "-rf", home])
 
 

@@ -1,9 +1,11 @@
 """Renders a model (model.vtp or mesh.vtp of `msynth synthesize`) to a PNG, coloured by object
 type or label, offscreen: pvpython Utilities/render-model.py MODEL.vtp OUT.png [--top] [--size W H].
-Run it under a display or Xvfb (xvfb-run -a pvpython ...). The README's picture of constrained
+Without a display (DISPLAY unset) it starts its own Xvfb (xserver.py). The README's picture of constrained
 continuous models (Documentation/images/continuous-constraints.png) was made with it from the
 commands the README lists."""
 import argparse
+import os
+import sys
 
 from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, SaveScreenshot,
                              Show, XMLPolyDataReader)
@@ -63,4 +65,7 @@ if __name__ == "__main__":
     parser.add_argument("--top", action="store_true", help="look straight down")
     parser.add_argument("--size", type=int, nargs=2, default=[1200, 800])
     args = parser.parse_args()
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from xserver import ensure_display
+    ensure_display()
     render(args.model, args.out, args.top, args.size)

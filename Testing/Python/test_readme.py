@@ -53,9 +53,12 @@ class ReadmeExamplesTest(unittest.TestCase):
                 command = ["pvbatch", script] if "paraview.simple" in text else [sys.executable, script]
             else:
                 continue
-            done = subprocess.run(command, cwd=scratch, capture_output=True, text=True, timeout=600)
-            self.assertEqual(done.returncode, 0, "%s:\n%s\n%s%s" % (
-                line, text, done.stdout[-2000:], done.stderr[-2000:]))
+            try:  # within the test's own limit, so that a hang names its block
+                done = subprocess.run(command, cwd=scratch, capture_output=True, text=True, timeout=200)
+            except subprocess.TimeoutExpired:
+                self.fail("%s did not finish within 200 s:\n%s" % (line, text))
+            self.assertEqual(done.returncode, 0, "%s:\n%s\n%s\n%s\n...\n%s" % (
+                line, text, done.stdout[-2000:], done.stderr[:2000], done.stderr[-2000:]))
             ran += 1
         self.assertGreaterEqual(ran, 11)
 
