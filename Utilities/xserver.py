@@ -9,6 +9,7 @@ wrong server and aborts.) The server lives as long as the process that started i
 stops it once that process has gone, however it ended, and holds none of its output pipes."""
 import os
 import select
+import socket
 import subprocess
 
 # Started with bash: Xvfb in the background; the shell lets go of the display pipe (so that the
@@ -46,9 +47,31 @@ def start_private_display(width=1600, height=1200, timeout=60):
     return ":" + number.decode().strip()
 
 
+def reachable(display):
+    """Whether an X server answers at @p display ("[host]:N[.S]"): its local socket, or TCP port
+    6000 + N on a host (as ssh's X forwarding gives)."""
+    host, _, number = display.rpartition(":")
+    number = number.split(".")[0]
+    if not number.isdigit():
+        return False
+    if host in ("", "unix"):
+        family, addresses = socket.AF_UNIX, ["\0/tmp/.X11-unix/X" + number, "/tmp/.X11-unix/X" + number]
+    else:
+        family, addresses = socket.AF_INET, [(host, 6000 + int(number))]
+    for address in addresses:
+        with socket.socket(family) as s:
+            s.settimeout(5)
+            try:
+                s.connect(address)
+                return True
+            except OSError:
+                pass
+    return False
+
+
 def ensure_display(width=1600, height=1200):
-    """Leaves DISPLAY as it is when set; otherwise starts a private Xvfb and points DISPLAY at it
-    (before the first window is made, it is what VTK connects to)."""
-    if not os.environ.get("DISPLAY"):
+    """Leaves DISPLAY as it is when an X server answers there; otherwise starts a private Xvfb and
+    points DISPLAY at it (before the first window is made, it is what VTK connects to)."""
+    if not reachable(os.environ.get("DISPLAY", "")):
         os.environ["DISPLAY"] = start_private_display(width, height)
     return os.environ["DISPLAY"]

@@ -10,7 +10,7 @@ import unittest
 
 UTILITIES = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "Utilities")
 sys.path.insert(0, UTILITIES)
-from xserver import start_private_display  # noqa: E402
+from xserver import ensure_display, reachable, start_private_display  # noqa: E402
 
 
 def running(display):
@@ -41,6 +41,16 @@ class PrivateDisplayTest(unittest.TestCase):
             time.sleep(0.1)
         self.assertFalse(running(first) or running(second), "the servers outlived their owner")
         self.assertTrue(running(mine))
+
+    def test_a_display_without_a_server_is_replaced(self):
+        """DISPLAY pointing at no server (a closed session's) gets a private server instead."""
+        os.environ["DISPLAY"] = ":%d" % (4000 + os.getpid() % 1000)
+        self.assertFalse(reachable(os.environ["DISPLAY"]))
+        private = ensure_display()
+        self.assertTrue(reachable(private) and running(private))
+        self.assertEqual(ensure_display(), private)
+        for broken in ("", "nonsense", ":x", "localhost:1x"):
+            self.assertFalse(reachable(broken), broken)
 
 
 if __name__ == "__main__":
