@@ -140,6 +140,26 @@ render_view = CreateRenderView()
 shown = Show(OutputPort(synthesis, 1), render_view)
 check(shown.Representation == "Surface" and list(shown.ColorArrayName) == ["CELLS", "Label"],
       "Apply shows the geometry coloured by Label: %s %s" % (shown.Representation, shown.ColorArrayName))
+# ... through the plugin's categorical colour map: the legend lists the labels the model has
+# (shown: non-empty), each in the colour the gallery's pictures give it (render-model.py).
+label_map = GetColorTransferFunction("Label")
+present = sorted({mvalue(x, y, z) for z in range(5) for y in range(20) for x in range(24)} - {0})
+check(label_map.InterpretValuesAsCategories == 1 and
+      sorted(int(v) for v in label_map.ActiveAnnotatedValues) == present,
+      "Label is categorical, with the labels %s active (got %s)" % (present, list(label_map.ActiveAnnotatedValues)))
+import importlib.util  # noqa: E402
+spec = importlib.util.spec_from_file_location("render_model", os.path.join(
+    os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "Utilities", "render-model.py"))
+render_model = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(render_model)
+gallery = render_model.COLOURS + render_model.MORE
+colours = list(label_map.IndexedColors)
+annotated = [int(v) for v in label_map.Annotations[::2]]
+for label in range(1, 40):
+    where = 3 * annotated.index(label)
+    mine = 3 * ((label - 1) % (len(gallery) // 3))
+    check(all(abs(colours[where + c] - gallery[mine + c]) < 1e-6 for c in range(3)),
+          "label %d has the gallery's colour" % label)
 Delete(render_view)
 del render_view
 

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The default colour map of arrays named Label, registered when the plugin loads: categorical
+// (each label its own colour, the legend listing the labels present), so a label grid or its
+// voxel surface shows as distinct parts on Apply instead of a smooth blend of neighbouring labels.
+//
+// ParaView makes one colour map per array name and takes its defaults from vtkSMSettings at
+// ".array_lookup_tables.<array>.PVLookupTable.<property>". The plugin adds them as the
+// lowest-priority collection, so a default the user saves for Label (Color Map Editor, "Save
+// current colormap as default for Label") still wins.
+#include "vtkSMSettings.h"
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+namespace
+{
+// The palette of Utilities/render-model.py (gallery and README pictures): label t has colour
+// (t - 1) mod 12, so label 1 (walls, buildings) is sand and label 2 (roofs) brick red. Tested
+// against that script by Testing/ParaView/pvbatch_pipeline.py.
+constexpr double Palette[][3] = { { 0.80, 0.70, 0.50 }, { 0.65, 0.20, 0.12 }, { 0.35, 0.50, 0.75 },
+  { 0.35, 0.65, 0.35 }, { 0.45, 0.45, 0.45 }, { 0.90, 0.60, 0.20 }, { 0.55, 0.35, 0.70 },
+  { 0.20, 0.60, 0.60 }, { 0.85, 0.45, 0.55 }, { 0.60, 0.55, 0.30 }, { 0.30, 0.30, 0.55 },
+  { 0.75, 0.75, 0.40 } };
+constexpr int PaletteSize = static_cast<int>(sizeof(Palette) / sizeof(Palette[0]));
+
+// Labels 0..LabelCount-1 are annotated (ParaView colours only annotated values of a categorical
+// map); larger labels show in the NaN colour.
+constexpr int LabelCount = 1024;
+
+std::string LabelColorMapSettings()
+{
+  std::ostringstream annotations;
+  std::ostringstream colors;
+  colors << std::setprecision(6);
+  for (int label = 0; label < LabelCount; ++label)
+  {
+    const char* separator = label ? ", " : "";
+    annotations << separator << '"' << label << "\", \"" << label << '"';
+    const double* rgb = Palette[(label + PaletteSize - 1) % PaletteSize];
+    colors << separator << rgb[0] << ", " << rgb[1] << ", " << rgb[2];
+  }
+  std::ostringstream json;
+  json
+    << "{ \"array_lookup_tables\": { \"Label\": { \"PVLookupTable\": {"
+    << " \"IndexedLookup\": 1, \"ShowIndexedColorActiveValues\": 1, \"AnnotationsInitialized\": 1,"
+    << " \"Annotations\": [" << annotations.str() << "], \"IndexedColors\": [" << colors.str()
+    << "] } } } }";
+  return json.str();
+}
+
+struct RegisterLabelColorMap
+{
+  RegisterLabelColorMap()
+  {
+    vtkSMSettings::GetInstance()->AddCollectionFromString(LabelColorMapSettings(), 0.0);
+  }
+};
+const RegisterLabelColorMap registerLabelColorMap;
+}
