@@ -74,15 +74,20 @@ try:
     # shown as a user would.
     turned = ModelSynthDiscreteSynthesis(Input=reader, OutputSize=[16, 16, 5], BlockSize=[8, 8, 5], Rotate=1)
     Show(turned)
+    shown = Show(OutputPort(turned, 1))  # Geometry, coloured by Label with the plugin's map
     Render()
+    label_map = GetColorTransferFunction("Label")
+    labels_shown = sorted(int(v) for v in label_map.ActiveAnnotatedValues)
+    categorical = (list(shown.ColorArrayName) == ["CELLS", "Label"] and
+                   label_map.InterpretValuesAsCategories == 1 and labels_shown and labels_shown[0] >= 1)
     movie = ModelSynthTimeVaryingSynthesis(Input=reader, OutputSize=[12, 12, 1], NumberOfFrames=6,
                                           ExampleTimeFromZ=1, BlockSize=[6, 6, 1, 3])
     Show(movie)
     Render()  # (GetAnimationScene().UpdateAnimationUsingDataTimeSteps() from a --script never
     # returns in this GUI, even for ParaView's own TimeSource; pvbatch tests the scene instead)
     frames = len(movie.TimestepValues)
-    result = "OK labels=%d continuous=%d model=%s frames=%d reseeded=%s picture=%s" % (
-        rows, continuous, check if polygons > 0 else "empty", frames, reseeded,
+    result = "OK labels=%d continuous=%d model=%s frames=%d reseeded=%s categorical=%s picture=%s" % (
+        rows, continuous, check if polygons > 0 else "empty", frames, reseeded, bool(categorical),
         "matches" if matches else "differs (error %g; see %s)" % (error, picture))
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
