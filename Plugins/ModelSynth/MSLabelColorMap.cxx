@@ -2,6 +2,9 @@
 // The default colour map of arrays named Label, registered when the plugin loads: categorical
 // (each label its own colour, the legend listing the labels present), so a label grid or its
 // voxel surface shows as distinct parts on Apply instead of a smooth blend of neighbouring labels.
+// Only the labels shown are active (ParaView colours the others in the NaN colour and leaves them
+// out of the legend); the active set grows at every time step, so the labels a catalog snapshot
+// or a later frame adds get their colours too.
 //
 // ParaView makes one colour map per array name and takes its defaults from vtkSMSettings at
 // ".array_lookup_tables.<array>.PVLookupTable.<property>". The plugin adds them as the
@@ -44,6 +47,7 @@ std::string LabelColorMapSettings()
   json
     << "{ \"array_lookup_tables\": { \"Label\": { \"PVLookupTable\": {"
     << " \"IndexedLookup\": 1, \"ShowIndexedColorActiveValues\": 1, \"AnnotationsInitialized\": 1,"
+    << " \"AutomaticRescaleRangeMode\": \"Grow and update every timestep\","
     << " \"Annotations\": [" << annotations.str() << "], \"IndexedColors\": [" << colors.str()
     << "] } } } }";
   return json.str();

@@ -189,6 +189,26 @@ synthesis.UpdatePipeline(steps[len(steps) // 2])
 mid = servermanager.Fetch(synthesis)
 check(mid.GetPointData().GetArray("CatalogSize") is not None, "CatalogSize at a time step")
 check(mid.GetPointData().GetArray("Entropy") is not None, "Entropy at a time step")
+# Shown from the first snapshot (the ground decided), the labels get their colours as time
+# reaches the steps that decide them: the categorical map's active labels grow. (What the
+# animation scene does at each step, without its render, which would need a display.)
+from paraview.modules.vtkRemotingViews import vtkSMTransferFunctionManager  # noqa: E402
+label_map.ActiveAnnotatedValues = []
+snapshot_view = CreateRenderView()
+snapshot_view.ViewTime = steps[0]
+Show(OutputPort(synthesis, 1), snapshot_view)
+snapshot_view.Update()
+first_active = list(label_map.ActiveAnnotatedValues)
+snapshot_view.ViewTime = steps[-1]
+snapshot_view.Update()
+vtkSMTransferFunctionManager().ResetAllTransferFunctionRangesUsingCurrentData(
+    servermanager.ActiveConnection.Session.GetSessionProxyManager(), True)
+check(len(first_active) < len(present) and
+      sorted(int(v) for v in label_map.ActiveAnnotatedValues) == present,
+      "active labels %s at the first snapshot, %s at the last (expected %s)" % (
+          first_active, list(label_map.ActiveAnnotatedValues), present))
+Delete(snapshot_view)
+del snapshot_view
 
 # A tileset through its source proxy and the picture through the tile-image filter.
 tileset = os.path.join(DATA, "Tilesets", "Lines.xml")
