@@ -46,15 +46,17 @@ ENTRIES = [
      "animate Data/Examples/Ball.vti --size 32 1 1 --frames 24 --loop --seed 1", "frames"),
     ("houses", "Polyhedral (.obj)", "Continuous synthesis, no constraints: houses float",
      "synthesize %s/house.obj --size 24 24 10 --seed 3" % D, "model"),
-    ("houses-constrained", "Polyhedral (.obj)", "Grounded, walls one storey, eaves one spacing, "
-     "mirrored across x and y", "synthesize %s/house.obj --size 24 24 10 --seed 3 --grounded "
-     "--thickness wall:z --overhang roof --mirror xy" % D, "model"),
+    ("houses-constrained", "Polyhedral (.obj)", "Grounded, walls one storey and in whole "
+     "2-spacing slabs across x and y (no posts), eaves one spacing, mirrored across x and y",
+     "synthesize %s/house.obj --size 24 24 10 --seed 3 --grounded --thickness wall:z --overhang roof "
+     "--thickness wall:x:2+ --thickness wall:y:2+ --mirror xy" % D, "model"),
     ("house-blender", "Blender OBJ export (y up)", "The house as Blender exports it by default, "
      "read with --up y", "synthesize %s/house-blender.obj --up y --size 24 24 10 --seed 3 "
      "--grounded --thickness Wall:z --overhang Roof" % D, "model"),
-    ("cottages", "Polyhedral (.obj)", "Five object types, grounded, walls 8 spacings high",
-     "synthesize %s/cottage.obj --size 16 16 8 --seed 5 --grounded --thickness wall:z:8" % D,
-     "model"),
+    ("cottages", "Polyhedral (.obj)", "Five object types, grounded, walls 8 spacings high and "
+     "in whole 2-spacing slabs across x and y, eaves one spacing",
+     "synthesize %s/cottage.obj --size 16 16 8 --seed 5 --grounded --thickness wall:z:8 "
+     "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+" % D, "model"),
     ("oil", "Polyhedral (.obj)", "Decks one unit thick on beams, grown from three seeds",
      "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "
      "--thickness platform:z --thickness beam:x --thickness beam:y --connected solid:3" % D,

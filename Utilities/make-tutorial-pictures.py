@@ -62,7 +62,7 @@ def gui_step(step):
         pv.RenameSource("house.obj", house)
         planes = ModelSynthPlaneArrangement(Input=house, OutputSize=[24, 24, 10])  # noqa: F821
         labels = ModelSynthContinuousSynthesis(Input=house, Arrangement=planes, Seed=3,  # noqa: F821
-                                               Grounded=1, Thickness="wall:z",
+                                               Grounded=1, Thickness="wall:z,wall:x:2+,wall:y:2+",
                                                Overhang="roof", Mirror=[1, 1, 0])
         mesh = ModelSynthArrangementMesh(Input=house, Arrangement=labels)  # noqa: F821
         for name, source in (("Plane Arrangement", planes), ("Continuous Synthesis", labels),

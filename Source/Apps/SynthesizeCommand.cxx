@@ -222,7 +222,8 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
     "box, objects grown up from it, floating parts removed"));
   continuous(s.add_option("--thickness", o.Thickness,
                 "dimensional constraint: object type TYPE is exactly N plane spacings thick "
-                "across AXIS (x, y, z or hK for plane family K; N defaults to 1); several "
+                "across AXIS (x, y, z or hK for plane family K; N defaults to 1); N+ makes it "
+                "whole multiples of N (wall:x:2+ and wall:y:2+: no one-spacing posts); several "
                 "axes (TYPE:xy) make a width: one spacing across at least one of them")
                ->allow_extra_args(false));
   continuous(s.add_option("--overhang", o.Overhang,

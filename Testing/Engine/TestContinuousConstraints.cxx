@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 using namespace msynth;
 
@@ -187,6 +188,71 @@ TEST(ContinuousConstraints, ThicknessIsExactAndStacks)
     ASSERT_FALSE(runs.empty()) << n << " spacings: no walls";
     EXPECT_EQ(runs.size(), 1u) << n << " spacings: walls of several heights";
     EXPECT_EQ(runs.begin()->first, expected) << n << " spacings of " << spacing;
+  }
+}
+
+TEST(ContinuousConstraints, ThicknessInMultiplesLeavesNoThinWalls)
+{
+  // "wall:x:2+" and "wall:y:2+": walls are whole 2-spacing slabs across x and y (2, 4, 6 ...
+  // spacings, aligned), so no wall is one spacing thin; without them, grounded houses with the
+  // overhang rule still stand on rows of one-spacing posts. Runs are measured in the voxels of
+  // the extracted mesh, along x and along y.
+  const Loaded house = Load("house.obj");
+  const PlaneFamilySet& families = house.Analysis.Families();
+  const int x = FamilyAlongAxis(families, 0), y = FamilyAlongAxis(families, 1);
+  const int z = FamilyAlongAxis(families, 2);
+  ASSERT_GE(std::min({ x, y, z }), 0);
+  const ArrangementParameters p =
+    DefaultArrangementParameters(house.Example, house.Analysis, { 18, 18, 8 }, 0, {});
+  for (bool multiples : { false, true })
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = 3;
+    o.BlockSize = 4;
+    o.Constraints.Grounded = true;
+    o.Constraints.Overhang = { Roof };
+    o.Constraints.Thickness.push_back({ Wall, z, 1, {}, false });
+    if (multiples)
+    {
+      o.Constraints.Thickness.push_back({ Wall, x, 2, {}, true });
+      o.Constraints.Thickness.push_back({ Wall, y, 2, {}, true });
+    }
+    const Voxels v = Synthesize(house, { 18, 18, 8 }, o);
+    std::int64_t runs = 0, thin = 0, odd = 0;
+    std::set<std::int64_t> residues[2]; // run starts modulo the slab, per axis
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      const auto slab = std::llround(2 * p.Spacing(families, axis ? y : x) / v.Voxel);
+      const auto single = slab / 2;
+      const std::int64_t along = v.Types.Size(axis), across = v.Types.Size(1 - axis);
+      for (std::int64_t k = 0; k < v.Types.Size(2); ++k)
+        for (std::int64_t j = 0; j < across; ++j)
+          for (std::int64_t i = 0; i < along;)
+          {
+            auto at = [&](std::int64_t n) { return axis ? v.At(j, n, k) : v.At(n, j, k); };
+            std::int64_t e = i;
+            while (e < along && at(e) == Wall)
+              ++e;
+            if (e > i)
+            {
+              ++runs;
+              thin += (e - i) <= single;
+              odd += (e - i) % slab != 0;
+              residues[axis].insert(i % slab);
+            }
+            i = std::max(e, i + 1);
+          }
+    }
+    ASSERT_GT(runs, 0) << "no walls";
+    if (!multiples)
+    {
+      EXPECT_GT(thin, 0) << "without the constraint there were no thin walls to remove";
+      continue;
+    }
+    EXPECT_EQ(thin, 0) << thin << " of " << runs << " wall runs are one spacing thin";
+    EXPECT_EQ(odd, 0) << odd << " of " << runs << " wall runs are not whole slabs";
+    EXPECT_EQ(residues[0].size(), 1u) << "runs along x start on different slab boundaries";
+    EXPECT_EQ(residues[1].size(), 1u) << "runs along y start on different slab boundaries";
   }
 }
 
@@ -446,13 +512,16 @@ TEST(ContinuousConstraints, ParsingNamesTheProblem)
   EXPECT_EQ(t.Type, 1);
   EXPECT_EQ(t.Family, FamilyAlongAxis(families, 2));
   EXPECT_EQ(t.Spacings, 3);
+  EXPECT_FALSE(t.Multiples);
+  const ThicknessConstraint slabs = ParseThickness("wall:x:2+", families, names);
+  EXPECT_TRUE(slabs.Multiples && slabs.Spacings == 2 && slabs.OrFamilies.empty());
   EXPECT_EQ(ParseThickness("2:h1", families, names).Family, 0);
   EXPECT_EQ(ParseConnected("roof:4", names).Seeds, 4);
   EXPECT_EQ(ParseConnected("solid", names).Type, 0);
   const ThicknessConstraint width = ParseThickness("wall:yxh1", families, names);
   EXPECT_EQ(width.OrFamilies.size(), 2u); // three families, each once
-  for (const char* bad :
-    { "wall", "wall:w", "wall:z:0", "wall:z:x", "chimney:z", "wall:h99", "wall:xy:2", "wall:xq" })
+  for (const char* bad : { "wall", "wall:w", "wall:z:0", "wall:z:x", "chimney:z", "wall:h99",
+         "wall:xy:2", "wall:xq", "wall:x:+", "wall:x:0+", "wall:x:2++", "wall:xy:2+" })
   {
     try
     {

@@ -413,6 +413,25 @@ class ContinuousSynthesisTest(unittest.TestCase):
         z = vtk_to_numpy(parts.GetOutput().GetPoints().GetData())[:, 2]
         for r in np.unique(region):
             self.assertAlmostEqual(z[region == r].min(), 0.0, msg="part %d floats" % r)
+        # Walls in whole slabs of two spacings (1 unit) across x and y: every wall side facing x
+        # (or y) lies on one grid of 1-unit steps, so no wall is half a unit thin.
+        solver.SetInputData(2, None)
+        solver.SetThickness("wall:z,wall:x:2+,wall:y:2+")
+        solver.SetOverhang("roof")
+        mesh.Update()
+        self.assertEqual(errors.text(), "")
+        points, polys = polygons_of(mesh.GetOutput())
+        inside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("InsideType"))
+        outside = vtk_to_numpy(mesh.GetOutput().GetCellData().GetArray("OutsideType"))
+        sides = {0: set(), 1: set()}
+        for poly, a, b in zip(polys, inside, outside):
+            corners = points[poly]
+            for axis in (0, 1):
+                if (a == 1) != (b == 1) and np.ptp(corners[:, axis]) < 1e-9:
+                    sides[axis].add(round(corners[0, axis] % 1.0, 6) % 1.0)
+        self.assertTrue(sides[0] and sides[1], "walls have sides facing x and y")
+        self.assertEqual(len(sides[0]), 1, "wall sides facing x at %s (mod 1)" % sides[0])
+        self.assertEqual(len(sides[1]), 1, "wall sides facing y at %s (mod 1)" % sides[1])
         # The same from the command line, and its one-line errors.
         from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
         folder = tmp("constraints-cli")
@@ -434,6 +453,8 @@ class ContinuousSynthesisTest(unittest.TestCase):
         self.assertIn('"TypeShares"', stats)
         for args, message in (
                 (["--thickness", "wall:q"], "the axis must be x, y, z or h1"),
+                (["--thickness", "wall:x:0+"], "N+ for multiples of N"),
+                (["--thickness", "wall:x:2+", "--thickness", "wall:y:2+"], None),
                 (["--connected", "tower:2"], "'tower' is not an object type"),
                 (["--overhang", "tower"], "'tower' is not an object type"),
                 (["--overhang", "roof", "--grounded"], None),

@@ -123,7 +123,7 @@ void ConstraintPlan::PlanThickness()
           ends = ends || (here != there);
         }
       }
-      if (!through)
+      if (!through || c.Multiples)
         SetLabel(s.OuterAllowed, a);
       if (!ends)
         SetLabel(s.InnerAllowed, a);

@@ -76,7 +76,7 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
 {
   const auto parts = SplitColons(text);
   if (parts.size() < 2 || parts.size() > 3)
-    throw Error("thickness '" + text + "' is not TYPE:AXIS[:N]");
+    throw Error("thickness '" + text + "' is not TYPE:AXIS[:N] or TYPE:AXIS:N+");
   ThicknessConstraint c;
   try
   {
@@ -120,9 +120,14 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
   c.OrFamilies.assign(across.begin() + 1, across.end());
   if (!c.OrFamilies.empty() && parts.size() == 3)
     throw Error("thickness '" + text + "': a width across several axes is one spacing (no :N)");
-  if (parts.size() == 3 && !ParseInt(parts[2], 1, 1000000, value))
-    throw Error("thickness '" + text + "': N must be a whole number of plane spacings ≥ 1");
-  c.Spacings = parts.size() == 3 ? static_cast<int>(value) : 1;
+  std::string spacings = parts.size() == 3 ? parts[2] : "1";
+  c.Multiples = !spacings.empty() && spacings.back() == '+';
+  if (c.Multiples)
+    spacings.pop_back();
+  if (!ParseInt(spacings, 1, 1000000, value))
+    throw Error("thickness '" + text +
+      "': N must be a whole number of plane spacings ≥ 1 (N+ for multiples of N)");
+  c.Spacings = static_cast<int>(value);
   return c;
 }
 

@@ -49,6 +49,13 @@ struct ThicknessConstraint
    * two-by-two block). Spacings must be 1.
    */
   std::vector<int> OrFamilies;
+  /**
+   * Whole slabs instead of one: the type may pass through the slabs' outer planes too, so it is
+   * N, 2N, 3N ... spacings thick, aligned to the slabs ("TYPE:AXIS:N+"). With N = 2 across x and
+   * y, walls are never one spacing thin and the gaps between them never one spacing narrow:
+   * together with the overhang rule, a roof cannot rest on a row of thin posts.
+   */
+  bool Multiples = false;
 };
 
 /**
@@ -128,8 +135,9 @@ int FamilyAlongAxis(const PlaneFamilySet& families, int axis);
 
 /**
  * Parses "TYPE:AXIS:N" (AXIS x, y, z or hK for the K-th plane family, N ≥ 1 spacings; ":N"
- * may be left out for 1), or a width "TYPE:AXES" with two or more axes ("xy", "h1h2": one
- * spacing thick across at least one of them). TYPE is a number or an object type's name in
+ * may be left out for 1; "N+" for whole multiples of N), or a width "TYPE:AXES" with two or more
+ * axes ("xy", "h1h2": one spacing thick across at least one of them). TYPE is a number or an object
+ * type's name in
  * @p typeNames.
  * @throw Error naming the text.
  */

@@ -113,8 +113,9 @@ public:
   vtkBooleanMacro(Grounded, bool);
   ///@}
   ///@{
-  /// Dimensional constraints, "TYPE:AXIS[:N],..." (AXIS x, y, z or hK; N plane spacings), or
-  /// widths "TYPE:AXES" with several axes (one spacing across at least one). Default "".
+  /// Dimensional constraints, "TYPE:AXIS[:N],..." (AXIS x, y, z or hK; N plane spacings; "N+"
+  /// for whole multiples of N), or widths "TYPE:AXES" with several axes (one spacing across at
+  /// least one). Default "".
   vtkSetStdStringFromCharMacro(Thickness);
   vtkGetCharFromStdStringMacro(Thickness);
   ///@}
