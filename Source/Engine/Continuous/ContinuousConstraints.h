@@ -136,9 +136,8 @@ int FamilyAlongAxis(const PlaneFamilySet& families, int axis);
 /**
  * Parses "TYPE:AXIS:N" (AXIS x, y, z or hK for the K-th plane family, N ≥ 1 spacings; ":N"
  * may be left out for 1; "N+" for whole multiples of N), or a width "TYPE:AXES" with two or more
- * axes ("xy", "h1h2": one spacing thick across at least one of them). TYPE is a number or an object
- * type's name in
- * @p typeNames.
+ * axes ("xy", "h1h2": one spacing thick across at least one of them). TYPE is a number or an
+ * object type's name in @p typeNames.
  * @throw Error naming the text.
  */
 ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet& families,
