@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -169,4 +170,40 @@ TEST(OutputFolder, MissingParentsAreMadeAndRemovedWhenNothingIsPublished)
   EXPECT_EQ(::stat((other + "/c/d").c_str(), &info), 0);
   msynth::OutputFolder::DiscardAll();
   EXPECT_NE(::stat(other.c_str(), &info), 0) << "interrupted: the folders made are removed";
+}
+
+// A run killed with SIGKILL leaves its staging folder behind: the next run into the folder
+// removes the stages of processes that no longer exist, and keeps those of live ones.
+TEST(OutputFolder, StagesOfKilledRunsAreRemovedByTheNextRun)
+{
+  const std::string dir = std::string(MSYNTH_TEST_TMP) + "/stale-" + std::to_string(::getpid());
+  msynth::RemoveTree(dir);
+  ::mkdir(dir.c_str(), 0755);
+  const pid_t gone = ::fork(); // a process id that no longer runs
+  if (gone == 0)
+    ::_exit(0);
+  ASSERT_GT(gone, 0);
+  int status = 0;
+  ::waitpid(gone, &status, 0);
+  const std::string stale = dir + "/.msynth-stage-" + std::to_string(gone) + "-0";
+  const std::string discarded = dir + "/.msynth-discard-" + std::to_string(gone) + "-3";
+  const std::string live = dir + "/.msynth-stage-1-0"; // init always runs
+  for (const auto& stage : { stale, discarded, live })
+  {
+    ::mkdir(stage.c_str(), 0755);
+    std::ofstream(stage + "/labels.vti") << "partial";
+  }
+  std::ofstream(dir + "/.msynth-stage-notapid") << "kept";
+  {
+    msynth::OutputFolder folder(dir);
+    msynth::WriteFileAtomically(folder.Stage() + "/x.txt", [](std::ostream& out) { out << "x"; });
+    folder.Publish();
+  }
+  struct stat info;
+  EXPECT_NE(::stat(stale.c_str(), &info), 0) << "the killed run's stage is removed";
+  EXPECT_NE(::stat(discarded.c_str(), &info), 0);
+  EXPECT_EQ(::stat(live.c_str(), &info), 0) << "a live process's stage is kept";
+  EXPECT_EQ(::stat((dir + "/.msynth-stage-notapid").c_str(), &info), 0);
+  EXPECT_EQ(Slurp(dir + "/x.txt"), "x");
+  msynth::RemoveTree(dir);
 }

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
+#include <new>
 #include <set>
 #include <thread>
 
@@ -269,4 +270,47 @@ TEST(BlockSynthesis, TruncatedExchangeIsAnError)
   b.Put(7);
   EXPECT_EQ(b.Get(), 7);
   EXPECT_THROW(b.Get(), Error);
+}
+
+// An exception inside a block (a solver's Error, bad_alloc) on a worker thread must not end the
+// process in std::terminate: it is rethrown on the calling thread after the phase joins, as one
+// Error naming the block; on one thread it names the block too.
+TEST(BlockSynthesis, AnExceptionInAWorkerReachesTheCallerNamingItsBlock)
+{
+  const auto phases = Phases();
+  for (int threads : { 1, 2, 4 })
+  {
+    for (bool outOfMemory : { false, true })
+    {
+      BlockRunner::Policy policy;
+      policy.Threads = threads;
+      BlockRunner runner(policy, phases.size());
+      BlockRunner::Hooks hooks;
+      hooks.Run = [&](unsigned, std::size_t i)
+      {
+        if (i == 12 || i == 14)
+        {
+          if (outOfMemory)
+            throw std::bad_alloc();
+          throw Error("the catalog of site (1, 2, 0) is empty");
+        }
+        return BlockOutcome{};
+      };
+      hooks.Finish = [](std::size_t, const BlockOutcome&) {};
+      SynthesisStatistics stats;
+      std::string what;
+      try
+      {
+        runner.Run(phases, hooks, stats);
+      }
+      catch (const Error& e)
+      {
+        what = e.what();
+      }
+      const std::string expected = outOfMemory
+        ? "block 13 of 36 ran out of memory"
+        : "block 13 of 36: the catalog of site (1, 2, 0) is empty";
+      EXPECT_EQ(what, expected) << threads << " threads";
+    }
+  }
 }

@@ -9,8 +9,11 @@
 #include <sys/resource.h>
 
 #include <csignal>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -335,4 +338,108 @@ TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
   EXPECT_NE(ErrorOf([&] { vdb::WriteFile(path, {}, { surface }, {}); }).find("voxel size"),
     std::string::npos);
   EXPECT_FALSE(std::ifstream(path).good());
+}
+
+namespace
+{
+/// One of our own label files, as bytes.
+std::string LabelFileBytes()
+{
+  std::vector<std::int32_t> labels(16 * 16 * 4);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    labels[i] = static_cast<std::int32_t>((i * 7) % 5);
+  vdb::GridHeader h = Header("Label", vdb::ValueType::Int32);
+  h.Dims = { { 16, 16, 4 } };
+  const std::string good = Tmp("layout-good.vdb");
+  vdb::WriteFile(good, { vdb::DenseGridView{ h, labels.data() } }, { { "note", "kept" } });
+  std::ifstream in(good, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void PutU32(std::string& bytes, std::size_t at, std::uint32_t v)
+{
+  for (std::size_t k = 0; k < 4; ++k)
+    bytes[at + k] = static_cast<char>((v >> (8 * k)) & 255);
+}
+
+/// The error of reading @p bytes as a file, and the seconds it took.
+std::pair<std::string, double> ReadBytes(const std::string& bytes, const std::string& name)
+{
+  const std::string path = Tmp(name);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf([&] { vdb::ReadFile(path); });
+  return { e, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() };
+}
+} // namespace
+
+// Lengths and counts in a file are checked against the bytes left before OpenVDB allocates them:
+// a grid name claiming 1.7 GB was allocated and filled (6 s, 1.6 GB) before "truncated", and a
+// negative grid count ended in the C++ library's "vector::reserve".
+TEST(VDBFile, LengthsAndCountsAreCheckedBeforeOpenVDBAllocates)
+{
+  const std::string bytes = LabelFileBytes();
+  const std::size_t name = bytes.find(std::string("\x05\0\0\0Label", 9));
+  ASSERT_NE(name, std::string::npos);
+  std::string longName = bytes;
+  PutU32(longName, name, 1700000000u);
+  const auto [e1, s1] = ReadBytes(longName, "long-name.vdb");
+  EXPECT_NE(e1.find("'" + Tmp("long-name.vdb") +
+              "': is corrupt: the name of grid 1 claims "
+              "1700000000 bytes"),
+    std::string::npos)
+    << e1;
+  EXPECT_LT(s1, 2.0);
+
+  std::string negative = bytes;
+  PutU32(negative, name - 4, 0xfffffff0u); // the grid count before the first descriptor
+  const auto [e2, s2] = ReadBytes(negative, "negative-count.vdb");
+  EXPECT_NE(e2.find("is corrupt: it claims -16 grids"), std::string::npos) << e2;
+  EXPECT_EQ(e2.find("vector"), std::string::npos) << e2;
+
+  // The file's metadata entry "note": its value's size.
+  const std::size_t note = bytes.find(std::string("\x04\0\0\0note", 8));
+  ASSERT_NE(note, std::string::npos);
+  const std::size_t size = note + 8 + 4 + std::string("string").size();
+  std::string bigValue = bytes;
+  PutU32(bigValue, size, 0x7fffffffu);
+  const auto [e3, s3] = ReadBytes(bigValue, "big-value.vdb");
+  EXPECT_NE(e3.find("metadata 'note' of the file claims 2147483647 bytes"), std::string::npos)
+    << e3;
+}
+
+// Whatever a damaged file does to the reading child (OpenVDB's warnings, glibc's "malloc():
+// corrupted top size" after a flipped bit in a Blosc chunk), nothing of it reaches our stderr:
+// the parent's one error says what failed.
+TEST(VDBFile, NothingTheReadingProcessPrintsReachesTheUser)
+{
+  const std::string bytes = LabelFileBytes();
+  const std::string log = Tmp("child-stderr.txt");
+  std::fflush(stderr);
+  const int saved = ::dup(2);
+  const int sink = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(sink, 0);
+  ::dup2(sink, 2);
+  for (std::size_t i = 100; i < bytes.size(); i += 61) // one bit in each stretch of the data
+  {
+    std::string bad = bytes;
+    bad[i] = static_cast<char>(bad[i] ^ (1 << (i % 8)));
+    ReadBytes(bad, "flipped.vdb");
+  }
+  // The tree's buffer count after the transform (its type name and 18 doubles): 2 made OpenVDB
+  // print "WARNING: multi-buffer trees are no longer supported".
+  const std::size_t map = bytes.find("ScaleTranslateMap");
+  ASSERT_NE(map, std::string::npos);
+  const std::size_t buffers = map + 17 + 18 * 8;
+  ASSERT_EQ(bytes.substr(buffers, 4), std::string("\x01\0\0\0", 4));
+  std::string twoBuffers = bytes;
+  PutU32(twoBuffers, buffers, 2);
+  ReadBytes(twoBuffers, "two-buffers.vdb");
+  std::fflush(stderr);
+  ::dup2(saved, 2);
+  ::close(saved);
+  ::close(sink);
+  std::ifstream in(log);
+  const std::string printed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(printed, "");
 }

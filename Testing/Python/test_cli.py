@@ -703,6 +703,25 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)  # frames of different sizes
         self.assertIn("frame 1", r.stderr)
 
+    def test_animate_refuses_what_does_not_fit_before_allocating(self):
+        # A million frames of 288 sites once ran 11 s to 3.4 GB before "out of memory" under a
+        # 4 GB cap (and 160 s to 9 GB without one): the estimate comes first.
+        cases = [(("16", "12", "6"), None)]  # 46 GB: more than any machine of ours
+        if not os.environ.get("MSYNTH_SANITIZED"):  # the sanitizers reserve address space
+            cases.append((("8", "6", "6"), 4 << 30))
+        for size, cap in cases:
+            out = tmp("cli-animate-huge")
+            start = time.monotonic()
+            r = subprocess.run([MSYNTH, "animate", data("Examples/Village.vox"), "--size", *size,
+                                "--frames", "1000000", "--out", out], capture_output=True, text=True,
+                               timeout=TIMEOUT, preexec_fn=(lambda: resource.setrlimit(
+                                   resource.RLIMIT_AS, (cap, cap))) if cap else None)
+            self.assertLess(time.monotonic() - start, 5, size)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertIn("a %s x %s x %s model of 1000000 frames needs about" % size, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertFalse(os.path.exists(out))
+
     def test_pattern_and_quality(self):
         """msynth pattern on the bundled city with fixed crossroads, then msynth quality; every
         sample's pairs are checked here against the exemplars with numpy."""

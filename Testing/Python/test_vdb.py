@@ -62,6 +62,31 @@ class VDBReaderTest(unittest.TestCase):
             self.assertIn("which is empty or outside +-2^30", errors, name)
             self.assertEqual(out.GetNumberOfPoints(), 0, name)
 
+    def test_a_stored_box_the_data_does_not_support_is_refused_at_once(self):
+        # One voxel whose stored index box claims 2^28 voxels: once 60 s and 2 GB of dense
+        # copies, now refused before any; a small box around few voxels is still read.
+        import time
+        for name, hi, refused in (("claims-2^28", (1023, 1023, 255), True),
+                                  ("small-sparse", (63, 63, 63), False),
+                                  ("outside", (0, 0, 0), True)):
+            grid = pyopenvdb.FloatGrid()
+            grid.name = "Label"
+            grid.getAccessor().setValueOn((1, 1, 1), 3.0)
+            grid["msynth_index_min"] = (0, 0, 0)
+            grid["msynth_index_max"] = hi
+            path = tmp(name + ".vdb")
+            pyopenvdb.write(path, grids=[grid])
+            start = time.monotonic()
+            out, errors = read(path)
+            self.assertLess(time.monotonic() - start, 2.0, name)
+            if refused:
+                self.assertIn(path, errors, name)
+                self.assertIn("(damaged metadata)", errors, name)
+                self.assertEqual(out.GetNumberOfPoints(), 0, name)
+            else:
+                self.assertEqual(errors, "", name)
+                self.assertEqual(out.GetNumberOfPoints(), 64 ** 3, name)
+
     def test_foreign_file_uses_active_bounding_box(self):
         grid = pyopenvdb.FloatGrid()
         grid.name = "density"

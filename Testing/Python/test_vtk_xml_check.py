@@ -96,6 +96,38 @@ class VTKXMLCheckTest(unittest.TestCase):
         self.damaged("zlib-more-strings.vti",
                      re.sub(rb'(Name="Notes" NumberOfTuples=")3"', rb'\g<1>2"', data), "holds 3 strings but declares 2")
 
+    def test_a_last_block_size_without_blocks_is_an_error(self):
+        # A compression header of no blocks whose last block claims bytes: VTK took the data's
+        # size as 0 * size - size + last and divided by the block size (SIGFPE, from
+        # ReadXMLInformation for the TimeValue field array it reads first). Every array kind
+        # our size check leaves alone: field data without a count, bits, and a TimeValue array.
+        image = example()
+        times = numpy_to_vtk(np.array([0.5]), deep=True)
+        times.SetName("TimeValue")
+        image.GetFieldData().AddArray(times)
+        w = vtkXMLImageDataWriter()
+        w.SetInputData(image)
+        w.SetFileName(tmp("time.vti"))
+        w.SetDataModeToAppended()
+        w.SetEncodeAppendedData(False)
+        w.SetCompressorTypeToZLib()
+        w.SetHeaderTypeToUInt32()
+        self.assertEqual(w.Write(), 1)
+        with open(tmp("time.vti"), "rb") as f:
+            original = f.read()
+        start = original.index(b"_", original.index(b"<AppendedData")) + 1
+        for name in (b"TimeValue", b"Label"):
+            offset = int(re.search(rb'Name="' + name + rb'"[^>]*offset="(\d+)"', original).group(1))
+            for drop_count in (False, True):
+                data = bytearray(original)
+                # UInt32 words: blocks 0, block size 0, last block 8 bytes.
+                data[start + offset:start + offset + 12] = bytes(8) + (8).to_bytes(4, "little")
+                if drop_count:
+                    data = bytearray(re.sub(rb'(Name="' + name + rb'")( NumberOfTuples="\d+")?',
+                                            rb"\1", bytes(data)))
+                self.damaged("last-block-%s-%d.vti" % (name.decode(), drop_count), bytes(data),
+                             "has a compression header of 0 blocks of 0 bytes (the last 8)")
+
     def test_regression_inputs_through_the_real_readers(self):
         # The inputs kept from fuzzing and from the crash reports, through VTK's readers behind
         # our checks (the harnesses only reach our side).

@@ -5,7 +5,11 @@
 #include "Core/ProgressPoll.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <exception>
+#include <mutex>
+#include <new>
 #include <ostream>
 #include <system_error>
 #include <thread>
@@ -220,6 +224,84 @@ struct BlockRunner::Internal
   }
 };
 
+namespace
+{
+/// The exception @p e that ended block @p i (of @p blocks) as one Error naming the block.
+[[noreturn]] void RethrowInBlock(std::size_t i, std::size_t blocks, const std::exception_ptr& e)
+{
+  const std::string block = "block " + std::to_string(i + 1) + " of " + std::to_string(blocks);
+  try
+  {
+    std::rethrow_exception(e);
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error(block + " ran out of memory");
+  }
+  catch (const std::exception& x)
+  {
+    throw Error(block + ": " + x.what());
+  }
+  catch (...)
+  {
+    throw Error(block + " failed with an exception that is not a std::exception");
+  }
+}
+/**
+ * Runs blocks @p mine (indices; block i's outcome goes to outcomes[i - first]) on @p workers
+ * threads, the calling one included. An exception in a worker stops the others (@p stop) and
+ * is rethrown here after the join, naming its block (the first, in block order, that threw).
+ */
+void RunOnWorkers(unsigned workers, const std::vector<std::size_t>& mine, std::size_t first,
+  std::size_t blocks, const BlockRunner::Hooks& hooks, std::atomic<bool>& stop,
+  std::vector<BlockOutcome>& outcomes)
+{
+  std::atomic<std::size_t> next{ 0 };
+  std::mutex failureMutex;
+  std::exception_ptr failure;
+  std::size_t failedBlock = blocks;
+  std::atomic<bool> failed{ false };
+  auto work = [&](unsigned worker)
+  {
+    for (std::size_t j; !failed.load() && (j = next++) < mine.size();)
+    {
+      try
+      {
+        outcomes[mine[j] - first] = hooks.Run(worker, mine[j]);
+      }
+      catch (...)
+      {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        if (mine[j] < failedBlock)
+        {
+          failedBlock = mine[j];
+          failure = std::current_exception();
+        }
+        failed.store(true);
+        stop.store(true); // the other workers' blocks end at their next poll
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w)
+  {
+    try
+    {
+      pool.emplace_back(work, w);
+    }
+    catch (const std::system_error&)
+    {
+      break; // no more threads to be had: the others and this one share the blocks
+    }
+  }
+  work(0);
+  for (auto& t : pool)
+    t.join();
+  if (failure)
+    RethrowInBlock(failedBlock, blocks, failure);
+}
+} // namespace
+
 BlockRunner::BlockRunner(Policy policy, std::size_t blocks)
   : State(std::make_unique<Internal>())
 {
@@ -284,7 +366,15 @@ SynthesisStatus BlockRunner::Run(
     {
       for (std::size_t i = first; i < last && !cancelled; ++i)
       {
-        const BlockOutcome out = hooks.Run(0, i);
+        BlockOutcome out;
+        try
+        {
+          out = hooks.Run(0, i);
+        }
+        catch (...)
+        {
+          RethrowInBlock(i, phases.size(), std::current_exception());
+        }
         hooks.Finish(i, out);
         record(out);
         ++s.Done;
@@ -299,27 +389,7 @@ SynthesisStatus BlockRunner::Run(
     for (std::size_t i = first; i < last; ++i)
       if ((i - first) % s.Processes == s.Rank)
         mine.push_back(i);
-    std::atomic<std::size_t> next{ 0 };
-    auto work = [&](unsigned worker)
-    {
-      for (std::size_t j; (j = next++) < mine.size();)
-        outcomes[mine[j] - first] = hooks.Run(worker, mine[j]);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned w = 1; w < this->NumberOfWorkers; ++w)
-    {
-      try
-      {
-        pool.emplace_back(work, w);
-      }
-      catch (const std::system_error&)
-      {
-        break; // no more threads to be had: the others and this one share the blocks
-      }
-    }
-    work(0);
-    for (auto& t : pool)
-      t.join();
+    RunOnWorkers(this->NumberOfWorkers, mine, first, phases.size(), hooks, s.Stop, outcomes);
     if (s.Distributed()) // every process stops at the same phase
       cancelled = s.Exchange(first, last, mine, outcomes, cancelRequested, hooks);
     for (std::size_t i = first; i < last; ++i)

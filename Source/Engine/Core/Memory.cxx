@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -31,6 +32,18 @@ std::uint64_t MemInfo(const std::string& key)
 }
 
 } // namespace
+
+void AdviseHugePages(const void* data, std::size_t bytes)
+{
+  constexpr std::uintptr_t huge = std::uintptr_t(2) << 20;
+  if (bytes < 4 * huge)
+    return;
+  // The whole huge pages inside the range.
+  const auto from = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
+  const auto to = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
+  if (to > from)
+    ::madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
+}
 
 std::uint64_t VirtualSize()
 {

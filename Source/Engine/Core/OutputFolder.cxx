@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <dirent.h>
@@ -84,6 +85,36 @@ public:
 private:
   int Fd;
 };
+/// The process id in a staging folder's name (".msynth-stage-PID-N", ".msynth-discard-PID-N"),
+/// or 0 when @p name is no such folder.
+pid_t StagePid(const std::string& name)
+{
+  for (const char* prefix : { ".msynth-stage-", ".msynth-discard-" })
+  {
+    const std::size_t n = std::strlen(prefix);
+    if (name.compare(0, n, prefix) != 0)
+      continue;
+    const std::size_t dash = name.find('-', n);
+    const std::string digits = name.substr(n, dash == std::string::npos ? dash : dash - n);
+    if (digits.empty() || digits.size() > 9 ||
+      digits.find_first_not_of("0123456789") != std::string::npos)
+      return 0;
+    return static_cast<pid_t>(std::stol(digits));
+  }
+  return 0;
+}
+
+/// Removes the staging folders in @p dir left by runs that were killed (SIGKILL, a power cut):
+/// those whose process no longer exists. Live runs' stages, and this process's, are kept.
+void RemoveStaleStages(const std::string& dir)
+{
+  for (const auto& name : Entries(dir))
+  {
+    const pid_t pid = StagePid(name);
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
+      RemoveTree(dir + "/" + name);
+  }
+}
 } // namespace
 
 void RemoveTree(const std::string& path)
@@ -123,6 +154,7 @@ OutputFolder::OutputFolder(const std::string& dir)
     else if (errno != EEXIST)
       throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
   }
+  RemoveStaleStages(this->Dir);
   static std::atomic<unsigned> counter{ 0 };
   this->StagePath =
     this->Dir + "/.msynth-stage-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);

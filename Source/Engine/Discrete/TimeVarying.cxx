@@ -3,6 +3,7 @@
 
 #include "Core/BlockSynthesis.h"
 #include "Core/Error.h"
+#include "Core/Memory.h"
 
 #include "Core/Random.h"
 
@@ -133,6 +134,27 @@ std::int64_t CheckOptions(const TimeVaryingOptions& options)
   if (options.AttemptsPerBlock < 1)
     throw Error("attempts per block must be at least 1");
   return total;
+}
+
+/**
+ * Refuses, before anything is allocated, a model whose memory would exceed what is available: per
+ * site the model, the frames returned and the caller's copies (about 16 bytes); per frame the
+ * bookkeeping of a grid and of the caller's image (about 2 KB); and a catalog (two bit sets of
+ * the labels and bookkeeping) over a block of @p m sites. A whole 8 x 6 x 6 model of a million
+ * frames (288 M sites) peaked at 9 GB before its catalog emptied; this says 13.5 GB at once.
+ */
+void CheckTimeVaryingMemory(const TimeVaryingRules& rules, const Coord4& n, const Coord4& m)
+{
+  std::uint64_t sites = 1, blockSites = 1;
+  for (int a = 0; a < 4; ++a)
+  {
+    sites *= static_cast<std::uint64_t>(n[a]);
+    blockSites *= static_cast<std::uint64_t>(m[a]);
+  }
+  const auto perCatalogSite = static_cast<std::uint64_t>(rules.Words()) * 16 + 8;
+  CheckMemory(sites * 16 + static_cast<std::uint64_t>(n[3]) * 2048 + blockSites * perCatalogSite,
+    "a " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) +
+      " model of " + std::to_string(n[3]) + " frames");
 }
 
 /// The trivial start (Algorithm 3.4, lines 3-5): a label next to itself along every axis the
@@ -377,6 +399,7 @@ TimeVaryingResult SynthesizeTimeVarying(
     whole = whole && m[a] == n[a];
     step[a] = std::max<std::int64_t>(1, m[a] - m[a] / 2);
   }
+  CheckTimeVaryingMemory(rules, n, m);
   TimeVaryingResult result;
   SynthesisStatistics& stats = result.Statistics;
   std::vector<std::int32_t> model(static_cast<std::size_t>(total), -1);

@@ -284,8 +284,11 @@ private:
     const std::string head = this->Take(src, 0, 3 * hs, what + " (compression header)");
     const std::uint64_t blocks = this->Word(head, 0), blockSize = this->Word(head, hs),
                         lastSize = this->Word(head, 2 * hs);
-    if (blocks > (std::uint64_t(1) << 24) ||
-      (blocks > 0 && (blockSize == 0 || lastSize > blockSize)) || blockSize > MaximumBytes)
+    // VTK computes the size as blocks * blockSize - blockSize + lastSize (when lastSize is not
+    // 0) and divides by blockSize whenever that is not 0: with no blocks, a last size alone
+    // made it divide by zero.
+    if (blocks > (std::uint64_t(1) << 24) || lastSize > blockSize || blockSize > MaximumBytes ||
+      (blocks > 0 && blockSize == 0) || (blocks == 0 && lastSize > 0))
       this->Fail(what + " has a compression header of " + std::to_string(blocks) + " blocks of " +
         std::to_string(blockSize) + " bytes (the last " + std::to_string(lastSize) + ")");
     const std::uint64_t headerBytes = (3 + blocks) * hs;

@@ -3,10 +3,12 @@
 
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "VDB/VDBLayout.h"
 
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <iterator>
 #include <new>
@@ -89,6 +91,9 @@ void SendBlock(int fd, const std::string& bytes)
 
 namespace
 {
+/// The CPU time a reading child may use (a whole 2^28-voxel grid takes a few seconds).
+constexpr rlim_t ChildSeconds = 60;
+
 /// (state, CPU ticks, threads) of process @p pid from /proc/PID/stat; state 0 when unknown.
 std::tuple<char, unsigned long long, long> ProcessState(pid_t pid)
 {
@@ -138,6 +143,39 @@ bool FirstByteComes(int fd, pid_t pid)
     lastTicks = ticks;
   }
 }
+/**
+ * The reading child's limits: one TBB thread (the parent's workers do not exist here), an address
+ * space that may grow by @p memoryBudget only (sizes a damaged file claims fail fast as
+ * bad_alloc), bounded CPU time, and its output and errors sent nowhere.
+ */
+void PrepareChild(std::uint64_t memoryBudget)
+{
+  // Nothing the library or the C runtime prints in the child reaches the user (OpenVDB's
+  // warnings, glibc's report of a heap a damaged file corrupted): the parent says what failed.
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (null >= 0)
+  {
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+  }
+  // A bounded time: a file that keeps the library busy longer is refused (SIGXCPU).
+  rlimit cpu{ ChildSeconds, ChildSeconds + 1 };
+  ::setrlimit(RLIMIT_CPU, &cpu);
+  // One thread in the child: the parent's TBB workers do not exist here. Its address
+  // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
+  static tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  if (const std::uint64_t used = VirtualSize())
+  {
+    rlimit limit{};
+    ::getrlimit(RLIMIT_AS, &limit);
+    const std::uint64_t cap = used + memoryBudget;
+    if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
+    {
+      limit.rlim_cur = static_cast<rlim_t>(cap);
+      ::setrlimit(RLIMIT_AS, &limit);
+    }
+  }
+}
 } // namespace
 
 void RunIsolated(const std::string& path, std::uint64_t memoryBudget,
@@ -168,20 +206,7 @@ bool RunIsolatedOnce(const std::string& path, std::uint64_t memoryBudget,
     std::string message;
     try
     {
-      // One thread in the child: the parent's TBB workers do not exist here. Its address
-      // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
-      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-      if (const std::uint64_t used = VirtualSize())
-      {
-        rlimit limit{};
-        ::getrlimit(RLIMIT_AS, &limit);
-        const std::uint64_t cap = used + memoryBudget;
-        if (limit.rlim_cur == RLIM_INFINITY || cap < limit.rlim_cur)
-        {
-          limit.rlim_cur = static_cast<rlim_t>(cap);
-          ::setrlimit(RLIMIT_AS, &limit);
-        }
-      }
+      PrepareChild(memoryBudget);
       child(fds[1]);
       ::_exit(0);
     }
@@ -212,6 +237,10 @@ bool RunIsolatedOnce(const std::string& path, std::uint64_t memoryBudget,
   };
   const auto crashed = [&](int status)
   {
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU)
+      return Error::InFile(path,
+        "is corrupt or too large: reading it took more than " + std::to_string(ChildSeconds) +
+          " s");
     return Error::InFile(path,
       WIFSIGNALED(status) ? "is corrupt: the OpenVDB library crashed reading it (signal " +
           std::to_string(WTERMSIG(status)) + ")"
@@ -252,5 +281,108 @@ bool RunIsolatedOnce(const std::string& path, std::uint64_t memoryBudget,
 }
 
 } // namespace detail
+
+FileContents ReadFile(const std::string& path, const ReadOptions& options)
+{
+  detail::InitializeLibrary();
+  // The dense grids, the tree they come from and OpenVDB's buffers.
+  const std::uint64_t budget =
+    static_cast<std::uint64_t>(options.MaxVoxels) * 36 + (std::uint64_t(1) << 30);
+  FileContents contents;
+  CheckLayout(path);
+  detail::RunIsolated(
+    path, budget,
+    [&](int fd)
+    {
+      const FileContents read = detail::ReadFileHere(path, options);
+      // The headers first (sizes included), then each grid's values as they are in memory.
+      detail::Packer p;
+      p.Map(read.Metadata);
+      p.U64(read.Grids.size());
+      for (const auto& g : read.Grids)
+      {
+        detail::PackHeader(p, g.Header);
+        p.U64(g.Ints.size());
+        p.U64(g.Floats.size());
+      }
+      detail::SendBlock(fd, p.Bytes);
+      for (const auto& g : read.Grids)
+      {
+        detail::WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        detail::WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+    },
+    [&](detail::PipeReader& reader)
+    {
+      const std::string headers = reader.Block();
+      detail::Unpacker u{ headers, path };
+      contents.Metadata = u.Map();
+      for (std::uint64_t count = u.U64(100000); count > 0; --count)
+      {
+        DenseGrid g;
+        g.Header = detail::UnpackHeader(u, options.MaxVoxels);
+        const auto voxels = static_cast<std::uint64_t>(g.Header.NumberOfVoxels());
+        const std::uint64_t ints = u.U64(voxels), floats = u.U64(3 * voxels);
+        const std::uint64_t expected =
+          voxels * static_cast<std::uint64_t>(ComponentCount(g.Header.Type));
+        if ((g.Header.Type == ValueType::Int32 ? ints : floats) != expected || (ints && floats))
+          throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
+        CheckMemory((ints + floats) * 4, "reading grid '" + g.Header.Name + "' of '" + path + "'");
+        contents.Grids.push_back(std::move(g));
+        ResizeOnHugePages(contents.Grids.back().Ints, static_cast<std::size_t>(ints));
+        ResizeOnHugePages(contents.Grids.back().Floats, static_cast<std::size_t>(floats));
+      }
+      for (auto& g : contents.Grids)
+      {
+        reader.Exact(g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
+        reader.Exact(g.Floats.data(), g.Floats.size() * sizeof(float));
+      }
+    });
+  return contents;
+}
+
+std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
+{
+  detail::InitializeLibrary();
+  std::string payload;
+  CheckLayout(path);
+  detail::RunIsolated(
+    path, std::uint64_t(8) << 30,
+    [&](int fd)
+    {
+      MetadataMap meta;
+      const std::vector<GridSummary> grids = detail::ListGridsHere(path, &meta);
+      detail::Packer p;
+      p.Map(meta);
+      p.U64(grids.size());
+      for (const auto& g : grids)
+      {
+        p.Str(g.Name);
+        p.Str(g.TypeName);
+        p.Str(g.GridClass);
+        p.Map(g.Metadata);
+        p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
+      }
+      detail::SendBlock(fd, p.Bytes);
+    },
+    [&payload](detail::PipeReader& reader) { payload = reader.Block(); });
+  detail::Unpacker u{ payload, path };
+  MetadataMap meta = u.Map();
+  if (fileMetadata)
+    *fileMetadata = meta;
+  std::vector<GridSummary> result;
+  for (std::uint64_t n = u.U64(100000); n > 0; --n)
+  {
+    GridSummary g;
+    g.Name = u.Str();
+    g.TypeName = u.Str();
+    g.GridClass = u.Str();
+    g.Metadata = u.Map();
+    g.ActiveVoxelCount = static_cast<std::int64_t>(u.U64());
+    result.push_back(std::move(g));
+  }
+  return result;
+}
+
 } // namespace vdb
 } // namespace msynth

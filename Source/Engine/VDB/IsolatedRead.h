@@ -5,7 +5,8 @@
  * @brief Reading in a child process (internal): OpenVDB trusts sizes in the file (a negative
  * Blosc chunk size overflows its buffer), so the library reads in a forked child; only our own
  * serialization of the result crosses back, checked as untrusted data. A crash or overflow ends
- * the child, and the parent reports the file as corrupt. No OpenVDB header here.
+ * the child, and the parent reports the file as corrupt. No OpenVDB header here: ReadFile and
+ * ListGrids (VDBFile.h) are defined in IsolatedRead.cxx, the child's reads in VDBFile.cxx.
  */
 #include "Core/Error.h"
 #include "VDB/VDBFile.h"
@@ -143,6 +144,11 @@ private:
   int Fd;
   const std::string& Path;
 };
+
+/// OpenVDB's side, in VDBFile.cxx: its one-time set-up, and the reads the child makes.
+void InitializeLibrary();
+FileContents ReadFileHere(const std::string& path, const ReadOptions& options);
+std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fileMetadata);
 
 void PackHeader(Packer& p, const GridHeader& h);
 GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels);

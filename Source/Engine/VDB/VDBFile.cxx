@@ -196,6 +196,31 @@ MetadataMap StringMetadataOf(const openvdb::MetaMap& meta)
 /// own box arithmetic (max + 1, dimensions) cannot overflow.
 constexpr std::int64_t MaximumIndex = std::int64_t(1) << 30;
 
+/**
+ * Damaged metadata must not cost what an honest box costs: our writer's box holds the active
+ * voxels, and a box of more than 2^24 voxels holds them with fewer than 64 empty voxels for each
+ * voxel of their bounding box (a file of one voxel whose box claimed 2^28 took 60 s and 2 GB).
+ */
+void CheckStoredBox(const openvdb::GridBase& grid, const openvdb::CoordBBox& stored)
+{
+  const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+  const auto box = [](const openvdb::CoordBBox& b)
+  {
+    return "(" + std::to_string(b.min().x()) + ", " + std::to_string(b.min().y()) + ", " +
+      std::to_string(b.min().z()) + ") - (" + std::to_string(b.max().x()) + ", " +
+      std::to_string(b.max().y()) + ", " + std::to_string(b.max().z()) + ")";
+  };
+  if (!active.empty() && !stored.isInside(active))
+    throw Error("grid '" + grid.getName() + "' has active voxels in " + box(active) +
+      ", outside the index box it stores, " + box(stored) + " (damaged metadata)");
+  constexpr std::uint64_t large = std::uint64_t(1) << 24;
+  const std::uint64_t data = active.empty() ? 1 : active.volume();
+  if (stored.volume() > large && stored.volume() / 64 > data)
+    throw Error("grid '" + grid.getName() + "' stores the index box " + box(stored) + " of " +
+      std::to_string(stored.volume()) + " voxels around " + std::to_string(data) +
+      " voxels of data (damaged metadata)");
+}
+
 /// The extent a grid stands for: our writer's stored index box (metadata, which a file may
 /// get wrong: checked), else the active voxels' bounding box.
 openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
@@ -215,8 +240,10 @@ openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
           std::to_string(b.x()) + ", " + std::to_string(b.y()) + ", " + std::to_string(b.z()) +
           "), which is empty or outside +-2^30");
     }
-    return openvdb::CoordBBox(
+    const openvdb::CoordBBox stored(
       openvdb::Coord(a.x(), a.y(), a.z()), openvdb::Coord(b.x(), b.y(), b.z()));
+    CheckStoredBox(grid, stored);
+    return stored;
   }
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (!box.empty())
@@ -226,11 +253,42 @@ openvdb::CoordBBox ExtentOf(const openvdb::GridBase& grid)
   return box;
 }
 
+/**
+ * The grid's values over @p box, x fastest, as openvdb::tools::copyToDense gives them, at the
+ * cost of filling the box plus visiting the tree: the background everywhere, then every tile
+ * above the leaves whose value differs from it, then the leaves. (copyToDense probes the tree
+ * block by block: 7 s for a 2^28-voxel box around one voxel, on the reading child's one thread.)
+ */
 template <typename GridT, typename ValueT>
 void GridToDense(const GridT& grid, const openvdb::CoordBBox& box, ValueT* out)
 {
   openvdb::tools::Dense<ValueT, openvdb::tools::LayoutXYZ> dense(box, out);
-  openvdb::tools::copyToDense(grid, dense, /*serial=*/true); // no TBB in the reading child
+  const auto background = grid.background();
+  std::fill(out, out + box.volume(), static_cast<ValueT>(background));
+  auto tile = grid.tree().cbeginValueAll();
+  tile.setMaxDepth(static_cast<openvdb::Index>(grid.tree().treeDepth() - 2)); // not the voxels
+  for (; tile; ++tile)
+  {
+    openvdb::CoordBBox part;
+    tile.getBoundingBox(part);
+    part.intersect(box);
+    if (part.empty() || *tile == background)
+      continue;
+    const auto value = static_cast<ValueT>(*tile);
+    for (openvdb::Int32 z = part.min().z(); z <= part.max().z(); ++z)
+      for (openvdb::Int32 y = part.min().y(); y <= part.max().y(); ++y)
+      {
+        ValueT* row = out + dense.coordToOffset(openvdb::Coord(part.min().x(), y, z));
+        std::fill(row, row + part.dim().x(), value);
+      }
+  }
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+  {
+    openvdb::CoordBBox part = leaf->getNodeBoundingBox();
+    part.intersect(box);
+    if (!part.empty())
+      leaf->copyToDense(part, dense);
+  }
 }
 
 DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& options)
@@ -311,7 +369,7 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
     {
       const auto& g = static_cast<const openvdb::Int32Grid&>(*base);
       h.Background = g.background();
-      out.Ints.resize(n);
+      ResizeOnHugePages(out.Ints, n);
       GridToDense(g, box, out.Ints.data());
       break;
     }
@@ -319,7 +377,7 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
     {
       const auto& g = static_cast<const openvdb::FloatGrid&>(*base);
       h.Background = g.background();
-      out.Floats.resize(n);
+      ResizeOnHugePages(out.Floats, n);
       GridToDense(g, box, out.Floats.data());
       break;
     }
@@ -327,7 +385,7 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
     {
       const auto& g = static_cast<const openvdb::Vec3SGrid&>(*base);
       h.Background = g.background().x();
-      out.Floats.resize(3 * n);
+      ResizeOnHugePages(out.Floats, 3 * n);
       GridToDense(g, box, reinterpret_cast<openvdb::Vec3s*>(out.Floats.data()));
       break;
     }
@@ -395,9 +453,19 @@ Archive LoadArchive(const std::string& path)
   {
     throw Error::InFile(path, "is corrupt or needs more memory than is available");
   }
-  catch (const std::exception& e)
+  catch (const openvdb::Exception& e)
   {
-    throw Error::InFile(path, std::string("is not a readable OpenVDB file: ") + e.what());
+    // "IoError: not a VDB file": the library's description of the file, without its class.
+    std::string what = e.what();
+    const std::size_t colon = what.find(": ");
+    if (colon != std::string::npos && what.compare(colon - 5, 5, "Error") == 0)
+      what.erase(0, colon + 2);
+    throw Error::InFile(path, "is not a readable OpenVDB file (" + what + ")");
+  }
+  catch (const std::exception&)
+  {
+    // A C++ library's own text ("vector::reserve") says nothing to a user.
+    throw Error::InFile(path, "is corrupt (a size or count in it is out of range)");
   }
   in.exceptions(std::ios::goodbit);
   if (in.fail() || !archive.Metadata || !archive.Grids)
@@ -593,8 +661,13 @@ void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
     });
 }
 
-namespace
+namespace detail
 {
+void InitializeLibrary()
+{
+  InitializeOpenVDB();
+}
+
 FileContents ReadFileHere(const std::string& path, const ReadOptions& options)
 {
   InitializeOpenVDB();
@@ -655,108 +728,7 @@ std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fil
   }
   return result;
 }
-
-} // namespace
-
-FileContents ReadFile(const std::string& path, const ReadOptions& options)
-{
-  InitializeOpenVDB();
-  // The dense grids, the tree they come from and OpenVDB's buffers.
-  const std::uint64_t budget =
-    static_cast<std::uint64_t>(options.MaxVoxels) * 36 + (std::uint64_t(1) << 30);
-  FileContents contents;
-  detail::RunIsolated(
-    path, budget,
-    [&](int fd)
-    {
-      const FileContents read = ReadFileHere(path, options);
-      // The headers first (sizes included), then each grid's values as they are in memory.
-      detail::Packer p;
-      p.Map(read.Metadata);
-      p.U64(read.Grids.size());
-      for (const auto& g : read.Grids)
-      {
-        detail::PackHeader(p, g.Header);
-        p.U64(g.Ints.size());
-        p.U64(g.Floats.size());
-      }
-      detail::SendBlock(fd, p.Bytes);
-      for (const auto& g : read.Grids)
-      {
-        detail::WriteAll(fd, g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
-        detail::WriteAll(fd, g.Floats.data(), g.Floats.size() * sizeof(float));
-      }
-    },
-    [&](detail::PipeReader& reader)
-    {
-      const std::string headers = reader.Block();
-      detail::Unpacker u{ headers, path };
-      contents.Metadata = u.Map();
-      for (std::uint64_t count = u.U64(100000); count > 0; --count)
-      {
-        DenseGrid g;
-        g.Header = detail::UnpackHeader(u, options.MaxVoxels);
-        const auto voxels = static_cast<std::uint64_t>(g.Header.NumberOfVoxels());
-        const std::uint64_t ints = u.U64(voxels), floats = u.U64(3 * voxels);
-        const std::uint64_t expected =
-          voxels * static_cast<std::uint64_t>(ComponentCount(g.Header.Type));
-        if ((g.Header.Type == ValueType::Int32 ? ints : floats) != expected || (ints && floats))
-          throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
-        CheckMemory((ints + floats) * 4, "reading grid '" + g.Header.Name + "' of '" + path + "'");
-        contents.Grids.push_back(std::move(g));
-        contents.Grids.back().Ints.resize(static_cast<std::size_t>(ints));
-        contents.Grids.back().Floats.resize(static_cast<std::size_t>(floats));
-      }
-      for (auto& g : contents.Grids)
-      {
-        reader.Exact(g.Ints.data(), g.Ints.size() * sizeof(std::int32_t));
-        reader.Exact(g.Floats.data(), g.Floats.size() * sizeof(float));
-      }
-    });
-  return contents;
-}
-
-std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMetadata)
-{
-  InitializeOpenVDB();
-  std::string payload;
-  detail::RunIsolated(
-    path, std::uint64_t(8) << 30,
-    [&](int fd)
-    {
-      MetadataMap meta;
-      const std::vector<GridSummary> grids = ListGridsHere(path, &meta);
-      detail::Packer p;
-      p.Map(meta);
-      p.U64(grids.size());
-      for (const auto& g : grids)
-      {
-        p.Str(g.Name);
-        p.Str(g.TypeName);
-        p.Str(g.GridClass);
-        p.Map(g.Metadata);
-        p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
-      }
-      detail::SendBlock(fd, p.Bytes);
-    },
-    [&payload](detail::PipeReader& reader) { payload = reader.Block(); });
-  detail::Unpacker u{ payload, path };
-  MetadataMap meta = u.Map();
-  if (fileMetadata)
-    *fileMetadata = meta;
-  std::vector<GridSummary> result;
-  for (std::uint64_t n = u.U64(100000); n > 0; --n)
-  {
-    GridSummary g;
-    g.Name = u.Str();
-    g.TypeName = u.Str();
-    g.GridClass = u.Str();
-    g.Metadata = u.Map();
-    g.ActiveVoxelCount = static_cast<std::int64_t>(u.U64());
-    result.push_back(std::move(g));
-  }
-  return result;
-}
+} // namespace detail
 
 } // namespace vdb
 } // namespace msynth

@@ -13,9 +13,11 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "Core/Memory.h"
 #include "VDB/VDBFile.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sys/stat.h>
 
 vtkStandardNewMacro(vtkMSOpenVDBReader);
@@ -192,25 +194,23 @@ int vtkMSOpenVDBReader::RequestData(
     array->SetName(h.Name.c_str());
     array->SetNumberOfComponents(nc);
     array->SetNumberOfTuples(n);
+    msynth::AdviseHugePages(array->GetVoidPointer(0), static_cast<std::size_t>(n * nc) * 4);
     array->Fill(h.Background);
-    // Copy the grid's box into the union box, row by row (x fastest in both).
+    // Copy the grid's box into the union box, row by row (x fastest in both; a row of values
+    // of the array's own type at a time: a virtual call per value took 8 s for 2^28 voxels).
+    const bool ints = h.Type == msynth::vdb::ValueType::Int32;
+    const std::size_t rowBytes = static_cast<std::size_t>(h.Dims[0] * nc) * 4;
     for (std::int64_t k = 0; k < h.Dims[2]; ++k)
     {
       for (std::int64_t j = 0; j < h.Dims[1]; ++j)
       {
-        const std::int64_t src = h.Dims[0] * (j + h.Dims[1] * k);
+        const auto src = static_cast<std::size_t>(h.Dims[0] * (j + h.Dims[1] * k) * nc);
         const vtkIdType dst = (h.IndexMin[0] - ext[0]) +
           nx * ((h.IndexMin[1] - ext[2] + j) + ny * (h.IndexMin[2] - ext[4] + k));
-        for (std::int64_t i = 0; i < h.Dims[0]; ++i)
-        {
-          for (int c = 0; c < nc; ++c)
-          {
-            const double v = h.Type == msynth::vdb::ValueType::Int32
-              ? grid.Ints[static_cast<std::size_t>(src + i)]
-              : grid.Floats[static_cast<std::size_t>((src + i) * nc + c)];
-            array->SetComponent(dst + i, c, v);
-          }
-        }
+        std::memcpy(array->GetVoidPointer(dst * nc),
+          ints ? static_cast<const void*>(grid.Ints.data() + src)
+               : static_cast<const void*>(grid.Floats.data() + src),
+          rowBytes);
       }
     }
     output->GetPointData()->AddArray(array);
