@@ -1,0 +1,79 @@
+"""The msynth command line's edges: option values out of range, unknown options and commands, what
+--help promises, the error messages of odd files, and what a failed batch entry leaves."""
+import json
+import os
+import shutil
+import subprocess
+import unittest
+
+from msynth_testing import BIN, data, fresh_folder, tmp
+
+MSYNTH = os.path.join(BIN, "msynth")
+TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
+COMMANDS = ("info", "analyze", "synthesize", "animate", "check", "batch", "pattern", "quality")
+
+# Two unit cubes, named as an OBJ names its objects, the second moved half a unit into the first.
+CUBE_FACES = ("f {0} {3} {2} {1}\nf {4} {5} {6} {7}\nf {0} {1} {5} {4}\nf {1} {2} {6} {5}\nf {2} {3} {7} {6}\n"
+              "f {3} {0} {4} {7}\n")
+CUBE_CORNERS = ((0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1))
+
+
+def run(*args, cwd=None):
+    return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=TIMEOUT, cwd=cwd)
+
+
+def cube(name, offset, first):
+    corners = "".join("v %g %g %g\n" % tuple(c + offset for c in corner) for corner in CUBE_CORNERS)
+    return "o %s\n%s%s" % (name, corners, CUBE_FACES.format(*range(first, first + 8)))
+
+
+class CommandLineUsageTest(unittest.TestCase):
+    def assertUsageError(self, r, command, *words):
+        """Exit 2 and one line naming the problem, ending with where to read the options."""
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        for word in words:
+            self.assertIn(word, r.stderr)
+        self.assertTrue(r.stderr.rstrip().endswith("see msynth %s--help" % (command + " " if command else "")),
+                        r.stderr)
+
+    def test_seeds_are_signed_64_bit(self):
+        """Seeds outside the signed 64-bit range were saturated to 2^63-1 (2^64-1 gave that seed
+        too); a leading 0 read the number as octal."""
+        example = data("Examples/Checkerboard.vti")
+        for seed in ("9223372036854775807", "-9223372036854775808", "010"):
+            out = tmp("cli-seed")
+            shutil.rmtree(out, ignore_errors=True)
+            r = run("synthesize", example, "--size", "6", "6", "1", "--seed", seed, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "statistics.json")) as f:
+                self.assertEqual(json.load(f)["seed"], int(seed, 10), seed)
+        for seed in ("9223372036854775808", "18446744073709551615", "99999999999999999999",
+                     "-9223372036854775809"):
+            r = run("synthesize", example, "--size", "6", "6", "1", "--seed", seed, "--out", tmp("cli-seed-bad"))
+            self.assertUsageError(r, "synthesize", "--seed", "'%s' is outside the seed range "
+                                  "-9223372036854775808 to 9223372036854775807" % seed)
+        for seed in ("12abc", "0x10", " 5", ""):
+            r = run("synthesize", example, "--size", "6", "6", "1", "--seed", seed)
+            self.assertUsageError(r, "synthesize", "--seed")
+        self.assertFalse(os.path.exists(tmp("cli-seed-bad")))
+        for command in ("synthesize", "batch", "pattern", "animate"):
+            help = " ".join(run(command, "--help").stdout.split())
+            self.assertIn("-9223372036854775808 to 9223372036854775807", help, command)
+
+    def test_empty_out_is_refused(self):
+        """--out '' wrote into the current folder."""
+        here = fresh_folder("cli-empty-out")
+        for args in (("synthesize", data("Examples/Checkerboard.vti"), "--size", "6", "6", "1"),
+                     ("analyze", data("Examples/Checkerboard.vti")),
+                     ("batch", data("samples.xml"))):
+            r = run(*args, "--out", "", cwd=here)
+            self.assertUsageError(r, args[0], "--out", "empty")
+            self.assertEqual(os.listdir(here), [], args)
+        r = run("analyze", data("Examples/Checkerboard.vti"), "--out", ".", cwd=here)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("labels.csv", os.listdir(here))
+
+
+if __name__ == "__main__":
+    unittest.main()
