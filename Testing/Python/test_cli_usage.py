@@ -74,6 +74,45 @@ class CommandLineUsageTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("labels.csv", os.listdir(here))
 
+    def test_unknown_options_and_commands_are_named(self):
+        """A misspelt option was reported as the required option it was meant to be; the unknown
+        command message listed 5 of the 8 commands."""
+        village = data("Examples/Village.vti")
+        r = run("synthesize", village, "--sise", "8", "8", "8")
+        self.assertUsageError(r, "synthesize", "unknown option '--sise'")
+        self.assertNotIn("required", r.stderr)
+        r = run("synthesize", village, "--size", "8", "8", "5", "--bogus")
+        self.assertUsageError(r, "synthesize", "unknown option '--bogus'")
+        r = run("info", "--examples", village)
+        self.assertUsageError(r, "info", "unknown option '--examples'")
+        r = run("synthesize", village, "extra.vti", "--size", "8", "8", "5")
+        self.assertUsageError(r, "synthesize", "unexpected argument 'extra.vti'")
+        r = run("info", "--verbose")  # a missing argument still says so
+        self.assertUsageError(r, "info", "EXAMPLE is required")
+        for args in (("bogus",), ()):
+            r = run(*args)
+            self.assertUsageError(r, "", "unknown command 'bogus'" if args else "no command given")
+            listed = r.stderr[r.stderr.index("(") + 1:r.stderr.index(")")].replace(" or ", ", ").split(", ")
+            self.assertEqual(sorted(listed), sorted(COMMANDS), r.stderr)
+
+    def test_help_names_the_folder_each_command_uses(self):
+        """batch --help said DIR defaults to ./msynth-output; batch writes ./msynth-batch."""
+        for command, folder in (("batch", "msynth-batch"), ("synthesize", "msynth-output")):
+            help = " ".join(run(command, "--help").stdout.split())
+            for sentence in help.split(". "):
+                for other in ("msynth-output", "msynth-batch"):
+                    if other != folder and other in sentence:
+                        self.assertIn(folder, sentence, "%s --help: %s" % (command, sentence))
+            self.assertIn(folder, help, command)
+        here = fresh_folder("cli-batch-default")
+        os.makedirs(os.path.join(here, "samples"))
+        shutil.copy(data("Samples/Meadow.png"), os.path.join(here, "samples", "Meadow.png"))
+        with open(os.path.join(here, "samples.xml"), "w") as f:
+            f.write('<samples><overlapping name="Meadow" N="2" size="12" screenshots="1"/></samples>')
+        r = run("batch", "samples.xml", cwd=here)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertEqual(sorted(os.listdir(here)), ["msynth-batch", "samples", "samples.xml"])
+
 
 if __name__ == "__main__":
     unittest.main()
