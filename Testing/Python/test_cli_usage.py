@@ -113,6 +113,34 @@ class CommandLineUsageTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         self.assertEqual(sorted(os.listdir(here)), ["msynth-batch", "samples", "samples.xml"])
 
+    def test_failed_batch_entries_leave_nothing(self):
+        """A failed entry left an empty DIR/N-NAME/ folder. Entries given size="N" (as
+        WaveFunctionCollapse's lists are) were run at the default size."""
+        root = fresh_folder("cli-batch-failures")
+        os.makedirs(os.path.join(root, "samples"))
+        for name in ("Meadow", "Bricks"):
+            shutil.copy(data("Samples/%s.png" % name), os.path.join(root, "samples", name + ".png"))
+        with open(os.path.join(root, "samples.xml"), "w") as f:
+            f.write("""<samples>
+  <overlapping name="Meadow" N="2" size="14" screenshots="1"/>
+  <overlapping name="Missing" N="2" screenshots="1"/>
+  <overlapping name="Bricks" N="8" width="20" height="20" screenshots="1"/>
+  <overlapping name="Meadow" N="2" size="14" height="10" screenshots="1"/>
+</samples>""")
+        out = os.path.join(root, "out")
+        r = run("batch", os.path.join(root, "samples.xml"), "--out", out)
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("2 of 4 entries failed", r.stdout)
+        self.assertEqual(sorted(os.listdir(out)), ["1-Meadow", "4-Meadow"])
+        self.assertEqual(os.listdir(os.path.join(out, "1-Meadow")), ["1"])
+        rows = [line.split() for line in r.stdout.splitlines() if line[:1].isdigit() and "overlapping" in line]
+        self.assertEqual([row[3] for row in rows], ["14x14x1", "48x48x1", "20x20x1", "14x10x1"])
+        from vtkmodules.vtkIOImage import vtkPNGReader
+        picture = vtkPNGReader()
+        picture.SetFileName(os.path.join(out, "4-Meadow", "1", "picture.png"))
+        picture.Update()
+        self.assertEqual(picture.GetOutput().GetDimensions()[:2], (14, 10))
+
 
 if __name__ == "__main__":
     unittest.main()
