@@ -141,6 +141,26 @@ class CommandLineUsageTest(unittest.TestCase):
         picture.Update()
         self.assertEqual(picture.GetOutput().GetDimensions()[:2], (14, 10))
 
+    def test_obj_errors_name_the_file_objects_and_faces_from_one(self):
+        """An overlap said "objects 0 and 1 overlap" without the file; faces counted from 0."""
+        overlapping = tmp("overlapping-cubes.obj")
+        with open(overlapping, "w") as f:
+            f.write(cube("roof", 0, 1) + cube("wall", 0.5, 9))
+        r = run("info", overlapping)
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("'%s': objects 'roof' and 'wall' overlap near (" % overlapping, r.stderr)
+        # The second face is missing: its edges belong to one face each, face 2 first (the third
+        # in the file before, now the second, as the file counts it).
+        open_cube = tmp("open-cube.obj")
+        lines = cube("box", 0, 1).splitlines()
+        with open(open_cube, "w") as f:
+            f.write("\n".join(line for line in lines if line != "f 5 6 7 8") + "\n")
+        r = run("info", open_cube)
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("'%s': object 'box' is not closed: edge (5, 6) belongs to face 2 only" % open_cube,
+                      r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()
