@@ -19,8 +19,8 @@ packages=(
   libcgal-dev
   # Tests and benchmarks
   libgtest-dev googletest libbenchmark-dev python3-numpy
-  # Rendering without a display
-  xvfb xauth
+  # Rendering without a display; screen grabs of the GUI (make-tutorial-pictures.py: xwd, netpbm)
+  xvfb xauth x11-apps netpbm
   # Fuzzing (Utilities/fuzz.sh): clang with libFuzzer, and the format libraries the engine reads
   clang libclang-rt-14-dev liblz4-dev liblzma-dev zlib1g-dev libpng-dev
   # Style (Utilities/check-style.sh) and the command line parser (header-only)

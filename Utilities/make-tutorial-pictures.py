@@ -12,6 +12,7 @@ Needs Xvfb, xwd and netpbm (Debian: xvfb, x11-apps, netpbm), and libqt5svg5 for 
 toolbar icons.
 """
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -83,21 +84,42 @@ def gui_step(step):
         f.write(step)
 
 
+# The programs this script runs, with the Debian packages that provide them.
+TOOLS = (("paraview", "paraview"), ("Xvfb", "xvfb"), ("xwd", "x11-apps"), ("xwdtopnm", "netpbm"),
+         ("pnmcrop", "netpbm"), ("pnmtopng", "netpbm"))
+
+
+def check_tools():
+    """Ends the script with one line naming the programs that are missing, before it starts any."""
+    missing = [(tool, package) for tool, package in TOOLS if shutil.which(tool) is None]
+    if missing:
+        packages = sorted({package for _, package in missing})
+        sys.exit("make-tutorial-pictures: %s not found (Debian: apt install %s)" % (
+            ", ".join(tool for tool, _ in missing), " ".join(packages)))
+
+
+def run(command, data=None):
+    """The output of @p command; ends the script with one line when it fails."""
+    done = subprocess.run(command, input=data, capture_output=True)
+    if done.returncode != 0:
+        reason = done.stderr.decode(errors="replace").strip().splitlines()
+        sys.exit("make-tutorial-pictures: %s failed (exit %d)%s" % (
+            command[0], done.returncode, ": " + reason[0] if reason else ""))
+    return done.stdout
+
+
 def grab(display, path):
     """The whole screen of @p display as a PNG."""
-    xwd = subprocess.run(["xwd", "-root", "-silent", "-display", display], capture_output=True,
-                         check=True).stdout
-    pnm = subprocess.run(["xwdtopnm"], input=xwd, capture_output=True, check=True).stdout
+    pnm = run(["xwdtopnm"], run(["xwd", "-root", "-silent", "-display", display]))
     # The window does not fill the screen (no window manager): the black beyond it goes.
-    pnm = subprocess.run(["pnmcrop", "-black", "-right", "-bottom"], input=pnm,
-                         capture_output=True, check=True).stdout
-    png = subprocess.run(["pnmtopng", "-compression", "9"], input=pnm, capture_output=True,
-                         check=True).stdout
+    pnm = run(["pnmcrop", "-black", "-right", "-bottom"], pnm)
+    png = run(["pnmtopng", "-compression", "9"], pnm)
     with open(path, "wb") as f:
         f.write(png)
 
 
 def main():
+    check_tools()
     build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build"))
     out = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else
                           os.path.join(ROOT, "Documentation", "images", "tutorial"))
@@ -135,7 +157,8 @@ def main():
             finally:
                 gui.kill()
                 gui.wait()
-            os.remove(ready)
+                if os.path.exists(ready):
+                    os.remove(ready)
     finally:
         subprocess.run(["rm", "-rf", home])
 

@@ -14,8 +14,11 @@ import subprocess
 
 # Started with bash: Xvfb in the background; the shell lets go of the display pipe (so that the
 # reader sees its end if Xvfb fails) and waits for the end of the life pipe, whose other end only
-# the owner holds: when the owner has gone (or is a zombie), the server is stopped.
-WATCHER = ('Xvfb -displayfd {display} -screen 0 {w}x{h}x24 -nolisten tcp >/dev/null 2>&1 & x=$!; '
+# the owner holds: when the owner has gone (or is a zombie), the server is stopped. -noreset: by
+# default an X server resets when its last client disconnects, and a client that connects during
+# the reset aborts ("bad X server connection"); a script that draws and closes windows in turn,
+# as render-model.py does, met that in 1-3 of every 4-6 runs.
+WATCHER = ('Xvfb -displayfd {display} -screen 0 {w}x{h}x24 -nolisten tcp -noreset >/dev/null 2>&1 & x=$!; '
            'exec {display}>&-; cat <&{life} >/dev/null; kill $x 2>/dev/null; wait $x')
 
 _lives = []  # the write ends of the life pipes (open until this process ends) and the watchers

@@ -179,14 +179,12 @@ int RunBatch(const BatchOptions& b)
     const int shots = b.Screenshots >= 0 ? b.Screenshots : e.Screenshots;
     std::cout << "[" << i + 1 << "/" << entries.size() << "] " << e.Element << " " << e.Name
               << (e.Subset.empty() ? "" : " (" + e.Subset + ")") << "\n";
-    // The list's folder, then the entry's; IntoFolder makes each output's own.
+    // The list's folder; IntoFolder makes the entry's and each output's own, and removes them
+    // again when they stay empty (a failed entry leaves nothing behind).
     const std::string entryDir = b.Out + "/" + FolderName(i, e);
-    for (const std::string& d : { b.Out, entryDir })
-    {
-      msynth::MakeMissingFolders(d); // --out output/batch in a fresh checkout
-      if (::mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
-        throw std::runtime_error("'" + d + "': cannot create folder: " + std::strerror(errno));
-    }
+    msynth::MakeMissingFolders(b.Out); // --out output/batch in a fresh checkout
+    if (::mkdir(b.Out.c_str(), 0777) != 0 && errno != EEXIST)
+      throw std::runtime_error("'" + b.Out + "': cannot create folder: " + std::strerror(errno));
     int good = 0;
     long long failedBlocks = 0;
     double seconds = 0.0;

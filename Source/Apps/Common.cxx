@@ -306,14 +306,64 @@ void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double v
 
 void AddOutOption(CLI::App& command, std::string& out)
 {
-  command.add_option("--out", out,
-    "output folder; its files appear together, or not at all when the run fails or is "
-    "interrupted");
+  command
+    .add_option("--out", out,
+      "output folder; its files appear together, or not at all when the run fails or is "
+      "interrupted")
+    ->check(CLI::Validator(
+      [](std::string& text)
+      {
+        // An empty name would be the current folder, silently: say so instead.
+        return text.empty() ? std::string("the folder name is empty (for the current folder, "
+                                          "give --out .)")
+                            : std::string();
+      },
+      ""));
 }
+
+namespace
+{
+/// A seed: a decimal whole number within the signed 64-bit range, rewritten in its plain form.
+CLI::Validator SeedRange()
+{
+  return CLI::Validator(
+    [](std::string& text)
+    {
+      // Decimal only, checked here: CLI11 would saturate an out-of-range number and read a
+      // leading 0 as octal. Seeds are signed, as the filters' Seed property and statistics.json
+      // hold them; the engine uses the same 64 bits as an unsigned number.
+      errno = 0;
+      char* end = nullptr;
+      const long long value = std::strtoll(text.c_str(), &end, 10);
+      const bool digits = !text.empty() &&
+        (std::isdigit(static_cast<unsigned char>(text[0])) ||
+          ((text[0] == '-' || text[0] == '+') && text.size() > 1 &&
+            std::isdigit(static_cast<unsigned char>(text[1]))));
+      if (!digits || *end != '\0')
+      {
+        return "'" + msynth::Printable(text) + "' is not a whole number";
+      }
+      if (errno == ERANGE)
+      {
+        return "'" + msynth::Printable(text) + "' is outside the seed range " +
+          std::to_string(INT64_MIN) + " to " + std::to_string(INT64_MAX) + " (signed 64-bit)";
+      }
+      text = std::to_string(value);
+      return std::string();
+    },
+    "");
+}
+} // namespace
 
 void AddSeedOption(CLI::App& command, std::int64_t& seed)
 {
-  command.add_option("--seed", seed, "random seed; the same inputs and seed give the same result");
+  command
+    .add_option("--seed", seed,
+      "random seed, a whole number from " + std::to_string(INT64_MIN) + " to " +
+        std::to_string(INT64_MAX) +
+        " (signed 64-bit); the same inputs and seed give the same "
+        "result")
+    ->transform(SeedRange()); // a transform: it rewrites the text that CLI11 then converts
 }
 
 void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what)

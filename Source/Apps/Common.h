@@ -140,9 +140,10 @@ void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double v
 // Options several commands take, registered the same way everywhere.
 // ---------------------------------------------------------------------------------------------
 
-/// `--out DIR` (default ./msynth-output).
+/// `--out DIR` (default @p out's value: ./msynth-output, ./msynth-batch for batch); an empty
+/// name is a usage error.
 void AddOutOption(CLI::App& command, std::string& out);
-/// `--seed S` (64-bit).
+/// `--seed S`: a decimal whole number in the signed 64-bit range; anything else, a usage error.
 void AddSeedOption(CLI::App& command, std::int64_t& seed);
 /// `--attempts N` with @p what (attempts per block, or per block of the arrangement).
 void AddAttemptsOption(CLI::App& command, int& attempts, const std::string& what);

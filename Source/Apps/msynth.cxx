@@ -7,6 +7,8 @@
 //   msynth synthesize EXAMPLE --size ... discrete or continuous model synthesis
 //   msynth animate EXAMPLE... --size ... --frames N   time-varying synthesis
 //   msynth check EXAMPLE MODEL           the independent check of a model
+//   msynth batch SAMPLES.xml             every entry of a sample list, each output checked
+//   msynth pattern EXEMPLAR --size ...   tile patterns with factor graphs; `quality` scores one
 //   msynth CMD --help                    a command's options
 //
 // Exit status: 0 on success, 1 when the work fails (bad input, unwritable output) or a check
@@ -36,7 +38,8 @@ namespace
 const char* const Footer = R"(
 EXAMPLE is a label grid (.vti with an integer array 'Label', the original program's .txt format,
 or MagicaVoxel .vox), a simple-tiled tileset (.xml) or, for continuous synthesis, a polyhedral
-example (.obj, .vtp, .ply, .stl). DIR defaults to ./msynth-output.
+example (.obj, .vtp, .ply, .stl). DIR, the --out folder, defaults to ./msynth-output (to
+./msynth-batch for msynth batch).
 )";
 
 /// main()'s exit status once it is known (-1 before): a signal arriving after the work is
@@ -88,6 +91,52 @@ std::string CommandOf(const CLI::App& app)
   return parsed.empty() ? std::string() : parsed.front()->get_name();
 }
 
+/// The registered commands, as "info, analyze, ... or quality" (in the order of --help).
+std::string CommandList(CLI::App& app)
+{
+  const auto commands = app.get_subcommands({});
+  std::string list;
+  for (std::size_t i = 0; i < commands.size(); ++i)
+  {
+    list += (i == 0 ? "" : i + 1 == commands.size() ? " or " : ", ") + commands[i]->get_name();
+  }
+  return list;
+}
+
+/**
+ * What the command line held that no command or option took, as a usage message; "" when
+ * everything was understood. CLI11 checks required options before it reports extras, so a
+ * misspelt option would otherwise be reported as the option it was meant to be, missing.
+ */
+std::string NotUnderstood(CLI::App& app)
+{
+  // What was not understood, in the order given.
+  const std::string command = CommandOf(app);
+  auto extras = app.remaining(); // the command's own, and what fell through to msynth
+  if (!command.empty())
+  {
+    const auto own = app.get_subcommand(command)->remaining();
+    extras.insert(extras.begin(), own.begin(), own.end());
+  }
+  if (extras.empty())
+  {
+    return std::string();
+  }
+  const std::string& first = extras.front();
+  if (command.empty() && !first.empty() && first[0] != '-')
+  {
+    return "unknown command '" + first + "' (" + CommandList(app) + ")";
+  }
+  for (const auto& extra : extras)
+  {
+    if (extra.size() > 1 && extra[0] == '-')
+    {
+      return "unknown option '" + extra + "'";
+    }
+  }
+  return "unexpected argument '" + first + "'";
+}
+
 /// "msynth[ CMD]: WHAT; see msynth[ CMD] --help" on stderr; exit status 2.
 int UsageFailure(const std::string& command, const std::string& what)
 {
@@ -128,34 +177,11 @@ int Main(int argc, char* argv[])
     std::cout << app.help();
     return 0;
   }
-  catch (const CLI::ExtrasError&)
-  {
-    // What was not understood, in the order given.
-    const std::string command = CommandOf(app);
-    auto extras = app.remaining(); // the command's own, and what fell through to msynth
-    if (!command.empty())
-    {
-      const auto own = app.get_subcommand(command)->remaining();
-      extras.insert(extras.begin(), own.begin(), own.end());
-    }
-    const std::string first = extras.empty() ? std::string() : extras.front();
-    if (command.empty() && !first.empty() && first[0] != '-')
-    {
-      return UsageFailure(
-        "", "unknown command '" + first + "' (info, analyze, synthesize, animate or check)");
-    }
-    for (const auto& extra : extras)
-    {
-      if (extra.size() > 1 && extra[0] == '-')
-      {
-        return UsageFailure(command, "unknown option '" + extra + "'");
-      }
-    }
-    return UsageFailure(command, "unexpected argument '" + first + "'");
-  }
   catch (const CLI::ParseError& e)
   {
-    return UsageFailure(CommandOf(app), e.what());
+    // An unknown command or option first: it explains the errors it causes.
+    const std::string unknown = NotUnderstood(app);
+    return UsageFailure(CommandOf(app), unknown.empty() ? e.what() : unknown);
   }
   if (version)
   {
@@ -165,7 +191,7 @@ int Main(int argc, char* argv[])
   const std::string command = CommandOf(app);
   if (command.empty())
   {
-    return UsageFailure("", "no command given (info, analyze, synthesize, animate or check)");
+    return UsageFailure("", "no command given (" + CommandList(app) + ")");
   }
   if (verbose)
   {

@@ -2,11 +2,14 @@
 // Continuous example analysis against the dissertation's own numbers (§4.5.1–4.5.5).
 #include "Continuous/PolyhedralAnalysis.h"
 #include "Core/Error.h"
+#include "Formats/PolyhedralExample.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 using namespace msynth;
 
@@ -378,6 +381,68 @@ f 4 5 1
   }
   EXPECT_THROW(FromText("v 0 0 0\n"), Error);            // no faces
   EXPECT_THROW(FromText("v 0 0 nan\nf 1 1 1\n"), Error); // not finite
+}
+
+TEST(PolyhedralAnalysis, ErrorsNumberFacesFromOneAndNameObjects)
+{
+  // Faces count from 1 in file order, as the file numbers its vertices: the cube without its
+  // second face is open along the edges of that face, each now in one face only.
+  std::string open = cubeText;
+  open.erase(open.find("f 5 6 7 8\n"), 10);
+  EXPECT_NE(ValidationError(open).find("edge (5, 6) belongs to face 2 only"), std::string::npos)
+    << ValidationError(open);
+  std::string flipped = cubeText;
+  flipped.replace(flipped.find("f 5 6 7 8"), 9, "f 8 7 6 5");
+  EXPECT_NE(ValidationError(flipped).find("faces 2 and 3 traverse edge (5, 6)"), std::string::npos)
+    << ValidationError(flipped);
+  std::string degenerate = cubeText;
+  degenerate.replace(degenerate.find("f 5 6 7 8"), 9, "f 5 6 6 8");
+  EXPECT_NE(ValidationError(degenerate).find("face 2 of object"), std::string::npos)
+    << ValidationError(degenerate);
+  // Two overlapping objects: the message names the file and both objects as the file does.
+  const std::string two = "o roof" + cubeText + R"(o wall
+v 0.5 0.5 0.5
+v 1.5 0.5 0.5
+v 1.5 1.5 0.5
+v 0.5 1.5 0.5
+v 0.5 0.5 1.5
+v 1.5 0.5 1.5
+v 1.5 1.5 1.5
+v 0.5 1.5 1.5
+f 9 12 11 10
+f 13 14 15 16
+f 9 10 14 13
+f 10 11 15 14
+f 11 12 16 15
+f 12 9 13 16
+)";
+  PolyhedralExample named = FromText(two);
+  ValidateExample(named);
+  const Point3 inBoth{ 0.75, 0.75, 0.75 };
+  try
+  {
+    SolidClassifier(named).ObjectAt(inBoth);
+    FAIL() << "no overlap found";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind("'test.obj': objects 'roof' and 'wall' overlap", 0), 0u)
+      << e.what();
+  }
+  // Objects without names (a mesh split by connectivity) are numbered from 1.
+  AssignObjectsByConnectivity(named, std::vector<int>(named.Faces.size(), 1));
+  ValidateExample(named);
+  try
+  {
+    SolidClassifier(named).ObjectAt(inBoth);
+    FAIL() << "no overlap found";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(
+      std::string(e.what()).find("objects 'object 1' and 'object 2' overlap"), std::string::npos)
+      << e.what();
+  }
 }
 
 TEST(PolyhedralAnalysis, InwardObjectIsTurnedOutward)

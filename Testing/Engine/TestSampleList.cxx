@@ -63,8 +63,8 @@ TEST(SampleList, EntriesAttributesAndLayouts)
   EXPECT_EQ(e[2].Kind, SampleEntry::SimpleTiled);
   EXPECT_EQ(e[2].File, dir + "/tilesets/Knots.xml"); // WaveFunctionCollapse's current layout
   EXPECT_EQ(e[2].Subset, "Dense");
-  EXPECT_EQ(e[3].File, dir + "/samples/Old/data.xml"); // the older layout
-  EXPECT_EQ(e[3].Size, (std::array<std::int64_t, 3>{ { 10, 10, 1 } }));
+  EXPECT_EQ(e[3].File, dir + "/samples/Old/data.xml");                  // the older layout
+  EXPECT_EQ(e[3].Size, (std::array<std::int64_t, 3>{ { 24, 24, 1 } })); // the default
   EXPECT_EQ(e[3].Block, (std::array<std::int64_t, 3>{ { 8, 6, 0 } }));
   EXPECT_EQ(e[4].Kind, SampleEntry::TiledModel);
   EXPECT_EQ(e[4].File, dir + "/samples/castle.txt");
@@ -78,6 +78,16 @@ TEST(SampleList, EntriesAttributesAndLayouts)
   const auto g = ReadSampleList(dir + "/g.xml");
   EXPECT_TRUE(g[0].Ground);
   EXPECT_FALSE(g[1].Ground);
+  // WaveFunctionCollapse's size: both sides, unless width or height is given.
+  Write(dir + "/size.xml", R"(<samples><overlapping name="a" size="32"/>
+    <overlapping name="b" size="32" height="20"/><simpletiled name="c" size="12"/>
+    <simpletiled name="d" size="12" width="30" height="8"/></samples>)");
+  const auto sized = ReadSampleList(dir + "/size.xml");
+  ASSERT_EQ(sized.size(), 4u);
+  EXPECT_EQ(sized[0].Size, (std::array<std::int64_t, 3>{ { 32, 32, 1 } }));
+  EXPECT_EQ(sized[1].Size, (std::array<std::int64_t, 3>{ { 32, 20, 1 } }));
+  EXPECT_EQ(sized[2].Size, (std::array<std::int64_t, 3>{ { 12, 12, 1 } }));
+  EXPECT_EQ(sized[3].Size, (std::array<std::int64_t, 3>{ { 30, 8, 1 } }));
 }
 
 TEST(SampleList, MalformedListsAreErrorsNamingTheLine)
@@ -89,6 +99,7 @@ TEST(SampleList, MalformedListsAreErrorsNamingTheLine)
     { "<samples>\n\n<overlapping name=\"a\" N=\"9\"/></samples>", "line 3: N=\"9\" is not" },
     { "<samples><overlapping name=\"a\" periodic=\"yes\"/></samples>", "True or False" },
     { "<samples><overlapping name=\"a\" width=\"-3\"/></samples>", "width=\"-3\"" },
+    { "<samples><simpletiled name=\"a\" size=\"0\"/></samples>", "size=\"0\" is not" },
     { "<samples><tiledmodel name=\"a.txt\"/></samples>", "needs a width" },
     { "<samples><overlapping name=\"a\"", "line 1" },
   };

@@ -2,6 +2,7 @@
 import csv
 import json
 import os
+import re
 import resource
 import shutil
 import signal
@@ -365,10 +366,14 @@ class CommandLineTest(unittest.TestCase):
         r = run("synthesize", example, "--size", "30", "24", "5", "--block", "10", "10", "5",
                 "--seed", "9", "--ground", "1", "--empty", "0", "--order", "entropy", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
-        # The end summary: size, labels, blocks and the time of the whole run.
+        # The end summary: size, labels, blocks and the time, of the whole run and of the synthesis
+        # (statistics.json's Seconds).
         summary = [line for line in r.stdout.splitlines() if line.startswith("30 x 24 x 5 sites, ")]
         self.assertEqual(len(summary), 1, r.stdout)
-        self.assertRegex(summary[0], r"sites, \d+ distinct labels, \d+ blocks \(0 failed\), [0-9.e-]+ s in all$")
+        times = re.search(r"sites, \d+ distinct labels, \d+ blocks \(0 failed\), total ([0-9.]+) s, "
+                          r"synthesis ([0-9.]+) s$", summary[0])
+        self.assertTrue(times, summary[0])
+        total, synthesis = float(times.group(1)), float(times.group(2))
         for name in ("labels.vti", "mesh.vtp", "model.vdb", "statistics.json"):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
         from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
@@ -382,6 +387,8 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(stats["seed"], 9)
         self.assertEqual(stats["BlocksAccepted"] + stats["BlocksFailed"], stats["Blocks"])
         self.assertEqual(stats["size"], [30, 24, 5])
+        self.assertAlmostEqual(synthesis, stats["Seconds"], delta=0.006)
+        self.assertGreaterEqual(total, synthesis)
 
         # The model read back is consistent (independent numpy check) and so says `check`.
         reader = modelsynth.vtkMSLabelGridReader()

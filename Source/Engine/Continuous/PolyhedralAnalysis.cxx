@@ -124,7 +124,7 @@ NeighbourhoodProbe::NeighbourhoodProbe(const PolyhedralExample& model,
     if (family < 0)
     {
       throw Error::InFile(model.Source,
-        std::string(model.Planar ? "edge " : "face ") + std::to_string(e) +
+        std::string(model.Planar ? "edge " : "face ") + std::to_string(e + 1) +
           " has a direction in none of the example's plane families");
     }
     this->Family.push_back(family);

@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace msynth
 {
@@ -52,7 +54,7 @@ std::unique_ptr<Mesh> ObjectMesh(const PolyhedralExample& example, int object)
     if (mesh->add_face(polygon) == Mesh::null_face())
     {
       throw Error::InFile(example.Source,
-        "face " + std::to_string(f) + " of object '" + example.ObjectNames.at(object) +
+        "face " + std::to_string(f + 1) + " of object '" + example.ObjectNames.at(object) +
           "' cannot join the surface (non-manifold)");
     }
   }
@@ -75,6 +77,8 @@ bool ObjectSelfIntersects(const PolyhedralExample& example, int object)
 struct SolidClassifier::Internal
 {
   bool Planar = false;
+  std::string Source;                       ///< the example's file, for messages
+  std::vector<std::string> ObjectNames;     ///< as the file names them, for messages
   std::vector<std::array<Point3, 2>> Boxes; ///< per object, to skip far objects quickly
   BoxGrid Grid;                             ///< objects whose box may hold a point
   // 3D
@@ -88,6 +92,16 @@ SolidClassifier::SolidClassifier(const PolyhedralExample& example)
   : Impl(std::make_unique<Internal>())
 {
   this->Impl->Planar = example.Planar;
+  this->Impl->Source = example.Source;
+  this->Impl->ObjectNames = example.ObjectNames;
+  this->Impl->ObjectNames.resize(static_cast<std::size_t>(example.NumberOfObjects()));
+  for (std::size_t o = 0; o < this->Impl->ObjectNames.size(); ++o)
+  {
+    if (this->Impl->ObjectNames[o].empty())
+    {
+      this->Impl->ObjectNames[o] = "object " + std::to_string(o + 1);
+    }
+  }
   this->Impl->Boxes.assign(example.NumberOfObjects(),
     { Point3{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, Point3{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } });
   for (std::size_t f = 0; f < example.Faces.size(); ++f)
@@ -138,13 +152,15 @@ int SolidClassifier::ObjectAt(const Point3& p) const
     }
     return false;
   };
-  auto record = [&found, &p](int object)
+  auto record = [this, &found, &p](int object)
   {
     if (found >= 0)
     {
-      throw Error("objects " + std::to_string(found) + " and " + std::to_string(object) +
-        " overlap near (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
-        std::to_string(p[2]) + ")");
+      const auto& names = this->Impl->ObjectNames;
+      throw Error::InFile(this->Impl->Source,
+        "objects '" + names[static_cast<std::size_t>(found)] + "' and '" +
+          names[static_cast<std::size_t>(object)] + "' overlap near (" + std::to_string(p[0]) +
+          ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")");
     }
     found = object;
   };

@@ -268,7 +268,7 @@ void AssignObjectsByConnectivity(PolyhedralExample& example, const std::vector<i
     {
       it = objectOfRoot.emplace(root, example.NumberOfObjects()).first;
       example.ObjectTypes.push_back(faceTypes[f]);
-      example.ObjectNames.push_back("object " + std::to_string(it->second));
+      example.ObjectNames.push_back("object " + std::to_string(it->second + 1));
     }
     example.FaceObject[f] = it->second;
   }
@@ -328,8 +328,8 @@ void CheckSimplePolygon(const PolyhedralExample& e, const std::vector<int>& face
       if (crossing || touching)
       {
         throw Error::InFile(e.Source,
-          where + " intersects itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
-            ")");
+          where + " intersects itself (edges " + std::to_string(i + 1) + " and " +
+            std::to_string(j + 1) + ")");
       }
     }
   }
@@ -343,7 +343,7 @@ void Validate2D(PolyhedralExample& e)
   {
     auto& face = e.Faces[f];
     const std::string where =
-      "polygon " + std::to_string(f) + " of " + ObjectDescription(e, e.FaceObject[f]);
+      "polygon " + std::to_string(f + 1) + " of " + ObjectDescription(e, e.FaceObject[f]);
     const Point3 n = NewellNormal(e.Points, face);
     if (std::abs(n[2]) <= areaTolerance)
     {
@@ -365,7 +365,7 @@ void CheckFace3D(const PolyhedralExample& e, std::size_t f, double diagonal)
   const double areaTolerance = 1e-12 * diagonal * diagonal;
   const auto& face = e.Faces[f];
   const std::string where =
-    "face " + std::to_string(f) + " of " + ObjectDescription(e, e.FaceObject[f]);
+    "face " + std::to_string(f + 1) + " of " + ObjectDescription(e, e.FaceObject[f]);
   std::vector<int> sorted = face;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
@@ -433,7 +433,7 @@ void Validate3D(PolyhedralExample& e)
       {
         throw Error::InFile(e.Source,
           what + " is not closed: " + edgeText + " belongs to face " +
-            std::to_string(list[0].first) + " only");
+            std::to_string(list[0].first + 1) + " only");
       }
       if (list.size() > 2)
       {
@@ -444,8 +444,9 @@ void Validate3D(PolyhedralExample& e)
       if (list[0].second == list[1].second)
       {
         throw Error::InFile(e.Source,
-          what + " has inconsistent orientation: faces " + std::to_string(list[0].first) + " and " +
-            std::to_string(list[1].first) + " traverse " + edgeText + " in the same direction");
+          what + " has inconsistent orientation: faces " + std::to_string(list[0].first + 1) +
+            " and " + std::to_string(list[1].first + 1) + " traverse " + edgeText +
+            " in the same direction");
       }
     }
     // Each vertex: its faces form one fan (connected through the edges at the vertex).
@@ -542,18 +543,19 @@ void ValidateExample(PolyhedralExample& example)
     const int o = example.FaceObject[f];
     if (o < 0 || o >= example.NumberOfObjects())
     {
-      throw Error::InFile(example.Source, "face " + std::to_string(f) + " has no valid object");
+      throw Error::InFile(example.Source, "face " + std::to_string(f + 1) + " has no valid object");
     }
     if (example.Faces[f].size() < 3)
     {
       throw Error::InFile(
-        example.Source, "face " + std::to_string(f) + " has fewer than three vertices");
+        example.Source, "face " + std::to_string(f + 1) + " has fewer than three vertices");
     }
     for (int v : example.Faces[f])
     {
       if (v < 0 || v >= static_cast<int>(example.Points.size()))
       {
-        throw Error::InFile(example.Source, "face " + std::to_string(f) + " uses a missing vertex");
+        throw Error::InFile(
+          example.Source, "face " + std::to_string(f + 1) + " uses a missing vertex");
       }
     }
   }
@@ -564,7 +566,7 @@ void ValidateExample(PolyhedralExample& example)
     {
       if (example.ObjectNames[o].empty())
       {
-        example.ObjectNames[o] = "object " + std::to_string(o);
+        example.ObjectNames[o] = "object " + std::to_string(o + 1);
       }
     }
   }

@@ -10,7 +10,8 @@
  * - 2D (all z = 0): each object is the union of its polygons; its boundary is the edges that
  *   only one of its polygons uses.
  *
- * ValidateExample() checks these and throws Error naming the file, object and face. CGAL's
+ * ValidateExample() checks these and throws Error naming the file, object and face; faces and
+ * vertices are numbered from 1 in file order, as OBJ numbers its vertices. CGAL's
  * polygon-mesh processing finds self-intersections (PolyhedralGeometry.cxx, the one CGAL
  * translation unit).
  */
@@ -91,8 +92,8 @@ public:
   ~SolidClassifier();
   SolidClassifier(const SolidClassifier&) = delete;
   SolidClassifier& operator=(const SolidClassifier&) = delete;
-  /// The index of the object whose interior contains @p p, −1 for none. @throw Error when two
-  /// objects contain it (overlapping objects).
+  /// The index of the object whose interior contains @p p, −1 for none. @throw Error naming the
+  /// example's file and both objects (by name, or numbered from 1) when two contain it.
   int ObjectAt(const Point3& p) const;
 
 private:

@@ -109,14 +109,16 @@ SampleEntry ReadEntry(const detail::XmlElement& e, const std::string& list, cons
     s.Symmetry = static_cast<int>(a.Integer("symmetry", 8, 1, 8));
     s.PeriodicInput = a.Boolean("periodicInput", true);
     s.Ground = a.Boolean("ground", false, true);
-    s.Size = { { a.Integer("width", 48, 1, maxSize), a.Integer("height", 48, 1, maxSize), 1 } };
+    const std::int64_t size = a.Integer("size", 48, 1, maxSize);
+    s.Size = { { a.Integer("width", size, 1, maxSize), a.Integer("height", size, 1, maxSize), 1 } };
     s.File = Find({ dir + "samples/" + s.Name + ".png", dir + "samples/" + s.Name + ".bmp",
       dir + s.Name + ".png", dir + "Samples/" + s.Name + ".png" });
   }
   else if (e.Name == "simpletiled")
   {
     s.Kind = SampleEntry::SimpleTiled;
-    s.Size = { { a.Integer("width", 10, 1, maxSize), a.Integer("height", 10, 1, maxSize), 1 } };
+    const std::int64_t size = a.Integer("size", 24, 1, maxSize);
+    s.Size = { { a.Integer("width", size, 1, maxSize), a.Integer("height", size, 1, maxSize), 1 } };
     s.File = Find({ dir + "tilesets/" + s.Name + ".xml", dir + "samples/" + s.Name + "/data.xml",
       dir + s.Name + ".xml", dir + "Tilesets/" + s.Name + ".xml" });
   }

@@ -13,12 +13,14 @@
  * `samples/NAME.png` (or `.bmp`); a tileset at `tilesets/NAME.xml` or `samples/NAME/data.xml`;
  * a tiled model at `samples/NAME` (or `samples/NAME.txt`); each also directly beside the list,
  * and in this project's own layout (`Samples/`, `Tilesets/`, `Examples/`, as in `Data/`).
- * Defaults are WaveFunctionCollapse's: overlapping N 2, 48 × 48 pixels, symmetry 8, periodic
- * input, bounded output; simple-tiled 10 × 10 tiles; two screenshots (outputs) per entry, one
- * for a tiled model. `ground` is on for any value but `False` and 0 (the older lists give the
- * pattern index, e.g. -4). A tiled model's sizes are width (x), length (y) and height (z); with
- * no length, height is the second axis, as the original program reads them. Attributes neither
- * program uses are ignored; `limit` and `textOutput` are accepted and not used.
+ * Defaults are WaveFunctionCollapse's: overlapping N 2, symmetry 8, periodic input, bounded
+ * output; two screenshots (outputs) per entry, one for a tiled model. The output is `size` ×
+ * `size` (48 pixels for an image sample, 24 tiles for a tileset, when absent), and `width` or
+ * `height`, when given, replaces one side, as WaveFunctionCollapse reads its own lists. `ground` is
+ * on for any value but `False` and 0 (the older lists give the pattern index, e.g. -4). A tiled
+ * model's sizes are width (x), length (y) and height (z); with no length, height is the second
+ * axis, as the original program reads them. Attributes neither program uses are ignored; `limit`
+ * and `textOutput` are accepted and not used.
  */
 #include <array>
 #include <cstdint>

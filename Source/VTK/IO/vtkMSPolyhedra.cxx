@@ -109,7 +109,18 @@ msynth::PolyhedralExample vtkMSPolyhedra::ToPolyhedralExample(
     msynth::AssignObjectsByConnectivity(example, faceTypes);
     return example;
   }
-  // Renumber the given object ids densely, in order of appearance.
+  // Renumber the given object ids densely, in order of appearance; the names the example
+  // reader gives them (ObjectNames by id), else their ids.
+  auto* names =
+    vtkStringArray::SafeDownCast(polygons->GetFieldData()->GetAbstractArray("ObjectNames"));
+  auto nameOf = [names](int id) -> std::string
+  {
+    if (names && id < names->GetNumberOfValues() && !names->GetValue(id).empty())
+    {
+      return names->GetValue(id);
+    }
+    return "object " + std::to_string(id);
+  };
   std::map<int, int> dense;
   for (std::size_t f = 0; f < faceIds.size(); ++f)
   {
@@ -118,12 +129,12 @@ msynth::PolyhedralExample vtkMSPolyhedra::ToPolyhedralExample(
     {
       it = dense.emplace(faceIds[f], example.NumberOfObjects()).first;
       example.ObjectTypes.push_back(faceTypes[f]);
-      example.ObjectNames.push_back("object " + std::to_string(faceIds[f]));
+      example.ObjectNames.push_back(nameOf(faceIds[f]));
     }
     else if (example.ObjectTypes[it->second] != faceTypes[f])
     {
       throw msynth::Error::InFile(
-        name, "object " + std::to_string(faceIds[f]) + " has polygons of different ObjectType");
+        name, "object '" + nameOf(faceIds[f]) + "' has polygons of different ObjectType");
     }
     example.FaceObject.push_back(it->second);
   }

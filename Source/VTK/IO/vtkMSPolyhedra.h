@@ -24,7 +24,8 @@ class MODELSYNTHIO_EXPORT vtkMSPolyhedra
 public:
   /**
    * A polyhedral example from polygons: cell array `ObjectType` gives each polygon's type
-   * (default 1), `ObjectId` its object (default: connected components per type). Not validated.
+   * (default 1), `ObjectId` its object (default: connected components per type), named by field
+   * data `ObjectNames` (by id, as the example reader writes it). Not validated.
    * @p name is used in messages. @throw msynth::Error when there are no polygons.
    */
   static msynth::PolyhedralExample ToPolyhedralExample(

@@ -172,6 +172,13 @@ int vtkMSPolyhedralExampleReader::RequestData(
     }
     output->GetFieldData()->AddArray(typeIds);
     output->GetFieldData()->AddArray(typeNames);
+    vtkNew<vtkStringArray> objectNames; // by ObjectId, for messages downstream
+    objectNames->SetName("ObjectNames");
+    for (const std::string& name : example.ObjectNames)
+    {
+      objectNames->InsertNextValue(name);
+    }
+    output->GetFieldData()->AddArray(objectNames);
   }
   catch (const std::exception& e)
   {

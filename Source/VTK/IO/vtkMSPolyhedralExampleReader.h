@@ -12,7 +12,8 @@
  * - PLY, STL: one object type; each connected component is an object.
  *
  * The output holds the polygons, oriented outward (counter-clockwise in 2D), with cell arrays
- * `ObjectType` and `ObjectId`, and field data `ExampleFile`, `TypeIds`/`TypeNames`.
+ * `ObjectType` and `ObjectId`, and field data `ExampleFile`, `TypeIds`/`TypeNames` and
+ * `ObjectNames` (by ObjectId: an OBJ's `o`/`g` names, else "object N" counted from 1).
  *
  * Up axis: ModelSynth takes z as up (the ground, Grounded, overhangs). A file modelled with y
  * up (OBJ as most tools write it, Blender's default export: Forward −Z, Up Y) is read with
