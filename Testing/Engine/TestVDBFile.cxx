@@ -54,6 +54,36 @@ vdb::GridHeader Header(const std::string& name, vdb::ValueType type)
   h.Spacing = { { 0.5, 0.5, 2.0 } };
   return h;
 }
+
+/// One of our own label files, as bytes.
+std::string LabelFileBytes()
+{
+  std::vector<std::int32_t> labels(16 * 16 * 4);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    labels[i] = static_cast<std::int32_t>((i * 7) % 5);
+  vdb::GridHeader h = Header("Label", vdb::ValueType::Int32);
+  h.Dims = { { 16, 16, 4 } };
+  const std::string good = Tmp("layout-good.vdb");
+  vdb::WriteFile(good, { vdb::DenseGridView{ h, labels.data() } }, { { "note", "kept" } });
+  std::ifstream in(good, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void PutU32(std::string& bytes, std::size_t at, std::uint32_t v)
+{
+  for (std::size_t k = 0; k < 4; ++k)
+    bytes[at + k] = static_cast<char>((v >> (8 * k)) & 255);
+}
+
+/// The error of reading @p bytes as a file, and the seconds it took.
+std::pair<std::string, double> ReadBytes(const std::string& bytes, const std::string& name)
+{
+  const std::string path = Tmp(name);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf([&] { vdb::ReadFile(path); });
+  return { e, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() };
+}
 } // namespace
 
 TEST(VDBFile, RoundTripsLabelsFieldsAndMetadataExactly)
@@ -213,15 +243,7 @@ TEST(VDBFile, DamagedFilesNeverCrashTheReader)
   // Four bytes set to 0xff anywhere in one of our own files (a negative chunk size made
   // OpenVDB overflow its buffer): the file is read, or refused naming it; the library reads in
   // a child process, so even its crash is only an error here.
-  std::vector<std::int32_t> labels(16 * 16 * 4);
-  for (std::size_t i = 0; i < labels.size(); ++i)
-    labels[i] = static_cast<std::int32_t>((i * 7) % 5);
-  vdb::GridHeader h = Header("Label", vdb::ValueType::Int32);
-  h.Dims = { { 16, 16, 4 } };
-  const std::string good = Tmp("good.vdb");
-  vdb::WriteFile(good, { vdb::DenseGridView{ h, labels.data() } }, {});
-  std::ifstream in(good, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = LabelFileBytes();
   ASSERT_GT(bytes.size(), 100u);
   int refused = 0;
   for (std::size_t i = 0; i + 4 <= bytes.size(); i += 131) // a fork each: about 160 reads
@@ -339,39 +361,6 @@ TEST(VDBFile, MeshLevelSetsHaveTheRightSignsAndClasses)
     std::string::npos);
   EXPECT_FALSE(std::ifstream(path).good());
 }
-
-namespace
-{
-/// One of our own label files, as bytes.
-std::string LabelFileBytes()
-{
-  std::vector<std::int32_t> labels(16 * 16 * 4);
-  for (std::size_t i = 0; i < labels.size(); ++i)
-    labels[i] = static_cast<std::int32_t>((i * 7) % 5);
-  vdb::GridHeader h = Header("Label", vdb::ValueType::Int32);
-  h.Dims = { { 16, 16, 4 } };
-  const std::string good = Tmp("layout-good.vdb");
-  vdb::WriteFile(good, { vdb::DenseGridView{ h, labels.data() } }, { { "note", "kept" } });
-  std::ifstream in(good, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void PutU32(std::string& bytes, std::size_t at, std::uint32_t v)
-{
-  for (std::size_t k = 0; k < 4; ++k)
-    bytes[at + k] = static_cast<char>((v >> (8 * k)) & 255);
-}
-
-/// The error of reading @p bytes as a file, and the seconds it took.
-std::pair<std::string, double> ReadBytes(const std::string& bytes, const std::string& name)
-{
-  const std::string path = Tmp(name);
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-  const auto start = std::chrono::steady_clock::now();
-  const std::string e = ErrorOf([&] { vdb::ReadFile(path); });
-  return { e, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() };
-}
-} // namespace
 
 // Lengths and counts in a file are checked against the bytes left before OpenVDB allocates them:
 // a grid name claiming 1.7 GB was allocated and filled (6 s, 1.6 GB) before "truncated", and a

@@ -14,8 +14,8 @@ namespace vdb
 namespace
 {
 // Format versions (OpenVDB's version.h) that change the layout walked here.
-constexpr std::uint32_t FirstVersionWalked = 220; ///< selective compression; UUID as text
-constexpr std::uint32_t GridInstancing = 216;     ///< descriptors name an instance parent
+constexpr std::uint32_t FirstVersionWalked = 220;  ///< selective compression; UUID as text
+constexpr std::uint32_t GridInstancing = 216;      ///< descriptors name an instance parent
 constexpr std::uint32_t NodeMaskCompression = 222; ///< per-grid compression flags; no file flag
 
 /// Names shorter than this are kept for messages; longer ones are only skipped.
@@ -70,8 +70,8 @@ public:
   void Skip(std::uint64_t n, const std::string& what)
   {
     if (n > this->Left())
-      this->Fail(what + " claims " + std::to_string(n) + " bytes; " +
-        std::to_string(this->Left()) + " are left in the file");
+      this->Fail(what + " claims " + std::to_string(n) + " bytes; " + std::to_string(this->Left()) +
+        " are left in the file");
     this->Seek(this->Pos + n);
   }
   void Seek(std::uint64_t to)
@@ -146,7 +146,7 @@ std::uint64_t WalkGrid(LayoutReader& r, std::uint32_t version, bool offsets, std
   // The tree follows; without offsets (or with offsets not relative to the file's start)
   // nothing says where it ends: the rest is OpenVDB's to read.
   return offsets && gridPos == static_cast<std::int64_t>(here) ? static_cast<std::uint64_t>(endPos)
-                                                                : 0;
+                                                               : 0;
 }
 } // namespace
 
@@ -175,8 +175,8 @@ void CheckLayout(const std::string& path)
   const auto grids = static_cast<std::int32_t>(r.U32("the grid count"));
   // A descriptor holds at least two string lengths and three offsets.
   if (grids < 0 || static_cast<std::uint64_t>(grids) > r.Left() / 32)
-    r.Fail("it claims " + std::to_string(grids) + " grids in " + std::to_string(r.Left()) +
-      " bytes");
+    r.Fail(
+      "it claims " + std::to_string(grids) + " grids in " + std::to_string(r.Left()) + " bytes");
   for (std::int32_t g = 0; g < grids; ++g)
   {
     const std::uint64_t next = WalkGrid(r, version, offsets != 0, g);
