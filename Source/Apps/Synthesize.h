@@ -41,6 +41,8 @@ struct SynthesizeOptions
   std::string Outputs;            ///< comma-separated kinds; empty: what the example calls for
   std::string Pieces;
   std::string Guide;
+  std::string Fixed;           ///< pinned sites: a label grid of the output size, -1 free
+  bool FixedEmptyFree = false; ///< label 0 of the pinned sites (a .vox's empty) is free too
   std::string Subset;
   std::vector<std::string> Targets;
   double Temperature = 0.01;

@@ -24,6 +24,7 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include "Core/Error.h"
+#include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
@@ -189,6 +190,23 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
      "large-scale constraints: image data (.vti) over the output box whose point arrays "
      "Weight_<label> (continuous: Weight_<type>) weight each label (0 forbids it there)")
     ->group("Constraints (both kinds)");
+}
+
+void AddFixedOptions(CLI::App& s, Registered& r)
+{
+  SynthesizeOptions& o = *r.Options;
+  const std::string group = "Constraints (both kinds)";
+  r.DiscreteOnly.push_back(
+    s.add_option("--fixed", o.Fixed,
+       "pinned sites, to complete a partial model: a label grid of the output size (.vti, "
+       ".txt, .vox) whose labels are kept and whose -1 sites are synthesized; pins that cannot "
+       "hold are an error before any work")
+      ->group(group));
+  r.DiscreteOnly.push_back(
+    s.add_flag("--fixed-empty-free", o.FixedEmptyFree,
+       "with --fixed: sites of label 0 (a MagicaVoxel model's empty voxels) are synthesized too")
+      ->needs("--fixed")
+      ->group(group));
 }
 
 void AddSampleOptions(CLI::App& s, Registered& r)
@@ -378,6 +396,27 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
 
 } // namespace
 
+namespace
+{
+/// The pinned sites of --fixed (--fixed-empty-free: label 0 free too) into @p pins.
+void ReadPins(const SynthesizeOptions& o, vtkImageData* pins)
+{
+  CheckInputFile(o.Fixed);
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
+  reader->SetFileName(o.Fixed.c_str());
+  Run(reader);
+  pins->DeepCopy(reader->GetOutput());
+  vtkDataArray* labels = pins->GetPointData()->GetArray("Label");
+  if (!labels)
+    throw std::runtime_error("'" + o.Fixed + "': has no label array");
+  if (o.FixedEmptyFree)
+    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+      if (labels->GetTuple1(i) == 0)
+        labels->SetTuple1(i, msynth::FreeSite);
+}
+} // namespace
+
 void ConnectGuide(
   vtkAlgorithm* synthesis, int port, vtkXMLImageDataReader* guide, const std::string& path)
 {
@@ -565,6 +604,12 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   {
     ConnectGuide(synthesis, 1, guide, o.Guide);
   }
+  vtkNew<vtkImageData> pins;
+  if (!o.Fixed.empty())
+  {
+    ReadPins(o, pins);
+    synthesis->SetFixedData(pins);
+  }
   {
     ProgressBar bar(synthesis);
     Run(synthesis);
@@ -642,6 +687,7 @@ CommandRunner AddSynthesize(CLI::App& app)
   r.Command = s;
   AddDiscreteOptions(*s, r);
   AddSampleOptions(*s, r);
+  AddFixedOptions(*s, r);
   AddContinuousOptions(*s, r);
   for (const char* name : { "--pieces", "--mirror", "--swap", "--rotate", "--turn", "--subset" })
     r.NotForSamples.push_back(s->get_option(name));

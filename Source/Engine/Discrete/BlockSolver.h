@@ -80,6 +80,18 @@ public:
   /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
   void ApplyBoundary();
 
+  /// SynthesisOptions::Pins as fixed labels, checked (PinnedSites.cxx). Returns their number.
+  std::int64_t ApplyPins();
+  /// Pinned labels next to each other or to boundary labels that the rules never put together.
+  void CheckPinnedPairs() const;
+  /// Arc consistency of the whole model from the fixed labels (models up to 2^24 sites).
+  void CheckPinsPropagate();
+  /// Block synthesis: each group of touching pins not in the start yet gets a block around it
+  /// (its box grown by half a block of size @p m on each side, doubled while it cannot be solved).
+  void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments);
+  /// The bounding box [@p lo, @p hi] of the pins face-connected to site @p first.
+  void PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const;
+
   /// The start of Algorithm 3.4 (lines 3-5), checked for consistency (TrivialStart.cxx): one
   /// trivial label everywhere, else one per layer along an axis. Returns the label most sites
   /// start with.

@@ -342,6 +342,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   SynthesisStatistics& stats = result.Statistics;
   if (!wholeModel)
     stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
+  solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
   const std::vector<Block> blocks =
     PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
   if (options.Soft.Active() && wholeModel)
@@ -367,6 +368,8 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     workers.Extra.back()->Worker = w;
   }
 
+  if (!wholeModel && options.Pins)
+    solver.PlacePins(m, options.Seed, stats.Assignments);
   solver.StartSnapshots();
   const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
   result.Status = runner.Run(PhasesOf(blocks), hooks, stats);

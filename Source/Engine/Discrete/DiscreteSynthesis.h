@@ -56,6 +56,9 @@ enum class LabelChoice
   Resemblance
 };
 
+/// A site of SynthesisOptions::Pins that is not pinned.
+constexpr Label FreeSite = -1;
+
 /// The order in which sites of a block are assigned.
 enum class SiteOrder
 {
@@ -198,6 +201,15 @@ struct SynthesisOptions
    * the guide. Empty: a trivial label, else layers of labels (BlockSolver::TrivialStart).
    */
   std::optional<LabelGrid> Start;
+  /**
+   * Pinned sites, to complete a partial model: label values over the output, FreeSite where
+   * the site is to be synthesized. Pinned labels are kept: whole-model synthesis starts its
+   * catalog from them; block synthesis first places each pin into the start with a block of the
+   * run's size around it, and no block changes them afterwards. Pins that contradict the rules,
+   * the boundary labels or each other (through propagation, for models up to 2^24 sites) are an
+   * Error before any work. Not with mirror, translation or rotation symmetry.
+   */
+  std::optional<LabelGrid> Pins;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
   /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.

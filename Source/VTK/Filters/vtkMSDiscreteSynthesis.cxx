@@ -62,7 +62,7 @@ int vtkMSDiscreteSynthesis::GridSize(int axis) const
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
   : Internal(new Internals)
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
 }
@@ -97,7 +97,8 @@ msynth::SynthesisOptions SizeOptions(vtkMSDiscreteSynthesis* self)
 int vtkMSDiscreteSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  // The guide (port 1) is optional; so is the example (port 0) when a tileset gives the rules.
+  // The guide (port 1) and the pinned sites (port 2) are optional; so is the example (port 0)
+  // when a tileset or a sample gives the rules.
   (void)port;
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
@@ -174,8 +175,8 @@ int vtkMSDiscreteSynthesis::RequestInformation(
 int vtkMSDiscreteSynthesis::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  // The solver needs the whole example and the whole guide.
-  for (int port = 0; port < 2; ++port)
+  // The solver needs the whole example, the whole guide and all the pins.
+  for (int port = 0; port < 3; ++port)
   {
     vtkInformation* inInfo = inputVector[port]->GetInformationObject(0);
     if (!inInfo)
@@ -327,6 +328,22 @@ bool BuildOptions(
   options.ResemblanceWindow = self->GetResemblanceWindow();
   options.Progress = vtkMSSynthesisRun::Progress(self);
   return ReadSymmetryAndSoft(self, options) && (!guide || ReadGuide(self, guide, options));
+}
+
+/// The pinned sites of input port 2 (when connected): its label array, -1 where free.
+bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::SynthesisOptions& options)
+{
+  if (!fixed)
+    return true;
+  msynth::LabelGrid pins;
+  std::string problem;
+  if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))
+  {
+    vtkErrorWithObjectMacro(self, << "Bad pinned sites (Fixed input): " << problem);
+    return false;
+  }
+  options.Pins = std::move(pins);
+  return true;
 }
 
 /**
@@ -520,6 +537,7 @@ int vtkMSDiscreteSynthesis::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
+  vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkDataArray* labels = nullptr;
   if (!this->TilesetFile.empty() && !this->SampleFile.empty())
@@ -550,18 +568,18 @@ int vtkMSDiscreteSynthesis::RequestData(
     }
   }
   msynth::SynthesisOptions options;
-  if (!BuildOptions(this, guide, options))
+  if (!BuildOptions(this, guide, options) || !ReadPins(this, fixed, options))
     return 0;
   const Internals& run = *this->Internal;
   auto& cache = this->Internal->Cache;
-  const bool fresh = cache.Fresh(this, { input, guide });
+  const bool fresh = cache.Fresh(this, { input, guide, fixed });
   SetUpExchange(this, labels, fresh, options);
   if (fresh)
   {
     cache.Clear();
     if (!this->Solve(input, labels, options))
       return 0;
-    cache.Keep(this, { input, guide }, cache.Result.Succeeded());
+    cache.Keep(this, { input, guide, fixed }, cache.Result.Succeeded());
   }
   if (!vtkMSSynthesisRun::Report(this, cache.Result.Status, cache.Result.Message))
     return 0;

@@ -179,6 +179,15 @@ public:
   /// Sets the guide volume (input port 1); nullptr removes it.
   void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetGuideData(vtkDataObject* guide) { this->SetInputData(1, guide); }
+  ///@}
+
+  ///@{
+  /// Sets the pinned sites (input port 2), to complete a partial model: image data of the output
+  /// size whose point array "Label" (or active scalars) holds the labels to keep and -1 where
+  /// sites are synthesized; nullptr removes it. Pins that cannot hold are an error before any
+  /// work; with blocks each pin is first placed with a block around it, and no block changes it.
+  void SetFixedConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
+  void SetFixedData(vtkDataObject* fixed) { this->SetInputData(2, fixed); }
 
   ///@{
   /// A tileset (.xml) to take the rules from instead of the example, and the subset of its tiles

@@ -1,0 +1,131 @@
+"""Pinned sites (--fixed, the filter's Fixed input): a partly drawn map is completed. Every pin
+is kept, every model passes the independent check (`msynth check`, or pairs recomputed from the
+example here), and pins that cannot hold are one line before any work, with nothing written."""
+import os
+import subprocess
+import unittest
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+import modelsynth
+from msynth_testing import BIN, data, fresh_folder, labels_zyx, run_algorithm, tmp, violations
+
+MSYNTH = os.path.join(BIN, "msynth")
+TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
+
+
+def msynth(*args):
+    return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def read_labels(path):
+    reader = modelsynth.vtkMSLabelGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return labels_zyx(reader.GetOutput())
+
+
+def image_of(labels_zyx_array):
+    nz, ny, nx = labels_zyx_array.shape
+    image = vtkImageData()
+    image.SetDimensions(nx, ny, nz)
+    a = numpy_to_vtk(np.ascontiguousarray(labels_zyx_array).ravel().astype(np.int32), deep=True)
+    a.SetName("Label")
+    image.GetPointData().SetScalars(a)
+    return image
+
+
+def write_pins(path, labels_zyx_array):
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(image_of(labels_zyx_array))
+    w.SetFileName(path)
+    assert w.Write() == 1
+    return path
+
+
+class PinsTest(unittest.TestCase):
+    def test_a_drawn_patch_of_a_tileset_map_is_completed(self):
+        # A map of the Lines tileset; a patch of it (a hand-drawn part) pinned, the rest -1.
+        source = fresh_folder("pins-source")
+        r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1", "--seed", "4",
+                   "--out", source)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        drawn = read_labels(os.path.join(source, "labels.vti"))
+        pins = np.full(drawn.shape, -1, dtype=np.int32)
+        pins[0, 8:14, 9:15] = drawn[0, 8:14, 9:15]
+        pins[0, 20, 2] = drawn[0, 20, 2]
+        path = write_pins(tmp("lines-pins.vti"), pins)
+        for extra in ([], ["--block", "12", "12", "1"]):
+            out = fresh_folder("pins-lines")
+            r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1", "--seed", "9",
+                       "--fixed", path, "--out", out, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            model = read_labels(os.path.join(out, "labels.vti"))
+            kept = pins >= 0
+            self.assertTrue(np.array_equal(model[kept], pins[kept]), extra)
+            self.assertGreater(len(np.unique(model[~kept])), 1, "the rest is synthesized")
+            check = msynth("check", data("Tilesets/Lines.xml"), os.path.join(out, "labels.vti"))
+            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+
+    def test_contradictory_pins_are_one_line_and_nothing_is_written(self):
+        pins = np.full((5, 16, 16), -1, dtype=np.int32)
+        pins[1, 5, 5] = 1  # ground over ground: never in the village
+        pins[2, 5, 5] = 1
+        path = write_pins(tmp("village-bad-pins.vti"), pins)
+        out = tmp("pins-bad")
+        subprocess.run(["rm", "-rf", out])
+        r = msynth("synthesize", data("Examples/Village.vti"), "--size", "16", "16", "5", "--fixed", path,
+                   "--out", out)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("cannot meet", r.stderr)
+        self.assertIn("(5, 5, 1)", r.stderr)
+        self.assertFalse(os.path.exists(out))
+        small = write_pins(tmp("village-small-pins.vti"), np.full((5, 4, 4), -1, dtype=np.int32))
+        r = msynth("synthesize", data("Examples/Village.vti"), "--size", "16", "16", "5", "--fixed", small,
+                   "--out", out)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("the pinned sites cover (4, 4, 5) sites, the output (16, 16, 5)", r.stderr)
+        r = msynth("synthesize", data("Examples/Village.vti"), "--size", "16", "16", "5",
+                   "--fixed-empty-free", "--out", out)
+        self.assertEqual(r.returncode, 2, r.stderr)  # needs --fixed
+
+    def test_the_filter_keeps_pins_and_empty_is_free_with_the_flag(self):
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(data("Examples/Village.vti"))
+        reader.Update()
+        example = labels_zyx(reader.GetOutput())
+        roof = int(example.max())
+        pins = np.zeros((5, 20, 20), dtype=np.int32)  # 0: empty, free with --fixed-empty-free
+        pins[3, 6, 6] = roof
+        pins[3, 14, 12] = roof
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetInputConnection(reader.GetOutputPort())
+        free = np.where(pins == 0, -1, pins)
+        synthesis.SetFixedData(image_of(free))
+        out, errors = run_algorithm(synthesis, OutputSize=(20, 20, 5), BlockSize=(10, 10, 5), Seed=3,
+                                    UseBoundary=(0, 0, 0, 0, 1, 0), BoundaryLabels=(0, 0, 0, 0, 1, 0))
+        self.assertEqual(errors, "")
+        model = labels_zyx(out)
+        self.assertEqual(model[3, 6, 6], roof)
+        self.assertEqual(model[3, 14, 12], roof)
+        self.assertEqual(violations(example, model), [])
+        # Through the command line, the same pins with 0 as free.
+        path = write_pins(tmp("village-roof-pins.vti"), pins)
+        folder = fresh_folder("pins-village")
+        r = msynth("synthesize", data("Examples/Village.vti"), "--size", "20", "20", "5", "--block", "10",
+                   "10", "5", "--ground", "1", "--seed", "3", "--fixed", path, "--fixed-empty-free",
+                   "--out", folder)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        model = read_labels(os.path.join(folder, "labels.vti"))
+        self.assertEqual(model[3, 6, 6], roof)
+        self.assertEqual(model[3, 14, 12], roof)
+        check = msynth("check", data("Examples/Village.vti"), os.path.join(folder, "labels.vti"))
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
