@@ -152,14 +152,15 @@ spec = importlib.util.spec_from_file_location("render_model", os.path.join(
     os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "Utilities", "render-model.py"))
 render_model = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(render_model)
-gallery = render_model.COLOURS + render_model.MORE
 colours = list(label_map.IndexedColors)
 annotated = [int(v) for v in label_map.Annotations[::2]]
-for label in range(1, 40):
+for label in list(range(0, 40)) + list(range(40, 1024, 37)) + [1023]:
     where = 3 * annotated.index(label)
-    mine = 3 * ((label - 1) % (len(gallery) // 3))
-    check(all(abs(colours[where + c] - gallery[mine + c]) < 1e-6 for c in range(3)),
-          "label %d has the gallery's colour" % label)
+    mine = render_model.label_colour(label)
+    check(all(abs(colours[where + c] - mine[c]) < 1e-6 for c in range(3)),
+          "label %d has the gallery's colour %s (got %s)" % (label, mine, colours[where:where + 3]))
+check(len({tuple(round(255 * v) for v in colours[3 * annotated.index(t):3 * annotated.index(t) + 3])
+           for t in range(1, 201)}) == 200, "labels 1-200 have 200 colours")
 Delete(render_view)
 del render_view
 
