@@ -242,6 +242,11 @@ tiled = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[12, 9, 1], S
 picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tileset))
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
 check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
+# Without a TilesetFile of its own, the picture takes the synthesis's tileset.
+upstream = servermanager.Fetch(ModelSynthTileImage(Input=tiled))
+check(upstream.GetDimensions() == (96, 72, 1) and all(
+    upstream.GetPointData().GetArray("RGBA").GetValue(i) == picture.GetPointData().GetArray("RGBA").GetValue(i)
+    for i in range(0, 96 * 72 * 4, 97)), "the tile picture with the upstream tileset %s" % (upstream.GetDimensions(),))
 
 # An image sample (the overlapping model) through its source proxy and the pattern picture;
 # every 3 x 3 window of the picture is checked against the sample's windows here.
@@ -306,6 +311,13 @@ for z in range(5):
             wrapped.add((1, at(x, y, z), at(x, (y + 1) % 20, z)))
 check(not (wrapped - set(expected)), "the periodic village tiles: %s" % sorted(wrapped - set(expected))[:3])
 synthesis.Translate = [0, 0, 0]
+# The panel's face check box does what UseBoundary does: ground (1) on the -Z face.
+synthesis.UseBoundary = [0, 0, 0, 0, 0, 0]
+synthesis.BoundaryZMin = 1
+grounded = servermanager.Fetch(synthesis).GetPointData().GetArray("Label")
+check(all(grounded.GetValue(i) == 1 for i in range(24 * 20)), "Boundary Z Min puts ground below")
+synthesis.BoundaryZMin = 0
+synthesis.UseBoundary = [0, 0, 0, 0, 1, 0]
 turned = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[10, 10, 1], Seed=4, Rotate=1)
 tiles = servermanager.Fetch(turned).GetPointData().GetArray("Label")
 tile = lambda x, y: int(tiles.GetValue(x + 10 * y))
