@@ -8,10 +8,15 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/.." && pwd)"
+case "${1:-}" in
+  -h | --help)
+    sed -n '2,7p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    exit 0 ;;
+esac
 seconds="${1:-20}"
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number" >&2; exit 2 ;; esac
 
-bash "$here/install-dependencies.sh"
+bash "$here/install-dependencies.sh" --tests
 # ccache: paths relative to the checkout, so clones in other folders (CI) reuse the cache.
 export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
 dir="$root/build-fuzz"

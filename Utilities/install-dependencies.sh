@@ -1,31 +1,80 @@
 #!/usr/bin/env bash
-# Installs ModelSynth's build and test dependencies from Debian 12's packages.
+# Installs ModelSynth's dependencies from Debian 12's packages, by purpose (see usage below).
 # Idempotent: only packages that are missing are installed; nothing happens when all are present.
 # See Documentation/building.md for why the build uses ParaView's SDK (and its VTK).
 set -euo pipefail
 
-packages=(
-  # Toolchain and build
-  build-essential cmake ninja-build ccache pkg-config git
+usage() {
+  cat <<'EOF'
+Usage: Utilities/install-dependencies.sh [--runtime | --gui | --tests | --all] [--list]
+
+Installs the Debian 12 packages ModelSynth needs that are missing (apt-get; root or sudo).
+Idempotent: does nothing when every package of the chosen set is installed.
+
+  --runtime  build and run msynth, the Python package and the ParaView plugin: compilers, CMake,
+             Ninja, ccache, the ParaView 5.11 SDK (its VTK and MPI), OpenVDB 10, CGAL 5.5,
+             CLI11, numpy (what Utilities/run-example.sh and build.sh --no-tests use)
+  --gui      --runtime plus what drawing needs: the GUI's toolbar icons (libqt5svg5), an X server
+             for pictures without a display (xvfb, xauth: render-model.py), screen grabs
+             (x11-apps, netpbm: make-tutorial-pictures.py)
+  --tests    --gui plus the test tools: GoogleTest, Google Benchmark, clang with libFuzzer
+             (fuzz.sh), clang-format (check-style.sh) (what run-tests.sh and build.sh use)
+  --all      every package (the same as --tests); the default
+  --list     print the chosen set's packages, one a line, and install nothing
+  -h, --help this help
+EOF
+}
+
+# Toolchain and build
+build=(build-essential cmake ninja-build ccache pkg-config git)
+# What the build of msynth, the modules and the plugin links against, and the scripts use.
+runtime=(
   # ParaView 5.11 SDK: its bundled VTK 9.2, Python wrapping and the plugin machinery
   paraview paraview-dev python3-paraview mpi-default-dev mpi-default-bin
   # third-party headers that ParaView's VTK CMake config looks for (the modules we use)
   libdouble-conversion-dev libutfcpp-dev libexpat1-dev liblz4-dev liblzma-dev zlib1g-dev libeigen3-dev
-  libpng-dev libjpeg-dev python3-dev  # IOImage (tile pictures) and the Python wrapping
+  libpng-dev libjpeg-dev python3-dev # IOImage (tile pictures) and the Python wrapping
   # OpenVDB 10 (library, vdb_print, Python module for optional checks)
   libopenvdb-dev libopenvdb-tools python3-openvdb libboost-iostreams-dev libtbb-dev
-  python3-imath  # OpenVDB pulls Imath, whose CMake config names this package's library
+  python3-imath # OpenVDB pulls Imath, whose CMake config names this package's library
   # CGAL 5.5 (exact geometry for continuous synthesis)
   libcgal-dev
-  # Tests and benchmarks
-  libgtest-dev googletest libbenchmark-dev python3-numpy
-  # Rendering without a display; screen grabs of the GUI (make-tutorial-pictures.py: xwd, netpbm)
-  xvfb xauth x11-apps netpbm
-  # Fuzzing (Utilities/fuzz.sh): clang with libFuzzer, and the format libraries the engine reads
-  clang libclang-rt-14-dev liblz4-dev liblzma-dev zlib1g-dev libpng-dev
-  # Style (Utilities/check-style.sh) and the command line parser (header-only)
-  clang-format libcli11-dev
+  # the command line parser (header-only); numpy for the scripts and vtkmodules.numpy_interface
+  libcli11-dev python3-numpy
 )
+# Drawing: the GUI's toolbar icons are SVG (blank without the Qt SVG plugin); rendering without a
+# display (render-model.py, the GUI test); screen grabs of the GUI (make-tutorial-pictures.py).
+gui=(libqt5svg5 xvfb xauth x11-apps netpbm)
+tests=(
+  # Tests and benchmarks
+  libgtest-dev googletest libbenchmark-dev
+  # Fuzzing (Utilities/fuzz.sh): clang with libFuzzer
+  clang libclang-rt-14-dev
+  # Style (Utilities/check-style.sh)
+  clang-format
+)
+
+set_name=all
+list=0
+for arg in "$@"; do
+  case "$arg" in
+    --runtime | --gui | --tests | --all) set_name="${arg#--}" ;;
+    --list) list=1 ;;
+    -h | --help) usage; exit 0 ;;
+    *) echo "install-dependencies.sh: unknown option '$arg' (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+packages=("${build[@]}" "${runtime[@]}")
+case "$set_name" in
+  gui) packages+=("${gui[@]}") ;;
+  tests | all) packages+=("${gui[@]}" "${tests[@]}") ;;
+esac
+
+if [ "$list" = 1 ]; then
+  printf '%s\n' "${packages[@]}"
+  exit 0
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -35,11 +84,11 @@ for p in "${packages[@]}"; do
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-dependencies: all ${#packages[@]} packages present"
+  echo "install-dependencies: all ${#packages[@]} packages of --$set_name present"
   exit 0
 fi
 
-echo "install-dependencies: installing ${#missing[@]} missing package(s): ${missing[*]}"
+echo "install-dependencies: installing ${#missing[@]} missing package(s) of --$set_name: ${missing[*]}"
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive

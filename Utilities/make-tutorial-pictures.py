@@ -45,8 +45,9 @@ def gui_step(step):
     elif step in ("synthesize", "catalog"):
         model = ModelSynthDiscreteSynthesis(Input=reader, OutputSize=[32, 32, 5],  # noqa: F821
                                             BlockSize=[16, 16, 5], Seed=2,
-                                            UseBoundary=[1, 1, 1, 1, 1, 1],
                                             BoundaryLabels=[0, 0, 0, 0, 1, 0])
+        for face in ("XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax"):  # the panel's check boxes
+            setattr(model, "Boundary" + face, 1)
         if step == "catalog":
             model.CatalogSnapshotsPerBlock = 4
         pv.RenameSource("Discrete Synthesis", model)

@@ -1,14 +1,28 @@
 #!/usr/bin/env bash
-# The README's main-job command: installs what is missing, builds if needed, and runs discrete
-# model synthesis on the bundled default example (Data/Examples/Village.vti), then verifies the
-# result. Outputs go to ./output (or the folder given with --out):
-#   labels.vti        the synthesized model (point array Label, LastBlock; statistics)
-#   model.vdb         the model as OpenVDB (Int32 grid Label, float copy Label_float)
-#   statistics.json   the run statistics
-#   Utilities/run-example.sh [--out DIR] [--seed S] [--size NX NY NZ]
+# The README's main-job command: installs what is missing (the runtime packages and the build
+# tools only), builds if needed, runs discrete model synthesis on the bundled default example
+# and verifies the result. See --help.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/.." && pwd)"
+
+usage() {
+  cat <<'EOF'
+Usage: Utilities/run-example.sh [--out DIR] [--seed S] [--size NX NY NZ]
+
+Installs the missing Debian packages of the runtime set only (install-dependencies.sh --runtime:
+build tools, the ParaView 5.11 SDK, OpenVDB, CGAL; no test tools), builds msynth without the
+tests if needed (build.sh --no-tests), synthesizes a model from Data/Examples/Village.vti in
+12 x 12 x 5 blocks (ground label 1 below, empty label 0 around) and checks it (msynth check).
+
+  --out DIR         where the outputs go (default ./output): labels.vti (the model: point arrays
+                    Label, LastBlock; statistics), mesh.vtp (its voxel surface), model.vdb
+                    (OpenVDB: Int32 grid Label, float copy Label_float), statistics.json
+  --seed S          the random seed (default 1)
+  --size NX NY NZ   the model's size in sites (default 48 48 5)
+  -h, --help        this help
+EOF
+}
 
 example="$root/Data/Examples/Village.vti"
 out="$PWD/output"
@@ -19,11 +33,12 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift 2 ;;
     --seed) seed="$2"; shift 2 ;;
     --size) size=("$2" "$3" "$4"); shift 4 ;;
-    *) echo "run-example.sh: unknown option '$1'" >&2; exit 2 ;;
+    -h | --help) usage; exit 0 ;;
+    *) echo "run-example.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 
-bash "$here/build.sh" >/dev/null
+bash "$here/build.sh" --no-tests >/dev/null
 msynth="$root/build/bin/msynth"
 echo "== example: $example"
 "$msynth" info "$example" | head -3

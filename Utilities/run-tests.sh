@@ -1,15 +1,28 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds, checks the house style
-# (Utilities/check-style.sh: formatting, function and file sizes), and runs every test with ctest
-# (engine, VTK, Python, pvbatch serial and MPI, ParaView GUI under Xvfb), first in the Release
-# build, then in the ASan + UBSan build, then every libFuzzer harness for a bounded time (the
-# regression inputs first). Exits non-zero when anything fails.
-#   Utilities/run-tests.sh                  all of it
-#   Utilities/run-tests.sh --no-sanitizers  the Release build only (no fuzzing either)
-#   Utilities/run-tests.sh --no-fuzz        both builds, no fuzzing
+# The README's test command: installs what is missing, builds, checks the house style and runs
+# every test, in the Release build, then the ASan + UBSan build, then the fuzzers. See --help.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/.." && pwd)"
+
+usage() {
+  cat <<'EOF'
+Usage: Utilities/run-tests.sh [--no-sanitizers | --no-fuzz]
+
+Installs the missing Debian packages of the test set (install-dependencies.sh --tests: the
+runtime set plus GoogleTest, Google Benchmark, clang, clang-format, Xvfb, libqt5svg5, ...),
+builds (build.sh), checks the house style (check-style.sh: formatting, function and file sizes)
+and runs every test with ctest (engine, VTK, Python, pvbatch serial and MPI, the ParaView GUI
+under Xvfb), first in the Release build (./build), then in the ASan + UBSan build
+(./build-asan), then every libFuzzer harness for MSYNTH_FUZZ_SECONDS (default 10) seconds
+(fuzz.sh). Exits non-zero when anything fails.
+
+  (none)            all of it
+  --no-sanitizers   the Release build only (no fuzzing either)
+  --no-fuzz         both builds, no fuzzing
+  -h, --help        this help
+EOF
+}
 
 sanitizers=1
 fuzz=1
@@ -17,7 +30,8 @@ for arg in "$@"; do
   case "$arg" in
     --no-sanitizers) sanitizers=0; fuzz=0 ;;
     --no-fuzz) fuzz=0 ;;
-    *) echo "run-tests.sh: unknown option '$arg'" >&2; exit 2 ;;
+    -h | --help) usage; exit 0 ;;
+    *) echo "run-tests.sh: unknown option '$arg' (see --help)" >&2; exit 2 ;;
   esac
 done
 

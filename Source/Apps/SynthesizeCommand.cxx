@@ -18,6 +18,7 @@
 #include "vtkMSTileImage.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -152,8 +153,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "for such an example; statistics.json is always written")
              ->check(OutputList, "KINDS"));
   discrete(s.add_option("--pieces", o.Pieces,
-    "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels); with a tileset "
-    "also DIR/<tile>.obj, turned for each orientation"));
+    "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels), or with the "
+    "pieces a .txt example names for it (DIR/round.obj for $round); with a tileset also "
+    "DIR/<tile>.obj, turned for each orientation; files matching nothing are named"));
   s.add_option("--mirror", o.Mirror,
      "make the output mirror-symmetric along AXES (continuous: across a plane near the middle "
      "of the box for each axis)")
@@ -490,6 +492,9 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
     ProgressBar bar(geometry, "mesh");
     Run(geometry);
   }
+  if (auto* warning = vtkStringArray::SafeDownCast(
+        geometry->GetOutput()->GetFieldData()->GetAbstractArray("PieceFolderWarning")))
+    std::cerr << "msynth: warning: --pieces " << msynth::Printable(warning->GetValue(0)) << "\n";
   WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
   written.push_back(dir + "/mesh.vtp");
 }

@@ -152,14 +152,15 @@ spec = importlib.util.spec_from_file_location("render_model", os.path.join(
     os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "Utilities", "render-model.py"))
 render_model = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(render_model)
-gallery = render_model.COLOURS + render_model.MORE
 colours = list(label_map.IndexedColors)
 annotated = [int(v) for v in label_map.Annotations[::2]]
-for label in range(1, 40):
+for label in list(range(0, 40)) + list(range(40, 1024, 37)) + [1023]:
     where = 3 * annotated.index(label)
-    mine = 3 * ((label - 1) % (len(gallery) // 3))
-    check(all(abs(colours[where + c] - gallery[mine + c]) < 1e-6 for c in range(3)),
-          "label %d has the gallery's colour" % label)
+    mine = render_model.label_colour(label)
+    check(all(abs(colours[where + c] - mine[c]) < 1e-6 for c in range(3)),
+          "label %d has the gallery's colour %s (got %s)" % (label, mine, colours[where:where + 3]))
+check(len({tuple(round(255 * v) for v in colours[3 * annotated.index(t):3 * annotated.index(t) + 3])
+           for t in range(1, 201)}) == 200, "labels 1-200 have 200 colours")
 Delete(render_view)
 del render_view
 
@@ -241,6 +242,11 @@ tiled = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[12, 9, 1], S
 picture = servermanager.Fetch(ModelSynthTileImage(Input=tiled, TilesetFile=tileset))
 check(picture.GetDimensions() == (96, 72, 1), "tile picture size %s" % (picture.GetDimensions(),))
 check(picture.GetPointData().GetArray("RGBA") is not None, "tile picture colours")
+# Without a TilesetFile of its own, the picture takes the synthesis's tileset.
+upstream = servermanager.Fetch(ModelSynthTileImage(Input=tiled))
+check(upstream.GetDimensions() == (96, 72, 1) and all(
+    upstream.GetPointData().GetArray("RGBA").GetValue(i) == picture.GetPointData().GetArray("RGBA").GetValue(i)
+    for i in range(0, 96 * 72 * 4, 97)), "the tile picture with the upstream tileset %s" % (upstream.GetDimensions(),))
 
 # An image sample (the overlapping model) through its source proxy and the pattern picture;
 # every 3 x 3 window of the picture is checked against the sample's windows here.
@@ -305,6 +311,13 @@ for z in range(5):
             wrapped.add((1, at(x, y, z), at(x, (y + 1) % 20, z)))
 check(not (wrapped - set(expected)), "the periodic village tiles: %s" % sorted(wrapped - set(expected))[:3])
 synthesis.Translate = [0, 0, 0]
+# The panel's face check box does what UseBoundary does: ground (1) on the -Z face.
+synthesis.UseBoundary = [0, 0, 0, 0, 0, 0]
+synthesis.BoundaryZMin = 1
+grounded = servermanager.Fetch(synthesis).GetPointData().GetArray("Label")
+check(all(grounded.GetValue(i) == 1 for i in range(24 * 20)), "Boundary Z Min puts ground below")
+synthesis.BoundaryZMin = 0
+synthesis.UseBoundary = [0, 0, 0, 0, 1, 0]
 turned = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[10, 10, 1], Seed=4, Rotate=1)
 tiles = servermanager.Fetch(turned).GetPointData().GetArray("Label")
 tile = lambda x, y: int(tiles.GetValue(x + 10 * y))

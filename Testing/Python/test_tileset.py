@@ -11,7 +11,7 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
 import modelsynth
-from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, tmp
+from msynth_testing import ErrorObserver, data, fresh_folder, labels_zyx, run_algorithm, tmp
 
 T = 5  # tile size in pixels
 
@@ -233,6 +233,43 @@ class TilesetTest(unittest.TestCase):
         picture, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(),
                                         TilesetFile=missing + ".xml")
         self.assertIn("empty.png': no such image file", errors)
+
+    def test_picture_takes_the_inputs_tileset(self):
+        """Without a TilesetFile of its own, Tile Image takes the synthesis's (its pipeline
+        information), or a saved model's (its field data); with neither, one error."""
+        s, out, _ = self.synthesize(Seed=3, TilesetSubset="")
+        self.assertEqual(out.GetFieldData().GetAbstractArray("TilesetFile").GetValue(0), self.xml)
+        self.assertEqual(out.GetFieldData().GetAbstractArray("TilesetSubset").GetValue(0), "")
+        own, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort(), TilesetFile=self.xml)
+        self.assertEqual(errors, "")
+        expected = vtk_to_numpy(own.GetPointData().GetArray("RGBA")).copy()
+        upstream, errors = run_algorithm(modelsynth.vtkMSTileImage(), s.GetOutputPort())
+        self.assertEqual(errors, "")
+        self.assertEqual(upstream.GetDimensions(), own.GetDimensions())
+        self.assertTrue((vtk_to_numpy(upstream.GetPointData().GetArray("RGBA")) == expected).all())
+        # A saved model names its tileset in its field data.
+        from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
+        saved = tmp("tiny-set-model.vti")
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(out)
+        writer.SetFileName(saved)
+        writer.Write()
+        reader = vtkXMLImageDataReader()
+        reader.SetFileName(saved)
+        from_file, errors = run_algorithm(modelsynth.vtkMSTileImage(), reader.GetOutputPort())
+        self.assertEqual(errors, "")
+        self.assertTrue((vtk_to_numpy(from_file.GetPointData().GetArray("RGBA")) == expected).all())
+        # Neither: one error of the filter's own, no failure (and dump) of the executive.
+        example = modelsynth.vtkMSLabelGridReader()
+        example.SetFileName(data("Examples/Village.vti"))
+        picture = modelsynth.vtkMSTileImage()
+        picture.SetInputConnection(example.GetOutputPort())
+        mine, executive = ErrorObserver(picture), ErrorObserver(picture.GetExecutive())
+        picture.Update()
+        self.assertEqual(len(mine.messages), 1, mine.text())
+        self.assertIn("No tileset: set TilesetFile", mine.text())
+        self.assertEqual(executive.messages, [])
+        self.assertEqual(picture.GetOutput().GetNumberOfPoints(), 0)
 
 
 if __name__ == "__main__":

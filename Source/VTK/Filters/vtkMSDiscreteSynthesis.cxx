@@ -7,6 +7,7 @@
 #include "vtkMSPatternImage.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
+#include "vtkMSTileImage.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
@@ -16,6 +17,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerVectorKey.h"
+#include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMultiProcessController.h"
@@ -145,6 +147,14 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   {
     const int pattern[3] = { this->PatternSize, this->Translate[0] != 0, this->Translate[1] != 0 };
     outInfo->Set(vtkMSPatternImage::PATTERN_PICTURE(), pattern, 3);
+  }
+  // A tileset model names its tileset, so Tile Image finds the images without one of its own.
+  if (this->TilesetFile.empty())
+    outInfo->Remove(vtkMSTileImage::TILESET());
+  else
+  {
+    outInfo->Set(vtkMSTileImage::TILESET(), this->TilesetFile.c_str(), 0);
+    outInfo->Set(vtkMSTileImage::TILESET(), this->TilesetSubset.c_str(), 1);
   }
 
   vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
@@ -321,7 +331,7 @@ bool BuildOptions(
   options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
   options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
   for (int f = 0; f < 6; ++f)
-    if (self->GetUseBoundary()[f])
+    if (self->GetUseBoundary()[f] || self->GetBoundaryFace(f))
       options.Boundary[static_cast<std::size_t>(f)] = self->GetBoundaryLabels()[f];
   if (self->GetUseTrivialLabel())
     options.TrivialLabel = self->GetTrivialLabel();
@@ -516,6 +526,8 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
   AddExampleFields(
     fd, input, this->TilesetFile.c_str(), this->TilesetFile.empty() ? nullptr : &run.Tiles);
+  if (!this->TilesetFile.empty()) // the labels' numbering depends on it (vtkMSTileImage)
+    vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesetSubset", this->TilesetSubset);
   if (!this->SampleFile.empty())
   {
     // What vtkMSPatternImage needs to compose the picture.
@@ -602,6 +614,20 @@ int vtkMSDiscreteSynthesis::RequestData(
       ->GetInformation()
       ->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   return 1;
+}
+
+void vtkMSDiscreteSynthesis::SetBoundaryFace(int face, int use)
+{
+  if (face >= 0 && face < 6 && this->BoundaryFaces[face] != use)
+  {
+    this->BoundaryFaces[face] = use;
+    this->Modified();
+  }
+}
+
+int vtkMSDiscreteSynthesis::GetBoundaryFace(int face) const
+{
+  return face >= 0 && face < 6 ? this->BoundaryFaces[face] : 0;
 }
 
 void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)

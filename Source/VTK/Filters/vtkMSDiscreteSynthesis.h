@@ -266,6 +266,20 @@ public:
   ///@}
 
   ///@{
+  /// One face of the boundary at a time (the ParaView panel's check boxes, one per face): a
+  /// face has its fixed label when UseBoundary or its own flag here says so. Default 0.
+  void SetBoundaryXMin(int use) { this->SetBoundaryFace(0, use); }
+  void SetBoundaryXMax(int use) { this->SetBoundaryFace(1, use); }
+  void SetBoundaryYMin(int use) { this->SetBoundaryFace(2, use); }
+  void SetBoundaryYMax(int use) { this->SetBoundaryFace(3, use); }
+  void SetBoundaryZMin(int use) { this->SetBoundaryFace(4, use); }
+  void SetBoundaryZMax(int use) { this->SetBoundaryFace(5, use); }
+  /// @p face 0-5 in the order of UseBoundary.
+  void SetBoundaryFace(int face, int use);
+  int GetBoundaryFace(int face) const;
+  ///@}
+
+  ///@{
   /// The label value fixed on each face where UseBoundary is set. Default 0.
   vtkSetVector6Macro(BoundaryLabels, int);
   vtkGetVector6Macro(BoundaryLabels, int);
@@ -389,6 +403,7 @@ private:
   int LabelChoice = UNIFORM;
   int SiteOrder = SCAN_LINE;
   int UseBoundary[6] = { 0, 0, 0, 0, 0, 0 };
+  int BoundaryFaces[6] = { 0, 0, 0, 0, 0, 0 };
   int BoundaryLabels[6] = { 0, 0, 0, 0, 0, 0 };
   bool UseTrivialLabel = false;
   int TrivialLabel = 0;

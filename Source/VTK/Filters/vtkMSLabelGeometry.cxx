@@ -19,6 +19,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Error.h"
@@ -28,10 +29,13 @@
 #include "Formats/VTKXMLCheck.h"
 
 #include <algorithm>
-#include <vector>
-
+#include <cctype>
+#include <cstdlib>
 #include <map>
 #include <set>
+#include <vector>
+
+#include <dirent.h>
 #include <sys/stat.h>
 
 vtkStandardNewMacro(vtkMSLabelGeometry);
@@ -98,7 +102,9 @@ vtkSmartPointer<vtkPolyData> Turned(vtkPolyData* piece, int orientation)
 vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& problem)
 {
   vtkSmartPointer<vtkAlgorithm> reader;
-  const std::string ext = path.substr(path.rfind('.') + 1);
+  std::string ext = path.substr(path.rfind('.') + 1);
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == "vtp")
   {
     auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
@@ -160,69 +166,223 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
 
 namespace
 {
-using Pieces = std::map<msynth::Label, vtkSmartPointer<vtkPolyData>>;
+/// The meshes of each label: several when the example names several pieces for it (all drawn).
+using Pieces = std::map<msynth::Label, std::vector<vtkSmartPointer<vtkPolyData>>>;
 
-/// The pieces of the labels present in @p grid from folder @p folder: <label>.vtp|obj|ply|stl,
-/// and with a tileset <tile> <k>.* or <tile>.* turned to orientation k. False with @p problem.
-bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder,
-  const std::string& tilesetFile, const std::string& subset, msynth::Label empty, Pieces& pieces,
-  std::string& problem)
+const char* const MeshExtensions[] = { "vtp", "obj", "ply", "stl" };
+
+std::string Lower(std::string text)
+{
+  for (char& c : text)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+bool IsMeshExtension(const std::string& ext)
+{
+  return std::find(std::begin(MeshExtensions), std::end(MeshExtensions), ext) !=
+    std::end(MeshExtensions);
+}
+
+/// Files that go with meshes and are not pieces themselves: OBJ material libraries, textures.
+bool IsCompanion(const std::string& ext)
+{
+  for (const char* e : { "mtl", "png", "jpg", "jpeg", "tga", "bmp", "tif", "tiff" })
+    if (ext == e)
+      return true;
+  return false;
+}
+
+/// (name without its extension, lower-case extension) of file @p file.
+std::pair<std::string, std::string> SplitName(const std::string& file)
+{
+  const std::size_t dot = file.rfind('.');
+  if (dot == std::string::npos || dot == 0)
+    return { file, "" };
+  return { file.substr(0, dot), Lower(file.substr(dot + 1)) };
+}
+
+/// The regular files of @p folder, sorted, hidden ones left out. False with @p problem when
+/// it is not a folder.
+bool ListFolder(const std::string& folder, std::vector<std::string>& files, std::string& problem)
 {
   struct stat info;
-  if (::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+  DIR* dir = ::stat(folder.c_str(), &info) == 0 && S_ISDIR(info.st_mode) ? ::opendir(folder.c_str())
+                                                                         : nullptr;
+  if (!dir)
   {
     problem = "'" + folder + "': no such folder of pieces.";
     return false;
   }
-  msynth::Tileset tileset;
-  if (!tilesetFile.empty())
+  while (const dirent* entry = ::readdir(dir))
   {
-    try
-    {
-      tileset = msynth::ReadTilesetFile(tilesetFile, subset);
-    }
-    catch (const msynth::Error& e)
-    {
-      problem = e.what();
-      return false;
-    }
+    const std::string name = entry->d_name;
+    if (!name.empty() && name[0] != '.' && IsFile(folder + "/" + name))
+      files.push_back(name);
   }
+  ::closedir(dir);
+  std::sort(files.begin(), files.end());
+  return true;
+}
+
+/// The names a piece may have: a label number, a piece name of the example (the `$name`
+/// entries of a `.txt` example's `<Objects>` section), or a tile of the tileset.
+struct PieceNaming
+{
+  std::map<msynth::Label, std::vector<std::string>> ExampleNames;
+  std::set<std::string> AllExampleNames;
+  const msynth::Tileset* Tiles = nullptr;
+  std::string TilesetFile;
+
+  bool Matches(const std::string& stem) const
+  {
+    char* end = nullptr;
+    const long number = std::strtol(stem.c_str(), &end, 10);
+    if (!stem.empty() && *end == '\0' && std::to_string(number) == stem)
+      return true;
+    if (this->AllExampleNames.count(stem))
+      return true;
+    if (this->Tiles)
+      for (const auto& tile : this->Tiles->Tiles)
+        for (int k = -1; k < 8; ++k)
+          if (stem == (k < 0 ? tile.Name : tile.Name + " " + std::to_string(k)))
+            return true;
+    return false;
+  }
+
+  /// How pieces are named here, for messages.
+  std::string Describe() const
+  {
+    std::string text = "pieces are named <label>.vtp|.obj|.ply|.stl (e.g. 2.obj)";
+    if (!this->AllExampleNames.empty())
+    {
+      text += " or after the example's pieces (";
+      int shown = 0;
+      for (const auto& kv : this->ExampleNames)
+        for (const auto& name : kv.second)
+          if (shown++ < 8)
+            text += (shown > 1 ? ", " : "") + name + ".obj";
+      text += shown > 8 ? ", ...)" : ")";
+    }
+    if (this->Tiles)
+      text += " or after the tileset's tiles (<tile>.obj, '<tile> <k>.obj')";
+    return text;
+  }
+};
+
+/// The example's piece names per label: the field data `PieceLabels`/`PieceNames` of @p input.
+PieceNaming NamingOf(vtkDataObject* input, const msynth::Tileset* tiles)
+{
+  PieceNaming naming;
+  naming.Tiles = tiles;
+  vtkFieldData* fd = input->GetFieldData();
+  auto* labels = vtkIntArray::SafeDownCast(fd->GetAbstractArray("PieceLabels"));
+  auto* names = vtkStringArray::SafeDownCast(fd->GetAbstractArray("PieceNames"));
+  if (labels && names && labels->GetNumberOfValues() == names->GetNumberOfValues())
+    for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
+    {
+      naming.ExampleNames[labels->GetValue(i)].push_back(names->GetValue(i));
+      naming.AllExampleNames.insert(names->GetValue(i));
+    }
+  return naming;
+}
+
+/// The files of @p folder that match no name of @p naming (companions of meshes left out);
+/// @p matched counts those that do.
+std::vector<std::string> Unmatched(
+  const std::vector<std::string>& files, const PieceNaming& naming, int& matched)
+{
+  std::vector<std::string> unmatched;
+  matched = 0;
+  for (const auto& file : files)
+  {
+    const auto [stem, ext] = SplitName(file);
+    if (IsMeshExtension(ext) && naming.Matches(stem))
+      ++matched;
+    else if (!IsCompanion(ext))
+      unmatched.push_back(file);
+  }
+  return unmatched;
+}
+
+/// The pieces of the labels present in @p grid from folder @p folder, looked up per label as
+/// <label>.ext, else every piece the example names for it (<name>.ext), else with a tileset
+/// <tile> <k>.ext or <tile>.ext turned to orientation k. @p warning names the files that match
+/// nothing; false with @p problem when the folder is missing, empty or matches nothing.
+bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder, const PieceNaming& naming,
+  msynth::Label empty, Pieces& pieces, std::string& warning, std::string& problem)
+{
+  std::vector<std::string> files;
+  if (!ListFolder(folder, files, problem))
+    return false;
+  if (files.empty())
+  {
+    problem = "'" + folder + "': the folder of pieces is empty; " + naming.Describe() + ".";
+    return false;
+  }
+  int matched = 0;
+  const std::vector<std::string> unmatched = Unmatched(files, naming, matched);
+  std::string list;
+  for (const auto& file : unmatched)
+    list += (list.empty() ? "" : ", ") + file;
+  if (matched == 0)
+  {
+    problem = "'" + folder + "': no file is a piece (" + list + "); " + naming.Describe() + ".";
+    return false;
+  }
+  if (!unmatched.empty())
+    warning = "'" + folder + "': " + std::to_string(unmatched.size()) +
+      (unmatched.size() == 1 ? " file matches" : " files match") +
+      " no label and no piece name and " + (unmatched.size() == 1 ? "is" : "are") +
+      " not used: " + list + "; " + naming.Describe() + ".";
+  // The file of each name (the first of .vtp, .obj, .ply, .stl; extensions in any case).
+  std::map<std::string, std::string> byName;
+  for (const char* want : MeshExtensions)
+    for (const auto& file : files)
+      if (SplitName(file).second == want)
+        byName.emplace(SplitName(file).first, file);
   const std::set<msynth::Label> present(grid.Data().begin(), grid.Data().end());
   for (msynth::Label b : present)
   {
     if (b == empty)
       continue;
-    // Candidate names, each with the orientation to turn it by (0: as it is).
-    std::vector<std::pair<std::string, int>> names{ { std::to_string(b), 0 } };
-    if (!tilesetFile.empty())
+    // Candidate names, each with the orientation to turn it by (0: as it is); the first group
+    // with a file wins: the label number, the example's pieces (all), the tile.
+    std::vector<std::vector<std::pair<std::string, int>>> groups{ { { std::to_string(b), 0 } } };
+    if (naming.ExampleNames.count(b))
     {
-      if (b < 0 || b >= tileset.NumberOfLabels())
+      groups.emplace_back();
+      for (const auto& name : naming.ExampleNames.at(b))
+        groups.back().emplace_back(name, 0);
+    }
+    if (const msynth::Tileset* tileset = naming.Tiles)
+    {
+      if (b < 0 || b >= tileset->NumberOfLabels())
       {
-        problem = "label " + std::to_string(b) + " is not a label of the tileset '" + tilesetFile +
-          "' (" + std::to_string(tileset.NumberOfLabels()) + " labels)";
+        problem = "label " + std::to_string(b) + " is not a label of the tileset '" +
+          naming.TilesetFile + "' (" + std::to_string(tileset->NumberOfLabels()) + " labels)";
         return false;
       }
       const auto& tile =
-        tileset.Tiles[static_cast<std::size_t>(tileset.LabelTile[static_cast<std::size_t>(b)])];
-      const int k = tileset.LabelOrientation[static_cast<std::size_t>(b)];
-      names.emplace_back(tile.Name + " " + std::to_string(k), 0);
-      names.emplace_back(tile.Name, k);
+        tileset->Tiles[static_cast<std::size_t>(tileset->LabelTile[static_cast<std::size_t>(b)])];
+      const int k = tileset->LabelOrientation[static_cast<std::size_t>(b)];
+      groups.push_back({ { tile.Name + " " + std::to_string(k), 0 } });
+      groups.push_back({ { tile.Name, k } });
     }
-    bool found = false;
-    for (const auto& [name, turn] : names)
+    for (const auto& group : groups)
     {
-      for (const char* ext : { ".vtp", ".obj", ".ply", ".stl" })
+      for (const auto& [name, turn] : group)
       {
-        const std::string path = folder + "/" + name + ext;
-        if (!found && IsFile(path))
-        {
-          auto mesh = ReadPiece(path, problem);
-          if (!mesh)
-            return false;
-          pieces[b] = turn ? Turned(mesh, turn) : mesh;
-          found = true;
-        }
+        const auto file = byName.find(name);
+        if (file == byName.end())
+          continue;
+        auto mesh = ReadPiece(folder + "/" + file->second, problem);
+        if (!mesh)
+          return false;
+        pieces[b].push_back(turn ? Turned(mesh, turn) : mesh);
       }
+      if (pieces.count(b))
+        break;
     }
   }
   return true;
@@ -307,30 +467,57 @@ int vtkMSLabelGeometry::RequestData(
   const double* spacing = input->GetSpacing();
   const std::array<double, 3> start = vtkMSLabelArrays::FirstSitePosition(input);
   Pieces pieces;
-  if (!this->PieceDirectory.empty() &&
-    !LoadPieces(grid, this->PieceDirectory, this->TilesetFile, this->TilesetSubset,
-      this->EmptyLabel, pieces, problem))
+  std::string warning;
+  if (!this->PieceDirectory.empty())
   {
-    vtkErrorMacro(<< problem);
-    return 0;
+    msynth::Tileset tileset;
+    if (!this->TilesetFile.empty())
+    {
+      try
+      {
+        tileset = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      }
+      catch (const msynth::Error& e)
+      {
+        vtkErrorMacro(<< e.what());
+        return 0;
+      }
+    }
+    PieceNaming naming = NamingOf(input, this->TilesetFile.empty() ? nullptr : &tileset);
+    naming.TilesetFile = this->TilesetFile;
+    if (!LoadPieces(grid, this->PieceDirectory, naming, this->EmptyLabel, pieces, warning, problem))
+    {
+      vtkErrorMacro(<< problem);
+      return 0;
+    }
   }
   Geometry geometry;
   geometry.Points->SetDataTypeToDouble();
   geometry.Labels->SetName("Label");
   AppendVoxelSurface(grid, pieces, this->EmptyLabel, start, spacing, geometry);
   for (const auto& kv : pieces)
-  {
-    if (kv.second->GetPolys()->GetNumberOfCells() == 0)
+    for (const auto& piece : kv.second)
     {
-      vtkWarningMacro(<< "The piece of label " << kv.first << " has no polygons; skipped.");
-      continue;
+      if (piece->GetPolys()->GetNumberOfCells() == 0)
+      {
+        vtkWarningMacro(<< "A piece of label " << kv.first << " has no polygons; skipped.");
+        continue;
+      }
+      AppendPiece(grid, kv.first, piece, start, spacing, geometry);
     }
-    AppendPiece(grid, kv.first, kv.second, start, spacing, geometry);
-  }
   output->SetPoints(geometry.Points);
   output->SetPolys(geometry.Polys);
   output->GetCellData()->SetScalars(geometry.Labels);
   vtkMSLabelArrays::AddPaletteColors(input->GetFieldData(), output);
+  if (!warning.empty())
+  {
+    // Said once here, and kept with the output for those who show no VTK warnings (msynth).
+    vtkWarningMacro(<< warning);
+    vtkNew<vtkStringArray> kept;
+    kept->SetName("PieceFolderWarning");
+    kept->InsertNextValue(warning);
+    output->GetFieldData()->AddArray(kept);
+  }
   return 1;
 }
 

@@ -5,13 +5,16 @@
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
 
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "Formats/Image.h"
@@ -21,6 +24,42 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMSTileImage);
+vtkInformationKeyMacro(vtkMSTileImage, TILESET, StringVector);
+
+namespace
+{
+const char* const NoTileset =
+  "No tileset: set TilesetFile to the tileset (.xml) the labels come from, or connect the "
+  "output of a tileset synthesis (ModelSynth Tileset Synthesis), which names its tileset.";
+
+/// The one value of the string array @p name of @p fd, or "".
+std::string FieldString(vtkFieldData* fd, const char* name)
+{
+  auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
+  return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
+}
+} // namespace
+
+bool vtkMSTileImage::FindTileset(
+  vtkInformation* inInfo, vtkDataObject* input, std::string& file, std::string& subset) const
+{
+  file = this->TilesetFile;
+  subset = this->TilesetSubset;
+  if (!file.empty())
+    return true;
+  if (inInfo && inInfo->Has(TILESET()) && inInfo->Length(TILESET()) == 2)
+  {
+    file = inInfo->Get(TILESET(), 0);
+    subset = inInfo->Get(TILESET(), 1);
+  }
+  else if (input)
+  {
+    file = FieldString(input->GetFieldData(), "TilesetFile");
+    if (input->GetFieldData()->GetAbstractArray("TilesetSubset"))
+      subset = FieldString(input->GetFieldData(), "TilesetSubset");
+  }
+  return !file.empty();
+}
 
 int vtkMSTileImage::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -38,18 +77,21 @@ int vtkMSTileImage::RequestInformation(
   int sites[6] = { 0, 0, 0, 0, 0, 0 };
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), sites);
   int size = 1;
-  try
-  {
-    const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-    size = std::max(1,
-      msynth::ReadImage(msynth::TileImageFile(this->TilesetFile, tiles, tiles.Tiles.front(), 0))
-        .Width);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
+  std::string file, subset;
+  // No tileset known yet (an input whose field data names it has not run): the picture's size
+  // is unknown until RequestData, which also reports a missing tileset, once.
+  if (this->FindTileset(inInfo, vtkDataObject::GetData(inInfo), file, subset))
+    try
+    {
+      const msynth::Tileset tiles = msynth::ReadTilesetFile(file, subset);
+      size = std::max(
+        1, msynth::ReadImage(msynth::TileImageFile(file, tiles, tiles.Tiles.front(), 0)).Width);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what());
+      return 0;
+    }
   const int extent[6] = { 0, (sites[1] - sites[0] + 1) * size - 1, 0,
     (sites[3] - sites[2] + 1) * size - 1, 0, 0 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
@@ -175,6 +217,14 @@ int vtkMSTileImage::RequestData(
     output->Initialize(); // an empty piece of a parallel run: the model is on piece 0
     return 1;
   }
+  std::string file, subset;
+  if (!this->FindTileset(inputVector[0]->GetInformationObject(0), input, file, subset))
+  {
+    // Said once, without the executive's dump of the request: the empty image is the result.
+    vtkErrorMacro(<< NoTileset);
+    output->Initialize();
+    return 1;
+  }
   vtkDataArray* labels = vtkMSLabelArrays::FindLabelArray(input, nullptr);
   std::string problem;
   if (!labels || !vtkMSLabelArrays::CheckLabelArray(input, labels, problem))
@@ -185,7 +235,7 @@ int vtkMSTileImage::RequestData(
   msynth::Tileset tiles;
   try
   {
-    tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+    tiles = msynth::ReadTilesetFile(file, subset);
   }
   catch (const std::exception& e)
   {
@@ -197,7 +247,7 @@ int vtkMSTileImage::RequestData(
   int size = 0;
   try
   {
-    pictures = LoadPictures(this->TilesetFile, tiles, size);
+    pictures = LoadPictures(file, tiles, size);
   }
   catch (const std::exception& e)
   {
@@ -222,7 +272,7 @@ int vtkMSTileImage::RequestData(
       if (b < 0 || b >= tiles.NumberOfLabels())
       {
         vtkErrorMacro(<< "Label " << b << " at (" << x << ", " << y << ") is not a label of '"
-                      << this->TilesetFile << "'.");
+                      << file << "'.");
         return 0;
       }
       const Picture& p = pictures[static_cast<std::size_t>(b)];
