@@ -68,4 +68,22 @@ private:
   struct sigaction OldAction = {};
   rlimit OldLimit{};
 };
+/// A small 3D village: ground (1), two-storey houses of walls (2) with roofs (3), empty (0).
+inline msynth::LabelGrid Village()
+{
+  msynth::LabelGrid g(7, 7, 5, 0);
+  for (std::int64_t y = 0; y < 7; ++y)
+    for (std::int64_t x = 0; x < 7; ++x)
+    {
+      g.Set(x, y, 0, 1);
+      if (x >= 2 && x <= 4 && y >= 2 && y <= 4)
+      {
+        g.Set(x, y, 1, 2);
+        g.Set(x, y, 2, 2);
+        g.Set(x, y, 3, 3);
+      }
+    }
+  return g;
+}
+
 } // namespace msynth_test

@@ -5,6 +5,8 @@
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/DiscreteSynthesis.h"
 
+#include "Fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -12,26 +14,10 @@
 
 using namespace msynth;
 
+using msynth_test::Village;
+
 namespace
 {
-/// The small village: ground (1), houses of walls (2) two storeys high with roofs (3), empty (0).
-LabelGrid Village()
-{
-  LabelGrid g(7, 7, 5, 0);
-  for (std::int64_t y = 0; y < 7; ++y)
-    for (std::int64_t x = 0; x < 7; ++x)
-    {
-      g.Set(x, y, 0, 1);
-      if (x >= 2 && x <= 4 && y >= 2 && y <= 4)
-      {
-        g.Set(x, y, 1, 2);
-        g.Set(x, y, 2, 2);
-        g.Set(x, y, 3, 3);
-      }
-    }
-  return g;
-}
-
 struct Pin
 {
   std::int64_t X, Y, Z;

@@ -80,6 +80,22 @@ public:
   /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
   void ApplyBoundary();
 
+  /// Calls @p fn(p, q, axis) for every pair of sites q = p + 1 along an axis, in scan order.
+  template <typename Fn>
+  void ForEachAdjacentPair(Fn&& fn) const
+  {
+    Coord p;
+    for (p[2] = 0; p[2] < this->N[2]; ++p[2])
+      for (p[1] = 0; p[1] < this->N[1]; ++p[1])
+        for (p[0] = 0; p[0] < this->N[0]; ++p[0])
+          for (int axis = 0; axis < 3; ++axis)
+          {
+            Coord q = p;
+            if (++q[axis] < this->N[axis])
+              fn(p, q, axis);
+          }
+  }
+
   /// SynthesisOptions::Pins as fixed labels, checked (PinnedSites.cxx). Returns their number.
   std::int64_t ApplyPins();
   /// Pinned labels next to each other or to boundary labels that the rules never put together.

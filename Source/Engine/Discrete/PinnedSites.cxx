@@ -59,26 +59,20 @@ void BlockSolver::CheckPinnedPairs() const
 {
   const LabelGrid& pins = *this->Options.Pins;
   const auto& values = this->Rules.LabelValues();
-  Coord p;
-  for (p[2] = 0; p[2] < this->N[2]; ++p[2])
-    for (p[1] = 0; p[1] < this->N[1]; ++p[1])
-      for (p[0] = 0; p[0] < this->N[0]; ++p[0])
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          Coord q = p;
-          if (++q[axis] >= this->N[axis])
-            continue;
-          const auto s = static_cast<std::size_t>(this->Index(p));
-          const auto t = static_cast<std::size_t>(this->Index(q));
-          const int a = this->Fixed[s], b = this->Fixed[t];
-          const bool pinned = pins.Data()[s] != FreeSite || pins.Data()[t] != FreeSite;
-          if (!pinned || a < 0 || b < 0 || this->Rules.Allowed(2 * axis, a, b))
-            continue;
-          throw Error("the labels " + std::to_string(values[static_cast<std::size_t>(a)]) + " at " +
-            Format(p) + " and " + std::to_string(values[static_cast<std::size_t>(b)]) + " at " +
-            Format(q) + " cannot meet: the example never puts them next to each other " + "along " +
-            AxisNames[axis]);
-        }
+  this->ForEachAdjacentPair(
+    [&](const Coord& p, const Coord& q, int axis)
+    {
+      const auto s = static_cast<std::size_t>(this->Index(p));
+      const auto t = static_cast<std::size_t>(this->Index(q));
+      const int a = this->Fixed[s], b = this->Fixed[t];
+      const bool pinned = pins.Data()[s] != FreeSite || pins.Data()[t] != FreeSite;
+      if (!pinned || a < 0 || b < 0 || this->Rules.Allowed(2 * axis, a, b))
+        return;
+      throw Error("the labels " + std::to_string(values[static_cast<std::size_t>(a)]) + " at " +
+        Format(p) + " and " + std::to_string(values[static_cast<std::size_t>(b)]) + " at " +
+        Format(q) + " cannot meet: the example never puts them next to each other along " +
+        AxisNames[axis]);
+    });
 }
 
 void BlockSolver::CheckPinsPropagate()

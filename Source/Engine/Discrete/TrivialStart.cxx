@@ -273,25 +273,18 @@ void BlockSolver::CheckStart(int t, const std::string& what) const
           "block fails. Allow that label everywhere, or use whole-model synthesis");
     }
   // The start must satisfy Eq. 3.3, boundary labels included.
-  Coord p;
-  for (p[2] = 0; p[2] < this->N[2]; ++p[2])
-    for (p[1] = 0; p[1] < this->N[1]; ++p[1])
-      for (p[0] = 0; p[0] < this->N[0]; ++p[0])
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          Coord q = p;
-          if (++q[axis] >= this->N[axis])
-            continue;
-          const int b = this->Model[static_cast<std::size_t>(this->Index(p))];
-          const int c = this->Model[static_cast<std::size_t>(this->Index(q))];
-          if (!this->Rules.Allowed(2 * axis, b, c))
-            throw Error("no usable trivial start: " + start +
-              " with the boundary labels puts label " +
-              std::to_string(v[static_cast<std::size_t>(b)]) + " before " +
-              std::to_string(v[static_cast<std::size_t>(c)]) + " along " +
-              std::string("xyz").substr(static_cast<std::size_t>(axis), 1) + " at " + Format(p) +
-              ", which the example never does");
-        }
+  this->ForEachAdjacentPair(
+    [&](const Coord& p, const Coord& q, int axis)
+    {
+      const int b = this->Model[static_cast<std::size_t>(this->Index(p))];
+      const int c = this->Model[static_cast<std::size_t>(this->Index(q))];
+      if (!this->Rules.Allowed(2 * axis, b, c))
+        throw Error("no usable trivial start: " + start + " with the boundary labels puts label " +
+          std::to_string(v[static_cast<std::size_t>(b)]) + " before " +
+          std::to_string(v[static_cast<std::size_t>(c)]) + " along " +
+          std::string("xyz").substr(static_cast<std::size_t>(axis), 1) + " at " + Format(p) +
+          ", which the example never does");
+    });
   if (this->Seams)
     this->CheckStartAgainstSeams(start);
 }
