@@ -78,7 +78,9 @@ class VDBReaderTest(unittest.TestCase):
             pyopenvdb.write(path, grids=[grid])
             start = time.monotonic()
             out, errors = read(path)
-            self.assertLess(time.monotonic() - start, 2.0, name)
+            # Refused before any dense copy: well under the seconds a 2^28-voxel copy takes
+            # (more under the sanitizers, on a loaded machine).
+            self.assertLess(time.monotonic() - start, 10.0 if os.environ.get("MSYNTH_SANITIZED") else 2.0, name)
             if refused:
                 self.assertIn(path, errors, name)
                 self.assertIn("(damaged metadata)", errors, name)
