@@ -70,6 +70,26 @@ class PinsTest(unittest.TestCase):
             check = msynth("check", data("Tilesets/Lines.xml"), os.path.join(out, "labels.vti"))
             self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
 
+    def test_an_image_sample_keeps_a_pinned_patch(self):
+        # The patterns of a City picture, a patch pinned; the picture passes the window check.
+        source = fresh_folder("pins-city-source")
+        r = msynth("synthesize", data("Samples/City.png"), "--size", "40", "40", "1", "--seed", "2",
+                   "--out", source)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        drawn = read_labels(os.path.join(source, "labels.vti"))
+        pins = np.full(drawn.shape, -1, dtype=np.int32)
+        pins[0, 10:16, 10:16] = drawn[0, 10:16, 10:16]
+        path = write_pins(tmp("city-pins.vti"), pins)
+        for extra in ([], ["--block", "20", "20", "1"]):
+            out = fresh_folder("pins-city")
+            r = msynth("synthesize", data("Samples/City.png"), "--size", "40", "40", "1", "--seed", "5",
+                       "--fixed", path, "--out", out, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            model = read_labels(os.path.join(out, "labels.vti"))
+            self.assertTrue(np.array_equal(model[0, 10:16, 10:16], drawn[0, 10:16, 10:16]), extra)
+            check = msynth("check", data("Samples/City.png"), os.path.join(out, "picture.png"))
+            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+
     def test_contradictory_pins_are_one_line_and_nothing_is_written(self):
         pins = np.full((5, 16, 16), -1, dtype=np.int32)
         pins[1, 5, 5] = 1  # ground over ground: never in the village
