@@ -47,48 +47,40 @@ def write_pins(path, labels_zyx_array):
 
 
 class PinsTest(unittest.TestCase):
-    def test_a_drawn_patch_of_a_tileset_map_is_completed(self):
-        # A map of the Lines tileset; a patch of it (a hand-drawn part) pinned, the rest -1.
-        source = fresh_folder("pins-source")
-        r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1", "--seed", "4",
-                   "--out", source)
+    def complete(self, example, size, block, patches, checked):
+        """Pins `patches` (index tuples into a [z, y, x] grid) of a model of `example`, completes
+        them whole and in blocks of `block`, and checks every run's `checked` output (the file
+        `msynth check` reads) and that every pin is kept."""
+        name = os.path.splitext(os.path.basename(example))[0]
+        source = fresh_folder("pins-%s-source" % name)
+        r = msynth("synthesize", data(example), "--size", *size, "--seed", "4", "--out", source)
         self.assertEqual(r.returncode, 0, r.stderr)
         drawn = read_labels(os.path.join(source, "labels.vti"))
         pins = np.full(drawn.shape, -1, dtype=np.int32)
-        pins[0, 8:14, 9:15] = drawn[0, 8:14, 9:15]
-        pins[0, 20, 2] = drawn[0, 20, 2]
-        path = write_pins(tmp("lines-pins.vti"), pins)
-        for extra in ([], ["--block", "12", "12", "1"]):
-            out = fresh_folder("pins-lines")
-            r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1", "--seed", "9",
-                       "--fixed", path, "--out", out, *extra)
+        for patch in patches:
+            pins[patch] = drawn[patch]
+        path = write_pins(tmp("%s-pins.vti" % name), pins)
+        for extra in ([], ["--block", *block]):
+            out = fresh_folder("pins-" + name)
+            r = msynth("synthesize", data(example), "--size", *size, "--seed", "9", "--fixed", path,
+                       "--out", out, *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             model = read_labels(os.path.join(out, "labels.vti"))
             kept = pins >= 0
             self.assertTrue(np.array_equal(model[kept], pins[kept]), extra)
             self.assertGreater(len(np.unique(model[~kept])), 1, "the rest is synthesized")
-            check = msynth("check", data("Tilesets/Lines.xml"), os.path.join(out, "labels.vti"))
+            check = msynth("check", data(example), os.path.join(out, checked))
             self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+
+    def test_a_drawn_patch_of_a_tileset_map_is_completed(self):
+        # A map of the Lines tileset; a patch of it (a hand-drawn part) and a lone tile pinned.
+        self.complete("Tilesets/Lines.xml", ("24", "24", "1"), ("12", "12", "1"),
+                      [np.s_[0, 8:14, 9:15], np.s_[0, 20, 2]], "labels.vti")
 
     def test_an_image_sample_keeps_a_pinned_patch(self):
         # The patterns of a City picture, a patch pinned; the picture passes the window check.
-        source = fresh_folder("pins-city-source")
-        r = msynth("synthesize", data("Samples/City.png"), "--size", "40", "40", "1", "--seed", "2",
-                   "--out", source)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        drawn = read_labels(os.path.join(source, "labels.vti"))
-        pins = np.full(drawn.shape, -1, dtype=np.int32)
-        pins[0, 10:16, 10:16] = drawn[0, 10:16, 10:16]
-        path = write_pins(tmp("city-pins.vti"), pins)
-        for extra in ([], ["--block", "20", "20", "1"]):
-            out = fresh_folder("pins-city")
-            r = msynth("synthesize", data("Samples/City.png"), "--size", "40", "40", "1", "--seed", "5",
-                       "--fixed", path, "--out", out, *extra)
-            self.assertEqual(r.returncode, 0, r.stderr)
-            model = read_labels(os.path.join(out, "labels.vti"))
-            self.assertTrue(np.array_equal(model[0, 10:16, 10:16], drawn[0, 10:16, 10:16]), extra)
-            check = msynth("check", data("Samples/City.png"), os.path.join(out, "picture.png"))
-            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        self.complete("Samples/City.png", ("40", "40", "1"), ("20", "20", "1"), [np.s_[0, 10:16, 10:16]],
+                      "picture.png")
 
     def test_contradictory_pins_are_one_line_and_nothing_is_written(self):
         pins = np.full((5, 16, 16), -1, dtype=np.int32)
