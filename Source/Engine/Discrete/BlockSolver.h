@@ -100,8 +100,8 @@ public:
   std::int64_t ApplyPins();
   /// Pinned labels next to each other or to boundary labels that the rules never put together.
   void CheckPinnedPairs() const;
-  /// Arc consistency of the whole model from the fixed labels (models up to 2^24 sites).
-  void CheckPinsPropagate();
+  /// Arc consistency from the fixed labels over the pins' box [@p lo, @p hi], grown by 16 sites.
+  void CheckPinsPropagate(const Coord& lo, const Coord& hi);
   /// Block synthesis: each group of touching pins not in the start yet gets a block around it
   /// (its box grown by half a block of size @p m on each side, doubled while it cannot be solved).
   void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments);

@@ -206,8 +206,8 @@ struct SynthesisOptions
    * the site is to be synthesized. Pinned labels are kept: whole-model synthesis starts its
    * catalog from them; block synthesis first places each pin into the start with a block of the
    * run's size around it, and no block changes them afterwards. Pins that contradict the rules,
-   * the boundary labels or each other (through propagation, for models up to 2^24 sites) are an
-   * Error before any work. Not with mirror, translation or rotation symmetry.
+   * the boundary labels or each other (through propagation over the pins' box and 16 sites around
+   * it) are an Error before any work. Not with mirror, translation or rotation symmetry.
    */
   std::optional<LabelGrid> Pins;
   /// Reflection symmetry per axis (x, y, z).
