@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Continuous/ContinuousSynthesis.h"
 
-#include "Core/BlockSynthesis.h"
+#include "Core/BlockDriver.h"
 #include "Core/Error.h"
 
 #include "Continuous/ConstraintPlan.h"
@@ -235,7 +235,7 @@ public:
 
   /// One attempt at the current block @p b: -1 when solved (its labels are written to the
   /// model), else the local vertex whose catalog became empty.
-  std::int64_t Attempt(std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assignments);
+  std::int64_t Attempt(std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assignments);
 
   /// After block @p b: its vertices leave, and its snapshots are emitted.
   void Leave(std::int64_t b)
@@ -275,7 +275,7 @@ private:
   std::int64_t ConstrainFromOutside();
   /// Labels the undecided vertices; a label whose propagation empties a set is removed and
   /// another tried (one level of backtracking). Returns -1, or the emptied local vertex.
-  std::int64_t AssignAll(std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assigned);
+  std::int64_t AssignAll(std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assigned);
   /// A label for local vertex @p i under the constraints: connectivity (types that grow only
   /// next to themselves, seeds), guide weights and type proportions.
   int Choose(std::int64_t i, Random& rng);
@@ -407,7 +407,7 @@ std::int64_t ContinuousRun::ConstrainFromOutside()
 }
 
 std::int64_t ContinuousRun::AssignAll(
-  std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assigned)
+  std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assigned)
 {
   const auto m = static_cast<std::int64_t>(this->Verts.size());
   auto neighbours = [this](std::int64_t local, auto&& visit)
@@ -445,7 +445,7 @@ std::int64_t ContinuousRun::AssignAll(
   std::int64_t empty = -1;
   for (;;)
   {
-    if ((assigned & 1023) == 0 && runner.Stopped(0))
+    if (driver.Poll(0, assigned))
       return 0; // cancelled: the attempt ends here (and no other starts)
     const std::int64_t i = queue.Next();
     if (i < 0)
@@ -565,18 +565,14 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   }
   if (!(total > 0))
     return c[static_cast<std::size_t>(rng.Below(c.size()))];
-  double r = rng.Uniform() * total;
-  for (std::size_t k = 0; k < c.size(); ++k)
-  {
-    r -= weight[k];
-    if (r < 0)
-      return c[k];
-  }
-  return c.back();
+  const int k =
+    DrawWeighted([&c](auto&& visit) { ForEachIndex(static_cast<int>(c.size()), visit); },
+      [&weight](int j) { return weight[static_cast<std::size_t>(j)]; }, rng.Uniform());
+  return c[static_cast<std::size_t>(k)];
 }
 
 std::int64_t ContinuousRun::Attempt(
-  std::int64_t b, Random& rng, BlockRunner& runner, std::int64_t& assignments)
+  std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assignments)
 {
   this->Pending.clear();
   std::int64_t empty = this->ConstrainFromOutside();
@@ -584,7 +580,7 @@ std::int64_t ContinuousRun::Attempt(
     this->BlockStart = this->Capture(b, true); // the block's catalog, the rest of the model fixed
   std::int64_t assigned = 0;
   if (empty < 0)
-    empty = this->AssignAll(b, rng, runner, assigned);
+    empty = this->AssignAll(b, rng, driver, assigned);
   assignments += assigned;
   this->AssignmentsSoFar += assigned;
   if (empty >= 0)
@@ -605,7 +601,7 @@ std::int64_t ContinuousRun::Attempt(
     // Other labellings of the block; the one whose type shares come closest to the targets wins.
     Random other = Random::Derived(rng.Next(), static_cast<std::uint64_t>(c));
     std::int64_t more = 0;
-    if (this->ConstrainFromOutside() >= 0 || this->AssignAll(b, other, runner, more) >= 0)
+    if (this->ConstrainFromOutside() >= 0 || this->AssignAll(b, other, driver, more) >= 0)
       continue;
     assignments += more;
     this->AssignmentsSoFar += more;
@@ -653,54 +649,31 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (run.Snapshots())
     run.Emit(run.Capture(-1, false));
 
-  // Blocks one after the other in scan order (each its own phase).
+  // Blocks one after the other, outward from the connectivity seeds (each its own phase).
   BlockRunner::Policy policy;
   policy.Serial = true;
   policy.Progress = options.Progress;
-  const std::int64_t blocks = run.NumberOfBlocks();
-  BlockRunner runner(std::move(policy), static_cast<std::size_t>(blocks));
-  BlockRunner::Hooks hooks;
-  hooks.Run = [&](unsigned, std::size_t i)
-  {
-    const std::int64_t b = run.BlockAt(i);
-    run.Enter(b);
-    return runner.Attempts(0, options.Attempts,
-      [&](int attempt, std::int64_t& assignments)
-      {
-        Random rng = Random::Derived(
-          options.Seed, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(attempt));
-        return run.Attempt(b, rng, runner, assignments);
-      });
-  };
-  hooks.Finish = [&](std::size_t i, const BlockOutcome& out)
-  {
-    if (!out.Solved())
-    {
-      BlockFailure f;
-      f.Block = run.BlockAt(i);
-      f.EmptyIndex = run.Vertex(out.Empty);
-      f.Attempts = out.Attempts;
-      stats.Failures.push_back(f);
-    }
-    run.Leave(run.BlockAt(i));
-  };
-  std::vector<int> phases(static_cast<std::size_t>(blocks));
-  std::iota(phases.begin(), phases.end(), 0);
-  result.Status = runner.Run(phases, hooks, stats);
+  const auto blocks = static_cast<std::size_t>(run.NumberOfBlocks());
+  BlockDriver driver(std::move(policy), options.Seed, options.Attempts, blocks, start);
+  std::vector<std::uint64_t> keys(blocks);
+  for (std::size_t i = 0; i < blocks; ++i)
+    keys[i] = static_cast<std::uint64_t>(run.BlockAt(i));
+  BlockClient client;
+  client.Enter = [&](unsigned, std::size_t i) { run.Enter(run.BlockAt(i)); };
+  client.Attempt = [&](unsigned, std::size_t i, int, Random& rng, std::int64_t& assignments)
+  { return run.Attempt(run.BlockAt(i), rng, driver, assignments); };
+  client.Describe = [&](std::size_t, const BlockOutcome& out, BlockFailure& f)
+  { f.EmptyIndex = run.Vertex(out.Empty); };
+  client.After = [&](std::size_t i, const BlockOutcome&) { run.Leave(run.BlockAt(i)); };
+  result.Status = driver.Run(BlockSchedule::InSequence(std::move(keys)), client, stats);
   stats.Phases = static_cast<int>(blocks);
-  stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (result.Status == SynthesisStatus::Cancelled)
+  if (!driver.End(result.Status, result.Message, stats, run.WholeModel(),
+        [&](const BlockFailure&)
+        {
+          return WholeModelFailure("whole-model synthesis (Algorithm 4.1)", options.Attempts,
+            run.LastFailure(), "Try blocks (a block size of a few plane spacings)");
+        }))
   {
-    result.Message = "continuous synthesis was cancelled";
-    run.EmptyModel();
-    return result;
-  }
-  if (run.WholeModel() && stats.BlocksFailed > 0)
-  {
-    result.Status = SynthesisStatus::Failed;
-    result.Message = "whole-model synthesis failed in all " + std::to_string(options.Attempts) +
-      " attempts (last: " + run.LastFailure() +
-      "); try blocks (a block size of a few plane spacings)";
     run.EmptyModel();
     return result;
   }

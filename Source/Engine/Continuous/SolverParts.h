@@ -3,6 +3,7 @@
 // Parts of the continuous label solver (internal header of ContinuousSynthesis.cxx): the block
 // layout, the label draw and the order of the undecided vertices.
 #include "Continuous/PlaneArrangement.h"
+#include "Core/LabelDraw.h"
 #include "Core/Random.h"
 #include "Discrete/DiscreteSynthesis.h"
 
@@ -140,48 +141,15 @@ struct BlockLayout
   }
 };
 
-/// A label of @p domain: uniformly, or proportionally to @p weights when not empty.
+/// A label of @p domain (@p count labels): uniformly, or proportionally to @p weights when
+/// not empty.
 inline int PickLabel(const std::uint64_t* domain, int words, int count,
   const std::vector<double>& weights, Random& rng)
 {
   if (weights.empty())
-  {
-    auto r = static_cast<int>(rng.Below(static_cast<std::uint64_t>(count)));
-    for (int w = 0; w < words; ++w)
-    {
-      for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-      {
-        if (r-- == 0)
-        {
-          return w * 64 + __builtin_ctzll(bits);
-        }
-      }
-    }
-    return -1;
-  }
-  double total = 0;
-  int last = -1;
-  for (int w = 0; w < words; ++w)
-  {
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-    {
-      total += weights[static_cast<std::size_t>(w * 64 + __builtin_ctzll(bits))];
-    }
-  }
-  double r = rng.Uniform() * total;
-  for (int w = 0; w < words; ++w)
-  {
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-    {
-      last = w * 64 + __builtin_ctzll(bits);
-      r -= weights[static_cast<std::size_t>(last)];
-      if (r < 0)
-      {
-        return last;
-      }
-    }
-  }
-  return last;
+    return NthLabel(domain, words, rng.Below(static_cast<std::uint64_t>(count)));
+  return DrawLabel(
+    domain, words, [&](int b) { return weights[static_cast<std::size_t>(b)]; }, rng.Uniform());
 }
 
 /// The undecided vertices of a block in the order they are labelled: vertices on the front of

@@ -73,32 +73,6 @@ private:
   std::vector<std::uint64_t> ChunkUnions;
 };
 
-/**
- * A label of @p domain (@p words words) drawn with probability proportional to weight(b), from
- * @p u uniform in [0, 1): the labels are walked in index order subtracting their weights from
- * u · (sum of weights); the last one is returned when rounding leaves a remainder. -1 for an
- * empty domain.
- */
-template <class Weight>
-int DrawLabel(const std::uint64_t* domain, int words, Weight&& weight, double u)
-{
-  double total = 0.0;
-  for (int w = 0; w < words; ++w)
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-      total += weight(w * 64 + __builtin_ctzll(bits));
-  double r = u * total;
-  int last = -1;
-  for (int w = 0; w < words; ++w)
-    for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
-    {
-      last = w * 64 + __builtin_ctzll(bits);
-      r -= weight(last);
-      if (r < 0.0)
-        return last;
-    }
-  return last;
-}
-
 class LabelDomains
 {
 public:

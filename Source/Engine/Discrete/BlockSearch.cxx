@@ -32,7 +32,7 @@ std::int64_t BlockSearch::Assign(std::int64_t local)
   this->ResumeAt = -1;
   if (cat.Count(local) == 0)
     return local;
-  if ((this->Assignments & 1023) == 0 && this->Solver.Stopped())
+  if (this->Solver.Poll(this->Assignments))
     return local; // cancelled: the attempt ends here (and no other starts)
   if (cat.Count(local) == 1)
     return -1;

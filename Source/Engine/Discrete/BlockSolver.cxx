@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/BlockSolver.h"
 
+#include "Core/LabelDraw.h"
+
 #include "Core/Error.h"
 
 #include <algorithm>
@@ -198,19 +200,9 @@ int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
     }
     if (weightSum > 0.0)
     {
-      double r = rng.Uniform() * weightSum;
-      int last = -1;
-      for (int b = 0; b < this->Rules.NumberOfLabels(); ++b)
-      {
-        const double x = this->ChoiceWeights[static_cast<std::size_t>(b)];
-        if (x <= 0.0)
-          continue;
-        last = b;
-        r -= x;
-        if (r < 0.0)
-          return b;
-      }
-      return last;
+      return DrawWeighted([this](auto&& visit)
+        { ForEachIndex(this->Rules.NumberOfLabels(), visit); },
+        [this](int b) { return this->ChoiceWeights[static_cast<std::size_t>(b)]; }, rng.Uniform());
     }
     // No example site matches any possible label (labels only reachable through
     // propagation): fall back to the weighted choice below.

@@ -7,12 +7,12 @@
  * around it, boundary layers, mirror planes, symmetry seams) and the label choice (uniform,
  * frequency, resemblance of M07§3, the guide of D§3.5.3), plus the trivial start and catalog
  * snapshots. One solver a worker thread; all of them share one SharedModel. The run over the
- * blocks is Core/BlockSynthesis.h's BlockRunner, driven by Discrete/DiscreteSynthesis.cxx.
+ * blocks is Core/BlockDriver.h's BlockDriver, whose client Discrete/DiscreteSynthesis.cxx makes.
  *
  * BlockSolver.cxx holds the block attempt, the trivial start and the snapshots;
  * BlockSolverWeights.cxx the label weights (guide, resemblance) and the site constraints.
  */
-#include "Core/BlockSynthesis.h"
+#include "Core/BlockDriver.h"
 #include "Core/Random.h"
 #include "Discrete/Catalog.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -53,8 +53,8 @@ class BlockSolver
 {
 public:
   /// A solver over @p shared; the first solver of a run sizes it, later ones (one per extra
-  /// thread) share it. @p runner (may be null) tells when the run is being cancelled; @p worker
-  /// is this solver's worker number there.
+  /// thread) share it. Driver (may be null) tells when the run is being cancelled; Worker is
+  /// this solver's worker number there.
   BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan,
     const SymmetryPlan* seams, SharedModel& shared);
 
@@ -221,8 +221,11 @@ public:
   /// Whether the run reports catalog snapshots.
   bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
 
-  /// Whether the run is being cancelled (polled every 1024 assignments inside a block).
-  bool Stopped() { return this->Runner && this->Runner->Stopped(this->Worker); }
+  /// Whether the run is being cancelled (the driver's poll, every 1024th of @p assignments).
+  bool Poll(std::int64_t assignments)
+  {
+    return this->Driver && this->Driver->Poll(this->Worker, assignments);
+  }
 
   const AdjacencyRules& Rules;
   const SynthesisOptions& Options;
@@ -238,8 +241,8 @@ public:
   std::vector<float> GuideWeights;       ///< [guide cell][label index]; empty: no guide
   std::vector<std::uint64_t> GuideMasks; ///< [guide cell][word]: labels with weight > 0
   std::vector<CatalogSnapshot> Pending;  ///< snapshots of the current attempt
-  BlockRunner* Runner = nullptr;         ///< the run (cancellation), or nullptr
-  unsigned Worker = 0;                   ///< this solver's worker number in Runner
+  BlockDriver* Driver = nullptr;         ///< the run (cancellation), or nullptr
+  unsigned Worker = 0;                   ///< this solver's worker number in Driver
   std::int64_t Steps = 0;
   std::int64_t Backtracked = 0;          ///< choices undone by BlockSearch, over all blocks
   SiteOrder Order = SiteOrder::ScanLine; ///< the options' order (the repair pass's may differ)

@@ -5,6 +5,7 @@
 // outputs (D§3.5.2) synthesize a part and unfold it.
 #include "Discrete/DiscreteSynthesis.h"
 
+#include "Core/BlockDriver.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
 #include "Core/Random.h"
@@ -25,22 +26,6 @@ using namespace detail;
 
 namespace
 {
-/// Block size and step per axis from the options (Algorithm 3.5's m and the overlap).
-bool BlockGeometry(const SynthesisOptions& options, Coord& m, Coord& step)
-{
-  bool wholeModel = true;
-  for (int a = 0; a < 3; ++a)
-  {
-    const std::int64_t n = options.Size[a];
-    m[a] = options.BlockSize[a] <= 0 ? n : std::min(options.BlockSize[a], n);
-    wholeModel = wholeModel && m[a] == n;
-    std::int64_t overlap = options.Overlap[a] < 0 ? m[a] / 2 : options.Overlap[a];
-    overlap = std::min(overlap, m[a] - 1);
-    step[a] = m[a] - overlap;
-  }
-  return wholeModel;
-}
-
 /// Visits the model index of every site of @p block (x fastest).
 template <typename Visit>
 void ForEachSite(const Block& block, const Coord& n, Visit&& visit)
@@ -199,54 +184,36 @@ struct Workers
   BlockSolver& operator[](unsigned w) { return w == 0 ? *this->First : *this->Extra[w - 1]; }
 };
 
-/// How a pass tries its blocks: the first pass as the options say; the second try at failed
-/// blocks with its own attempt streams, count and site orders.
-struct AttemptPlan
-{
-  int Offset = 0;                ///< added to the attempt number of each generator
-  int Attempts = 0;              ///< attempts per block; 0: the options'
-  std::vector<SiteOrder> Orders; ///< attempt a uses Orders[a % size]; empty: the options'
-};
-
-/// The blocks' hooks for the runner: attempts, keep or roll back, snapshots, failures, and the
-/// labels exchanged between processes.
-BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<Block>& blocks,
-  BlockRunner& runner, Workers& workers, SoftConstraints& soft, SharedModel& shared,
-  SynthesisStatistics& stats, const AttemptPlan& plan = AttemptPlan())
+/// The blocks as the driver's client: attempts (with @p orders alternating per attempt when
+/// given), keep or roll back, snapshots, failures, and the labels exchanged between processes.
+BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftConstraints& soft,
+  SharedModel& shared, SynthesisStatistics& stats, std::vector<SiteOrder> orders = {})
 {
   BlockSolver& solver = workers[0];
   const Coord n = solver.N;
-  BlockRunner::Hooks hooks;
-  hooks.Run = [&options, &blocks, &runner, &workers, &soft, plan](unsigned w, std::size_t i)
+  BlockClient client;
+  client.Enter = [&blocks, &soft](unsigned, std::size_t i) { soft.Save(i, blocks[i]); };
+  client.Attempt = [&blocks, &workers, orders](
+                     unsigned w, std::size_t i, int attempt, Random& rng, std::int64_t& assignments)
   {
-    soft.Save(i, blocks[i]);
     BlockSolver& worker = workers[w];
-    return runner.Attempts(w, plan.Attempts > 0 ? plan.Attempts : options.AttemptsPerBlock,
-      [&](int attempt, std::int64_t& assignments)
-      {
-        if (!plan.Orders.empty())
-          worker.Order = plan.Orders[static_cast<std::size_t>(attempt) % plan.Orders.size()];
-        Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(blocks[i].Index),
-          static_cast<std::uint64_t>(attempt + plan.Offset));
-        return worker.RunBlock(blocks[i], rng, assignments);
-      });
+    if (!orders.empty())
+      worker.Order = orders[static_cast<std::size_t>(attempt) % orders.size()];
+    return worker.RunBlock(blocks[i], rng, assignments);
   };
-  hooks.Finish = [&blocks, &soft, &solver, &stats, n](std::size_t i, const BlockOutcome& out)
+  client.After = [&blocks, &soft, &solver, &stats](std::size_t i, const BlockOutcome& out)
   {
     const bool kept = out.Solved() && soft.Decide(i, blocks[i]);
     if (!kept)
       solver.Pending.clear(); // the block keeps its previous labels: repeat that state
     solver.CommitSnapshots(stats.Assignments + out.Assignments);
-    if (out.Solved())
-      return;
-    BlockFailure f;
-    f.Block = blocks[i].Index;
+  };
+  client.Describe = [&blocks, n](std::size_t i, const BlockOutcome& out, BlockFailure& f)
+  {
     f.Origin = blocks[i].Origin;
     f.EmptySite = { { out.Empty % n[0], (out.Empty / n[0]) % n[1], out.Empty / (n[0] * n[1]) } };
-    f.Attempts = out.Attempts;
-    stats.Failures.push_back(f);
   };
-  hooks.Pack = [&blocks, &shared, n](std::size_t i, BlockRunner::Bytes& out)
+  client.Pack = [&blocks, &shared, n](std::size_t i, BlockRunner::Bytes& out)
   {
     ForEachSite(blocks[i], n,
       [&](std::size_t s)
@@ -255,7 +222,7 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
         out.Put(shared.LastBlock[s]);
       });
   };
-  hooks.Unpack = [&blocks, &shared, &soft, n](std::size_t i, BlockRunner::Bytes& in, bool remote)
+  client.Unpack = [&blocks, &shared, &soft, n](std::size_t i, BlockRunner::Bytes& in, bool remote)
   {
     if (remote)
       soft.Save(i, blocks[i]); // the labels before the block, as where it ran
@@ -271,49 +238,42 @@ BlockRunner::Hooks MakeHooks(const SynthesisOptions& options, const std::vector<
         }
       });
   };
-  return hooks;
+  return client;
 }
 
 /**
  * One round of second tries at failed blocks (SynthesisOptions::RepairFailedBlocks): once
  * every other block is done, each failed block runs again, one at a time in block order, with
- * attempt streams after the first try's and earlier rounds' and site orders alternating
- * (AttemptPlan). Those that succeed leave the failures.
+ * attempt streams after the first try's and earlier rounds', twice the attempts, and site
+ * orders alternating. Those that succeed leave the failures.
  */
 SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
-  const std::vector<Block>& blocks, Workers& workers, SoftConstraints& soft, SharedModel& shared,
-  SynthesisStatistics& stats, int round)
+  const std::vector<Block>& blocks, BlockDriver& driver, Workers& workers, SoftConstraints& soft,
+  SharedModel& shared, SynthesisStatistics& stats, int round)
 {
   std::vector<Block> again;
+  std::vector<std::uint64_t> keys;
   for (const BlockFailure& f : stats.Failures)
+  {
     again.push_back(blocks[static_cast<std::size_t>(f.Block)]);
-  BlockRunner::Policy policy;
-  policy.Threads = 1;
-  policy.Exchange = options.Exchange;
-  policy.Serial = true;
-  if (options.Progress) // the first try reported the whole run: stay at the end
-    policy.Progress = [&options](double) { return options.Progress(1.0); };
-  BlockRunner runner(std::move(policy), again.size());
-  BlockRunner* const first = workers[0].Runner; // restored below: this runner ends here
-  workers[0].Runner = &runner;
-  // Twice the attempts, alternating the order the first pass did not use with minimum entropy
-  // or scan line: a block one order cannot finish the other often can (entropy order closes the
-  // loops of WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
+    keys.push_back(static_cast<std::uint64_t>(f.Block));
+  }
+  // Alternating the order the first pass did not use with minimum entropy or scan line: a
+  // block one order cannot finish the other often can (entropy order closes the loops of
+  // WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
   const SiteOrder order = workers[0].Order;
-  AttemptPlan plan;
-  plan.Offset = options.AttemptsPerBlock * (1 + 2 * round);
-  plan.Attempts = 2 * options.AttemptsPerBlock;
-  plan.Orders = order == SiteOrder::MinimumEntropy
-    ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
-    : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order };
+  BlockPass pass;
+  pass.AttemptOffset = options.AttemptsPerBlock * (1 + 2 * round);
+  pass.Attempts = 2 * options.AttemptsPerBlock;
+  pass.Serial = true;
   SynthesisStatistics second;
-  const auto hooks = MakeHooks(options, again, runner, workers, soft, shared, second, plan);
-  std::vector<int> phases(again.size());
-  for (std::size_t i = 0; i < phases.size(); ++i)
-    phases[i] = static_cast<int>(i);
-  const SynthesisStatus status = runner.Run(phases, hooks, second);
+  const BlockClient client = MakeClient(again, workers, soft, shared, second,
+    order == SiteOrder::MinimumEntropy
+      ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
+      : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order });
+  const SynthesisStatus status =
+    driver.Run(BlockSchedule::InSequence(std::move(keys)), client, second, pass);
   workers[0].Order = order;
-  workers[0].Runner = first;
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
@@ -335,7 +295,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   BlockSolver solver(rules, options, plan, seams, shared);
   const Coord n = solver.N;
   Coord m, step;
-  const bool wholeModel = BlockGeometry(options, m, step);
+  const bool wholeModel = BlockGeometry<3>(n, options.BlockSize, options.Overlap, m, step);
   solver.ApplyBoundary();
 
   SynthesisResult result;
@@ -357,22 +317,23 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
     static_cast<bool>(options.Soft.Fitness);
   policy.Progress = options.Progress;
-  BlockRunner runner(std::move(policy), blocks.size());
+  BlockDriver driver(
+    std::move(policy), options.Seed, options.AttemptsPerBlock, blocks.size(), start);
   Workers workers;
   workers.First = &solver;
-  solver.Runner = &runner;
-  for (unsigned w = 1; w < runner.Workers(); ++w)
+  solver.Driver = &driver;
+  for (unsigned w = 1; w < driver.Workers(); ++w)
   {
     workers.Extra.push_back(std::make_unique<BlockSolver>(rules, options, plan, seams, shared));
-    workers.Extra.back()->Runner = &runner;
+    workers.Extra.back()->Driver = &driver;
     workers.Extra.back()->Worker = w;
   }
 
   if (!wholeModel && options.Pins)
     solver.PlacePins(m, options.Seed, stats.Assignments);
   solver.StartSnapshots();
-  const auto hooks = MakeHooks(options, blocks, runner, workers, soft, shared, stats);
-  result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
+  result.Status =
+    driver.Run(BlockSchedule::Of(blocks), MakeClient(blocks, workers, soft, shared, stats), stats);
   // Up to three rounds of second tries, while they still repair blocks: a block next to one
   // repaired in a round meets new surroundings in the next.
   const bool repair =
@@ -383,27 +344,20 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
        ++round)
   {
     before = static_cast<int>(stats.Failures.size());
-    result.Status = RepairFailedBlocks(options, blocks, workers, soft, shared, stats, round);
+    result.Status =
+      RepairFailedBlocks(options, blocks, driver, workers, soft, shared, stats, round);
   }
   stats.Backtracks = solver.Backtracked;
   for (const auto& extra : workers.Extra)
     stats.Backtracks += extra->Backtracked;
-  stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (result.Status == SynthesisStatus::Cancelled)
-  {
-    result.Message = "cancelled";
+  if (!driver.End(result.Status, result.Message, stats, wholeModel,
+        [&](const BlockFailure& f)
+        {
+          return WholeModelFailure("whole-model synthesis (Algorithm 3.1)",
+            options.AttemptsPerBlock, "the catalog became empty at site " + Format(f.EmptySite),
+            "Try another seed, more attempts, or block synthesis");
+        }))
     return result;
-  }
-  if (wholeModel && stats.BlocksFailed > 0)
-  {
-    // Algorithm 3.1 failed: report it, never return the partial model.
-    result.Status = SynthesisStatus::Failed;
-    result.Message = "whole-model synthesis (Algorithm 3.1) failed " +
-      std::to_string(options.AttemptsPerBlock) + " time(s); the catalog became empty at site " +
-      Format(stats.Failures.front().EmptySite) +
-      " in the last attempt. Try another seed, more attempts, or block synthesis";
-    return result;
-  }
   std::vector<Label> values(solver.Model.size());
   for (std::size_t s = 0; s < values.size(); ++s)
     values[s] = rules.LabelValues()[static_cast<std::size_t>(solver.Model[s])];
@@ -544,7 +498,7 @@ std::int64_t CountBlocks(const SynthesisOptions& requested)
     for (int a = 0; a < 2; ++a)
       options.Size[a] = (requested.Size[a] + 1) / 2; // a quadrant
   Coord m, step;
-  BlockGeometry(options, m, step);
+  BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step);
   std::int64_t count = 1;
   for (int a = 0; a < 3; ++a)
   {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/TimeVarying.h"
 
-#include "Core/BlockSynthesis.h"
+#include "Core/BlockDriver.h"
 #include "Core/Error.h"
+#include "Core/LabelDraw.h"
 #include "Core/Memory.h"
 
 #include "Core/Random.h"
@@ -193,12 +194,12 @@ class TimeVaryingSolver
 {
 public:
   TimeVaryingSolver(const TimeVaryingRules& rules, const TimeVaryingOptions& options,
-    std::vector<std::int32_t>& model, BlockRunner& runner)
+    std::vector<std::int32_t>& model, BlockDriver& driver)
     : Rules(rules)
     , Options(options)
     , N(options.Size)
     , Model(model)
-    , Runner(runner)
+    , Driver(driver)
     , SelfInTime(static_cast<std::size_t>(rules.Words()), 0)
   {
     // Labels that may follow themselves in time (the seam of a one-frame loop).
@@ -332,7 +333,7 @@ private:
         return local;
       if (this->Domains.Count(local) == 1)
         continue;
-      if ((assignments & 1023) == 0 && this->Runner.Stopped(0))
+      if (this->Driver.Poll(0, assignments))
         return local; // cancelled: the attempt ends here (and no other starts)
       const int pick = DrawLabel(
         this->Domains.Domain(local), this->Rules.Words(),
@@ -356,7 +357,7 @@ private:
   const TimeVaryingOptions& Options;
   Coord4 N;
   std::vector<std::int32_t>& Model; ///< label indices
-  BlockRunner& Runner;
+  BlockDriver& Driver;
   std::vector<std::uint64_t> SelfInTime;
   bool LoopSelf = false, LoopSeam = false;
   const Block4* Current = nullptr;
@@ -392,13 +393,7 @@ TimeVaryingResult SynthesizeTimeVarying(
   const std::int64_t total = CheckOptions(options);
   const Coord4& n = options.Size;
   Coord4 m, step;
-  bool whole = true;
-  for (int a = 0; a < 4; ++a)
-  {
-    m[a] = options.BlockSize[a] <= 0 ? n[a] : std::min(options.BlockSize[a], n[a]);
-    whole = whole && m[a] == n[a];
-    step[a] = std::max<std::int64_t>(1, m[a] - m[a] / 2);
-  }
+  const bool whole = BlockGeometry<4>(n, options.BlockSize, options.Overlap, m, step);
   CheckTimeVaryingMemory(rules, n, m);
   TimeVaryingResult result;
   SynthesisStatistics& stats = result.Statistics;
@@ -415,48 +410,30 @@ TimeVaryingResult SynthesizeTimeVarying(
   BlockRunner::Policy policy;
   policy.Serial = true;
   policy.Progress = options.Progress;
-  BlockRunner runner(std::move(policy), blocks.size());
-  TimeVaryingSolver solver(rules, options, model, runner);
-  BlockRunner::Hooks hooks;
-  hooks.Run = [&](unsigned, std::size_t i)
+  BlockDriver driver(
+    std::move(policy), options.Seed, options.AttemptsPerBlock, blocks.size(), start);
+  TimeVaryingSolver solver(rules, options, model, driver);
+  BlockClient client;
+  client.Attempt = [&](unsigned, std::size_t i, int, Random& rng, std::int64_t& assignments)
+  { return solver.Attempt(blocks[i], rng, assignments); };
+  client.Describe = [&](std::size_t i, const BlockOutcome& out, BlockFailure& failure)
   {
-    return runner.Attempts(0, options.AttemptsPerBlock,
-      [&](int attempt, std::int64_t& assignments)
-      {
-        Random rng = Random::Derived(options.Seed, i, static_cast<std::uint64_t>(attempt));
-        return solver.Attempt(blocks[i], rng, assignments);
-      });
-  };
-  hooks.Finish = [&](std::size_t i, const BlockOutcome& out)
-  {
-    if (out.Solved())
-      return;
     const Coord4 e = solver.Coordinates(std::max<std::int64_t>(out.Empty, 0));
-    BlockFailure failure;
-    failure.Block = static_cast<std::int64_t>(i);
     failure.Origin = { { blocks[i].Origin[0], blocks[i].Origin[1], blocks[i].Origin[2] } };
     failure.EmptySite = { { e[0], e[1], e[2] } };
     failure.Frame = e[3];
-    failure.Attempts = out.Attempts;
-    stats.Failures.push_back(failure);
   };
-  result.Status = runner.Run(PhasesOf(blocks), hooks, stats);
-  stats.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (result.Status == SynthesisStatus::Cancelled)
-  {
-    result.Message = "cancelled";
+  result.Status = driver.Run(BlockSchedule::Of(blocks), client, stats);
+  if (!driver.End(result.Status, result.Message, stats, whole,
+        [&](const BlockFailure& f)
+        {
+          return WholeModelFailure("whole-model synthesis (Algorithm 3.1)",
+            options.AttemptsPerBlock,
+            "the catalog became empty at site " +
+              Format({ { f.EmptySite[0], f.EmptySite[1], f.EmptySite[2], f.Frame } }),
+            "Try another seed, more attempts, or blocks");
+        }))
     return result;
-  }
-  if (whole && stats.BlocksFailed > 0)
-  {
-    const BlockFailure& f = stats.Failures.front();
-    result.Status = SynthesisStatus::Failed;
-    result.Message = "whole-model synthesis (Algorithm 3.1) failed " +
-      std::to_string(options.AttemptsPerBlock) + " time(s); the catalog became empty at site " +
-      Format({ { f.EmptySite[0], f.EmptySite[1], f.EmptySite[2], f.Frame } }) +
-      " in the last attempt. Try another seed, more attempts, or blocks";
-    return result;
-  }
   result.Model = Frames(rules, solver, model, n);
   result.Message = Summary(stats, whole);
   return result;

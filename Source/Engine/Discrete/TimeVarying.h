@@ -57,6 +57,8 @@ struct TimeVaryingOptions
 {
   Coord4 Size{ { 1, 1, 1, 1 } };      ///< nx, ny, nz, nt
   Coord4 BlockSize{ { 0, 0, 0, 0 } }; ///< 0 on an axis: the whole axis; all 0: Algorithm 3.1
+  /// Overlap between consecutive blocks; -1 means half the block (the dissertation's choice).
+  Coord4 Overlap{ { -1, -1, -1, -1 } };
   int AttemptsPerBlock = 10;
   std::uint64_t Seed = 0;
   LabelChoice Choice = LabelChoice::Uniform; ///< Uniform or Frequency
