@@ -88,6 +88,8 @@ struct AnimateOptions
   int Frames = 0;
   bool Loop = false;
   std::vector<int> Block{ 0, 0, 0 };
+  std::vector<int> Overlap{ -1, -1, -1 };
+  int OverlapFrames = -1;
   int BlockFrames = 0;
   std::int64_t Seed = 0;
   int Attempts = 10;
@@ -178,6 +180,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
   synthesis->SetOutputSize(o.Size[0], o.Size[1], o.Size[2]);
   synthesis->SetNumberOfFrames(o.Frames);
   synthesis->SetBlockSize(o.Block[0], o.Block[1], o.Block[2], o.BlockFrames);
+  synthesis->SetBlockOverlap(o.Overlap[0], o.Overlap[1], o.Overlap[2], o.OverlapFrames);
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetLoop(o.Loop);
@@ -247,6 +250,12 @@ CommandRunner AddAnimate(CLI::App& app)
     ->check(CLI::Range(0, 1000000000));
   a->add_option("--block-frames", o->BlockFrames, "frames per block (0: all)")
     ->check(CLI::Range(0, 1000000));
+  a->add_option(
+     "--overlap", o->Overlap, "overlap of consecutive blocks OX OY OZ (-1: half a block)")
+    ->expected(3)
+    ->check(CLI::Range(-1, 1000000000));
+  a->add_option("--overlap-frames", o->OverlapFrames, "overlap of blocks in frames (-1: half)")
+    ->check(CLI::Range(-1, 1000000));
   AddSeedOption(*a, o->Seed);
   AddAttemptsOption(*a, o->Attempts, "attempts per block");
   AddOrderOption(*a, o->Order, Orders);

@@ -25,6 +25,7 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include "Core/Error.h"
+#include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
@@ -128,6 +129,10 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "block size BX BY BZ of Algorithm 3.4 (default: the whole model, Algorithm 3.1)")
              ->expected(3)
              ->check(CLI::Range(0, 1000000000)));
+  discrete(s.add_option("--overlap", o.Overlap,
+              "overlap of consecutive blocks OX OY OZ (default -1: half a block)")
+             ->expected(3)
+             ->check(CLI::Range(-1, 1000000000)));
   discrete(s.add_option("--backtracks", o.Backtracks,
               "choices an attempt may undo when a catalog becomes empty (0: none, as the "
               "dissertation)")
@@ -317,10 +322,15 @@ void CheckKind(const Registered& r, bool polyhedral)
   }
   for (const auto& target : o.Targets)
   {
-    char* end = nullptr;
-    std::strtol(target.substr(0, target.find(':')).c_str(), &end, 10);
-    if (*end != ':')
-      throw UsageError{ "--target " + Printable(target) + ": a label grid's labels are integers" };
+    try
+    {
+      ParseLabelValues(target, "--target", "fraction");
+    }
+    catch (const Error&)
+    {
+      throw UsageError{ "--target " + Printable(target) +
+        ": expected LABEL:FRACTION, a label grid's labels being integers" };
+    }
   }
   for (std::size_t a = 0; a < 3; ++a)
   {
@@ -344,6 +354,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
 {
   synthesis->SetOutputSize(o.Size3.data());
   synthesis->SetBlockSize(o.Block.data());
+  synthesis->SetBlockOverlap(o.Overlap.data());
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));

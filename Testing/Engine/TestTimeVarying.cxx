@@ -82,6 +82,25 @@ TEST(TimeVarying, RollingBallOfFigure327)
   EXPECT_GT(balls, 5);
 }
 
+TEST(TimeVarying, BlocksHonourTheOverlap)
+{
+  const TimeVaryingGrid e = RollingBall();
+  const auto rules = TimeVaryingRules::FromExample(e);
+  TimeVaryingOptions o;
+  o.Size = { { 16, 1, 1, 20 } };
+  o.BlockSize = { { 6, 1, 1, 6 } };
+  o.Seed = 3;
+  const auto half = SynthesizeTimeVarying(rules, o);
+  ASSERT_TRUE(half.Succeeded()) << half.Message;
+  EXPECT_EQ(half.Statistics.Blocks, 5 * 6); // steps of 3: x at 0 3 6 9 12 (until 6 covers 16)
+  o.Overlap = { { 1, 0, 0, 2 } };
+  const auto r = SynthesizeTimeVarying(rules, o);
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
+  EXPECT_EQ(r.Statistics.Blocks, 3 * 5); // x at 0 5 10, t at 0 4 8 12 16
+  const auto report = CheckTimeVarying(e, r.Model);
+  EXPECT_TRUE(report.Consistent) << (report.First.empty() ? "" : report.First[0].Describe());
+}
+
 TEST(TimeVarying, LoopingAnimationJoinsTheLastFrameToTheFirst)
 {
   const TimeVaryingGrid e = RollingBall();

@@ -4,6 +4,7 @@
 #include "Continuous/ConstraintPlan.h"
 #include "Core/Error.h"
 #include "Core/Random.h"
+#include "Core/TextLists.h"
 
 #include <algorithm>
 #include <cctype>
@@ -29,35 +30,10 @@ int FamilyAlongAxis(const PlaneFamilySet& families, int axis)
   return -1;
 }
 
-namespace
-{
-std::vector<std::string> SplitColons(const std::string& text)
-{
-  std::vector<std::string> parts(1);
-  for (char c : text)
-  {
-    if (c == ':')
-      parts.emplace_back();
-    else
-      parts.back() += c;
-  }
-  return parts;
-}
-
-bool ParseInt(const std::string& text, long long low, long long high, long long& out)
-{
-  if (text.empty() || text.size() > 12 ||
-    !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return false;
-  out = std::stoll(text);
-  return out >= low && out <= high;
-}
-} // namespace
-
 int ParseObjectType(const std::string& text, const std::map<int, std::string>& typeNames)
 {
   long long value = 0;
-  if (ParseInt(text, 1, 1 << 30, value))
+  if (ParseInteger(text, 1, 1 << 30, value))
     return static_cast<int>(value);
   for (const auto& [type, name] : typeNames)
   {
@@ -74,7 +50,7 @@ int ParseObjectType(const std::string& text, const std::map<int, std::string>& t
 ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet& families,
   const std::map<int, std::string>& typeNames)
 {
-  const auto parts = SplitColons(text);
+  const auto parts = SplitText(text, ':');
   if (parts.size() < 2 || parts.size() > 3)
     throw Error("thickness '" + text + "' is not TYPE:AXIS[:N] or TYPE:AXIS:N+");
   ThicknessConstraint c;
@@ -106,7 +82,7 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
     std::size_t end = at + 1;
     while (end < parts[1].size() && std::isdigit(static_cast<unsigned char>(parts[1][end])))
       ++end;
-    if (a != 'h' || !ParseInt(parts[1].substr(at + 1, end - at - 1), 1, families.Size(), value))
+    if (a != 'h' || !ParseInteger(parts[1].substr(at + 1, end - at - 1), 1, families.Size(), value))
       throw Error("thickness '" + text + "': the axis must be x, y, z or h1..h" +
         std::to_string(families.Size()) + " (or several for a width), not '" + parts[1] + "'");
     across.push_back(static_cast<int>(value) - 1);
@@ -124,7 +100,7 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
   c.Multiples = !spacings.empty() && spacings.back() == '+';
   if (c.Multiples)
     spacings.pop_back();
-  if (!ParseInt(spacings, 1, 1000000, value))
+  if (!ParseInteger(spacings, 1, 1000000, value))
     throw Error("thickness '" + text +
       "': N must be a whole number of plane spacings ≥ 1 (N+ for multiples of N)");
   c.Spacings = static_cast<int>(value);
@@ -134,7 +110,7 @@ ThicknessConstraint ParseThickness(const std::string& text, const PlaneFamilySet
 ConnectivityConstraint ParseConnected(
   const std::string& text, const std::map<int, std::string>& typeNames)
 {
-  const auto parts = SplitColons(text);
+  const auto parts = SplitText(text, ':');
   if (parts.size() > 2 || parts[0].empty())
     throw Error("connectivity '" + text + "' is not TYPE[:SEEDS]");
   ConnectivityConstraint c;
@@ -147,7 +123,7 @@ ConnectivityConstraint ParseConnected(
     throw Error("connectivity '" + text + "': " + e.what());
   }
   long long value = 1;
-  if (parts.size() == 2 && !ParseInt(parts[1], 0, 1000000, value))
+  if (parts.size() == 2 && !ParseInteger(parts[1], 0, 1000000, value))
     throw Error("connectivity '" + text + "': SEEDS must be a whole number ≥ 0");
   c.Seeds = static_cast<int>(value);
   return c;

@@ -23,13 +23,13 @@ const char* AxisName(int axis)
 }
 } // namespace
 
-MirrorPlan PlanMirror(
+ArrangementMirror PlanArrangementMirror(
   const PolyhedralAnalysis& analysis, const ArrangementParameters& parameters, int axis)
 {
   if (axis < 0 || axis > 2 || (parameters.Planar && axis == 2))
     throw Error("mirror: the axis must be x or y (or z in 3D)");
   const PlaneFamilySet& set = analysis.Families();
-  MirrorPlan plan;
+  ArrangementMirror plan;
   plan.Axis = axis;
   const auto a = static_cast<std::size_t>(axis);
   // The seam: the last plane of the family normal to the axis at or before the middle.
@@ -119,7 +119,7 @@ MirrorPlan PlanMirror(
 }
 
 NeighbourhoodLabel MirrorLabel(
-  const PlaneFamilySet& families, const NeighbourhoodLabel& label, const MirrorPlan& plan)
+  const PlaneFamilySet& families, const NeighbourhoodLabel& label, const ArrangementMirror& plan)
 {
   std::vector<int> images;
   for (int f : label.Families)
@@ -146,7 +146,7 @@ NeighbourhoodLabel MirrorLabel(
     });
 }
 
-void RestrictToMirrorImages(const std::vector<const MirrorPlan*>& plans,
+void RestrictToMirrorImages(const std::vector<const ArrangementMirror*>& plans,
   const PlaneArrangement& part, std::vector<std::uint64_t>& catalogs)
 {
   if (plans.empty())
@@ -170,7 +170,7 @@ void RestrictToMirrorImages(const std::vector<const MirrorPlan*>& plans,
       imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
   }
   const auto& p = part.Parameters();
-  for (const MirrorPlan* plan : plans)
+  for (const ArrangementMirror* plan : plans)
   {
     std::vector<std::uint64_t> symmetric(words, 0);
     for (int a = 0; a < k; ++a)
@@ -249,7 +249,7 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
   int first = 0;
   while (!((options.MirrorAxes >> first) & 1))
     ++first;
-  const MirrorPlan plan = PlanMirror(analysis, arrangement.Parameters(), first);
+  const ArrangementMirror plan = PlanArrangementMirror(analysis, arrangement.Parameters(), first);
   ArrangementParameters half = arrangement.Parameters();
   const auto axis = static_cast<std::size_t>(plan.Axis);
   half.BoxHigh[axis] = plan.Seam;

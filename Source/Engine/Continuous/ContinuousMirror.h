@@ -27,7 +27,7 @@
 namespace msynth
 {
 
-struct MirrorPlan
+struct ArrangementMirror
 {
   int Axis = 0;
   int Family = 0;               ///< the plane family normal to the axis
@@ -42,12 +42,12 @@ struct MirrorPlan
  * @throw Error when the plane families or their planes are not symmetric, or no plane of the
  * axis' family lies in the box.
  */
-MirrorPlan PlanMirror(
+ArrangementMirror PlanArrangementMirror(
   const PolyhedralAnalysis& analysis, const ArrangementParameters& parameters, int axis);
 
 /// The mirror image of @p label under the plan's family map.
 NeighbourhoodLabel MirrorLabel(
-  const PlaneFamilySet& families, const NeighbourhoodLabel& label, const MirrorPlan& plan);
+  const PlaneFamilySet& families, const NeighbourhoodLabel& label, const ArrangementMirror& plan);
 
 /**
  * The part of a model mirrored across the plans' axes: keeps in each vertex's catalog
@@ -55,14 +55,14 @@ NeighbourhoodLabel MirrorLabel(
  * under every combination of the reflections the example has, and on a plan's seam only labels
  * that are their own image under that reflection.
  */
-void RestrictToMirrorImages(const std::vector<const MirrorPlan*>& plans,
+void RestrictToMirrorImages(const std::vector<const ArrangementMirror*>& plans,
   const PlaneArrangement& part, std::vector<std::uint64_t>& catalogs);
 
 /**
  * Continuous synthesis with reflection symmetry (options.MirrorAxes): the half box up to the seam
  * of the lowest axis labelled (recursively mirrored across the other axes) with the seams'
  * rules, then reflected onto @p arrangement (the whole box). Called by SynthesizeContinuous.
- * @throw Error as PlanMirror, or with snapshots.
+ * @throw Error as PlanArrangementMirror, or with snapshots.
  */
 ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);

@@ -163,7 +163,7 @@ public:
     result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
     this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
     int seams = 0;
-    for (const MirrorPlan* plan : options.PartOf)
+    for (const ArrangementMirror* plan : options.PartOf)
       seams |= 1 << plan->Axis;
     for (std::int64_t v = 0; v < this->N; ++v)
       this->Rules.InitialDomain(

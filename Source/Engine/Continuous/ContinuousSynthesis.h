@@ -16,7 +16,7 @@
 #include "Continuous/PolyhedralAnalysis.h"
 #include "Core/BlockSynthesis.h"
 #include "Core/Propagation.h"
-#include "Discrete/DiscreteSynthesis.h"
+#include "Core/SynthesisChoices.h"
 
 #include <functional>
 #include <string>
@@ -54,7 +54,7 @@ private:
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
 };
 
-struct MirrorPlan;
+struct ArrangementMirror;
 
 struct ContinuousSynthesisOptions
 {
@@ -75,7 +75,7 @@ struct ContinuousSynthesisOptions
   int MirrorAxes = 0;
   /// Internal: set by the mirrored runs on the part of the arrangement they label (the seams'
   /// rules), outermost first.
-  std::vector<const MirrorPlan*> PartOf;
+  std::vector<const ArrangementMirror*> PartOf;
   int Snapshots = 0; ///< catalog snapshots after the start, at even fractions of the work
   std::function<void(const CatalogSnapshot&)> OnSnapshot;
   /// Called with the fraction done; return false to cancel (Status Cancelled, no labels).

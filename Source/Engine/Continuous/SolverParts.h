@@ -5,7 +5,7 @@
 #include "Continuous/PlaneArrangement.h"
 #include "Core/LabelDraw.h"
 #include "Core/Random.h"
-#include "Discrete/DiscreteSynthesis.h"
+#include "Core/SynthesisChoices.h"
 
 #include <algorithm>
 #include <array>

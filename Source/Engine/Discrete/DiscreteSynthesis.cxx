@@ -8,6 +8,7 @@
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "Core/MirrorFold.h"
 #include "Core/Random.h"
 #include "Discrete/BlockSolver.h"
 #include "Discrete/MirrorPlan.h"
@@ -527,17 +528,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   const auto& values = rules.LabelValues();
   // Output site q folds onto half site p, mirrored over the axes where q lies past the middle.
   auto fold = [&plan](const Coord& q, Coord& p)
-  {
-    int axes = 0;
-    p = q;
-    for (int a = 0; a < 3; ++a)
-      if (plan.Axes[static_cast<std::size_t>(a)] && q[a] >= plan.Half[a])
-      {
-        p[a] = plan.Full[a] - 1 - q[a];
-        axes |= 1 << a;
-      }
-    return axes;
-  };
+  { return FoldMirror(q, plan.Full, plan.Half, plan.AxisMask(), p); };
   Unfolding unfolding;
   unfolding.Full = plan.Full;
   unfolding.Source = [&](const Coord& q)

@@ -2,6 +2,7 @@
 #include "Patterns/FactorGraph.h"
 
 #include "Core/Error.h"
+#include "Core/TextLists.h"
 
 #include <algorithm>
 #include <cctype>
@@ -47,18 +48,6 @@ int ParseOffset(const std::string& text, const std::string& digits)
     throw BadShape(text, "'" + digits + "' is not an offset");
   const int v = std::stoi(d);
   return negative ? -v : v;
-}
-
-std::vector<std::string> Split(const std::string& s, char sep)
-{
-  std::vector<std::string> parts;
-  std::string item;
-  std::istringstream in(s);
-  while (std::getline(in, item, sep))
-    parts.push_back(item);
-  if (!s.empty() && s.back() == sep)
-    parts.emplace_back();
-  return parts;
 }
 
 Stencil Normalised(const std::string& name, std::vector<std::array<int, 3>> offsets)
@@ -108,9 +97,9 @@ Stencil ParseStencil(const std::string& text)
   if (text.find(':') != std::string::npos)
   {
     std::vector<std::array<int, 3>> offsets;
-    for (const std::string& point : Split(text, '+'))
+    for (const std::string& point : SplitText(text, '+'))
     {
-      const std::vector<std::string> c = Split(point, ':');
+      const std::vector<std::string> c = SplitText(point, ':');
       if (c.size() != 2 && c.size() != 3)
         throw BadShape(text, "'" + point + "' is not an offset x:y or x:y:z");
       offsets.push_back({ { ParseOffset(text, c[0]), ParseOffset(text, c[1]),
@@ -131,7 +120,7 @@ Stencil ParseStencil(const std::string& text)
   std::string lower = text;
   std::transform(lower.begin(), lower.end(), lower.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const std::vector<std::string> sizes = Split(lower, 'x');
+  const std::vector<std::string> sizes = SplitText(lower, 'x');
   if (sizes.size() == 2 || sizes.size() == 3)
   {
     const int nx = ParseCount(text, sizes[0], 1);
@@ -145,7 +134,7 @@ Stencil ParseStencil(const std::string& text)
 std::vector<Stencil> ParseStencils(const std::string& list)
 {
   std::vector<Stencil> shapes;
-  for (const std::string& item : Split(list, ','))
+  for (const std::string& item : SplitText(list, ','))
     if (!item.empty())
       shapes.push_back(ParseStencil(item));
   return shapes;

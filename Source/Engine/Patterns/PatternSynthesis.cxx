@@ -3,7 +3,9 @@
 
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "Core/MirrorFold.h"
 #include "Core/Random.h"
+#include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Patterns/BlockSampler.h"
 
@@ -95,23 +97,20 @@ std::vector<T> Unfold(const std::vector<T>& part, const std::array<std::int64_t,
   const PatternOptions& o, Map&& map)
 {
   const auto& full = o.Size;
+  const int axes = (o.Mirror[0] ? 1 : 0) | (o.Mirror[1] ? 2 : 0) | (o.Mirror[2] ? 4 : 0);
   std::vector<T> out(static_cast<std::size_t>(full[0] * full[1] * full[2]));
-  for (std::int64_t z = 0; z < full[2]; ++z)
-    for (std::int64_t y = 0; y < full[1]; ++y)
-      for (std::int64_t x = 0; x < full[0]; ++x)
+  std::array<std::int64_t, 3> q, p;
+  std::size_t i = 0;
+  for (q[2] = 0; q[2] < full[2]; ++q[2])
+    for (q[1] = 0; q[1] < full[1]; ++q[1])
+      for (q[0] = 0; q[0] < full[0]; ++q[0], ++i)
       {
-        std::int64_t c[3] = { x, y, z };
-        int flips = 0;
-        for (std::size_t a = 0; a < 3; ++a)
-          if (c[a] >= partSize[a])
-          {
-            c[a] = full[a] - 1 - c[a];
-            ++flips;
-          }
-        T v = part[static_cast<std::size_t>(c[0] + partSize[0] * (c[1] + partSize[1] * c[2]))];
+        const int flips =
+          __builtin_popcount(static_cast<unsigned>(FoldMirror(q, full, partSize, axes, p)));
+        T v = part[static_cast<std::size_t>(p[0] + partSize[0] * (p[1] + partSize[1] * p[2]))];
         for (int k = 0; k < flips; ++k)
           v = map(v);
-        out[static_cast<std::size_t>(x + full[0] * (y + full[1] * z))] = v;
+        out[i] = v;
       }
   return out;
 }
@@ -226,64 +225,28 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
   }
 }
 
-bool ParseInt(const std::string& text, std::int32_t& value)
-{
-  if (text.empty() || text.size() > 11)
-    return false;
-  std::size_t used = 0;
-  try
-  {
-    const long v = std::stol(text, &used);
-    if (used != text.size() || v < INT32_MIN || v > INT32_MAX)
-      return false;
-    value = static_cast<std::int32_t>(v);
-    return true;
-  }
-  catch (const std::exception&)
-  {
-    return false;
-  }
-}
-
-std::vector<std::string> SplitOn(const std::string& text, char sep)
-{
-  std::vector<std::string> parts;
-  std::string item;
-  for (char c : text)
-  {
-    if (c == sep)
-    {
-      parts.push_back(item);
-      item.clear();
-    }
-    else if (c != ' ')
-      item += c;
-  }
-  parts.push_back(item);
-  return parts;
-}
-
 } // namespace
 
 std::map<std::int32_t, std::vector<std::int32_t>> ParseZoneLists(
   const std::string& text, const std::string& what)
 {
+  constexpr long long low = INT32_MIN, high = INT32_MAX;
   std::map<std::int32_t, std::vector<std::int32_t>> lists;
-  for (const std::string& item : SplitOn(text, ';'))
+  for (const std::string& item : SplitText(text, ';', true))
   {
     if (item.empty())
       continue;
     const std::size_t colon = item.find(':');
-    std::int32_t zone = 0;
-    if (colon == std::string::npos || !ParseInt(item.substr(0, colon), zone))
+    long long zone = 0;
+    if (colon == std::string::npos || !ParseInteger(item.substr(0, colon), low, high, zone))
       throw Error(what + ": '" + item + "' is not 'zone:a,b,...'");
-    auto& values = lists[zone];
-    for (const std::string& v : SplitOn(item.substr(colon + 1), ','))
+    auto& values = lists[static_cast<std::int32_t>(zone)];
+    for (const std::string& v : SplitText(item.substr(colon + 1), ','))
     {
-      std::int32_t value = 0;
-      if (!ParseInt(v, value))
+      long long value = 0;
+      if (!ParseInteger(v, low, high, value))
         throw Error(what + ": '" + item + "' is not 'zone:a,b,...' ('" + v + "' is not a number)");
-      values.push_back(value);
+      values.push_back(static_cast<std::int32_t>(value));
     }
   }
   return lists;
@@ -291,19 +254,7 @@ std::map<std::int32_t, std::vector<std::int32_t>> ParseZoneLists(
 
 std::map<Label, Label> ParseMirrorSwaps(const std::string& text)
 {
-  std::map<Label, Label> map;
-  for (const std::string& item : SplitOn(text, ','))
-  {
-    if (item.empty())
-      continue;
-    const std::vector<std::string> ab = SplitOn(item, ':');
-    Label a = 0, b = 0;
-    if (ab.size() != 2 || !ParseInt(ab[0], a) || !ParseInt(ab[1], b))
-      throw Error("mirror swaps: '" + item + "' is not a pair 'a:b' of labels");
-    map[a] = b;
-    map[b] = a;
-  }
-  return map;
+  return ParseLabelPairs(text, true, "mirror swaps");
 }
 
 PatternResult SynthesizePattern(

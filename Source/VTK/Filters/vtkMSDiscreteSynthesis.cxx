@@ -27,6 +27,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
@@ -210,27 +211,16 @@ namespace
 bool ReadMap(vtkMSDiscreteSynthesis* self, const char* property, const char* value, bool both,
   std::map<msynth::Label, msynth::Label>& map)
 {
-  std::string text = value ? value : "";
-  for (char& c : text)
-    c = c == ',' || c == ';' ? ' ' : c;
-  std::istringstream pairs(text);
-  std::string pair;
-  while (pairs >> pair)
+  try
   {
-    int a = 0, b = 0;
-    char colon = 0, extra = 0;
-    std::istringstream one(pair);
-    if (!(one >> a >> colon >> b) || colon != ':' || (one >> extra))
-    {
-      vtkErrorWithObjectMacro(
-        self, << property << ": '" << pair << "' is not a pair 'a:b' of labels.");
-      return false;
-    }
-    map[a] = b;
-    if (both)
-      map[b] = a;
+    map = msynth::ParseLabelPairs(value ? value : "", both, property);
+    return true;
   }
-  return true;
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << e.what() << ".");
+    return false;
+  }
 }
 
 /// The symmetries (D§3.5.2) and soft constraints (M07§4.2) of the filter's properties.
@@ -257,25 +247,20 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
   if (self->GetRotate() &&
     !ReadMap(self, "RotationMap", self->GetRotationMap(), false, options.Rotate.Map))
     return false;
-  std::string text = self->GetTargetFractions() ? self->GetTargetFractions() : "";
-  for (char& c : text)
-    c = c == ',' || c == ';' ? ' ' : c;
-  std::istringstream pairs(text);
-  std::string pair;
-  while (pairs >> pair)
+  try
   {
-    int label = 0;
-    double fraction = 0.0;
-    char colon = 0, extra = 0;
-    std::istringstream one(pair);
-    if (!(one >> label >> colon >> fraction) || colon != ':' || (one >> extra))
+    const char* targets = self->GetTargetFractions();
+    for (const auto& [label, fraction] :
+      msynth::ParseLabelValues(targets ? targets : "", "TargetFractions", "fraction"))
     {
-      vtkErrorWithObjectMacro(
-        self, << "TargetFractions: '" << pair << "' is not 'label:fraction'.");
-      return false;
+      options.Soft.TargetFractions[label] = fraction;
+      options.Soft.Temperature = self->GetSoftTemperature();
     }
-    options.Soft.TargetFractions[label] = fraction;
-    options.Soft.Temperature = self->GetSoftTemperature();
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << e.what() << ".");
+    return false;
   }
   return true;
 }

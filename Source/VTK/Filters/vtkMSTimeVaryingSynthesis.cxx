@@ -153,6 +153,8 @@ msynth::TimeVaryingOptions OptionsOf(vtkMSTimeVaryingSynthesis* self)
   const int* block = self->GetBlockSize();
   options.Size = { { size[0], size[1], size[2], self->GetNumberOfFrames() } };
   options.BlockSize = { { block[0], block[1], block[2], block[3] } };
+  const int* overlap = self->GetBlockOverlap();
+  options.Overlap = { { overlap[0], overlap[1], overlap[2], overlap[3] } };
   options.AttemptsPerBlock = self->GetAttemptsPerBlock();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.Choice = self->GetLabelChoice() == vtkMSTimeVaryingSynthesis::FREQUENCY
@@ -255,6 +257,8 @@ void vtkMSTimeVaryingSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfFrames: " << this->NumberOfFrames << "\n";
   os << indent << "BlockSize: " << this->BlockSize[0] << " " << this->BlockSize[1] << " "
      << this->BlockSize[2] << " " << this->BlockSize[3] << "\n";
+  os << indent << "BlockOverlap: " << this->BlockOverlap[0] << " " << this->BlockOverlap[1] << " "
+     << this->BlockOverlap[2] << " " << this->BlockOverlap[3] << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Loop: " << this->Loop << "\n";
   os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";

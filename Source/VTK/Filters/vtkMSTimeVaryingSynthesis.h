@@ -87,6 +87,12 @@ public:
   ///@}
 
   ///@{
+  /// Overlap of consecutive blocks (x, y, z, t); -1 means half a block. Default -1 -1 -1 -1.
+  vtkSetVector4Macro(BlockOverlap, int);
+  vtkGetVector4Macro(BlockOverlap, int);
+  ///@}
+
+  ///@{
   vtkSetClampMacro(AttemptsPerBlock, int, 1, 1000000);
   vtkGetMacro(AttemptsPerBlock, int);
   vtkSetMacro(Seed, vtkIdType);
@@ -136,6 +142,7 @@ private:
   int OutputSize[3] = { 32, 32, 1 };
   int NumberOfFrames = 16;
   int BlockSize[4] = { 0, 0, 0, 0 };
+  int BlockOverlap[4] = { -1, -1, -1, -1 };
   int AttemptsPerBlock = 10;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;
