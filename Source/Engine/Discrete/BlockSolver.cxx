@@ -26,7 +26,7 @@ BlockSolver::BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& op
   , LastBlock(shared.LastBlock)
 {
   this->N = options.Size;
-  this->Order = options.Order;
+  this->SiteOrderNow = options.Order;
   LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
   if (seams)
     this->Cat.SetArcs(seams->Relation.get(), &seams->Arcs);
@@ -233,14 +233,14 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
   // Assign the free sites (lines 19-29), in the chosen order, with bounded chronological
   // backtracking (BlockSearch.cxx): a choice that empties a catalog is undone and ruled out there.
   BlockSearch search(*this, block, rng, assignments);
-  if (this->Order == SiteOrder::MinimumEntropy)
+  if (this->SiteOrderNow == SiteOrder::MinimumEntropy)
   {
     empty =
       this->AssignByEntropy(free, rng, [&](std::int64_t local) { return search.Assign(local); });
   }
   else
   {
-    if (this->Order == SiteOrder::Random)
+    if (this->SiteOrderNow == SiteOrder::Random)
     {
       for (std::size_t i = free.size(); i > 1; --i)
         std::swap(free[i - 1], free[static_cast<std::size_t>(rng.Below(i))]);

@@ -53,10 +53,67 @@ class BlockSolver
 {
 public:
   /// A solver over @p shared; the first solver of a run sizes it, later ones (one per extra
-  /// thread) share it. Driver (may be null) tells when the run is being cancelled; Worker is
-  /// this solver's worker number there.
+  /// thread) share it.
   BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& options, const MirrorPlan* plan,
     const SymmetryPlan* seams, SharedModel& shared);
+
+  /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
+  void ApplyBoundary();
+
+  /// SynthesisOptions::Pins as fixed labels, checked (PinnedSites.cxx). Returns their number.
+  std::int64_t ApplyPins();
+  /// Block synthesis: each group of touching pins not in the start yet gets a block around it
+  /// (its box grown by half a block of size @p m on each side, doubled while it cannot be solved).
+  void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments);
+
+  /// The start of Algorithm 3.4 (lines 3-5), checked for consistency (TrivialStart.cxx): one
+  /// trivial label everywhere, else one per layer along an axis. Returns the label most sites
+  /// start with.
+  int TrivialStart();
+
+  /// One attempt at a block (lines 9-29 of Algorithm 3.4). Returns -1 on success, else the
+  /// model index of the site whose catalog became empty.
+  std::int64_t RunBlock(const Block& block, Random& rng, std::int64_t& assignments);
+
+  /// After a block: emit its snapshots (padded to SnapshotsPerBlock with the final state).
+  void CommitSnapshots(std::int64_t assignments);
+
+  /// Before the first block: the snapshot of the start.
+  void StartSnapshots();
+
+  /// Whether the run reports catalog snapshots.
+  bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
+
+  /// Joins a run: @p driver (may be null) tells when it is being cancelled; @p worker is this
+  /// solver's worker number there.
+  void Attach(BlockDriver* driver, unsigned worker)
+  {
+    this->Driver = driver;
+    this->Worker = worker;
+  }
+
+  /// The size of the model (the part synthesized, for a symmetric output).
+  const Coord& Size() const { return this->N; }
+
+  /// The order of the sites in a block (the options', until a repair pass sets another).
+  SiteOrder Order() const { return this->SiteOrderNow; }
+  void SetOrder(SiteOrder order) { this->SiteOrderNow = order; }
+
+  /// Choices undone by backtracking, over all blocks so far.
+  std::int64_t Backtracks() const { return this->Backtracked; }
+
+  /// Drops the snapshots of the block just run (it keeps its previous labels).
+  void DropSnapshots() { this->Pending.clear(); }
+
+private:
+  friend class BlockSearch;
+
+  /// Pinned labels next to each other or to boundary labels that the rules never put together.
+  void CheckPinnedPairs() const;
+  /// Arc consistency from the fixed labels over the pins' box [@p lo, @p hi], grown by 16 sites.
+  void CheckPinsPropagate(const Coord& lo, const Coord& hi);
+  /// The bounding box [@p lo, @p hi] of the pins face-connected to site @p first.
+  void PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const;
 
   /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
   void SetUpResemblance();
@@ -77,9 +134,6 @@ public:
 
   int LabelIndex(Label value, const char* what) const;
 
-  /// Boundary layers (Fig. 3.11), with precedence -z, +z, -y, +y, -x, +x.
-  void ApplyBoundary();
-
   /// Calls @p fn(p, q, axis) for every pair of sites q = p + 1 along an axis, in scan order.
   template <typename Fn>
   void ForEachAdjacentPair(Fn&& fn) const
@@ -95,23 +149,6 @@ public:
               fn(p, q, axis);
           }
   }
-
-  /// SynthesisOptions::Pins as fixed labels, checked (PinnedSites.cxx). Returns their number.
-  std::int64_t ApplyPins();
-  /// Pinned labels next to each other or to boundary labels that the rules never put together.
-  void CheckPinnedPairs() const;
-  /// Arc consistency from the fixed labels over the pins' box [@p lo, @p hi], grown by 16 sites.
-  void CheckPinsPropagate(const Coord& lo, const Coord& hi);
-  /// Block synthesis: each group of touching pins not in the start yet gets a block around it
-  /// (its box grown by half a block of size @p m on each side, doubled while it cannot be solved).
-  void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments);
-  /// The bounding box [@p lo, @p hi] of the pins face-connected to site @p first.
-  void PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const;
-
-  /// The start of Algorithm 3.4 (lines 3-5), checked for consistency (TrivialStart.cxx): one
-  /// trivial label everywhere, else one per layer along an axis. Returns the label most sites
-  /// start with.
-  int TrivialStart();
 
   /// SynthesisOptions::Start in the model, checked. Returns its commonest label.
   int GivenStart(const LabelGrid& start);
@@ -146,10 +183,6 @@ public:
   /// weight, each times the guide's weight of the site's region (D§3.5.3).
   int ChooseLabel(std::int64_t local, Random& rng);
 
-  /// One attempt at a block (lines 9-29 of Algorithm 3.4). Returns -1 on success, else the
-  /// model index of the site whose catalog became empty.
-  std::int64_t RunBlock(const Block& block, Random& rng, std::int64_t& assignments);
-
   /// Minimum-entropy order with a priority queue (no full scan per step): entries are pushed
   /// when a site's catalog changes and skipped when stale.
   template <typename AssignFn>
@@ -165,11 +198,6 @@ public:
 
   /// During an attempt: capture when the block's decided fraction reaches the next milestone.
   void MaybeCapture(const Block& block, std::int64_t assignments);
-
-  /// After a block: emit its snapshots (padded to SnapshotsPerBlock with the final state).
-  void CommitSnapshots(std::int64_t assignments);
-
-  void StartSnapshots();
 
   bool HasGuide() const { return !this->GuideWeights.empty(); }
 
@@ -218,9 +246,6 @@ public:
       index / (this->N[0] * this->N[1]) } };
   }
 
-  /// Whether the run reports catalog snapshots.
-  bool Snapshots() const { return this->Options.SnapshotsPerBlock > 0 && this->Options.OnSnapshot; }
-
   /// Whether the run is being cancelled (the driver's poll, every 1024th of @p assignments).
   bool Poll(std::int64_t assignments)
   {
@@ -245,7 +270,7 @@ public:
   unsigned Worker = 0;                   ///< this solver's worker number in Driver
   std::int64_t Steps = 0;
   std::int64_t Backtracked = 0;          ///< choices undone by BlockSearch, over all blocks
-  SiteOrder Order = SiteOrder::ScanLine; ///< the options' order (the repair pass's may differ)
+  SiteOrder SiteOrderNow = SiteOrder::ScanLine; ///< the options' (a repair pass's may differ)
   std::vector<std::int64_t> Position;    ///< scan orders: each free site's place in the order
   double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };

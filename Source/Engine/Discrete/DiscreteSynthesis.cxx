@@ -191,7 +191,7 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
   SharedModel& shared, SynthesisStatistics& stats, std::vector<SiteOrder> orders = {})
 {
   BlockSolver& solver = workers[0];
-  const Coord n = solver.N;
+  const Coord n = solver.Size();
   BlockClient client;
   client.Enter = [&blocks, &soft](unsigned, std::size_t i) { soft.Save(i, blocks[i]); };
   client.Attempt = [&blocks, &workers, orders](
@@ -199,14 +199,14 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
   {
     BlockSolver& worker = workers[w];
     if (!orders.empty())
-      worker.Order = orders[static_cast<std::size_t>(attempt) % orders.size()];
+      worker.SetOrder(orders[static_cast<std::size_t>(attempt) % orders.size()]);
     return worker.RunBlock(blocks[i], rng, assignments);
   };
   client.After = [&blocks, &soft, &solver, &stats](std::size_t i, const BlockOutcome& out)
   {
     const bool kept = out.Solved() && soft.Decide(i, blocks[i]);
     if (!kept)
-      solver.Pending.clear(); // the block keeps its previous labels: repeat that state
+      solver.DropSnapshots(); // the block keeps its previous labels: repeat that state
     solver.CommitSnapshots(stats.Assignments + out.Assignments);
   };
   client.Describe = [&blocks, n](std::size_t i, const BlockOutcome& out, BlockFailure& f)
@@ -262,7 +262,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   // Alternating the order the first pass did not use with minimum entropy or scan line: a
   // block one order cannot finish the other often can (entropy order closes the loops of
   // WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
-  const SiteOrder order = workers[0].Order;
+  const SiteOrder order = workers[0].Order();
   BlockPass pass;
   pass.AttemptOffset = options.AttemptsPerBlock * (1 + 2 * round);
   pass.Attempts = 2 * options.AttemptsPerBlock;
@@ -274,7 +274,7 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
       : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order });
   const SynthesisStatus status =
     driver.Run(BlockSchedule::InSequence(std::move(keys)), client, second, pass);
-  workers[0].Order = order;
+  workers[0].SetOrder(order);
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
@@ -294,7 +294,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     throw Error("attempts per block must be at least 1");
   SharedModel shared;
   BlockSolver solver(rules, options, plan, seams, shared);
-  const Coord n = solver.N;
+  const Coord n = solver.Size();
   Coord m, step;
   const bool wholeModel = BlockGeometry<3>(n, options.BlockSize, options.Overlap, m, step);
   solver.ApplyBoundary();
@@ -322,12 +322,11 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     std::move(policy), options.Seed, options.AttemptsPerBlock, blocks.size(), start);
   Workers workers;
   workers.First = &solver;
-  solver.Driver = &driver;
+  solver.Attach(&driver, 0);
   for (unsigned w = 1; w < driver.Workers(); ++w)
   {
     workers.Extra.push_back(std::make_unique<BlockSolver>(rules, options, plan, seams, shared));
-    workers.Extra.back()->Driver = &driver;
-    workers.Extra.back()->Worker = w;
+    workers.Extra.back()->Attach(&driver, w);
   }
 
   if (!wholeModel && options.Pins)
@@ -348,9 +347,9 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     result.Status =
       RepairFailedBlocks(options, blocks, driver, workers, soft, shared, stats, round);
   }
-  stats.Backtracks = solver.Backtracked;
+  stats.Backtracks = solver.Backtracks();
   for (const auto& extra : workers.Extra)
-    stats.Backtracks += extra->Backtracked;
+    stats.Backtracks += extra->Backtracks();
   if (!driver.End(result.Status, result.Message, stats, wholeModel,
         [&](const BlockFailure& f)
         {
@@ -359,11 +358,11 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
             "Try another seed, more attempts, or block synthesis");
         }))
     return result;
-  std::vector<Label> values(solver.Model.size());
+  std::vector<Label> values(shared.Model.size());
   for (std::size_t s = 0; s < values.size(); ++s)
-    values[s] = rules.LabelValues()[static_cast<std::size_t>(solver.Model[s])];
+    values[s] = rules.LabelValues()[static_cast<std::size_t>(shared.Model[s])];
   result.Model = LabelGrid(n, std::move(values));
-  result.LastBlock = std::move(solver.LastBlock);
+  result.LastBlock = std::move(shared.LastBlock);
   result.Message = Summary(stats, wholeModel);
   return result;
 }
