@@ -242,6 +242,9 @@ class ContinuousSynthesisTest(unittest.TestCase):
         solver.UpdateTimeStep(0.0)
         start = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
         self.assertGreater(start.max(), 1)
+        # Undecided vertices hold the one undecided value of every filter (VTK_INT_MIN).
+        labels = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("Label"))
+        np.testing.assert_array_equal(labels == -2**31, start > 1)
         solver.UpdateTimeStep(3.0)
         end = vtk_to_numpy(solver.GetOutput().GetPointData().GetArray("CatalogSize"))
         self.assertEqual(end.max(), 1)

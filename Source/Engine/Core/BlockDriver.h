@@ -14,6 +14,7 @@
  * clock, cancel poll and status.
  */
 #include "Core/BlockSynthesis.h"
+#include "Core/ProgressPoll.h"
 #include "Core/Random.h"
 
 #include <algorithm>
@@ -112,7 +113,7 @@ public:
   /// The one cancel poll of the solvers' inner loops: Stopped, every 1024th of @p count.
   bool Poll(unsigned worker, std::int64_t count)
   {
-    return (count & 1023) == 0 && this->Stopped(worker);
+    return detail::PollDue(count) && this->Stopped(worker);
   }
 
   /// Seconds since the run's start.

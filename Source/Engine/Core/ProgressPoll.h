@@ -7,12 +7,19 @@
  * abort flag, the command line's progress bar) and says whether to go on.
  */
 #include <chrono>
+#include <cstdint>
 #include <functional>
 
 namespace msynth
 {
 namespace detail
 {
+
+/// The one cadence of every solver's cancel poll: every 1024th step (assignment, move).
+constexpr bool PollDue(std::int64_t step)
+{
+  return (step & 1023) == 0;
+}
 
 class ProgressPoll
 {

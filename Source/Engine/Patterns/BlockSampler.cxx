@@ -160,7 +160,7 @@ private:
   bool Tick(std::int64_t movesThisSample, std::int64_t minimum, int n, int total)
   {
     ++this->R.Moves;
-    if ((this->R.Moves & 1023) != 0)
+    if (!detail::PollDue(this->R.Moves))
       return true;
     const double within = std::min(1.0,
       static_cast<double>(movesThisSample) /

@@ -3,6 +3,7 @@
 
 #include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
@@ -257,7 +258,7 @@ void vtkMSContinuousSynthesis::FillOutput(
     for (vtkIdType v = 0; v < n; ++v)
     {
       const msynth::Label l = snap.Labels[static_cast<std::size_t>(v)];
-      label->SetValue(v, l == msynth::CatalogSnapshot::Undecided ? -1 : l); // -1: undecided
+      label->SetValue(v, l == msynth::CatalogSnapshot::Undecided ? vtkMSLabelArrays::Undecided : l);
     }
     vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
     vtkMSSynthesisRun::AddStep(output, snap.Step, snap.Block, snap.Assignments);

@@ -13,7 +13,8 @@
  * `BlocksFailed`, `Attempts`, `FailedAttempts`, `Assignments`, `Backtracks`, `Seconds`, `Status`,
  * `Message`, ...; see vtkMSFieldData::AddStatistics). With NumberOfSnapshots S > 0 the output
  * has S + 1 time steps: the catalog at the start and at S even fractions of the work, so ParaView
- * can animate it shrinking; `Label` is then −1 where undecided and `ModelLabel` holds the finished
+ * can animate it shrinking; `Label` is then vtkMSLabelArrays::Undecided (VTK_INT_MIN, as in
+ * every filter) where undecided and `ModelLabel` holds the finished
  * model at every step.
  *
  * Constraints beyond adjacency (TVCG 2010 §4.5–4.7, msynth::ContinuousConstraints): Grounded

@@ -496,7 +496,8 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
     const msynth::CatalogSnapshot& snap = run.Snapshots[step];
     for (std::size_t i = 0; i < snap.Labels.size(); ++i)
       label->SetValue(static_cast<vtkIdType>(i),
-        snap.Labels[i] == msynth::CatalogSnapshot::Undecided ? VTK_INT_MIN : snap.Labels[i]);
+        snap.Labels[i] == msynth::CatalogSnapshot::Undecided ? vtkMSLabelArrays::Undecided
+                                                             : snap.Labels[i]);
     vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
     vtkMSSynthesisRun::AddStep(output, snap.Step, snap.Block, snap.Assignments);
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));

@@ -9,7 +9,8 @@
 #ifndef vtkMSLabelArrays_h
 #define vtkMSLabelArrays_h
 
-#include "Core/LabelGrid.h"     // for msynth::LabelGrid
+#include "Core/BlockSynthesis.h" // for msynth::CatalogSnapshot
+#include "Core/LabelGrid.h"      // for msynth::LabelGrid
 #include "ModelSynthIOModule.h" // for export macro
 
 #include <array>
@@ -25,6 +26,10 @@ class vtkPolyData;
 class MODELSYNTHIO_EXPORT vtkMSLabelArrays
 {
 public:
+  /// The one value of a `Label` array at a site a catalog snapshot has not decided yet, in
+  /// every filter (VTK_INT_MIN, msynth::CatalogSnapshot::Undecided: no label has it).
+  static constexpr int Undecided = msynth::CatalogSnapshot::Undecided;
+
   /// True when @p array holds integers (any width or signedness).
   static bool IsIntegerArray(vtkDataArray* array);
 
