@@ -41,6 +41,7 @@ struct vtkMSContinuousSynthesis::Cache
 vtkStandardNewMacro(vtkMSContinuousSynthesis);
 
 vtkMSContinuousSynthesis::vtkMSContinuousSynthesis()
+  : Cached(std::make_unique<Cache>())
 {
   this->SetNumberOfInputPorts(3);
 }
@@ -199,10 +200,6 @@ int vtkMSContinuousSynthesis::RequestData(
     arrangementData->GetNumberOfPoints() == 0)
   {
     return 1; // in parallel, the arrangement lives on piece 0
-  }
-  if (!this->Cached)
-  {
-    this->Cached.reset(new Cache);
   }
   Cache& cache = *this->Cached;
   if (cache.Run.Fresh(this, { example, arrangementData, guide }))

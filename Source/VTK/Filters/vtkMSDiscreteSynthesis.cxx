@@ -63,17 +63,14 @@ int vtkMSDiscreteSynthesis::GridSize(int axis) const
 }
 
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
-  : Internal(new Internals)
+  : Internal(std::make_unique<Internals>())
 {
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Label");
 }
 
-vtkMSDiscreteSynthesis::~vtkMSDiscreteSynthesis()
-{
-  delete this->Internal;
-}
+vtkMSDiscreteSynthesis::~vtkMSDiscreteSynthesis() = default;
 
 namespace
 {

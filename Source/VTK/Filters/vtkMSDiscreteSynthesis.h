@@ -87,6 +87,7 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
 #include <string> // for ivar
 
 class vtkDataArray;
@@ -432,7 +433,7 @@ private:
   int EmptyLabel = 0;
 
   struct Internals;
-  Internals* Internal;
+  std::unique_ptr<Internals> Internal;
 };
 
 #endif

@@ -39,7 +39,7 @@ struct vtkMSPatternSynthesis::Cache
 };
 
 vtkMSPatternSynthesis::vtkMSPatternSynthesis()
-  : Cached(new Cache)
+  : Cached(std::make_unique<Cache>())
 {
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(1);

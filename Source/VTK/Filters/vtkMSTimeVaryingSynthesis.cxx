@@ -37,7 +37,7 @@ struct vtkMSTimeVaryingSynthesis::Cache
 };
 
 vtkMSTimeVaryingSynthesis::vtkMSTimeVaryingSynthesis()
-  : Cached(new Cache)
+  : Cached(std::make_unique<Cache>())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
