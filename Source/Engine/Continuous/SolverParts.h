@@ -21,12 +21,16 @@ namespace msynth
 namespace detail
 {
 
-/// Vertices grouped into overlapping blocks: cells of half the block edge, a block is 2×2×2 cells.
+/**
+ * Vertices grouped into overlapping blocks (T§4.5.6): cells of half the block edge, a block is
+ * 2 × 2 × 2 cells, one cell apart: the shared box-block grid (Core/BlockSynthesis.h's
+ * PlanBoxBlocks) over the cells.
+ */
 struct BlockLayout
 {
   std::array<std::int64_t, 3> Cells{ { 1, 1, 1 } };
   std::vector<std::vector<std::int64_t>> CellVertices;
-  std::array<std::int64_t, 3> Blocks{ { 1, 1, 1 } };
+  std::vector<BoxBlock<3>> Grid; ///< the blocks in scan order, in cells
 
   BlockLayout(const PlaneArrangement& arrangement, double edge)
   {
@@ -34,35 +38,29 @@ struct BlockLayout
     const int dims = arrangement.Planar() ? 2 : 3;
     const double half = edge / 2;
     std::array<double, 3> lo{};
-    for (int c = 0; c < 3; ++c)
+    for (std::size_t c = 0; c < 3; ++c)
     {
-      lo[static_cast<std::size_t>(c)] =
-        p.Origin[static_cast<std::size_t>(c)] + p.Quantum * static_cast<double>(p.BoxLow[c]);
-      if (c < dims && edge > 0)
+      lo[c] = p.Origin[c] + p.Quantum * static_cast<double>(p.BoxLow[c]);
+      if (static_cast<int>(c) < dims && edge > 0)
       {
         const double extent = p.Quantum * static_cast<double>(p.BoxHigh[c] - p.BoxLow[c]);
-        this->Cells[static_cast<std::size_t>(c)] =
+        this->Cells[c] =
           std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent / half - 1e-9)));
-        this->Blocks[static_cast<std::size_t>(c)] =
-          std::max<std::int64_t>(1, this->Cells[static_cast<std::size_t>(c)] - 1);
       }
     }
+    int phases = 0;
+    this->Grid = PlanBoxBlocks<3>(
+      this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, PhasePolicy::Sequential, phases);
     this->CellVertices.resize(
       static_cast<std::size_t>(this->Cells[0] * this->Cells[1] * this->Cells[2]));
     for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
     {
       std::array<std::int64_t, 3> cell{ { 0, 0, 0 } };
-      for (int c = 0; c < dims; ++c)
+      for (std::size_t c = 0; static_cast<int>(c) < dims && edge > 0; ++c)
       {
-        if (edge > 0)
-        {
-          const double t = (arrangement.Position(v)[static_cast<std::size_t>(c)] -
-                             lo[static_cast<std::size_t>(c)]) /
-            half;
-          cell[static_cast<std::size_t>(c)] =
-            std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(t)), 0,
-              this->Cells[static_cast<std::size_t>(c)] - 1);
-        }
+        const double t = (arrangement.Position(v)[c] - lo[c]) / half;
+        cell[c] =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(t)), 0, this->Cells[c] - 1);
       }
       this
         ->CellVertices[static_cast<std::size_t>(
@@ -71,21 +69,21 @@ struct BlockLayout
     }
   }
 
-  std::int64_t NumberOfBlocks() const
-  {
-    return this->Blocks[0] * this->Blocks[1] * this->Blocks[2];
-  }
+  std::int64_t NumberOfBlocks() const { return static_cast<std::int64_t>(this->Grid.size()); }
 
   /// Blocks by their distance (in blocks, the largest difference along an axis) from the
   /// nearest block that holds a seed vertex, ties in scan order; scan order without seeds. So
   /// objects growing from seeds spread outward block by block.
   std::vector<std::int64_t> OrderFrom(const std::vector<std::int64_t>& seeds) const
   {
-    std::vector<std::int64_t> order(static_cast<std::size_t>(this->NumberOfBlocks()));
+    std::vector<std::int64_t> order(this->Grid.size());
     for (std::size_t i = 0; i < order.size(); ++i)
       order[i] = static_cast<std::int64_t>(i);
     if (seeds.empty())
       return order;
+    // A block's origin (in cells) is its place in the block grid; a seed's cell lies in the
+    // block of the same origin, clamped to the last block.
+    const BoxBlock<3>& last = this->Grid.back();
     std::vector<std::array<std::int64_t, 3>> from;
     for (std::size_t c = 0; c < this->CellVertices.size(); ++c)
     {
@@ -94,18 +92,16 @@ struct BlockLayout
         if (std::binary_search(seeds.begin(), seeds.end(), v))
         {
           const auto cell = static_cast<std::int64_t>(c);
-          from.push_back({ { std::min(cell % this->Cells[0], this->Blocks[0] - 1),
-            std::min((cell / this->Cells[0]) % this->Cells[1], this->Blocks[1] - 1),
-            std::min(cell / (this->Cells[0] * this->Cells[1]), this->Blocks[2] - 1) } });
+          from.push_back({ { std::min(cell % this->Cells[0], last.Origin[0]),
+            std::min((cell / this->Cells[0]) % this->Cells[1], last.Origin[1]),
+            std::min(cell / (this->Cells[0] * this->Cells[1]), last.Origin[2]) } });
         }
       }
     }
     std::vector<std::int64_t> distance(order.size(), 0);
     for (std::size_t b = 0; b < order.size(); ++b)
     {
-      const auto i = static_cast<std::int64_t>(b);
-      const std::array<std::int64_t, 3> at{ { i % this->Blocks[0],
-        (i / this->Blocks[0]) % this->Blocks[1], i / (this->Blocks[0] * this->Blocks[1]) } };
+      const auto& at = this->Grid[b].Origin;
       std::int64_t best = std::numeric_limits<std::int64_t>::max();
       for (const auto& f : from)
         best = std::min(best,
@@ -121,21 +117,18 @@ struct BlockLayout
   /// Vertices of block @p b in ascending (scan) order.
   std::vector<std::int64_t> Vertices(std::int64_t b) const
   {
-    const std::int64_t bx = b % this->Blocks[0], by = (b / this->Blocks[0]) % this->Blocks[1],
-                       bz = b / (this->Blocks[0] * this->Blocks[1]);
+    const BoxBlock<3>& block = this->Grid[static_cast<std::size_t>(b)];
     std::vector<std::int64_t> out;
-    for (std::int64_t z = bz; z < std::min(bz + 2, this->Cells[2]); ++z)
-    {
-      for (std::int64_t y = by; y < std::min(by + 2, this->Cells[1]); ++y)
-      {
-        for (std::int64_t x = bx; x < std::min(bx + 2, this->Cells[0]); ++x)
+    std::array<std::int64_t, 3> c;
+    const auto& o = block.Origin;
+    for (c[2] = o[2]; c[2] < o[2] + block.Dims[2]; ++c[2])
+      for (c[1] = o[1]; c[1] < o[1] + block.Dims[1]; ++c[1])
+        for (c[0] = o[0]; c[0] < o[0] + block.Dims[0]; ++c[0])
         {
-          const auto& c = this->CellVertices[static_cast<std::size_t>(
-            x + this->Cells[0] * (y + this->Cells[1] * z))];
-          out.insert(out.end(), c.begin(), c.end());
+          const auto& cell = this->CellVertices[static_cast<std::size_t>(
+            c[0] + this->Cells[0] * (c[1] + this->Cells[1] * c[2]))];
+          out.insert(out.end(), cell.begin(), cell.end());
         }
-      }
-    }
     std::sort(out.begin(), out.end());
     return out;
   }

@@ -269,9 +269,9 @@ private:
   BlockDriver* Driver = nullptr;         ///< the run (cancellation), or nullptr
   unsigned Worker = 0;                   ///< this solver's worker number in Driver
   std::int64_t Steps = 0;
-  std::int64_t Backtracked = 0;          ///< choices undone by BlockSearch, over all blocks
+  std::int64_t Backtracked = 0;                 ///< choices undone by BlockSearch, over all blocks
   SiteOrder SiteOrderNow = SiteOrder::ScanLine; ///< the options' (a repair pass's may differ)
-  std::vector<std::int64_t> Position;    ///< scan orders: each free site's place in the order
+  std::vector<std::int64_t> Position; ///< scan orders: each free site's place in the order
   double FullEntropy = 0.0;
   Coord N{ { 1, 1, 1 } };
   std::vector<std::int32_t>& Model;     ///< label indices; -1 unassigned (shared)

@@ -3,8 +3,8 @@
 
 #include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
-#include "vtkMSLabelArrays.h"
 #include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
 #include "vtkMSSynthesisRun.h"

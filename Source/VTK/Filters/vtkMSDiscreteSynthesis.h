@@ -67,9 +67,9 @@
  * 0 .. Blocks × S (known before the run from the sizes): step 0 is the start, then S steps per
  * block taken as the block's sites get decided; the last step is the model. Each step adds the
  * point arrays `CatalogSize` (labels still possible) and `Entropy` (of the weighted possible
- * labels), and `Label` holds vtkMSLabelArrays::Undecided (VTK_INT_MIN) where a site is not decided yet (CatalogSize > 1).
- * Field data adds `Step`, `ActiveBlock` and `StepAssignments`. The run is done once and cached;
- * changing the time step only picks another snapshot.
+ * labels), and `Label` holds vtkMSLabelArrays::Undecided (VTK_INT_MIN) where a site is not decided
+ * yet (CatalogSize > 1). Field data adds `Step`, `ActiveBlock` and `StepAssignments`. The run is
+ * done once and cached; changing the time step only picks another snapshot.
  *
  * Geometry: output port 1 (GetGeometryOutput) is the model's voxel surface, vtkPolyData with
  * the cell scalars `Label`, so that a viewer shows the model itself rather than the outline of

@@ -11,7 +11,7 @@
 
 #include "Core/BlockSynthesis.h" // for msynth::CatalogSnapshot
 #include "Core/LabelGrid.h"      // for msynth::LabelGrid
-#include "ModelSynthIOModule.h" // for export macro
+#include "ModelSynthIOModule.h"  // for export macro
 
 #include <array>
 #include <string>
