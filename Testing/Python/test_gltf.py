@@ -181,6 +181,34 @@ class GltfTest(unittest.TestCase):
             g.GetInputDataObject(0, 0).GetPointData().GetArray("Label"))))
         self.assertAlmostEqual(area, 0.75 * sites, places=3)
 
+    def test_vertices_and_lines_are_left_out(self):
+        """Cell data of polygons follows the vertices' and lines': each triangle keeps its label."""
+        from vtkmodules.vtkCommonCore import vtkIntArray, vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+        mesh = vtkPolyData()
+        points = vtkPoints()
+        for p in [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (2, 0, 0), (2, 1, 1)]:
+            points.InsertNextPoint(*p)
+        mesh.SetPoints(points)
+        verts, lines, polys = vtkCellArray(), vtkCellArray(), vtkCellArray()
+        verts.InsertNextCell(1, [5])
+        lines.InsertNextCell(2, [4, 5])
+        polys.InsertNextCell(4, [0, 1, 2, 3])
+        polys.InsertNextCell(3, [1, 4, 5])
+        mesh.SetVerts(verts)
+        mesh.SetLines(lines)
+        mesh.SetPolys(polys)
+        labels = vtkIntArray()
+        labels.SetName("Label")
+        for value in (9, 8, 1, 2):  # vertex, line, quad, triangle
+            labels.InsertNextValue(value)
+        mesh.GetCellData().AddArray(labels)
+        path = tmp("verts-lines.glb")
+        self.assertEqual(write(mesh, path), (1, ""))
+        doc = self.check_file(path, mesh)
+        self.assertEqual([m["name"] for m in doc["materials"]], ["label 1", "label 2"])
+        self.assertEqual([n for _, n in read_back(path)], [2, 1])
+
     def test_empty_mesh_and_errors(self):
         from vtkmodules.vtkCommonDataModel import vtkPolyData
         path = tmp("empty.glb")
