@@ -13,12 +13,14 @@ Idempotent: does nothing when every package of the chosen set is installed.
 
   --runtime  build and run msynth, the Python package and the ParaView plugin: compilers, CMake,
              Ninja, ccache, the ParaView 5.11 SDK (its VTK and MPI), OpenVDB 10, CGAL 5.5,
-             CLI11, numpy (what Utilities/run-example.sh and build.sh --no-tests use)
+             CLI11, tinygltf, numpy (what Utilities/run-example.sh and build.sh --no-tests use)
   --gui      --runtime plus what drawing needs: the GUI's toolbar icons (libqt5svg5), an X server
              for pictures without a display (xvfb, xauth: render-model.py), screen grabs
              (x11-apps, netpbm: make-tutorial-pictures.py)
   --tests    --gui plus the test tools: GoogleTest, Google Benchmark, clang with libFuzzer
-             (fuzz.sh), clang-format (check-style.sh) (what run-tests.sh and build.sh use)
+             (fuzz.sh), clang-format (check-style.sh), Node.js with the Khronos glTF validator
+             from npm (into ~/.cache/modelsynth/npm; MSYNTH_NPM_PREFIX elsewhere) (what
+             run-tests.sh and build.sh use)
   --all      every package (the same as --tests); the default
   --list     print the chosen set's packages, one a line, and install nothing
   -h, --help this help
@@ -41,6 +43,8 @@ runtime=(
   libcgal-dev
   # the command line parser (header-only); numpy for the scripts and vtkmodules.numpy_interface
   libcli11-dev python3-numpy
+  # glTF output (mesh.glb)
+  libtinygltf-dev
 )
 # Drawing: the GUI's toolbar icons are SVG (blank without the Qt SVG plugin); rendering without a
 # display (render-model.py, the GUI test); screen grabs of the GUI (make-tutorial-pictures.py).
@@ -53,6 +57,13 @@ tests=(
   # Style (Utilities/check-style.sh)
   clang-format
 )
+# The glTF validator's runtime (Testing/Python/test_gltf_validator.py), only where no node or npm
+# is on the PATH already (a NodeSource nodejs brings its own npm, which Debian's npm conflicts with).
+command -v node > /dev/null || tests+=(nodejs)
+command -v npm > /dev/null || tests+=(npm)
+# The Khronos glTF validator (npm; a JavaScript library), pinned.
+gltf_validator="gltf-validator@2.0.0-dev.3.10"
+npm_prefix="${MSYNTH_NPM_PREFIX:-$HOME/.cache/modelsynth/npm}"
 
 set_name=all
 list=0
@@ -83,8 +94,21 @@ for p in "${packages[@]}"; do
   fi
 done
 
+# The glTF validator from npm, for the test sets; a failure (no network) only warns: its test is
+# then reported as not run.
+install_validator() {
+  case "$set_name" in tests | all) ;; *) return 0 ;; esac
+  if [ -f "$npm_prefix/node_modules/gltf-validator/package.json" ]; then return 0; fi
+  echo "install-dependencies: installing $gltf_validator into $npm_prefix (npm)"
+  mkdir -p "$npm_prefix"
+  if ! npm install --prefix "$npm_prefix" --no-audit --no-fund --no-save "$gltf_validator" > /dev/null; then
+    echo "install-dependencies: warning: npm could not install $gltf_validator; the glTF validator test will not run" >&2
+  fi
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-dependencies: all ${#packages[@]} packages of --$set_name present"
+  install_validator
   exit 0
 fi
 
@@ -94,3 +118,4 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+install_validator

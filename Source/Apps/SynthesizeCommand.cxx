@@ -10,6 +10,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSDiscreteSynthesis.h"
+#include "vtkMSGLTFWriter.h"
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSLabelGridWriter.h"
@@ -49,7 +50,8 @@ namespace
 {
 const std::vector<std::string> Orders{ "scanline", "random", "entropy" };
 const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
-const std::vector<std::string> OutputKinds{ "labels", "mesh", "vdb", "picture", "txt", "vox" };
+const std::vector<std::string> OutputKinds{ "labels", "mesh", "glb", "vdb", "picture", "txt",
+  "vox" };
 
 /// "A:B" with two integers.
 std::string LabelPair(const std::string& text)
@@ -98,7 +100,7 @@ std::string OutputList(const std::string& text)
   std::string item;
   while (std::getline(items, item, ','))
     if (std::find(OutputKinds.begin(), OutputKinds.end(), item) == OutputKinds.end())
-      return "unknown kind '" + Printable(item) + "' (labels, mesh, vdb, picture, txt, vox)";
+      return "unknown kind '" + Printable(item) + "' (labels, mesh, glb, vdb, picture, txt, vox)";
   return std::string();
 }
 
@@ -152,7 +154,8 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "fix LABEL on every other face (usually 0) but those of translated axes")
              ->expected(1));
   discrete(s.add_option("--outputs", o.Outputs,
-              "which files to write, from labels (labels.vti), mesh (mesh.vtp), vdb (model.vdb), "
+              "which files to write, from labels (labels.vti), mesh (mesh.vtp), glb (mesh.glb: "
+              "binary glTF, a material per label, with any --pieces), vdb (model.vdb), "
               "picture (picture.png, tilesets), txt (model.txt), vox (model.vox); default: "
               "labels,picture for a tileset, labels,mesh,vdb for a label grid, plus txt or vox "
               "for such an example; statistics.json is always written")
@@ -487,8 +490,9 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
   written.push_back(dir + "/picture.png");
 }
 
+/// mesh.vtp (@p vtp) and mesh.glb (@p glb) of the model's geometry, with any --pieces.
 void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
-  const std::string& dir, std::vector<std::string>& written)
+  const std::string& dir, std::vector<std::string>& written, bool vtp, bool glb)
 {
   vtkNew<vtkMSLabelGeometry> geometry;
   geometry->SetInputData(model);
@@ -506,8 +510,19 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   if (auto* warning = vtkStringArray::SafeDownCast(
         geometry->GetOutput()->GetFieldData()->GetAbstractArray("PieceFolderWarning")))
     std::cerr << "msynth: warning: --pieces " << msynth::Printable(warning->GetValue(0)) << "\n";
-  WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
-  written.push_back(dir + "/mesh.vtp");
+  if (vtp)
+  {
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", geometry->GetOutput());
+    written.push_back(dir + "/mesh.vtp");
+  }
+  if (glb)
+  {
+    vtkNew<vtkMSGLTFWriter> writer;
+    writer->SetInputData(geometry->GetOutput());
+    writer->SetFileName((dir + "/mesh.glb").c_str());
+    Run(writer);
+    written.push_back(dir + "/mesh.glb");
+  }
 }
 
 void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
@@ -576,8 +591,8 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
       written.push_back(path);
     }
   }
-  if (wanted("mesh"))
-    WriteMesh(model, o, tileset, dir, written);
+  if (wanted("mesh") || wanted("glb"))
+    WriteMesh(model, o, tileset, dir, written, wanted("mesh"), wanted("glb"));
   if (wanted("picture"))
     WritePicture(model, o, dir, written);
   if (wanted("vdb"))

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSGLTFWriter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkIdList.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTriangleFilter.h"
+
+#include "Core/LabelColor.h"
+#include "Formats/GltfFile.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+vtkStandardNewMacro(vtkMSGLTFWriter);
+
+namespace
+{
+/// A group of cells: label, then colour (RGBA bytes; all 256 when uncoloured).
+using GroupKey = std::pair<long long, std::array<int, 4>>;
+
+struct Group
+{
+  msynth::GltfPart Part;
+  std::unordered_map<vtkIdType, std::uint32_t> Vertex; // input point -> the part's vertex
+};
+
+std::string GroupName(const GroupKey& key, bool labelled, bool coloured)
+{
+  std::string name = labelled ? "label " + std::to_string(key.first) : "mesh";
+  if (coloured)
+  {
+    char hex[8];
+    std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", key.second[0] & 255, key.second[1] & 255,
+      key.second[2] & 255);
+    name += std::string(" ") + hex;
+  }
+  return name;
+}
+
+std::array<double, 4> GroupColor(const GroupKey& key, bool labelled, bool coloured)
+{
+  if (coloured)
+    return { key.second[0] / 255.0, key.second[1] / 255.0, key.second[2] / 255.0,
+      key.second[3] / 255.0 };
+  if (!labelled)
+    return { 0.7, 0.7, 0.7, 1.0 };
+  const auto rgb = msynth::LabelColor(static_cast<int>(key.first));
+  return { rgb[0], rgb[1], rgb[2], 1.0 };
+}
+
+/// The triangles of @p mesh grouped by label and colour, as glTF parts in key order.
+std::vector<msynth::GltfPart> GroupTriangles(
+  vtkPolyData* mesh, vtkDataArray* labels, vtkDataArray* colors)
+{
+  std::map<GroupKey, Group> groups;
+  vtkPoints* points = mesh->GetPoints();
+  vtkCellArray* polys = mesh->GetPolys();
+  vtkNew<vtkIdList> ids;
+  vtkIdType cell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines(); // polys come next
+  for (polys->InitTraversal(); polys->GetNextCell(ids); ++cell)
+  {
+    if (ids->GetNumberOfIds() != 3)
+      continue; // degenerate leftovers of the triangulation
+    GroupKey key{ 0, { 256, 256, 256, 256 } };
+    if (labels)
+      key.first = std::llround(labels->GetComponent(cell, 0));
+    if (colors)
+      for (int c = 0; c < 4; ++c)
+        key.second[static_cast<std::size_t>(c)] = c < colors->GetNumberOfComponents()
+          ? static_cast<int>(colors->GetComponent(cell, c))
+          : 255;
+    Group& group = groups[key];
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      const vtkIdType id = ids->GetId(k);
+      auto found = group.Vertex.find(id);
+      if (found == group.Vertex.end())
+      {
+        const auto index = static_cast<std::uint32_t>(group.Part.Positions.size() / 3);
+        found = group.Vertex.emplace(id, index).first;
+        double p[3];
+        points->GetPoint(id, p);
+        for (double x : p)
+          group.Part.Positions.push_back(static_cast<float>(x));
+      }
+      group.Part.Triangles.push_back(found->second);
+    }
+  }
+  std::vector<msynth::GltfPart> parts;
+  for (auto& entry : groups)
+  {
+    entry.second.Part.Name = GroupName(entry.first, labels != nullptr, colors != nullptr);
+    entry.second.Part.Color = GroupColor(entry.first, labels != nullptr, colors != nullptr);
+    parts.push_back(std::move(entry.second.Part));
+  }
+  return parts;
+}
+} // namespace
+
+void vtkMSGLTFWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "LabelArrayName: " << this->LabelArrayName << "\n";
+  os << indent << "ColorArrayName: " << this->ColorArrayName << "\n";
+}
+
+int vtkMSGLTFWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+void vtkMSGLTFWriter::WriteData()
+{
+  this->SetErrorCode(vtkErrorCode::NoError);
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No file name was given.");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
+  if (!input)
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "': cannot be written: the input is no mesh");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  try
+  {
+    vtkNew<vtkPolyData> surface; // polygons and strips only: verts and lines have no faces
+    surface->SetPoints(input->GetPoints());
+    surface->SetPolys(input->GetPolys());
+    surface->SetStrips(input->GetStrips());
+    surface->GetCellData()->PassData(input->GetCellData());
+    vtkNew<vtkPolyData> empty;
+    if (input->GetNumberOfVerts() + input->GetNumberOfLines() > 0)
+    {
+      // Cell data of polygons and strips follows the verts and lines: keep only their tuples.
+      surface->GetCellData()->Initialize();
+      const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
+      surface->GetCellData()->CopyAllocate(input->GetCellData(), input->GetNumberOfPolys());
+      for (vtkIdType c = 0; c < input->GetNumberOfPolys() + input->GetNumberOfStrips(); ++c)
+        surface->GetCellData()->CopyData(input->GetCellData(), first + c, c);
+    }
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputData(input->GetPoints() ? surface.GetPointer() : empty.GetPointer());
+    triangles->PassVertsOff();
+    triangles->PassLinesOff();
+    triangles->Update();
+    vtkPolyData* mesh = triangles->GetOutput();
+    vtkDataArray* labels = mesh->GetCellData()->GetArray(this->LabelArrayName.c_str());
+    vtkDataArray* colors = mesh->GetCellData()->GetArray(this->ColorArrayName.c_str());
+    if (colors && colors->GetNumberOfComponents() != 3 && colors->GetNumberOfComponents() != 4)
+      colors = nullptr;
+    msynth::WriteGlbFile(
+      this->FileName, GroupTriangles(mesh, labels, colors), "ModelSynth (vtkMSGLTFWriter)");
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+  }
+}
