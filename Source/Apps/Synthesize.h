@@ -37,6 +37,7 @@ struct SynthesizeOptions
   std::array<int, 3> Size3{ { 0, 0, 0 } }; ///< Size in sites
   std::vector<int> Block{ 0, 0, 0 };
   std::vector<int> Overlap{ -1, -1, -1 };
+  std::vector<int> Region{ 0, 0, 0, 0, 0, 0 };
   int Threads = 0;
   std::vector<int> Ground, Empty; ///< at most one value each
   std::string Outputs;            ///< comma-separated kinds; empty: what the example calls for

@@ -131,6 +131,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "block size BX BY BZ of Algorithm 3.4 (default: the whole model, Algorithm 3.1)")
              ->expected(3)
              ->check(CLI::Range(0, 1000000000)));
+  discrete(s.add_option("--region", o.Region,
+              "only the region X0 Y0 Z0 X1 Y1 Z1 (half-open) of the world of --size, computed "
+              "from the blocks it depends on: the same sites as a whole run with --no-repair")
+             ->expected(6)
+             ->check(CLI::Range(0, 2147483647)));
   discrete(s.add_option("--overlap", o.Overlap,
               "overlap of consecutive blocks OX OY OZ (default -1: half a block)")
              ->expected(3)
@@ -358,10 +363,11 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetOutputSize(o.Size3.data());
   synthesis->SetBlockSize(o.Block.data());
   synthesis->SetBlockOverlap(o.Overlap.data());
+  synthesis->SetRegion(o.Region.data());
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
-  synthesis->SetRepairFailedBlocks(!o.NoRepair);
+  synthesis->SetRepairFailedBlocks(!o.NoRepair && !synthesis->HasRegion());
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
   synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));

@@ -10,6 +10,7 @@
 #include "Core/Memory.h"
 #include "Core/MirrorFold.h"
 #include "Core/Random.h"
+#include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
@@ -284,10 +285,22 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   return status;
 }
 
+/// The blocks of @p cone in its window's coordinates (keys and phases the world's).
+std::vector<Block> WindowBlocks(const RegionCone& cone, SynthesisStatistics& stats)
+{
+  std::vector<Block> blocks = cone.Blocks;
+  for (Block& b : blocks)
+    for (std::size_t a = 0; a < 3; ++a)
+      b.Origin[a] -= cone.WindowLow[a];
+  stats.Phases = cone.Phases;
+  return blocks;
+}
+
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
-/// mirror plan or symmetry seams when a part of a symmetric output is synthesized.
+/// mirror plan or symmetry seams when a part of a symmetric output is synthesized; with
+/// @p cone, the output is the cone's window of a world and its blocks are the cone's.
 SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOptions& options,
-  const MirrorPlan* plan, const SymmetryPlan* seams)
+  const MirrorPlan* plan, const SymmetryPlan* seams, const RegionCone* cone = nullptr)
 {
   const auto start = std::chrono::steady_clock::now();
   if (options.AttemptsPerBlock < 1)
@@ -296,7 +309,8 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   BlockSolver solver(rules, options, plan, seams, shared);
   const Coord n = solver.Size();
   Coord m, step;
-  const bool wholeModel = BlockGeometry<3>(n, options.BlockSize, options.Overlap, m, step);
+  const bool wholeModel =
+    cone ? cone->Whole : BlockGeometry<3>(n, options.BlockSize, options.Overlap, m, step);
   solver.ApplyBoundary();
 
   SynthesisResult result;
@@ -304,8 +318,9 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   if (!wholeModel)
     stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
   solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
-  const std::vector<Block> blocks =
-    PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
+  const std::vector<Block> blocks = cone
+    ? WindowBlocks(*cone, stats)
+    : PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
   if (options.Soft.Active() && wholeModel)
     throw Error("soft constraints (Metropolis acceptance of block changes) need block synthesis");
   SoftConstraints soft(rules, options, shared, n, blocks.size(), stats);
@@ -547,6 +562,58 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
     return r;
   }
   r.Message += " (mirrored)";
+  return r;
+}
+
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+    if (world.Size[a] < 1 || world.Size[a] > (std::int64_t(1) << 31))
+      throw Error("a world has 1 to 2^31 sites along each axis, not " +
+        std::to_string(world.Size[a]));
+  if (AnyMirror(world) || AnySeamSymmetry(world) || world.Soft.Active() || world.Pins ||
+    world.Guide || world.Start || world.SnapshotsPerBlock > 0 ||
+    world.Choice == LabelChoice::Resemblance)
+    throw Error("a region of a world takes no symmetry, soft constraints, pins, guide, given "
+                "start, snapshots or resemblance choice (each needs the whole world)");
+  Coord m, step;
+  BlockGeometry<3>(world.Size, world.BlockSize, world.Overlap, m, step);
+  const RegionCone cone = PlanRegion(WorldLattice(world.Size, m, step), low, high);
+  SynthesisOptions window = world;
+  window.RepairFailedBlocks = false; // a global pass: not part of the world's schedule
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    window.Size[a] = cone.WindowHigh[a] - cone.WindowLow[a];
+    if ((window.Size[a] == 1) != (world.Size[a] == 1))
+      throw Error("a region's window must keep the world's flat axes");
+    if (cone.WindowLow[a] > 0) // boundary labels only on the world's own faces
+      window.Boundary[2 * a].reset();
+    if (cone.WindowHigh[a] < world.Size[a])
+      window.Boundary[2 * a + 1].reset();
+  }
+  CheckSynthesisMemory(rules, window);
+  SynthesisResult r = SynthesizeDirect(rules, window, nullptr, nullptr, &cone);
+  if (!r.Succeeded())
+    return r;
+  const Coord& w = window.Size;
+  LabelGrid model(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
+  std::vector<std::int32_t> last(static_cast<std::size_t>(model.NumberOfSites()));
+  std::size_t i = 0;
+  for (std::int64_t z = low[2]; z < high[2]; ++z)
+    for (std::int64_t y = low[1]; y < high[1]; ++y)
+      for (std::int64_t x = low[0]; x < high[0]; ++x, ++i)
+      {
+        const auto s = static_cast<std::size_t>((x - cone.WindowLow[0]) +
+          w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
+        model.Data()[i] = r.Model.Data()[s];
+        last[i] = r.LastBlock[s];
+      }
+  r.Model = std::move(model);
+  r.LastBlock = std::move(last);
+  r.Message += " (the region's cone of " + std::to_string(cone.Blocks.size()) +
+    " blocks in a window of " + std::to_string(w[0]) + " x " + std::to_string(w[1]) + " x " +
+    std::to_string(w[2]) + " sites)";
   return r;
 }
 

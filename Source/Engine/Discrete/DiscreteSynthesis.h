@@ -236,6 +236,18 @@ struct SynthesisResult
   SynthesisStatistics Statistics;
 };
 
+/**
+ * The region [@p low, @p high) of the world that @p world's options describe (Size is the
+ * world's): the labels a whole run with the same options and RepairFailedBlocks off gives at
+ * those sites, computed by the blocks of the region's dependency cone alone (Core/
+ * WorldSchedule.h) in a window around it, so its cost is set by the region, not the world.
+ * Statistics count the blocks run. No symmetry, soft constraints, pins, guide, given start,
+ * snapshots or resemblance (each needs the whole world).
+ * @throw Error for those options or a region outside the world.
+ */
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high);
+
 /// The number of blocks Synthesize will visit for these options (sizes only).
 std::int64_t CountBlocks(const SynthesisOptions& options);
 /// The number of snapshots Synthesize will report: 1 + CountBlocks × SnapshotsPerBlock (0 if

@@ -62,6 +62,14 @@ int vtkMSDiscreteSynthesis::GridSize(int axis) const
                                : this->OutputSize[axis] - this->PatternSize + 1;
 }
 
+bool vtkMSDiscreteSynthesis::HasRegion() const
+{
+  for (int v : this->Region)
+    if (v != 0)
+      return true;
+  return false;
+}
+
 vtkMSDiscreteSynthesis::vtkMSDiscreteSynthesis()
   : Internal(std::make_unique<Internals>())
 {
@@ -137,8 +145,35 @@ int vtkMSDiscreteSynthesis::RequestInformation(
                   << this->OutputSize[2] << ".");
     return 0;
   }
+  if (this->HasRegion())
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int lo = this->Region[a], hi = this->Region[a + 3];
+      if (lo < 0 || hi > grid[a] || lo >= hi || !this->SampleFile.empty())
+      {
+        vtkErrorMacro(<< "Region " << this->Region[0] << " " << this->Region[1] << " "
+                      << this->Region[2] << " " << this->Region[3] << " " << this->Region[4] << " "
+                      << this->Region[5]
+                      << (this->SampleFile.empty()
+                             ? " is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1)."
+                             : ": regions are for label grids and tilesets, not image samples."));
+        return 0;
+      }
+      grid[a] = hi - lo;
+    }
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkMSPipeline::SetOutputLabelGrid(inputVector[0]->GetInformationObject(0), outInfo, grid);
+  if (this->HasRegion())
+  {
+    double spacing[3], origin[3];
+    outInfo->Get(vtkDataObject::SPACING(), spacing);
+    outInfo->Get(vtkDataObject::ORIGIN(), origin);
+    for (int a = 0; a < 3; ++a)
+      origin[a] += spacing[a] * this->Region[a];
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  }
   if (this->SampleFile.empty())
     outInfo->Remove(vtkMSPatternImage::PATTERN_PICTURE());
   else
@@ -446,8 +481,7 @@ bool vtkMSDiscreteSynthesis::Solve(
         const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
         const auto analysis = msynth::ExampleAnalysis::FromExample(example);
         options.Example = &example;
-        run.Cache.Result =
-          msynth::Synthesize(msynth::AdjacencyRules::FromExample(analysis), options);
+        run.Cache.Result = this->Run(msynth::AdjacencyRules::FromExample(analysis), options);
         return;
       }
       if (options.Choice == msynth::LabelChoice::Resemblance)
@@ -456,8 +490,18 @@ bool vtkMSDiscreteSynthesis::Solve(
       run.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
         options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
-      run.Cache.Result = msynth::Synthesize(run.Tiles.Rules(), options);
+      run.Cache.Result = this->Run(run.Tiles.Rules(), options);
     });
+}
+
+msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
+  const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options) const
+{
+  if (!this->HasRegion())
+    return msynth::Synthesize(rules, options);
+  return msynth::SynthesizeRegion(rules, options,
+    { { this->Region[0], this->Region[1], this->Region[2] } },
+    { { this->Region[3], this->Region[4], this->Region[5] } });
 }
 
 void vtkMSDiscreteSynthesis::SolveSample(msynth::SynthesisOptions& options)
@@ -479,11 +523,22 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
 {
   const Internals& run = *this->Internal;
   const msynth::SynthesisResult& result = run.Cache.Result;
-  output->SetExtent(0, this->GridSize(0) - 1, 0, this->GridSize(1) - 1, 0, this->GridSize(2) - 1);
+  const auto& size = result.Model.Dimensions();
+  output->SetExtent(0, static_cast<int>(size[0]) - 1, 0, static_cast<int>(size[1]) - 1, 0,
+    static_cast<int>(size[2]) - 1);
   if (input)
   {
     output->SetSpacing(input->GetSpacing());
     output->SetOrigin(input->GetOrigin());
+  }
+  if (this->HasRegion()) // the region where it lies in the world
+  {
+    double origin[3];
+    output->GetOrigin(origin);
+    const double* spacing = output->GetSpacing();
+    for (int a = 0; a < 3; ++a)
+      origin[a] += spacing[a] * this->Region[a];
+    output->SetOrigin(origin);
   }
   vtkSmartPointer<vtkIntArray> label;
   label.TakeReference(vtkMSLabelArrays::NewLabelArray(result.Model, "Label"));
@@ -618,6 +673,8 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
      << this->OutputSize[2] << "\n";
+  os << indent << "Region: " << this->Region[0] << " " << this->Region[1] << " " << this->Region[2]
+     << " " << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
   os << indent << "BlockSize: " << this->BlockSize[0] << " " << this->BlockSize[1] << " "
      << this->BlockSize[2] << "\n";
   os << indent << "AttemptsPerBlock: " << this->AttemptsPerBlock << "\n";

@@ -95,7 +95,9 @@ class vtkImageData;
 class vtkPolyData;
 namespace msynth
 {
+class AdjacencyRules;
 struct SynthesisOptions;
+struct SynthesisResult;
 }
 
 class MODELSYNTHFILTERS_EXPORT vtkMSDiscreteSynthesis : public vtkImageAlgorithm
@@ -124,6 +126,19 @@ public:
   /// Output size in sites (n_z = 1 for 2D). Default 32 × 32 × 8.
   vtkSetVector3Macro(OutputSize, int);
   vtkGetVector3Macro(OutputSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * A region of the world (x0 y0 z0 x1 y1 z1, half-open; all 0: the whole output): OutputSize
+   * is then the world's size, and the output holds just the region's sites, placed where they
+   * lie in the world (the origin moved by x0 · spacing, ...), computed from the region's
+   * dependency cone alone (msynth::SynthesizeRegion): the same labels as a whole run with
+   * RepairFailedBlocks off, at a cost set by the region. Label grids and tilesets; no
+   * symmetry, soft constraints, pins, guide, snapshots or resemblance. Default all 0.
+   */
+  vtkSetVector6Macro(Region, int);
+  vtkGetVector6Macro(Region, int);
   ///@}
 
   ///@{
@@ -372,6 +387,13 @@ public:
   /// pattern sites a picture of OutputSize pixels needs.
   int GridSize(int axis) const;
 
+  /// Whether Region is set (not all 0).
+  bool HasRegion() const;
+
+  /// Synthesize, or SynthesizeRegion with a Region.
+  msynth::SynthesisResult Run(
+    const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options) const;
+
 protected:
   vtkMSDiscreteSynthesis();
   ~vtkMSDiscreteSynthesis() override;
@@ -397,6 +419,7 @@ private:
   int OutputSize[3] = { 32, 32, 8 };
   int BlockSize[3] = { 0, 0, 0 };
   int BlockOverlap[3] = { -1, -1, -1 };
+  int Region[6] = { 0, 0, 0, 0, 0, 0 };
   int AttemptsPerBlock = 10;
   vtkIdType BacktracksPerAttempt = 1000;
   bool RepairFailedBlocks = true;

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Core/WorldSchedule.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+
+namespace msynth
+{
+
+WorldLattice::WorldLattice(const WorldBox& world, const WorldBox& m, const WorldBox& step)
+  : N(world)
+  , M(m)
+  , Step(step)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    if (world[a] < 1 || m[a] < 1 || step[a] < 1 || step[a] > m[a])
+      throw Error("world lattice: sizes must be positive and steps at most the block");
+    // Origins k · step for k = 0 .. K - 1, the last the first with k · step + m >= n.
+    this->Counts[a] = world[a] <= m[a] ? 1 : (world[a] - m[a] + step[a] - 1) / step[a] + 1;
+    this->Period[a] = this->Counts[a] > 1 ? (m[a] + 1 + step[a] - 1) / step[a] : 1;
+    this->NumberOfPhases *= static_cast<int>(this->Period[a]);
+  }
+}
+
+BoxBlock<3> WorldLattice::At(const WorldBox& g) const
+{
+  BoxBlock<3> b;
+  b.Index = g[0] + this->Counts[0] * (g[1] + this->Counts[1] * g[2]);
+  int radix = 1;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    b.Origin[a] = g[a] * this->Step[a];
+    b.Dims[a] = std::min(this->M[a], this->N[a] - b.Origin[a]);
+    b.Phase += radix * static_cast<int>(g[a] % this->Period[a]);
+    radix *= static_cast<int>(this->Period[a]);
+  }
+  return b;
+}
+
+void WorldLattice::Meeting(
+  int phase, const WorldBox& lo, const WorldBox& hi, std::vector<BoxBlock<3>>& out) const
+{
+  std::array<std::vector<std::int64_t>, 3> along;
+  int rest = phase;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const auto digit = static_cast<std::int64_t>(rest % static_cast<int>(this->Period[a]));
+    rest /= static_cast<int>(this->Period[a]);
+    // Blocks [k · step, k · step + m) with k · step < hi and k · step + m > lo.
+    const std::int64_t first = std::max<std::int64_t>(0, (lo[a] - this->M[a]) / this->Step[a]);
+    const std::int64_t last = std::min(this->Counts[a] - 1, (hi[a] - 1) / this->Step[a]);
+    for (std::int64_t k = first; k <= last; ++k)
+      if (k % this->Period[a] == digit && k * this->Step[a] < hi[a] &&
+        k * this->Step[a] + this->M[a] > lo[a])
+        along[a].push_back(k);
+  }
+  for (std::int64_t k2 : along[2])
+    for (std::int64_t k1 : along[1])
+      for (std::int64_t k0 : along[0])
+        out.push_back(this->At({ { k0, k1, k2 } }));
+}
+
+RegionCone PlanRegion(const WorldLattice& lattice, const WorldBox& lo, const WorldBox& hi)
+{
+  const WorldBox& n = lattice.World();
+  for (std::size_t a = 0; a < 3; ++a)
+    if (lo[a] < 0 || hi[a] > n[a] || lo[a] >= hi[a])
+      throw Error("the region is not a non-empty box inside the world");
+  RegionCone cone;
+  cone.Phases = lattice.Phases();
+  cone.Whole = lattice.NumberOfBlocks() == 1;
+  cone.WindowLow = lo;
+  cone.WindowHigh = hi;
+  std::vector<std::vector<BoxBlock<3>>> phases(static_cast<std::size_t>(lattice.Phases()));
+  for (int p = lattice.Phases() - 1; p >= 0; --p)
+  {
+    auto& blocks = phases[static_cast<std::size_t>(p)];
+    lattice.Meeting(p, cone.WindowLow, cone.WindowHigh, blocks);
+    // What these blocks read after phase p - 1: their footprints and the ring around them.
+    for (const auto& b : blocks)
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        cone.WindowLow[a] = std::min(cone.WindowLow[a], std::max<std::int64_t>(0, b.Origin[a] - 1));
+        cone.WindowHigh[a] =
+          std::max(cone.WindowHigh[a], std::min(n[a], b.Origin[a] + b.Dims[a] + 1));
+      }
+  }
+  for (auto& blocks : phases)
+    cone.Blocks.insert(cone.Blocks.end(), blocks.begin(), blocks.end());
+  return cone;
+}
+
+} // namespace msynth

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A world as a function of its inputs (Core/WorldSchedule.h, SynthesizeRegion): the world's
+// block lattice equals the block grid of whole runs, and a region computed alone from its
+// dependency cone equals the same sites of a whole run, checked against the example's pairs.
+#include "Core/BlockDriver.h"
+#include "Core/Error.h"
+#include "Core/WorldSchedule.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/ExampleAnalysis.h"
+#include "Formats/Tileset.h"
+
+#include "Fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <set>
+
+using namespace msynth;
+
+namespace
+{
+/// The sites [lo, hi) of @p grid.
+LabelGrid Crop(const LabelGrid& grid, const WorldBox& lo, const WorldBox& hi)
+{
+  LabelGrid out(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  for (std::int64_t z = lo[2]; z < hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+      for (std::int64_t x = lo[0]; x < hi[0]; ++x)
+        out.Set(x - lo[0], y - lo[1], z - lo[2], grid.At(x, y, z));
+  return out;
+}
+} // namespace
+
+TEST(WorldRegion, TheLatticeIsTheBlockGridOfWholeRuns)
+{
+  for (const WorldBox n :
+    { WorldBox{ { 37, 21, 5 } }, WorldBox{ { 8, 8, 1 } }, WorldBox{ { 64, 3, 9 } } })
+    for (const WorldBox m : { WorldBox{ { 8, 8, 5 } }, WorldBox{ { 5, 3, 2 } } })
+      for (const std::int64_t overlap : { -1, 0, 2 })
+      {
+        WorldBox size = m, step{};
+        WorldBox mm{};
+        BlockGeometry<3>(n, size, { { overlap, overlap, overlap } }, mm, step);
+        int phases = 0;
+        const auto whole = PlanBoxBlocks<3>(n, mm, step, PhasePolicy::NonTouching, phases);
+        const WorldLattice lattice(n, mm, step);
+        EXPECT_EQ(lattice.Phases(), phases);
+        std::vector<BoxBlock<3>> listed;
+        for (int p = 0; p < lattice.Phases(); ++p)
+          lattice.Meeting(p, { { 0, 0, 0 } }, n, listed);
+        ASSERT_EQ(listed.size(), whole.size());
+        for (std::size_t i = 0; i < whole.size(); ++i)
+        {
+          EXPECT_EQ(listed[i].Index, whole[i].Index);
+          EXPECT_EQ(listed[i].Origin, whole[i].Origin);
+          EXPECT_EQ(listed[i].Dims, whole[i].Dims);
+          EXPECT_EQ(listed[i].Phase, whole[i].Phase);
+        }
+        // The cone of the whole world is every block.
+        EXPECT_EQ(PlanRegion(lattice, { { 0, 0, 0 } }, n).Blocks.size(), whole.size());
+      }
+}
+
+TEST(WorldRegion, ARegionAloneEqualsTheSameSitesOfAWholeRun)
+{
+  const LabelGrid village = msynth_test::Village();
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(village));
+  SynthesisOptions o;
+  o.Size = { { 40, 36, 5 } };
+  o.BlockSize = { { 8, 8, 5 } };
+  o.RepairFailedBlocks = false;
+  o.Threads = 2;
+  for (std::uint64_t seed : { 1, 2 })
+  {
+    o.Seed = seed;
+    const SynthesisResult whole = Synthesize(rules, o);
+    ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+    for (const auto& [lo, hi] :
+      { std::pair<WorldBox, WorldBox>{ { { 13, 9, 0 } }, { { 25, 20, 5 } } },
+        { { { 0, 0, 0 } }, { { 7, 40 - 4, 5 } } }, { { { 30, 30, 2 } }, { { 40, 36, 4 } } } })
+    {
+      o.Threads = seed == 1 ? 1 : 2;
+      const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+      ASSERT_TRUE(region.Succeeded()) << region.Message;
+      EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data()) << region.Message;
+      EXPECT_TRUE(CheckConsistency(village, region.Model).Consistent);
+      EXPECT_LE(region.Statistics.Blocks, whole.Statistics.Blocks);
+    }
+  }
+}
+
+TEST(WorldRegion, ATilesetRegionEqualsTheWholeRunAndAFarRegionOfAHugeWorldIsCheap)
+{
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 96, 80, 1 } };
+  o.BlockSize = { { 16, 16, 1 } };
+  o.RepairFailedBlocks = false;
+  o.Seed = 7;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  const WorldBox lo{ { 40, 33, 0 } }, hi{ { 61, 50, 1 } };
+  const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+  ASSERT_TRUE(region.Succeeded()) << region.Message;
+  EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data());
+  EXPECT_TRUE(CheckConsistency(lines.Pairs, region.Model).Consistent);
+
+  // A 64 x 64 region deep inside a world of 10^6 x 10^6 sites.
+  o.Size = { { 1000000, 1000000, 1 } };
+  const auto start = std::chrono::steady_clock::now();
+  const SynthesisResult far =
+    SynthesizeRegion(rules, o, { { 654321, 123456, 0 } }, { { 654321 + 64, 123456 + 64, 1 } });
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(far.Succeeded()) << far.Message;
+  EXPECT_TRUE(CheckConsistency(lines.Pairs, far.Model).Consistent);
+  EXPECT_LT(far.Statistics.Blocks, 2000) << far.Message;
+  EXPECT_LT(seconds, 30.0);
+  std::set<Label> distinct(far.Model.Data().begin(), far.Model.Data().end());
+  EXPECT_GT(distinct.size(), 2u); // not blank
+}
+
+TEST(WorldRegion, OptionsThatNeedTheWholeWorldAreRefused)
+{
+  const LabelGrid village = msynth_test::Village();
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(village));
+  SynthesisOptions o;
+  o.Size = { { 20, 20, 5 } };
+  o.BlockSize = { { 8, 8, 5 } };
+  o.Symmetry[0].Enabled = true;
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 4, 4, 5 } }), Error);
+  o.Symmetry[0].Enabled = false;
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 21, 4, 5 } }), Error);
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 3, 0, 0 } }, { { 3, 4, 5 } }), Error);
+}
