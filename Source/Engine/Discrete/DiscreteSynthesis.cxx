@@ -570,8 +570,8 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
 {
   for (std::size_t a = 0; a < 3; ++a)
     if (world.Size[a] < 1 || world.Size[a] > (std::int64_t(1) << 31))
-      throw Error("a world has 1 to 2^31 sites along each axis, not " +
-        std::to_string(world.Size[a]));
+      throw Error(
+        "a world has 1 to 2^31 sites along each axis, not " + std::to_string(world.Size[a]));
   if (AnyMirror(world) || AnySeamSymmetry(world) || world.Soft.Active() || world.Pins ||
     world.Guide || world.Start || world.SnapshotsPerBlock > 0 ||
     world.Choice == LabelChoice::Resemblance)
