@@ -133,7 +133,7 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
              ->check(CLI::Range(0, 1000000000)));
   discrete(s.add_option("--region", o.Region,
               "only the region X0 Y0 Z0 X1 Y1 Z1 (half-open) of the world of --size, computed "
-              "from the blocks it depends on: the same sites as a whole run with --no-repair")
+              "from the blocks it depends on: the same sites as a whole run")
              ->expected(6)
              ->check(CLI::Range(0, 2147483647)));
   discrete(s.add_option("--overlap", o.Overlap,
@@ -367,7 +367,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
-  synthesis->SetRepairFailedBlocks(!o.NoRepair && !synthesis->HasRegion());
+  synthesis->SetRepairFailedBlocks(!o.NoRepair);
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
   synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));

@@ -123,6 +123,34 @@ TEST(WorldRegion, ATilesetRegionEqualsTheWholeRunAndAFarRegionOfAHugeWorldIsChea
   EXPECT_GT(distinct.size(), 2u); // not blank
 }
 
+TEST(WorldRegion, RepairPassesArePartOfTheSchedule)
+{
+  // Few attempts and no backtracking make blocks fail, so the repair passes do work.
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 90, 70, 1 } };
+  o.BlockSize = { { 6, 6, 1 } };
+  o.AttemptsPerBlock = 1;
+  o.BacktracksPerAttempt = 0;
+  o.Seed = 11;
+  o.Threads = 1;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_GT(whole.Statistics.BlocksRepaired, 0) << whole.Message;
+  EXPECT_TRUE(CheckConsistency(lines.Pairs, whole.Model).Consistent);
+  o.Threads = 2;
+  EXPECT_EQ(Synthesize(rules, o).Model.Data(), whole.Model.Data()); // any thread count
+  for (const auto& [lo, hi] :
+    { std::pair<WorldBox, WorldBox>{ { { 30, 20, 0 } }, { { 55, 41, 1 } } },
+      { { { 0, 50, 0 } }, { { 17, 70, 1 } } } })
+  {
+    const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+    ASSERT_TRUE(region.Succeeded()) << region.Message;
+    EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data()) << region.Message;
+  }
+}
+
 TEST(WorldRegion, OptionsThatNeedTheWholeWorldAreRefused)
 {
   const LabelGrid village = msynth_test::Village();

@@ -63,12 +63,12 @@ SynthesisStatus BlockDriver::Run(const BlockSchedule& schedule, const BlockClien
   Internal& s = *this->State;
   std::unique_ptr<BlockRunner> serial;
   BlockRunner* runner = s.Runner.get();
-  if (pass.Serial)
+  if (pass.Serial || pass.Later)
   {
-    BlockRunner::Policy policy;
-    policy.Exchange = s.Policy.Exchange;
-    policy.Serial = true;
-    if (s.Policy.Progress) // an earlier pass reported the whole run: stay at its end
+    BlockRunner::Policy policy = s.Policy;
+    policy.Serial = policy.Serial || pass.Serial;
+    policy.Progress = nullptr;
+    if (s.Policy.Progress && pass.Later) // an earlier pass reported the whole run: stay at its end
       policy.Progress = [progress = s.Policy.Progress](double) { return progress(1.0); };
     serial = std::make_unique<BlockRunner>(std::move(policy), schedule.Size());
     runner = serial.get();

@@ -79,7 +79,9 @@ struct BlockPass
 {
   int AttemptOffset = 0; ///< added to each attempt's number in its generator
   int Attempts = 0;      ///< attempts per block; 0: the driver's
-  bool Serial = false;   ///< one block at a time on the calling thread, progress held at 1
+  bool Serial = false;   ///< one block at a time on the calling thread
+  /// A pass after the first: its own run over the phases, progress held at the end.
+  bool Later = false;
 };
 
 class BlockDriver

@@ -62,7 +62,8 @@ void WorldLattice::Meeting(
         out.push_back(this->At({ { k0, k1, k2 } }));
 }
 
-RegionCone PlanRegion(const WorldLattice& lattice, const WorldBox& lo, const WorldBox& hi)
+RegionCone PlanRegion(
+  const WorldLattice& lattice, const WorldBox& lo, const WorldBox& hi, int passes)
 {
   const WorldBox& n = lattice.World();
   for (std::size_t a = 0; a < 3; ++a)
@@ -73,10 +74,12 @@ RegionCone PlanRegion(const WorldLattice& lattice, const WorldBox& lo, const Wor
   cone.Whole = lattice.NumberOfBlocks() == 1;
   cone.WindowLow = lo;
   cone.WindowHigh = hi;
-  std::vector<std::vector<BoxBlock<3>>> phases(static_cast<std::size_t>(lattice.Phases()));
-  for (int p = lattice.Phases() - 1; p >= 0; --p)
+  const int total = lattice.Phases() * std::max(passes, 1);
+  std::vector<std::vector<BoxBlock<3>>> phases(static_cast<std::size_t>(total));
+  for (int q = total - 1; q >= 0; --q)
   {
-    auto& blocks = phases[static_cast<std::size_t>(p)];
+    const int p = q % lattice.Phases();
+    auto& blocks = phases[static_cast<std::size_t>(q)];
     lattice.Meeting(p, cone.WindowLow, cone.WindowHigh, blocks);
     // What these blocks read after phase p - 1: their footprints and the ring around them.
     for (const auto& b : blocks)
@@ -87,8 +90,14 @@ RegionCone PlanRegion(const WorldLattice& lattice, const WorldBox& lo, const Wor
           std::max(cone.WindowHigh[a], std::min(n[a], b.Origin[a] + b.Dims[a] + 1));
       }
   }
-  for (auto& blocks : phases)
-    cone.Blocks.insert(cone.Blocks.end(), blocks.begin(), blocks.end());
+  cone.Passes.resize(static_cast<std::size_t>(std::max(passes, 1)));
+  for (int q = 0; q < total; ++q)
+  {
+    auto& pass = cone.Passes[static_cast<std::size_t>(q / lattice.Phases())];
+    const auto& blocks = phases[static_cast<std::size_t>(q)];
+    pass.insert(pass.end(), blocks.begin(), blocks.end());
+  }
+  cone.Blocks = cone.Passes[0];
   return cone;
 }
 

@@ -55,16 +55,21 @@ private:
 };
 
 /// What computing a region takes: the blocks of its cone in run order (by phase, then index)
-/// and the box [WindowLow, WindowHigh) they read and write.
+/// and the box [WindowLow, WindowHigh) they read and write. A run of several passes over the
+/// lattice (the first pass, then passes that repair the blocks still failed) has the blocks each
+/// pass may run in Passes; Blocks is the first.
 struct RegionCone
 {
   std::vector<BoxBlock<3>> Blocks;
+  std::vector<std::vector<BoxBlock<3>>> Passes;
   WorldBox WindowLow{}, WindowHigh{};
   int Phases = 1;     ///< the world's phases
   bool Whole = false; ///< one block covers the world (Algorithm 3.1)
 };
 
-/// The cone of the region [@p lo, @p hi) of @p lattice's world (see the file comment).
-RegionCone PlanRegion(const WorldLattice& lattice, const WorldBox& lo, const WorldBox& hi);
+/// The cone of the region [@p lo, @p hi) of @p lattice's world (see the file comment) over
+/// @p passes passes of the lattice's phases.
+RegionCone PlanRegion(
+  const WorldLattice& lattice, const WorldBox& lo, const WorldBox& hi, int passes = 1);
 
 } // namespace msynth

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <set>
 #include <thread>
 
 namespace msynth
@@ -243,23 +244,28 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
   return client;
 }
 
+/// Passes after the first that repair failed blocks (SynthesisOptions::RepairFailedBlocks).
+constexpr int RepairPasses = 3;
+
 /**
- * One round of second tries at failed blocks (SynthesisOptions::RepairFailedBlocks): once
- * every other block is done, each failed block runs again, one at a time in block order, with
- * attempt streams after the first try's and earlier rounds', twice the attempts, and site
- * orders alternating. Those that succeed leave the failures.
+ * One pass of second tries at failed blocks (SynthesisOptions::RepairFailedBlocks): a pass over
+ * the phases after every earlier one, running those of @p candidates (in phase order) still
+ * failed, with attempt streams after the first try's and earlier passes', twice the attempts,
+ * and site orders alternating. Those that succeed leave the failures. Part of the schedule:
+ * blocks of a phase never touch, so the model does not depend on threads, and a region's cone
+ * takes these passes in (Core/WorldSchedule.h).
  */
 SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
-  const std::vector<Block>& blocks, BlockDriver& driver, Workers& workers, SoftConstraints& soft,
-  SharedModel& shared, SynthesisStatistics& stats, int round)
+  const std::vector<Block>& candidates, BlockDriver& driver, Workers& workers,
+  SoftConstraints& soft, SharedModel& shared, SynthesisStatistics& stats, int round)
 {
-  std::vector<Block> again;
-  std::vector<std::uint64_t> keys;
+  std::set<std::int64_t> failed;
   for (const BlockFailure& f : stats.Failures)
-  {
-    again.push_back(blocks[static_cast<std::size_t>(f.Block)]);
-    keys.push_back(static_cast<std::uint64_t>(f.Block));
-  }
+    failed.insert(f.Block);
+  std::vector<Block> again;
+  for (const Block& b : candidates)
+    if (failed.count(b.Index))
+      again.push_back(b);
   // Alternating the order the first pass did not use with minimum entropy or scan line: a
   // block one order cannot finish the other often can (entropy order closes the loops of
   // WaveFunctionCollapse's Castle set, scan line those of its Knots "CE" subset).
@@ -267,33 +273,49 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   BlockPass pass;
   pass.AttemptOffset = options.AttemptsPerBlock * (1 + 2 * round);
   pass.Attempts = 2 * options.AttemptsPerBlock;
-  pass.Serial = true;
+  pass.Later = true;
   SynthesisStatistics second;
   const BlockClient client = MakeClient(again, workers, soft, shared, second,
     order == SiteOrder::MinimumEntropy
       ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
       : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order });
-  const SynthesisStatus status =
-    driver.Run(BlockSchedule::InSequence(std::move(keys)), client, second, pass);
-  workers[0].SetOrder(order);
+  const SynthesisStatus status = driver.Run(BlockSchedule::Of(again), client, second, pass);
+  for (unsigned w = 0; w < driver.Workers(); ++w)
+    workers[w].SetOrder(order);
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
   stats.Attempts += second.Attempts;
   stats.Assignments += second.Assignments;
-  stats.Failures = std::move(second.Failures);
+  std::set<std::int64_t> tried;
+  for (const Block& b : again)
+    tried.insert(b.Index);
+  std::vector<BlockFailure> still; // failures this pass could not reach (outside a region's cone)
+  for (const BlockFailure& f : stats.Failures)
+    if (!tried.count(f.Block))
+      still.push_back(f);
+  still.insert(still.end(), second.Failures.begin(), second.Failures.end());
+  stats.Failures = std::move(still);
   return status;
 }
 
-/// The blocks of @p cone in its window's coordinates (keys and phases the world's).
-std::vector<Block> WindowBlocks(const RegionCone& cone, SynthesisStatistics& stats)
+/// The blocks of @p cone's pass @p pass in its window's coordinates (keys and phases the
+/// world's).
+std::vector<Block> WindowBlocks(const RegionCone& cone, std::size_t pass = 0)
 {
-  std::vector<Block> blocks = cone.Blocks;
+  std::vector<Block> blocks = cone.Passes[pass];
   for (Block& b : blocks)
     for (std::size_t a = 0; a < 3; ++a)
       b.Origin[a] -= cone.WindowLow[a];
-  stats.Phases = cone.Phases;
   return blocks;
+}
+
+/// The blocks the repair pass @p round may run in @p cone's window (into @p scratch).
+const std::vector<Block>& RepairCandidates(
+  const RegionCone& cone, int round, std::vector<Block>& scratch)
+{
+  scratch = WindowBlocks(cone, static_cast<std::size_t>(round + 1));
+  return scratch;
 }
 
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
@@ -319,8 +341,11 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
     stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
   solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
   const std::vector<Block> blocks = cone
-    ? WindowBlocks(*cone, stats)
+    ? WindowBlocks(*cone)
     : PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
+  if (cone)
+    stats.Phases = cone->Phases;
+  std::vector<Block> repairScratch;
   if (options.Soft.Active() && wholeModel)
     throw Error("soft constraints (Metropolis acceptance of block changes) need block synthesis");
   SoftConstraints soft(rules, options, shared, n, blocks.size(), stats);
@@ -349,18 +374,18 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   solver.StartSnapshots();
   result.Status =
     driver.Run(BlockSchedule::Of(blocks), MakeClient(blocks, workers, soft, shared, stats), stats);
-  // Up to three rounds of second tries, while they still repair blocks: a block next to one
-  // repaired in a round meets new surroundings in the next.
+  // Passes of second tries over the phases: a block next to one repaired in a pass meets new
+  // surroundings in the next.
   const bool repair =
     !wholeModel && options.RepairFailedBlocks && !solver.Snapshots() && !options.Soft.Active();
-  for (int round = 0, before = -1;
-       repair && round < 3 && result.Status == SynthesisStatus::Succeeded &&
-       !stats.Failures.empty() && static_cast<int>(stats.Failures.size()) != before;
+  for (int round = 0; repair && round < RepairPasses &&
+       result.Status == SynthesisStatus::Succeeded && !stats.Failures.empty();
        ++round)
   {
-    before = static_cast<int>(stats.Failures.size());
+    const std::vector<Block>& candidates =
+      cone ? RepairCandidates(*cone, round, repairScratch) : blocks;
     result.Status =
-      RepairFailedBlocks(options, blocks, driver, workers, soft, shared, stats, round);
+      RepairFailedBlocks(options, candidates, driver, workers, soft, shared, stats, round);
   }
   stats.Backtracks = solver.Backtracks();
   for (const auto& extra : workers.Extra)
@@ -579,9 +604,9 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
                 "start, snapshots or resemblance choice (each needs the whole world)");
   Coord m, step;
   BlockGeometry<3>(world.Size, world.BlockSize, world.Overlap, m, step);
-  const RegionCone cone = PlanRegion(WorldLattice(world.Size, m, step), low, high);
+  const RegionCone cone = PlanRegion(
+    WorldLattice(world.Size, m, step), low, high, world.RepairFailedBlocks ? 1 + RepairPasses : 1);
   SynthesisOptions window = world;
-  window.RepairFailedBlocks = false; // a global pass: not part of the world's schedule
   for (std::size_t a = 0; a < 3; ++a)
   {
     window.Size[a] = cone.WindowHigh[a] - cone.WindowLow[a];

@@ -152,10 +152,11 @@ struct SynthesisOptions
   std::int64_t BacktracksPerAttempt = 1000;
   /**
    * Blocks whose attempts all failed are tried again once every other block is done (their
-   * surroundings have changed): twice as many attempts, with new random streams, alternating
-   * minimum-entropy and scan-line order; up to three such rounds while they still repair
-   * blocks. Not with catalog snapshots (whose count is fixed before the run) or soft
-   * constraints.
+   * surroundings have changed): up to three more passes over the phases, each running the
+   * blocks still failed with twice as many attempts, new random streams, alternating
+   * minimum-entropy and scan-line order. Part of the schedule (a region of a world takes them
+   * in; any thread count gives the same model). Not with catalog snapshots (whose count is fixed
+   * before the run) or soft constraints.
    */
   bool RepairFailedBlocks = true;
   std::uint64_t Seed = 0;
@@ -238,11 +239,11 @@ struct SynthesisResult
 
 /**
  * The region [@p low, @p high) of the world that @p world's options describe (Size is the
- * world's): the labels a whole run with the same options and RepairFailedBlocks off gives at
- * those sites, computed by the blocks of the region's dependency cone alone (Core/
- * WorldSchedule.h) in a window around it, so its cost is set by the region, not the world.
- * Statistics count the blocks run. No symmetry, soft constraints, pins, guide, given start,
- * snapshots or resemblance (each needs the whole world).
+ * world's): the labels a whole run with the same options gives at those sites (the repair
+ * passes of RepairFailedBlocks are part of the world's schedule), computed by the blocks of the
+ * region's dependency cone alone (Core/ WorldSchedule.h) in a window around it, so its cost is set
+ * by the region, not the world. Statistics count the blocks run. No symmetry, soft constraints,
+ * pins, guide, given start, snapshots or resemblance (each needs the whole world).
  * @throw Error for those options or a region outside the world.
  */
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,

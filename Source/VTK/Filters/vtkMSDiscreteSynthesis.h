@@ -133,8 +133,8 @@ public:
    * A region of the world (x0 y0 z0 x1 y1 z1, half-open; all 0: the whole output): OutputSize
    * is then the world's size, and the output holds just the region's sites, placed where they
    * lie in the world (the origin moved by x0 · spacing, ...), computed from the region's
-   * dependency cone alone (msynth::SynthesizeRegion): the same labels as a whole run with
-   * RepairFailedBlocks off, at a cost set by the region. Label grids and tilesets; no
+   * dependency cone alone (msynth::SynthesizeRegion): the same labels as a whole run, at a cost
+   * set by the region. Label grids and tilesets; no
    * symmetry, soft constraints, pins, guide, snapshots or resemblance. Default all 0.
    */
   vtkSetVector6Macro(Region, int);
