@@ -179,6 +179,74 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
       out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
     });
 }
+
+/// The label solver's settings from the command line's options.
+void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOptions& o)
+{
+  synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
+  synthesis->SetBlockSize(o.Blocks);
+  synthesis->SetAttempts(o.Attempts);
+  synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
+  synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
+  synthesis->SetNumberOfSnapshots(o.Snapshots);
+  synthesis->SetGrounded(o.Grounded);
+  synthesis->SetKeepProportions(!o.NoProportions);
+  synthesis->SetBlockCandidates(o.Candidates);
+  synthesis->SetModelCandidates(o.Models);
+  synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,
+    o.Mirror.find('y') != std::string::npos, o.Mirror.find('z') != std::string::npos);
+  auto joined = [](const std::vector<std::string>& items)
+  {
+    std::string out;
+    for (const auto& item : items)
+      out += (out.empty() ? "" : ",") + item;
+    return out;
+  };
+  synthesis->SetThickness(joined(o.Thickness).c_str());
+  synthesis->SetOverhang(joined(o.Overhang).c_str());
+  synthesis->SetConnected(joined(o.Connected).c_str());
+  synthesis->SetTargetFractions(joined(o.Targets).c_str());
+}
+
+/// --detail TYPE=FILE: the detail mesh read (in the example's up axis) and substituted for the
+/// objects of TYPE by @p mesh. Nothing without the option. @throw std::runtime_error.
+void ConnectDetail(vtkMSArrangementMesh* mesh, vtkMSPolyhedralExampleReader* detail,
+  vtkMSPolyhedralExampleReader* reader, const std::string& detailOption)
+{
+  if (detailOption.empty())
+  {
+    return;
+  }
+  const auto equals = detailOption.find('=');
+  if (equals == std::string::npos || equals == 0 || equals + 1 == detailOption.size())
+    throw std::runtime_error("--detail '" + detailOption + "' is not TYPE=FILE");
+  detail->SetFileName(detailOption.substr(equals + 1).c_str());
+  detail->SetUpAxis(reader->GetUpAxis()); // modelled in the same tool as the example
+  Run(detail);
+  mesh->SetDetailType(detailOption.substr(0, equals).c_str());
+  mesh->SetDetailConnection(detail->GetOutputPort());
+}
+
+/// Notes on the terminal what the arrangement had to give up (as the filter warns), once.
+void NoteArrangementCompromises(vtkMSPlaneArrangement* arrangement)
+{
+  vtkFieldData* fd = arrangement->GetOutput()->GetFieldData();
+  const long long without = CountOf(fd, "NonTrihedralLabelsWithoutSites");
+  if (without > 0)
+    std::cerr << "msynth: note: over-constrained plane spacing: " << without << " of "
+              << CountOf(fd, "NonTrihedralLabels")
+              << " vertices where four or more planes meet cannot appear in the output\n";
+  vtkDataArray* change = fd->GetArray("DirectionChangeDegrees");
+  if (change && CountOf(fd, "MaximumSmallInteger") > 12)
+    std::cerr << "msynth: note: plane directions snapped to fit exact arithmetic; faces turn by "
+                 "up to "
+              << change->GetTuple1(0) << " degrees\n";
+  else if (vtkDataArray* tolerance = fd->GetArray("AngleTolerance");
+           change && tolerance && tolerance->GetTuple1(0) > arrangement->GetAngleTolerance())
+    std::cerr << "msynth: note: four or more planes meet at a corner of the example, so plane "
+                 "directions were snapped to small integers; faces turn by up to "
+              << change->GetTuple1(0) << " degrees\n";
+}
 } // namespace
 
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
@@ -210,29 +278,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   vtkNew<vtkMSContinuousSynthesis> synthesis;
   synthesis->SetInputConnection(0, reader->GetOutputPort());
   synthesis->SetArrangementConnection(arrangement->GetOutputPort());
-  synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
-  synthesis->SetBlockSize(o.Blocks);
-  synthesis->SetAttempts(o.Attempts);
-  synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
-  synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
-  synthesis->SetNumberOfSnapshots(o.Snapshots);
-  synthesis->SetGrounded(o.Grounded);
-  synthesis->SetKeepProportions(!o.NoProportions);
-  synthesis->SetBlockCandidates(o.Candidates);
-  synthesis->SetModelCandidates(o.Models);
-  synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,
-    o.Mirror.find('y') != std::string::npos, o.Mirror.find('z') != std::string::npos);
-  auto joined = [](const std::vector<std::string>& items)
-  {
-    std::string out;
-    for (const auto& item : items)
-      out += (out.empty() ? "" : ",") + item;
-    return out;
-  };
-  synthesis->SetThickness(joined(o.Thickness).c_str());
-  synthesis->SetOverhang(joined(o.Overhang).c_str());
-  synthesis->SetConnected(joined(o.Connected).c_str());
-  synthesis->SetTargetFractions(joined(o.Targets).c_str());
+  ConfigureSolver(synthesis, o);
   vtkNew<vtkXMLImageDataReader> guide;
   if (!o.Guide.empty())
     ConnectGuide(synthesis, 2, guide, o.Guide);
@@ -240,38 +286,10 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   mesh->SetInputConnection(0, reader->GetOutputPort());
   mesh->SetArrangementConnection(synthesis->GetOutputPort());
   vtkNew<vtkMSPolyhedralExampleReader> detail;
-  if (!o.Detail.empty())
-  {
-    const auto equals = o.Detail.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == o.Detail.size())
-      throw std::runtime_error("--detail '" + o.Detail + "' is not TYPE=FILE");
-    detail->SetFileName(o.Detail.substr(equals + 1).c_str());
-    detail->SetUpAxis(reader->GetUpAxis()); // modelled in the same tool as the example
-    Run(detail);
-    mesh->SetDetailType(o.Detail.substr(0, equals).c_str());
-    mesh->SetDetailConnection(detail->GetOutputPort());
-  }
+  ConnectDetail(mesh, detail, reader, o.Detail);
   Run(arrangement);
   lap("example and arrangement");
-  {
-    // What the arrangement had to give up, said once on the terminal (as the filter warns).
-    vtkFieldData* fd = arrangement->GetOutput()->GetFieldData();
-    const long long without = CountOf(fd, "NonTrihedralLabelsWithoutSites");
-    if (without > 0)
-      std::cerr << "msynth: note: over-constrained plane spacing: " << without << " of "
-                << CountOf(fd, "NonTrihedralLabels")
-                << " vertices where four or more planes meet cannot appear in the output\n";
-    vtkDataArray* change = fd->GetArray("DirectionChangeDegrees");
-    if (change && CountOf(fd, "MaximumSmallInteger") > 12)
-      std::cerr << "msynth: note: plane directions snapped to fit exact arithmetic; faces turn by "
-                   "up to "
-                << change->GetTuple1(0) << " degrees\n";
-    else if (vtkDataArray* tolerance = fd->GetArray("AngleTolerance");
-             change && tolerance && tolerance->GetTuple1(0) > arrangement->GetAngleTolerance())
-      std::cerr << "msynth: note: four or more planes meet at a corner of the example, so plane "
-                   "directions were snapped to small integers; faces turn by up to "
-                << change->GetTuple1(0) << " degrees\n";
-  }
+  NoteArrangementCompromises(arrangement);
   {
     ProgressBar bar(synthesis);
     Run(synthesis);

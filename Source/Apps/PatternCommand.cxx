@@ -157,13 +157,13 @@ std::string Number(double v)
   return s.str();
 }
 
-int Pattern(const PatternCommandOptions& o, const std::string& dir)
+/// Connects the command's inputs to @p synthesis: each EXEMPLAR (read, kept in @p readers and
+/// @p exemplars), or at most one tileset (its path in @p tileset, its rules in @p rules), the
+/// zoning and the fixed sites. @throw UsageError for a second tileset; reading errors.
+void ConnectInputs(vtkMSPatternSynthesis* synthesis, const PatternCommandOptions& o,
+  std::vector<vtkSmartPointer<vtkMSLabelGridReader>>& readers,
+  std::vector<msynth::LabelGrid>& exemplars, std::string& tileset, msynth::LabelPairs& rules)
 {
-  vtkNew<vtkMSPatternSynthesis> synthesis;
-  std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
-  std::vector<msynth::LabelGrid> exemplars;
-  std::string tileset; // an EXEMPLAR that is a tileset: its rules are hard pairs too
-  msynth::LabelPairs rules;
   for (const auto& path : o.Exemplars)
   {
     if (IsTileset(path))
@@ -192,6 +192,53 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     readers.push_back(OpenGrid(o.Fixed));
     synthesis->SetFixedConnection(readers.back()->GetOutputPort());
   }
+}
+
+/// What statistics.json says of the samples as a whole.
+struct SampleMeans
+{
+  double LogProbability = 0.0; ///< mean over the samples
+  std::vector<double> KL;      ///< mean per measured shape
+  double FirstValidSeconds = 0.0;
+  double Seconds = 0.0;
+};
+
+/// DIR/statistics.json: the run's options, the means, the run's counts from the field data
+/// @p fd of the last sample, and @p samplesJson (one object per sample).
+void WritePatternStatistics(const std::string& dir, const PatternCommandOptions& o,
+  vtkFieldData* fd, const std::vector<msynth::Stencil>& soft, const SampleMeans& means,
+  const std::string& samplesJson)
+{
+  msynth::WriteFileAtomically(dir + "/statistics.json",
+    [&](std::ostream& out)
+    {
+      out << "{\n  \"exemplars\": [";
+      for (std::size_t i = 0; i < o.Exemplars.size(); ++i)
+        out << (i ? ", " : "") << JsonString(o.Exemplars[i]);
+      out << "],\n  \"size\": [" << o.Size[0] << ", " << o.Size[1] << ", "
+          << (o.Size.size() > 2 ? o.Size[2] : 1) << "],\n  \"method\": " << JsonString(o.Method)
+          << ",\n  \"factors\": " << JsonString(o.Factors) << ",\n  \"epsilon\": " << o.Epsilon
+          << ",\n  \"seed\": " << o.Seed << ",\n  \"burnIn\": " << o.BurnIn
+          << ",\n  \"LogProbability\": " << Number(means.LogProbability) << ",\n";
+      for (std::size_t i = 0; i < soft.size(); ++i)
+        out << "  \"KL_" << soft[i].Name << "\": " << Number(means.KL[i]) << ",\n";
+      for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
+             "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
+        out << "  \"" << name << "\": " << static_cast<long long>(FieldValue(fd, name)) << ",\n";
+      out << "  \"FirstValidSeconds\": " << Number(means.FirstValidSeconds)
+          << ",\n  \"Seconds\": " << Number(means.Seconds) << ",\n  \"samples\": [\n"
+          << samplesJson << "\n  ]\n}\n";
+    });
+}
+
+int Pattern(const PatternCommandOptions& o, const std::string& dir)
+{
+  vtkNew<vtkMSPatternSynthesis> synthesis;
+  std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
+  std::vector<msynth::LabelGrid> exemplars;
+  std::string tileset; // an EXEMPLAR that is a tileset: its rules are hard pairs too
+  msynth::LabelPairs rules;
+  ConnectInputs(synthesis, o, readers, exemplars, tileset, rules);
   Configure(synthesis, o);
   {
     ProgressBar bar(synthesis);
@@ -252,26 +299,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     WritePicturePng(tiles->GetOutput(), picture);
   }
   vtkFieldData* fd = last->GetFieldData();
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"exemplars\": [";
-      for (std::size_t i = 0; i < o.Exemplars.size(); ++i)
-        out << (i ? ", " : "") << JsonString(o.Exemplars[i]);
-      out << "],\n  \"size\": [" << o.Size[0] << ", " << o.Size[1] << ", "
-          << (o.Size.size() > 2 ? o.Size[2] : 1) << "],\n  \"method\": " << JsonString(o.Method)
-          << ",\n  \"factors\": " << JsonString(o.Factors) << ",\n  \"epsilon\": " << o.Epsilon
-          << ",\n  \"seed\": " << o.Seed << ",\n  \"burnIn\": " << o.BurnIn
-          << ",\n  \"LogProbability\": " << Number(logp) << ",\n";
-      for (std::size_t i = 0; i < soft.size(); ++i)
-        out << "  \"KL_" << soft[i].Name << "\": " << Number(kl[i]) << ",\n";
-      for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
-             "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
-        out << "  \"" << name << "\": " << static_cast<long long>(FieldValue(fd, name)) << ",\n";
-      out << "  \"FirstValidSeconds\": " << Number(firstValid)
-          << ",\n  \"Seconds\": " << Number(seconds) << ",\n  \"samples\": [\n"
-          << samples.str() << "\n  ]\n}\n";
-    });
+  WritePatternStatistics(dir, o, fd, soft, { logp, kl, firstValid, seconds }, samples.str());
   std::cout << o.Samples << " sample(s) of " << o.Size[0] << " x " << o.Size[1]
             << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
             << o.Method << " in " << Number(seconds) << " s (first valid after "

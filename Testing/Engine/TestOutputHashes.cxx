@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The same inputs and seed give the same labels: hashes of the models of a dozen
-// configurations, stored here. A change of any solver's behaviour (intended or not) changes a
-// hash; restructuring code must not. When a behaviour change is intended, say so in the commit
-// and update the hash with the value the failure prints.
+// The same inputs and seed give the same labels: hashes of the models of eighteen
+// configurations (discrete, time-varying, continuous and pattern synthesis), stored here. A change
+// of any solver's behaviour (intended or not) changes a hash; restructuring code must not. When a
+// behaviour change is intended, say so in the commit and update the hash with the value the failure
+// prints.
 #include "Continuous/ContinuousMesh.h"
 #include "Continuous/ContinuousSynthesis.h"
 #include "Discrete/AdjacencyRules.h"
@@ -11,12 +12,15 @@
 #include "Discrete/TimeVarying.h"
 #include "Formats/TextModel.h"
 #include "Formats/Tileset.h"
+#include "Patterns/PatternQuality.h"
+#include "Patterns/PatternSynthesis.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
 using namespace msynth;
 
@@ -81,6 +85,47 @@ SynthesisOptions VillageOptions(std::int64_t n, std::int64_t block)
     o.BlockSize = { { block, block, 5 } };
   o.Boundary[FaceMinZ] = 1;
   o.Seed = 11;
+  return o;
+}
+
+/// A 2D grid from text art (top row first), label = index of the character in @p chars.
+LabelGrid Art(const std::vector<std::string>& rows, const std::string& chars)
+{
+  const auto ny = static_cast<std::int64_t>(rows.size());
+  const auto nx = static_cast<std::int64_t>(rows[0].size());
+  LabelGrid g(nx, ny, 1);
+  for (std::int64_t y = 0; y < ny; ++y)
+    for (std::int64_t x = 0; x < nx; ++x)
+      g.Set(x, y, 0,
+        static_cast<Label>(
+          chars.find(rows[static_cast<std::size_t>(ny - 1 - y)][static_cast<std::size_t>(x)])));
+  return g;
+}
+
+/// Every sample of a pattern run, in order, as one hash; each is checked against the exemplars'
+/// pairs by PatternQuality, which does not share the solver's code.
+std::string Pattern(const std::vector<LabelGrid>& exemplars, const PatternOptions& o)
+{
+  const PatternResult r = SynthesizePattern(exemplars, o);
+  std::vector<Label> all;
+  for (const PatternSample& s : r.Samples)
+  {
+    const auto problems = CheckPatternPairs(exemplars, s.Labels);
+    EXPECT_TRUE(problems.empty()) << problems.front();
+    all.insert(all.end(), s.Labels.Data().begin(), s.Labels.Data().end());
+  }
+  EXPECT_EQ(r.Samples.size(), static_cast<std::size_t>(o.Samples));
+  return Hash(all);
+}
+
+PatternOptions SmallPattern(std::int64_t nx, std::int64_t ny, const std::string& soft)
+{
+  PatternOptions o;
+  o.Size = { { nx, ny, 1 } };
+  o.SoftFactors = ParseStencils(soft);
+  o.Seed = 7;
+  o.BurnIn = 1;
+  o.Samples = 2;
   return o;
 }
 } // namespace
@@ -201,6 +246,57 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     { "continuous house, blocks, uniform", "9a403552fe60dd2b" },
     { "continuous house, grounded, walls one spacing high", "56d4135e541e305b" },
     { "time-varying", "f1eeebd4ae9d53c2" },
+  };
+  ExpectHashes(got, expected);
+}
+
+TEST(OutputHashes, PatternConfigurations)
+{
+  // A rectangular facade with windows and a door (cf. Data/Patterns/Facade).
+  const std::vector<LabelGrid> facade{ Art(
+    { "............", "............", "------------", "############", "#T##T##T##T#",
+      "#W##W##W##W#", "#W##W##W##W#", "#_##_##_##_#", "############", "#T##D##T##T#",
+      "#W##d##W##W#", "#W##d##W##W#", "#_##d##_##_#", "============" },
+    ".-#TW_Dd=") };
+  // A framed border (cf. Data/Patterns/Border): corners, edges and curls that mirror in x.
+  const std::vector<LabelGrid> border{ Art(
+    { "1==========2", "[(o)....(o)]", "[..........]", "[o........o]", "[..........]",
+      "[..........]", "[o........o]", "[..........]", "[(o)....(o)]", "3__________4" },
+    ".=_[]1234o()") };
+  std::map<std::string, std::string> got;
+  got["pattern BLOCKSS, 4H 4V"] = Pattern(facade, SmallPattern(16, 13, "4H,4V"));
+  {
+    PatternOptions o = SmallPattern(12, 10, "");
+    o.Method = PatternMethod::ConstraintSolver;
+    got["pattern constraint solver"] = Pattern(facade, o);
+  }
+  {
+    PatternOptions o = SmallPattern(10, 8, "");
+    o.Method = PatternMethod::MetropolisHastings;
+    o.Samples = 1;
+    got["pattern Metropolis-Hastings"] = Pattern(facade, o);
+  }
+  {
+    PatternOptions o = SmallPattern(15, 10, "3x3");
+    o.Samples = 1;
+    o.Mirror[0] = true;
+    o.MirrorMap = { { 3, 4 }, { 4, 3 }, { 5, 6 }, { 6, 5 }, { 7, 8 }, { 8, 7 }, { 10, 11 },
+      { 11, 10 } };
+    // The ring is the frame (zone 1), the inside anything else (zone 0).
+    o.SiteZone.assign(15 * 10, 0);
+    for (std::int64_t y = 0; y < 10; ++y)
+      for (std::int64_t x = 0; x < 15; ++x)
+        if (x == 0 || y == 0 || x == 14 || y == 9)
+          o.SiteZone[static_cast<std::size_t>(x + 15 * y)] = 1;
+    o.ZoneTiles[1] = { 1, 2, 3, 4, 5, 6, 7, 8 };
+    o.ZoneTiles[0] = { 0, 9, 10, 11 };
+    got["pattern mirrored x, zones"] = Pattern(border, o);
+  }
+  const std::map<std::string, std::string> expected = {
+    { "pattern BLOCKSS, 4H 4V", "29e562f9eb86d646" },
+    { "pattern Metropolis-Hastings", "bee838d5f25909d3" },
+    { "pattern constraint solver", "7ff06c42ea8886c7" },
+    { "pattern mirrored x, zones", "636243cbdb45a425" },
   };
   ExpectHashes(got, expected);
 }

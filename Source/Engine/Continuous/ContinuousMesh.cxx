@@ -141,16 +141,14 @@ public:
   const std::vector<std::int32_t>& Labels;
 };
 
-} // namespace
-
-ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+/// One label per arrangement vertex, each one of the example's. @throw Error.
+void CheckMeshLabels(const PolyhedralAnalysis& analysis, std::int64_t vertices,
   const std::vector<std::int32_t>& labels)
 {
-  const std::int64_t n = arrangement.NumberOfVertices();
-  if (static_cast<std::int64_t>(labels.size()) != n)
+  if (static_cast<std::int64_t>(labels.size()) != vertices)
   {
     throw Error("mesh extraction: " + std::to_string(labels.size()) + " labels for " +
-      std::to_string(n) + " arrangement vertices");
+      std::to_string(vertices) + " arrangement vertices");
   }
   for (auto a : labels)
   {
@@ -160,6 +158,43 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
         std::to_string(analysis.NumberOfLabels()) + " labels");
     }
   }
+}
+
+/// Appends the polygon of the arrangement vertices @p loop (reversed: from the first vertex
+/// the other way round) to @p mesh with its inside and outside types; a vertex becomes a mesh
+/// point the first time it is used (@p pointOf: its point, or -1).
+void EmitPolygon(ContinuousMesh& mesh, std::vector<std::int32_t>& pointOf,
+  const PlaneArrangement& arrangement, const std::vector<std::int64_t>& loop, bool reverse,
+  int inside, int outside)
+{
+  std::vector<std::int32_t> polygon;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const std::int64_t v = loop[reverse ? (loop.size() - i) % loop.size() : i];
+    auto& p = pointOf[static_cast<std::size_t>(v)];
+    if (p < 0)
+    {
+      p = static_cast<std::int32_t>(mesh.Points.size());
+      mesh.Points.push_back(arrangement.Position(v));
+      mesh.PointVertex.push_back(v);
+    }
+    polygon.push_back(p);
+  }
+  mesh.Polygons.push_back(std::move(polygon));
+  mesh.InsideType.push_back(inside);
+  if (!mesh.Planar)
+  {
+    mesh.OutsideType.push_back(outside);
+  }
+}
+
+} // namespace
+
+ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+  const std::vector<std::int32_t>& labels)
+{
+  const std::int64_t n = arrangement.NumberOfVertices();
+  CheckMeshLabels(analysis, n, labels);
   const PlaneFamilySet& set = arrangement.Families();
   const FaceTracer tracer(analysis, arrangement, labels);
   ContinuousMesh mesh;
@@ -167,27 +202,7 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
   std::vector<std::int32_t> pointOf(static_cast<std::size_t>(n), -1);
   const auto emit = [&](
                       const std::vector<std::int64_t>& loop, bool reverse, int inside, int outside)
-  {
-    std::vector<std::int32_t> polygon;
-    for (std::size_t i = 0; i < loop.size(); ++i)
-    {
-      const std::int64_t v = loop[reverse ? (loop.size() - i) % loop.size() : i];
-      auto& p = pointOf[static_cast<std::size_t>(v)];
-      if (p < 0)
-      {
-        p = static_cast<std::int32_t>(mesh.Points.size());
-        mesh.Points.push_back(arrangement.Position(v));
-        mesh.PointVertex.push_back(v);
-      }
-      polygon.push_back(p);
-    }
-    mesh.Polygons.push_back(std::move(polygon));
-    mesh.InsideType.push_back(inside);
-    if (!mesh.Planar)
-    {
-      mesh.OutsideType.push_back(outside);
-    }
-  };
+  { EmitPolygon(mesh, pointOf, arrangement, loop, reverse, inside, outside); };
   const IntVec3 up{ 0, 0, 1 };
   for (std::int64_t u = 0; u < n; ++u)
   {
@@ -351,18 +366,12 @@ PolyhedralExample MeshToModel(
   return model;
 }
 
-ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
-  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
+namespace
 {
-  ContinuousModelReport report;
-  if (mesh.Polygons.empty())
-  {
-    report.Valid = true; // the empty model satisfies the constraint everywhere
-    return report;
-  }
-  PolyhedralExample model = MeshToModel(mesh, typeNames);
-  report.Objects = model.NumberOfObjects();
-  // Orientation, before validation (which would turn inward objects outward).
+/// The first object of @p model (before validation turns inward objects outward) whose
+/// enclosed volume (area in 2D) is not positive, as a problem; empty when all face outward.
+std::string OrientationProblem(const PolyhedralExample& model, bool planar)
+{
   std::vector<double> volume(static_cast<std::size_t>(model.NumberOfObjects()), 0.0);
   for (std::size_t f = 0; f < model.Faces.size(); ++f)
   {
@@ -373,33 +382,26 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
       const Point3& b = model.Points[static_cast<std::size_t>(face[i])];
       const Point3& c = model.Points[static_cast<std::size_t>(face[i + 1])];
       const Point3 cr = point3::Cross(point3::Sub(b, a), point3::Sub(c, a));
-      volume[static_cast<std::size_t>(model.FaceObject[f])] +=
-        mesh.Planar ? cr[2] : point3::Dot(a, cr);
+      volume[static_cast<std::size_t>(model.FaceObject[f])] += planar ? cr[2] : point3::Dot(a, cr);
     }
   }
   for (int o = 0; o < model.NumberOfObjects(); ++o)
   {
     if (!(volume[static_cast<std::size_t>(o)] > 0))
     {
-      report.Problem = "object " + model.ObjectNames[static_cast<std::size_t>(o)] +
+      return "object " + model.ObjectNames[static_cast<std::size_t>(o)] +
         " of the output is not oriented outward";
-      return report;
     }
   }
-  try
-  {
-    ValidateExample(model);
-  }
-  catch (const Error& e)
-  {
-    report.Problem = std::string("the output is not a valid closed model: ") + e.what();
-    return report;
-  }
-  const PolyhedralAnalysis found = PolyhedralAnalysis::Analyze(model, example.AnalysisOptions());
-  // Families of the model's analysis → the example's, by their exact normals (up to sign: a
-  // family's normal points whichever way the first face seen did).
-  std::vector<int> familyMap;
-  std::vector<bool> flipped;
+  return {};
+}
+
+/// Families of the model's analysis @p found → the example's, by their exact normals (up to
+/// sign: a family's normal points whichever way the first face seen did), in @p familyMap and
+/// @p flipped. Returns the problem when a direction is not the example's, else empty.
+std::string MapFamilies(const PolyhedralAnalysis& found, const PolyhedralAnalysis& example,
+  std::vector<int>& familyMap, std::vector<bool>& flipped)
+{
   for (const auto& n : found.Families().AllNormals())
   {
     const auto& all = example.Families().AllNormals();
@@ -430,45 +432,91 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
     }
     if (it == all.end())
     {
-      report.Problem = "the output has a face direction (" + std::to_string(n[0]) + ", " +
+      return "the output has a face direction (" + std::to_string(n[0]) + ", " +
         std::to_string(n[1]) + ", " + std::to_string(n[2]) + ") that the example does not have";
-      return report;
     }
     familyMap.push_back(static_cast<int>(it - all.begin()));
+  }
+  return {};
+}
+
+/// Label @p l of the model's analysis in the example's terms: the families renumbered by
+/// @p familyMap and the cone bits permuted to the example's order (and flipped with the
+/// family), canonicalized.
+NeighbourhoodLabel MapLabel(
+  const NeighbourhoodLabel& l, const std::vector<int>& familyMap, const std::vector<bool>& flipped)
+{
+  std::vector<std::pair<int, int>> order; // (example family, position in l)
+  for (std::size_t j = 0; j < l.Families.size(); ++j)
+  {
+    order.emplace_back(familyMap[static_cast<std::size_t>(l.Families[j])], static_cast<int>(j));
+  }
+  std::sort(order.begin(), order.end());
+  NeighbourhoodLabel mapped;
+  for (const auto& o : order)
+  {
+    mapped.Families.push_back(o.first);
+  }
+  mapped.Types.assign(l.Types.size(), -1);
+  for (unsigned m = 0; m < l.Types.size(); ++m)
+  {
+    unsigned target = 0;
+    for (std::size_t k = 0; k < order.size(); ++k)
+    {
+      const auto j = static_cast<std::size_t>(order[k].second);
+      const bool positive = ((m >> j) & 1u) != 0;
+      if (positive != flipped[static_cast<std::size_t>(l.Families[j])])
+      {
+        target |= 1u << k;
+      }
+    }
+    mapped.Types[target] = l.Types[m];
+  }
+  mapped.Canonicalize();
+  return mapped;
+}
+} // namespace
+
+ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
+  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
+{
+  ContinuousModelReport report;
+  if (mesh.Polygons.empty())
+  {
+    report.Valid = true; // the empty model satisfies the constraint everywhere
+    return report;
+  }
+  PolyhedralExample model = MeshToModel(mesh, typeNames);
+  report.Objects = model.NumberOfObjects();
+  // Orientation, before validation (which would turn inward objects outward).
+  report.Problem = OrientationProblem(model, mesh.Planar);
+  if (!report.Problem.empty())
+  {
+    return report;
+  }
+  try
+  {
+    ValidateExample(model);
+  }
+  catch (const Error& e)
+  {
+    report.Problem = std::string("the output is not a valid closed model: ") + e.what();
+    return report;
+  }
+  const PolyhedralAnalysis found = PolyhedralAnalysis::Analyze(model, example.AnalysisOptions());
+  std::vector<int> familyMap;
+  std::vector<bool> flipped;
+  report.Problem = MapFamilies(found, example, familyMap, flipped);
+  if (!report.Problem.empty())
+  {
+    return report;
   }
   report.DistinctLabels = found.NumberOfLabels();
   report.SampledFeatures = static_cast<std::int64_t>(found.Features().size());
   for (int id = 0; id < found.NumberOfLabels(); ++id)
   {
     const NeighbourhoodLabel& l = found.Label(id).Label;
-    // Renumber the families and permute the cone bits to the example's order.
-    std::vector<std::pair<int, int>> order; // (example family, position in l)
-    for (std::size_t j = 0; j < l.Families.size(); ++j)
-    {
-      order.emplace_back(familyMap[static_cast<std::size_t>(l.Families[j])], static_cast<int>(j));
-    }
-    std::sort(order.begin(), order.end());
-    NeighbourhoodLabel mapped;
-    for (const auto& o : order)
-    {
-      mapped.Families.push_back(o.first);
-    }
-    mapped.Types.assign(l.Types.size(), -1);
-    for (unsigned m = 0; m < l.Types.size(); ++m)
-    {
-      unsigned target = 0;
-      for (std::size_t k = 0; k < order.size(); ++k)
-      {
-        const auto j = static_cast<std::size_t>(order[k].second);
-        const bool positive = ((m >> j) & 1u) != 0;
-        if (positive != flipped[static_cast<std::size_t>(l.Families[j])])
-        {
-          target |= 1u << k;
-        }
-      }
-      mapped.Types[target] = l.Types[m];
-    }
-    mapped.Canonicalize();
+    const NeighbourhoodLabel mapped = MapLabel(l, familyMap, flipped);
     if (example.Find(mapped) < 0)
     {
       Point3 where{};

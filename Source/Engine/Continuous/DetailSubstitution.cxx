@@ -22,6 +22,40 @@ std::int64_t Root(std::vector<std::int64_t>& parent, std::int64_t i)
   }
   return i;
 }
+
+/// Appends a copy of @p detail to @p out, mapped from the bounding volume's box [@p low,
+/// @p high] onto the part's box of @p placement (whose scale and anisotropy it sets), its
+/// polygons of @p type toward empty space.
+void PlaceDetail(ContinuousMesh& out, DetailPlacement& placement, const PolyhedralExample& detail,
+  const Point3& low, const Point3& high, int type)
+{
+  double smallest = 0, largest = 0;
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    placement.Scale[c] = (placement.High[c] - placement.Low[c]) / (high[c] - low[c]);
+    smallest = c == 0 ? placement.Scale[c] : std::min(smallest, placement.Scale[c]);
+    largest = c == 0 ? placement.Scale[c] : std::max(largest, placement.Scale[c]);
+  }
+  placement.Anisotropy = largest > 0 ? (largest - smallest) / largest : 0;
+  const auto first = static_cast<std::int32_t>(out.Points.size());
+  for (const auto& q : detail.Points)
+  {
+    Point3 p{};
+    for (std::size_t c = 0; c < 3; ++c)
+      p[c] = placement.Low[c] + (q[c] - low[c]) * placement.Scale[c];
+    out.Points.push_back(p);
+    out.PointVertex.push_back(-1);
+  }
+  for (const auto& face : detail.Faces)
+  {
+    std::vector<std::int32_t> poly;
+    for (int i : face)
+      poly.push_back(first + i);
+    out.Polygons.push_back(std::move(poly));
+    out.InsideType.push_back(type);
+    out.OutsideType.push_back(0);
+  }
+}
 } // namespace
 
 DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int>& types,
@@ -98,34 +132,7 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int
   }
   // A copy of the detail per part, from the bounding volume's box onto the part's box.
   for (auto& placement : result.Placements)
-  {
-    double smallest = 0, largest = 0;
-    for (std::size_t c = 0; c < 3; ++c)
-    {
-      placement.Scale[c] = (placement.High[c] - placement.Low[c]) / (high[c] - low[c]);
-      smallest = c == 0 ? placement.Scale[c] : std::min(smallest, placement.Scale[c]);
-      largest = c == 0 ? placement.Scale[c] : std::max(largest, placement.Scale[c]);
-    }
-    placement.Anisotropy = largest > 0 ? (largest - smallest) / largest : 0;
-    const auto first = static_cast<std::int32_t>(out.Points.size());
-    for (const auto& q : detail.Points)
-    {
-      Point3 p{};
-      for (std::size_t c = 0; c < 3; ++c)
-        p[c] = placement.Low[c] + (q[c] - low[c]) * placement.Scale[c];
-      out.Points.push_back(p);
-      out.PointVertex.push_back(-1);
-    }
-    for (const auto& face : detail.Faces)
-    {
-      std::vector<std::int32_t> poly;
-      for (int i : face)
-        poly.push_back(first + i);
-      out.Polygons.push_back(std::move(poly));
-      out.InsideType.push_back(type);
-      out.OutsideType.push_back(0);
-    }
-  }
+    PlaceDetail(out, placement, detail, low, high, type);
   return result;
 }
 

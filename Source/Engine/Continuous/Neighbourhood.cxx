@@ -67,6 +67,44 @@ WideVec3 Negated(const WideVec3& v)
   return { -v[0], -v[1], -v[2] };
 }
 
+/// The rays of the spherical arrangement of planes through the origin with @p normals (of the
+/// given @p rank), each with its opposite: each cone's closure is spanned by the rays it
+/// contains, so the sum of those rays is interior exactly when the cone exists.
+std::vector<WideVec3> ArrangementRays(const std::vector<WideVec3>& normals, int rank)
+{
+  std::vector<WideVec3> rays;
+  auto addRay = [&rays](const WideVec3& r)
+  {
+    const WideVec3 reduced = Reduced(r);
+    rays.push_back(reduced);
+    rays.push_back(Negated(reduced));
+  };
+  const int s = static_cast<int>(normals.size());
+  if (rank == 1)
+  {
+    addRay(normals[0]);
+  }
+  else if (rank == 2)
+  {
+    const WideVec3 line = Reduced(Cross(normals[0], normals[1]));
+    for (const auto& n : normals)
+    {
+      addRay(Cross(n, line));
+    }
+  }
+  else if (rank == 3)
+  {
+    for (int a = 0; a < s; ++a)
+    {
+      for (int b = a + 1; b < s; ++b)
+      {
+        addRay(Cross(normals[a], normals[b]));
+      }
+    }
+  }
+  return rays;
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -149,36 +187,7 @@ const std::vector<PlaneFamilySet::Cone>& PlaneFamilySet::Cones(
   }
   // The rays of the spherical arrangement: each cone's closure is spanned by
   // the rays it contains, so the sum of those rays is interior exactly when the cone exists.
-  std::vector<WideVec3> rays;
-  const int rank = this->Rank(families);
-  auto addRay = [&rays](const WideVec3& r)
-  {
-    const WideVec3 reduced = Reduced(r);
-    rays.push_back(reduced);
-    rays.push_back(Negated(reduced));
-  };
-  if (rank == 1)
-  {
-    addRay(normals[0]);
-  }
-  else if (rank == 2)
-  {
-    const WideVec3 line = Reduced(Cross(normals[0], normals[1]));
-    for (const auto& n : normals)
-    {
-      addRay(Cross(n, line));
-    }
-  }
-  else if (rank == 3)
-  {
-    for (int a = 0; a < s; ++a)
-    {
-      for (int b = a + 1; b < s; ++b)
-      {
-        addRay(Cross(normals[a], normals[b]));
-      }
-    }
-  }
+  const std::vector<WideVec3> rays = ArrangementRays(normals, this->Rank(families));
   std::vector<std::vector<int>> raySigns(rays.size(), std::vector<int>(s));
   for (std::size_t r = 0; r < rays.size(); ++r)
   {
@@ -543,29 +552,10 @@ std::vector<std::string> Factor(std::vector<Term> terms, const std::vector<std::
   return out;
 }
 
-} // namespace
-
-std::string MinimizedExpression(int numberOfVariables, const std::vector<bool>& on,
-  const std::vector<bool>& dontCare, const std::vector<std::string>& names)
+/// The prime implicants of the function whose on- and don't-care minterms are @p current
+/// (Quine–McCluskey: merge implicants differing in one bit until none merge).
+std::vector<Implicant> PrimeImplicants(std::set<Implicant> current)
 {
-  const unsigned size = 1u << numberOfVariables;
-  std::set<Implicant> current;
-  std::vector<unsigned> onMinterms;
-  for (unsigned m = 0; m < size; ++m)
-  {
-    if (on[m] || dontCare[m])
-    {
-      current.insert({ m, 0 });
-    }
-    if (on[m])
-    {
-      onMinterms.push_back(m);
-    }
-  }
-  if (onMinterms.empty())
-  {
-    return "∅";
-  }
   std::vector<Implicant> primes;
   while (!current.empty())
   {
@@ -597,8 +587,15 @@ std::string MinimizedExpression(int numberOfVariables, const std::vector<bool>& 
     }
     current = std::move(next);
   }
-  // Cover the on-set: essential primes first, then greedily the prime covering most of what is
-  // left (ties: more free bits, then order), which is exact for the small functions labels give.
+  return primes;
+}
+
+/// Primes that cover the on-set @p onMinterms: essential primes first, then greedily the prime
+/// covering most of what is left (ties: more free bits, then order), which is exact for the
+/// small functions labels give.
+std::vector<Implicant> CoverOnSet(
+  const std::vector<Implicant>& primes, const std::vector<unsigned>& onMinterms)
+{
   std::vector<Implicant> chosen;
   std::set<unsigned> uncovered(onMinterms.begin(), onMinterms.end());
   for (unsigned m : onMinterms)
@@ -650,6 +647,35 @@ std::string MinimizedExpression(int numberOfVariables, const std::vector<bool>& 
       it = best->Covers(*it) ? uncovered.erase(it) : std::next(it);
     }
   }
+  return chosen;
+}
+
+} // namespace
+
+std::string MinimizedExpression(int numberOfVariables, const std::vector<bool>& on,
+  const std::vector<bool>& dontCare, const std::vector<std::string>& names)
+{
+  const unsigned size = 1u << numberOfVariables;
+  std::set<Implicant> current;
+  std::vector<unsigned> onMinterms;
+  for (unsigned m = 0; m < size; ++m)
+  {
+    if (on[m] || dontCare[m])
+    {
+      current.insert({ m, 0 });
+    }
+    if (on[m])
+    {
+      onMinterms.push_back(m);
+    }
+  }
+  if (onMinterms.empty())
+  {
+    return "∅";
+  }
+  const std::vector<Implicant> primes = PrimeImplicants(std::move(current));
+  // Cover the on-set: essential primes first, then greedily (see CoverOnSet).
+  const std::vector<Implicant> chosen = CoverOnSet(primes, onMinterms);
   std::vector<Term> terms;
   for (const auto& c : chosen)
   {

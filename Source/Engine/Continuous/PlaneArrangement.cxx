@@ -98,14 +98,12 @@ std::vector<double> CornerAnchors(const PolyhedralExample& example,
 }
 } // namespace
 
-ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& example,
-  const PolyhedralAnalysis& analysis, const Point3& size, double spacing,
-  const std::vector<double>& spacings)
+namespace
 {
-  ArrangementParameters p;
-  p.Planar = analysis.Planar();
-  const int dims = p.Planar ? 2 : 3;
-  const std::string where = example.Source.empty() ? "example" : example.Source;
+/// Checks the requested output size (along the @p dims synthesized axes) and the common plane
+/// spacing. @throw Error naming @p where.
+void CheckSizeAndSpacing(const std::string& where, const Point3& size, int dims, double spacing)
+{
   for (int c = 0; c < dims; ++c)
   {
     if (!(size[c] > 0) || !std::isfinite(size[c]))
@@ -117,7 +115,13 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
   {
     throw Error(where + ": the plane spacing must be positive and finite");
   }
-  Point3 lo = example.Points.at(0), hi = lo;
+}
+
+/// The example's bounding box, @p lo and @p hi. @throw std::out_of_range without points.
+void ExampleBounds(const PolyhedralExample& example, Point3& lo, Point3& hi)
+{
+  lo = example.Points.at(0);
+  hi = lo;
   for (const auto& q : example.Points)
   {
     for (int c = 0; c < 3; ++c)
@@ -126,6 +130,62 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
       hi[c] = std::max(hi[c], q[c]);
     }
   }
+}
+
+/// Replaces the derived integer spacings by the per-family @p spacings (world units), given
+/// the derived spacings' world lengths @p world. @throw Error naming @p where.
+void ApplyFamilySpacings(ArrangementParameters& p, const std::vector<double>& spacings,
+  const std::vector<double>& world, const std::string& where)
+{
+  for (std::size_t f = 0; f < spacings.size(); ++f)
+  {
+    const double target = spacings[f];
+    if (!(target > 0) || !std::isfinite(target))
+    {
+      throw Error(where + ": plane spacings must be positive and finite");
+    }
+    const double units = std::floor(target / world[f] * static_cast<double>(p.Spacings[f]) + 0.5);
+    if (units > std::ldexp(1.0, 40))
+    {
+      throw Error(where + ": a plane spacing is too large for exact coordinates");
+    }
+    p.Spacings[f] = std::max<std::int64_t>(1, static_cast<std::int64_t>(units));
+  }
+}
+
+/// The output box in lattice units: from 0 to @p size along the @p dims synthesized axes.
+/// @throw Error naming @p where when it needs more than 2^40 units.
+void SetOutputBox(ArrangementParameters& p, const Point3& size, int dims, const std::string& where)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    p.BoxLow[c] = 0;
+    if (c < dims)
+    {
+      const double units = std::floor(size[c] / p.Quantum + 0.5);
+      if (units > std::ldexp(1.0, 40))
+      {
+        throw Error(where +
+          ": the output size is too large for exact coordinates (more than "
+          "2^20 example diagonals)");
+      }
+      p.BoxHigh[c] = static_cast<std::int64_t>(units);
+    }
+  }
+}
+} // namespace
+
+ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& example,
+  const PolyhedralAnalysis& analysis, const Point3& size, double spacing,
+  const std::vector<double>& spacings)
+{
+  ArrangementParameters p;
+  p.Planar = analysis.Planar();
+  const int dims = p.Planar ? 2 : 3;
+  const std::string where = example.Source.empty() ? "example" : example.Source;
+  CheckSizeAndSpacing(where, size, dims, spacing);
+  Point3 lo, hi;
+  ExampleBounds(example, lo, hi);
   const double diag = point3::Norm(point3::Sub(hi, lo));
   // A power of two, so examples authored on binary fractions land on exact units.
   p.Quantum = std::ldexp(1.0, static_cast<int>(std::floor(std::log2(diag))) - 20);
@@ -198,39 +258,9 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
   }
   if (!spacings.empty())
   {
-    for (int f = 0; f < m; ++f)
-    {
-      const double target = spacings[static_cast<std::size_t>(f)];
-      if (!(target > 0) || !std::isfinite(target))
-      {
-        throw Error(where + ": plane spacings must be positive and finite");
-      }
-      const double units = std::floor(target / world[static_cast<std::size_t>(f)] *
-          static_cast<double>(p.Spacings[static_cast<std::size_t>(f)]) +
-        0.5);
-      if (units > std::ldexp(1.0, 40))
-      {
-        throw Error(where + ": a plane spacing is too large for exact coordinates");
-      }
-      p.Spacings[static_cast<std::size_t>(f)] =
-        std::max<std::int64_t>(1, static_cast<std::int64_t>(units));
-    }
+    ApplyFamilySpacings(p, spacings, world, where);
   }
-  for (int c = 0; c < 3; ++c)
-  {
-    p.BoxLow[c] = 0;
-    if (c < dims)
-    {
-      const double units = std::floor(size[c] / p.Quantum + 0.5);
-      if (units > std::ldexp(1.0, 40))
-      {
-        throw Error(where +
-          ": the output size is too large for exact coordinates (more than "
-          "2^20 example diagonals)");
-      }
-      p.BoxHigh[c] = static_cast<std::int64_t>(units);
-    }
-  }
+  SetOutputBox(p, size, dims, where);
   // Where four or more families meet at a corner of the example (a pyramid's apex, TVCG §4.4),
   // their planes go through that corner's exact lattice point, so they meet there in the output
   // too; with offsets from face means they would miss one another by rounding (and by the

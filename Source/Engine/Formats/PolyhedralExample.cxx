@@ -88,6 +88,102 @@ PolyhedralExample ReadOBJExample(const std::string& path, const ObjectTypeOption
   return ReadOBJExample(in, path, options);
 }
 
+namespace
+{
+/// The error of an OBJ line: "NAME: line N: PROBLEM".
+Error LineError(const std::string& name, long lineNumber, const std::string& problem)
+{
+  return Error::InFile(name, "line " + std::to_string(lineNumber) + ": " + problem);
+}
+
+/// The three coordinates of a "v" line. @throw Error naming the file and line.
+Point3 ParseVertex(std::istringstream& words, const std::string& name, long lineNumber)
+{
+  Point3 p{};
+  for (auto& c : p)
+  {
+    std::string token;
+    if (!(words >> token))
+    {
+      throw LineError(name, lineNumber, "a vertex needs three coordinates");
+    }
+    char* end = nullptr;
+    c = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || *end != '\0' || !std::isfinite(c))
+    {
+      throw LineError(name, lineNumber, "'" + token + "' is not a finite number");
+    }
+  }
+  return p;
+}
+
+/// The type of the object named @p objectName: its own or its base name's in the options,
+/// else the type given to its base name before, else the next free one (recorded in
+/// @p autoTypes). Not checked for range.
+int ObjectTypeOf(const std::string& objectName, const ObjectTypeOptions& options,
+  std::map<std::string, int>& autoTypes)
+{
+  const std::string base = BaseName(objectName);
+  if (options.TypeOfName.count(objectName))
+  {
+    return options.TypeOfName.at(objectName);
+  }
+  if (options.TypeOfName.count(base))
+  {
+    return options.TypeOfName.at(base);
+  }
+  auto t = autoTypes.find(base);
+  if (t == autoTypes.end())
+  {
+    int next = 1;
+    for (const auto& [n, v] : options.TypeOfName)
+    {
+      (void)n;
+      next = std::max(next, v + 1);
+    }
+    for (const auto& [n, v] : autoTypes)
+    {
+      (void)n;
+      next = std::max(next, v + 1);
+    }
+    t = autoTypes.emplace(base, next).first;
+  }
+  return t->second;
+}
+
+/// The vertex indices of an "f" line (1-based or negative = relative, "i/t/n" forms), as
+/// 0-based indices into the @p count vertices read so far. @throw Error naming file and line.
+std::vector<int> ParseFace(
+  std::istringstream& words, long count, const std::string& name, long lineNumber)
+{
+  std::vector<int> face;
+  std::string token;
+  while (words >> token)
+  {
+    const std::string index = token.substr(0, token.find('/'));
+    char* end = nullptr;
+    const long value = std::strtol(index.c_str(), &end, 10);
+    if (index.empty() || *end != '\0')
+    {
+      throw LineError(name, lineNumber, "'" + token + "' is not a vertex index");
+    }
+    const long resolved = value < 0 ? count + value : value - 1;
+    if (value == 0 || resolved < 0 || resolved >= count)
+    {
+      throw LineError(name, lineNumber,
+        "vertex index " + index + " is out of range (" + std::to_string(count) +
+          " vertices so far)");
+    }
+    face.push_back(static_cast<int>(resolved));
+  }
+  if (face.size() < 3)
+  {
+    throw LineError(name, lineNumber, "a face needs at least three vertices");
+  }
+  return face;
+}
+} // namespace
+
 PolyhedralExample ReadOBJExample(
   std::istream& in, const std::string& name, const ObjectTypeOptions& options)
 {
@@ -99,8 +195,6 @@ PolyhedralExample ReadOBJExample(
   int currentObject = -1;
   std::string line;
   long lineNumber = 0;
-  auto fail = [&](const std::string& problem)
-  { return Error::InFile(name, "line " + std::to_string(lineNumber) + ": " + problem); };
   while (std::getline(in, line))
   {
     ++lineNumber;
@@ -116,22 +210,7 @@ PolyhedralExample ReadOBJExample(
     }
     if (keyword == "v")
     {
-      Point3 p{};
-      for (auto& c : p)
-      {
-        std::string token;
-        if (!(words >> token))
-        {
-          throw fail("a vertex needs three coordinates");
-        }
-        char* end = nullptr;
-        c = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != '\0' || !std::isfinite(c))
-        {
-          throw fail("'" + token + "' is not a finite number");
-        }
-      }
-      example.Points.push_back(p);
+      example.Points.push_back(ParseVertex(words, name, lineNumber));
     }
     else if (keyword == "o" || keyword == "g")
     {
@@ -147,73 +226,22 @@ PolyhedralExample ReadOBJExample(
         auto found = objectOfName.find(currentName);
         if (found == objectOfName.end())
         {
-          int type = 0;
-          const std::string base = BaseName(currentName);
-          if (options.TypeOfName.count(currentName))
-          {
-            type = options.TypeOfName.at(currentName);
-          }
-          else if (options.TypeOfName.count(base))
-          {
-            type = options.TypeOfName.at(base);
-          }
-          else
-          {
-            auto t = autoTypes.find(base);
-            if (t == autoTypes.end())
-            {
-              int next = 1;
-              for (const auto& [n, v] : options.TypeOfName)
-              {
-                (void)n;
-                next = std::max(next, v + 1);
-              }
-              for (const auto& [n, v] : autoTypes)
-              {
-                (void)n;
-                next = std::max(next, v + 1);
-              }
-              t = autoTypes.emplace(base, next).first;
-            }
-            type = t->second;
-          }
+          const int type = ObjectTypeOf(currentName, options, autoTypes);
           if (type < 1 || type > 32767)
           {
-            throw fail("object '" + currentName + "' maps to type " + std::to_string(type) +
-              "; types are 1..32767 (0 is empty space)");
+            throw LineError(name, lineNumber,
+              "object '" + currentName + "' maps to type " + std::to_string(type) +
+                "; types are 1..32767 (0 is empty space)");
           }
-          example.TypeNames.emplace(type, base);
+          example.TypeNames.emplace(type, BaseName(currentName));
           found = objectOfName.emplace(currentName, example.NumberOfObjects()).first;
           example.ObjectTypes.push_back(type);
           example.ObjectNames.push_back(currentName);
         }
         currentObject = found->second;
       }
-      std::vector<int> face;
-      std::string token;
-      while (words >> token)
-      {
-        const std::string index = token.substr(0, token.find('/'));
-        char* end = nullptr;
-        const long value = std::strtol(index.c_str(), &end, 10);
-        if (index.empty() || *end != '\0')
-        {
-          throw fail("'" + token + "' is not a vertex index");
-        }
-        const long count = static_cast<long>(example.Points.size());
-        const long resolved = value < 0 ? count + value : value - 1;
-        if (value == 0 || resolved < 0 || resolved >= count)
-        {
-          throw fail("vertex index " + index + " is out of range (" + std::to_string(count) +
-            " vertices so far)");
-        }
-        face.push_back(static_cast<int>(resolved));
-      }
-      if (face.size() < 3)
-      {
-        throw fail("a face needs at least three vertices");
-      }
-      example.Faces.push_back(std::move(face));
+      example.Faces.push_back(
+        ParseFace(words, static_cast<long>(example.Points.size()), name, lineNumber));
       example.FaceObject.push_back(currentObject);
     }
   }
@@ -398,6 +426,116 @@ void CheckFace3D(const PolyhedralExample& e, std::size_t f, double diagonal)
   CheckSimplePolygon(e, face, drop, diagonal, where);
 }
 
+/// Per undirected edge (lower vertex first), the faces that use it and whether each goes from
+/// the lower vertex to the higher.
+using EdgeUses = std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, bool>>>;
+
+/// Each undirected edge of an object (@p what) used by exactly two faces, once in each
+/// direction. @throw Error naming the edge and faces.
+void CheckEdgesOf(const PolyhedralExample& e, const std::string& what, const EdgeUses& uses)
+{
+  for (const auto& [edge, list] : uses)
+  {
+    const std::string edgeText =
+      "edge (" + std::to_string(edge.first + 1) + ", " + std::to_string(edge.second + 1) + ")";
+    if (list.size() == 1)
+    {
+      throw Error::InFile(e.Source,
+        what + " is not closed: " + edgeText + " belongs to face " +
+          std::to_string(list[0].first + 1) + " only");
+    }
+    if (list.size() > 2)
+    {
+      throw Error::InFile(e.Source,
+        what + " is non-manifold: " + edgeText + " is shared by " + std::to_string(list.size()) +
+          " faces");
+    }
+    if (list[0].second == list[1].second)
+    {
+      throw Error::InFile(e.Source,
+        what + " has inconsistent orientation: faces " + std::to_string(list[0].first + 1) +
+          " and " + std::to_string(list[1].first + 1) + " traverse " + edgeText +
+          " in the same direction");
+    }
+  }
+}
+
+/// Each vertex of an object (@p what): its faces form one fan (connected through the edges at
+/// the vertex). Every edge has two uses (CheckEdgesOf). @throw Error naming the vertex.
+void CheckVertexFansOf(const PolyhedralExample& e, const std::string& what, const EdgeUses& uses,
+  const std::map<int, std::vector<std::size_t>>& facesAtVertex)
+{
+  std::map<std::size_t, std::size_t> parent;
+  auto find = [&parent](std::size_t i)
+  {
+    while (parent[i] != i)
+    {
+      i = parent[i] = parent[parent[i]];
+    }
+    return i;
+  };
+  std::map<int, std::vector<std::pair<std::size_t, std::size_t>>> linksAtVertex;
+  for (const auto& [edge, list] : uses)
+  {
+    linksAtVertex[edge.first].emplace_back(list[0].first, list[1].first);
+    linksAtVertex[edge.second].emplace_back(list[0].first, list[1].first);
+  }
+  for (const auto& [vertex, faces] : facesAtVertex)
+  {
+    parent.clear();
+    for (auto f : faces)
+    {
+      parent[f] = f;
+    }
+    for (const auto& [f1, f2] : linksAtVertex[vertex])
+    {
+      parent[find(f1)] = find(f2);
+    }
+    std::size_t roots = 0;
+    for (const auto& [f, up] : parent)
+    {
+      roots += f == up ? 1 : 0;
+    }
+    if (roots > 1)
+    {
+      throw Error::InFile(e.Source,
+        what + " is non-manifold at vertex " + std::to_string(vertex + 1) +
+          " (its faces there form " + std::to_string(roots) + " separate fans)");
+    }
+  }
+}
+
+/// Orientation of object @p o (@p what): the enclosed volume must be positive; an
+/// inward-facing object is turned. @throw Error when it encloses no volume.
+void OrientObject(PolyhedralExample& e, int o, const std::string& what, double diagonal)
+{
+  double volume = 0;
+  for (std::size_t f = 0; f < e.Faces.size(); ++f)
+  {
+    if (e.FaceObject[f] == o)
+    {
+      volume += Dot(e.Points[e.Faces[f][0]], NewellNormal(e.Points, e.Faces[f])) / 6.0;
+    }
+  }
+  if (std::abs(volume) <= 1e-12 * diagonal * diagonal * diagonal)
+  {
+    throw Error::InFile(e.Source, what + " encloses no volume");
+  }
+  if (volume < 0)
+  {
+    for (std::size_t f = 0; f < e.Faces.size(); ++f)
+    {
+      if (e.FaceObject[f] == o)
+      {
+        std::reverse(e.Faces[f].begin(), e.Faces[f].end());
+      }
+    }
+  }
+}
+
+/// A 3D example: every face valid (CheckFace3D), every object a closed, manifold,
+/// consistently oriented, outward-facing (turned if need be), non-self-intersecting solid.
+/// @throw Error naming the file and the object.
 void Validate3D(PolyhedralExample& e)
 {
   const double diagonal = e.Diagonal();
@@ -409,7 +547,7 @@ void Validate3D(PolyhedralExample& e)
   {
     const std::string what = ObjectDescription(e, o);
     // Each undirected edge: used by exactly two faces, once in each direction.
-    std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, bool>>> uses;
+    EdgeUses uses;
     std::map<int, std::vector<std::size_t>> facesAtVertex;
     for (std::size_t f = 0; f < e.Faces.size(); ++f)
     {
@@ -425,92 +563,9 @@ void Validate3D(PolyhedralExample& e)
         facesAtVertex[a].push_back(f);
       }
     }
-    for (const auto& [edge, list] : uses)
-    {
-      const std::string edgeText =
-        "edge (" + std::to_string(edge.first + 1) + ", " + std::to_string(edge.second + 1) + ")";
-      if (list.size() == 1)
-      {
-        throw Error::InFile(e.Source,
-          what + " is not closed: " + edgeText + " belongs to face " +
-            std::to_string(list[0].first + 1) + " only");
-      }
-      if (list.size() > 2)
-      {
-        throw Error::InFile(e.Source,
-          what + " is non-manifold: " + edgeText + " is shared by " + std::to_string(list.size()) +
-            " faces");
-      }
-      if (list[0].second == list[1].second)
-      {
-        throw Error::InFile(e.Source,
-          what + " has inconsistent orientation: faces " + std::to_string(list[0].first + 1) +
-            " and " + std::to_string(list[1].first + 1) + " traverse " + edgeText +
-            " in the same direction");
-      }
-    }
-    // Each vertex: its faces form one fan (connected through the edges at the vertex).
-    std::map<std::size_t, std::size_t> parent;
-    auto find = [&parent](std::size_t i)
-    {
-      while (parent[i] != i)
-      {
-        i = parent[i] = parent[parent[i]];
-      }
-      return i;
-    };
-    std::map<int, std::vector<std::pair<std::size_t, std::size_t>>> linksAtVertex;
-    for (const auto& [edge, list] : uses)
-    {
-      linksAtVertex[edge.first].emplace_back(list[0].first, list[1].first);
-      linksAtVertex[edge.second].emplace_back(list[0].first, list[1].first);
-    }
-    for (const auto& [vertex, faces] : facesAtVertex)
-    {
-      parent.clear();
-      for (auto f : faces)
-      {
-        parent[f] = f;
-      }
-      for (const auto& [f1, f2] : linksAtVertex[vertex])
-      {
-        parent[find(f1)] = find(f2);
-      }
-      std::size_t roots = 0;
-      for (const auto& [f, up] : parent)
-      {
-        roots += f == up ? 1 : 0;
-      }
-      if (roots > 1)
-      {
-        throw Error::InFile(e.Source,
-          what + " is non-manifold at vertex " + std::to_string(vertex + 1) +
-            " (its faces there form " + std::to_string(roots) + " separate fans)");
-      }
-    }
-    // Orientation: the enclosed volume must be positive; an inward-facing object is turned.
-    double volume = 0;
-    for (std::size_t f = 0; f < e.Faces.size(); ++f)
-    {
-      if (e.FaceObject[f] == o)
-      {
-        volume += Dot(e.Points[e.Faces[f][0]], NewellNormal(e.Points, e.Faces[f])) / 6.0;
-      }
-    }
-    if (std::abs(volume) <= 1e-12 * diagonal * diagonal * diagonal)
-    {
-      throw Error::InFile(e.Source, what + " encloses no volume");
-    }
-    if (volume < 0)
-    {
-      for (std::size_t f = 0; f < e.Faces.size(); ++f)
-      {
-        if (e.FaceObject[f] == o)
-        {
-          std::reverse(e.Faces[f].begin(), e.Faces[f].end());
-        }
-      }
-    }
+    CheckEdgesOf(e, what, uses);
+    CheckVertexFansOf(e, what, uses, facesAtVertex);
+    OrientObject(e, o, what, diagonal);
     if (ObjectSelfIntersects(e, o))
     {
       throw Error::InFile(e.Source, what + " is self-intersecting");

@@ -22,6 +22,84 @@ std::int32_t MirrorTile(const FactorModel& m, const PatternOptions& o, std::int3
   return it == o.MirrorMap.end() ? t : m.TileIndex(it->second);
 }
 
+/// Per zone listed in ZoneTiles, which of the model's tiles it allows (zoning, §4).
+/// @throw Error when a zone allows a label no exemplar holds.
+std::map<std::int32_t, std::vector<std::uint8_t>> ZoneMasks(
+  const FactorModel& model, const PatternOptions& options)
+{
+  std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
+  for (const auto& [zone, values] : options.ZoneTiles)
+  {
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(model.NumberOfTiles()), 0);
+    for (Label v : values)
+    {
+      const int t = model.TileIndex(v);
+      if (t < 0)
+        throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
+          ", which no exemplar holds");
+      mask[static_cast<std::size_t>(t)] = 1;
+    }
+    zoneMask[zone] = std::move(mask);
+  }
+  return zoneMask;
+}
+
+/**
+ * The tiles a site class allows (@p mask, and their list, returned): those that each image of
+ * the site in @p key (zone or INT32_MIN, fixed tile or -1, mirror parity; after the seam bits
+ * at key[0]) meets, mapped, and that can meet their mirror image across the seams of @p seam
+ * (bit a: an even-sized mirrored axis a; bit 3 + a: an odd one, whose middle maps to itself).
+ * @throw Error naming the site at @p c when no tile is left.
+ */
+std::vector<std::int32_t> ClassTilesOf(const FactorModel& model, const PatternOptions& options,
+  const std::map<std::int32_t, std::vector<std::uint8_t>>& zoneMask,
+  const std::vector<std::int32_t>& key, int seam, const std::array<std::int64_t, 3>& c,
+  std::vector<std::uint8_t>& mask)
+{
+  const std::int32_t T = model.NumberOfTiles();
+  mask.assign(static_cast<std::size_t>(T), 1);
+  bool fixedAndZoned = false;
+  for (std::size_t i = 1; i < key.size(); i += 3)
+  {
+    const std::int32_t zone = key[i], fixed = key[i + 1];
+    fixedAndZoned = fixedAndZoned || (fixed >= 0 && zone != INT32_MIN);
+    for (std::int32_t t = 0; t < T; ++t)
+    {
+      const std::int32_t image = key[i + 2] ? MirrorTile(model, options, t) : t;
+      if ((zone != INT32_MIN && !zoneMask.at(zone)[static_cast<std::size_t>(image)]) ||
+        (fixed >= 0 && image != fixed))
+        mask[static_cast<std::size_t>(t)] = 0;
+    }
+  }
+  for (std::int32_t t = 0; t < T; ++t)
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int32_t f = MirrorTile(model, options, t);
+      if ((seam & (1 << a)) && !model.Allowed(a, t, f))
+        mask[static_cast<std::size_t>(t)] = 0;
+      if ((seam & (8 << a)) && f != t)
+        mask[static_cast<std::size_t>(t)] = 0;
+    }
+  std::vector<std::int32_t> tiles;
+  for (std::int32_t t = 0; t < T; ++t)
+    if (mask[static_cast<std::size_t>(t)])
+      tiles.push_back(t);
+  if (tiles.empty())
+  {
+    std::string where = "site (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+      std::to_string(c[2]) + ")";
+    if (fixedAndZoned)
+      throw Error(where + " is fixed to a label that its zone does not allow");
+    if (seam)
+      throw Error(
+        where + " is on the mirror seam and no tile it allows can meet its mirror image there");
+    if (key.size() > 4)
+      throw Error(where + " and its mirror images have zones or fixed labels no tile meets");
+    throw Error("zone " + std::to_string(key[1]) + " allows no tile");
+  }
+  return tiles;
+}
+
 } // namespace
 
 PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& options,
@@ -139,20 +217,7 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
   const FactorModel& model = this->Model;
   const auto& size = this->Size;
   const auto& full = options.Size;
-  std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
-  for (const auto& [zone, values] : options.ZoneTiles)
-  {
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 0);
-    for (Label v : values)
-    {
-      const int t = model.TileIndex(v);
-      if (t < 0)
-        throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
-          ", which no exemplar holds");
-      mask[static_cast<std::size_t>(t)] = 1;
-    }
-    zoneMask[zone] = std::move(mask);
-  }
+  const auto zoneMask = ZoneMasks(model, options);
   // A site's class: its seam, and the zone and fixed label of each of its images in the full
   // output (itself, and with mirroring its mirror images, whose tiles are its tiles mapped).
   std::map<std::vector<std::int32_t>, std::int32_t> classes;
@@ -195,46 +260,8 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
     auto it = classes.find(key);
     if (it == classes.end())
     {
-      std::vector<std::uint8_t> mask(static_cast<std::size_t>(this->T), 1);
-      bool fixedAndZoned = false;
-      for (std::size_t i = 1; i < key.size(); i += 3)
-      {
-        const std::int32_t zone = key[i], fixed = key[i + 1];
-        fixedAndZoned = fixedAndZoned || (fixed >= 0 && zone != INT32_MIN);
-        for (std::int32_t t = 0; t < this->T; ++t)
-        {
-          const std::int32_t image = key[i + 2] ? MirrorTile(model, options, t) : t;
-          if ((zone != INT32_MIN && !zoneMask[zone][static_cast<std::size_t>(image)]) ||
-            (fixed >= 0 && image != fixed))
-            mask[static_cast<std::size_t>(t)] = 0;
-        }
-      }
-      for (std::int32_t t = 0; t < this->T; ++t)
-        for (int a = 0; a < 3; ++a)
-        {
-          const std::int32_t f = MirrorTile(model, options, t);
-          if ((seam & (1 << a)) && !model.Allowed(a, t, f))
-            mask[static_cast<std::size_t>(t)] = 0;
-          if ((seam & (8 << a)) && f != t)
-            mask[static_cast<std::size_t>(t)] = 0;
-        }
-      std::vector<std::int32_t> tiles;
-      for (std::int32_t t = 0; t < this->T; ++t)
-        if (mask[static_cast<std::size_t>(t)])
-          tiles.push_back(t);
-      if (tiles.empty())
-      {
-        std::string where = "site (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
-          std::to_string(c[2]) + ")";
-        if (fixedAndZoned)
-          throw Error(where + " is fixed to a label that its zone does not allow");
-        if (seam)
-          throw Error(
-            where + " is on the mirror seam and no tile it allows can meet its mirror image there");
-        if (key.size() > 4)
-          throw Error(where + " and its mirror images have zones or fixed labels no tile meets");
-        throw Error("zone " + std::to_string(key[1]) + " allows no tile");
-      }
+      std::vector<std::uint8_t> mask;
+      std::vector<std::int32_t> tiles = ClassTilesOf(model, options, zoneMask, key, seam, c, mask);
       it = classes.emplace(key, static_cast<std::int32_t>(this->ClassTiles.size())).first;
       this->ClassAllowed.push_back(std::move(mask));
       this->ClassTiles.push_back(std::move(tiles));

@@ -181,6 +181,39 @@ void AddPlacements(vtkPolyData* output, const std::vector<msynth::DetailPlacemen
   output->GetFieldData()->AddArray(scales);
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(), "DetailAnisotropy", worst);
 }
+
+/// The finished model's labels of @p labelled (ModelLabel when the solver shows catalog time
+/// steps, else Label). @throw msynth::Error naming @p where when there is no such integer
+/// array with one value per vertex.
+vtkDataArray* ModelLabelArray(vtkPolyData* labelled, const std::string& where)
+{
+  vtkDataArray* labelArray = labelled->GetPointData()->GetArray("ModelLabel");
+  if (!labelArray)
+  {
+    labelArray = labelled->GetPointData()->GetArray("Label");
+  }
+  if (!labelArray || labelArray->GetNumberOfComponents() != 1 ||
+    labelArray->GetNumberOfTuples() != labelled->GetNumberOfPoints() ||
+    !vtkMSLabelArrays::IsIntegerArray(labelArray))
+  {
+    throw msynth::Error(where +
+      ": the arrangement input has no integer point array 'Label' with one "
+      "value per vertex; connect the ModelSynth Continuous Synthesis filter");
+  }
+  return labelArray;
+}
+
+/// Each type's share of the solid volume (area in 2D) of @p mesh as it is: VolumeShare_TYPE.
+void AddVolumeShares(vtkPolyData* output, const msynth::ContinuousMesh& mesh)
+{
+  const auto volumes = msynth::TypeVolumes(mesh);
+  double solid = 0;
+  for (const auto& [type, volume] : volumes)
+    solid += volume;
+  for (const auto& [type, volume] : volumes)
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(),
+      ("VolumeShare_" + std::to_string(type)).c_str(), solid > 0 ? volume / solid : 0.0);
+}
 } // namespace
 
 int vtkMSArrangementMesh::RequestData(
@@ -206,19 +239,7 @@ int vtkMSArrangementMesh::RequestData(
     const auto record =
       vtkMSArrangementStorage::LoadArrangement(labelled->GetFieldData(), where + " (arrangement)");
     // The finished model (ModelLabel when the solver shows catalog time steps, else Label).
-    vtkDataArray* labelArray = labelled->GetPointData()->GetArray("ModelLabel");
-    if (!labelArray)
-    {
-      labelArray = labelled->GetPointData()->GetArray("Label");
-    }
-    if (!labelArray || labelArray->GetNumberOfComponents() != 1 ||
-      labelArray->GetNumberOfTuples() != labelled->GetNumberOfPoints() ||
-      !vtkMSLabelArrays::IsIntegerArray(labelArray))
-    {
-      throw msynth::Error(where +
-        ": the arrangement input has no integer point array 'Label' with one "
-        "value per vertex; connect the ModelSynth Continuous Synthesis filter");
-    }
+    vtkDataArray* labelArray = ModelLabelArray(labelled, where);
     msynth::PolyhedralExample ex;
     const auto analysis = vtkMSPolyhedra::AnalyzeExample(
       example, record.AngleToleranceDegrees, record.MaximumSmallInteger, ex);
@@ -253,14 +274,7 @@ int vtkMSArrangementMesh::RequestData(
     if (detail)
       AddPlacements(output, placements);
     AddTypeNames(output, ex);
-    // Each type's share of the solid volume (area in 2D) of the mesh as it is.
-    const auto volumes = msynth::TypeVolumes(mesh);
-    double solid = 0;
-    for (const auto& [type, volume] : volumes)
-      solid += volume;
-    for (const auto& [type, volume] : volumes)
-      vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(),
-        ("VolumeShare_" + std::to_string(type)).c_str(), solid > 0 ? volume / solid : 0.0);
+    AddVolumeShares(output, mesh);
     // The direction snapping the example was analyzed with, so a check of the model (msynth
     // check) analyzes it the same way.
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(

@@ -92,6 +92,34 @@ bool ReadIntegers(
   return vtkMSLabelArrays::ReadLabels(image, selected, grid, problem);
 }
 
+/// The image of @p sample: extent from @p size, spacing and origin as the pipeline asks, the
+/// labels as scalars, and the SatisfiedSoft and LastChange arrays.
+void FillOutput(vtkImageData* output, vtkInformation* outInfo, const int size[3],
+  const msynth::PatternSample& sample)
+{
+  output->SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, size[2] - 1);
+  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+  outInfo->Get(vtkDataObject::SPACING(), spacing);
+  outInfo->Get(vtkDataObject::ORIGIN(), origin);
+  output->SetSpacing(spacing);
+  output->SetOrigin(origin);
+  vtkIntArray* labels = vtkMSLabelArrays::NewLabelArray(sample.Labels, "Label");
+  output->GetPointData()->SetScalars(labels);
+  labels->Delete();
+  vtkNew<vtkIntArray> satisfied;
+  satisfied->SetName("SatisfiedSoft");
+  satisfied->SetNumberOfTuples(static_cast<vtkIdType>(sample.SatisfiedSoft.size()));
+  for (std::size_t i = 0; i < sample.SatisfiedSoft.size(); ++i)
+    satisfied->SetValue(static_cast<vtkIdType>(i), sample.SatisfiedSoft[i]);
+  output->GetPointData()->AddArray(satisfied);
+  vtkNew<vtkIdTypeArray> last;
+  last->SetName("LastChange");
+  last->SetNumberOfTuples(static_cast<vtkIdType>(sample.LastChange.size()));
+  for (std::size_t i = 0; i < sample.LastChange.size(); ++i)
+    last->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(sample.LastChange[i]));
+  output->GetPointData()->AddArray(last);
+}
+
 std::string MethodName(int method)
 {
   return method == vtkMSPatternSynthesis::METROPOLIS_HASTINGS ? "mh"
@@ -119,49 +147,13 @@ int vtkMSPatternSynthesis::RequestData(
   }
   std::vector<vtkDataObject*> inputs;
   std::vector<msynth::LabelGrid> exemplars;
-  std::string problem;
-  for (int i = 0; i < exemplarCount; ++i)
-  {
-    vtkImageData* image = vtkImageData::GetData(inputVector[0], i);
-    msynth::LabelGrid grid;
-    if (!image || !vtkMSLabelArrays::ReadLabels(image, nullptr, grid, problem))
-    {
-      vtkErrorMacro(<< "Exemplar " << i + 1 << " (" << vtkMSFieldData::ExampleName(image)
-                    << "): " << (image ? problem : std::string("not an image")));
-      return 0;
-    }
-    inputs.push_back(image);
-    exemplars.push_back(std::move(grid));
-  }
+  if (!this->ReadExemplars(inputVector[0], inputs, exemplars))
+    return 0;
   msynth::PatternOptions options;
   options.Size = { { this->OutputSize[0], this->OutputSize[1], this->OutputSize[2] } };
   const std::int64_t sites = options.Size[0] * options.Size[1] * options.Size[2];
-  try
-  {
-    options.SoftFactors = msynth::ParseStencils(this->SoftFactors);
-    options.Blocks = this->BlockShapes.empty()
-      ? msynth::BlockScheme(this->BlockScheme, this->OutputSize[2] > 1)
-      : msynth::ParseStencils(this->BlockShapes);
-    for (const auto& [zone, labels] : msynth::ParseZoneLists(this->ZoneTiles, "ZoneTiles"))
-      options.ZoneTiles[zone] = labels;
-    for (const auto& [zone, numbers] : msynth::ParseZoneLists(this->ZoneExemplars, "ZoneExemplars"))
-      for (std::int32_t e : numbers)
-        options.ZoneExemplars[zone].push_back(e - 1); // numbered from 1 in the interface
-    options.MirrorMap = msynth::ParseMirrorSwaps(this->MirrorSwaps);
-    if (!this->TilesetFile.empty())
-    {
-      const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
-      for (std::size_t a = 0; a < 3; ++a)
-        for (const auto& [b, c] : tiles.Pairs[a])
-          options.ExtraPairs[a].emplace_back(b, c);
-    }
-    msynth::LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
-  }
-  catch (const msynth::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
+  if (!this->ParseLists(options))
     return 0;
-  }
   if (!this->ReadZonesAndFixed(inputVector, options, inputs))
     return 0;
   for (int a = 0; a < 3; ++a)
@@ -205,32 +197,62 @@ int vtkMSPatternSynthesis::RequestData(
   const std::size_t step = vtkMSPipeline::RequestedStep(outInfo, result.Samples.size());
   const msynth::PatternSample& sample = result.Samples[step];
 
-  output->SetExtent(
-    0, this->OutputSize[0] - 1, 0, this->OutputSize[1] - 1, 0, this->OutputSize[2] - 1);
-  double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
-  outInfo->Get(vtkDataObject::SPACING(), spacing);
-  outInfo->Get(vtkDataObject::ORIGIN(), origin);
-  output->SetSpacing(spacing);
-  output->SetOrigin(origin);
-  vtkIntArray* labels = vtkMSLabelArrays::NewLabelArray(sample.Labels, "Label");
-  output->GetPointData()->SetScalars(labels);
-  labels->Delete();
-  vtkNew<vtkIntArray> satisfied;
-  satisfied->SetName("SatisfiedSoft");
-  satisfied->SetNumberOfTuples(static_cast<vtkIdType>(sample.SatisfiedSoft.size()));
-  for (std::size_t i = 0; i < sample.SatisfiedSoft.size(); ++i)
-    satisfied->SetValue(static_cast<vtkIdType>(i), sample.SatisfiedSoft[i]);
-  output->GetPointData()->AddArray(satisfied);
-  vtkNew<vtkIdTypeArray> last;
-  last->SetName("LastChange");
-  last->SetNumberOfTuples(static_cast<vtkIdType>(sample.LastChange.size()));
-  for (std::size_t i = 0; i < sample.LastChange.size(); ++i)
-    last->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(sample.LastChange[i]));
-  output->GetPointData()->AddArray(last);
+  FillOutput(output, outInfo, this->OutputSize, sample);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
 
   this->AddFields(output->GetFieldData(), result, sample);
   return 1;
+}
+
+bool vtkMSPatternSynthesis::ReadExemplars(vtkInformationVector* exemplarPort,
+  std::vector<vtkDataObject*>& inputs, std::vector<msynth::LabelGrid>& exemplars)
+{
+  std::string problem;
+  for (int i = 0; i < exemplarPort->GetNumberOfInformationObjects(); ++i)
+  {
+    vtkImageData* image = vtkImageData::GetData(exemplarPort, i);
+    msynth::LabelGrid grid;
+    if (!image || !vtkMSLabelArrays::ReadLabels(image, nullptr, grid, problem))
+    {
+      vtkErrorMacro(<< "Exemplar " << i + 1 << " (" << vtkMSFieldData::ExampleName(image)
+                    << "): " << (image ? problem : std::string("not an image")));
+      return false;
+    }
+    inputs.push_back(image);
+    exemplars.push_back(std::move(grid));
+  }
+  return true;
+}
+
+bool vtkMSPatternSynthesis::ParseLists(msynth::PatternOptions& options)
+{
+  try
+  {
+    options.SoftFactors = msynth::ParseStencils(this->SoftFactors);
+    options.Blocks = this->BlockShapes.empty()
+      ? msynth::BlockScheme(this->BlockScheme, this->OutputSize[2] > 1)
+      : msynth::ParseStencils(this->BlockShapes);
+    for (const auto& [zone, labels] : msynth::ParseZoneLists(this->ZoneTiles, "ZoneTiles"))
+      options.ZoneTiles[zone] = labels;
+    for (const auto& [zone, numbers] : msynth::ParseZoneLists(this->ZoneExemplars, "ZoneExemplars"))
+      for (std::int32_t e : numbers)
+        options.ZoneExemplars[zone].push_back(e - 1); // numbered from 1 in the interface
+    options.MirrorMap = msynth::ParseMirrorSwaps(this->MirrorSwaps);
+    if (!this->TilesetFile.empty())
+    {
+      const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      for (std::size_t a = 0; a < 3; ++a)
+        for (const auto& [b, c] : tiles.Pairs[a])
+          options.ExtraPairs[a].emplace_back(b, c);
+    }
+    msynth::LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return false;
+  }
+  return true;
 }
 
 bool vtkMSPatternSynthesis::ReadZonesAndFixed(vtkInformationVector** inputVector,

@@ -42,6 +42,7 @@
 class vtkFieldData;
 namespace msynth
 {
+class LabelGrid;
 struct PatternOptions;
 struct PatternResult;
 struct PatternSample;
@@ -154,6 +155,13 @@ protected:
 
 private:
   vtkMSPatternSynthesis(const vtkMSPatternSynthesis&) = delete;
+  /// The exemplars of port 0 into @p exemplars, their images into @p inputs; false (with the
+  /// error said) when one is not a label image.
+  bool ReadExemplars(vtkInformationVector* exemplarPort, std::vector<vtkDataObject*>& inputs,
+    std::vector<msynth::LabelGrid>& exemplars);
+  /// The text properties (factor and block shapes, zone lists, mirror swaps, the tileset's
+  /// pairs) into @p options, and the output size checked; false (with the error said) if bad.
+  bool ParseLists(msynth::PatternOptions& options);
   /// Zones (port 1) and fixed sites (port 2) into @p options; their images join @p inputs.
   bool ReadZonesAndFixed(vtkInformationVector** inputVector, msynth::PatternOptions& options,
     std::vector<vtkDataObject*>& inputs);
