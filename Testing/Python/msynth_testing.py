@@ -46,6 +46,23 @@ def fresh_folder(name):
     return folder
 
 
+def run_msynth(*args, timeout=None):
+    """Runs the build's msynth with `args`; the completed process (text output captured)."""
+    import subprocess
+    limit = timeout or (300 if os.environ.get("MSYNTH_SANITIZED") else 120)
+    return subprocess.run([os.path.join(BIN, "msynth"), *args], capture_output=True, text=True,
+                          timeout=limit)
+
+
+def read_label_grid(path):
+    """The image data of a label grid file (.vti, .txt, .vox) through the ModelSynth reader."""
+    import modelsynth
+    reader = modelsynth.vtkMSLabelGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
 def run_algorithm(algorithm, port=None, data=None, **options):
     """Connects `port` (or `data`), calls Set<Name>(value) for every option, updates, and
     returns (output, error text)."""

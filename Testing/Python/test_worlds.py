@@ -5,28 +5,15 @@ world, passes the independent check (pairs recomputed from the example here, `ms
 tilesets), and a far region of a 10^6 x 10^6 world takes well under a few seconds."""
 import json
 import os
-import subprocess
 import time
 import unittest
 
 import numpy as np
 
 import modelsynth
-from msynth_testing import BIN, data, fresh_folder, labels_zyx, run_algorithm, violations
-
-MSYNTH = os.path.join(BIN, "msynth")
-TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
-
-
-def msynth(*args):
-    return subprocess.run([MSYNTH, *args], capture_output=True, text=True, timeout=TIMEOUT)
-
-
-def read(path):
-    reader = modelsynth.vtkMSLabelGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, violations
+from msynth_testing import read_label_grid as read
+from msynth_testing import run_msynth as msynth
 
 
 class WorldsTest(unittest.TestCase):
