@@ -187,8 +187,8 @@ std::string VoxelTilesFolder(const std::string& xmlPath, const std::string& tile
   return ::stat(beside.c_str(), &info) == 0 ? beside : tiles;
 }
 
-LabelGrid ComposeVoxels(
-  const Tileset& set, const LabelGrid& labels, std::vector<std::array<std::uint8_t, 4>>& palette)
+LabelGrid ComposeVoxels(const Tileset& set, const LabelGrid& labels,
+  std::vector<std::array<std::uint8_t, 4>>& palette, bool skipUnknown)
 {
   if (!set.Voxel)
     throw Error("the tileset is not a voxel tileset");
@@ -226,6 +226,8 @@ LabelGrid ComposeVoxels(
       for (std::int64_t x = 0; x < d[0]; ++x)
       {
         const Label b = labels.At(x, y, z);
+        if (skipUnknown && (b < 0 || b >= set.NumberOfLabels()))
+          continue;
         if (b < 0 || b >= set.NumberOfLabels())
           throw Error("site (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
             std::to_string(z) + ") has label " + std::to_string(b) + ", not one of the " +

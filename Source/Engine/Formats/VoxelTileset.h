@@ -79,10 +79,11 @@ std::string VoxelTilesFolder(const std::string& xmlPath, const std::string& tile
 /**
  * The voxels of a label grid of @p set (a voxel tileset): each site becomes its label's
  * S x S x SZ voxels; palette indices 1..255 in @p palette order (index 0 empty). @throw Error
- * for a label outside the set or more than 255 colours.
+ * for a label outside the set (unless @p skipUnknown: such sites, e.g. undecided ones, stay
+ * empty) or more than 255 colours.
  */
-LabelGrid ComposeVoxels(
-  const Tileset& set, const LabelGrid& labels, std::vector<std::array<std::uint8_t, 4>>& palette);
+LabelGrid ComposeVoxels(const Tileset& set, const LabelGrid& labels,
+  std::vector<std::array<std::uint8_t, 4>>& palette, bool skipUnknown = false);
 
 namespace detail
 {

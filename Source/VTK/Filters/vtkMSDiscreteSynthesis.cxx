@@ -433,6 +433,22 @@ void AddExampleFields(
       names->InsertNextValue(tiles->LabelName(b));
     fd->AddArray(names);
     vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesetFile", std::string(tilesetFile));
+    if (tiles->Voxel) // the table (tile, symmetry) per label
+    {
+      vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesFolder", tiles->TilesFolder);
+      vtkNew<vtkStringArray> tile;
+      tile->SetName("LabelTile");
+      vtkNew<vtkIntArray> symmetry;
+      symmetry->SetName("LabelSymmetry");
+      for (int b = 0; b < tiles->NumberOfLabels(); ++b)
+      {
+        const auto i = static_cast<std::size_t>(b);
+        tile->InsertNextValue(tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[i])].Name);
+        symmetry->InsertNextValue(tiles->LabelOrientation[i]);
+      }
+      fd->AddArray(tile);
+      fd->AddArray(symmetry);
+    }
   }
   for (const char* name :
     { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
@@ -471,7 +487,8 @@ bool vtkMSDiscreteSynthesis::Solve(
       if (options.Choice == msynth::LabelChoice::Resemblance)
         throw std::runtime_error(
           "resemblance-weighted choice needs an example grid, not a tileset");
-      run.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      run.Tiles =
+        msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset, this->TilesFolder);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
         options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
       run.Cache.Result = msynth::Synthesize(run.Tiles.Rules(), options);
@@ -602,7 +619,17 @@ int vtkMSDiscreteSynthesis::RequestData(
         vtkMSPipeline::RequestingPort(request, outputVector), run.Snapshots.size());
   this->FillOutput(input, output, step);
   std::string problem;
-  if (!vtkMSLabelArrays::FillGeometryPort(output, this->GenerateGeometry, this->EmptyLabel,
+  // A voxel tileset's model shows its tiles' voxels, else the sites as voxels.
+  vtkNew<vtkImageData> voxels;
+  const bool tileVoxels = !this->TilesetFile.empty() && run.Tiles.Voxel && this->GenerateGeometry;
+  if (tileVoxels && !vtkMSLabelArrays::TileVoxels(run.Tiles, output, voxels, problem))
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "The model's voxels: " << problem);
+    return 0;
+  }
+  if (!vtkMSLabelArrays::FillGeometryPort(tileVoxels ? voxels.GetPointer() : output,
+        this->GenerateGeometry, tileVoxels ? 0 : this->EmptyLabel,
         outputVector->GetInformationObject(1), problem))
   {
     output->Initialize();
@@ -653,6 +680,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
   os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
      << this->EmptyLabel << ")\n";
+  os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";
