@@ -20,6 +20,7 @@
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
@@ -28,6 +29,7 @@
 #include "Formats/VoxModel.h"
 #include "Formats/VoxelTileset.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -143,7 +145,9 @@ bool IsVoxelTileset(const std::string& path)
 /// cell identified by its voxels, every pair against the rules (VoxelTileset.h: CheckVoxelModel).
 int CheckVoxels(const std::string& example, const std::string& modelPath, const std::string& tiles)
 {
-  const msynth::VoxModel model = msynth::ReadVoxSceneFile(modelPath, std::int64_t(1) << 31);
+  const msynth::VoxModel model = msynth::ReadVoxSceneFile(modelPath,
+    static_cast<std::int64_t>(std::min<std::uint64_t>(
+      std::uint64_t(1) << 30, msynth::AvailableMemory() / (2 * sizeof(msynth::Label)))));
   const msynth::VoxelCheckReport report =
     msynth::CheckVoxelModel(example, tiles, model.Grid, model.Palette);
   const auto& d = model.Grid.Dimensions();

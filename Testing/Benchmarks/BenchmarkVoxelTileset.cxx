@@ -51,8 +51,9 @@ void Run(benchmark::State& state, const msynth::AdjacencyRules& rules)
   const double sites = static_cast<double>(o.Size[0] * o.Size[1] * o.Size[2]);
   state.counters["labels"] = rules.NumberOfLabels();
   state.counters["failed_runs"] = static_cast<double>(failed) / static_cast<double>(runs);
-  state.counters["ns_per_site"] = benchmark::Counter(sites * static_cast<double>(state.iterations()),
-    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_site"] =
+    benchmark::Counter(sites * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 } // namespace
 

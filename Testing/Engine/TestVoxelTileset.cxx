@@ -376,3 +376,36 @@ TEST(VoxelTileset, ScenesOfManyModelsRoundTrip)
                    "cut.vox", std::int64_t(1) << 26),
       Error);
 }
+
+TEST(VoxelTileset, TurnMapTurnsEachImageAboutZ)
+{
+  for (const bool full : { false, true })
+  {
+    const Tileset t = ReadTilesetFile(WriteSet(full ? "TurnFull" : "Turn", Xml(full, "")));
+    const auto turn = t.TurnMap();
+    ASSERT_EQ(static_cast<int>(turn.size()), t.NumberOfLabels());
+    for (int b = 0; b < t.NumberOfLabels(); ++b)
+    {
+      const VoxelBlock turned = TransformVoxels(
+        { t.VoxelSize, t.LabelVoxels[static_cast<std::size_t>(b)] }, CubeSymmetry::QuarterTurn(2));
+      EXPECT_EQ(t.LabelVoxels[static_cast<std::size_t>(turn.at(b))], turned.Voxels) << b;
+    }
+  }
+  // A rotation-symmetric model of a voxel set: the solver's --rotate with this map.
+  const Tileset t = ReadTilesetFile(WriteSet("TurnSynth",
+    Xml(false,
+      "<neighbor left=\"Void\" right=\"Void\"/><neighbor left=\"Rod\" right=\"Rod\"/>"
+      "<neighbor left=\"z Rod\" right=\"Void\"/><neighbor top=\"Void\" bottom=\"Void\"/>"
+      "<neighbor top=\"Rod\" bottom=\"Rod\"/>")));
+  SynthesisOptions o;
+  o.Size = { { 6, 6, 2 } };
+  o.Rotate.Enabled = true;
+  o.Rotate.Map = t.TurnMap();
+  o.Seed = 3;
+  const SynthesisResult r = Synthesize(t.Rules(), o);
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
+  for (std::int64_t z = 0; z < 2; ++z)
+    for (std::int64_t y = 0; y < 6; ++y)
+      for (std::int64_t x = 0; x < 6; ++x) // site (x, y) turned a quarter is (5 - y, x)
+        EXPECT_EQ(r.Model.At(5 - y, x, z), o.Rotate.Map.at(r.Model.At(x, y, z)));
+}

@@ -277,8 +277,9 @@ void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& 
   u32(4 + static_cast<std::uint32_t>(voxels.size()));
   u32(0);
   u32(static_cast<std::uint32_t>(voxels.size() / 4));
-  out.write(
-    reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
+  if (!voxels.empty()) // an empty model: no bytes (and no null pointer to write from)
+    out.write(
+      reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
   if (palette)
   {
     // Entry i of the chunk is palette index i + 1.
@@ -388,8 +389,10 @@ struct Placement
 
 /// The models reached from node @p id with the translation @p t summed so far.
 void Place(Cursor& c, const std::map<int, SceneNode>& nodes, const std::vector<ScenePiece>& models,
-  int id, std::array<std::int64_t, 3> t, int depth, std::vector<Placement>& out)
+  int id, std::array<std::int64_t, 3> t, int depth, std::vector<Placement>& out, int& budget)
 {
+  if (--budget < 0)
+    c.Fail("the scene graph visits more than a million nodes");
   const auto it = nodes.find(id);
   if (it == nodes.end())
     c.Fail("the scene refers to node " + std::to_string(id) + ", which is not there");
@@ -403,7 +406,7 @@ void Place(Cursor& c, const std::map<int, SceneNode>& nodes, const std::vector<S
   {
     if (node.Type != 'S')
     {
-      Place(c, nodes, models, child, t, depth + 1, out);
+      Place(c, nodes, models, child, t, depth + 1, out, budget);
       continue;
     }
     if (child < 0 || static_cast<std::size_t>(child) >= models.size())
@@ -492,8 +495,9 @@ VoxModel ReadVoxScene(
   if (models.empty())
     c.Fail("no model (SIZE and XYZI chunks) found");
   std::vector<Placement> placed;
+  int budget = 1000000;
   if (nodes.count(0))
-    Place(c, nodes, models, 0, { { 0, 0, 0 } }, 0, placed);
+    Place(c, nodes, models, 0, { { 0, 0, 0 } }, 0, placed, budget);
   else
     for (std::size_t m = 0; m < models.size(); ++m)
       placed.push_back({ static_cast<int>(m), { { 0, 0, 0 } } });

@@ -2,6 +2,7 @@
 #include "Formats/VoxelTileset.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Formats/VoxModel.h"
 #include "Formats/Xml.h"
 
@@ -218,8 +219,12 @@ LabelGrid ComposeVoxels(const Tileset& set, const LabelGrid& labels,
     palette[i + 1] = UnpackColour(colours[i]);
   const auto& d = labels.Dimensions();
   const std::int64_t s[3] = { set.VoxelSize[0], set.VoxelSize[1], set.VoxelSize[2] };
-  if (d[0] * s[0] * d[1] * s[1] * d[2] * s[2] > (std::int64_t(1) << 32))
-    throw Error("the model's voxels would be more than 2^32");
+  const std::uint64_t bytes =
+    static_cast<std::uint64_t>(d[0] * s[0] * d[1] * s[1] * d[2] * s[2]) * sizeof(Label);
+  if (bytes > AvailableMemory() / 2 || bytes > (std::uint64_t(1) << 36))
+    throw Error("the model's " + std::to_string(d[0] * s[0]) + " x " + std::to_string(d[1] * s[1]) +
+      " x " + std::to_string(d[2] * s[2]) + " voxels need " + FormatBytes(bytes) +
+      ", more than half the memory available (" + FormatBytes(AvailableMemory()) + ")");
   LabelGrid out(d[0] * s[0], d[1] * s[1], d[2] * s[2], 0);
   for (std::int64_t z = 0; z < d[2]; ++z)
     for (std::int64_t y = 0; y < d[1]; ++y)
@@ -354,8 +359,14 @@ private:
     const std::string file = this->Set.TilesFolder + "/" + tile.Name + ".vox";
     const VoxelBlock block = ReadVoxelBlock(file);
     this->CheckSize(block, file, t.Line);
-    if (this->Set.Tiles.size() >= 4096)
-      this->Xml.Fail("more than 4096 tiles", t.Line);
+    // Bounds on what a file may make us allocate: the labels' rules grow as their square, their
+    // voxels as the labels times the tile.
+    const auto& groupSize = SymmetryGroup(this->Set.FullSymmetry);
+    if (this->Set.NumberOfLabels() + static_cast<int>(groupSize.size()) > 8192)
+      this->Xml.Fail("more than 8192 tile images (labels)", t.Line);
+    if (static_cast<std::uint64_t>(this->Set.NumberOfLabels() + 48) * block.Voxels.size() >
+      (std::uint64_t(1) << 26))
+      this->Xml.Fail("the tiles' images would hold more than 2^26 voxels", t.Line);
     tile.FirstLabel = this->Set.NumberOfLabels();
     const auto& group = SymmetryGroup(this->Set.FullSymmetry);
     for (std::size_t g = 0; g < group.size(); ++g)

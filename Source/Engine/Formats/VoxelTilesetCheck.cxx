@@ -84,7 +84,7 @@ std::array<int, 3> Move(const std::array<int, 3>& d, char op)
   }
 }
 
-using Configuration = std::tuple<int, Key, Key>; // axis, tile at the origin, tile at +axis
+using Configuration = std::tuple<int, int, int>; // axis, image at the origin, image at +axis
 
 class Checker
 {
@@ -118,7 +118,22 @@ public:
 
   int S = 0, SZ = 0;
   std::map<Key, std::string> Images; ///< every image of every tile, and the tile's name
-  std::set<Configuration> Allowed;
+  std::set<Configuration> Allowed;   ///< by the index of the images' keys (Index)
+
+  /// The index of an image's key (a new index for an image not seen before).
+  int Index(const Key& key)
+  {
+    const auto it = this->Indices.emplace(key, static_cast<int>(this->Indices.size())).first;
+    if (this->Indices.size() > 1000000)
+      throw Error("the tileset's images and rules make more than a million tile images");
+    return it->second;
+  }
+  /// The index of a key, or -1.
+  int Find(const Key& key) const
+  {
+    const auto it = this->Indices.find(key);
+    return it == this->Indices.end() ? -1 : it->second;
+  }
 
 private:
   void ReadTile(const std::string& name, const std::string& file)
@@ -144,12 +159,19 @@ private:
     this->Tiles[name] = v;
     std::vector<Voxels> queue{ v };
     this->Images.emplace(KeyOf(v), name);
+    this->Index(KeyOf(v));
     for (std::size_t i = 0; i < queue.size(); ++i)
       for (const char op : this->Generators)
       {
         Voxels image = Apply(queue[i], this->S, this->SZ, op);
         if (this->Images.emplace(KeyOf(image), name).second)
+        {
+          this->Index(KeyOf(image));
+          this->Bytes += image.size() * sizeof(std::uint32_t);
+          if (this->Bytes > (std::size_t(1) << 28))
+            throw Error::InFile(file, "makes the tiles' images larger than 256 MB");
           queue.push_back(std::move(image));
+        }
       }
   }
 
@@ -190,21 +212,22 @@ private:
       Voxels First, Second;
     };
     std::vector<State> queue{ { { { sideways ? 1 : 0, 0, sideways ? 0 : 1 } }, first, second } };
-    std::set<std::tuple<std::array<int, 3>, Key, Key>> seen;
-    seen.emplace(queue[0].D, KeyOf(first), KeyOf(second));
+    std::set<std::tuple<std::array<int, 3>, int, int>> seen;
+    seen.emplace(queue[0].D, this->Index(KeyOf(first)), this->Index(KeyOf(second)));
     for (std::size_t i = 0; i < queue.size(); ++i)
     {
       const State s = queue[i];
       const int axis = s.D[0] != 0 ? 0 : (s.D[1] != 0 ? 1 : 2);
+      const int a = this->Index(KeyOf(s.First)), b = this->Index(KeyOf(s.Second));
       if (s.D[static_cast<std::size_t>(axis)] > 0)
-        this->Allowed.emplace(axis, KeyOf(s.First), KeyOf(s.Second));
+        this->Allowed.emplace(axis, a, b);
       else
-        this->Allowed.emplace(axis, KeyOf(s.Second), KeyOf(s.First));
+        this->Allowed.emplace(axis, b, a);
       for (const char op : this->Generators)
       {
         State t{ Move(s.D, op), Apply(s.First, this->S, this->SZ, op),
           Apply(s.Second, this->S, this->SZ, op) };
-        if (seen.emplace(t.D, KeyOf(t.First), KeyOf(t.Second)).second)
+        if (seen.emplace(t.D, this->Index(KeyOf(t.First)), this->Index(KeyOf(t.Second))).second)
           queue.push_back(std::move(t));
       }
     }
@@ -212,6 +235,8 @@ private:
 
   std::string Generators;
   std::map<std::string, Voxels> Tiles;
+  std::map<Key, int> Indices;
+  std::size_t Bytes = 0; ///< of the images
 };
 
 std::string Cell(std::int64_t x, std::int64_t y, std::int64_t z)
@@ -223,7 +248,7 @@ std::string Cell(std::int64_t x, std::int64_t y, std::int64_t z)
 VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& tiles,
   const LabelGrid& model, const std::vector<std::array<std::uint8_t, 4>>& palette)
 {
-  const Checker rules(xmlPath, tiles);
+  Checker rules(xmlPath, tiles);
   VoxelCheckReport report;
   const auto problem = [&report](const std::string& line)
   {
@@ -241,7 +266,9 @@ VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& 
     return report;
   }
   const std::int64_t n[3] = { d[0] / s[0], d[1] / s[1], d[2] / s[2] };
-  std::vector<Key> keys;
+  // Each cell as the index of its tile image (-1: none) and that tile's name.
+  std::vector<int> cells;
+  std::map<int, std::string> names;
   for (std::int64_t z = 0; z < n[2]; ++z)
     for (std::int64_t y = 0; y < n[1]; ++y)
       for (std::int64_t x = 0; x < n[0]; ++x)
@@ -256,9 +283,13 @@ VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& 
                   ? 0u
                   : Pack(palette[static_cast<std::size_t>(p)]));
             }
-        keys.push_back(KeyOf(v));
-        if (!rules.Images.count(keys.back()))
+        const Key key = KeyOf(v);
+        const auto image = rules.Images.find(key);
+        cells.push_back(image == rules.Images.end() ? -1 : rules.Find(key));
+        if (image == rules.Images.end())
           problem("tile cell " + Cell(x, y, z) + " is no image of any tile");
+        else
+          names[cells.back()] = image->second;
         ++report.Cells;
       }
   const char* axes = "xyz";
@@ -270,15 +301,14 @@ VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& 
           const std::int64_t c[3] = { x + (a == 0), y + (a == 1), z + (a == 2) };
           if (c[a] >= n[a])
             continue;
-          const Key& first = keys[static_cast<std::size_t>(x + n[0] * (y + n[1] * z))];
-          const Key& second = keys[static_cast<std::size_t>(c[0] + n[0] * (c[1] + n[1] * c[2]))];
+          const int first = cells[static_cast<std::size_t>(x + n[0] * (y + n[1] * z))];
+          const int second = cells[static_cast<std::size_t>(c[0] + n[0] * (c[1] + n[1] * c[2]))];
           ++report.PairsChecked;
-          const auto f = rules.Images.find(first), g = rules.Images.find(second);
-          if (f == rules.Images.end() || g == rules.Images.end())
+          if (first < 0 || second < 0)
             continue; // reported above
           if (!rules.Allowed.count(Configuration(a, first, second)))
-            problem("tile cells " + Cell(x, y, z) + " (" + f->second + ") and " +
-              Cell(c[0], c[1], c[2]) + " (" + g->second + ") along +" + axes[a] +
+            problem("tile cells " + Cell(x, y, z) + " (" + names[first] + ") and " +
+              Cell(c[0], c[1], c[2]) + " (" + names[second] + ") along +" + axes[a] +
               ": no rule allows this pair");
         }
   report.Valid = report.Problems == 0;
