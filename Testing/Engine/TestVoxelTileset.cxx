@@ -409,3 +409,49 @@ TEST(VoxelTileset, TurnMapTurnsEachImageAboutZ)
       for (std::int64_t x = 0; x < 6; ++x) // site (x, y) turned a quarter is (5 - y, x)
         EXPECT_EQ(r.Model.At(5 - y, x, z), o.Rotate.Map.at(r.Model.At(x, y, z)));
 }
+
+TEST(VoxelTileset, MirrorMapsMirrorEachImage)
+{
+  for (const bool full : { false, true })
+  {
+    const Tileset t = ReadTilesetFile(WriteSet(full ? "MirrorFull" : "Mirror", Xml(full, "")));
+    for (int axis = 0; axis < (full ? 3 : 2); ++axis)
+    {
+      const auto map = t.MirrorMap(axis);
+      CubeSymmetry mirror;
+      mirror.M[static_cast<std::size_t>(axis)][static_cast<std::size_t>(axis)] = -1;
+      for (int b = 0; b < t.NumberOfLabels(); ++b)
+        EXPECT_EQ(t.LabelVoxels[static_cast<std::size_t>(map.at(b))],
+          TransformVoxels({ t.VoxelSize, t.LabelVoxels[static_cast<std::size_t>(b)] }, mirror)
+            .Voxels)
+          << axis << " " << b;
+    }
+  }
+  // Without fullSymmetry a mirror in z exists only when every image is its own.
+  EXPECT_THROW(ReadTilesetFile(WriteSet("MirrorZ", Xml(false, ""))).MirrorMap(2), Error);
+  // A model mirror-symmetric in x and y, synthesized with the maps.
+  const Tileset t = ReadTilesetFile(WriteSet("MirrorSynth",
+    Xml(true,
+      "<neighbor left=\"Void\" right=\"Void\"/><neighbor left=\"Void\" right=\"Rod\"/>"
+      "<neighbor left=\"Rod\" right=\"Rod\"/><neighbor left=\"y Rod\" right=\"Void\"/>")));
+  SynthesisOptions o;
+  o.Size = { { 6, 5, 4 } };
+  o.Seed = 2;
+  for (std::size_t a = 0; a < 2; ++a)
+  {
+    o.Symmetry[a].Enabled = true;
+    o.Symmetry[a].Map = t.MirrorMap(static_cast<int>(a));
+  }
+  const SynthesisResult r = Synthesize(t.Rules(), o);
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
+  std::vector<std::array<std::uint8_t, 4>> palette;
+  const LabelGrid v = ComposeVoxels(t, r.Model, palette);
+  const auto& d = v.Dimensions();
+  for (std::int64_t z = 0; z < d[2]; ++z)
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+      {
+        ASSERT_EQ(v.At(x, y, z), v.At(d[0] - 1 - x, y, z));
+        ASSERT_EQ(v.At(x, y, z), v.At(x, d[1] - 1 - y, z));
+      }
+}

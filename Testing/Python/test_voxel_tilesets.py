@@ -95,6 +95,28 @@ class VoxelTilesetTest(unittest.TestCase):
         for (x, y, z, c) in voxels[0][:50]:
             self.assertEqual(tuple(rgb[y, x, :3]), tuple(palette[c - 1][:3]))
 
+    def test_mirror_and_rotate_pair_each_image_with_its_own_image(self):
+        """--mirror and --rotate of a voxel tileset need no --swap or --turn: each tile image is
+        paired with its mirrored or turned image. The voxels, read here, are symmetric."""
+        folder = fresh_folder("voxel-symmetry")
+        for name, xml, size, option in (("mirror", "Pipes", (8, 8, 6), ["--mirror", "xyz"]),
+                                        ("rotate", "Tracks", (10, 10, 1), ["--rotate"])):
+            out = os.path.join(folder, name)
+            done = run("synthesize", data("Tilesets/%s.xml" % xml), "--size", *size, "--seed", 3,
+                       "--outputs", "vox", "--out", out, *option)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            checked = run("check", data("Tilesets/%s.xml" % xml), os.path.join(out, "model.vox"))
+            self.assertEqual(checked.returncode, 0, checked.stdout)
+            sizes, voxels, palette = vox_models(os.path.join(out, "model.vox"))
+            grid = np.zeros(sizes[0], dtype=np.uint8)
+            grid[voxels[0][:, 0], voxels[0][:, 1], voxels[0][:, 2]] = voxels[0][:, 3]
+            self.assertGreater(np.count_nonzero(grid), 0)
+            if name == "mirror":
+                for axis in range(3):
+                    self.assertTrue((grid == np.flip(grid, axis)).all(), "mirror axis %d" % axis)
+            else:  # a quarter turn about z maps the model onto itself
+                self.assertTrue((grid == np.rot90(grid, 1, axes=(0, 1))).all())
+
     def test_tiles_folder_info_and_errors(self):
         folder = fresh_folder("voxel-tiles-folder")
         shutil.copy(data("Tilesets/Pipes.xml"), os.path.join(folder, "Mine.xml"))

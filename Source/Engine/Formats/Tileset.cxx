@@ -142,6 +142,37 @@ std::map<Label, Label> Tileset::TurnMap() const
   return map;
 }
 
+std::map<Label, Label> Tileset::MirrorMap(int axis) const
+{
+  std::map<Label, Label> map;
+  if (!this->Voxel)
+    return map;
+  CubeSymmetry mirror;
+  mirror.M[axis][axis] = -1;
+  const auto& group = SymmetryGroup(this->FullSymmetry);
+  for (int label = 0; label < this->NumberOfLabels(); ++label)
+  {
+    const auto i = static_cast<std::size_t>(label);
+    const TilesetTile& t = this->Tiles[static_cast<std::size_t>(this->LabelTile[i])];
+    const CubeSymmetry image =
+      CubeSymmetry::Then(group[static_cast<std::size_t>(this->LabelOrientation[i])], mirror);
+    const int g = SymmetryIndex(this->FullSymmetry, image);
+    if (g >= 0)
+    {
+      map[label] = t.SymmetryLabels[static_cast<std::size_t>(g)];
+      continue;
+    }
+    // A mirror in z of a set without fullSymmetry: only images that are their own mirror image.
+    const VoxelBlock mirrored = TransformVoxels({ this->VoxelSize, this->LabelVoxels[i] }, mirror);
+    if (mirrored.Voxels != this->LabelVoxels[i])
+      throw Error("tile '" + t.Name +
+        "' mirrored in z is none of its images (the set has no "
+        "fullSymmetry): no mirror symmetry along z");
+    map[label] = label;
+  }
+  return map;
+}
+
 AdjacencyRules Tileset::Rules() const
 {
   std::vector<Label> values;

@@ -66,6 +66,10 @@ struct Tileset
   /// Each label's image turned 90° counter-clockwise (the same tile's next orientation): the
   /// label map of rotation symmetry (Rotation::Map) for outputs of this tileset.
   std::map<Label, Label> TurnMap() const;
+  /// A voxel tileset's labels mirrored across the plane normal to @p axis (x -> S-1-x for 0):
+  /// the label map of reflection symmetry (Mirror::Map). Empty for a simple-tiled set, and for
+  /// z without FullSymmetry unless every image is its own mirror image in z. @throw Error then.
+  std::map<Label, Label> MirrorMap(int axis) const;
   /// Adjacency rules (label values 0..n-1, weights from the tiles) for 2D synthesis.
   AdjacencyRules Rules() const;
 };

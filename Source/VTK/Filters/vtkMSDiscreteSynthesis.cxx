@@ -525,6 +525,12 @@ bool vtkMSDiscreteSynthesis::Solve(
         msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset, this->TilesFolder);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
         options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
+      for (int a = 0; a < 3; ++a) // a voxel tileset's images pair with their mirror images
+      {
+        auto& mirror = options.Symmetry[static_cast<std::size_t>(a)];
+        if (run.Tiles.Voxel && mirror.Enabled && mirror.Map.empty())
+          mirror.Map = run.Tiles.MirrorMap(a);
+      }
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
         StartFromWholeModel(rules, options);
