@@ -35,6 +35,12 @@ ENTRIES = [
     ("lines", "Simple-tiled tileset (.xml)", "WaveFunctionCollapse's tileset format, 3 tiles",
      "synthesize Data/Tilesets/Lines.xml --size 24 16 1 --order entropy --choice frequency "
      "--seed 3", "picture"),
+    ("voxel-pipes", "Voxel tileset (MarkovJunior .xml + .vox tiles)", "4 voxel tiles under the cube's 48 "
+     "symmetries (85 images), closed by empty faces; model.vox and the coloured mesh",
+     "synthesize Data/Tilesets/Pipes.xml --size 12 12 6 --block 6 6 6 --empty 0 --choice frequency "
+     "--seed 5", "mesh"),
+    ("voxel-tracks", "Voxel tileset, 2D", "4 tiles one voxel high under the square's 8 symmetries; the "
+     "view from above", "synthesize Data/Tilesets/Tracks.xml --size 24 16 1 --seed 2", "picture"),
     ("meadow", "Image sample (.png)", "Overlapping 3 × 3 windows, ground row, repeating in x",
      "synthesize Data/Samples/Meadow.png --pattern 3 --symmetry 2 --ground --translate x "
      "--size 192 64 1 --block 32 32 1 --choice frequency --seed 4", "picture"),

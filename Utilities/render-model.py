@@ -78,7 +78,8 @@ def fit_camera(camera, bounds, aspect, margin=0.96):
 
 def render(model, out, top=False, size=(1200, 800)):
     """Renders the mesh file @p model to the PNG @p out, coloured by object type (InsideType,
-    ObjectType) or by label (Label), seen from the front corner or straight down, the model
+    ObjectType), by the colours of a MagicaVoxel palette (PaletteColor: a .vox example's or a voxel
+    tileset's mesh) or by label (Label), seen from the front corner or straight down, the model
     filling the frame."""
     from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, SaveScreenshot,
                                  Show, XMLPolyDataReader)
@@ -90,8 +91,10 @@ def render(model, out, top=False, size=(1200, 800)):
     view.Background = [1, 1, 1]
     shown = Show(reader, view)
     keys = reader.CellData.keys()
-    array = next((a for a in ("InsideType", "ObjectType", "Label") if a in keys), keys[0])
+    array = next((a for a in ("InsideType", "ObjectType", "PaletteColor", "Label") if a in keys), keys[0])
     ColorBy(shown, ("CELLS", array))
+    if array == "PaletteColor":  # RGBA as they are
+        shown.MapScalars = 0
     lut = GetColorTransferFunction(array)
     lut.InterpretValuesAsCategories = 1
     lut.AnnotationsInitialized = 1

@@ -20,12 +20,18 @@
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
+#include "Formats/VoxModel.h"
+#include "Formats/VoxelTileset.h"
 
+#include <algorithm>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sys/stat.h>
@@ -41,6 +47,7 @@ struct CheckOptions
   std::string Example;
   std::string Model;
   std::string Subset;
+  std::string Tiles;
   PolyhedralReading Reading;
   OverlappingOptions Patterns;
   bool NoPeriodicInput = false;
@@ -116,10 +123,56 @@ int CheckContinuous(
   return 1;
 }
 
-/// A label grid against the pairs of its example grid or tileset.
-int CheckDiscrete(
-  const std::string& example, const std::string& modelPath, const std::string& subset)
+/// True when @p path is a MarkovJunior voxel tileset (its root element is <tileset>).
+bool IsVoxelTileset(const std::string& path)
 {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::size_t at = 0;
+  while ((at = head.find('<', at)) != std::string::npos)
+  {
+    if (head.compare(at, 2, "<?") != 0 && head.compare(at, 2, "<!") != 0)
+      return head.compare(at, 8, "<tileset") == 0 && at + 8 < head.size() &&
+        std::strchr(" \t\r\n>/", head[at + 8]);
+    ++at;
+  }
+  return false;
+}
+
+/// A voxel model (.vox, all its models placed by its scene) against a voxel tileset: every tile
+/// cell identified by its voxels, every pair against the rules (VoxelTileset.h: CheckVoxelModel).
+int CheckVoxels(const std::string& example, const std::string& modelPath, const std::string& tiles)
+{
+  const msynth::VoxModel model = msynth::ReadVoxSceneFile(modelPath,
+    static_cast<std::int64_t>(std::min<std::uint64_t>(
+      std::uint64_t(1) << 30, msynth::AvailableMemory() / (2 * sizeof(msynth::Label)))));
+  const msynth::VoxelCheckReport report =
+    msynth::CheckVoxelModel(example, tiles, model.Grid, model.Palette);
+  const auto& d = model.Grid.Dimensions();
+  if (report.Valid)
+  {
+    std::cout << "consistent: all " << report.Cells << " tile cells of " << modelPath << " ("
+              << d[0] << " x " << d[1] << " x " << d[2] << " voxels, " << model.NumberOfModels
+              << (model.NumberOfModels == 1 ? " model" : " models") << ") are tiles of " << example
+              << " and all " << report.PairsChecked << " adjacent pairs are allowed\n";
+    return 0;
+  }
+  std::cout << "inconsistent: " << report.Problems << " problems in " << modelPath << " ("
+            << report.Cells << " tile cells, " << report.PairsChecked << " pairs)\n";
+  for (const auto& line : report.First)
+    std::cout << "  " << line << "\n";
+  return 1;
+}
+
+/// A label grid against the pairs of its example grid or tileset.
+int CheckDiscrete(const std::string& example, const std::string& modelPath,
+  const std::string& subset, const std::string& tiles)
+{
+  if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
+    modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
+    return CheckVoxels(example, modelPath, tiles);
   vtkNew<vtkMSLabelGridReader> e, m;
   e->GenerateGeometryOff(); // the labels are checked, not shown
   m->GenerateGeometryOff();
@@ -131,7 +184,7 @@ int CheckDiscrete(
   if (IsTileset(example))
   {
     report = msynth::CheckConsistency(
-      msynth::ReadTilesetFile(example, subset).Pairs, grid(m->GetOutput()));
+      msynth::ReadTilesetFile(example, subset, tiles).Pairs, grid(m->GetOutput()));
   }
   else
   {
@@ -162,7 +215,9 @@ CommandRunner AddCheck(CLI::App& app)
     "verify that MODEL satisfies the adjacency constraint of EXAMPLE (a label grid or tileset; "
     "Eq. 3.1) or, for a polyhedral EXAMPLE, that the continuous MODEL.vtp is closed, oriented "
     "and has only the example's neighbourhoods (Eq. 4.1), or for an image sample that every "
-    "window of the picture MODEL.png is one of the sample's. Exit 0 when it does, 1 listing the "
+    "window of the picture MODEL.png is one of the sample's; for a voxel tileset and a MODEL.vox, "
+    "that every tile cell is an image of a tile and every adjacent pair allowed. Exit 0 when it "
+    "does, 1 listing the "
     "problems when not");
   check->add_option("EXAMPLE", o->Example, "the example the model was synthesized from")
     ->required();
@@ -171,6 +226,8 @@ CommandRunner AddCheck(CLI::App& app)
       "MODEL", o->Model, "the model (.vti, .txt, .vox; .vtp for continuous; .png for a sample)")
     ->required();
   AddSubsetOption(*check, o->Subset);
+  check->add_option("--tiles", o->Tiles,
+    "with a voxel tileset: the folder of its tiles (default: the folder named like the XML)");
   AddTypesOption(*check, o->Reading);
   AddPatternOptions(*check, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   const char* sample = "Image samples (.png, .bmp)";
@@ -188,7 +245,7 @@ CommandRunner AddCheck(CLI::App& app)
     }
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);
-    return CheckDiscrete(o->Example, o->Model, o->Subset);
+    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles);
   };
 }
 

@@ -33,14 +33,46 @@ struct InfoOptions
 {
   std::string Example;
   std::string Subset;
+  std::string Tiles;
   PolyhedralReading Reading;
   OverlappingOptions Patterns;
   bool NoPeriodicInput = false;
 };
 
-int TilesetInfo(const std::string& path, const std::string& subset)
+/// A voxel tileset: its tiles, their images (labels: tile and symmetry) and the pairs per axis.
+int VoxelTilesetInfo(const std::string& path, const msynth::Tileset& t)
 {
-  const msynth::Tileset t = msynth::ReadTilesetFile(path, subset);
+  std::cout << "tileset: " << path << " (voxel tiles "
+            << (t.FullSymmetry ? "with the cube's 48 symmetries" : "with the square's 8 symmetries")
+            << ")\n"
+            << "tiles folder: " << t.TilesFolder << "\n"
+            << "tile size: " << t.VoxelSize[0] << " x " << t.VoxelSize[1] << " x " << t.VoxelSize[2]
+            << " voxels\n"
+            << "tiles: " << t.Tiles.size() << "\n";
+  for (const auto& tile : t.Tiles)
+    std::cout << "  " << tile.Name << ": " << tile.Orientations << " distinct images (labels "
+              << tile.FirstLabel << "-" << tile.FirstLabel + tile.Orientations - 1 << "), weight "
+              << tile.Weight << "\n";
+  std::cout << "labels: " << t.NumberOfLabels() << " (tile, symmetry)\n";
+  for (int b = 0; b < t.NumberOfLabels(); ++b)
+    std::cout << "  label " << b << ": "
+              << t.Tiles[static_cast<std::size_t>(t.LabelTile[static_cast<std::size_t>(b)])].Name
+              << ", symmetry " << t.LabelOrientation[static_cast<std::size_t>(b)] << "\n";
+  const char* names[3] = { "+x", "+y", "+z" };
+  for (std::size_t axis = 0; axis < 3; ++axis)
+  {
+    std::cout << "transitions " << names[axis] << ": " << t.Pairs[axis].size() << "\n";
+    for (const auto& p : t.Pairs[axis])
+      std::cout << "  " << p.first << "->" << p.second << "\n";
+  }
+  return 0;
+}
+
+int TilesetInfo(const std::string& path, const std::string& subset, const std::string& tiles)
+{
+  const msynth::Tileset t = msynth::ReadTilesetFile(path, subset, tiles);
+  if (t.Voxel)
+    return VoxelTilesetInfo(path, t);
   std::cout << "tileset: " << path << (t.Unique ? " (unique)" : "") << "\n"
             << "tiles: " << t.Tiles.size() << "\n"
             << "labels: " << t.NumberOfLabels() << "\n";
@@ -166,6 +198,8 @@ CommandRunner AddInfo(CLI::App& app)
   info->add_option("EXAMPLE", o->Example, "a label grid, tileset or polyhedral example")
     ->required();
   AddSubsetOption(*info, o->Subset);
+  info->add_option("--tiles", o->Tiles,
+    "with a voxel tileset: the folder of its tiles (default: the folder named like the XML)");
   AddTypesOption(*info, o->Reading);
   AddPatternOptions(*info, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   return [o]()
@@ -179,7 +213,7 @@ CommandRunner AddInfo(CLI::App& app)
     }
     if (IsTileset(o->Example))
     {
-      return TilesetInfo(o->Example, o->Subset);
+      return TilesetInfo(o->Example, o->Subset, o->Tiles);
     }
     if (IsPolyhedral(o->Example))
     {

@@ -46,6 +46,7 @@ struct SynthesizeOptions
   std::string Fixed;           ///< pinned sites: a label grid of the output size, -1 free
   bool FixedEmptyFree = false; ///< label 0 of the pinned sites (a .vox's empty) is free too
   std::string Subset;
+  std::string Tiles; ///< a voxel tileset's tiles folder ("" : beside the XML)
   std::vector<std::string> Targets;
   double Temperature = 0.01;
   std::string Mirror, Translate; ///< sets of axes

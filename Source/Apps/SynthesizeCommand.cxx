@@ -11,6 +11,7 @@
 #include "vtkImageData.h"
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSGLTFWriter.h"
+#include "vtkMSLabelArrays.h"
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSLabelGridWriter.h"
@@ -31,11 +32,14 @@
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
+#include "Formats/VoxModel.h"
+#include "Formats/VoxelTileset.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -192,6 +196,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
              ->allow_extra_args(false)
              ->check(LabelPair, "A:B"));
   discrete(s.add_option("--subset", o.Subset, "with a tileset: use the tiles of its subset NAME"));
+  discrete(s.add_option("--tiles", o.Tiles,
+    "with a voxel tileset (MarkovJunior's <tileset>): the folder of its tiles' .vox files, as "
+    "given or relative to the XML's folder (default: the folder named like the XML)"));
   s.add_option("--target", o.Targets,
      "soft constraint: aim for fraction F of label L (L:F; needs --block); continuous: share F "
      "of the solid volume for object type L (a number or name)")
@@ -531,6 +538,56 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   }
 }
 
+/**
+ * A voxel tileset's model as its tiles' voxels: model.vox (MagicaVoxel, several models in the
+ * scene past 256 voxels a side), mesh.vtp (the voxel surface, colours in the cell array
+ * `PaletteColor`; with --pieces WriteMesh's pieces instead) and, for a 2D set, picture.png
+ * (the view from above).
+ */
+void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const SynthesizeOptions& o,
+  const std::string& dir, const std::function<bool(const char*)>& wanted,
+  std::vector<std::string>& written)
+{
+  msynth::VoxModel vox;
+  vox.Grid = msynth::ComposeVoxels(set,
+    vtkMSLabelArrays::ToLabelGrid(model, model->GetPointData()->GetArray("Label")), vox.Palette);
+  if (wanted("vox"))
+  {
+    msynth::WriteVoxSceneFile(dir + "/model.vox", vox);
+    written.push_back(dir + "/model.vox");
+  }
+  if (wanted("mesh") && o.Pieces.empty())
+  {
+    vtkNew<vtkImageData> voxels;
+    vtkNew<vtkPolyData> mesh;
+    std::string problem;
+    if (!vtkMSLabelArrays::TileVoxels(set, model, voxels, problem) ||
+      !vtkMSLabelArrays::VoxelSurface(voxels, 0, 0, 1, mesh, problem))
+      throw std::runtime_error(problem);
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer());
+    written.push_back(dir + "/mesh.vtp");
+  }
+  const auto& d = vox.Grid.Dimensions();
+  if (wanted("picture"))
+  {
+    if (d[2] != 1)
+      throw std::runtime_error("--outputs picture: the view from above is made of a 2D voxel "
+                               "tileset's models (tiles one voxel high)");
+    msynth::RgbaImage picture;
+    picture.Width = static_cast<int>(d[0]);
+    picture.Height = static_cast<int>(d[1]);
+    picture.Pixels.assign(static_cast<std::size_t>(d[0] * d[1]) * 4, 0);
+    for (std::int64_t y = 0; y < d[1]; ++y) // rows from the top: y up
+      for (std::int64_t x = 0; x < d[0]; ++x)
+      {
+        const auto& c = vox.Palette[static_cast<std::size_t>(vox.Grid.At(x, y, 0))];
+        std::copy(c.begin(), c.end(), picture.Pixels.begin() + 4 * ((d[1] - 1 - y) * d[0] + x));
+      }
+    msynth::WritePng(dir + "/picture.png", picture);
+    written.push_back(dir + "/picture.png");
+  }
+}
+
 void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
 {
   vtkFieldData* fd = model->GetFieldData();
@@ -546,10 +603,12 @@ void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std:
 }
 
 /// The files to write: --outputs, or what the example calls for.
-std::string OutputsWanted(const SynthesizeOptions& o, bool tileset)
+std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth::Tileset* voxels)
 {
   if (!o.Outputs.empty())
     return o.Outputs;
+  if (voxels) // a voxel tileset: the voxels in MagicaVoxel's format and as a mesh; 2D a picture
+    return std::string("labels,vox,mesh,vdb") + (voxels->VoxelSize[2] == 1 ? ",picture" : "");
   const std::string ext = o.Example.size() > 4 ? o.Example.substr(o.Example.size() - 4) : "";
   std::string list = tileset || IsSample(o.Example) ? "labels,picture" : "labels,mesh,vdb";
   if (ext == ".txt")
@@ -562,7 +621,12 @@ std::string OutputsWanted(const SynthesizeOptions& o, bool tileset)
 void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   const std::string& dir, std::vector<std::string>& written)
 {
-  const std::string list = OutputsWanted(o, tileset);
+  // A voxel tileset's model is written as its tiles' voxels (WriteTileVoxels).
+  const bool voxel = tileset && model->GetFieldData()->GetAbstractArray("LabelTile");
+  msynth::Tileset voxels;
+  if (voxel)
+    voxels = msynth::ReadTilesetFile(o.Example, "", o.Tiles);
+  const std::string list = OutputsWanted(o, tileset, voxel ? &voxels : nullptr);
   const auto wanted = [&list](const char* kind)
   { return ("," + list + ",").find(std::string(",") + kind + ",") != std::string::npos; };
   if (wanted("picture") && !tileset && !IsSample(o.Example))
@@ -583,8 +647,12 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
     WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
     written.push_back(dir + "/labels.vti");
   }
+  if (voxel)
+    WriteTileVoxels(model, voxels, o, dir, wanted, written);
   for (const char* kind : { "txt", "vox" })
   {
+    if (voxel && std::string(kind) == "vox")
+      continue; // written by WriteTileVoxels
     if (wanted(kind))
     {
       // The original program's text with the example's <Objects> trailer (for its loaders), or
@@ -597,9 +665,9 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
       written.push_back(path);
     }
   }
-  if (wanted("mesh") || wanted("glb"))
+  if ((wanted("mesh") || wanted("glb")) && (!voxel || !o.Pieces.empty()))
     WriteMesh(model, o, tileset, dir, written, wanted("mesh"), wanted("glb"));
-  if (wanted("picture"))
+  if (wanted("picture") && !voxel)
     WritePicture(model, o, dir, written);
   if (wanted("vdb"))
   {
@@ -628,6 +696,7 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   {
     synthesis->SetTilesetFile(o.Example.c_str());
     synthesis->SetTilesetSubset(o.Subset.c_str());
+    synthesis->SetTilesFolder(o.Tiles.c_str());
   }
   else if (!IsSample(o.Example))
   {

@@ -470,4 +470,15 @@ for t in range(3):
 facade = servermanager.Fetch(ModelSynthTileImage(Input=pattern, TilesetFile=os.path.join(patterns, "Facade.xml")))
 check(facade.GetDimensions()[:2] == (160, 104), "facade picture %s" % (facade.GetDimensions(),))
 
+# A MarkovJunior voxel tileset through ModelSynth Tileset Synthesis: labels are (tile, symmetry),
+# and the Geometry port shows the tiles' voxels with their colours.
+voxels = ModelSynthTilesetSynthesis(TilesetFile=os.path.join(DATA, "Tilesets", "Pipes.xml"),
+                                    OutputSize=[4, 4, 3], BlockSize=[2, 2, 3], GenerateGeometry=1, Seed=3)
+model = servermanager.Fetch(voxels)
+check(model.GetFieldData().GetAbstractArray("LabelTile").GetNumberOfValues() == 85, "85 tile images")
+surface = servermanager.Fetch(voxels, idx=1)
+colours = surface.GetCellData().GetArray("PaletteColor")
+check(colours is not None and colours.GetNumberOfComponents() == 4 and surface.GetNumberOfCells() > 0,
+      "the voxel tileset's geometry is coloured voxels")
+
 print("pvbatch pipeline OK (rank %d of %d)" % (rank, ranks))

@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 
+#include "Formats/VoxelTileset.h"
 #include "Formats/Xml.h"
 
 #include <cctype>
@@ -114,6 +115,22 @@ std::string Tileset::LabelName(int label) const
 std::map<Label, Label> Tileset::TurnMap() const
 {
   std::map<Label, Label> map;
+  if (this->Voxel)
+  {
+    // Label with symmetry g turned a quarter about z: the image under g then the turn.
+    const CubeSymmetry turn = CubeSymmetry::QuarterTurn(2);
+    const auto& group = SymmetryGroup(this->FullSymmetry);
+    for (int label = 0; label < this->NumberOfLabels(); ++label)
+    {
+      const TilesetTile& t =
+        this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+      const auto& g =
+        group[static_cast<std::size_t>(this->LabelOrientation[static_cast<std::size_t>(label)])];
+      map[label] = t.SymmetryLabels[static_cast<std::size_t>(
+        SymmetryIndex(this->FullSymmetry, CubeSymmetry::Then(g, turn)))];
+    }
+    return map;
+  }
   for (int label = 0; label < this->NumberOfLabels(); ++label)
   {
     const TilesetTile& t =
@@ -121,6 +138,37 @@ std::map<Label, Label> Tileset::TurnMap() const
     map[label] = t.FirstLabel +
       TransformOrientation(
         t.Symmetry, this->LabelOrientation[static_cast<std::size_t>(label)], false);
+  }
+  return map;
+}
+
+std::map<Label, Label> Tileset::MirrorMap(int axis) const
+{
+  std::map<Label, Label> map;
+  if (!this->Voxel)
+    return map;
+  CubeSymmetry mirror;
+  mirror.M[axis][axis] = -1;
+  const auto& group = SymmetryGroup(this->FullSymmetry);
+  for (int label = 0; label < this->NumberOfLabels(); ++label)
+  {
+    const auto i = static_cast<std::size_t>(label);
+    const TilesetTile& t = this->Tiles[static_cast<std::size_t>(this->LabelTile[i])];
+    const CubeSymmetry image =
+      CubeSymmetry::Then(group[static_cast<std::size_t>(this->LabelOrientation[i])], mirror);
+    const int g = SymmetryIndex(this->FullSymmetry, image);
+    if (g >= 0)
+    {
+      map[label] = t.SymmetryLabels[static_cast<std::size_t>(g)];
+      continue;
+    }
+    // A mirror in z of a set without fullSymmetry: only images that are their own mirror image.
+    const VoxelBlock mirrored = TransformVoxels({ this->VoxelSize, this->LabelVoxels[i] }, mirror);
+    if (mirrored.Voxels != this->LabelVoxels[i])
+      throw Error("tile '" + t.Name +
+        "' mirrored in z is none of its images (the set has no "
+        "fullSymmetry): no mirror symmetry along z");
+    map[label] = label;
   }
   return map;
 }
@@ -152,7 +200,9 @@ public:
     , Name(name)
   {
     if (root.Name != "set")
-      xml.Fail("the top-level element is <" + root.Name + ">, not <set>", root.Line);
+      xml.Fail("the top-level element is <" + root.Name +
+          ">, not <set> (WaveFunctionCollapse) or <tileset> (MarkovJunior)",
+        root.Line);
   }
 
   Tileset Read(const std::string& subsetName)
@@ -364,22 +414,30 @@ private:
 };
 } // namespace
 
-Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subsetName)
+Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subsetName,
+  const std::string& tiles)
 {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.size() > (std::size_t(1) << 24))
     throw Error::InFile(name, "is larger than 16 MiB, too large for a tileset");
   XmlReader xml(std::move(text), name);
   const XmlElement root = xml.Parse();
+  if (root.Name == "tileset")
+  {
+    if (!subsetName.empty())
+      throw Error::InFile(name, "is a voxel tileset (<tileset>), which has no subsets");
+    return detail::ReadVoxelTileset(xml, root, name, tiles);
+  }
   return TilesetParser(xml, root, name).Read(subsetName);
 }
 
-Tileset ReadTilesetFile(const std::string& path, const std::string& subset)
+Tileset ReadTilesetFile(
+  const std::string& path, const std::string& subset, const std::string& tiles)
 {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw Error::InFile(path, "cannot be opened for reading (missing or unreadable)");
-  return ReadTileset(in, path, subset);
+  return ReadTileset(in, path, subset, tiles);
 }
 
 } // namespace msynth

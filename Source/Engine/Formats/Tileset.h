@@ -22,6 +22,7 @@
 #include "Discrete/AdjacencyRules.h"
 
 #include <array>
+#include <cstdint>
 #include <istream>
 #include <map>
 #include <string>
@@ -38,6 +39,8 @@ struct TilesetTile
   double Weight = 1.0;
   int FirstLabel = 0; ///< label of orientation 0; orientation k is FirstLabel + k
   int Orientations = 1;
+  /// Voxel tilesets: the label of the tile's image under each symmetry (SymmetryGroup order).
+  std::vector<int> SymmetryLabels;
 };
 
 struct Tileset
@@ -45,9 +48,17 @@ struct Tileset
   bool Unique = false; ///< one image per orientation (else per tile, rotated)
   int TileSize = 0;    ///< `<set size="...">`: the tile images' width in pixels (0: not given)
   std::vector<TilesetTile> Tiles;
-  std::vector<int> LabelTile;                            ///< per label: index into Tiles
-  std::vector<int> LabelOrientation;                     ///< per label: orientation
+  std::vector<int> LabelTile;        ///< per label: index into Tiles
+  std::vector<int> LabelOrientation; ///< per label: orientation (voxel sets: a symmetry giving it)
   std::array<std::vector<std::pair<int, int>>, 3> Pairs; ///< allowed (first, second) per axis
+
+  /// MarkovJunior voxel tilesets (root <tileset>, Formats/VoxelTileset.h): a label is a tile's
+  /// distinct image under the square's 8 symmetries (the cube's 48 with FullSymmetry).
+  bool Voxel = false;
+  bool FullSymmetry = false;
+  std::array<int, 3> VoxelSize{ { 0, 0, 0 } };         ///< S, S, SZ
+  std::string TilesFolder;                             ///< where the tiles' .vox files were read
+  std::vector<std::vector<std::uint32_t>> LabelVoxels; ///< per label: VoxelBlock voxels
 
   int NumberOfLabels() const { return static_cast<int>(this->LabelTile.size()); }
   /// The label name as the format's published sets name images: "tile k" (or "tile").
@@ -55,6 +66,10 @@ struct Tileset
   /// Each label's image turned 90° counter-clockwise (the same tile's next orientation): the
   /// label map of rotation symmetry (Rotation::Map) for outputs of this tileset.
   std::map<Label, Label> TurnMap() const;
+  /// A voxel tileset's labels mirrored across the plane normal to @p axis (x -> S-1-x for 0):
+  /// the label map of reflection symmetry (Mirror::Map). Empty for a simple-tiled set, and for
+  /// z without FullSymmetry unless every image is its own mirror image in z. @throw Error then.
+  std::map<Label, Label> MirrorMap(int axis) const;
   /// Adjacency rules (label values 0..n-1, weights from the tiles) for 2D synthesis.
   AdjacencyRules Rules() const;
 };
@@ -84,10 +99,13 @@ std::string TileImageFile(
 
 /**
  * Reads a tileset; @p name is used in error messages, @p subset selects a <subset> ("" for all
- * tiles). @throw Error "'name', line N: problem" for malformed XML, unknown tiles, symmetry
- * classes or orientations.
+ * tiles). A `<tileset>` root is a MarkovJunior voxel tileset (VoxelTileset.h), its tiles read
+ * from @p tiles (VoxelTilesFolder; @p name is then the XML's path). @throw Error "'name', line
+ * N: problem" for malformed XML, unknown tiles, symmetry classes or orientations.
  */
-Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subset = "");
-Tileset ReadTilesetFile(const std::string& path, const std::string& subset = "");
+Tileset ReadTileset(std::istream& in, const std::string& name, const std::string& subset = "",
+  const std::string& tiles = "");
+Tileset ReadTilesetFile(
+  const std::string& path, const std::string& subset = "", const std::string& tiles = "");
 
 } // namespace msynth

@@ -4,8 +4,12 @@
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
 
+#include <algorithm>
+#include <climits>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 namespace msynth
 {
@@ -202,7 +206,9 @@ VoxModel ReadVoxModel(
   return model;
 }
 
-VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites)
+namespace
+{
+std::vector<std::uint8_t> ReadFileBytes(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in)
@@ -215,7 +221,13 @@ VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites)
   in.read(reinterpret_cast<char*>(bytes.data()), size);
   if (!in)
     throw Error::InFile(path, "could not be read");
-  return ReadVoxModel(bytes, path, maxSites);
+  return bytes;
+}
+} // namespace
+
+VoxModel ReadVoxModelFile(const std::string& path, std::int64_t maxSites)
+{
+  return ReadVoxModel(ReadFileBytes(path), path, maxSites);
 }
 
 void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& name)
@@ -265,8 +277,9 @@ void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& 
   u32(4 + static_cast<std::uint32_t>(voxels.size()));
   u32(0);
   u32(static_cast<std::uint32_t>(voxels.size() / 4));
-  out.write(
-    reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
+  if (!voxels.empty()) // an empty model: no bytes (and no null pointer to write from)
+    out.write(
+      reinterpret_cast<const char*>(voxels.data()), static_cast<std::streamsize>(voxels.size()));
   if (palette)
   {
     // Entry i of the chunk is palette index i + 1.
@@ -284,6 +297,381 @@ void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& 
 void WriteVoxModelFile(const std::string& path, const VoxModel& model)
 {
   WriteFileAtomically(path, [&](std::ostream& out) { WriteVoxModel(out, model, path); });
+}
+
+namespace
+{
+/// One node of a MagicaVoxel scene graph.
+struct SceneNode
+{
+  char Type = 0; ///< 'T' transform, 'G' group, 'S' shape
+  std::vector<int> Children;
+  std::array<std::int64_t, 3> Translation{ { 0, 0, 0 } };
+};
+
+std::string ReadString(Cursor& c)
+{
+  const std::uint32_t n = c.U32();
+  const std::uint8_t* p = c.Take(n);
+  return std::string(reinterpret_cast<const char*>(p), n);
+}
+
+std::vector<std::pair<std::string, std::string>> ReadDict(Cursor& c)
+{
+  std::vector<std::pair<std::string, std::string>> dict;
+  const std::uint32_t n = c.U32();
+  if (n > 1024)
+    c.Fail("a scene dictionary has more than 1024 entries");
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    std::string key = ReadString(c);
+    dict.emplace_back(std::move(key), ReadString(c));
+  }
+  return dict;
+}
+
+/// Reads the scene node chunk @p id, whose content starts at the cursor.
+void ReadNode(Cursor& c, const std::string& id, std::map<int, SceneNode>& nodes)
+{
+  const int nodeId = static_cast<int>(c.U32());
+  ReadDict(c);
+  SceneNode node;
+  node.Type = id == "nTRN" ? 'T' : (id == "nGRP" ? 'G' : 'S');
+  if (node.Type == 'T')
+  {
+    node.Children.push_back(static_cast<int>(c.U32()));
+    c.U32(); // reserved
+    c.U32(); // layer
+    const std::uint32_t frames = c.U32();
+    for (std::uint32_t f = 0; f < frames && f < 1024; ++f)
+      for (const auto& kv : ReadDict(c))
+      {
+        if (f == 0 && kv.first == "_t")
+        {
+          std::istringstream in(kv.second);
+          in >> node.Translation[0] >> node.Translation[1] >> node.Translation[2];
+          for (auto t : node.Translation)
+            if (!in || t < -100000 || t > 100000)
+              c.Fail("transform node " + std::to_string(nodeId) + " has translation '" + kv.second +
+                "'");
+        }
+        if (f == 0 && kv.first == "_r" && kv.second != "4")
+          c.Fail("transform node " + std::to_string(nodeId) + " rotates its model ('_r' " +
+            kv.second + "), which is not read");
+      }
+  }
+  else
+  {
+    const std::uint32_t n = c.U32();
+    if (n > 1000000)
+      c.Fail("a scene node has more than a million children");
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      node.Children.push_back(static_cast<int>(c.U32()));
+      if (node.Type == 'S')
+        ReadDict(c);
+    }
+  }
+  nodes[nodeId] = std::move(node);
+}
+
+struct ScenePiece
+{
+  std::array<std::int64_t, 3> Size{ { 0, 0, 0 } };
+  std::vector<std::uint8_t> Voxels; ///< x, y, z, index per voxel
+};
+
+struct Placement
+{
+  int Model;
+  std::array<std::int64_t, 3> Corner;
+};
+
+/// The models reached from node @p id with the translation @p t summed so far.
+void Place(Cursor& c, const std::map<int, SceneNode>& nodes, const std::vector<ScenePiece>& models,
+  int id, std::array<std::int64_t, 3> t, int depth, std::vector<Placement>& out, int& budget)
+{
+  if (--budget < 0)
+    c.Fail("the scene graph visits more than a million nodes");
+  const auto it = nodes.find(id);
+  if (it == nodes.end())
+    c.Fail("the scene refers to node " + std::to_string(id) + ", which is not there");
+  if (depth > 64 || out.size() > 65536)
+    c.Fail("the scene is nested more than 64 deep or places more than 65536 models");
+  const SceneNode& node = it->second;
+  if (node.Type == 'T')
+    for (int a = 0; a < 3; ++a)
+      t[static_cast<std::size_t>(a)] += node.Translation[static_cast<std::size_t>(a)];
+  for (const int child : node.Children)
+  {
+    if (node.Type != 'S')
+    {
+      Place(c, nodes, models, child, t, depth + 1, out, budget);
+      continue;
+    }
+    if (child < 0 || static_cast<std::size_t>(child) >= models.size())
+      c.Fail("a shape node names model " + std::to_string(child) + ", which is not there");
+    Placement p{ child, t };
+    for (int a = 0; a < 3; ++a) // the translation is the model's centre, rounded down
+      p.Corner[static_cast<std::size_t>(a)] -=
+        models[static_cast<std::size_t>(child)].Size[static_cast<std::size_t>(a)] / 2;
+    out.push_back(p);
+  }
+}
+
+/// The chunks of MAIN: models, palette and scene nodes.
+void ReadSceneChunks(Cursor& c, std::vector<ScenePiece>& models, VoxModel& result,
+  std::map<int, SceneNode>& nodes, bool& havePalette)
+{
+  while (c.Position < c.End)
+  {
+    const std::string id = c.Id();
+    const std::uint32_t content = c.U32();
+    const std::uint32_t children = c.U32();
+    const std::size_t start = c.Position;
+    c.Need(content);
+    const std::size_t outerEnd = c.End;
+    c.End = start + content; // a chunk's fields stay inside its content
+    if (id == "SIZE")
+    {
+      if (models.size() >= 65536)
+        c.Fail("more than 65536 models");
+      ScenePiece m;
+      for (auto& d : m.Size)
+        d = static_cast<std::int64_t>(c.U32());
+      for (auto d : m.Size)
+        if (d < 1 || d > 256)
+          c.Fail("a model size is outside 1..256");
+      models.push_back(std::move(m));
+    }
+    else if (id == "XYZI")
+    {
+      if (models.empty() || !models.back().Voxels.empty())
+        c.Fail("an XYZI chunk does not follow a SIZE chunk");
+      const std::uint32_t count = c.U32();
+      const std::uint8_t* v = c.Take(std::size_t(count) * 4);
+      models.back().Voxels.assign(v, v + std::size_t(count) * 4);
+    }
+    else if (id == "RGBA")
+    {
+      const std::uint8_t* p = c.Take(1024);
+      result.Palette[0] = { { 0, 0, 0, 0 } };
+      for (std::size_t i = 0; i < 255; ++i)
+        result.Palette[i + 1] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3] } };
+      havePalette = true;
+    }
+    else if (id == "nTRN" || id == "nGRP" || id == "nSHP")
+      ReadNode(c, id, nodes);
+    c.End = outerEnd;
+    if (children > c.End - start - content)
+      c.Fail("chunk '" + id + "' declares more children than its parent holds");
+    c.Position = start + content + children;
+  }
+}
+} // namespace
+
+VoxModel ReadVoxScene(
+  const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites)
+{
+  Cursor c(bytes, name);
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), "VOX ", 4) != 0)
+    c.Fail("it does not start with 'VOX '");
+  c.Position = 4;
+  c.U32();
+  if (c.Id() != "MAIN")
+    c.Fail("the first chunk is not MAIN");
+  const std::uint32_t mainContent = c.U32();
+  const std::uint32_t mainChildren = c.U32();
+  c.Take(mainContent);
+  if (mainChildren > c.End - c.Position)
+    c.Fail("MAIN declares more children than the file holds");
+  c.End = c.Position + mainChildren;
+  VoxModel result;
+  result.Palette.resize(256);
+  std::vector<ScenePiece> models;
+  std::map<int, SceneNode> nodes;
+  bool havePalette = false;
+  ReadSceneChunks(c, models, result, nodes, havePalette);
+  if (models.empty())
+    c.Fail("no model (SIZE and XYZI chunks) found");
+  std::vector<Placement> placed;
+  int budget = 1000000;
+  if (nodes.count(0))
+    Place(c, nodes, models, 0, { { 0, 0, 0 } }, 0, placed, budget);
+  else
+    for (std::size_t m = 0; m < models.size(); ++m)
+      placed.push_back({ static_cast<int>(m), { { 0, 0, 0 } } });
+  if (placed.empty())
+    c.Fail("the scene places no model");
+  std::array<std::int64_t, 3> low{ { INT64_MAX, INT64_MAX, INT64_MAX } }, high{ { 0, 0, 0 } };
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    high[a] = INT64_MIN;
+    for (const auto& p : placed)
+    {
+      low[a] = std::min(low[a], p.Corner[a]);
+      high[a] = std::max(high[a], p.Corner[a] + models[static_cast<std::size_t>(p.Model)].Size[a]);
+    }
+  }
+  const std::int64_t n[3] = { high[0] - low[0], high[1] - low[1], high[2] - low[2] };
+  if (n[0] * n[1] * n[2] > maxSites)
+    c.Fail("the scene's models span " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+      " x " + std::to_string(n[2]) + " voxels, more than the limit of " + std::to_string(maxSites) +
+      " sites");
+  result.Grid = LabelGrid(n[0], n[1], n[2], 0);
+  for (const auto& p : placed)
+  {
+    const ScenePiece& m = models[static_cast<std::size_t>(p.Model)];
+    for (std::size_t i = 0; i + 3 < m.Voxels.size(); i += 4)
+    {
+      const std::int64_t v[3] = { m.Voxels[i], m.Voxels[i + 1], m.Voxels[i + 2] };
+      if (v[0] >= m.Size[0] || v[1] >= m.Size[1] || v[2] >= m.Size[2])
+        c.Fail("voxel (" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
+          std::to_string(v[2]) + ") lies outside its model's size");
+      result.Grid.Set(p.Corner[0] - low[0] + v[0], p.Corner[1] - low[1] + v[1],
+        p.Corner[2] - low[2] + v[2], m.Voxels[i + 3]);
+    }
+  }
+  if (!havePalette)
+    for (std::size_t i = 0; i < 256; ++i)
+    {
+      const std::uint32_t abgr = DefaultPalette[i];
+      result.Palette[i] = { { static_cast<std::uint8_t>(abgr & 0xff),
+        static_cast<std::uint8_t>((abgr >> 8) & 0xff),
+        static_cast<std::uint8_t>((abgr >> 16) & 0xff), static_cast<std::uint8_t>(abgr >> 24) } };
+    }
+  result.NumberOfModels = static_cast<int>(models.size());
+  return result;
+}
+
+VoxModel ReadVoxSceneFile(const std::string& path, std::int64_t maxSites)
+{
+  return ReadVoxScene(ReadFileBytes(path), path, maxSites);
+}
+
+void WriteVoxScene(std::ostream& out, const VoxModel& model, const std::string& name)
+{
+  const auto& d = model.Grid.Dimensions();
+  if (d[0] > 2048 * 256 || d[1] > 2048 * 256 || d[2] > 2048 * 256)
+    throw Error::InFile(name, "cannot hold a model this large");
+  std::string body; // MAIN's children
+  const auto u32 = [](std::string& s, std::uint32_t v)
+  {
+    for (int k = 0; k < 4; ++k)
+      s.push_back(static_cast<char>((v >> (8 * k)) & 255));
+  };
+  const auto chunk = [&](const char* id, const std::string& content)
+  {
+    body.append(id, 4);
+    u32(body, static_cast<std::uint32_t>(content.size()));
+    u32(body, 0);
+    body += content;
+  };
+  const auto dict = [&u32](
+                      std::string& s, const std::vector<std::pair<std::string, std::string>>& kv)
+  {
+    u32(s, static_cast<std::uint32_t>(kv.size()));
+    for (const auto& p : kv)
+      for (const std::string* str : { &p.first, &p.second })
+      {
+        u32(s, static_cast<std::uint32_t>(str->size()));
+        s += *str;
+      }
+  };
+  std::vector<std::array<std::int64_t, 6>> pieces; // corner and size
+  for (std::int64_t z = 0; z < d[2]; z += 256)
+    for (std::int64_t y = 0; y < d[1]; y += 256)
+      for (std::int64_t x = 0; x < d[0]; x += 256)
+        pieces.push_back({ { x, y, z, std::min<std::int64_t>(256, d[0] - x),
+          std::min<std::int64_t>(256, d[1] - y), std::min<std::int64_t>(256, d[2] - z) } });
+  for (const auto& p : pieces)
+  {
+    std::string size, voxels;
+    for (int a = 0; a < 3; ++a)
+      u32(size, static_cast<std::uint32_t>(p[static_cast<std::size_t>(3 + a)]));
+    std::uint32_t count = 0;
+    for (std::int64_t z = 0; z < p[5]; ++z)
+      for (std::int64_t y = 0; y < p[4]; ++y)
+        for (std::int64_t x = 0; x < p[3]; ++x)
+        {
+          const Label b = model.Grid.At(p[0] + x, p[1] + y, p[2] + z);
+          if (b == 0)
+            continue;
+          if (b < 0 || b > 255)
+            throw Error::InFile(name,
+              "cannot hold label " + std::to_string(b) +
+                ": MagicaVoxel labels are palette indices 1..255");
+          for (std::int64_t v : { x, y, z, std::int64_t(b) })
+            voxels.push_back(static_cast<char>(v));
+          ++count;
+        }
+    std::string xyzi;
+    u32(xyzi, count);
+    chunk("SIZE", size);
+    chunk("XYZI", xyzi + voxels);
+  }
+  // The scene: transform 0 -> group 1 -> (transform 2k + 2 -> shape 2k + 3 -> model k).
+  std::string node;
+  u32(node, 0);
+  dict(node, {});
+  u32(node, 1);
+  u32(node, 0xffffffffu);
+  u32(node, 0xffffffffu);
+  u32(node, 1);
+  dict(node, {});
+  chunk("nTRN", node);
+  node.clear();
+  u32(node, 1);
+  dict(node, {});
+  u32(node, static_cast<std::uint32_t>(pieces.size()));
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    u32(node, static_cast<std::uint32_t>(2 * k + 2));
+  chunk("nGRP", node);
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+  {
+    const auto& p = pieces[k];
+    node.clear();
+    u32(node, static_cast<std::uint32_t>(2 * k + 2));
+    dict(node, {});
+    u32(node, static_cast<std::uint32_t>(2 * k + 3));
+    u32(node, 0xffffffffu);
+    u32(node, 0);
+    u32(node, 1);
+    dict(node,
+      { { "_t",
+        std::to_string(p[0] + p[3] / 2) + " " + std::to_string(p[1] + p[4] / 2) + " " +
+          std::to_string(p[2] + p[5] / 2) } });
+    chunk("nTRN", node);
+    node.clear();
+    u32(node, static_cast<std::uint32_t>(2 * k + 3));
+    dict(node, {});
+    u32(node, 1);
+    u32(node, static_cast<std::uint32_t>(k));
+    dict(node, {});
+    chunk("nSHP", node);
+  }
+  if (model.Palette.size() == 256)
+  {
+    std::string rgba;
+    for (std::size_t i = 1; i <= 256; ++i)
+    {
+      const auto& c = i < 256 ? model.Palette[i] : std::array<std::uint8_t, 4>{ { 0, 0, 0, 0 } };
+      rgba.append(reinterpret_cast<const char*>(c.data()), 4);
+    }
+    chunk("RGBA", rgba);
+  }
+  std::string head("VOX ");
+  u32(head, 150);
+  head += "MAIN";
+  u32(head, 0);
+  u32(head, static_cast<std::uint32_t>(body.size()));
+  out.write(head.data(), static_cast<std::streamsize>(head.size()));
+  out.write(body.data(), static_cast<std::streamsize>(body.size()));
+}
+
+void WriteVoxSceneFile(const std::string& path, const VoxModel& model)
+{
+  WriteFileAtomically(path, [&](std::ostream& out) { WriteVoxScene(out, model, path); });
 }
 
 } // namespace msynth

@@ -45,4 +45,22 @@ void WriteVoxModel(std::ostream& out, const VoxModel& model, const std::string& 
 /// WriteVoxModel into @p path, atomically. @throw Error naming the file.
 void WriteVoxModelFile(const std::string& path, const VoxModel& model);
 
+/**
+ * Writes @p model of any size (up to 256 x 2048 voxels a side) as MagicaVoxel's scene: pieces of
+ * at most 256 voxels a side, each a model placed by its own transform node (nTRN `_t`, the
+ * piece's centre: its lowest corner plus half its size, rounded down) under one group node.
+ */
+void WriteVoxScene(std::ostream& out, const VoxModel& model, const std::string& name);
+void WriteVoxSceneFile(const std::string& path, const VoxModel& model);
+/**
+ * Every model of a file placed as its scene places it (translations summed along the node path
+ * from the root; a file without a scene: every model at the origin), composed into one grid from
+ * the lowest corner of the models; later models overwrite earlier ones. Rotated models are an
+ * error. @throw Error naming the file and the problem; a composed model of more than
+ * @p maxSites sites is refused before allocation.
+ */
+VoxModel ReadVoxScene(
+  const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites);
+VoxModel ReadVoxSceneFile(const std::string& path, std::int64_t maxSites);
+
 } // namespace msynth

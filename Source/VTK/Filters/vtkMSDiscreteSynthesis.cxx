@@ -450,11 +450,61 @@ void AddExampleFields(
       names->InsertNextValue(tiles->LabelName(b));
     fd->AddArray(names);
     vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesetFile", std::string(tilesetFile));
+    if (tiles->Voxel) // the table (tile, symmetry) per label
+    {
+      vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesFolder", tiles->TilesFolder);
+      vtkNew<vtkStringArray> tile;
+      tile->SetName("LabelTile");
+      vtkNew<vtkIntArray> symmetry;
+      symmetry->SetName("LabelSymmetry");
+      for (int b = 0; b < tiles->NumberOfLabels(); ++b)
+      {
+        const auto i = static_cast<std::size_t>(b);
+        tile->InsertNextValue(tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[i])].Name);
+        symmetry->InsertNextValue(tiles->LabelOrientation[i]);
+      }
+      fd->AddArray(tile);
+      fd->AddArray(symmetry);
+    }
   }
   for (const char* name :
     { "ExampleFile", "PieceLabels", "PieceNames", "TextModelTrailer", "PaletteRGBA" })
     if (vtkAbstractArray* array = input ? input->GetFieldData()->GetAbstractArray(name) : nullptr)
       fd->AddArray(array);
+}
+} // namespace
+
+namespace
+{
+/**
+ * Block synthesis of a voxel tileset none of whose tile images may touch itself on every axis
+ * (MarkovJunior's PartitionedEdges) has no trivial start of one label (Algorithm 3.4, lines
+ * 3-5); its start is then a whole-model solution (Algorithm 3.1, same seed), which the blocks
+ * modify. Left to the engine (its layered start, or its error) when that fails, or with
+ * symmetries, which take no given start.
+ */
+void StartFromWholeModel(const msynth::AdjacencyRules& rules, msynth::SynthesisOptions& options)
+{
+  bool blocks = false;
+  for (int a = 0; a < 3; ++a)
+    blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
+  bool symmetric = options.Rotate.Enabled;
+  for (int a = 0; a < 3; ++a)
+    symmetric |= options.Symmetry[static_cast<std::size_t>(a)].Enabled ||
+      options.Translate[static_cast<std::size_t>(a)].Enabled;
+  if (!blocks || symmetric || options.Start)
+    return;
+  for (int b = 0; b < static_cast<int>(rules.LabelValues().size()); ++b)
+    if (rules.SelfAdjacent(b, options.Size))
+      return;
+  msynth::SynthesisOptions whole = options;
+  whole.BlockSize = { { 0, 0, 0 } };
+  whole.OnSnapshot = nullptr;
+  whole.SnapshotsPerBlock = 0;
+  whole.Exchange = msynth::BlockExchange();
+  const msynth::SynthesisResult start = msynth::Synthesize(rules, whole);
+  if (start.Succeeded())
+    options.Start = start.Model;
 }
 } // namespace
 
@@ -487,10 +537,20 @@ bool vtkMSDiscreteSynthesis::Solve(
       if (options.Choice == msynth::LabelChoice::Resemblance)
         throw std::runtime_error(
           "resemblance-weighted choice needs an example grid, not a tileset");
-      run.Tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      run.Tiles =
+        msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset, this->TilesFolder);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
         options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
-      run.Cache.Result = this->Run(run.Tiles.Rules(), options);
+      for (int a = 0; a < 3; ++a) // a voxel tileset's images pair with their mirror images
+      {
+        auto& mirror = options.Symmetry[static_cast<std::size_t>(a)];
+        if (run.Tiles.Voxel && mirror.Enabled && mirror.Map.empty())
+          mirror.Map = run.Tiles.MirrorMap(a);
+      }
+      const msynth::AdjacencyRules rules = run.Tiles.Rules();
+      if (run.Tiles.Voxel)
+        StartFromWholeModel(rules, options);
+      run.Cache.Result = this->Run(rules, options);
     });
 }
 
@@ -640,7 +700,17 @@ int vtkMSDiscreteSynthesis::RequestData(
         vtkMSPipeline::RequestingPort(request, outputVector), run.Snapshots.size());
   this->FillOutput(input, output, step);
   std::string problem;
-  if (!vtkMSLabelArrays::FillGeometryPort(output, this->GenerateGeometry, this->EmptyLabel,
+  // A voxel tileset's model shows its tiles' voxels, else the sites as voxels.
+  vtkNew<vtkImageData> voxels;
+  const bool tileVoxels = !this->TilesetFile.empty() && run.Tiles.Voxel && this->GenerateGeometry;
+  if (tileVoxels && !vtkMSLabelArrays::TileVoxels(run.Tiles, output, voxels, problem))
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "The model's voxels: " << problem);
+    return 0;
+  }
+  if (!vtkMSLabelArrays::FillGeometryPort(tileVoxels ? voxels.GetPointer() : output,
+        this->GenerateGeometry, tileVoxels ? 0 : this->EmptyLabel,
         outputVector->GetInformationObject(1), problem))
   {
     output->Initialize();
@@ -693,6 +763,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Rotate: " << this->Rotate << " (map '" << this->RotationMap << "')\n";
   os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
      << this->EmptyLabel << ")\n";
+  os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

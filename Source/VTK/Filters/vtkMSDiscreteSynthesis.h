@@ -49,6 +49,11 @@
  * Tilesets: with TilesetFile set (simple-tiled XML, msynth/Tileset.h) the rules come from the
  * tileset and the example input is not needed; label i is an orientation of a tile, named in
  * the field array `TileNames` ("tile k"). vtkMSTileImage composes the tiles' images.
+ * MarkovJunior's voxel tilesets (`<tileset>` root, Formats/VoxelTileset.h) work the same way,
+ * their tiles read from TilesFolder (default: the folder named like the XML); label i is a
+ * distinct image of a tile, recorded per label in the field arrays `LabelTile` (the tile's
+ * name) and `LabelSymmetry` (a symmetry giving it, 0-7 or 0-47), and the geometry output shows
+ * the tiles' coloured voxels (vtkMSLabelArrays::TileVoxels, cell array `PaletteColor`).
  *
  * Image samples (the overlapping model of WaveFunctionCollapse, Discrete/OverlappingModel.h):
  * with SampleFile set (a PNG or BMP picture) the labels are the sample's PatternSize ×
@@ -212,6 +217,13 @@ public:
   vtkGetCharFromStdStringMacro(TilesetFile);
   vtkSetStdStringFromCharMacro(TilesetSubset);
   vtkGetCharFromStdStringMacro(TilesetSubset);
+  ///@}
+
+  ///@{
+  /// The folder of a voxel tileset's tiles (`NAME.vox` per tile): as given, or relative to the
+  /// tileset's folder; "" (default) for the folder named like the tileset file.
+  vtkSetStdStringFromCharMacro(TilesFolder);
+  vtkGetCharFromStdStringMacro(TilesFolder);
   ///@}
 
   ///@{
@@ -443,6 +455,7 @@ private:
   bool Rotate = false;
   std::string RotationMap;
   std::string TilesetFile;
+  std::string TilesFolder;
   std::string TargetFractions;
   double SoftTemperature = 0.01;
   std::string TilesetSubset;

@@ -8,6 +8,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
+#include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -475,7 +476,11 @@ int vtkMSLabelGeometry::RequestData(
     {
       try
       {
-        tileset = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+        // A voxel tileset's tiles folder, as the synthesis recorded it (field data).
+        auto* folder =
+          vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TilesFolder"));
+        tileset = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset,
+          folder && folder->GetNumberOfValues() == 1 ? folder->GetValue(0) : std::string());
       }
       catch (const msynth::Error& e)
       {

@@ -34,6 +34,7 @@
 
 #include "Core/Error.h"
 #include "Discrete/VoxelSurface.h"
+#include "Formats/VoxelTileset.h"
 
 #include <array>
 #include <cmath>
@@ -234,6 +235,51 @@ bool vtkMSLabelArrays::FillGeometryPort(
   return !generate ||
     VoxelSurface(image, empty, vtkMSPipeline::UpdatePiece(geometryInfo),
       vtkMSPipeline::UpdateNumberOfPieces(geometryInfo), geometry, problem);
+}
+
+bool vtkMSLabelArrays::TileVoxels(
+  const msynth::Tileset& set, vtkImageData* model, vtkImageData* voxels, std::string& problem)
+{
+  voxels->Initialize();
+  msynth::LabelGrid grid;
+  if (!model || model->GetNumberOfPoints() == 0)
+    return true;
+  if (!ReadLabels(model, nullptr, grid, problem))
+    return false;
+  std::vector<std::array<std::uint8_t, 4>> palette;
+  msynth::LabelGrid composed;
+  try
+  {
+    composed = msynth::ComposeVoxels(set, grid, palette, true);
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+    return false;
+  }
+  const auto& d = composed.Dimensions();
+  voxels->SetDimensions(static_cast<int>(d[0]), static_cast<int>(d[1]), static_cast<int>(d[2]));
+  const double* spacing = model->GetSpacing();
+  const std::array<double, 3> first = FirstSitePosition(model);
+  double s[3], o[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    // A site's cell [p - h/2, p + h/2] holds its tile's voxels.
+    s[a] = spacing[a] / set.VoxelSize[static_cast<std::size_t>(a)];
+    o[a] = first[static_cast<std::size_t>(a)] - spacing[a] / 2 + s[a] / 2;
+  }
+  voxels->SetSpacing(s);
+  voxels->SetOrigin(o);
+  vtkSmartPointer<vtkIntArray> labels;
+  labels.TakeReference(NewLabelArray(composed, "Label"));
+  voxels->GetPointData()->SetScalars(labels);
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("PaletteRGBA");
+  colours->SetNumberOfComponents(4);
+  for (const auto& rgba : palette)
+    colours->InsertNextTypedTuple(rgba.data());
+  voxels->GetFieldData()->AddArray(colours);
+  return true;
 }
 
 std::array<double, 3> vtkMSLabelArrays::FirstSitePosition(vtkImageData* image)

@@ -22,6 +22,10 @@ class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
 class vtkPolyData;
+namespace msynth
+{
+struct Tileset;
+}
 
 class MODELSYNTHIO_EXPORT vtkMSLabelArrays
 {
@@ -77,6 +81,15 @@ public:
    */
   static bool FillGeometryPort(vtkImageData* image, bool generate, int empty,
     vtkInformation* geometryInfo, std::string& problem);
+
+  /**
+   * The voxels of a model of a voxel tileset (Formats/VoxelTileset.h) as an image: each site of
+   * @p model (its `Label` array) becomes its tile image's S x S x SZ voxels filling the site's
+   * cell, point array `Label` the palette index (0 empty; undecided sites empty) and field data
+   * `PaletteRGBA` the colours, so VoxelSurface gives the coloured voxels (`PaletteColor`).
+   */
+  static bool TileVoxels(
+    const msynth::Tileset& set, vtkImageData* model, vtkImageData* voxels, std::string& problem);
 
   /**
    * With a palette (field data `PaletteRGBA` of @p fields, as a `.vox` example and the models
