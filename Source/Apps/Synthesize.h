@@ -10,14 +10,17 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 class vtkAlgorithm;
+class vtkImageData;
 class vtkXMLImageDataReader;
 
 namespace msynth
 {
+struct Tileset;
 namespace cli
 {
 
@@ -77,6 +80,15 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir);
 /// to input @p port of @p synthesis.
 void ConnectGuide(
   vtkAlgorithm* synthesis, int port, vtkXMLImageDataReader* guide, const std::string& path);
+/**
+ * A voxel tileset's model as its tiles' voxels (VoxelOutputs.cxx): model.vox (MagicaVoxel,
+ * several models in the scene past 256 voxels a side), mesh.vtp (the voxel surface, colours in
+ * the cell array `PaletteColor`; with --pieces WriteMesh's pieces instead) and, for a 2D set,
+ * picture.png (the view from above).
+ */
+void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const SynthesizeOptions& o,
+  const std::string& dir, const std::function<bool(const char*)>& wanted,
+  std::vector<std::string>& written);
 /// Continuous synthesis into the staging folder @p dir.
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir);
 

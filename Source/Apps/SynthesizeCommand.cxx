@@ -538,56 +538,6 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   }
 }
 
-/**
- * A voxel tileset's model as its tiles' voxels: model.vox (MagicaVoxel, several models in the
- * scene past 256 voxels a side), mesh.vtp (the voxel surface, colours in the cell array
- * `PaletteColor`; with --pieces WriteMesh's pieces instead) and, for a 2D set, picture.png
- * (the view from above).
- */
-void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const SynthesizeOptions& o,
-  const std::string& dir, const std::function<bool(const char*)>& wanted,
-  std::vector<std::string>& written)
-{
-  msynth::VoxModel vox;
-  vox.Grid = msynth::ComposeVoxels(set,
-    vtkMSLabelArrays::ToLabelGrid(model, model->GetPointData()->GetArray("Label")), vox.Palette);
-  if (wanted("vox"))
-  {
-    msynth::WriteVoxSceneFile(dir + "/model.vox", vox);
-    written.push_back(dir + "/model.vox");
-  }
-  if (wanted("mesh") && o.Pieces.empty())
-  {
-    vtkNew<vtkImageData> voxels;
-    vtkNew<vtkPolyData> mesh;
-    std::string problem;
-    if (!vtkMSLabelArrays::TileVoxels(set, model, voxels, problem) ||
-      !vtkMSLabelArrays::VoxelSurface(voxels, 0, 0, 1, mesh, problem))
-      throw std::runtime_error(problem);
-    WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer());
-    written.push_back(dir + "/mesh.vtp");
-  }
-  const auto& d = vox.Grid.Dimensions();
-  if (wanted("picture"))
-  {
-    if (d[2] != 1)
-      throw std::runtime_error("--outputs picture: the view from above is made of a 2D voxel "
-                               "tileset's models (tiles one voxel high)");
-    msynth::RgbaImage picture;
-    picture.Width = static_cast<int>(d[0]);
-    picture.Height = static_cast<int>(d[1]);
-    picture.Pixels.assign(static_cast<std::size_t>(d[0] * d[1]) * 4, 0);
-    for (std::int64_t y = 0; y < d[1]; ++y) // rows from the top: y up
-      for (std::int64_t x = 0; x < d[0]; ++x)
-      {
-        const auto& c = vox.Palette[static_cast<std::size_t>(vox.Grid.At(x, y, 0))];
-        std::copy(c.begin(), c.end(), picture.Pixels.begin() + 4 * ((d[1] - 1 - y) * d[0] + x));
-      }
-    msynth::WritePng(dir + "/picture.png", picture);
-    written.push_back(dir + "/picture.png");
-  }
-}
-
 void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
 {
   vtkFieldData* fd = model->GetFieldData();

@@ -549,107 +549,128 @@ VoxModel ReadVoxSceneFile(const std::string& path, std::int64_t maxSites)
   return ReadVoxScene(ReadFileBytes(path), path, maxSites);
 }
 
+namespace
+{
+/// The children of a .vox file's MAIN chunk being written.
+struct VoxChunks
+{
+  std::string Body;
+
+  static void U32(std::string& s, std::uint32_t v)
+  {
+    for (int k = 0; k < 4; ++k)
+      s.push_back(static_cast<char>((v >> (8 * k)) & 255));
+  }
+  static void Dict(std::string& s, const std::vector<std::pair<std::string, std::string>>& kv)
+  {
+    U32(s, static_cast<std::uint32_t>(kv.size()));
+    for (const auto& p : kv)
+      for (const std::string* str : { &p.first, &p.second })
+      {
+        U32(s, static_cast<std::uint32_t>(str->size()));
+        s += *str;
+      }
+  }
+  void Chunk(const char* id, const std::string& content)
+  {
+    this->Body.append(id, 4);
+    U32(this->Body, static_cast<std::uint32_t>(content.size()));
+    U32(this->Body, 0);
+    this->Body += content;
+  }
+};
+
+/// SIZE and XYZI of the model's box @p p (corner and size) into @p chunks.
+void AppendVoxModel(VoxChunks& chunks, const VoxModel& model, const std::array<std::int64_t, 6>& p,
+  const std::string& name)
+{
+  std::string size, voxels;
+  for (std::size_t a = 0; a < 3; ++a)
+    VoxChunks::U32(size, static_cast<std::uint32_t>(p[3 + a]));
+  std::uint32_t count = 0;
+  for (std::int64_t z = 0; z < p[5]; ++z)
+    for (std::int64_t y = 0; y < p[4]; ++y)
+      for (std::int64_t x = 0; x < p[3]; ++x)
+      {
+        const Label b = model.Grid.At(p[0] + x, p[1] + y, p[2] + z);
+        if (b == 0)
+          continue;
+        if (b < 0 || b > 255)
+          throw Error::InFile(name,
+            "cannot hold label " + std::to_string(b) +
+              ": MagicaVoxel labels are palette indices 1..255");
+        for (std::int64_t v : { x, y, z, std::int64_t(b) })
+          voxels.push_back(static_cast<char>(v));
+        ++count;
+      }
+  std::string xyzi;
+  VoxChunks::U32(xyzi, count);
+  chunks.Chunk("SIZE", size);
+  chunks.Chunk("XYZI", xyzi + voxels);
+}
+
+/// The scene: transform 0 -> group 1 -> (transform 2k + 2 -> shape 2k + 3 -> model k), each
+/// model's transform placing its box's centre.
+void AppendVoxScene(VoxChunks& chunks, const std::vector<std::array<std::int64_t, 6>>& pieces)
+{
+  using C = VoxChunks;
+  std::string node;
+  C::U32(node, 0);
+  C::Dict(node, {});
+  C::U32(node, 1);
+  C::U32(node, 0xffffffffu);
+  C::U32(node, 0xffffffffu);
+  C::U32(node, 1);
+  C::Dict(node, {});
+  chunks.Chunk("nTRN", node);
+  node.clear();
+  C::U32(node, 1);
+  C::Dict(node, {});
+  C::U32(node, static_cast<std::uint32_t>(pieces.size()));
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    C::U32(node, static_cast<std::uint32_t>(2 * k + 2));
+  chunks.Chunk("nGRP", node);
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+  {
+    const auto& p = pieces[k];
+    node.clear();
+    C::U32(node, static_cast<std::uint32_t>(2 * k + 2));
+    C::Dict(node, {});
+    C::U32(node, static_cast<std::uint32_t>(2 * k + 3));
+    C::U32(node, 0xffffffffu);
+    C::U32(node, 0);
+    C::U32(node, 1);
+    C::Dict(node,
+      { { "_t",
+        std::to_string(p[0] + p[3] / 2) + " " + std::to_string(p[1] + p[4] / 2) + " " +
+          std::to_string(p[2] + p[5] / 2) } });
+    chunks.Chunk("nTRN", node);
+    node.clear();
+    C::U32(node, static_cast<std::uint32_t>(2 * k + 3));
+    C::Dict(node, {});
+    C::U32(node, 1);
+    C::U32(node, static_cast<std::uint32_t>(k));
+    C::Dict(node, {});
+    chunks.Chunk("nSHP", node);
+  }
+}
+} // namespace
+
 void WriteVoxScene(std::ostream& out, const VoxModel& model, const std::string& name)
 {
   const auto& d = model.Grid.Dimensions();
   if (d[0] > 2048 * 256 || d[1] > 2048 * 256 || d[2] > 2048 * 256)
     throw Error::InFile(name, "cannot hold a model this large");
-  std::string body; // MAIN's children
-  const auto u32 = [](std::string& s, std::uint32_t v)
-  {
-    for (int k = 0; k < 4; ++k)
-      s.push_back(static_cast<char>((v >> (8 * k)) & 255));
-  };
-  const auto chunk = [&](const char* id, const std::string& content)
-  {
-    body.append(id, 4);
-    u32(body, static_cast<std::uint32_t>(content.size()));
-    u32(body, 0);
-    body += content;
-  };
-  const auto dict = [&u32](
-                      std::string& s, const std::vector<std::pair<std::string, std::string>>& kv)
-  {
-    u32(s, static_cast<std::uint32_t>(kv.size()));
-    for (const auto& p : kv)
-      for (const std::string* str : { &p.first, &p.second })
-      {
-        u32(s, static_cast<std::uint32_t>(str->size()));
-        s += *str;
-      }
-  };
   std::vector<std::array<std::int64_t, 6>> pieces; // corner and size
   for (std::int64_t z = 0; z < d[2]; z += 256)
     for (std::int64_t y = 0; y < d[1]; y += 256)
       for (std::int64_t x = 0; x < d[0]; x += 256)
         pieces.push_back({ { x, y, z, std::min<std::int64_t>(256, d[0] - x),
           std::min<std::int64_t>(256, d[1] - y), std::min<std::int64_t>(256, d[2] - z) } });
+  VoxChunks chunks;
   for (const auto& p : pieces)
-  {
-    std::string size, voxels;
-    for (int a = 0; a < 3; ++a)
-      u32(size, static_cast<std::uint32_t>(p[static_cast<std::size_t>(3 + a)]));
-    std::uint32_t count = 0;
-    for (std::int64_t z = 0; z < p[5]; ++z)
-      for (std::int64_t y = 0; y < p[4]; ++y)
-        for (std::int64_t x = 0; x < p[3]; ++x)
-        {
-          const Label b = model.Grid.At(p[0] + x, p[1] + y, p[2] + z);
-          if (b == 0)
-            continue;
-          if (b < 0 || b > 255)
-            throw Error::InFile(name,
-              "cannot hold label " + std::to_string(b) +
-                ": MagicaVoxel labels are palette indices 1..255");
-          for (std::int64_t v : { x, y, z, std::int64_t(b) })
-            voxels.push_back(static_cast<char>(v));
-          ++count;
-        }
-    std::string xyzi;
-    u32(xyzi, count);
-    chunk("SIZE", size);
-    chunk("XYZI", xyzi + voxels);
-  }
-  // The scene: transform 0 -> group 1 -> (transform 2k + 2 -> shape 2k + 3 -> model k).
-  std::string node;
-  u32(node, 0);
-  dict(node, {});
-  u32(node, 1);
-  u32(node, 0xffffffffu);
-  u32(node, 0xffffffffu);
-  u32(node, 1);
-  dict(node, {});
-  chunk("nTRN", node);
-  node.clear();
-  u32(node, 1);
-  dict(node, {});
-  u32(node, static_cast<std::uint32_t>(pieces.size()));
-  for (std::size_t k = 0; k < pieces.size(); ++k)
-    u32(node, static_cast<std::uint32_t>(2 * k + 2));
-  chunk("nGRP", node);
-  for (std::size_t k = 0; k < pieces.size(); ++k)
-  {
-    const auto& p = pieces[k];
-    node.clear();
-    u32(node, static_cast<std::uint32_t>(2 * k + 2));
-    dict(node, {});
-    u32(node, static_cast<std::uint32_t>(2 * k + 3));
-    u32(node, 0xffffffffu);
-    u32(node, 0);
-    u32(node, 1);
-    dict(node,
-      { { "_t",
-        std::to_string(p[0] + p[3] / 2) + " " + std::to_string(p[1] + p[4] / 2) + " " +
-          std::to_string(p[2] + p[5] / 2) } });
-    chunk("nTRN", node);
-    node.clear();
-    u32(node, static_cast<std::uint32_t>(2 * k + 3));
-    dict(node, {});
-    u32(node, 1);
-    u32(node, static_cast<std::uint32_t>(k));
-    dict(node, {});
-    chunk("nSHP", node);
-  }
+    AppendVoxModel(chunks, model, p, name);
+  AppendVoxScene(chunks, pieces);
   if (model.Palette.size() == 256)
   {
     std::string rgba;
@@ -658,15 +679,15 @@ void WriteVoxScene(std::ostream& out, const VoxModel& model, const std::string& 
       const auto& c = i < 256 ? model.Palette[i] : std::array<std::uint8_t, 4>{ { 0, 0, 0, 0 } };
       rgba.append(reinterpret_cast<const char*>(c.data()), 4);
     }
-    chunk("RGBA", rgba);
+    chunks.Chunk("RGBA", rgba);
   }
   std::string head("VOX ");
-  u32(head, 150);
+  VoxChunks::U32(head, 150);
   head += "MAIN";
-  u32(head, 0);
-  u32(head, static_cast<std::uint32_t>(body.size()));
+  VoxChunks::U32(head, 0);
+  VoxChunks::U32(head, static_cast<std::uint32_t>(chunks.Body.size()));
   out.write(head.data(), static_cast<std::streamsize>(head.size()));
-  out.write(body.data(), static_cast<std::streamsize>(body.size()));
+  out.write(chunks.Body.data(), static_cast<std::streamsize>(chunks.Body.size()));
 }
 
 void WriteVoxSceneFile(const std::string& path, const VoxModel& model)
