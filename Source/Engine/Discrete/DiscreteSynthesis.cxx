@@ -590,6 +590,29 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   return r;
 }
 
+void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options)
+{
+  bool blocks = false;
+  for (std::size_t a = 0; a < 3; ++a)
+    blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
+  bool symmetric = options.Rotate.Enabled;
+  for (std::size_t a = 0; a < 3; ++a)
+    symmetric |= options.Symmetry[a].Enabled || options.Translate[a].Enabled;
+  if (!blocks || symmetric || options.Start)
+    return;
+  for (int b = 0; b < rules.NumberOfLabels(); ++b)
+    if (rules.SelfAdjacent(b, options.Size))
+      return;
+  SynthesisOptions whole = options;
+  whole.BlockSize = { { 0, 0, 0 } };
+  whole.OnSnapshot = nullptr;
+  whole.SnapshotsPerBlock = 0;
+  whole.Exchange = BlockExchange();
+  const SynthesisResult start = Synthesize(rules, whole);
+  if (start.Succeeded())
+    options.Start = start.Model;
+}
+
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {

@@ -249,6 +249,15 @@ struct SynthesisResult
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high);
 
+/**
+ * Block synthesis of rules none of whose labels may touch itself on every axis (MarkovJunior's
+ * PartitionedEdges, say) has no trivial start of one label (Algorithm 3.4, lines 3-5): sets
+ * @p options.Start to a whole-model solution (Algorithm 3.1, same seed), which the blocks then
+ * modify. Leaves the options as they are (the layered start, or its error) when that fails,
+ * without blocks, with a given start, or with symmetries (which take no given start).
+ */
+void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options);
+
 /// The number of blocks Synthesize will visit for these options (sizes only).
 std::int64_t CountBlocks(const SynthesisOptions& options);
 /// The number of snapshots Synthesize will report: 1 + CountBlocks × SnapshotsPerBlock (0 if

@@ -98,6 +98,54 @@ const std::uint32_t DefaultPalette[256] = { 0x00000000, 0xffffffff, 0xffccffff, 
   0xffee0000, 0xffdd0000, 0xffbb0000, 0xffaa0000, 0xff880000, 0xff770000, 0xff550000, 0xff440000,
   0xff220000, 0xff110000, 0xffeeeeee, 0xffdddddd, 0xffbbbbbb, 0xffaaaaaa, 0xff888888, 0xff777777,
   0xff555555, 0xff444444, 0xff222222, 0xff111111 };
+/// The first SIZE chunk's model, all empty (checked against 1..2048 a side and @p maxSites).
+LabelGrid ReadSizeChunk(Cursor& c, std::uint32_t content, std::int64_t maxSites)
+{
+  if (content < 12)
+    c.Fail("SIZE chunk is too short");
+  std::array<std::int64_t, 3> size{ { 0, 0, 0 } };
+  for (auto& d : size)
+    d = static_cast<std::int64_t>(c.U32());
+  for (auto d : size)
+    if (d < 1 || d > 2048)
+      c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
+        std::to_string(size[2]) + " is outside 1..2048");
+  if (size[0] * size[1] * size[2] > maxSites)
+    c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
+      std::to_string(size[2]) + " exceeds the limit of " + std::to_string(maxSites) + " sites");
+  return LabelGrid(size[0], size[1], size[2], 0);
+}
+
+/// The first XYZI chunk's voxels into @p grid (each inside it).
+void ReadVoxelChunk(Cursor& c, std::uint32_t content, LabelGrid& grid)
+{
+  const std::uint32_t count = c.U32();
+  if (count > (content - 4) / 4 || content < 4)
+    c.Fail("XYZI declares " + std::to_string(count) + " voxels but holds " +
+      std::to_string(content >= 4 ? (content - 4) / 4 : 0));
+  const std::uint8_t* v = c.Take(std::size_t(count) * 4);
+  for (std::uint32_t i = 0; i < count; ++i)
+  {
+    const std::int64_t x = v[4 * i], y = v[4 * i + 1], z = v[4 * i + 2];
+    if (!grid.Contains(x, y, z))
+      c.Fail("voxel (" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
+        ") lies outside the model size");
+    grid.Set(x, y, z, v[4 * i + 3]);
+  }
+}
+
+/// An RGBA chunk: entry i is the colour of palette index i + 1; index 0 is empty.
+void ReadPaletteChunk(
+  Cursor& c, std::uint32_t content, std::vector<std::array<std::uint8_t, 4>>& palette)
+{
+  if (content < 1024)
+    c.Fail("RGBA chunk is shorter than 256 colours");
+  const std::uint8_t* p = c.Take(1024);
+  palette[0] = { { 0, 0, 0, 0 } };
+  for (int i = 0; i < 255; ++i)
+    palette[static_cast<std::size_t>(i + 1)] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2],
+      p[4 * i + 3] } };
+}
 } // namespace
 
 VoxModel ReadVoxModel(
@@ -120,7 +168,6 @@ VoxModel ReadVoxModel(
 
   VoxModel model;
   bool haveSize = false, haveVoxels = false, havePalette = false;
-  std::array<std::int64_t, 3> size{ { 0, 0, 0 } };
   int models = 0;
   model.Palette.resize(256);
   while (c.Position < c.End)
@@ -133,56 +180,23 @@ VoxModel ReadVoxModel(
     if (id == "SIZE")
     {
       ++models;
-      if (content < 12)
-        c.Fail("SIZE chunk is too short");
       if (!haveSize)
-      {
-        for (auto& d : size)
-          d = static_cast<std::int64_t>(c.U32());
-        for (auto d : size)
-          if (d < 1 || d > 2048)
-            c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) +
-              " x " + std::to_string(size[2]) + " is outside 1..2048");
-        if (size[0] * size[1] * size[2] > maxSites)
-          c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
-            std::to_string(size[2]) + " exceeds the limit of " + std::to_string(maxSites) +
-            " sites");
-        model.Grid = LabelGrid(size[0], size[1], size[2], 0);
-        haveSize = true;
-      }
+        model.Grid = ReadSizeChunk(c, content, maxSites);
+      else if (content < 12)
+        c.Fail("SIZE chunk is too short");
+      haveSize = true;
     }
     else if (id == "XYZI")
     {
       if (!haveSize)
         c.Fail("XYZI chunk before any SIZE chunk");
       if (!haveVoxels)
-      {
-        const std::uint32_t count = c.U32();
-        if (count > (content - 4) / 4 || content < 4)
-          c.Fail("XYZI declares " + std::to_string(count) + " voxels but holds " +
-            std::to_string(content >= 4 ? (content - 4) / 4 : 0));
-        const std::uint8_t* v = c.Take(std::size_t(count) * 4);
-        for (std::uint32_t i = 0; i < count; ++i)
-        {
-          const std::int64_t x = v[4 * i], y = v[4 * i + 1], z = v[4 * i + 2];
-          if (!model.Grid.Contains(x, y, z))
-            c.Fail("voxel (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
-              std::to_string(z) + ") lies outside the model size");
-          model.Grid.Set(x, y, z, v[4 * i + 3]);
-        }
-        haveVoxels = true;
-      }
+        ReadVoxelChunk(c, content, model.Grid);
+      haveVoxels = true;
     }
     else if (id == "RGBA")
     {
-      if (content < 1024)
-        c.Fail("RGBA chunk is shorter than 256 colours");
-      const std::uint8_t* p = c.Take(1024);
-      // Entry i of the chunk is the colour of palette index i + 1; index 0 is empty.
-      model.Palette[0] = { { 0, 0, 0, 0 } };
-      for (int i = 0; i < 255; ++i)
-        model.Palette[static_cast<std::size_t>(i + 1)] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2],
-          p[4 * i + 3] } };
+      ReadPaletteChunk(c, content, model.Palette);
       havePalette = true;
     }
     // Other chunks (PACK, scene graph, materials, ...) are skipped.

@@ -476,36 +476,6 @@ void AddExampleFields(
 
 namespace
 {
-/**
- * Block synthesis of a voxel tileset none of whose tile images may touch itself on every axis
- * (MarkovJunior's PartitionedEdges) has no trivial start of one label (Algorithm 3.4, lines
- * 3-5); its start is then a whole-model solution (Algorithm 3.1, same seed), which the blocks
- * modify. Left to the engine (its layered start, or its error) when that fails, or with
- * symmetries, which take no given start.
- */
-void StartFromWholeModel(const msynth::AdjacencyRules& rules, msynth::SynthesisOptions& options)
-{
-  bool blocks = false;
-  for (int a = 0; a < 3; ++a)
-    blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
-  bool symmetric = options.Rotate.Enabled;
-  for (int a = 0; a < 3; ++a)
-    symmetric |= options.Symmetry[static_cast<std::size_t>(a)].Enabled ||
-      options.Translate[static_cast<std::size_t>(a)].Enabled;
-  if (!blocks || symmetric || options.Start)
-    return;
-  for (int b = 0; b < static_cast<int>(rules.LabelValues().size()); ++b)
-    if (rules.SelfAdjacent(b, options.Size))
-      return;
-  msynth::SynthesisOptions whole = options;
-  whole.BlockSize = { { 0, 0, 0 } };
-  whole.OnSnapshot = nullptr;
-  whole.SnapshotsPerBlock = 0;
-  whole.Exchange = msynth::BlockExchange();
-  const msynth::SynthesisResult start = msynth::Synthesize(rules, whole);
-  if (start.Succeeded())
-    options.Start = start.Model;
-}
 } // namespace
 
 bool vtkMSDiscreteSynthesis::Solve(
@@ -549,7 +519,7 @@ bool vtkMSDiscreteSynthesis::Solve(
       }
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
-        StartFromWholeModel(rules, options);
+        msynth::StartFromWholeModel(rules, options);
       run.Cache.Result = this->Run(rules, options);
     });
 }
