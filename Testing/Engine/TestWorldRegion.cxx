@@ -151,6 +151,38 @@ TEST(WorldRegion, RepairPassesArePartOfTheSchedule)
   }
 }
 
+TEST(WorldRegion, ALayeredStartIsRefusedWhereItWouldShift)
+{
+  // Stripes 1 2 1 2 along x: no label sits next to itself along x, so the start is layers along
+  // x, which a window not starting at the world's x = 0 would shift.
+  LabelGrid stripes(6, 4, 1, 0);
+  for (std::int64_t y = 0; y < 4; ++y)
+    for (std::int64_t x = 0; x < 6; ++x)
+      stripes.Set(x, y, 0, 1 + x % 2);
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(stripes));
+  SynthesisOptions o;
+  o.Size = { { 200, 40, 1 } };
+  o.BlockSize = { { 8, 8, 1 } };
+  try
+  {
+    SynthesizeRegion(rules, o, { { 150, 10, 0 } }, { { 170, 20, 1 } });
+    ADD_FAILURE() << "a shifted layered start was accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("layered along x"), std::string::npos) << e.what();
+  }
+  // A window spanning the world along x keeps the layers: the region equals the whole run.
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  o.Size = { { 40, 400, 1 } };
+  const SynthesisResult tall = Synthesize(rules, o);
+  ASSERT_TRUE(tall.Succeeded()) << tall.Message;
+  const SynthesisResult region = SynthesizeRegion(rules, o, { { 0, 300, 0 } }, { { 40, 330, 1 } });
+  ASSERT_TRUE(region.Succeeded()) << region.Message;
+  EXPECT_EQ(region.Model.Data(), Crop(tall.Model, { { 0, 300, 0 } }, { { 40, 330, 1 } }).Data());
+}
+
 TEST(WorldRegion, OptionsThatNeedTheWholeWorldAreRefused)
 {
   const LabelGrid village = msynth_test::Village();

@@ -70,6 +70,7 @@ RegionCone PlanRegion(
     if (lo[a] < 0 || hi[a] > n[a] || lo[a] >= hi[a])
       throw Error("the region is not a non-empty box inside the world");
   RegionCone cone;
+  cone.World = n;
   cone.Phases = lattice.Phases();
   cone.Whole = lattice.NumberOfBlocks() == 1;
   cone.WindowLow = lo;

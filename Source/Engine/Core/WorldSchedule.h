@@ -63,6 +63,7 @@ struct RegionCone
   std::vector<BoxBlock<3>> Blocks;
   std::vector<std::vector<BoxBlock<3>>> Passes;
   WorldBox WindowLow{}, WindowHigh{};
+  WorldBox World{};   ///< the world's size
   int Phases = 1;     ///< the world's phases
   bool Whole = false; ///< one block covers the world (Algorithm 3.1)
 };

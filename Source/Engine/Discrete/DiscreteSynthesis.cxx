@@ -299,6 +299,31 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   return status;
 }
 
+/**
+ * A region's start must be the world's start there: a start that varies along an axis (layers)
+ * depends on where the window lies along it, unless the window spans the world on that axis.
+ * @throw Error otherwise.
+ */
+void CheckStartInWindow(
+  const RegionCone& cone, const std::vector<std::int32_t>& start, const Coord& n)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    if (cone.WindowLow[a] == 0 && cone.WindowHigh[a] == cone.World[a])
+      continue;
+    const std::int64_t stride = a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]);
+    for (std::size_t s = 0; s < start.size(); ++s)
+    {
+      const auto along = (static_cast<std::int64_t>(s) / stride) % n[a];
+      if (along + 1 < n[a] && start[s] != start[s + static_cast<std::size_t>(stride)])
+        throw Error(std::string("a region of this world cannot be computed alone: its start is "
+                                "layered along ") +
+          "xyz"[a] + " (no label tiles space), so it depends on where the region lies; compute " +
+          "the whole world");
+    }
+  }
+}
+
 /// The blocks of @p cone's pass @p pass in its window's coordinates (keys and phases the
 /// world's).
 std::vector<Block> WindowBlocks(const RegionCone& cone, std::size_t pass = 0)
@@ -339,6 +364,8 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   SynthesisStatistics& stats = result.Statistics;
   if (!wholeModel)
     stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
+  if (cone)
+    CheckStartInWindow(*cone, shared.Model, n);
   solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
   const std::vector<Block> blocks = cone
     ? WindowBlocks(*cone)
