@@ -128,6 +128,12 @@ public:
       }
       if (n >= this->O.BurnIn)
         take(this->Tiles, this->LastChange, SecondsSince(start));
+      // After each sample, as the block solvers after each block: told at once, not throttled.
+      if (this->O.Progress && !this->O.Progress(double(n + 1) / double(total)))
+      {
+        this->R.Cancelled = true;
+        return false;
+      }
     }
     return true;
   }

@@ -184,10 +184,10 @@ int vtkMSPatternSynthesis::RequestData(
     {
       return 0;
     }
-    if (cache.Run.Result.Cancelled)
+    if (cache.Run.Result.Cancelled) // the one cancel path of the synthesis filters
     {
       output->Initialize();
-      return 1;
+      return vtkMSSynthesisRun::Report(this, msynth::SynthesisStatus::Cancelled, "") ? 1 : 0;
     }
     cache.Exemplars = std::move(exemplars);
     cache.SoftShapes = options.SoftFactors;
