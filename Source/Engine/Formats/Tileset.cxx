@@ -32,6 +32,13 @@ const XmlElement* Child(const XmlElement& e, const std::string& name)
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
+bool ParseTileWeight(const std::string& text, double& weight)
+{
+  char* end = nullptr;
+  weight = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && !*end && weight > 0.0 && std::isfinite(weight);
+}
+
 int OrientationCount(char symmetry)
 {
   switch (symmetry)
@@ -292,14 +299,10 @@ private:
           "'; the classes are X, I, \\, L, T and F",
         t.Line);
     if (const std::string* weight = t.Attribute("weight"))
-    {
-      char* end = nullptr;
-      tile.Weight = std::strtod(weight->c_str(), &end);
-      if (end == weight->c_str() || *end || !(tile.Weight > 0.0) || !std::isfinite(tile.Weight))
+      if (!ParseTileWeight(*weight, tile.Weight))
         this->Xml.Fail(
           "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
           t.Line);
-    }
     tile.FirstLabel = this->Set.NumberOfLabels();
     for (int k = 0; k < tile.Orientations; ++k)
     {

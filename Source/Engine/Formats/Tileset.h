@@ -86,6 +86,8 @@ int TransformOrientation(char symmetry, int orientation, bool mirror);
 int DihedralAction(char symmetry, int orientation, int element);
 /// Number of distinct orientations of class @p symmetry (1, 2, 4 or 8), 0 for an unknown class.
 int OrientationCount(char symmetry);
+/// A tile's `weight` attribute (both tileset formats): a finite positive number, else false.
+bool ParseTileWeight(const std::string& text, double& weight);
 
 /**
  * The folder of a tileset's images, in either layout the published sets use: `NAME.xml` beside

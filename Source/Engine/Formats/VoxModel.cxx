@@ -98,6 +98,36 @@ const std::uint32_t DefaultPalette[256] = { 0x00000000, 0xffffffff, 0xffccffff, 
   0xffee0000, 0xffdd0000, 0xffbb0000, 0xffaa0000, 0xff880000, 0xff770000, 0xff550000, 0xff440000,
   0xff220000, 0xff110000, 0xffeeeeee, 0xffdddddd, 0xffbbbbbb, 0xffaaaaaa, 0xff888888, 0xff777777,
   0xff555555, 0xff444444, 0xff222222, 0xff111111 };
+
+/// Past the header ("VOX ", the version: 150 and 200 are in use, the chunks we read are the
+/// same) and into MAIN: the cursor then walks MAIN's children.
+void EnterMain(Cursor& c, const std::vector<std::uint8_t>& bytes)
+{
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), "VOX ", 4) != 0)
+    c.Fail("it does not start with 'VOX '");
+  c.Position = 4;
+  c.U32();
+  if (c.Id() != "MAIN")
+    c.Fail("the first chunk is not MAIN");
+  const std::uint32_t mainContent = c.U32();
+  const std::uint32_t mainChildren = c.U32();
+  c.Take(mainContent);
+  if (mainChildren > c.End - c.Position)
+    c.Fail("MAIN declares more children than the file holds");
+  c.End = c.Position + mainChildren;
+}
+
+/// MagicaVoxel's default palette (a file without an RGBA chunk).
+void SetDefaultPalette(std::vector<std::array<std::uint8_t, 4>>& palette)
+{
+  for (std::size_t i = 0; i < 256; ++i)
+  {
+    const std::uint32_t abgr = DefaultPalette[i];
+    palette[i] = { { static_cast<std::uint8_t>(abgr & 0xff),
+      static_cast<std::uint8_t>((abgr >> 8) & 0xff), static_cast<std::uint8_t>((abgr >> 16) & 0xff),
+      static_cast<std::uint8_t>(abgr >> 24) } };
+  }
+}
 /// The first SIZE chunk's model, all empty (checked against 1..2048 a side and @p maxSites).
 LabelGrid ReadSizeChunk(Cursor& c, std::uint32_t content, std::int64_t maxSites)
 {
@@ -152,19 +182,7 @@ VoxModel ReadVoxModel(
   const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites)
 {
   Cursor c(bytes, name);
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), "VOX ", 4) != 0)
-    c.Fail("it does not start with 'VOX '");
-  c.Position = 4;
-  c.U32(); // version (150 and 200 are in use; the chunks we read are the same)
-
-  if (c.Id() != "MAIN")
-    c.Fail("the first chunk is not MAIN");
-  const std::uint32_t mainContent = c.U32();
-  const std::uint32_t mainChildren = c.U32();
-  c.Take(mainContent);
-  if (mainChildren > c.End - c.Position)
-    c.Fail("MAIN declares more children than the file holds");
-  c.End = c.Position + mainChildren;
+  EnterMain(c, bytes);
 
   VoxModel model;
   bool haveSize = false, haveVoxels = false, havePalette = false;
@@ -207,15 +225,7 @@ VoxModel ReadVoxModel(
   if (!haveSize || !haveVoxels)
     c.Fail("no model (SIZE and XYZI chunks) found");
   if (!havePalette)
-  {
-    for (int i = 0; i < 256; ++i)
-    {
-      const std::uint32_t abgr = DefaultPalette[i];
-      model.Palette[static_cast<std::size_t>(i)] = { { static_cast<std::uint8_t>(abgr & 0xff),
-        static_cast<std::uint8_t>((abgr >> 8) & 0xff),
-        static_cast<std::uint8_t>((abgr >> 16) & 0xff), static_cast<std::uint8_t>(abgr >> 24) } };
-    }
-  }
+    SetDefaultPalette(model.Palette);
   model.NumberOfModels = models;
   return model;
 }
@@ -488,18 +498,7 @@ VoxModel ReadVoxScene(
   const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites)
 {
   Cursor c(bytes, name);
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), "VOX ", 4) != 0)
-    c.Fail("it does not start with 'VOX '");
-  c.Position = 4;
-  c.U32();
-  if (c.Id() != "MAIN")
-    c.Fail("the first chunk is not MAIN");
-  const std::uint32_t mainContent = c.U32();
-  const std::uint32_t mainChildren = c.U32();
-  c.Take(mainContent);
-  if (mainChildren > c.End - c.Position)
-    c.Fail("MAIN declares more children than the file holds");
-  c.End = c.Position + mainChildren;
+  EnterMain(c, bytes);
   VoxModel result;
   result.Palette.resize(256);
   std::vector<ScenePiece> models;
@@ -547,13 +546,7 @@ VoxModel ReadVoxScene(
     }
   }
   if (!havePalette)
-    for (std::size_t i = 0; i < 256; ++i)
-    {
-      const std::uint32_t abgr = DefaultPalette[i];
-      result.Palette[i] = { { static_cast<std::uint8_t>(abgr & 0xff),
-        static_cast<std::uint8_t>((abgr >> 8) & 0xff),
-        static_cast<std::uint8_t>((abgr >> 16) & 0xff), static_cast<std::uint8_t>(abgr >> 24) } };
-    }
+    SetDefaultPalette(result.Palette);
   result.NumberOfModels = static_cast<int>(models.size());
   return result;
 }

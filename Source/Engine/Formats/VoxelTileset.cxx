@@ -348,14 +348,10 @@ private:
     TilesetTile tile;
     tile.Name = *tileName;
     if (const std::string* weight = t.Attribute("weight"))
-    {
-      char* end = nullptr;
-      tile.Weight = std::strtod(weight->c_str(), &end);
-      if (end == weight->c_str() || *end || !(tile.Weight > 0.0) || !std::isfinite(tile.Weight))
+      if (!ParseTileWeight(*weight, tile.Weight))
         this->Xml.Fail(
           "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
           t.Line);
-    }
     const std::string file = this->Set.TilesFolder + "/" + tile.Name + ".vox";
     const VoxelBlock block = ReadVoxelBlock(file);
     this->CheckSize(block, file, t.Line);
