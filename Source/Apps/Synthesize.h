@@ -33,6 +33,7 @@ struct SynthesizeOptions
   int Attempts = 10;              ///< per block (continuous: default 20)
   std::int64_t Backtracks = 1000; ///< per attempt (discrete)
   bool NoRepair = false;          ///< no second try at failed blocks
+  std::string Start;              ///< how blocks start: auto (empty), trivial, undecided
   std::string Order;              ///< empty: scanline (discrete), entropy (continuous)
   std::string Choice = "uniform";
   int Snapshots = 0;

@@ -53,6 +53,7 @@ namespace cli
 namespace
 {
 const std::vector<std::string> Orders{ "scanline", "random", "entropy" };
+const std::vector<std::string> Starts{ "auto", "trivial", "undecided" };
 const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
 const std::vector<std::string> OutputKinds{ "labels", "mesh", "glb", "vdb", "picture", "txt",
   "vox" };
@@ -151,6 +152,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_flag("--no-repair", o.NoRepair,
     "leave blocks whose attempts all fail at their previous labels, without a second try "
     "after the other blocks"));
+  discrete(s.add_option("--start", o.Start,
+              "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
+              "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
+              "(every site free until a block decides it; structures continue across blocks)")
+             ->check(CLI::IsMember(Starts)));
   discrete(s.add_option("--threads", o.Threads,
               "threads for block synthesis (default: one per core; the same result)")
              ->check(CLI::Range(0, 1024)));
@@ -375,6 +381,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
   synthesis->SetRepairFailedBlocks(!o.NoRepair);
+  synthesis->SetBlockStart(IndexIn(o.Start.empty() ? "auto" : o.Start, Starts));
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
   synthesis->SetLabelChoice(IndexIn(o.Choice, Choices));

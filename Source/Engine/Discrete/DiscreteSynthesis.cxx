@@ -343,6 +343,22 @@ const std::vector<Block>& RepairCandidates(
   return scratch;
 }
 
+/// After block synthesis from an undecided start: false, with @p result failed and a message
+/// naming the first undecided site, when a site was left undecided (its blocks all failed).
+bool AllDecided(const std::vector<std::int32_t>& model, const Coord& n, SynthesisResult& result)
+{
+  const auto first = std::find(model.begin(), model.end(), -1);
+  if (first == model.end())
+    return true;
+  const auto s = static_cast<std::int64_t>(first - model.begin());
+  result.Status = SynthesisStatus::Failed;
+  result.Message = "block synthesis from an undecided start left " +
+    std::to_string(std::count(model.begin(), model.end(), -1)) + " sites undecided, the first at " +
+    Format({ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } }) +
+    " (every block over them failed). Try another seed, larger blocks, or the trivial start";
+  return false;
+}
+
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
 /// mirror plan or symmetry seams when a part of a symmetric output is synthesized; with
 /// @p cone, the output is the cone's window of a world and its blocks are the cone's.
@@ -362,9 +378,13 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
 
   SynthesisResult result;
   SynthesisStatistics& stats = result.Statistics;
+  // An undecided start leaves the model's free sites at -1, which blocks read as free.
+  const bool undecided = !wholeModel && options.StartFrom == BlockStart::Undecided;
   if (!wholeModel)
+    stats.StartFrom = undecided ? "undecided" : "trivial";
+  if (!wholeModel && !undecided)
     stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
-  if (cone)
+  if (cone && !undecided)
     CheckStartInWindow(*cone, shared.Model, n);
   solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
   const std::vector<Block> blocks = cone
@@ -424,6 +444,8 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
             options.AttemptsPerBlock, "the catalog became empty at site " + Format(f.EmptySite),
             "Try another seed, more attempts, or block synthesis");
         }))
+    return result;
+  if (undecided && !AllDecided(shared.Model, n, result))
     return result;
   std::vector<Label> values(shared.Model.size());
   for (std::size_t s = 0; s < values.size(); ++s)
@@ -583,6 +605,15 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   CheckSynthesisMemory(rules, options);
+  if (options.StartFrom == BlockStart::Automatic)
+  {
+    std::optional<SynthesisResult> done;
+    SynthesisOptions chosen = options;
+    chosen.StartFrom = ChooseBlockStart(rules, options, &done);
+    if (done)
+      return std::move(*done);
+    return Synthesize(rules, chosen);
+  }
   if (AnyMirror(options) && AnySeamSymmetry(options))
     throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
   if (!AnyMirror(options))
@@ -657,6 +688,7 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
   const RegionCone cone = PlanRegion(
     WorldLattice(world.Size, m, step), low, high, world.RepairFailedBlocks ? 1 + RepairPasses : 1);
   SynthesisOptions window = world;
+  window.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
   for (std::size_t a = 0; a < 3; ++a)
   {
     window.Size[a] = cone.WindowHigh[a] - cone.WindowLow[a];

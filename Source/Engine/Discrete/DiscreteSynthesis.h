@@ -133,6 +133,25 @@ struct SoftConstraint
   bool Active() const { return !this->TargetFractions.empty() || static_cast<bool>(this->Fitness); }
 };
 
+/**
+ * How block synthesis starts. Algorithm 3.4 starts from a trivial model (one label, or layers),
+ * which every block must close its structures against: for sets whose structures cannot close
+ * inside one block (wires that must reach a component, ramps longer than a block) every block
+ * keeps the trivial label, a valid but blank model. An undecided start (as in POMS and Breakout
+ * Model Synthesis) leaves every site free until a block decides it; a block is then constrained
+ * only by decided sites around it, so structures continue across blocks. It cannot keep
+ * paths closed the way the trivial start does (a block ringed by decided sites may meet an odd
+ * number of line ends), so neither start suits every set.
+ */
+enum class BlockStart
+{
+  /// A probe chooses (ChooseBlockStart): the trivial start unless it leaves a probe world
+  /// blank where an undecided start succeeds with more variety.
+  Automatic,
+  Trivial,  ///< Algorithm 3.4's start (or the given SynthesisOptions::Start)
+  Undecided ///< every site free until a block decides it; sites no block decides fail the run
+};
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -175,6 +194,8 @@ struct SynthesisOptions
   /// The label of the trivial start (a value); empty: chosen automatically (value 0 if it is
   /// adjacent to itself along every axis, else the first such label in value order).
   std::optional<Label> TrivialLabel;
+  /// How block synthesis starts (BlockStart).
+  BlockStart StartFrom = BlockStart::Automatic;
   /**
    * The start of block synthesis instead of a model of one trivial label (Algorithm 3.4, lines
    * 3-5): label values over the output (over the synthesized period with translation symmetry;
@@ -257,6 +278,22 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
  * without blocks, with a given start, or with symmetries (which take no given start).
  */
 void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options);
+
+/**
+ * The start BlockStart::Automatic resolves to for @p options (the world's options for a region),
+ * a function of the example, options and seed alone: Trivial without blocks, with a given
+ * start, soft constraints, symmetry or snapshots, and with pins or a guide when the probe is not
+ * the whole output. Otherwise a probe world of the run's blocks (4 block steps past one block
+ * per axis, at most the output) is synthesized from the trivial start; where it looks blank (its
+ * trivial label on over 90 % of the sites, or on over 1.25 times the label's share of the
+ * example by weight), it is synthesized again from an undecided start, which is chosen
+ * when it decides every site with no failed block and with more variety (more than 1.25 times
+ * the distinct labels, or a most frequent label's share under 0.8 times the trivial run's).
+ * When the probe is the whole output, its chosen result is returned in @p done. Returns the
+ * options' own choice when it is not Automatic.
+ */
+BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions& options,
+  std::optional<SynthesisResult>* done = nullptr);
 
 /// The number of blocks Synthesize will visit for these options (sizes only).
 std::int64_t CountBlocks(const SynthesisOptions& options);

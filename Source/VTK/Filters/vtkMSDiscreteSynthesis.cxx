@@ -343,6 +343,7 @@ bool BuildOptions(
   options.AttemptsPerBlock = self->GetAttemptsPerBlock();
   options.BacktracksPerAttempt = self->GetBacktracksPerAttempt();
   options.RepairFailedBlocks = self->GetRepairFailedBlocks();
+  options.StartFrom = static_cast<msynth::BlockStart>(self->GetBlockStart());
   options.Threads = self->GetNumberOfThreads();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
@@ -720,6 +721,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AttemptsPerBlock: " << this->AttemptsPerBlock << "\n";
   os << indent << "BacktracksPerAttempt: " << this->BacktracksPerAttempt << "\n";
   os << indent << "RepairFailedBlocks: " << this->RepairFailedBlocks << "\n";
+  os << indent << "BlockStart: " << this->BlockStart << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";

@@ -126,6 +126,13 @@ public:
     RANDOM = 1,         ///< a seeded random permutation
     MINIMUM_ENTROPY = 2 ///< fewest choices first (as WaveFunctionCollapse)
   };
+  /// How block synthesis starts (msynth::BlockStart).
+  enum BlockStarts
+  {
+    AUTOMATIC_START = 0, ///< a probe chooses: trivial unless it leaves the model blank
+    TRIVIAL_START = 1,   ///< Algorithm 3.4's trivial model (one label, or layers)
+    UNDECIDED_START = 2  ///< every site free until a block decides it
+  };
 
   ///@{
   /// Output size in sites (n_z = 1 for 2D). Default 32 × 32 × 8.
@@ -179,6 +186,13 @@ public:
   vtkSetMacro(RepairFailedBlocks, bool);
   vtkGetMacro(RepairFailedBlocks, bool);
   vtkBooleanMacro(RepairFailedBlocks, bool);
+  ///@}
+
+  ///@{
+  /// How block synthesis starts: a BlockStarts value. Default AUTOMATIC_START (the field data's
+  /// StartFrom says which was used).
+  vtkSetClampMacro(BlockStart, int, AUTOMATIC_START, UNDECIDED_START);
+  vtkGetMacro(BlockStart, int);
   ///@}
 
   ///@{
@@ -435,6 +449,7 @@ private:
   int AttemptsPerBlock = 10;
   vtkIdType BacktracksPerAttempt = 1000;
   bool RepairFailedBlocks = true;
+  int BlockStart = AUTOMATIC_START;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;
   int SiteOrder = SCAN_LINE;

@@ -69,6 +69,8 @@ void vtkMSFieldData::AddStatistics(vtkFieldData* fields,
   AddFieldValue<vtkStringArray>(fields, "Message", message);
   if (statistics.TrivialLabel)
     AddFieldValue<vtkIntArray>(fields, "TrivialLabel", *statistics.TrivialLabel);
+  if (!statistics.StartFrom.empty())
+    AddFieldValue<vtkStringArray>(fields, "StartFrom", statistics.StartFrom);
   vtkNew<vtkIdTypeArray> origins, sites;
   origins->SetName("FailedBlockOrigins");
   origins->SetNumberOfComponents(3);

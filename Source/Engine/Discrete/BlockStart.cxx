@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BlockStart.cxx
+ * @brief The automatic choice of block synthesis's start (ChooseBlockStart in
+ * Discrete/DiscreteSynthesis.h): a probe world from the trivial start, and from an undecided start
+ * where the first looks blank.
+ */
+#include "Core/BlockDriver.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/MirrorPlan.h"
+#include "Discrete/SymmetryPlan.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+namespace msynth
+{
+namespace
+{
+/// The distinct labels of @p model and the share of its most frequent one.
+std::pair<std::size_t, double> Variety(const LabelGrid& model)
+{
+  std::map<Label, std::int64_t> counts;
+  for (const Label v : model.Data())
+    ++counts[v];
+  std::int64_t most = 0;
+  for (const auto& c : counts)
+    most = std::max(most, c.second);
+  return { counts.size(), static_cast<double>(most) / static_cast<double>(model.NumberOfSites()) };
+}
+
+/// Whether a block run from the trivial start left its model blank: its trivial label covers
+/// over 90 % of the sites, or over 1.25 times its share of the example (by the labels' weights).
+bool LooksBlank(const AdjacencyRules& rules, const SynthesisResult& trivial)
+{
+  if (!trivial.Statistics.TrivialLabel)
+    return false;
+  const Label t = *trivial.Statistics.TrivialLabel;
+  const auto& data = trivial.Model.Data();
+  const double share =
+    static_cast<double>(std::count(data.begin(), data.end(), t)) / static_cast<double>(data.size());
+  const auto& weights = rules.Weights();
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  const int b = rules.IndexOf(t);
+  const double example = b >= 0 && total > 0.0 ? weights[static_cast<std::size_t>(b)] / total : 1.0;
+  return share > 0.9 || share > 1.25 * example;
+}
+} // namespace
+
+BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions& options,
+  std::optional<SynthesisResult>* done)
+{
+  if (options.StartFrom != BlockStart::Automatic)
+    return options.StartFrom;
+  std::array<std::int64_t, 3> m, step;
+  if (BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step) ||
+    options.Start || options.Soft.Active() || detail::AnyMirror(options) ||
+    detail::AnySeamSymmetry(options) || options.SnapshotsPerBlock > 0)
+    return BlockStart::Trivial;
+  SynthesisOptions probe = options;
+  bool whole = true;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    probe.Size[a] = std::min(options.Size[a], m[a] + 4 * step[a]);
+    whole &= probe.Size[a] == options.Size[a];
+  }
+  if (!whole && (options.Pins || options.Guide))
+    return BlockStart::Trivial;
+  if (!whole) // a probe of its own: no messages to other processes, the first 1 % of progress
+  {
+    probe.Exchange = BlockExchange();
+    if (options.Progress)
+      probe.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.01 * f)); };
+  }
+  probe.StartFrom = BlockStart::Trivial;
+  SynthesisResult trivial = Synthesize(rules, probe);
+  const auto keep = [&](SynthesisResult r, BlockStart start)
+  {
+    if (done && (whole || r.Status == SynthesisStatus::Cancelled))
+      *done = std::move(r);
+    return start;
+  };
+  if (trivial.Status == SynthesisStatus::Cancelled)
+    return keep(std::move(trivial), BlockStart::Trivial);
+  if (!trivial.Succeeded() || !LooksBlank(rules, trivial))
+    return keep(std::move(trivial), BlockStart::Trivial);
+  probe.StartFrom = BlockStart::Undecided;
+  SynthesisResult free = Synthesize(rules, probe);
+  if (free.Status == SynthesisStatus::Cancelled)
+    return keep(std::move(free), BlockStart::Undecided);
+  if (!free.Succeeded() || free.Statistics.BlocksFailed > 0)
+    return keep(std::move(trivial), BlockStart::Trivial);
+  const auto t = Variety(trivial.Model), u = Variety(free.Model);
+  if (static_cast<double>(u.first) > 1.25 * static_cast<double>(t.first) ||
+    u.second < 0.8 * t.second)
+    return keep(std::move(free), BlockStart::Undecided);
+  return keep(std::move(trivial), BlockStart::Trivial);
+}
+
+} // namespace msynth
