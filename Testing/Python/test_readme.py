@@ -1,4 +1,5 @@
-"""Every example in the README, the guides and the gallery runs as written from the repository root: each ```sh block as a
+"""Every example in the README, the guides (Documentation/guide-*.md, scripting.md, authoring.md)
+and the gallery runs as written from the repository root: each ```sh block as a
 bash script and each ```python block with the interpreter it names (plain vtkmodules Python, or
 pvbatch for paraview.simple), in a scratch folder laid out like a checkout (Data, Utilities and
 build/ linked), so the outputs do not land in the sources. The two commands of a fresh machine
@@ -21,8 +22,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 BUILD = os.path.dirname(os.environ["MSYNTH_BIN"])
 
 
-GUIDES = ("README.md", os.path.join("Documentation", "scripting.md"),
-          os.path.join("Documentation", "authoring.md"))
+GUIDES = ["README.md", os.path.join("Documentation", "scripting.md"),
+          os.path.join("Documentation", "authoring.md")] + sorted(
+    os.path.join("Documentation", name) for name in os.listdir(os.path.join(ROOT, "Documentation"))
+    if name.startswith("guide-") and name.endswith(".md"))
 
 
 def blocks():
