@@ -8,7 +8,13 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 case "${1:-}" in
-  -h | --help) sed -n '2,7p' "${BASH_SOURCE[0]}" | cut -c3-; exit 0 ;;
+  "") ;;
+  -h | --help)
+    echo "Usage: Utilities/make-readme-picture.sh [-h | --help]"
+    echo
+    sed -n '2,7p' "${BASH_SOURCE[0]}" | cut -c3-
+    exit 0 ;;
+  *) echo "make-readme-picture.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
 esac
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT

@@ -1,5 +1,5 @@
-"""Every example in the README, the guides (Documentation/guide-*.md, scripting.md, authoring.md)
-and the gallery runs as written from the repository root: each ```sh block as a
+"""Every example in the README and the guides (Documentation/guide-*.md, scripting.md,
+authoring.md) runs as written from the repository root: each ```sh block as a
 bash script and each ```python block with the interpreter it names (plain vtkmodules Python, or
 pvbatch for paraview.simple), in a scratch folder laid out like a checkout (Data, Utilities and
 build/ linked), so the outputs do not land in the sources. The two commands of a fresh machine
@@ -41,12 +41,7 @@ class ReadmeExamplesTest(unittest.TestCase):
     def test_every_example_runs(self):
         if os.environ.get("MSYNTH_SANITIZED"):
             self.skipTest("the README's examples run in the Release build")
-        scratch = tmp("readme")
-        shutil.rmtree(scratch, ignore_errors=True)
-        os.makedirs(scratch)
-        for name in ("Data", "Utilities"):
-            os.symlink(os.path.join(ROOT, name), os.path.join(scratch, name))
-        os.symlink(BUILD, os.path.join(scratch, "build"))
+        scratch = self.scratch_checkout("readme")
         ran = 0
         for language, text, line in blocks():
             if "Utilities/run-" in text or "my_script.py" in text:
@@ -131,25 +126,6 @@ class ReadmeExamplesTest(unittest.TestCase):
                 village_measures.read_labels(os.path.join(out, "labels.vti")))
             problems = village_measures.compare(model, example)
             self.assertTrue(any(p.startswith(unlike) for p in problems), (choice, problems))
-
-    def test_every_gallery_command_runs(self):
-        """The gallery's commands (Utilities/make-gallery.py) as the page shows them."""
-        if os.environ.get("MSYNTH_SANITIZED"):
-            self.skipTest("the gallery's examples run in the Release build")
-        import importlib.util
-        spec = importlib.util.spec_from_file_location(
-            "gallery", os.path.join(ROOT, "Utilities", "make-gallery.py"))
-        gallery = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(gallery)
-        scratch = tmp("gallery")
-        shutil.rmtree(scratch, ignore_errors=True)
-        os.makedirs(scratch)
-        for name, kind, what, command, preview in gallery.ENTRIES:
-            done = subprocess.run([os.path.join(os.environ["MSYNTH_BIN"], "msynth")] + command.split()
-                                  + ["--out", os.path.join(scratch, name)], cwd=ROOT,
-                                  capture_output=True, text=True, timeout=300)
-            self.assertEqual(done.returncode, 0, "%s: %s" % (name, done.stderr))
-            self.assertTrue(os.listdir(os.path.join(scratch, name)), name)
 
 
 if __name__ == "__main__":
