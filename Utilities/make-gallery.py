@@ -27,6 +27,10 @@ M = "build/bin/msynth"
 D = "Data/Continuous"
 # name, kind of example, what it shows, command (after "msynth"), preview
 ENTRIES = [
+    ("village-houses", "MagicaVoxel (.vox)", "The main job: one house whose wall labels name their "
+     "side keeps houses rectangular and apart; labels by resemblance (M07)",
+     "synthesize Data/Examples/Houses.vox --size 48 48 5 --block 12 12 5 --ground 1 --empty 0 "
+     "--choice resemblance --seed 1", "mesh"),
     ("village", "Label grid (.vti)", "Discrete synthesis in blocks, ground below and empty space "
      "around (dissertation ch. 3)", "synthesize Data/Examples/Village.vti --size 48 48 5 "
      "--block 12 12 5 --ground 1 --empty 0 --seed 7", "mesh"),

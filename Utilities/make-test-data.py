@@ -57,6 +57,32 @@ def village(x, y, z):
     return EMPTY
 
 
+HOUSE_INSIDE = 2  # the houses' labels: 0 empty, 1 ground, 2 inside, 3 roof, then the outer walls
+SW, SE, NW, NE, SOUTH, NORTH, WEST, EAST = range(4, 12)
+HOUSE_COLOURS = {GROUND: (96, 150, 70), HOUSE_INSIDE: (205, 180, 130), ROOF: (170, 55, 40),
+                 SOUTH: (215, 195, 150), NORTH: (215, 195, 150), WEST: (215, 195, 150),
+                 EAST: (215, 195, 150), SW: (120, 85, 55), SE: (120, 85, 55), NW: (120, 85, 55),
+                 NE: (120, 85, 55)}
+
+
+def houses(x, y, z):
+    """The main job's example (9 x 8 x 5): ground at z = 0 and one 5 x 4 house two storeys high
+    under a flat roof. Each wall site's label says which side of the house it is on (corner posts
+    SW..NE, walls SOUTH..EAST, HOUSE_INSIDE inside), so every pair of neighbours the example
+    allows keeps houses rectangular, one empty site apart, each under one roof."""
+    if z == 0:
+        return GROUND
+    if not (2 <= x <= 6 and 2 <= y <= 5) or z > 3:
+        return EMPTY
+    if z == 3:
+        return ROOF
+    west, east = x == 2, x == 6
+    if y in (2, 5):
+        row = (SW, SE, SOUTH) if y == 2 else (NW, NE, NORTH)
+        return row[0] if west else row[1] if east else row[2]
+    return WEST if west else EAST if east else HOUSE_INSIDE
+
+
 def ball(x, y, z):
     """The rolling ball of dissertation Fig. 3.27 for time-varying synthesis: z is time; the
     ball (1) moves one site to the right per frame, leaving a trail (2) behind it."""
@@ -145,8 +171,9 @@ def text_examples(examples, malformed):
             f.write(text)
 
 
-def vox_bytes(dims, fn, palette=True, chunks=None):
-    """A MagicaVoxel file: MAIN { SIZE, XYZI, RGBA } (or the given child chunks)."""
+def vox_bytes(dims, fn, palette=True, chunks=None, colours=None):
+    """A MagicaVoxel file: MAIN { SIZE, XYZI, RGBA } (or the given child chunks); @p colours maps
+    palette indices to (r, g, b), the others grey (by default, a colour ramp)."""
     import struct
 
     def chunk(cid, content, children=b""):
@@ -158,7 +185,10 @@ def vox_bytes(dims, fn, palette=True, chunks=None):
                   if fn(x, y, z) != 0]
         chunks = chunk(b"SIZE", struct.pack("<III", nx, ny, nz))
         chunks += chunk(b"XYZI", struct.pack("<I", len(voxels)) + b"".join(struct.pack("<BBBB", *v) for v in voxels))
-        if palette:
+        if colours is not None:
+            chunks += chunk(b"RGBA", b"".join(struct.pack("<BBBB", *colours.get(i, (128, 128, 128)), 255)
+                                              for i in range(1, 257)))
+        elif palette:
             colours = b"".join(struct.pack("<BBBB", (37 * i) % 256, (91 * i) % 256, (53 * i) % 256, 255)
                                for i in range(1, 257))
             chunks += chunk(b"RGBA", colours)
@@ -170,6 +200,8 @@ def vox_examples(examples, malformed):
 
     with open(os.path.join(examples, "Village.vox"), "wb") as f:
         f.write(vox_bytes((7, 7, 5), village))
+    with open(os.path.join(examples, "Houses.vox"), "wb") as f:
+        f.write(vox_bytes((9, 8, 5), houses, colours=HOUSE_COLOURS))
     good = vox_bytes((7, 7, 5), village)
     bad = {
         "vox-bad-magic.vox": b"VOXX" + good[4:],
@@ -387,14 +419,14 @@ PATTERN_PALETTE = {
     "k": (30, 30, 30, 255),     # ink
     "p": (250, 248, 235, 255),  # paper
 }
-WALL = ["########"] * 8
+WALL_PIXELS = ["########"] * 8
 PATTERN_SETS = {
     "Facade": {
         "tiles": [
             (".", "sky", ["........"] * 8),
             ("-", "cornice", ["rrrrrrrr", "rrrrrrrr", "dddddddd", "########", "dddddddd",
                               "########", "########", "########"]),
-            ("#", "wall", WALL),
+            ("#", "wall", WALL_PIXELS),
             ("T", "window top", ["########", "#dddddd#", "#ffffff#", "#fwwwwf#", "#fwwwwf#",
                                  "#fwwwwf#", "#fwwwwf#", "#fwwwwf#"]),
             ("W", "window middle", ["#fwwwwf#", "#fwwwwf#", "#ffffff#", "#fwwwwf#", "#fwwwwf#",

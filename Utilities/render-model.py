@@ -1,9 +1,9 @@
 """Renders a model (model.vtp or mesh.vtp of `msynth synthesize`) to a PNG, coloured by object
 type or label, offscreen: pvpython Utilities/render-model.py MODEL.vtp OUT.png [--top] [--size W H].
 The camera is fitted to the model's bounds, so the model fills the picture. Labels 1-12 have the
-gallery's colours; every further label a colour of its own (label_colour). Without a display (DISPLAY unset) it starts its own Xvfb (xserver.py). The README's picture of constrained
+gallery's colours; every further label a colour of its own (label_colour). Without a display (DISPLAY unset) it starts its own Xvfb (xserver.py). The picture of constrained
 continuous models (Documentation/images/continuous-constraints.png) was made with it from the
-commands the README lists."""
+commands Documentation/guide-continuous.md lists."""
 import argparse
 import colorsys
 import os

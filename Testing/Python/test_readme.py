@@ -1,9 +1,13 @@
-"""Every example in the README, the guides and the gallery runs as written from the repository root: each ```sh block as a
+"""Every example in the README and the guides (Documentation/guide-*.md, scripting.md,
+authoring.md) runs as written from the repository root: each ```sh block as a
 bash script and each ```python block with the interpreter it names (plain vtkmodules Python, or
 pvbatch for paraview.simple), in a scratch folder laid out like a checkout (Data, Utilities and
 build/ linked), so the outputs do not land in the sources. The two commands of a fresh machine
 (run-example.sh, run-tests.sh) and the placeholder my_script.py are left out: CI runs the first
-two itself."""
+two itself. The main job's own output is measured against its example and against the measures
+recorded with the README's first picture (test_main_job_makes_the_picture)."""
+import hashlib
+import json
 import os
 import re
 import shutil
@@ -11,14 +15,17 @@ import subprocess
 import sys
 import unittest
 
-from msynth_testing import tmp
+from msynth_testing import run_msynth, tmp
+import village_measures
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BUILD = os.path.dirname(os.environ["MSYNTH_BIN"])
 
 
-GUIDES = ("README.md", os.path.join("Documentation", "scripting.md"),
-          os.path.join("Documentation", "authoring.md"))
+GUIDES = ["README.md", os.path.join("Documentation", "scripting.md"),
+          os.path.join("Documentation", "authoring.md")] + sorted(
+    os.path.join("Documentation", name) for name in os.listdir(os.path.join(ROOT, "Documentation"))
+    if name.startswith("guide-") and name.endswith(".md"))
 
 
 def blocks():
@@ -34,12 +41,7 @@ class ReadmeExamplesTest(unittest.TestCase):
     def test_every_example_runs(self):
         if os.environ.get("MSYNTH_SANITIZED"):
             self.skipTest("the README's examples run in the Release build")
-        scratch = tmp("readme")
-        shutil.rmtree(scratch, ignore_errors=True)
-        os.makedirs(scratch)
-        for name in ("Data", "Utilities"):
-            os.symlink(os.path.join(ROOT, name), os.path.join(scratch, name))
-        os.symlink(BUILD, os.path.join(scratch, "build"))
+        scratch = self.scratch_checkout("readme")
         ran = 0
         for language, text, line in blocks():
             if "Utilities/run-" in text or "my_script.py" in text:
@@ -62,24 +64,68 @@ class ReadmeExamplesTest(unittest.TestCase):
             ran += 1
         self.assertGreaterEqual(ran, 11)
 
-    def test_every_gallery_command_runs(self):
-        """The gallery's commands (Utilities/make-gallery.py) as the page shows them."""
-        if os.environ.get("MSYNTH_SANITIZED"):
-            self.skipTest("the gallery's examples run in the Release build")
-        import importlib.util
-        spec = importlib.util.spec_from_file_location(
-            "gallery", os.path.join(ROOT, "Utilities", "make-gallery.py"))
-        gallery = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(gallery)
-        scratch = tmp("gallery")
+    def scratch_checkout(self, name):
+        """A scratch folder laid out like a checkout (Data, Utilities and build/ linked)."""
+        scratch = tmp(name)
         shutil.rmtree(scratch, ignore_errors=True)
         os.makedirs(scratch)
-        for name, kind, what, command, preview in gallery.ENTRIES:
-            done = subprocess.run([os.path.join(os.environ["MSYNTH_BIN"], "msynth")] + command.split()
-                                  + ["--out", os.path.join(scratch, name)], cwd=ROOT,
-                                  capture_output=True, text=True, timeout=300)
-            self.assertEqual(done.returncode, 0, "%s: %s" % (name, done.stderr))
-            self.assertTrue(os.listdir(os.path.join(scratch, name)), name)
+        for entry in ("Data", "Utilities"):
+            os.symlink(os.path.join(ROOT, entry), os.path.join(scratch, entry))
+        os.symlink(BUILD, os.path.join(scratch, "build"))
+        return scratch
+
+    def test_main_job_makes_the_picture(self):
+        """The README's main job (its first command block) is run-example.sh; its model looks like
+        its example (village_measures: label shares, buildings per column, roof cover, footprint)
+        and is the model of the README's first picture (the measures and the picture's hash that
+        Utilities/make-readme-picture.sh recorded with it)."""
+        if os.environ.get("MSYNTH_SANITIZED"):
+            self.skipTest("the main job runs in the Release build")
+        with open(os.path.join(ROOT, "README.md")) as f:
+            readme = f.read()
+        with open(os.path.join(ROOT, "Documentation", "images", "village.json")) as f:
+            record = json.load(f)
+        picture = re.search(r"!\[[^]]*\]\(([^)]+)\)", readme).group(1)
+        self.assertEqual(picture, record["picture"], "the README's first picture")
+        first_block = re.search(r"^```sh\n(.*?)^```", readme, re.S | re.M).group(1)
+        commands = [line for line in first_block.splitlines() if line and not line.startswith("#")]
+        self.assertEqual(commands[0], record["command"], "the README's main job")
+        with open(os.path.join(ROOT, picture), "rb") as f:
+            self.assertEqual(hashlib.sha256(f.read()).hexdigest(), record["picture_sha256"],
+                             "%s is not the picture Utilities/make-readme-picture.sh made" % picture)
+
+        scratch = self.scratch_checkout("main-job")
+        done = subprocess.run(["bash", os.path.join(scratch, "Utilities", "run-example.sh"),
+                               "--no-build", "--out", os.path.join(scratch, "output")],
+                              cwd=scratch, capture_output=True, text=True, timeout=200)
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+        self.assertIn("consistent", done.stdout)
+        model = village_measures.measures(
+            village_measures.read_labels(os.path.join(scratch, "output", "labels.vti")))
+        example = village_measures.measures(
+            village_measures.read_labels(os.path.join(ROOT, "Data", "Examples", "Houses.vox")))
+        self.assertEqual(village_measures.compare(model, example), [])
+        for name, value in record["measures"].items():
+            self.assertAlmostEqual(model[name], value, 9, "%s: the main job's model is not the "
+                                   "picture's; rerun Utilities/make-readme-picture.sh" % name)
+
+    def test_measures_tell_a_maze_from_the_example(self):
+        """village_measures.compare rejects the main job's former model, a maze of roofs (the
+        7 x 7 x 5 village, labels drawn uniformly) and the resemblance village of one-site huts."""
+        if os.environ.get("MSYNTH_SANITIZED"):
+            self.skipTest("the main job runs in the Release build")
+        village = os.path.join(ROOT, "Data", "Examples", "Village.vti")
+        example = village_measures.measures(village_measures.read_labels(village))
+        for choice, unlike in (("uniform", "roof_cover"), ("resemblance", "mean_footprint")):
+            out = tmp("maze-" + choice)
+            done = run_msynth("synthesize", village, "--size", "48", "48", "5", "--block", "12", "12",
+                              "5", "--ground", "1", "--empty", "0", "--choice", choice, "--seed", "1",
+                              "--outputs", "labels", "--out", out)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            model = village_measures.measures(
+                village_measures.read_labels(os.path.join(out, "labels.vti")))
+            problems = village_measures.compare(model, example)
+            self.assertTrue(any(p.startswith(unlike) for p in problems), (choice, problems))
 
 
 if __name__ == "__main__":

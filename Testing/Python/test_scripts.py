@@ -11,7 +11,8 @@ UTILITIES = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path
 
 # script: the options its help must name
 OPTIONS = {
-    "run-example.sh": ["--out", "--seed", "--size", "--help", "--runtime", "--no-tests"],
+    "run-example.sh": ["--out", "--seed", "--size", "--no-build", "--help", "--runtime", "--no-tests"],
+    "make-readme-picture.sh": ["run-example.sh", "village.json", "--help"],
     "run-tests.sh": ["--no-sanitizers", "--no-fuzz", "--help", "--tests"],
     "build.sh": ["--no-tests", "--asan", "--help", "--runtime", "--tests"],
     "install-dependencies.sh": ["--runtime", "--gui", "--tests", "--all", "--list", "--help"],
@@ -46,7 +47,8 @@ class ScriptsTest(unittest.TestCase):
                 self.assertNotIn("build.sh: built", done.stdout, name + " --help built something")
 
     def test_unknown_option(self):
-        for name in ("run-example.sh", "run-tests.sh", "build.sh", "install-dependencies.sh"):
+        for name in ("run-example.sh", "run-tests.sh", "build.sh", "install-dependencies.sh",
+                     "make-readme-picture.sh"):
             done = script(name, "--bogus")
             self.assertEqual(done.returncode, 2, name)
             self.assertIn("--bogus", done.stderr, name)
