@@ -34,6 +34,7 @@ struct SynthesizeOptions
   std::int64_t Backtracks = 1000; ///< per attempt (discrete)
   bool NoRepair = false;          ///< no second try at failed blocks
   std::string Start;              ///< how blocks start: auto (empty), trivial, undecided
+  bool NoFallback = false;        ///< no blocks when the whole model fails
   std::string Order;              ///< empty: scanline (discrete), entropy (continuous)
   std::string Choice = "uniform";
   int Snapshots = 0;

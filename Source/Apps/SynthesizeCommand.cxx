@@ -152,6 +152,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_flag("--no-repair", o.NoRepair,
     "leave blocks whose attempts all fail at their previous labels, without a second try "
     "after the other blocks"));
+  discrete(s.add_flag("--no-fallback", o.NoFallback,
+    "when whole-model synthesis fails every attempt, fail, rather than synthesize the model in "
+    "32-site blocks instead"));
   discrete(s.add_option("--start", o.Start,
               "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
               "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
@@ -381,6 +384,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetAttemptsPerBlock(o.Attempts);
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
   synthesis->SetRepairFailedBlocks(!o.NoRepair);
+  synthesis->SetBlocksWhenWholeFails(!o.NoFallback);
   synthesis->SetBlockStart(IndexIn(o.Start.empty() ? "auto" : o.Start, Starts));
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));

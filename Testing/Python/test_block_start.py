@@ -5,7 +5,8 @@ most blocks keep label 0. The automatic start (a probe run) chooses the undecide
 whose blocks continue structures across block borders: the block output is then as varied as a
 whole-model run (distinct labels within 80 %, the most frequent label's share within 1.25 times),
 valid by the independent check, the same for any thread count and for any region of the world.
-On Lines, whose paths the trivial start keeps closed, the automatic start stays trivial."""
+On Lines, whose paths the trivial start keeps closed, the automatic start stays trivial. A
+whole-model run that fails every attempt falls back to blocks (issue: first page, item 5)."""
 import os
 import unittest
 
@@ -84,6 +85,24 @@ class BlockStartTest(unittest.TestCase):
         self.assertEqual(len(lines), 1, done.stderr)
         self.assertIn("left", lines[0])
         self.assertIn("undecided", lines[0])
+        self.assertFalse(os.path.exists(os.path.join(folder, "labels.vti")))
+
+    def test_blocks_when_the_whole_model_fails(self):
+        # The README's old tileset recipe failed whole-model synthesis at larger sizes; the run
+        # now falls back to blocks and says so (--no-fallback keeps the failure).
+        lines = data("Tilesets/Lines.xml")
+        recipe = ["--size", "128", "128", "1", "--order", "entropy", "--choice", "frequency",
+                  "--backtracks", "0", "--attempts", "2", "--seed", "1"]
+        done, folder = synthesize(lines, "start-fallback", *recipe)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("failed in all 2 attempts, so the model was synthesized in 32 x 32 x 1 "
+                      "blocks instead", done.stdout)
+        check = msynth("check", lines, os.path.join(folder, "labels.vti"))
+        self.assertEqual(check.returncode, 0, check.stdout)
+        done, folder = synthesize(lines, "start-no-fallback", *recipe, "--no-fallback")
+        self.assertEqual(done.returncode, 1)
+        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        self.assertIn("whole-model synthesis (Algorithm 3.1) failed", done.stderr)
         self.assertFalse(os.path.exists(os.path.join(folder, "labels.vti")))
 
 

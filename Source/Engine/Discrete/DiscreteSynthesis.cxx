@@ -601,7 +601,48 @@ std::int64_t CountSnapshots(const SynthesisOptions& options)
   return options.SnapshotsPerBlock > 0 ? 1 + CountBlocks(options) * options.SnapshotsPerBlock : 0;
 }
 
+namespace
+{
+SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/// The blocks a failed whole-model run falls back to (FallbackBlockEdge per axis, at most the
+/// output); false when they would be the whole output again.
+bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
+{
+  bool smaller = false;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    block[a] = std::min(options.Size[a], FallbackBlockEdge);
+    smaller |= block[a] < options.Size[a];
+  }
+  return smaller;
+}
+} // namespace
+
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  SynthesisResult r = SynthesizeWithStart(rules, options);
+  Coord m, step, block;
+  if (r.Status != SynthesisStatus::Failed || !options.BlocksWhenWholeFails ||
+    options.SnapshotsPerBlock > 0 ||
+    !BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step) ||
+    !FallbackBlocks(options, block))
+    return r;
+  SynthesisOptions blocks = options;
+  blocks.BlockSize = block;
+  blocks.Overlap = { { -1, -1, -1 } };
+  SynthesisResult second = SynthesizeWithStart(rules, blocks);
+  if (!second.Succeeded())
+    return second.Status == SynthesisStatus::Cancelled ? second : r;
+  second.Message = r.Message.substr(0, r.Message.find(';')) + ", so the model was synthesized in " +
+    std::to_string(block[0]) + " x " + std::to_string(block[1]) + " x " + std::to_string(block[2]) +
+    " blocks instead: " + second.Message;
+  return second;
+}
+
+namespace
+{
+SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   CheckSynthesisMemory(rules, options);
@@ -612,7 +653,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
     chosen.StartFrom = ChooseBlockStart(rules, options, &done);
     if (done)
       return std::move(*done);
-    return Synthesize(rules, chosen);
+    return SynthesizeWithStart(rules, chosen);
   }
   if (AnyMirror(options) && AnySeamSymmetry(options))
     throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
@@ -647,6 +688,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   r.Message += " (mirrored)";
   return r;
 }
+} // namespace
 
 void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options)
 {

@@ -152,6 +152,9 @@ enum class BlockStart
   Undecided ///< every site free until a block decides it; sites no block decides fail the run
 };
 
+/// The block edge (sites per axis) of SynthesisOptions::BlocksWhenWholeFails.
+constexpr std::int64_t FallbackBlockEdge = 32;
+
 struct SynthesisOptions
 {
   /// Output size n_x × n_y × n_z (n_z = 1 for 2D).
@@ -178,6 +181,12 @@ struct SynthesisOptions
    * before the run) or soft constraints.
    */
   bool RepairFailedBlocks = true;
+  /**
+   * When whole-model synthesis (no blocks) fails every attempt, synthesize the model again in
+   * blocks of FallbackBlockEdge sites per axis (at most the output; not with snapshots, whose
+   * number is fixed beforehand), saying so in the message. Default on.
+   */
+  bool BlocksWhenWholeFails = true;
   std::uint64_t Seed = 0;
   LabelChoice Choice = LabelChoice::Uniform;
   /// The example grid, for LabelChoice::Resemblance (not owned; must outlive the call).

@@ -344,6 +344,7 @@ bool BuildOptions(
   options.BacktracksPerAttempt = self->GetBacktracksPerAttempt();
   options.RepairFailedBlocks = self->GetRepairFailedBlocks();
   options.StartFrom = static_cast<msynth::BlockStart>(self->GetBlockStart());
+  options.BlocksWhenWholeFails = self->GetBlocksWhenWholeFails();
   options.Threads = self->GetNumberOfThreads();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
@@ -722,6 +723,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BacktracksPerAttempt: " << this->BacktracksPerAttempt << "\n";
   os << indent << "RepairFailedBlocks: " << this->RepairFailedBlocks << "\n";
   os << indent << "BlockStart: " << this->BlockStart << "\n";
+  os << indent << "BlocksWhenWholeFails: " << this->BlocksWhenWholeFails << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";

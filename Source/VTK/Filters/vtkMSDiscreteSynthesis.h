@@ -196,6 +196,14 @@ public:
   ///@}
 
   ///@{
+  /// When whole-model synthesis fails every attempt, synthesize in 32-site blocks instead and say
+  /// so in the Message field (not with snapshots). Default on.
+  vtkSetMacro(BlocksWhenWholeFails, bool);
+  vtkGetMacro(BlocksWhenWholeFails, bool);
+  vtkBooleanMacro(BlocksWhenWholeFails, bool);
+  ///@}
+
+  ///@{
   /// Random seed (any value; used as 64 bits). Default 0.
   vtkSetMacro(Seed, vtkIdType);
   vtkGetMacro(Seed, vtkIdType);
@@ -450,6 +458,7 @@ private:
   vtkIdType BacktracksPerAttempt = 1000;
   bool RepairFailedBlocks = true;
   int BlockStart = AUTOMATIC_START;
+  bool BlocksWhenWholeFails = true;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;
   int SiteOrder = SCAN_LINE;
