@@ -174,6 +174,28 @@ same = all(alone.GetPointData().GetArray("Label").GetValue(i) == model.GetPointD
 check(same, "the distributed model equals the one-process model")
 synthesis.DistributeBlocks = 1
 
+# The streaming pipeline's way: each process computes its own piece of the world from the blocks
+# it depends on, with no exchange; fetched, the pieces make the one-process model.
+synthesis.ComputeRequestedExtent = 1
+# (Fetch brings rank 0's piece of image data; its extent says where it lies.)
+piece = servermanager.Fetch(synthesis)
+x0, x1, y0, y1, z0, z1 = piece.GetExtent()
+check((x1 - x0 + 1) * ranks == 24 or ranks == 1, "piece extent %s" % (piece.GetExtent(),))
+mine = piece.GetPointData().GetArray("Label")
+whole = alone.GetPointData().GetArray("Label")
+check(all(mine.GetValue((x - x0) + (x1 - x0 + 1) * ((y - y0) + (y1 - y0 + 1) * (z - z0))) ==
+          whole.GetValue(x + 24 * (y + 20 * z))
+          for z in range(z0, z1 + 1) for y in range(y0, y1 + 1) for x in range(x0, x1 + 1)),
+      "the piece equals the one-process model's sites")
+check(piece.GetFieldData().GetArray("Processes").GetValue(0) == 1, "no exchange between processes")
+# A window far inside a world of 10^6 x 10^6 x 5 sites, asked for by Extract Subset.
+synthesis.OutputSize = [1000000, 1000000, 5]
+window = servermanager.Fetch(ExtractSubset(Input=synthesis, VOI=[400000, 400023, 700000, 700015, 0, 4]))
+check(window.GetNumberOfPoints() == 24 * 16 * 5 // ranks, "far window: %d sites" % window.GetNumberOfPoints())
+check(pair_counts(window).keys() <= pair_counts(image).keys(), "far window pairs occur in the example")
+synthesis.OutputSize = [24, 20, 5]
+synthesis.ComputeRequestedExtent = 0
+
 # Geometry of the model through its proxy: closed voxel surfaces, one face per label change.
 mesh = servermanager.Fetch(ModelSynthLabelGeometry(Input=synthesis))
 check(mesh.GetNumberOfCells() > 0 and mesh.GetCellData().GetArray("Label") is not None, "mesh")

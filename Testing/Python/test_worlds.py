@@ -80,6 +80,51 @@ class WorldsTest(unittest.TestCase):
         self.assertNotEqual(done.returncode, 0)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
 
+    def test_requested_extents_compute_only_their_cone(self):
+        # The streaming pipeline's way (issue: worlds, section 3): the whole extent is the world,
+        # and an Extract Subset downstream computes just its extent from its cone.
+        from vtkmodules.vtkImagingCore import vtkExtractVOI
+        lines = data("Tilesets/Lines.xml")
+
+        def synthesis(size):
+            s = modelsynth.vtkMSDiscreteSynthesis()
+            s.SetTilesetFile(lines)
+            s.SetOutputSize(*size)
+            s.SetBlockSize(32, 32, 1)
+            s.SetSeed(3)
+            return s
+
+        streamed = synthesis((200, 150, 1))
+        streamed.SetComputeRequestedExtent(True)
+        voi = vtkExtractVOI()
+        voi.SetInputConnection(streamed.GetOutputPort())
+        voi.SetVOI(50, 120, 40, 99, 0, 0)
+        voi.Update()
+        self.assertEqual(voi.GetOutput().GetExtent(), (50, 120, 40, 99, 0, 0))
+        whole = synthesis((200, 150, 1))
+        whole.Update()
+        np.testing.assert_array_equal(labels_zyx(voi.GetOutput()),
+                                      labels_zyx(whole.GetOutput())[:, 40:100, 50:121])
+        # A far window of a 10^6 x 10^6 world: seconds, and only the blocks of its cone.
+        streamed.SetOutputSize(1000000, 1000000, 1)
+        voi.SetVOI(500000, 500063, 700000, 700047, 0, 0)
+        start = time.perf_counter()
+        voi.Update()
+        seconds = time.perf_counter() - start
+        out = voi.GetOutput()
+        self.assertEqual(out.GetDimensions(), (64, 48, 1))
+        blocks = out.GetFieldData().GetArray("Blocks").GetValue(0)
+        self.assertLess(blocks, 10000)
+        self.assertLess(seconds, 60 if os.environ.get("MSYNTH_SANITIZED") else 20)
+        check = fresh_folder("worlds-extent")
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(out)
+        writer.SetFileName(os.path.join(check, "window.vti"))
+        writer.Write()
+        done = msynth("check", lines, os.path.join(check, "window.vti"))
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -36,6 +36,7 @@
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -50,6 +51,8 @@ struct vtkMSDiscreteSynthesis::Internals
   vtkMSSynthesisCache<msynth::SynthesisResult> Cache;
   std::vector<msynth::CatalogSnapshot> Snapshots;
   msynth::Tileset Tiles; ///< the tileset of the last run, when TilesetFile is set
+  /// The requested extent the last run computed (ComputeRequestedExtent); all -1: the world.
+  std::array<int, 6> Extent{ { -1, -1, -1, -1, -1, -1 } };
 };
 
 int vtkMSDiscreteSynthesis::GridSize(int axis) const
@@ -190,6 +193,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     outInfo->Set(vtkMSTileImage::TILESET(), this->TilesetSubset.c_str(), 1);
   }
 
+  if (this->ComputeRequestedExtent && !this->HasRegion() && this->SampleFile.empty())
+    outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
+  else
+    outInfo->Remove(CAN_PRODUCE_SUB_EXTENT());
   vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
   geometryInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   vtkMSPipeline::SetTimeSteps(outInfo, 0);
@@ -381,6 +388,24 @@ bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::Synthes
  * the ranks first agree on (a fingerprint of the example and the sizes), so no rank waits for
  * one that will not exchange.
  */
+/// With ComputeRequestedExtent, the update extent asked of @p outInfo when it is smaller than
+/// the world; else all -1.
+std::array<int, 6> RequestedExtent(vtkMSDiscreteSynthesis* self, vtkInformation* outInfo)
+{
+  std::array<int, 6> none{ { -1, -1, -1, -1, -1, -1 } }, whole{}, update{};
+  const int* region = self->GetRegion();
+  if (!self->GetComputeRequestedExtent() ||
+    std::any_of(region, region + 6, [](int v) { return v; }) || *self->GetSampleFile() ||
+    !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    return none;
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update.data());
+  for (int a = 0; a < 3; ++a)
+    if (update[2 * a] > update[2 * a + 1]) // an empty request: nothing smaller to compute
+      return none;
+  return update == whole ? none : update;
+}
+
 void SetUpExchange(
   vtkMSDiscreteSynthesis* self, vtkDataArray* labels, bool fresh, msynth::SynthesisOptions& options)
 {
@@ -529,6 +554,10 @@ bool vtkMSDiscreteSynthesis::Solve(
 msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
   const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options) const
 {
+  const std::array<int, 6>& e = this->Internal->Extent;
+  if (e[0] >= 0) // a requested extent of the world
+    return msynth::SynthesizeRegion(
+      rules, options, { { e[0], e[2], e[4] } }, { { e[1] + 1, e[3] + 1, e[5] + 1 } });
   if (!this->HasRegion())
     return msynth::Synthesize(rules, options);
   return msynth::SynthesizeRegion(rules, options,
@@ -556,8 +585,12 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   const Internals& run = *this->Internal;
   const msynth::SynthesisResult& result = run.Cache.Result;
   const auto& size = result.Model.Dimensions();
-  output->SetExtent(0, static_cast<int>(size[0]) - 1, 0, static_cast<int>(size[1]) - 1, 0,
-    static_cast<int>(size[2]) - 1);
+  const std::array<int, 6>& e = run.Extent;
+  if (e[0] >= 0) // where the requested extent lies in the world
+    output->SetExtent(e[0], e[1], e[2], e[3], e[4], e[5]);
+  else
+    output->SetExtent(0, static_cast<int>(size[0]) - 1, 0, static_cast<int>(size[1]) - 1, 0,
+      static_cast<int>(size[2]) - 1);
   if (input)
   {
     output->SetSpacing(input->GetSpacing());
@@ -654,8 +687,11 @@ int vtkMSDiscreteSynthesis::RequestData(
     return 0;
   const Internals& run = *this->Internal;
   auto& cache = this->Internal->Cache;
-  const bool fresh = cache.Fresh(this, { input, guide, fixed });
-  SetUpExchange(this, labels, fresh, options);
+  const std::array<int, 6> extent = RequestedExtent(this, outputVector->GetInformationObject(0));
+  const bool fresh = cache.Fresh(this, { input, guide, fixed }) || extent != run.Extent;
+  this->Internal->Extent = extent;
+  if (extent[0] < 0)
+    SetUpExchange(this, labels, fresh, options);
   if (fresh)
   {
     cache.Clear();
@@ -723,6 +759,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BacktracksPerAttempt: " << this->BacktracksPerAttempt << "\n";
   os << indent << "RepairFailedBlocks: " << this->RepairFailedBlocks << "\n";
   os << indent << "BlockStart: " << this->BlockStart << "\n";
+  os << indent << "ComputeRequestedExtent: " << this->ComputeRequestedExtent << "\n";
   os << indent << "BlocksWhenWholeFails: " << this->BlocksWhenWholeFails << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";

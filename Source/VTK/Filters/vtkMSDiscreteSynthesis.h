@@ -154,6 +154,20 @@ public:
   ///@}
 
   ///@{
+  /**
+   * The streaming pipeline's way to a region: the output's whole extent is the world
+   * (OutputSize, up to 2^31 sites per axis) and a request for a smaller update extent (an
+   * *Extract Subset* downstream, a piece under MPI) computes just that extent from its
+   * dependency cone (msynth::SynthesizeRegion), with no exchange between processes; the field
+   * Blocks counts the blocks run. The same restrictions as Region; not with Region or an image
+   * sample. Default off.
+   */
+  vtkSetMacro(ComputeRequestedExtent, bool);
+  vtkGetMacro(ComputeRequestedExtent, bool);
+  vtkBooleanMacro(ComputeRequestedExtent, bool);
+  ///@}
+
+  ///@{
   /// Block size of Algorithm 3.4; 0 on an axis means the whole axis. Default 0 0 0 (whole
   /// model, Algorithm 3.1).
   vtkSetVector3Macro(BlockSize, int);
@@ -454,6 +468,7 @@ private:
   int BlockSize[3] = { 0, 0, 0 };
   int BlockOverlap[3] = { -1, -1, -1 };
   int Region[6] = { 0, 0, 0, 0, 0, 0 };
+  bool ComputeRequestedExtent = false;
   int AttemptsPerBlock = 10;
   vtkIdType BacktracksPerAttempt = 1000;
   bool RepairFailedBlocks = true;
