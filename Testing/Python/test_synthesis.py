@@ -278,6 +278,25 @@ class SynthesisTest(unittest.TestCase):
         self.assertIn("Algorithm 3.1", errors)
         self.assertEqual(out.GetNumberOfPoints(), 0)
 
+    def test_explicit_source(self):
+        # The source chosen explicitly uses its own file only, and names what is missing.
+        lines = data("Tilesets/Lines.xml")
+        out, errors = synthesize(OutputSize=(8, 8, 1), Source=3, TilesetFile=lines)
+        self.assertIn("The source is an image sample but no SampleFile is set", errors)
+        self.assertEqual(out.GetNumberOfPoints(), 0)
+        out, errors = synthesize(self.reader.GetOutputPort(), OutputSize=(8, 8, 5),
+                                 BlockSize=(4, 4, 5), Source=1, TilesetFile=lines)
+        self.assertEqual(errors, "")
+        self.assertIsNone(out.GetFieldData().GetAbstractArray("TilesetFile"))
+        self.assertEqual(violations(self.example, labels_zyx(out)), [])
+        tiles, errors = synthesize(OutputSize=(8, 8, 1), Source=2, TilesetFile=lines,
+                                   SampleFile=data("Samples/City.png"))
+        self.assertEqual(errors, "")
+        self.assertEqual(tiles.GetFieldData().GetAbstractArray("TilesetFile").GetValue(0), lines)
+        _, errors = synthesize(OutputSize=(8, 8, 1), TilesetFile=lines,
+                               SampleFile=data("Samples/City.png"))
+        self.assertIn("not both", errors)
+
     def test_no_trivial_start(self):
         board = modelsynth.vtkMSLabelGridReader()
         board.SetFileName(data("Examples/Checkerboard.vti"))

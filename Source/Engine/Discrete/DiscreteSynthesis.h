@@ -304,6 +304,21 @@ void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options)
 BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions& options,
   std::optional<SynthesisResult>* done = nullptr);
 
+/// Bytes the catalog snapshots of a run hold: CountSnapshots × sites × 12 (label, catalog size,
+/// entropy).
+double SnapshotBytes(const SynthesisOptions& options);
+
+/// @throw Error naming the need when SnapshotBytes exceeds @p limit bytes.
+void CheckSnapshotMemory(const SynthesisOptions& options, double limit);
+
+/**
+ * A fingerprint of a run's inputs that processes compare before they exchange blocks: the names
+ * of its files (tileset, sample), the example's labels, the sizes, block sizes and seed. Never
+ * 0 (0 means "not synthesizing").
+ */
+std::uint64_t RunFingerprint(const std::vector<std::string>& files,
+  const std::vector<Label>& labels, const SynthesisOptions& options);
+
 /// The number of blocks Synthesize will visit for these options (sizes only).
 std::int64_t CountBlocks(const SynthesisOptions& options);
 /// The number of snapshots Synthesize will report: 1 + CountBlocks × SnapshotsPerBlock (0 if

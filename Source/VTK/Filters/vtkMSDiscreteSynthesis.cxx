@@ -55,9 +55,18 @@ struct vtkMSDiscreteSynthesis::Internals
   std::array<int, 6> Extent{ { -1, -1, -1, -1, -1, -1 } };
 };
 
+int vtkMSDiscreteSynthesis::GetActiveSource() const
+{
+  if (this->Source != AUTOMATIC_SOURCE)
+    return this->Source;
+  if (!this->TilesetFile.empty())
+    return TILESET_SOURCE;
+  return this->SampleFile.empty() ? EXAMPLE_SOURCE : SAMPLE_SOURCE;
+}
+
 int vtkMSDiscreteSynthesis::GridSize(int axis) const
 {
-  if (this->SampleFile.empty() || axis == 2)
+  if (this->GetActiveSource() != SAMPLE_SOURCE || axis == 2)
     return this->OutputSize[axis];
   // A picture of W pixels: W sites where it repeats, else W − N + 1 (the last window's pixels
   // end the row).
@@ -136,13 +145,14 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     if (grid[a] < 1)
     {
       vtkErrorMacro(<< "OutputSize must be at least 1 on every axis"
-                    << (this->SampleFile.empty() ? "" : " (and a pattern in x and y)") << ", got "
-                    << this->OutputSize[0] << " " << this->OutputSize[1] << " "
+                    << (this->GetActiveSource() != SAMPLE_SOURCE ? ""
+                                                                 : " (and a pattern in x and y)")
+                    << ", got " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
                     << this->OutputSize[2] << ".");
       return 0;
     }
   }
-  if (!this->SampleFile.empty() && this->OutputSize[2] != 1)
+  if (this->GetActiveSource() == SAMPLE_SOURCE && this->OutputSize[2] != 1)
   {
     vtkErrorMacro(<< "An image sample makes a 2D picture: OutputSize must be 1 in z, got "
                   << this->OutputSize[2] << ".");
@@ -153,12 +163,12 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     for (int a = 0; a < 3; ++a)
     {
       const int lo = this->Region[a], hi = this->Region[a + 3];
-      if (lo < 0 || hi > grid[a] || lo >= hi || !this->SampleFile.empty())
+      if (lo < 0 || hi > grid[a] || lo >= hi || this->GetActiveSource() == SAMPLE_SOURCE)
       {
         vtkErrorMacro(<< "Region " << this->Region[0] << " " << this->Region[1] << " "
                       << this->Region[2] << " " << this->Region[3] << " " << this->Region[4] << " "
                       << this->Region[5]
-                      << (this->SampleFile.empty()
+                      << (this->GetActiveSource() != SAMPLE_SOURCE
                              ? " is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1)."
                              : ": regions are for label grids and tilesets, not image samples."));
         return 0;
@@ -177,7 +187,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
       origin[a] += spacing[a] * this->Region[a];
     outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   }
-  if (this->SampleFile.empty())
+  if (this->GetActiveSource() != SAMPLE_SOURCE)
     outInfo->Remove(vtkMSPatternImage::PATTERN_PICTURE());
   else
   {
@@ -185,7 +195,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     outInfo->Set(vtkMSPatternImage::PATTERN_PICTURE(), pattern, 3);
   }
   // A tileset model names its tileset, so Tile Image finds the images without one of its own.
-  if (this->TilesetFile.empty())
+  if (this->GetActiveSource() != TILESET_SOURCE)
     outInfo->Remove(vtkMSTileImage::TILESET());
   else
   {
@@ -193,7 +203,8 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     outInfo->Set(vtkMSTileImage::TILESET(), this->TilesetSubset.c_str(), 1);
   }
 
-  if (this->ComputeRequestedExtent && !this->HasRegion() && this->SampleFile.empty())
+  if (this->ComputeRequestedExtent && !this->HasRegion() &&
+    this->GetActiveSource() != SAMPLE_SOURCE)
     outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
   else
     outInfo->Remove(CAN_PRODUCE_SUB_EXTENT());
@@ -205,15 +216,13 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   {
     const msynth::SynthesisOptions options = SizeOptions(this);
     const std::int64_t steps = msynth::CountSnapshots(options);
-    const double bytes = double(steps) * double(options.Size[0]) * double(options.Size[1]) *
-      double(options.Size[2]) * 12.0;
-    if (bytes > double(this->MaximumSnapshotMemory))
+    try
     {
-      vtkErrorMacro(<< steps << " catalog snapshots of " << options.Size[0] << " x "
-                    << options.Size[1] << " x " << options.Size[2] << " sites need "
-                    << bytes / 1048576.0 << " MiB, more than MaximumSnapshotMemory ("
-                    << this->MaximumSnapshotMemory / 1048576 << " MiB); use fewer snapshots "
-                    << "per block, larger blocks or a smaller output.");
+      msynth::CheckSnapshotMemory(options, static_cast<double>(this->MaximumSnapshotMemory));
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what() << " (MaximumSnapshotMemory).");
       return 0;
     }
     vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
@@ -395,7 +404,8 @@ std::array<int, 6> RequestedExtent(vtkMSDiscreteSynthesis* self, vtkInformation*
   std::array<int, 6> none{ { -1, -1, -1, -1, -1, -1 } }, whole{}, update{};
   const int* region = self->GetRegion();
   if (!self->GetComputeRequestedExtent() ||
-    std::any_of(region, region + 6, [](int v) { return v; }) || *self->GetSampleFile() ||
+    std::any_of(region, region + 6, [](int v) { return v; }) ||
+    self->GetActiveSource() == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ||
     !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     return none;
   outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
@@ -415,23 +425,14 @@ void SetUpExchange(
   vtkIdType fingerprint = 0;
   if (fresh)
   {
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](std::uint64_t v)
-    {
-      h ^= v;
-      h *= 1099511628211ull;
-    };
-    for (const char* file : { self->GetTilesetFile(), self->GetSampleFile() })
-      for (const char* c = file; c && *c; ++c)
-        mix(static_cast<unsigned char>(*c));
-    if (labels)
-      for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-        mix(static_cast<std::uint64_t>(labels->GetTuple1(i)));
-    for (int a = 0; a < 3; ++a)
-      mix(static_cast<std::uint64_t>(options.Size[a]) * 31 +
-        static_cast<std::uint64_t>(options.BlockSize[a]));
-    mix(options.Seed);
-    fingerprint = static_cast<vtkIdType>(h >> 2) | 1; // never 0: 0 means "not synthesizing"
+    const int source = self->GetActiveSource();
+    std::vector<msynth::Label> values;
+    for (vtkIdType i = 0; labels && i < labels->GetNumberOfTuples(); ++i)
+      values.push_back(static_cast<msynth::Label>(labels->GetTuple1(i)));
+    fingerprint = static_cast<vtkIdType>(msynth::RunFingerprint(
+      { source == vtkMSDiscreteSynthesis::TILESET_SOURCE ? self->GetTilesetFile() : "",
+        source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ? self->GetSampleFile() : "" },
+      values, options));
   }
   vtkIdType low = 0, high = 0;
   controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
@@ -518,12 +519,12 @@ bool vtkMSDiscreteSynthesis::Solve(
   return vtkMSSynthesisRun::Solve(this, what,
     [&]()
     {
-      if (!this->SampleFile.empty())
+      if (this->GetActiveSource() == SAMPLE_SOURCE)
       {
         this->SolveSample(options);
         return;
       }
-      if (this->TilesetFile.empty())
+      if (this->GetActiveSource() != TILESET_SOURCE)
       {
         const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
         const auto analysis = msynth::ExampleAnalysis::FromExample(example);
@@ -627,11 +628,12 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   vtkFieldData* fd = output->GetFieldData();
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
-  AddExampleFields(
-    fd, input, this->TilesetFile.c_str(), this->TilesetFile.empty() ? nullptr : &run.Tiles);
-  if (!this->TilesetFile.empty()) // the labels' numbering depends on it (vtkMSTileImage)
+  AddExampleFields(fd, input, this->TilesetFile.c_str(),
+    this->GetActiveSource() != TILESET_SOURCE ? nullptr : &run.Tiles);
+  if (this->GetActiveSource() ==
+    TILESET_SOURCE) // the labels' numbering depends on it (vtkMSTileImage)
     vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "TilesetSubset", this->TilesetSubset);
-  if (!this->SampleFile.empty())
+  if (this->GetActiveSource() == SAMPLE_SOURCE)
   {
     // What vtkMSPatternImage needs to compose the picture.
     vtkMSFieldData::AddFieldValue<vtkStringArray>(fd, "SampleFile", this->SampleFile);
@@ -655,12 +657,21 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkDataArray* labels = nullptr;
-  if (!this->TilesetFile.empty() && !this->SampleFile.empty())
+  const int source = this->GetActiveSource();
+  if (this->Source == AUTOMATIC_SOURCE && !this->TilesetFile.empty() && !this->SampleFile.empty())
   {
-    vtkErrorMacro(<< "Set a TilesetFile or a SampleFile, not both.");
+    vtkErrorMacro(<< "Set a TilesetFile or a SampleFile, not both (or choose one with SetSource).");
     return 0;
   }
-  if (this->TilesetFile.empty() && this->SampleFile.empty())
+  if ((source == TILESET_SOURCE && this->TilesetFile.empty()) ||
+    (source == SAMPLE_SOURCE && this->SampleFile.empty()))
+  {
+    vtkErrorMacro(<< "The source is "
+                  << (source == TILESET_SOURCE ? "a tileset" : "an image sample") << " but no "
+                  << (source == TILESET_SOURCE ? "TilesetFile" : "SampleFile") << " is set.");
+    return 0;
+  }
+  if (source == EXAMPLE_SOURCE)
   {
     if (!input)
     {
@@ -710,7 +721,8 @@ int vtkMSDiscreteSynthesis::RequestData(
   std::string problem;
   // A voxel tileset's model shows its tiles' voxels, else the sites as voxels.
   vtkNew<vtkImageData> voxels;
-  const bool tileVoxels = !this->TilesetFile.empty() && run.Tiles.Voxel && this->GenerateGeometry;
+  const bool tileVoxels =
+    this->GetActiveSource() == TILESET_SOURCE && run.Tiles.Voxel && this->GenerateGeometry;
   if (tileVoxels && !vtkMSLabelArrays::TileVoxels(run.Tiles, output, voxels, problem))
   {
     output->Initialize();
@@ -759,6 +771,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BacktracksPerAttempt: " << this->BacktracksPerAttempt << "\n";
   os << indent << "RepairFailedBlocks: " << this->RepairFailedBlocks << "\n";
   os << indent << "BlockStart: " << this->BlockStart << "\n";
+  os << indent << "Source: " << this->Source << "\n";
   os << indent << "ComputeRequestedExtent: " << this->ComputeRequestedExtent << "\n";
   os << indent << "BlocksWhenWholeFails: " << this->BlocksWhenWholeFails << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -46,6 +46,11 @@
  * each label's relative probability per guide point; 0 removes the label there. Labels without
  * an array have weight 1.
  *
+ * Where the rules come from (SetSource): the example on input 0 (SetSourceToExample), a tileset
+ * (SetSourceToTileset, TilesetFile) or an image sample (SetSourceToSample, SampleFile); by
+ * default (AUTOMATIC_SOURCE) the file that is set, else the example. An explicit source uses
+ * its own file only and fails the request when it is not set.
+ *
  * Tilesets: with TilesetFile set (simple-tiled XML, msynth/Tileset.h) the rules come from the
  * tileset and the example input is not needed; label i is an orientation of a tile, named in
  * the field array `TileNames` ("tile k"). vtkMSTileImage composes the tiles' images.
@@ -126,6 +131,14 @@ public:
     RANDOM = 1,         ///< a seeded random permutation
     MINIMUM_ENTROPY = 2 ///< fewest choices first (as WaveFunctionCollapse)
   };
+  /// Where the rules come from.
+  enum Sources
+  {
+    AUTOMATIC_SOURCE = 0, ///< the file that is set (tileset or sample), else the example
+    EXAMPLE_SOURCE = 1,   ///< the label grid on input 0
+    TILESET_SOURCE = 2,   ///< TilesetFile
+    SAMPLE_SOURCE = 3     ///< SampleFile
+  };
   /// How block synthesis starts (msynth::BlockStart).
   enum BlockStarts
   {
@@ -133,6 +146,18 @@ public:
     TRIVIAL_START = 1,   ///< Algorithm 3.4's trivial model (one label, or layers)
     UNDECIDED_START = 2  ///< every site free until a block decides it
   };
+
+  ///@{
+  /// Where the rules come from: a Sources value. Default AUTOMATIC_SOURCE.
+  vtkSetClampMacro(Source, int, AUTOMATIC_SOURCE, SAMPLE_SOURCE);
+  vtkGetMacro(Source, int);
+  void SetSourceToExample() { this->SetSource(EXAMPLE_SOURCE); }
+  void SetSourceToTileset() { this->SetSource(TILESET_SOURCE); }
+  void SetSourceToSample() { this->SetSource(SAMPLE_SOURCE); }
+  /// The source a run uses: Source, or for AUTOMATIC_SOURCE the file that is set (TILESET_SOURCE
+  /// when both are, which the run refuses).
+  int GetActiveSource() const;
+  ///@}
 
   ///@{
   /// Output size in sites (n_z = 1 for 2D). Default 32 × 32 × 8.
@@ -473,6 +498,7 @@ private:
   vtkIdType BacktracksPerAttempt = 1000;
   bool RepairFailedBlocks = true;
   int BlockStart = AUTOMATIC_START;
+  int Source = AUTOMATIC_SOURCE;
   bool BlocksWhenWholeFails = true;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;

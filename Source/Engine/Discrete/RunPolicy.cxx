@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file BlockStart.cxx
- * @brief The automatic choice of block synthesis's start (ChooseBlockStart in
- * Discrete/DiscreteSynthesis.h): a probe world from the trivial start, and from an undecided start
- * where the first looks blank.
+ * @file RunPolicy.cxx
+ * @brief The choices the engine makes for a run, declared in Discrete/DiscreteSynthesis.h: the
+ * automatic block start (ChooseBlockStart: a probe world from the trivial start, and from an
+ * undecided start where the first looks blank), the snapshots' memory (SnapshotBytes) and the
+ * fingerprint processes compare before they exchange blocks (RunFingerprint).
  */
 #include "Core/BlockDriver.h"
+#include "Core/Error.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <sstream>
 
 namespace msynth
 {
@@ -96,6 +99,47 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
     u.second < 0.8 * t.second)
     return keep(std::move(free), BlockStart::Undecided);
   return keep(std::move(trivial), BlockStart::Trivial);
+}
+
+double SnapshotBytes(const SynthesisOptions& options)
+{
+  // A label, a catalog size and an entropy (4 bytes each) per site and snapshot.
+  return static_cast<double>(CountSnapshots(options)) * static_cast<double>(options.Size[0]) *
+    static_cast<double>(options.Size[1]) * static_cast<double>(options.Size[2]) * 12.0;
+}
+
+void CheckSnapshotMemory(const SynthesisOptions& options, double limit)
+{
+  const double bytes = SnapshotBytes(options);
+  if (bytes <= limit)
+    return;
+  std::ostringstream text;
+  text << CountSnapshots(options) << " catalog snapshots of " << options.Size[0] << " x "
+       << options.Size[1] << " x " << options.Size[2] << " sites need " << bytes / 1048576.0
+       << " MiB, more than the limit of " << limit / 1048576.0
+       << " MiB; use fewer snapshots per block, larger blocks or a smaller output";
+  throw Error(text.str());
+}
+
+std::uint64_t RunFingerprint(const std::vector<std::string>& files,
+  const std::vector<Label>& labels, const SynthesisOptions& options)
+{
+  std::uint64_t h = 1469598103934665603ull; // FNV-1a
+  auto mix = [&h](std::uint64_t v)
+  {
+    h ^= v;
+    h *= 1099511628211ull;
+  };
+  for (const std::string& file : files)
+    for (const char c : file)
+      mix(static_cast<unsigned char>(c));
+  for (const Label v : labels)
+    mix(static_cast<std::uint64_t>(static_cast<std::int64_t>(v)));
+  for (std::size_t a = 0; a < 3; ++a)
+    mix(static_cast<std::uint64_t>(options.Size[a]) * 31 +
+      static_cast<std::uint64_t>(options.BlockSize[a]));
+  mix(options.Seed);
+  return (h >> 2) | 1; // never 0: 0 means "not synthesizing"
 }
 
 } // namespace msynth
