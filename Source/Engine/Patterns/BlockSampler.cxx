@@ -131,7 +131,7 @@ public:
       // After each sample, as the block solvers after each block: told at once, not throttled.
       if (this->O.Progress && !this->O.Progress(double(n + 1) / double(total)))
       {
-        this->R.Cancelled = true;
+        this->R.Status = SynthesisStatus::Cancelled;
         return false;
       }
     }
@@ -173,7 +173,7 @@ private:
         static_cast<double>(std::max<std::int64_t>(minimum, 1)));
     if (!this->Poll.Continue((n + 0.5 * within) / total))
     {
-      this->R.Cancelled = true;
+      this->R.Status = SynthesisStatus::Cancelled;
       return false;
     }
     return true;

@@ -188,7 +188,7 @@ std::vector<std::int32_t> SolveOnce(const FactorModel& m, const AdjacencyRules& 
   result.Moves += r.Statistics.Assignments;
   if (r.Status == SynthesisStatus::Cancelled)
   {
-    result.Cancelled = true;
+    result.Status = SynthesisStatus::Cancelled;
     return {};
   }
   if (!r.Succeeded())
@@ -210,7 +210,7 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
   {
     std::vector<std::int32_t> tiles = SolveOnce(
       m, rules, so, Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(), result);
-    if (result.Cancelled)
+    if (result.Status == SynthesisStatus::Cancelled)
       return;
     std::vector<std::int64_t> last(tiles.size(), 0);
     PatternSample s = MakeSample(scorer, m, o, std::move(tiles), std::move(last));
@@ -309,7 +309,7 @@ PatternResult SynthesizePattern(
       SynthesisOptions so = SolverOptions(model, problem, options, false);
       initial = SolveOnce(
         model, PairRules(model), so, Random::Derived(options.Seed, 0x57a27).Next(), result);
-      if (result.Cancelled)
+      if (result.Status == SynthesisStatus::Cancelled)
         return result;
     }
     detail::RunSampler(problem, options, initial, result,

@@ -24,6 +24,7 @@
  * Hard pairs come from all exemplars (they say which tiles fit, whatever the style); soft
  * factors anchored in a zone come from that zone's exemplars (style zoning, §4, Fig. 15).
  */
+#include "Core/BlockSynthesis.h"
 #include "Core/LabelGrid.h"
 #include "Patterns/FactorGraph.h"
 
@@ -126,7 +127,8 @@ struct PatternSample
 
 struct PatternResult
 {
-  bool Cancelled = false;
+  /// Succeeded, or Cancelled when the progress callback asked to stop (no samples then).
+  SynthesisStatus Status = SynthesisStatus::Succeeded;
   std::vector<PatternSample> Samples;
   std::int64_t Moves = 0;
   std::int64_t WalkMoves = 0;

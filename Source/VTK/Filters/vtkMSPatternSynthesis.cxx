@@ -184,7 +184,8 @@ int vtkMSPatternSynthesis::RequestData(
     {
       return 0;
     }
-    if (cache.Run.Result.Cancelled) // the one cancel path of the synthesis filters
+    if (cache.Run.Result.Status ==
+      msynth::SynthesisStatus::Cancelled) // the one cancel path of the synthesis filters
     {
       output->Initialize();
       return vtkMSSynthesisRun::Report(this, msynth::SynthesisStatus::Cancelled, "") ? 1 : 0;
