@@ -151,9 +151,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_flag("--no-repair", o.NoRepair,
     "leave blocks whose attempts all fail at their previous labels, without a second try "
     "after the other blocks"));
-  discrete(s.add_option("--threads", o.Threads,
-              "threads for block synthesis (default: one per core; the same result)")
-             ->check(CLI::Range(0, 1024)));
+  s.add_option(
+     "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")
+    ->check(CLI::Range(0, 1024));
   r.Ground = s.add_option("--ground", o.Ground,
                 "fix LABEL along the bottom face (-z; -y in 2D); with an image sample, no "
                 "LABEL: the sample's bottom-middle window along the bottom row only")
