@@ -38,6 +38,11 @@ namespace cli
 {
 namespace
 {
+/// model.vdb's level sets: their band's half width (OpenVDB's default) and the most voxels their
+/// bands may hold by default (about a second of export on two cores).
+constexpr double BandHalfWidth = 3;
+constexpr double LevelSetBudget = 1e6;
+
 /// The voxel sizes of the outputs: model.vdb's, and the catalog sequence's.
 struct Voxels
 {
@@ -65,7 +70,11 @@ Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeO
   {
     extent = std::max(extent, v.Bounds[2 * c + 1] - v.Bounds[2 * c]);
   }
+  // Level sets in proportion to the model: at most LevelSetBudget voxels in their bands.
   v.Model = o.Voxel > 0 ? o.Voxel : std::max(smallest / 4, extent / 256);
+  if (o.Voxel <= 0 && !v.Planar && model->GetNumberOfPolys() > 0)
+    v.Model = msynth::LevelSetVoxel(vtkMSPolyhedra::ToContinuousMesh(model, "model"), smallest,
+      extent, BandHalfWidth, LevelSetBudget);
   if (!(v.Model > 0))
   {
     v.Model = 1;
@@ -98,6 +107,7 @@ void WriteModelVDB(
   {
     vdb->SetInputData(model);
     vdb->SetVoxelSize(voxel);
+    vdb->SetBandWidth(BandHalfWidth);
   }
   else
   {
@@ -129,7 +139,7 @@ void WriteModelVDB(
 }
 
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
-  const std::string& dir, const std::vector<std::pair<std::string, double>>& stages)
+  const std::string& dir, const std::vector<std::pair<std::string, double>>& stages, double voxel)
 {
   vtkFieldData* fd = labelled->GetFieldData();
   msynth::WriteFileAtomically(dir + "/statistics.json",
@@ -175,7 +185,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
         out << separator << JsonString(stage) << ": " << seconds;
         separator = ", ";
       }
-      out << "},\n";
+      out << "},\n  \"VoxelSize\": " << voxel << ",\n";
       out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
     });
 }
@@ -326,7 +336,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   }
   if (o.Snapshots > 0)
     lap("catalog sequence");
-  WriteStatistics(labelled, model, o, dir, stages);
+  WriteStatistics(labelled, model, o, dir, stages, voxels.Model);
   vtkFieldData* fd = labelled->GetFieldData();
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "

@@ -386,3 +386,35 @@ TEST(ContinuousSynthesis, ThreadsGiveTheSameModel)
   EXPECT_EQ(s.Statistics.Threads, 1);
   EXPECT_EQ(s.Statistics.Phases, s.Statistics.Blocks);
 }
+
+TEST(ContinuousMesh, LevelSetVoxelsGrowWithTheSurface)
+{
+  // A unit cube of type 1 (area 6) on a cube of type 2 (the face between them counts for both).
+  ContinuousMesh mesh;
+  for (int z = 0; z <= 2; ++z)
+    for (int y = 0; y <= 1; ++y)
+      for (int x = 0; x <= 1; ++x)
+        mesh.Points.push_back({ double(x), double(y), double(z) });
+  auto at = [](int x, int y, int z) { return static_cast<std::int32_t>(x + 2 * y + 4 * z); };
+  auto add = [&](std::vector<std::int32_t> poly, int inside, int outside)
+  {
+    mesh.Polygons.push_back(std::move(poly));
+    mesh.InsideType.push_back(inside);
+    mesh.OutsideType.push_back(outside);
+  };
+  for (int z = 0; z < 2; ++z)
+  {
+    const int type = z + 1;
+    add({ at(0, 0, z), at(1, 0, z), at(1, 0, z + 1), at(0, 0, z + 1) }, type, 0);
+    add({ at(1, 1, z), at(0, 1, z), at(0, 1, z + 1), at(1, 1, z + 1) }, type, 0);
+    add({ at(0, 1, z), at(0, 0, z), at(0, 0, z + 1), at(0, 1, z + 1) }, type, 0);
+    add({ at(1, 0, z), at(1, 1, z), at(1, 1, z + 1), at(1, 0, z + 1) }, type, 0);
+  }
+  add({ at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0) }, 1, 0);
+  add({ at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1) }, 1, 2);
+  add({ at(0, 0, 2), at(1, 0, 2), at(1, 1, 2), at(0, 1, 2) }, 2, 0);
+  // Surfaces of 12 square units: bands of 2 · 3 voxels hold 72 / voxel² voxels.
+  EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.4, 2, 3, 1e12), 0.1);         // a quarter spacing
+  EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.004, 2, 3, 1e12), 2.0 / 256); // 1/256 of the extent
+  EXPECT_NEAR(LevelSetVoxel(mesh, 0.4, 2, 3, 72 / 0.25), 0.5, 1e-12);  // the budget
+}
