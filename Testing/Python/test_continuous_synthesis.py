@@ -268,6 +268,21 @@ class ContinuousSynthesisTest(unittest.TestCase):
                                     os.path.join(out, "model.vtp")], capture_output=True, text=True)
             self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
         self.assertTrue(np.array_equal(runs[0], runs[1]), "the labels differ between 1 and 2 threads")
+        # Only the files asked for: the mesh without its level sets; kinds of label grids refused.
+        out = tmp("threads-mesh-only")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "16",
+                               "16", "8", "--outputs", "mesh", "--out", out],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(sorted(f for f in os.listdir(out) if not f.startswith(".")),
+                         ["model.vtp", "statistics.json"])
+        self.assertNotIn("model.vdb", json.load(open(os.path.join(out, "statistics.json")))["StageSeconds"])
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "16",
+                               "16", "8", "--outputs", "mesh,picture", "--out", out + "-x"],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 1)
+        self.assertIn("not 'picture'", done.stderr)
+        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
 
     def test_catalog_time_steps(self):
         _, _, solver, _, errors = chain("cube.obj", (4, 4, 3), snapshots=3)
