@@ -31,6 +31,8 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <set>
+#include <sstream>
 
 namespace msynth
 {
@@ -38,6 +40,28 @@ namespace cli
 {
 namespace
 {
+/// Which of arrangement.vtp (labels), model.vtp (mesh) and model.vdb (vdb) to write: --outputs,
+/// else all three. @throw std::runtime_error naming a kind polyhedral examples do not write.
+std::set<std::string> ContinuousOutputs(const SynthesizeOptions& o)
+{
+  std::set<std::string> kinds;
+  std::stringstream items(o.Outputs.empty() ? "labels,mesh,vdb" : o.Outputs);
+  for (std::string item; std::getline(items, item, ',');)
+  {
+    if (item != "labels" && item != "mesh" && item != "vdb")
+      throw std::runtime_error("--outputs: polyhedral examples write labels (arrangement.vtp), "
+                               "mesh (model.vtp) and vdb (model.vdb), not '" +
+        item + "'");
+    kinds.insert(item);
+  }
+  return kinds;
+}
+
+/// model.vdb's level sets: their band's half width (OpenVDB's default) and the most voxels their
+/// bands may hold by default (about a second of export on two cores).
+constexpr double BandHalfWidth = 3;
+constexpr double LevelSetBudget = 1e6;
+
 /// The voxel sizes of the outputs: model.vdb's, and the catalog sequence's.
 struct Voxels
 {
@@ -65,7 +89,11 @@ Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeO
   {
     extent = std::max(extent, v.Bounds[2 * c + 1] - v.Bounds[2 * c]);
   }
+  // Level sets in proportion to the model: at most LevelSetBudget voxels in their bands.
   v.Model = o.Voxel > 0 ? o.Voxel : std::max(smallest / 4, extent / 256);
+  if (o.Voxel <= 0 && !v.Planar && model->GetNumberOfPolys() > 0)
+    v.Model = msynth::LevelSetVoxel(vtkMSPolyhedra::ToContinuousMesh(model, "model"), smallest,
+      extent, BandHalfWidth, LevelSetBudget);
   if (!(v.Model > 0))
   {
     v.Model = 1;
@@ -98,6 +126,7 @@ void WriteModelVDB(
   {
     vdb->SetInputData(model);
     vdb->SetVoxelSize(voxel);
+    vdb->SetBandWidth(BandHalfWidth);
   }
   else
   {
@@ -129,7 +158,7 @@ void WriteModelVDB(
 }
 
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
-  const std::string& dir, const std::vector<std::pair<std::string, double>>& stages)
+  const std::string& dir, const std::vector<std::pair<std::string, double>>& stages, double voxel)
 {
   vtkFieldData* fd = labelled->GetFieldData();
   msynth::WriteFileAtomically(dir + "/statistics.json",
@@ -175,7 +204,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
         out << separator << JsonString(stage) << ": " << seconds;
         separator = ", ";
       }
-      out << "},\n";
+      out << "},\n  \"VoxelSize\": " << voxel << ",\n";
       out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
     });
 }
@@ -186,6 +215,7 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetBlockSize(o.Blocks);
   synthesis->SetAttempts(o.Attempts);
+  synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);
@@ -260,6 +290,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     stages.emplace_back(stage, std::chrono::duration<double>(now - clock).count());
     clock = now;
   };
+  const std::set<std::string> outputs = ContinuousOutputs(o);
   vtkNew<vtkMSPolyhedralExampleReader> reader;
   ConfigureReader(reader, o.Example, o.Reading);
   Run(reader);
@@ -309,12 +340,26 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   fields->DeepCopy(labelled->GetFieldData());
   fields->RemoveArray("Seconds");
   saved->SetFieldData(fields);
-  WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
-  WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
+  std::string written; // "DIR/model.vtp, ..." as they are written
+  if (outputs.count("mesh"))
+  {
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
+    written += dir + "/model.vtp, ";
+  }
+  if (outputs.count("labels"))
+  {
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
+    written += dir + "/arrangement.vtp, ";
+  }
   lap("vtp files");
-  const Voxels voxels = ChooseVoxels(labelled, model, o);
-  WriteModelVDB(model, voxels, o, dir);
-  lap("model.vdb");
+  const bool vdb = outputs.count("vdb") > 0;
+  const Voxels voxels = vdb || o.Snapshots > 0 ? ChooseVoxels(labelled, model, o) : Voxels();
+  if (vdb)
+  {
+    WriteModelVDB(model, voxels, o, dir);
+    lap("model.vdb");
+    written += dir + "/model.vdb, ";
+  }
   std::string sequence;
   if (o.Snapshots > 0)
   {
@@ -325,14 +370,13 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   }
   if (o.Snapshots > 0)
     lap("catalog sequence");
-  WriteStatistics(labelled, model, o, dir, stages);
+  WriteStatistics(labelled, model, o, dir, stages, vdb ? voxels.Model : 0.0);
   vtkFieldData* fd = labelled->GetFieldData();
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
             << CountOf(fd, "Blocks") << " blocks left unchanged, " << CountOf(fd, "Components")
             << " solid parts (" << CountOf(fd, "GroundedComponents") << " on the ground)\n"
-            << "wrote " << dir << "/model.vtp, " << dir << "/arrangement.vtp, " << dir
-            << "/model.vdb, " << dir << "/statistics.json" << sequence << "\n";
+            << "wrote " << written << dir << "/statistics.json" << sequence << "\n";
   return 0;
 }
 

@@ -160,9 +160,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
               "(every site free until a block decides it; structures continue across blocks)")
              ->check(CLI::IsMember(Starts)));
-  discrete(s.add_option("--threads", o.Threads,
-              "threads for block synthesis (default: one per core; the same result)")
-             ->check(CLI::Range(0, 1024)));
+  s.add_option(
+     "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")
+    ->check(CLI::Range(0, 1024));
   r.Ground = s.add_option("--ground", o.Ground,
                 "fix LABEL along the bottom face (-z; -y in 2D); with an image sample, no "
                 "LABEL: the sample's bottom-middle window along the bottom row only")
@@ -171,13 +171,14 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_option("--empty", o.Empty,
               "fix LABEL on every other face (usually 0) but those of translated axes")
              ->expected(1));
-  discrete(s.add_option("--outputs", o.Outputs,
-              "which files to write, from labels (labels.vti), mesh (mesh.vtp), glb (mesh.glb: "
-              "binary glTF, a material per label, with any --pieces), vdb (model.vdb), "
-              "picture (picture.png, tilesets), txt (model.txt), vox (model.vox); default: "
-              "labels,picture for a tileset, labels,mesh,vdb for a label grid, plus txt or vox "
-              "for such an example; statistics.json is always written")
-             ->check(OutputList, "KINDS"));
+  s.add_option("--outputs", o.Outputs,
+     "which files to write, from labels (labels.vti), mesh (mesh.vtp), glb (mesh.glb: "
+     "binary glTF, a material per label, with any --pieces), vdb (model.vdb), "
+     "picture (picture.png, tilesets), txt (model.txt), vox (model.vox); default: "
+     "labels,picture for a tileset, labels,mesh,vdb for a label grid, plus txt or vox "
+     "for such an example; polyhedral examples: labels (arrangement.vtp), mesh (model.vtp), "
+     "vdb (model.vdb), all by default; statistics.json is always written")
+    ->check(OutputList, "KINDS");
   discrete(s.add_option("--pieces", o.Pieces,
     "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels), or with the "
     "pieces a .txt example names for it (DIR/round.obj for $round); with a tileset also "

@@ -3,6 +3,7 @@
 // mesh extraction, each output checked by the example analysis run on the output mesh.
 #include "Continuous/ContinuousMesh.h"
 #include "Continuous/ContinuousSynthesis.h"
+#include "Continuous/SolverParts.h"
 #include "Core/Error.h"
 
 #include "Fixtures.h"
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <set>
+#include <thread>
 
 using namespace msynth;
 
@@ -296,4 +298,123 @@ TEST(ContinuousSynthesis, CancellationStopsWithinABlock)
   EXPECT_EQ(calls, 2);
   // From the "stop" answer to the end of the run.
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), 1.0);
+}
+
+TEST(ContinuousSynthesis, BlocksOfAPhaseNeverTouch)
+{
+  // Recomputed from the layout's blocks and the arrangement's links, not from the phase
+  // formula: two blocks of one phase share no vertex and no edge (neither reads what the other
+  // labels). The sloped house has edges longer than a cell; the L-prism's are short.
+  for (const char* name : { "house.obj", "l-prism.obj" })
+  {
+    const Loaded l = Load(name);
+    const ArrangementParameters p =
+      DefaultArrangementParameters(l.Example, l.Analysis, { 16, 16, 6 }, 0, {});
+    const PlaneArrangement arrangement(l.Analysis.Families(), p);
+    const detail::BlockLayout layout(arrangement, 2.0, PhasePolicy::NonTouching);
+    std::vector<std::int64_t> blockOf(static_cast<std::size_t>(arrangement.NumberOfVertices()));
+    int phases = 0, shared = 0;
+    for (std::size_t first = 0; first < layout.Grid.size();)
+    {
+      std::size_t last = first;
+      while (last < layout.Grid.size() && layout.Grid[last].Phase == layout.Grid[first].Phase)
+        ++last;
+      ++phases;
+      std::fill(blockOf.begin(), blockOf.end(), -1);
+      for (std::size_t b = first; b < last; ++b)
+        for (std::int64_t v : layout.Vertices(static_cast<std::int64_t>(b)))
+        {
+          EXPECT_EQ(blockOf[static_cast<std::size_t>(v)], -1) << name << ": a shared vertex";
+          blockOf[static_cast<std::size_t>(v)] = static_cast<std::int64_t>(b);
+        }
+      for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+        for (const auto* k = arrangement.LinksBegin(v); k != arrangement.LinksEnd(v); ++k)
+        {
+          const std::int64_t a = blockOf[static_cast<std::size_t>(v)];
+          const std::int64_t b = k->Vertex < 0 ? -1 : blockOf[static_cast<std::size_t>(k->Vertex)];
+          shared += a >= 0 && b >= 0 && a != b ? 1 : 0;
+        }
+      first = last;
+    }
+    EXPECT_EQ(shared, 0) << name << ": edges between blocks of one phase";
+    EXPECT_LT(phases, static_cast<int>(layout.Grid.size())) << name << ": nothing concurrent";
+  }
+}
+
+TEST(ContinuousSynthesis, ThreadsGiveTheSameModel)
+{
+  // Grounded houses with their proportions steered (the shares are global), 16 blocks in 9
+  // phases: one thread and two give the same labels, each model checked by re-analysis.
+  const Loaded l = Load("house.obj");
+  const ArrangementParameters p =
+    DefaultArrangementParameters(l.Example, l.Analysis, { 32, 32, 8 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  for (bool grounded : { false, true })
+  {
+    ContinuousSynthesisOptions options;
+    options.Seed = 5;
+    options.BlockSize = 4;
+    options.Constraints.Grounded = grounded;
+    options.Threads = 1;
+    const ContinuousSynthesisResult one = SynthesizeContinuous(l.Analysis, arrangement, options);
+    options.Threads = 2;
+    const ContinuousSynthesisResult two = SynthesizeContinuous(l.Analysis, arrangement, options);
+    ASSERT_TRUE(one.Succeeded()) << one.Message;
+    ASSERT_TRUE(two.Succeeded()) << two.Message;
+    EXPECT_EQ(one.Statistics.Threads, 1);
+    if (std::thread::hardware_concurrency() >= 2)
+    {
+      EXPECT_EQ(two.Statistics.Threads, 2);
+    }
+    EXPECT_LT(two.Statistics.Phases, two.Statistics.Blocks);
+    EXPECT_EQ(one.Labels, two.Labels) << "grounded " << grounded;
+    EXPECT_EQ(one.Statistics.Assignments, two.Statistics.Assignments);
+    EXPECT_EQ(CheckArrangementLabels(l.Analysis, arrangement, two.Labels), "");
+    const auto report = CheckContinuousModel(
+      l.Analysis, ExtractMesh(l.Analysis, arrangement, two.Labels), l.Example.TypeNames);
+    EXPECT_TRUE(report.Valid) << report.Problem;
+    EXPECT_GT(MeasureArrangement(l.Analysis, arrangement, two.Labels).Components, 0);
+  }
+  // Objects spreading outward from connectivity seeds: one block after the other.
+  ContinuousSynthesisOptions seeded;
+  seeded.Seed = 5;
+  seeded.BlockSize = 4;
+  seeded.Threads = 2;
+  seeded.Constraints.Connected.push_back({ 0, 2 });
+  const ContinuousSynthesisResult s = SynthesizeContinuous(l.Analysis, arrangement, seeded);
+  ASSERT_TRUE(s.Succeeded()) << s.Message;
+  EXPECT_EQ(s.Statistics.Threads, 1);
+  EXPECT_EQ(s.Statistics.Phases, s.Statistics.Blocks);
+}
+
+TEST(ContinuousMesh, LevelSetVoxelsGrowWithTheSurface)
+{
+  // A unit cube of type 1 (area 6) on a cube of type 2 (the face between them counts for both).
+  ContinuousMesh mesh;
+  for (int z = 0; z <= 2; ++z)
+    for (int y = 0; y <= 1; ++y)
+      for (int x = 0; x <= 1; ++x)
+        mesh.Points.push_back({ double(x), double(y), double(z) });
+  auto at = [](int x, int y, int z) { return static_cast<std::int32_t>(x + 2 * y + 4 * z); };
+  auto add = [&](std::vector<std::int32_t> poly, int inside, int outside)
+  {
+    mesh.Polygons.push_back(std::move(poly));
+    mesh.InsideType.push_back(inside);
+    mesh.OutsideType.push_back(outside);
+  };
+  for (int z = 0; z < 2; ++z)
+  {
+    const int type = z + 1;
+    add({ at(0, 0, z), at(1, 0, z), at(1, 0, z + 1), at(0, 0, z + 1) }, type, 0);
+    add({ at(1, 1, z), at(0, 1, z), at(0, 1, z + 1), at(1, 1, z + 1) }, type, 0);
+    add({ at(0, 1, z), at(0, 0, z), at(0, 0, z + 1), at(0, 1, z + 1) }, type, 0);
+    add({ at(1, 0, z), at(1, 1, z), at(1, 1, z + 1), at(1, 0, z + 1) }, type, 0);
+  }
+  add({ at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0) }, 1, 0);
+  add({ at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1) }, 1, 2);
+  add({ at(0, 0, 2), at(1, 0, 2), at(1, 1, 2), at(0, 1, 2) }, 2, 0);
+  // Surfaces of 12 square units: bands of 2 · 3 voxels hold 72 / voxel² voxels.
+  EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.4, 2, 3, 1e12), 0.1);         // a quarter spacing
+  EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.004, 2, 3, 1e12), 2.0 / 256); // 1/256 of the extent
+  EXPECT_NEAR(LevelSetVoxel(mesh, 0.4, 2, 3, 72 / 0.25), 0.5, 1e-12);  // the budget
 }

@@ -240,11 +240,22 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
     o.Constraints.Thickness.push_back({ 1, FamilyAlongAxis(a.Families(), 2), 1, {} });
     got["continuous house, grounded, walls one spacing high"] =
       Hash(SynthesizeContinuous(a, arrangement, o).Labels);
+    // Several blocks per phase (16 blocks, 9 phases), run on two threads.
+    const PlaneArrangement larger(
+      a.Families(), DefaultArrangementParameters(e, a, { 32, 32, 8 }, 0, {}));
+    ContinuousSynthesisOptions phased;
+    phased.Seed = 7;
+    phased.BlockSize = 4;
+    phased.Threads = 2;
+    phased.Constraints.Grounded = true;
+    got["continuous house, grounded, blocks in phases"] =
+      Hash(SynthesizeContinuous(a, larger, phased).Labels);
   }
   const std::map<std::string, std::string> expected = {
     { "continuous house, blocks", "fc6f6c02a1156150" },
     { "continuous house, blocks, uniform", "9a403552fe60dd2b" },
     { "continuous house, grounded, walls one spacing high", "56d4135e541e305b" },
+    { "continuous house, grounded, blocks in phases", "8144da8df2b4f7f7" },
     { "time-varying", "f1eeebd4ae9d53c2" },
   };
   ExpectHashes(got, expected);

@@ -6,6 +6,7 @@
 #include "Continuous/Point3Math.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 
@@ -536,6 +537,31 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
   }
   report.Valid = true;
   return report;
+}
+
+double LevelSetVoxel(
+  const ContinuousMesh& mesh, double spacing, double extent, double halfWidth, double budget)
+{
+  double area = 0; // of the surfaces of every solid type: a face between two types counts twice
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    const auto& poly = mesh.Polygons[f];
+    Point3 n{ 0, 0, 0 };
+    for (std::size_t i = 0; i < poly.size(); ++i)
+    {
+      const Point3& a = mesh.Points[static_cast<std::size_t>(poly[i])];
+      const Point3& b = mesh.Points[static_cast<std::size_t>(poly[(i + 1) % poly.size()])];
+      n[0] += a[1] * b[2] - a[2] * b[1];
+      n[1] += a[2] * b[0] - a[0] * b[2];
+      n[2] += a[0] * b[1] - a[1] * b[0];
+    }
+    const int sides = (mesh.InsideType[f] != 0 ? 1 : 0) +
+      (f < mesh.OutsideType.size() && mesh.OutsideType[f] != 0 ? 1 : 0);
+    area += sides * 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  const double voxel = std::max(spacing / 4, extent / 256);
+  const double banded = budget > 0 ? std::sqrt(2 * halfWidth * area / budget) : 0;
+  return std::max(voxel, banded);
 }
 
 LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,

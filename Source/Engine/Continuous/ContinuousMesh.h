@@ -67,6 +67,16 @@ PolyhedralExample MeshToModel(
 LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
   const std::array<std::int64_t, 3>& dims);
 
+/**
+ * The voxel of a 3D model's level sets, in proportion to the model: a quarter of @p spacing (the
+ * smallest plane spacing) or 1/256 of @p extent, whichever is coarser, and coarser still where
+ * the narrow bands (2 · @p halfWidth voxels across every solid type's surface, estimated from
+ * the surfaces' area) would hold more than @p budget voxels: a level set's cost is its band's
+ * voxels, so a large model gets coarser voxels instead of a longer export.
+ */
+double LevelSetVoxel(
+  const ContinuousMesh& mesh, double spacing, double extent, double halfWidth, double budget);
+
 /// Rebuilds a mesh from polygons and their types (e.g. read back from model.vtp).
 ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
   std::vector<std::vector<std::int32_t>> polygons, std::vector<std::int32_t> insideType,

@@ -21,153 +21,39 @@
 namespace msynth
 {
 
-ArrangementRules::ArrangementRules(
-  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
-  : Arrangement(arrangement)
-{
-  const PlaneFamilySet& set = arrangement.Families();
-  if (set.AllNormals() != analysis.Families().AllNormals())
-  {
-    throw Error("the plane arrangement was built for other plane families than the example's");
-  }
-  const int k = analysis.NumberOfLabels();
-  const int directions = arrangement.NumberOfDirections();
-  this->Allocate(k, std::max(directions, 1));
-  this->Empty = analysis.Find(NeighbourhoodLabel::Constant(0));
-  if (this->Empty < 0)
-  {
-    throw Error("the example has no empty space around it");
-  }
-  for (const auto& info : analysis.Labels())
-  {
-    std::uint64_t mask = 0;
-    for (int f : info.Label.Families)
-    {
-      mask |= std::uint64_t(1) << f;
-    }
-    this->LabelFamilies.push_back(mask);
-  }
-  std::map<NeighbourhoodLabel, int> ids;
-  const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
-  this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
-  for (int d = 0; d < directions; ++d)
-  {
-    for (int a = 0; a < k; ++a)
-    {
-      const NeighbourhoodLabel e = analysis.Label(a).Label.Evaluate(set, arrangement.Direction(d));
-      const int id = ids.emplace(e, static_cast<int>(ids.size())).first->second;
-      this->Evaluations[static_cast<std::size_t>(d) * k + a] = id;
-    }
-  }
-  const int w = this->Words();
-  this->EmptyToward.assign(static_cast<std::size_t>(directions) * w, 0);
-  std::vector<std::vector<int>> bucket(ids.size());
-  for (int d = 0; d < directions; ++d)
-  {
-    // Labels b at the far end of an edge along d see it along the opposite class d ^ 1.
-    for (auto& b : bucket)
-    {
-      b.clear();
-    }
-    for (int b = 0; b < k; ++b)
-    {
-      bucket[static_cast<std::size_t>(this->EvaluationId(d ^ 1, b))].push_back(b);
-    }
-    for (int a = 0; a < k; ++a)
-    {
-      const int id = this->EvaluationId(d, a);
-      for (int b : bucket[static_cast<std::size_t>(id)])
-      {
-        this->AllowOne(d, a, b);
-      }
-      if (id == emptyId)
-      {
-        this->EmptyToward[static_cast<std::size_t>(d) * w + (a >> 6)] |= std::uint64_t(1)
-          << (a & 63);
-      }
-    }
-  }
-  this->Finish();
-}
-
-void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes) const
-{
-  const int w = this->Words();
-  std::fill(out, out + w, 0);
-  const std::uint64_t mask = this->Arrangement.FamilyMask(v);
-  for (int a = 0; a < this->NumberOfLabels(); ++a)
-  {
-    if ((this->LabelFamilies[static_cast<std::size_t>(a)] & ~mask) == 0)
-    {
-      out[a >> 6] |= std::uint64_t(1) << (a & 63);
-    }
-  }
-  for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
-  {
-    bool acrossSeam = false;
-    for (int a = 0; a < 3; ++a)
-      acrossSeam = acrossSeam ||
-        (((seamAxes >> a) & 1) &&
-          this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(a)] > 0);
-    if (l->Vertex < 0 && !acrossSeam)
-    {
-      const std::uint64_t* e =
-        this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
-      for (int i = 0; i < w; ++i)
-      {
-        out[i] &= e[i];
-      }
-    }
-  }
-}
-
-int ArrangementRules::InitialCount(std::int64_t v) const
-{
-  std::vector<std::uint64_t> bits(static_cast<std::size_t>(this->Words()));
-  this->InitialDomain(v, bits.data());
-  int n = 0;
-  for (auto b : bits)
-  {
-    n += __builtin_popcountll(b);
-  }
-  return n;
-}
-
 namespace
 {
 /**
- * One run of continuous synthesis (D§4.5, Algorithm 4.1; T§4.5.6 for the blocks): the model's
- * labels, each block's vertices and catalog, the attempt with one level of backtracking, and the
- * catalog snapshots. The run over the blocks is the shared BlockRunner.
+ * What the workers of one run share, read-only while blocks run: the rules, each vertex's
+ * starting catalog, the compiled constraints, the block layout and the schedule.
  */
-class ContinuousRun
+struct RunParts
 {
-public:
-  ContinuousRun(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
-    const ContinuousSynthesisOptions& options, ContinuousSynthesisResult& result)
-    : Arrangement(arrangement)
-    , Options(options)
-    , Rules(analysis, arrangement)
-    , Result(result)
-    , N(arrangement.NumberOfVertices())
-    , K(this->Rules.NumberOfLabels())
-    , Words(this->Rules.Words())
+  RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
+    const ContinuousSynthesisOptions& options)
+    : Rules(analysis, arrangement)
   {
+    const std::int64_t n = arrangement.NumberOfVertices();
+    const int words = this->Rules.Words();
+    this->Plan = std::make_unique<detail::ConstraintPlan>(
+      analysis, arrangement, options.Constraints, options.Seed);
     double reference = 0;
     for (int f = 0; f < arrangement.Families().Size(); ++f)
       reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
     this->Whole = options.BlockSize == 0;
-    this->Layout = std::make_unique<detail::BlockLayout>(
-      arrangement, this->Whole ? 0.0 : options.BlockSize * reference);
-    this->Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
-    result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
-    this->Initial.resize(static_cast<std::size_t>(this->N) * this->Words);
+    // Blocks spread outward from connectivity seeds one after the other; else non-touching
+    // blocks run in phases, concurrently.
+    this->Parallel = this->Plan->Seeds().empty();
+    this->Layout = std::make_unique<detail::BlockLayout>(arrangement,
+      this->Whole ? 0.0 : options.BlockSize * reference,
+      this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
+    this->Initial.resize(static_cast<std::size_t>(n) * words);
     int seams = 0;
     for (const ArrangementMirror* plan : options.PartOf)
       seams |= 1 << plan->Axis;
-    for (std::int64_t v = 0; v < this->N; ++v)
+    for (std::int64_t v = 0; v < n; ++v)
       this->Rules.InitialDomain(
-        v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words, seams);
+        v, this->Initial.data() + static_cast<std::size_t>(v) * words, seams);
     if (!options.PartOf.empty())
       RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
     if (options.Choice == LabelChoice::Frequency)
@@ -180,16 +66,76 @@ public:
       throw Error(
         "continuous synthesis: only uniform and frequency-weighted label choice are available");
     }
-    this->LocalOf.assign(static_cast<std::size_t>(this->N), -1);
-    this->Plan = std::make_unique<detail::ConstraintPlan>(
-      analysis, arrangement, options.Constraints, options.Seed);
     if (options.Constraints.RestrictsCatalog())
-      for (std::int64_t v = 0; v < this->N; ++v)
-        this->Plan->Restrict(v, this->Initial.data() + static_cast<std::size_t>(v) * this->Words);
+      for (std::int64_t v = 0; v < n; ++v)
+        this->Plan->Restrict(v, this->Initial.data() + static_cast<std::size_t>(v) * words);
+    if (this->Parallel)
+    {
+      this->Order.resize(this->Layout->Grid.size());
+      std::iota(this->Order.begin(), this->Order.end(), std::int64_t(0));
+    }
+    else
+    {
+      this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
+    }
+    for (std::size_t i = 0; i < this->Order.size(); ++i)
+    {
+      const auto& block = this->Layout->Grid[static_cast<std::size_t>(this->Order[i])];
+      this->Schedule.Phases.push_back(this->Parallel ? block.Phase : static_cast<int>(i));
+      this->Schedule.Keys.push_back(static_cast<std::uint64_t>(block.Index));
+    }
+  }
+
+  const ArrangementRules Rules;
+  std::unique_ptr<detail::ConstraintPlan> Plan;
+  bool Whole = true;
+  bool Parallel = true; ///< the schedule has phases of non-touching blocks
+  std::unique_ptr<detail::BlockLayout> Layout;
+  std::vector<std::uint64_t> Initial; ///< [vertex][word]: the catalog before anything is chosen
+  std::vector<double> Weights;        ///< per label; empty: uniform
+  std::vector<std::int64_t> Order;    ///< blocks (in the layout) in the order they are labelled
+  BlockSchedule Schedule;             ///< per position in Order: its phase and generator key
+};
+
+/**
+ * One worker of a run of continuous synthesis (D§4.5, Algorithm 4.1; T§4.5.6 for the blocks):
+ * its block's vertices and catalog, the attempt with one level of backtracking, and (worker 0,
+ * alone) the catalog snapshots. The workers share the model's labels, each writing only its own
+ * block's (blocks of a phase never touch); the run over the blocks is the shared BlockDriver.
+ */
+class ContinuousRun
+{
+public:
+  ContinuousRun(const RunParts& parts, const PlaneArrangement& arrangement,
+    const ContinuousSynthesisOptions& options, ContinuousSynthesisResult& result, unsigned worker)
+    : Arrangement(arrangement)
+    , Options(options)
+    , Rules(parts.Rules)
+    , Result(result)
+    , N(arrangement.NumberOfVertices())
+    , K(this->Rules.NumberOfLabels())
+    , Words(this->Rules.Words())
+    , Worker(worker)
+    , Whole(parts.Whole)
+    , Layout(parts.Layout.get())
+    , Blocks(this->Whole ? 1 : static_cast<std::int64_t>(parts.Order.size()))
+    , Initial(parts.Initial)
+    , Weights(parts.Weights)
+    , Plan(parts.Plan.get())
+    , Order(parts.Order)
+  {
+    if (worker == 0)
+      result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
+    this->LocalOf.assign(static_cast<std::size_t>(this->N), -1);
     this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
     this->Tally.assign(static_cast<std::size_t>(this->Plan->NumberOfTypes()), 0.0);
-    this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
   }
+
+  /// The shares of the model as every block of the next phase sees them.
+  void SetTally(const std::vector<double>& tally) { this->Tally = tally; }
+  const std::vector<double>& PhaseTally() const { return this->Tally; }
+  /// Labels withdrawn because their propagation failed, on this worker.
+  std::int64_t Backtracks() const { return this->Withdrawn; }
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
   std::int64_t BlockAt(std::size_t position) const { return this->Order[position]; }
@@ -216,6 +162,8 @@ public:
   /// Makes block @p b the current one: its vertices and their local numbers.
   void Enter(std::int64_t b)
   {
+    for (std::int64_t v : this->Verts) // the worker's previous block
+      this->LocalOf[static_cast<std::size_t>(v)] = -1;
     if (this->Whole)
     {
       this->Verts.resize(static_cast<std::size_t>(this->N));
@@ -234,16 +182,14 @@ public:
   }
 
   /// One attempt at the current block @p b: -1 when solved (its labels are written to the
-  /// model), else the local vertex whose catalog became empty.
-  std::int64_t Attempt(std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assignments);
+  /// model, the model's shares with them to @p tally), else the local vertex whose catalog
+  /// became empty.
+  std::int64_t Attempt(std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assignments,
+    std::vector<double>& tally);
 
-  /// After block @p b: its vertices leave, and its snapshots are emitted.
+  /// After the block labelled @p b-th (worker 0, alone): its snapshots are emitted.
   void Leave(std::int64_t b)
   {
-    b = static_cast<std::int64_t>(
-      std::find(this->Order.begin(), this->Order.end(), b) - this->Order.begin());
-    for (std::int64_t v : this->Verts)
-      this->LocalOf[static_cast<std::size_t>(v)] = -1;
     if (this->Whole || !this->Snapshots())
       return;
     // Snapshots 1 .. S-1 show the catalog of block floor(j · blocks / S) after its first
@@ -314,20 +260,21 @@ private:
 
   const PlaneArrangement& Arrangement;
   const ContinuousSynthesisOptions& Options;
-  const ArrangementRules Rules;
+  const ArrangementRules& Rules;
   ContinuousSynthesisResult& Result;
   const std::int64_t N;
   const int K, Words;
-  bool Whole = true;
-  std::unique_ptr<detail::BlockLayout> Layout;
-  std::int64_t Blocks = 1;
-  std::vector<std::uint64_t> Initial; ///< [vertex][word]: the catalog before anything is chosen
-  std::vector<double> Weights;        ///< per label; empty: uniform
-  std::unique_ptr<detail::ConstraintPlan> Plan;
-  bool Guided = false;              ///< labels drawn by Choose (constraints active)
-  std::vector<std::int64_t> Order;  ///< blocks in the order they are labelled
-  std::vector<double> Tally;        ///< solid shares of the model (per type bit)
-  std::vector<double> BlockTally;   ///< the same without the current block's labels
+  const unsigned Worker;
+  const bool Whole;
+  const detail::BlockLayout* Layout;
+  const std::int64_t Blocks;
+  const std::vector<std::uint64_t>& Initial; ///< [vertex][word]: the starting catalog
+  const std::vector<double>& Weights;        ///< per label; empty: uniform
+  const detail::ConstraintPlan* Plan;
+  const std::vector<std::int64_t>& Order; ///< blocks in the order they are labelled
+  bool Guided = false;                    ///< labels drawn by Choose (constraints active)
+  std::vector<double> Tally;      ///< solid shares of the model at the phase's start (per type bit)
+  std::vector<double> BlockTally; ///< the same without the current block's labels
   std::vector<double> AttemptTally; ///< BlockTally plus the attempt's choices so far
   std::vector<int> Candidates;      ///< scratch of Choose
   std::vector<double> CandidateWeights;
@@ -338,6 +285,7 @@ private:
   CatalogSnapshot BlockStart;           ///< blocks: the block's catalog after propagation
   std::int64_t Step = 0;
   std::int64_t AssignmentsSoFar = 0; ///< label choices of all finished attempts
+  std::int64_t Withdrawn = 0;        ///< labels withdrawn (backtracks) on this worker
   std::string Failure;               ///< where the last failed attempt emptied a catalog
 };
 
@@ -445,7 +393,7 @@ std::int64_t ContinuousRun::AssignAll(
   std::int64_t empty = -1;
   for (;;)
   {
-    if (driver.Poll(0, assigned))
+    if (driver.Poll(this->Worker, assigned))
       return 0; // cancelled: the attempt ends here (and no other starts)
     const std::int64_t i = queue.Next();
     if (i < 0)
@@ -462,7 +410,7 @@ std::int64_t ContinuousRun::AssignAll(
       if (empty < 0)
         break;
       this->Domains.Undo(0);
-      ++this->Result.Statistics.Backtracks;
+      ++this->Withdrawn;
       std::fill(exclude.begin(), exclude.end(), ~std::uint64_t(0));
       exclude[static_cast<std::size_t>(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
       this->Domains.Keep(i, exclude.data());
@@ -571,8 +519,8 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   return c[static_cast<std::size_t>(k)];
 }
 
-std::int64_t ContinuousRun::Attempt(
-  std::int64_t b, Random& rng, BlockDriver& driver, std::int64_t& assignments)
+std::int64_t ContinuousRun::Attempt(std::int64_t b, Random& rng, BlockDriver& driver,
+  std::int64_t& assignments, std::vector<double>& tally)
 {
   this->Pending.clear();
   std::int64_t empty = this->ConstrainFromOutside();
@@ -617,13 +565,55 @@ std::int64_t ContinuousRun::Attempt(
   }
   for (std::size_t i = 0; i < this->Verts.size(); ++i)
     this->Result.Labels[static_cast<std::size_t>(this->Verts[i])] = best[i];
-  this->Tally = this->Tallied(best);
+  tally = this->Tallied(best);
   while (this->Whole && this->Snapshots() &&
     static_cast<int>(this->Pending.size()) < this->Options.Snapshots)
     this->Pending.push_back(this->Capture(b, true)); // decided by propagation before the last marks
   for (const auto& s : this->Pending) // only the successful attempt's snapshots are kept
     this->Emit(s);
   return -1;
+}
+
+/**
+ * Runs the schedule's blocks on the driver's workers (worker 0: @p run, the others made here).
+ * The model's type shares move on in block order after each phase, so every block of a phase
+ * sees the same shares whatever the number of threads.
+ */
+SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
+  const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options,
+  ContinuousSynthesisResult& result, BlockDriver& driver)
+{
+  std::vector<std::unique_ptr<ContinuousRun>> others;
+  for (unsigned w = 1; w < driver.Workers(); ++w)
+    others.push_back(std::make_unique<ContinuousRun>(parts, arrangement, options, result, w));
+  auto on = [&](unsigned w) -> ContinuousRun& { return w == 0 ? run : *others[w - 1]; };
+  const BlockSchedule& schedule = parts.Schedule;
+  std::vector<std::vector<double>> tallies(schedule.Size());
+  std::vector<double> model = run.PhaseTally();
+  BlockClient client;
+  client.Enter = [&](unsigned w, std::size_t i) { on(w).Enter(run.BlockAt(i)); };
+  client.Attempt = [&](unsigned w, std::size_t i, int, Random& rng, std::int64_t& assignments)
+  {
+    ContinuousRun& r = on(w);
+    const std::int64_t empty = r.Attempt(run.BlockAt(i), rng, driver, assignments, tallies[i]);
+    return empty < 0 ? empty : r.Vertex(empty); // the arrangement vertex, for Describe
+  };
+  client.Describe = [](std::size_t, const BlockOutcome& out, BlockFailure& f)
+  { f.EmptyIndex = out.Empty; };
+  client.After = [&](std::size_t i, const BlockOutcome&)
+  {
+    const std::vector<double>& phase = run.PhaseTally();
+    for (std::size_t t = 0; t < tallies[i].size(); ++t)
+      model[t] += tallies[i][t] - phase[t];
+    if (i + 1 == schedule.Size() || schedule.Phases[i + 1] != schedule.Phases[i])
+      for (unsigned w = 0; w < driver.Workers(); ++w)
+        on(w).SetTally(model);
+    run.Leave(static_cast<std::int64_t>(i));
+  };
+  const SynthesisStatus status = driver.Run(schedule, client, result.Statistics);
+  for (unsigned w = 0; w < driver.Workers(); ++w)
+    result.Statistics.Backtracks += on(w).Backtracks();
+  return status;
 }
 } // namespace
 
@@ -645,28 +635,23 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     throw Error("continuous synthesis: at least one attempt is needed");
   ContinuousSynthesisResult result;
   SynthesisStatistics& stats = result.Statistics;
-  ContinuousRun run(analysis, arrangement, options, result);
+  const RunParts parts(analysis, arrangement, options);
+  ContinuousRun run(parts, arrangement, options, result, 0);
   if (run.Snapshots())
     run.Emit(run.Capture(-1, false));
 
-  // Blocks one after the other, outward from the connectivity seeds (each its own phase).
+  // Phases of non-touching blocks on threads (snapshots: one thread, the same model); blocks
+  // spreading outward from connectivity seeds one after the other.
   BlockRunner::Policy policy;
-  policy.Serial = true;
+  policy.Threads = options.Threads;
+  policy.Serial = run.Snapshots() || !parts.Parallel;
   policy.Progress = options.Progress;
-  const auto blocks = static_cast<std::size_t>(run.NumberOfBlocks());
-  BlockDriver driver(std::move(policy), options.Seed, options.Attempts, blocks, start);
-  std::vector<std::uint64_t> keys(blocks);
-  for (std::size_t i = 0; i < blocks; ++i)
-    keys[i] = static_cast<std::uint64_t>(run.BlockAt(i));
-  BlockClient client;
-  client.Enter = [&](unsigned, std::size_t i) { run.Enter(run.BlockAt(i)); };
-  client.Attempt = [&](unsigned, std::size_t i, int, Random& rng, std::int64_t& assignments)
-  { return run.Attempt(run.BlockAt(i), rng, driver, assignments); };
-  client.Describe = [&](std::size_t, const BlockOutcome& out, BlockFailure& f)
-  { f.EmptyIndex = run.Vertex(out.Empty); };
-  client.After = [&](std::size_t i, const BlockOutcome&) { run.Leave(run.BlockAt(i)); };
-  result.Status = driver.Run(BlockSchedule::InSequence(std::move(keys)), client, stats);
-  stats.Phases = static_cast<int>(blocks);
+  BlockDriver driver(
+    std::move(policy), options.Seed, options.Attempts, parts.Schedule.Size(), start);
+  result.Status = RunBlocks(parts, run, arrangement, options, result, driver);
+  stats.Phases = 0;
+  for (std::size_t i = 0; i < parts.Schedule.Size(); ++i)
+    stats.Phases += i == 0 || parts.Schedule.Phases[i] != parts.Schedule.Phases[i - 1] ? 1 : 0;
   if (!driver.End(result.Status, result.Message, stats, run.WholeModel(),
         [&](const BlockFailure&)
         {
@@ -689,80 +674,6 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";
   return result;
-}
-
-std::vector<NonTrihedralSites> FindNonTrihedralSites(
-  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
-{
-  std::vector<NonTrihedralSites> out;
-  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
-  {
-    const auto& info = analysis.Label(a);
-    if (info.Kind != FeatureKind::Vertex ||
-      info.Label.Families.size() < (analysis.Planar() ? 3u : 4u))
-      continue;
-    std::uint64_t mask = 0;
-    for (int f : info.Label.Families)
-      mask |= std::uint64_t(1) << f;
-    NonTrihedralSites s;
-    s.Label = a;
-    s.Planes = static_cast<int>(info.Label.Families.size());
-    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
-      s.Sites += (arrangement.FamilyMask(v) & mask) == mask ? 1 : 0;
-    out.push_back(s);
-  }
-  return out;
-}
-
-std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
-  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels)
-{
-  const PlaneFamilySet& set = arrangement.Families();
-  const std::int64_t n = arrangement.NumberOfVertices();
-  if (static_cast<std::int64_t>(labels.size()) != n)
-  {
-    return "there are " + std::to_string(labels.size()) + " labels for " + std::to_string(n) +
-      " vertices";
-  }
-  const NeighbourhoodLabel empty = NeighbourhoodLabel::Constant(0);
-  for (std::int64_t v = 0; v < n; ++v)
-  {
-    const int a = labels[static_cast<std::size_t>(v)];
-    if (a < 0 || a >= analysis.NumberOfLabels())
-    {
-      return "vertex " + std::to_string(v) + " has no example label";
-    }
-    const NeighbourhoodLabel& la = analysis.Label(a).Label;
-    for (int f : la.Families)
-    {
-      if (!((arrangement.FamilyMask(v) >> f) & 1u))
-      {
-        return "vertex " + std::to_string(v) +
-          " has a label on a plane that does not pass through it";
-      }
-    }
-    for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
-    {
-      const IntVec3& d = arrangement.Direction(l->Direction);
-      const NeighbourhoodLabel here = la.Evaluate(set, d);
-      if (l->Vertex < 0)
-      {
-        if (here != empty)
-        {
-          return "vertex " + std::to_string(v) + " is not empty toward the outside of the box";
-        }
-        continue;
-      }
-      const NeighbourhoodLabel& lb =
-        analysis.Label(labels[static_cast<std::size_t>(l->Vertex)]).Label;
-      if (here != lb.Evaluate(set, { -d[0], -d[1], -d[2] }))
-      {
-        return "vertices " + std::to_string(v) + " and " + std::to_string(l->Vertex) +
-          " disagree about the edge between them";
-      }
-    }
-  }
-  return {};
 }
 
 } // namespace msynth

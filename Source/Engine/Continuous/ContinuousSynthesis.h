@@ -63,6 +63,10 @@ struct ContinuousSynthesisOptions
   /// arrangement at once (Algorithm 4.1 as written). Blocks overlap by half (§4.5.6).
   double BlockSize = 0;
   int Attempts = 20; ///< tries per block (or for the whole model) before giving up
+  /// Threads for blocks (non-touching blocks of a phase run concurrently); 0: one per core. The
+  /// model does not depend on it. Runs with connectivity seeds (blocks spread outward from them
+  /// one after the other) and with snapshots use one thread.
+  int Threads = 0;
   /// Which undecided vertex is labelled next: scan line (z, then y, then x; the dissertation),
   /// a seeded random order, or the fewest remaining labels first (ties at random).
   SiteOrder Order = SiteOrder::MinimumEntropy;
@@ -104,8 +108,10 @@ struct ContinuousSynthesisResult
 
 /**
  * Labels the arrangement. With blocks, starts from the all-empty model (always consistent) and
- * relabels overlapping blocks in scan order, rolling a block back when every attempt fails, so
- * the result is always consistent. Seeded and deterministic.
+ * relabels overlapping blocks phase by phase (non-touching blocks of a phase concurrently; with
+ * connectivity seeds one by one outward from them), rolling a block back when every attempt
+ * fails, so the result is always consistent. Seeded and deterministic: the same model for any
+ * number of threads.
  */
 ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options);

@@ -24,15 +24,18 @@ namespace detail
 /**
  * Vertices grouped into overlapping blocks (T§4.5.6): cells of half the block edge, a block is
  * 2 × 2 × 2 cells, one cell apart: the shared box-block grid (Core/BlockSynthesis.h's
- * PlanBoxBlocks) over the cells.
+ * PlanBoxBlocks) over the cells. With NonTouching phases, the blocks of a phase lie further
+ * apart than the longest arrangement edge (in cells), so no block reads a vertex another one
+ * labels.
  */
 struct BlockLayout
 {
   std::array<std::int64_t, 3> Cells{ { 1, 1, 1 } };
   std::vector<std::vector<std::int64_t>> CellVertices;
-  std::vector<BoxBlock<3>> Grid; ///< the blocks in scan order, in cells
+  std::vector<BoxBlock<3>> Grid; ///< the blocks by phase, then in scan order, in cells
+  int Phases = 1;
 
-  BlockLayout(const PlaneArrangement& arrangement, double edge)
+  BlockLayout(const PlaneArrangement& arrangement, double edge, PhasePolicy policy)
   {
     const auto& p = arrangement.Parameters();
     const int dims = arrangement.Planar() ? 2 : 3;
@@ -48,14 +51,13 @@ struct BlockLayout
           std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent / half - 1e-9)));
       }
     }
-    int phases = 0;
-    this->Grid = PlanBoxBlocks<3>(
-      this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, PhasePolicy::Sequential, phases);
     this->CellVertices.resize(
       static_cast<std::size_t>(this->Cells[0] * this->Cells[1] * this->Cells[2]));
+    std::vector<std::array<std::int64_t, 3>> cellOf(
+      static_cast<std::size_t>(arrangement.NumberOfVertices()), { { 0, 0, 0 } });
     for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
     {
-      std::array<std::int64_t, 3> cell{ { 0, 0, 0 } };
+      auto& cell = cellOf[static_cast<std::size_t>(v)];
       for (std::size_t c = 0; static_cast<int>(c) < dims && edge > 0; ++c)
       {
         const double t = (arrangement.Position(v)[c] - lo[c]) / half;
@@ -67,6 +69,16 @@ struct BlockLayout
           cell[0] + this->Cells[0] * (cell[1] + this->Cells[1] * cell[2]))]
         .push_back(v);
     }
+    // The longest edge in cells: how far apart the blocks of a phase must be.
+    std::int64_t reach = 1;
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+      for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
+        for (std::size_t c = 0; l->Vertex >= 0 && c < 3; ++c)
+          reach = std::max(reach,
+            std::abs(cellOf[static_cast<std::size_t>(v)][c] -
+              cellOf[static_cast<std::size_t>(l->Vertex)][c]));
+    this->Grid =
+      PlanBoxBlocks<3>(this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, policy, this->Phases, reach);
   }
 
   std::int64_t NumberOfBlocks() const { return static_cast<std::int64_t>(this->Grid.size()); }

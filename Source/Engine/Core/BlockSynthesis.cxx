@@ -81,15 +81,16 @@ std::vector<std::int64_t> BlockStarts(std::int64_t n, std::int64_t m, std::int64
 template <std::size_t D>
 std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
   const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
-  int& phases)
+  int& phases, std::int64_t reach)
 {
+  reach = std::max<std::int64_t>(reach, 0);
   std::array<std::vector<std::int64_t>, D> starts;
   std::array<int, D> period{};
   std::size_t count = 1;
   for (std::size_t a = 0; a < D; ++a)
   {
     starts[a] = BlockStarts(n[a], m[a], step[a]);
-    period[a] = starts[a].size() > 1 ? static_cast<int>((m[a] + 1 + step[a] - 1) / step[a]) : 1;
+    period[a] = starts[a].size() > 1 ? static_cast<int>((m[a] + reach + step[a] - 1) / step[a]) : 1;
     count *= starts[a].size();
   }
   std::vector<BoxBlock<D>> blocks(count);
@@ -126,9 +127,11 @@ std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
 }
 
 template std::vector<BoxBlock<3>> PlanBoxBlocks<3>(const std::array<std::int64_t, 3>&,
-  const std::array<std::int64_t, 3>&, const std::array<std::int64_t, 3>&, PhasePolicy, int&);
+  const std::array<std::int64_t, 3>&, const std::array<std::int64_t, 3>&, PhasePolicy, int&,
+  std::int64_t);
 template std::vector<BoxBlock<4>> PlanBoxBlocks<4>(const std::array<std::int64_t, 4>&,
-  const std::array<std::int64_t, 4>&, const std::array<std::int64_t, 4>&, PhasePolicy, int&);
+  const std::array<std::int64_t, 4>&, const std::array<std::int64_t, 4>&, PhasePolicy, int&,
+  std::int64_t);
 
 int ChooseTrivialLabel(int k, int zero, const std::function<bool(int)>& usable)
 {

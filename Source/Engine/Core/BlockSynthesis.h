@@ -158,12 +158,15 @@ struct BoxBlock
 
 /**
  * The blocks of a grid of @p n sites, blocks of @p m, origins @p step apart (axis 0 fastest),
- * ordered by phase then scan order. @p phases receives the number of phases.
+ * ordered by phase then scan order. @p phases receives the number of phases. @p reach: how far
+ * (in sites, along any axis) a site's neighbours may lie; NonTouching blocks of a phase are
+ * ceil((m + reach) / step) origins apart, so no block reads a site another one writes (1 for
+ * the grids' six neighbours; the continuous solver's cells pass the longest edge in cells).
  */
 template <std::size_t D>
 std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
   const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
-  int& phases);
+  int& phases, std::int64_t reach = 1);
 
 /// The phase of each block of @p blocks, in their order (what BlockRunner::Run takes).
 template <std::size_t D>

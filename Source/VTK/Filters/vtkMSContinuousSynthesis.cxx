@@ -54,6 +54,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "Attempts: " << this->Attempts << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "NumberOfSnapshots: " << this->NumberOfSnapshots << "\n";
@@ -166,6 +167,7 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.BlockSize = self->GetBlockSize();
   options.Attempts = self->GetAttempts();
+  options.Threads = self->GetNumberOfThreads();
   options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
   options.Choice =
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;

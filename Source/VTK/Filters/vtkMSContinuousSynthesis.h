@@ -84,6 +84,13 @@ public:
   ///@}
 
   ///@{
+  /// Threads for blocks (non-touching blocks of a phase run concurrently); 0 uses one per core.
+  /// The model does not depend on it. Runs with connectivity seeds or snapshots use one.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
   /// Vertex order (SiteOrders). Default MINIMUM_ENTROPY.
   vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
   vtkGetMacro(SiteOrder, int);
@@ -180,6 +187,7 @@ private:
   vtkIdType Seed = 0;
   double BlockSize = 4;
   int Attempts = 20;
+  int NumberOfThreads = 0;
   int SiteOrder = MINIMUM_ENTROPY;
   int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The continuous solver's rules (D§4.5.5: eval(a, d) = eval(b, −d) compiled into a
+// CompatibilityRelation), the independent edge-by-edge check of a labelling, and the sites of
+// non-trihedral labels (TVCG §4.4). The solver itself is ContinuousSynthesis.cxx.
+#include "Continuous/ContinuousSynthesis.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <map>
+
+namespace msynth
+{
+ArrangementRules::ArrangementRules(
+  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
+  : Arrangement(arrangement)
+{
+  const PlaneFamilySet& set = arrangement.Families();
+  if (set.AllNormals() != analysis.Families().AllNormals())
+  {
+    throw Error("the plane arrangement was built for other plane families than the example's");
+  }
+  const int k = analysis.NumberOfLabels();
+  const int directions = arrangement.NumberOfDirections();
+  this->Allocate(k, std::max(directions, 1));
+  this->Empty = analysis.Find(NeighbourhoodLabel::Constant(0));
+  if (this->Empty < 0)
+  {
+    throw Error("the example has no empty space around it");
+  }
+  for (const auto& info : analysis.Labels())
+  {
+    std::uint64_t mask = 0;
+    for (int f : info.Label.Families)
+    {
+      mask |= std::uint64_t(1) << f;
+    }
+    this->LabelFamilies.push_back(mask);
+  }
+  std::map<NeighbourhoodLabel, int> ids;
+  const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
+  this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
+  for (int d = 0; d < directions; ++d)
+  {
+    for (int a = 0; a < k; ++a)
+    {
+      const NeighbourhoodLabel e = analysis.Label(a).Label.Evaluate(set, arrangement.Direction(d));
+      const int id = ids.emplace(e, static_cast<int>(ids.size())).first->second;
+      this->Evaluations[static_cast<std::size_t>(d) * k + a] = id;
+    }
+  }
+  const int w = this->Words();
+  this->EmptyToward.assign(static_cast<std::size_t>(directions) * w, 0);
+  std::vector<std::vector<int>> bucket(ids.size());
+  for (int d = 0; d < directions; ++d)
+  {
+    // Labels b at the far end of an edge along d see it along the opposite class d ^ 1.
+    for (auto& b : bucket)
+    {
+      b.clear();
+    }
+    for (int b = 0; b < k; ++b)
+    {
+      bucket[static_cast<std::size_t>(this->EvaluationId(d ^ 1, b))].push_back(b);
+    }
+    for (int a = 0; a < k; ++a)
+    {
+      const int id = this->EvaluationId(d, a);
+      for (int b : bucket[static_cast<std::size_t>(id)])
+      {
+        this->AllowOne(d, a, b);
+      }
+      if (id == emptyId)
+      {
+        this->EmptyToward[static_cast<std::size_t>(d) * w + (a >> 6)] |= std::uint64_t(1)
+          << (a & 63);
+      }
+    }
+  }
+  this->Finish();
+}
+
+void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes) const
+{
+  const int w = this->Words();
+  std::fill(out, out + w, 0);
+  const std::uint64_t mask = this->Arrangement.FamilyMask(v);
+  for (int a = 0; a < this->NumberOfLabels(); ++a)
+  {
+    if ((this->LabelFamilies[static_cast<std::size_t>(a)] & ~mask) == 0)
+    {
+      out[a >> 6] |= std::uint64_t(1) << (a & 63);
+    }
+  }
+  for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+  {
+    bool acrossSeam = false;
+    for (int a = 0; a < 3; ++a)
+      acrossSeam = acrossSeam ||
+        (((seamAxes >> a) & 1) &&
+          this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(a)] > 0);
+    if (l->Vertex < 0 && !acrossSeam)
+    {
+      const std::uint64_t* e =
+        this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
+      for (int i = 0; i < w; ++i)
+      {
+        out[i] &= e[i];
+      }
+    }
+  }
+}
+
+int ArrangementRules::InitialCount(std::int64_t v) const
+{
+  std::vector<std::uint64_t> bits(static_cast<std::size_t>(this->Words()));
+  this->InitialDomain(v, bits.data());
+  int n = 0;
+  for (auto b : bits)
+  {
+    n += __builtin_popcountll(b);
+  }
+  return n;
+}
+
+std::vector<NonTrihedralSites> FindNonTrihedralSites(
+  const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement)
+{
+  std::vector<NonTrihedralSites> out;
+  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+  {
+    const auto& info = analysis.Label(a);
+    if (info.Kind != FeatureKind::Vertex ||
+      info.Label.Families.size() < (analysis.Planar() ? 3u : 4u))
+      continue;
+    std::uint64_t mask = 0;
+    for (int f : info.Label.Families)
+      mask |= std::uint64_t(1) << f;
+    NonTrihedralSites s;
+    s.Label = a;
+    s.Planes = static_cast<int>(info.Label.Families.size());
+    for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
+      s.Sites += (arrangement.FamilyMask(v) & mask) == mask ? 1 : 0;
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels)
+{
+  const PlaneFamilySet& set = arrangement.Families();
+  const std::int64_t n = arrangement.NumberOfVertices();
+  if (static_cast<std::int64_t>(labels.size()) != n)
+  {
+    return "there are " + std::to_string(labels.size()) + " labels for " + std::to_string(n) +
+      " vertices";
+  }
+  const NeighbourhoodLabel empty = NeighbourhoodLabel::Constant(0);
+  for (std::int64_t v = 0; v < n; ++v)
+  {
+    const int a = labels[static_cast<std::size_t>(v)];
+    if (a < 0 || a >= analysis.NumberOfLabels())
+    {
+      return "vertex " + std::to_string(v) + " has no example label";
+    }
+    const NeighbourhoodLabel& la = analysis.Label(a).Label;
+    for (int f : la.Families)
+    {
+      if (!((arrangement.FamilyMask(v) >> f) & 1u))
+      {
+        return "vertex " + std::to_string(v) +
+          " has a label on a plane that does not pass through it";
+      }
+    }
+    for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
+    {
+      const IntVec3& d = arrangement.Direction(l->Direction);
+      const NeighbourhoodLabel here = la.Evaluate(set, d);
+      if (l->Vertex < 0)
+      {
+        if (here != empty)
+        {
+          return "vertex " + std::to_string(v) + " is not empty toward the outside of the box";
+        }
+        continue;
+      }
+      const NeighbourhoodLabel& lb =
+        analysis.Label(labels[static_cast<std::size_t>(l->Vertex)]).Label;
+      if (here != lb.Evaluate(set, { -d[0], -d[1], -d[2] }))
+      {
+        return "vertices " + std::to_string(v) + " and " + std::to_string(l->Vertex) +
+          " disagree about the edge between them";
+      }
+    }
+  }
+  return {};
+}
+
+} // namespace msynth
