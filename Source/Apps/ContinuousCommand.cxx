@@ -132,52 +132,34 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
   const std::string& dir, const std::vector<std::pair<std::string, double>>& stages)
 {
   vtkFieldData* fd = labelled->GetFieldData();
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size[0]
-          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"blockSize\": " << o.Blocks
-          << ",\n  \"seed\": " << o.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
-          << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
-      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
-      out << "  \"Grounded\": " << (o.Grounded ? "true" : "false")
-          << ",\n  \"Components\": " << CountOf(fd, "Components")
-          << ",\n  \"GroundedComponents\": " << CountOf(fd, "GroundedComponents")
-          << ",\n  \"FloatingPartsRemoved\": " << CountOf(fd, "FloatingPartsRemoved")
-          << ",\n  \"PartsBeyondSeedsRemoved\": " << CountOf(fd, "PartsBeyondSeedsRemoved")
-          << ",\n  \"ModelCandidates\": " << o.Models
-          << ",\n  \"ModelChosen\": " << CountOf(fd, "ModelChosen") << ",\n  \"MatchError\": "
-          << (fd->GetArray("MatchError") ? fd->GetArray("MatchError")->GetTuple1(0) : 0.0) << ",\n";
-      // Shares of the solid per object type: by volume of the model written, and by vertex
-      // occupancy (what the proportions steer).
-      auto shares = [&out](const char* key, vtkFieldData* from, const std::string& prefix)
-      {
-        out << "  \"" << key << "\": {";
-        const char* separator = "";
-        for (int i = 0; i < from->GetNumberOfArrays(); ++i)
-        {
-          const std::string name = from->GetArrayName(i) ? from->GetArrayName(i) : "";
-          if (name.rfind(prefix, 0) == 0)
-          {
-            out << separator << JsonString(name.substr(prefix.size())) << ": "
-                << from->GetArray(i)->GetTuple1(0);
-            separator = ", ";
-          }
-        }
-        out << "},\n";
-      };
-      shares("TypeShares", model->GetFieldData(), "VolumeShare_");
-      shares("VertexShares", fd, "TypeShare_");
-      out << "  \"StageSeconds\": {";
-      const char* separator = "";
-      for (const auto& [stage, seconds] : stages)
-      {
-        out << separator << JsonString(stage) << ": " << seconds;
-        separator = ", ";
-      }
-      out << "},\n";
-      out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
-    });
+  vtkDataArray* match = fd->GetArray("MatchError");
+  std::string seconds;
+  for (const auto& [stage, value] : stages)
+    seconds += (seconds.empty() ? "" : ", ") + JsonString(stage) + ": " + JsonNumber(value);
+  StatisticsJson()
+    .Text("example", o.Example)
+    .Raw("size", "[" + JsonNumber(o.Size[0]) + ", " + JsonNumber(o.Size[1]) + ", " +
+        JsonNumber(o.Size[2]) + "]")
+    .Number("blockSize", o.Blocks)
+    .Count("seed", o.Seed)
+    .Count("Vertices", labelled->GetNumberOfPoints())
+    .Count("Polygons", model->GetNumberOfPolys())
+    .Solver(fd)
+    .Flag("Grounded", o.Grounded)
+    .Count("Components", CountOf(fd, "Components"))
+    .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
+    .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
+    .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
+    .Count("ModelCandidates", o.Models)
+    .Count("ModelChosen", CountOf(fd, "ModelChosen"))
+    .Number("MatchError", match ? match->GetTuple1(0) : 0.0)
+    // Shares of the solid per object type: by volume of the model written, and by vertex
+    // occupancy (what the proportions steer).
+    .Prefixed("TypeShares", model->GetFieldData(), "VolumeShare_")
+    .Prefixed("VertexShares", fd, "TypeShare_")
+    .Raw("StageSeconds", "{" + seconds + "}")
+    .Text("Message", MessageOf(fd))
+    .Write(dir + "/statistics.json");
 }
 
 /// The label solver's settings from the command line's options.
@@ -303,13 +285,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   vtkPolyData* model = mesh->GetOutput();
   vtkPolyData* labelled = synthesis->GetOutput();
 
-  vtkNew<vtkPolyData> saved; // reproducible for a seed: timing goes to statistics.json only
-  saved->ShallowCopy(labelled);
-  vtkNew<vtkFieldData> fields;
-  fields->DeepCopy(labelled->GetFieldData());
-  fields->RemoveArray("Seconds");
-  saved->SetFieldData(fields);
-  WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
+  WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", labelled);
   WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
   lap("vtp files");
   const Voxels voxels = ChooseVoxels(labelled, model, o);

@@ -2,6 +2,7 @@
 #include "vtkMSOpenVDBWriter.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
@@ -172,7 +173,7 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
   return true;
 }
 /// File metadata: every single-valued array of @p field (strings such as ExampleFile, numbers
-/// such as the solver's Seed and statistics; not Seconds, so equal runs give equal files), then
+/// such as the solver's Seed and statistics; not the timing, so equal runs give equal files), then
 /// the pairs given.
 msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::MetadataMap& extra)
 {
@@ -181,7 +182,7 @@ msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::Me
   {
     vtkAbstractArray* array = field->GetAbstractArray(i);
     if (!array || !array->GetName() || array->GetNumberOfValues() != 1 ||
-      std::string(array->GetName()) == "Seconds")
+      vtkMSFieldData::IsTiming(array->GetName()))
     {
       continue;
     }
