@@ -138,8 +138,9 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     seconds += (seconds.empty() ? "" : ", ") + JsonString(stage) + ": " + JsonNumber(value);
   StatisticsJson()
     .Text("example", o.Example)
-    .Raw("size", "[" + JsonNumber(o.Size[0]) + ", " + JsonNumber(o.Size[1]) + ", " +
-        JsonNumber(o.Size[2]) + "]")
+    .Raw("size",
+      "[" + JsonNumber(o.Size[0]) + ", " + JsonNumber(o.Size[1]) + ", " + JsonNumber(o.Size[2]) +
+        "]")
     .Number("blockSize", o.Blocks)
     .Count("seed", o.Seed)
     .Count("Vertices", labelled->GetNumberOfPoints())

@@ -126,8 +126,8 @@ void AddQuality(vtkFieldData* out, const std::vector<msynth::LabelGrid>& example
     if (s.Offsets.size() > 2)
       soft.push_back(s);
   }
-  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "PatternLogProbability",
-    msynth::PatternLogProbability(examples, model, soft, epsilon));
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+    out, "PatternLogProbability", msynth::PatternLogProbability(examples, model, soft, epsilon));
 }
 } // namespace
 
@@ -172,8 +172,8 @@ bool vtkMSCheckModel::CheckLabels(
         recorded ? Recorded(fd, "TilesetSubset") : this->TilesetSubset,
         recorded ? Recorded(fd, "TilesFolder") : this->TilesFolder)
                 .Pairs;
-    report = msynth::CheckConsistency(
-      grids, pairs, grid, static_cast<std::size_t>(this->MaximumReported));
+    report =
+      msynth::CheckConsistency(grids, pairs, grid, static_cast<std::size_t>(this->MaximumReported));
     AddViolations(out, report);
     if (!this->Shapes.empty())
       AddQuality(out, grids, grid, this->Shapes, this->Epsilon);

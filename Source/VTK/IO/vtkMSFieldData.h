@@ -14,7 +14,7 @@
 #include "ModelSynthIOModule.h"  // for export macro
 #include "vtkFieldData.h"        // for AddFieldValue
 #include "vtkNew.h"              // for AddFieldValue
-#include "vtkSmartPointer.h"      // for WithoutTiming
+#include "vtkSmartPointer.h"     // for WithoutTiming
 
 #include <string>
 
