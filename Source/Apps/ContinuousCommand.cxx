@@ -5,31 +5,19 @@
 #include "Common.h"
 #include "Examples.h"
 #include "Synthesize.h"
-#include "vtkMSArrangementStorage.h"
-#include "vtkMSLabelArrays.h"
-#include "vtkMSPolyhedra.h"
 
-#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkImageData.h"
-#include "vtkIntArray.h"
 #include "vtkMSArrangementMesh.h"
 #include "vtkMSContinuousSynthesis.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
-#include "Continuous/ContinuousMesh.h"
-#include "Continuous/PlaneArrangement.h"
-
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <iostream>
 
 namespace msynth
@@ -38,84 +26,16 @@ namespace cli
 {
 namespace
 {
-/// The voxel sizes of the outputs: model.vdb's, and the catalog sequence's.
-struct Voxels
-{
-  double Model = 1;
-  double Catalog = 1;
-  std::array<double, 6> Bounds{};
-  bool Planar = false;
-};
-
-Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o)
-{
-  Voxels v;
-  v.Planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
-  labelled->GetBounds(v.Bounds.data());
-  const auto record = vtkMSArrangementStorage::LoadArrangement(labelled->GetFieldData(), o.Example);
-  const msynth::PlaneFamilySet families(record.Normals);
-  double smallest = 0;
-  for (int f = 0; f < families.Size(); ++f)
-  {
-    const double world = record.Parameters.Spacing(families, f);
-    smallest = f == 0 ? world : std::min(smallest, world);
-  }
-  double extent = 0;
-  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
-  {
-    extent = std::max(extent, v.Bounds[2 * c + 1] - v.Bounds[2 * c]);
-  }
-  v.Model = o.Voxel > 0 ? o.Voxel : std::max(smallest / 4, extent / 256);
-  if (!(v.Model > 0))
-  {
-    v.Model = 1;
-  }
-  v.Catalog = o.Voxel > 0 ? o.Voxel : std::max(smallest / 2, extent / 128);
-  return v;
-}
-
 /// model.vdb: a 3D model as level sets per object type and a fog volume; a 2D (or empty) model
-/// as a slab of object types.
+/// as a slab of object types (the writer chooses the voxels from the planes of @p labelled,
+/// unless --voxel gives them).
 void WriteModelVDB(
-  vtkPolyData* model, const Voxels& v, const SynthesizeOptions& o, const std::string& dir)
+  vtkPolyData* model, vtkPolyData* labelled, const SynthesizeOptions& o, const std::string& dir)
 {
-  const double voxel = v.Model;
-  const auto& bounds = v.Bounds;
-  std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
-  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
-  {
-    dims[static_cast<std::size_t>(c)] = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
-  }
-  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
-    1e9)
-  {
-    throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
-  }
   vtkNew<vtkMSOpenVDBWriter> vdb;
-  vtkNew<vtkImageData> image;
-  if (!v.Planar && model->GetNumberOfPolys() > 0)
-  {
-    vdb->SetInputData(model);
-    vdb->SetVoxelSize(voxel);
-  }
-  else
-  {
-    const auto engineMesh = vtkMSPolyhedra::ToContinuousMesh(model, "model");
-    const msynth::LabelGrid volume = msynth::VoxelizeModel(
-      engineMesh, { bounds[0], bounds[2], v.Planar ? 0.0 : bounds[4] }, voxel, dims);
-    image->SetDimensions(
-      static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
-    image->SetSpacing(voxel, voxel, voxel);
-    image->SetOrigin(
-      bounds[0] + voxel / 2, bounds[2] + voxel / 2, v.Planar ? 0.0 : bounds[4] + voxel / 2);
-    vtkSmartPointer<vtkIntArray> types;
-    types.TakeReference(vtkMSLabelArrays::NewLabelArray(volume, "ObjectType"));
-    image->GetPointData()->SetScalars(types);
-    vdb->SetInputData(image);
-    vdb->SetLabelArrayName("ObjectType");
-    vdb->WriteFloatLabelsOn();
-  }
+  vdb->SetInputData(model);
+  vdb->SetArrangementData(labelled);
+  vdb->SetVoxelSize(o.Voxel);
   vdb->SetFileName((dir + "/model.vdb").c_str());
   vdb->AddMetadata("msynth_command", "synthesize");
   vdb->AddMetadata("example", o.Example.c_str());
@@ -289,14 +209,13 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", labelled);
   WriteXML<vtkXMLPolyDataWriter>(dir + "/model.vtp", model);
   lap("vtp files");
-  const Voxels voxels = ChooseVoxels(labelled, model, o);
-  WriteModelVDB(model, voxels, o, dir);
+  WriteModelVDB(model, labelled, o, dir);
   lap("model.vdb");
   std::string sequence;
   if (o.Snapshots > 0)
   {
     // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
-    WriteCatalogSequence(synthesis, dir, voxels.Catalog, "example", o.Example);
+    WriteCatalogSequence(synthesis, dir, o.Voxel, "example", o.Example);
     sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" +
       std::to_string(10000 + o.Snapshots + 1).substr(1) + ".vdb";
   }
