@@ -3,20 +3,13 @@ synthesis -> check with the reader as example): verdict 1 and no violations; the
 a model that is not the example's (the checkerboard against the village) gives verdict 0 with
 its violations counted and listed."""
 import os
-import sys
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 
-DATA = os.environ["MSYNTH_DATA"]
+from pvbatch_testing import DATA, check, load_plugin
 
-LoadPlugin(os.environ["MSYNTH_PLUGIN"], remote=False, ns=globals())
-
-
-def check(condition, message):
-    if not condition:
-        print("FAILED: " + message)
-        sys.exit(1)
+load_plugin(globals())
 
 
 def value(data, name):
