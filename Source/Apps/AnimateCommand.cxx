@@ -205,19 +205,19 @@ int Animate(const AnimateOptions& o, const std::string& dir)
   }
   vtkFieldData* fd = synthesis->GetOutput()->GetFieldData();
   const std::string message = MessageOf(fd);
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"examples\": [";
-      for (std::size_t i = 0; i < o.Examples.size(); ++i)
-        out << (i ? ", " : "") << JsonString(o.Examples[i]);
-      out << "],\n  \"exampleFrames\": " << example.Frames.size() << ",\n  \"size\": [" << o.Size[0]
-          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"frames\": " << o.Frames
-          << ",\n  \"loop\": " << (o.Loop ? "true" : "false") << ",\n  \"seed\": " << o.Seed
-          << ",\n";
-      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
-      out << "  \"Message\": " << JsonString(message) << "\n}\n";
-    });
+  std::string examples;
+  for (std::size_t i = 0; i < o.Examples.size(); ++i)
+    examples += (i ? ", " : "") + JsonString(o.Examples[i]);
+  StatisticsJson()
+    .Raw("examples", "[" + examples + "]")
+    .Count("exampleFrames", static_cast<long long>(example.Frames.size()))
+    .Counts("size", { o.Size[0], o.Size[1], o.Size[2] })
+    .Count("frames", o.Frames)
+    .Flag("loop", o.Loop)
+    .Count("seed", o.Seed)
+    .Solver(fd)
+    .Text("Message", message)
+    .Write(dir + "/statistics.json");
   std::cout << message << "\n"
             << "consistent: all " << report.PairsChecked
             << " pairs of neighbours in space and time occur in the example\n"

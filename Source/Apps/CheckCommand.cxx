@@ -6,25 +6,20 @@
 #include "Commands.h"
 #include "Common.h"
 #include "Examples.h"
-#include "vtkMSLabelArrays.h"
-#include "vtkMSPolyhedra.h"
 
-#include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkFieldData.h"
-#include "vtkImageData.h"
+#include "vtkMSCheckModel.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPolyhedralExampleReader.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 
-#include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
-#include "Discrete/ConsistencyCheck.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
-#include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 #include "Formats/VoxModel.h"
 #include "Formats/VoxelTileset.h"
@@ -80,7 +75,21 @@ int CheckSamplePicture(const CheckOptions& o)
   return 1;
 }
 
-/// A continuous model (.vtp) against its polyhedral example.
+/// The verdict of @p check (vtkMSCheckModel's field data) after it ran.
+struct Verdict
+{
+  vtkFieldData* Fields;
+  bool Valid() const { return CountOf(this->Fields, "Valid") == 1; }
+  /// Prints each problem line, after @p prefix.
+  void PrintProblems(const char* prefix) const
+  {
+    if (auto* lines = vtkStringArray::SafeDownCast(this->Fields->GetAbstractArray("Problems")))
+      for (vtkIdType i = 0; i < lines->GetNumberOfValues(); ++i)
+        std::cout << prefix << lines->GetValue(i) << "\n";
+  }
+};
+
+/// A continuous model (.vtp) against its polyhedral example: reader → vtkMSCheckModel.
 int CheckContinuous(
   const std::string& example, const std::string& modelPath, const PolyhedralReading& reading)
 {
@@ -95,31 +104,28 @@ int CheckContinuous(
   {
     throw std::runtime_error("'" + modelPath + "': not a readable VTP model: " + messages);
   }
-  // The example analyzed with the direction snapping its arrangement used (recorded in the
-  // model by the mesh filter; a rotated polygon's directions may have been snapped to fit exact
-  // arithmetic), else the defaults.
-  vtkFieldData* fields = modelReader->GetOutput()->GetFieldData();
-  vtkDataArray* tolerance = fields->GetArray("AngleTolerance");
-  vtkDataArray* integer = fields->GetArray("MaximumSmallInteger");
-  const double degrees =
-    tolerance && tolerance->GetNumberOfTuples() == 1 ? tolerance->GetTuple1(0) : 0.01;
-  const double largest = integer && integer->GetNumberOfTuples() == 1 ? integer->GetTuple1(0) : 12;
-  if (!(degrees > 0 && degrees <= 10) || !(largest >= 1 && largest <= 1000000))
-    throw std::runtime_error(
-      "'" + modelPath + "': AngleTolerance or MaximumSmallInteger out of range");
-  msynth::PolyhedralExample ex;
-  const msynth::PolyhedralAnalysis analysis =
-    vtkMSPolyhedra::AnalyzeExample(reader->GetOutput(), degrees, static_cast<int>(largest), ex);
-  const auto mesh = vtkMSPolyhedra::ToContinuousMesh(modelReader->GetOutput(), modelPath);
-  const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
-  if (report.Valid)
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(modelReader->GetOutputPort());
+  check->AddExampleConnection(reader->GetOutputPort());
+  try
   {
-    std::cout << "valid: " << modelPath << " (" << mesh.Polygons.size() << " polygons, "
-              << report.Objects << " objects) has only neighbourhoods of " << example << " ("
-              << report.DistinctLabels << " distinct)\n";
+    Run(check);
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error("'" + modelPath + "': " + e.what());
+  }
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  if (verdict.Valid())
+  {
+    std::cout << "valid: " << modelPath << " (" << modelReader->GetOutput()->GetNumberOfPolys()
+              << " polygons, " << CountOf(verdict.Fields, "Objects")
+              << " objects) has only neighbourhoods of " << example << " ("
+              << CountOf(verdict.Fields, "DistinctLabels") << " distinct)\n";
     return 0;
   }
-  std::cout << "invalid: " << modelPath << ": " << report.Problem << "\n";
+  std::cout << "invalid: " << modelPath << ": ";
+  verdict.PrintProblems("");
   return 1;
 }
 
@@ -166,7 +172,7 @@ int CheckVoxels(const std::string& example, const std::string& modelPath, const 
   return 1;
 }
 
-/// A label grid against the pairs of its example grid or tileset.
+/// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
   const std::string& subset, const std::string& tiles)
 {
@@ -177,33 +183,31 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   e->GenerateGeometryOff(); // the labels are checked, not shown
   m->GenerateGeometryOff();
   m->SetFileName(modelPath.c_str());
-  Run(m);
-  auto grid = [](vtkImageData* image)
-  { return vtkMSLabelArrays::ToLabelGrid(image, image->GetPointData()->GetArray("Label")); };
-  msynth::ConsistencyReport report;
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(m->GetOutputPort());
   if (IsTileset(example))
   {
-    report = msynth::CheckConsistency(
-      msynth::ReadTilesetFile(example, subset, tiles).Pairs, grid(m->GetOutput()));
+    check->SetTilesetFile(example.c_str());
+    check->SetTilesetSubset(subset.c_str());
+    check->SetTilesFolder(tiles.c_str());
   }
   else
   {
     e->SetFileName(example.c_str());
-    Run(e);
-    report = msynth::CheckConsistency(grid(e->GetOutput()), grid(m->GetOutput()));
+    check->AddExampleConnection(e->GetOutputPort());
   }
-  if (report.Consistent)
+  Run(check);
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  if (verdict.Valid())
   {
-    std::cout << "consistent: all " << report.PairsChecked << " adjacent pairs of " << modelPath
-              << " occur in " << example << "\n";
+    std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
+              << " adjacent pairs of " << modelPath << " occur in " << example << "\n";
     return 0;
   }
-  std::cout << "inconsistent: " << report.Violations << " of " << report.PairsChecked
-            << " adjacent pairs never occur in " << example << "\n";
-  for (const auto& v : report.First)
-  {
-    std::cout << "  " << v.Describe() << "\n";
-  }
+  std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
+            << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never occur in "
+            << example << "\n";
+  verdict.PrintProblems("  ");
   return 1;
 }
 } // namespace

@@ -196,15 +196,86 @@ std::string JsonString(const std::string& text)
   return out + "\"";
 }
 
-std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd)
+std::string JsonNumber(double value)
 {
-  auto fields = msynth::StatisticsFields(msynth::SynthesisStatistics());
-  for (auto& f : fields)
+  std::ostringstream s;
+  s << value; // the stream's default: six significant digits
+  return s.str();
+}
+
+StatisticsJson& StatisticsJson::Raw(const std::string& key, const std::string& json)
+{
+  this->Members.emplace_back(key, json);
+  return *this;
+}
+
+StatisticsJson& StatisticsJson::Text(const std::string& key, const std::string& text)
+{
+  return this->Raw(key, JsonString(text));
+}
+
+StatisticsJson& StatisticsJson::Number(const std::string& key, double value)
+{
+  return this->Raw(key, JsonNumber(value));
+}
+
+StatisticsJson& StatisticsJson::Count(const std::string& key, long long value)
+{
+  return this->Raw(key, std::to_string(value));
+}
+
+StatisticsJson& StatisticsJson::Flag(const std::string& key, bool value)
+{
+  return this->Raw(key, value ? "true" : "false");
+}
+
+StatisticsJson& StatisticsJson::Counts(const std::string& key, const std::vector<long long>& values)
+{
+  std::string json;
+  for (const long long v : values)
+    json += (json.empty() ? "" : ", ") + std::to_string(v);
+  return this->Raw(key, "[" + json + "]");
+}
+
+StatisticsJson& StatisticsJson::Solver(vtkFieldData* fd)
+{
+  for (const auto& f : msynth::StatisticsFields(msynth::SynthesisStatistics()))
   {
     vtkDataArray* array = fd->GetArray(f.Name.c_str());
-    f.Value = array ? array->GetTuple1(0) : 0.0;
+    const double value = array ? array->GetTuple1(0) : 0.0;
+    if (f.Integer)
+      this->Count(f.Name, static_cast<long long>(value));
+    else
+      this->Number(f.Name, value);
   }
-  return fields;
+  return *this;
+}
+
+StatisticsJson& StatisticsJson::Prefixed(
+  const std::string& key, vtkFieldData* fd, const std::string& prefix)
+{
+  std::string json;
+  for (int i = 0; i < fd->GetNumberOfArrays(); ++i)
+  {
+    const std::string name = fd->GetArrayName(i) ? fd->GetArrayName(i) : "";
+    if (name.rfind(prefix, 0) == 0)
+      json += (json.empty() ? "" : ", ") + JsonString(name.substr(prefix.size())) + ": " +
+        JsonNumber(fd->GetArray(i)->GetTuple1(0));
+  }
+  return this->Raw(key, "{" + json + "}");
+}
+
+void StatisticsJson::Write(const std::string& path) const
+{
+  msynth::WriteFileAtomically(path,
+    [this](std::ostream& out)
+    {
+      out << "{\n";
+      for (std::size_t i = 0; i < this->Members.size(); ++i)
+        out << (i ? ",\n" : "") << "  " << JsonString(this->Members[i].first) << ": "
+            << this->Members[i].second;
+      out << "\n}\n";
+    });
 }
 
 std::string MessageOf(vtkFieldData* fd)

@@ -4,11 +4,12 @@
  * @file Common.h
  * @brief What every msynth command shares: checking input files, running VTK algorithms with
  * their errors as one message, staged output folders, writing VTK XML, CSV and JSON files,
- * statistics read back from field data, the progress bar, and the options several commands
+ * statistics.json from field data, the progress bar, and the options several commands
  * take (registered with CLI11 the same way everywhere).
  */
 #include "vtkErrorCode.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
 #include "vtkNew.h"
 
 #include "Core/AtomicFile.h"
@@ -70,8 +71,36 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 void WriteCSV(const std::string& path, vtkTable* table);
 /// @p text as a JSON string literal.
 std::string JsonString(const std::string& text);
-/// A solver's statistics read back from its output's field data (vtkMSFieldData::AddStatistics).
-std::vector<msynth::StatisticsField> StatisticsOf(vtkFieldData* fd);
+/// @p value as JSON writes it ("%g" with six significant digits: 0.25, 1e-07).
+std::string JsonNumber(double value);
+
+/**
+ * DIR/statistics.json of every command: its members in the order added, each a key and its
+ * value as JSON text, written as "{\n  \"key\": value,\n  ...\n}\n" (Write, atomically).
+ */
+class StatisticsJson
+{
+public:
+  /// @p json is the value's JSON text (an array, an object).
+  StatisticsJson& Raw(const std::string& key, const std::string& json);
+  StatisticsJson& Text(const std::string& key, const std::string& text);
+  StatisticsJson& Number(const std::string& key, double value);
+  StatisticsJson& Count(const std::string& key, long long value);
+  StatisticsJson& Flag(const std::string& key, bool value);
+  StatisticsJson& Counts(const std::string& key, const std::vector<long long>& values);
+  /// A solver's statistics from its output's field data under their one naming
+  /// (vtkMSFieldData::AddStatistics: Blocks, ..., Seconds).
+  StatisticsJson& Solver(vtkFieldData* fd);
+  /// An object of the one-value arrays of @p fd whose names start with @p prefix (the prefix
+  /// dropped from the keys).
+  StatisticsJson& Prefixed(const std::string& key, vtkFieldData* fd, const std::string& prefix);
+  /// The file @p path, written atomically.
+  void Write(const std::string& path) const;
+
+private:
+  std::vector<std::pair<std::string, std::string>> Members;
+};
+
 /// The solver's one-line message from field data `Message`.
 std::string MessageOf(vtkFieldData* fd);
 /// The one-value count @p name of field data (0 when it is not there).
@@ -100,13 +129,14 @@ private:
   bool Shown = false;
 };
 
-/// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically.
+/// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically, and
+/// reproducibly: without its timing (vtkMSFieldData::WithoutTiming).
 template <typename WriterT, typename DataT>
 void WriteXML(const std::string& path, DataT* data)
 {
   const std::string tmp = msynth::TemporaryPathBeside(path);
   vtkNew<WriterT> writer;
-  writer->SetInputData(data);
+  writer->SetInputData(vtkMSFieldData::WithoutTiming(data));
   writer->SetFileName(tmp.c_str());
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();

@@ -5,31 +5,19 @@
 #include "Common.h"
 #include "Examples.h"
 #include "Synthesize.h"
-#include "vtkMSArrangementStorage.h"
-#include "vtkMSLabelArrays.h"
-#include "vtkMSPolyhedra.h"
 
-#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkImageData.h"
-#include "vtkIntArray.h"
 #include "vtkMSArrangementMesh.h"
 #include "vtkMSContinuousSynthesis.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSPlaneArrangement.h"
 #include "vtkMSPolyhedralExampleReader.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
-#include "Continuous/ContinuousMesh.h"
-#include "Continuous/PlaneArrangement.h"
-
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -57,94 +45,21 @@ std::set<std::string> ContinuousOutputs(const SynthesizeOptions& o)
   return kinds;
 }
 
-/// model.vdb's level sets: their band's half width (OpenVDB's default) and the most voxels their
-/// bands may hold by default (about a second of export on two cores).
-constexpr double BandHalfWidth = 3;
+/// model.vdb's level sets: at most this many voxels in their bands by default (about a second
+/// of export on two cores).
 constexpr double LevelSetBudget = 1e6;
 
-/// The voxel sizes of the outputs: model.vdb's, and the catalog sequence's.
-struct Voxels
-{
-  double Model = 1;
-  double Catalog = 1;
-  std::array<double, 6> Bounds{};
-  bool Planar = false;
-};
-
-Voxels ChooseVoxels(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o)
-{
-  Voxels v;
-  v.Planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
-  labelled->GetBounds(v.Bounds.data());
-  const auto record = vtkMSArrangementStorage::LoadArrangement(labelled->GetFieldData(), o.Example);
-  const msynth::PlaneFamilySet families(record.Normals);
-  double smallest = 0;
-  for (int f = 0; f < families.Size(); ++f)
-  {
-    const double world = record.Parameters.Spacing(families, f);
-    smallest = f == 0 ? world : std::min(smallest, world);
-  }
-  double extent = 0;
-  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
-  {
-    extent = std::max(extent, v.Bounds[2 * c + 1] - v.Bounds[2 * c]);
-  }
-  // Level sets in proportion to the model: at most LevelSetBudget voxels in their bands.
-  v.Model = o.Voxel > 0 ? o.Voxel : std::max(smallest / 4, extent / 256);
-  if (o.Voxel <= 0 && !v.Planar && model->GetNumberOfPolys() > 0)
-    v.Model = msynth::LevelSetVoxel(vtkMSPolyhedra::ToContinuousMesh(model, "model"), smallest,
-      extent, BandHalfWidth, LevelSetBudget);
-  if (!(v.Model > 0))
-  {
-    v.Model = 1;
-  }
-  v.Catalog = o.Voxel > 0 ? o.Voxel : std::max(smallest / 2, extent / 128);
-  return v;
-}
-
 /// model.vdb: a 3D model as level sets per object type and a fog volume; a 2D (or empty) model
-/// as a slab of object types.
-void WriteModelVDB(
-  vtkPolyData* model, const Voxels& v, const SynthesizeOptions& o, const std::string& dir)
+/// as a slab of object types (the writer chooses the voxels from the planes of @p labelled,
+/// unless --voxel gives them).
+double WriteModelVDB(
+  vtkPolyData* model, vtkPolyData* labelled, const SynthesizeOptions& o, const std::string& dir)
 {
-  const double voxel = v.Model;
-  const auto& bounds = v.Bounds;
-  std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
-  for (int c = 0; c < (v.Planar ? 2 : 3); ++c)
-  {
-    dims[static_cast<std::size_t>(c)] = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel)));
-  }
-  if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
-    1e9)
-  {
-    throw std::runtime_error("--voxel " + std::to_string(voxel) + " gives more than 10^9 voxels");
-  }
   vtkNew<vtkMSOpenVDBWriter> vdb;
-  vtkNew<vtkImageData> image;
-  if (!v.Planar && model->GetNumberOfPolys() > 0)
-  {
-    vdb->SetInputData(model);
-    vdb->SetVoxelSize(voxel);
-    vdb->SetBandWidth(BandHalfWidth);
-  }
-  else
-  {
-    const auto engineMesh = vtkMSPolyhedra::ToContinuousMesh(model, "model");
-    const msynth::LabelGrid volume = msynth::VoxelizeModel(
-      engineMesh, { bounds[0], bounds[2], v.Planar ? 0.0 : bounds[4] }, voxel, dims);
-    image->SetDimensions(
-      static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
-    image->SetSpacing(voxel, voxel, voxel);
-    image->SetOrigin(
-      bounds[0] + voxel / 2, bounds[2] + voxel / 2, v.Planar ? 0.0 : bounds[4] + voxel / 2);
-    vtkSmartPointer<vtkIntArray> types;
-    types.TakeReference(vtkMSLabelArrays::NewLabelArray(volume, "ObjectType"));
-    image->GetPointData()->SetScalars(types);
-    vdb->SetInputData(image);
-    vdb->SetLabelArrayName("ObjectType");
-    vdb->WriteFloatLabelsOn();
-  }
+  vdb->SetInputData(model);
+  vdb->SetArrangementData(labelled);
+  vdb->SetVoxelSize(o.Voxel);
+  vdb->SetLevelSetBudget(LevelSetBudget);
   vdb->SetFileName((dir + "/model.vdb").c_str());
   vdb->AddMetadata("msynth_command", "synthesize");
   vdb->AddMetadata("example", o.Example.c_str());
@@ -155,58 +70,43 @@ void WriteModelVDB(
     ProgressBar bar(vdb, "model.vdb");
     Run(vdb);
   }
+  return vdb->GetWrittenVoxelSize();
 }
 
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
   const std::string& dir, const std::vector<std::pair<std::string, double>>& stages, double voxel)
 {
   vtkFieldData* fd = labelled->GetFieldData();
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size[0]
-          << ", " << o.Size[1] << ", " << o.Size[2] << "],\n  \"blockSize\": " << o.Blocks
-          << ",\n  \"seed\": " << o.Seed << ",\n  \"Vertices\": " << labelled->GetNumberOfPoints()
-          << ",\n  \"Polygons\": " << model->GetNumberOfPolys() << ",\n";
-      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
-      out << "  \"Grounded\": " << (o.Grounded ? "true" : "false")
-          << ",\n  \"Components\": " << CountOf(fd, "Components")
-          << ",\n  \"GroundedComponents\": " << CountOf(fd, "GroundedComponents")
-          << ",\n  \"FloatingPartsRemoved\": " << CountOf(fd, "FloatingPartsRemoved")
-          << ",\n  \"PartsBeyondSeedsRemoved\": " << CountOf(fd, "PartsBeyondSeedsRemoved")
-          << ",\n  \"ModelCandidates\": " << o.Models
-          << ",\n  \"ModelChosen\": " << CountOf(fd, "ModelChosen") << ",\n  \"MatchError\": "
-          << (fd->GetArray("MatchError") ? fd->GetArray("MatchError")->GetTuple1(0) : 0.0) << ",\n";
-      // Shares of the solid per object type: by volume of the model written, and by vertex
-      // occupancy (what the proportions steer).
-      auto shares = [&out](const char* key, vtkFieldData* from, const std::string& prefix)
-      {
-        out << "  \"" << key << "\": {";
-        const char* separator = "";
-        for (int i = 0; i < from->GetNumberOfArrays(); ++i)
-        {
-          const std::string name = from->GetArrayName(i) ? from->GetArrayName(i) : "";
-          if (name.rfind(prefix, 0) == 0)
-          {
-            out << separator << JsonString(name.substr(prefix.size())) << ": "
-                << from->GetArray(i)->GetTuple1(0);
-            separator = ", ";
-          }
-        }
-        out << "},\n";
-      };
-      shares("TypeShares", model->GetFieldData(), "VolumeShare_");
-      shares("VertexShares", fd, "TypeShare_");
-      out << "  \"StageSeconds\": {";
-      const char* separator = "";
-      for (const auto& [stage, seconds] : stages)
-      {
-        out << separator << JsonString(stage) << ": " << seconds;
-        separator = ", ";
-      }
-      out << "},\n  \"VoxelSize\": " << voxel << ",\n";
-      out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
-    });
+  vtkDataArray* match = fd->GetArray("MatchError");
+  std::string seconds;
+  for (const auto& [stage, value] : stages)
+    seconds += (seconds.empty() ? "" : ", ") + JsonString(stage) + ": " + JsonNumber(value);
+  StatisticsJson()
+    .Text("example", o.Example)
+    .Raw("size",
+      "[" + JsonNumber(o.Size[0]) + ", " + JsonNumber(o.Size[1]) + ", " + JsonNumber(o.Size[2]) +
+        "]")
+    .Number("blockSize", o.Blocks)
+    .Count("seed", o.Seed)
+    .Count("Vertices", labelled->GetNumberOfPoints())
+    .Count("Polygons", model->GetNumberOfPolys())
+    .Solver(fd)
+    .Flag("Grounded", o.Grounded)
+    .Count("Components", CountOf(fd, "Components"))
+    .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
+    .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
+    .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
+    .Count("ModelCandidates", o.Models)
+    .Count("ModelChosen", CountOf(fd, "ModelChosen"))
+    .Number("MatchError", match ? match->GetTuple1(0) : 0.0)
+    // Shares of the solid per object type: by volume of the model written, and by vertex
+    // occupancy (what the proportions steer).
+    .Prefixed("TypeShares", model->GetFieldData(), "VolumeShare_")
+    .Prefixed("VertexShares", fd, "TypeShare_")
+    .Raw("StageSeconds", "{" + seconds + "}")
+    .Number("VoxelSize", voxel)
+    .Text("Message", MessageOf(fd))
+    .Write(dir + "/statistics.json");
 }
 
 /// The label solver's settings from the command line's options.
@@ -215,7 +115,6 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetBlockSize(o.Blocks);
   synthesis->SetAttempts(o.Attempts);
-  synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);
@@ -334,12 +233,6 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   vtkPolyData* model = mesh->GetOutput();
   vtkPolyData* labelled = synthesis->GetOutput();
 
-  vtkNew<vtkPolyData> saved; // reproducible for a seed: timing goes to statistics.json only
-  saved->ShallowCopy(labelled);
-  vtkNew<vtkFieldData> fields;
-  fields->DeepCopy(labelled->GetFieldData());
-  fields->RemoveArray("Seconds");
-  saved->SetFieldData(fields);
   std::string written; // "DIR/model.vtp, ..." as they are written
   if (outputs.count("mesh"))
   {
@@ -348,15 +241,14 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   }
   if (outputs.count("labels"))
   {
-    WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", saved.GetPointer());
+    WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", labelled);
     written += dir + "/arrangement.vtp, ";
   }
   lap("vtp files");
-  const bool vdb = outputs.count("vdb") > 0;
-  const Voxels voxels = vdb || o.Snapshots > 0 ? ChooseVoxels(labelled, model, o) : Voxels();
-  if (vdb)
+  double voxel = 0;
+  if (outputs.count("vdb"))
   {
-    WriteModelVDB(model, voxels, o, dir);
+    voxel = WriteModelVDB(model, labelled, o, dir);
     lap("model.vdb");
     written += dir + "/model.vdb, ";
   }
@@ -364,13 +256,13 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   if (o.Snapshots > 0)
   {
     // The catalog at each snapshot, resampled to voxels: DIR/catalog_0001.vdb, ...
-    WriteCatalogSequence(synthesis, dir, voxels.Catalog, "example", o.Example);
+    WriteCatalogSequence(synthesis, dir, o.Voxel, "example", o.Example);
     sequence = ", " + dir + "/catalog_0001.vdb ... catalog_" +
       std::to_string(10000 + o.Snapshots + 1).substr(1) + ".vdb";
   }
   if (o.Snapshots > 0)
     lap("catalog sequence");
-  WriteStatistics(labelled, model, o, dir, stages, vdb ? voxels.Model : 0.0);
+  WriteStatistics(labelled, model, o, dir, stages, voxel);
   vtkFieldData* fd = labelled->GetFieldData();
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "

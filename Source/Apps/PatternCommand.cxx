@@ -3,26 +3,25 @@
 // 2012) through vtkMSPatternSynthesis, writing DIR/labels.vti (the last sample; with --samples
 // also labels_0001.vti ...), DIR/picture.png with --tileset, and DIR/statistics.json with the KL
 // divergence per factor shape and the log probability of each sample. Every sample is checked
-// against the exemplars' pairs (PatternQuality.h) before anything is written.
-// `msynth quality EXEMPLAR... MODEL --factors 4H,4V`: the KL divergence of any model.
+// against the exemplars' pairs and measured by vtkMSCheckModel before anything is written.
+// `msynth quality EXEMPLAR... MODEL --factors 4H,4V`: the KL divergence of any model, by the same
+// filter.
 #include "Commands.h"
 #include "Common.h"
-#include "vtkMSLabelArrays.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMSCheckModel.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPatternSynthesis.h"
 #include "vtkMSTileImage.h"
+#include "vtkStringArray.h"
 #include "vtkXMLImageDataWriter.h"
 
-#include "Formats/Tileset.h"
-#include "Patterns/PatternQuality.h"
+#include "Patterns/FactorGraph.h"
 
-#include <cmath>
 #include <cstdio>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -108,15 +107,6 @@ vtkSmartPointer<vtkMSLabelGridReader> OpenZones(const std::string& path)
   }
 }
 
-msynth::LabelGrid GridOf(vtkImageData* image, const std::string& path)
-{
-  msynth::LabelGrid grid;
-  std::string problem;
-  if (!vtkMSLabelArrays::ReadLabels(image, nullptr, grid, problem))
-    throw std::runtime_error("'" + path + "': " + problem);
-  return grid;
-}
-
 void Configure(vtkMSPatternSynthesis* s, const PatternCommandOptions& o)
 {
   s->SetOutputSize(o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1);
@@ -150,19 +140,12 @@ double FieldValue(vtkFieldData* fd, const std::string& name)
   return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
 }
 
-std::string Number(double v)
-{
-  std::ostringstream s;
-  s << std::setprecision(6) << v;
-  return s.str();
-}
-
-/// Connects the command's inputs to @p synthesis: each EXEMPLAR (read, kept in @p readers and
-/// @p exemplars), or at most one tileset (its path in @p tileset, its rules in @p rules), the
-/// zoning and the fixed sites. @throw UsageError for a second tileset; reading errors.
-void ConnectInputs(vtkMSPatternSynthesis* synthesis, const PatternCommandOptions& o,
-  std::vector<vtkSmartPointer<vtkMSLabelGridReader>>& readers,
-  std::vector<msynth::LabelGrid>& exemplars, std::string& tileset, msynth::LabelPairs& rules)
+/// Connects the command's inputs to @p synthesis and @p check: each EXEMPLAR (read, kept in
+/// @p readers), or at most one tileset (its path in @p tileset: its rules are hard pairs too),
+/// the zoning and the fixed sites. @throw UsageError for a second tileset; reading errors.
+void ConnectInputs(vtkMSPatternSynthesis* synthesis, vtkMSCheckModel* check,
+  const PatternCommandOptions& o, std::vector<vtkSmartPointer<vtkMSLabelGridReader>>& readers,
+  std::string& tileset)
 {
   for (const auto& path : o.Exemplars)
   {
@@ -171,16 +154,13 @@ void ConnectInputs(vtkMSPatternSynthesis* synthesis, const PatternCommandOptions
       if (!tileset.empty())
         throw UsageError{ "give at most one tileset" };
       tileset = path;
-      const msynth::Tileset set = msynth::ReadTilesetFile(path);
-      for (std::size_t a = 0; a < 3; ++a)
-        for (const auto& [b, c] : set.Pairs[a])
-          rules[a].emplace_back(b, c);
       synthesis->SetTilesetFile(path.c_str());
+      check->SetTilesetFile(path.c_str());
       continue;
     }
     readers.push_back(OpenGrid(path));
-    exemplars.push_back(GridOf(readers.back()->GetOutput(), path));
     synthesis->AddInputConnection(0, readers.back()->GetOutputPort());
+    check->AddExampleConnection(readers.back()->GetOutputPort());
   }
   if (!o.Zones.empty())
   {
@@ -206,78 +186,83 @@ struct SampleMeans
 /// DIR/statistics.json: the run's options, the means, the run's counts from the field data
 /// @p fd of the last sample, and @p samplesJson (one object per sample).
 void WritePatternStatistics(const std::string& dir, const PatternCommandOptions& o,
-  vtkFieldData* fd, const std::vector<msynth::Stencil>& soft, const SampleMeans& means,
+  vtkFieldData* fd, const std::vector<msynth::Stencil>& measured, const SampleMeans& means,
   const std::string& samplesJson)
 {
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"exemplars\": [";
-      for (std::size_t i = 0; i < o.Exemplars.size(); ++i)
-        out << (i ? ", " : "") << JsonString(o.Exemplars[i]);
-      out << "],\n  \"size\": [" << o.Size[0] << ", " << o.Size[1] << ", "
-          << (o.Size.size() > 2 ? o.Size[2] : 1) << "],\n  \"method\": " << JsonString(o.Method)
-          << ",\n  \"factors\": " << JsonString(o.Factors) << ",\n  \"epsilon\": " << o.Epsilon
-          << ",\n  \"seed\": " << o.Seed << ",\n  \"burnIn\": " << o.BurnIn
-          << ",\n  \"LogProbability\": " << Number(means.LogProbability) << ",\n";
-      for (std::size_t i = 0; i < soft.size(); ++i)
-        out << "  \"KL_" << soft[i].Name << "\": " << Number(means.KL[i]) << ",\n";
-      for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
-             "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
-        out << "  \"" << name << "\": " << static_cast<long long>(FieldValue(fd, name)) << ",\n";
-      out << "  \"FirstValidSeconds\": " << Number(means.FirstValidSeconds)
-          << ",\n  \"Seconds\": " << Number(means.Seconds) << ",\n  \"samples\": [\n"
-          << samplesJson << "\n  ]\n}\n";
-    });
+  StatisticsJson json;
+  std::string exemplars;
+  for (std::size_t i = 0; i < o.Exemplars.size(); ++i)
+    exemplars += (i ? ", " : "") + JsonString(o.Exemplars[i]);
+  json.Raw("exemplars", "[" + exemplars + "]")
+    .Counts("size", { o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1 })
+    .Text("method", o.Method)
+    .Text("factors", o.Factors)
+    .Number("epsilon", o.Epsilon)
+    .Count("seed", o.Seed)
+    .Count("burnIn", o.BurnIn)
+    .Number("LogProbability", means.LogProbability);
+  for (std::size_t i = 0; i < measured.size(); ++i)
+    json.Number("KL_" + measured[i].Name, means.KL[i]);
+  for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
+         "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
+    json.Count(name, CountOf(fd, name));
+  json.Number("FirstValidSeconds", means.FirstValidSeconds)
+    .Number("Seconds", means.Seconds)
+    .Raw("samples", "[\n" + samplesJson + "\n  ]")
+    .Write(dir + "/statistics.json");
 }
 
 int Pattern(const PatternCommandOptions& o, const std::string& dir)
 {
   vtkNew<vtkMSPatternSynthesis> synthesis;
+  // Every sample checked against the exemplars' pairs (and the tileset's rules), independently
+  // of the sampler, and measured: the KL divergence per shape.
+  vtkNew<vtkMSCheckModel> check;
   std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
-  std::vector<msynth::LabelGrid> exemplars;
   std::string tileset; // an EXEMPLAR that is a tileset: its rules are hard pairs too
-  msynth::LabelPairs rules;
-  ConnectInputs(synthesis, o, readers, exemplars, tileset, rules);
+  ConnectInputs(synthesis, check, o, readers, tileset);
   Configure(synthesis, o);
+  const std::vector<msynth::Stencil> measured =
+    msynth::ParseStencils(o.Measure.empty() ? SoftOf(o.Factors) : o.Measure);
+  check->SetInputConnection(synthesis->GetOutputPort());
+  check->SetShapes(o.Measure.empty() ? SoftOf(o.Factors).c_str() : o.Measure.c_str());
+  check->SetMaximumReported(1);
   {
     ProgressBar bar(synthesis);
     synthesis->UpdateInformation();
     Run(synthesis); // all samples at once; the steps below come from the filter's cache
   }
-  const std::vector<msynth::Stencil> soft =
-    msynth::ParseStencils(o.Measure.empty() ? SoftOf(o.Factors) : o.Measure);
   std::ostringstream samples;
-  std::vector<double> kl(soft.size(), 0.0);
+  std::vector<double> kl(measured.size(), 0.0);
   double logp = 0.0, seconds = 0.0, firstValid = 0.0;
   vtkSmartPointer<vtkImageData> last;
   for (int k = 0; k < o.Samples; ++k)
   {
-    synthesis->UpdateTimeStep(k);
-    Run(synthesis);
+    check->UpdateTimeStep(k);
+    Run(check);
+    vtkFieldData* verdict = check->GetOutput()->GetFieldData();
+    if (CountOf(verdict, "Valid") != 1)
+    {
+      auto* lines = vtkStringArray::SafeDownCast(verdict->GetAbstractArray("Problems"));
+      throw std::runtime_error("sample " + std::to_string(k + 1) +
+        " breaks the exemplars' pairs: " + (lines ? lines->GetValue(0) : std::string()));
+    }
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(synthesis->GetOutput());
-    const msynth::LabelGrid model = GridOf(image, "sample " + std::to_string(k + 1));
-    const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 1, rules);
-    if (!problems.empty())
-      throw std::runtime_error(
-        "sample " + std::to_string(k + 1) + " breaks the exemplars' pairs: " + problems.front());
     vtkFieldData* fd = image->GetFieldData();
     samples << (k ? ",\n" : "") << "    {\"sample\": " << k + 1
-            << ", \"LogProbability\": " << Number(FieldValue(fd, "LogProbability"));
-    for (std::size_t i = 0; i < soft.size(); ++i)
+            << ", \"LogProbability\": " << JsonNumber(FieldValue(fd, "LogProbability"));
+    for (std::size_t i = 0; i < measured.size(); ++i)
     {
-      const double v = msynth::PatternKL(exemplars, model, soft[i]);
+      const double v = FieldValue(verdict, "KL_" + measured[i].Name);
       kl[i] += v / o.Samples;
-      samples << ", \"KL_" << soft[i].Name << "\": " << Number(v);
+      samples << ", \"KL_" << measured[i].Name << "\": " << JsonNumber(v);
     }
     logp += FieldValue(fd, "LogProbability") / o.Samples;
-    samples << ", \"Moves\": " << static_cast<long long>(FieldValue(fd, "SampleMoves"))
-            << ", \"Seconds\": " << Number(FieldValue(fd, "SampleSeconds")) << "}";
+    samples << ", \"Moves\": " << CountOf(fd, "SampleMoves")
+            << ", \"Seconds\": " << JsonNumber(FieldValue(fd, "SampleSeconds")) << "}";
     seconds = FieldValue(fd, "Seconds");
     firstValid = FieldValue(fd, "FirstValidSeconds");
-    for (const char* timing : { "Seconds", "FirstValidSeconds", "SampleSeconds" })
-      fd->RemoveArray(timing); // the same inputs and seed give byte-identical files
     if (o.Samples > 1)
     {
       char name[32];
@@ -299,14 +284,14 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     WritePicturePng(tiles->GetOutput(), picture);
   }
   vtkFieldData* fd = last->GetFieldData();
-  WritePatternStatistics(dir, o, fd, soft, { logp, kl, firstValid, seconds }, samples.str());
+  WritePatternStatistics(dir, o, fd, measured, { logp, kl, firstValid, seconds }, samples.str());
   std::cout << o.Samples << " sample(s) of " << o.Size[0] << " x " << o.Size[1]
             << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
-            << o.Method << " in " << Number(seconds) << " s (first valid after "
-            << Number(firstValid) << " s); every pair occurs in an exemplar"
+            << o.Method << " in " << JsonNumber(seconds) << " s (first valid after "
+            << JsonNumber(firstValid) << " s); every pair occurs in an exemplar"
             << (tileset.empty() ? "" : " or the tileset's rules") << "\n";
-  for (std::size_t i = 0; i < soft.size(); ++i)
-    std::cout << "KL " << soft[i].Name << ": " << Number(kl[i]) << "\n";
+  for (std::size_t i = 0; i < measured.size(); ++i)
+    std::cout << "KL " << measured[i].Name << ": " << JsonNumber(kl[i]) << "\n";
   std::cout << "wrote " << dir << "/labels.vti" << (o.Samples > 1 ? ", labels_0001.vti ..." : "")
             << (picture.empty() ? "" : ", " + picture) << ", " << dir << "/statistics.json\n";
   return 0;
@@ -319,39 +304,46 @@ struct QualityOptions
   double Epsilon = 0.1;
 };
 
+/// EXEMPLAR... MODEL: readers → vtkMSCheckModel (the pairs, KL per shape, log probability).
 int Quality(const QualityOptions& o)
 {
-  std::vector<msynth::LabelGrid> exemplars;
+  std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
+  vtkNew<vtkMSCheckModel> check;
   for (std::size_t i = 0; i + 1 < o.Files.size(); ++i)
-    exemplars.push_back(GridOf(OpenGrid(o.Files[i])->GetOutput(), o.Files[i]));
+  {
+    readers.push_back(OpenGrid(o.Files[i]));
+    check->AddExampleConnection(readers.back()->GetOutputPort());
+  }
   const std::string& path = o.Files.back();
-  const msynth::LabelGrid model = GridOf(OpenGrid(path)->GetOutput(), path);
+  auto model = OpenGrid(path);
+  check->SetInputConnection(model->GetOutputPort());
+  check->SetShapes(o.Factors.c_str());
+  check->SetEpsilon(o.Epsilon);
+  check->SetMaximumReported(5);
+  Run(check);
+  vtkFieldData* fd = check->GetOutput()->GetFieldData();
+  int dims[3];
+  model->GetOutput()->GetDimensions(dims);
+  std::cout << path << ": " << dims[0] << " x " << dims[1] << " x " << dims[2] << "\n";
   const std::vector<msynth::Stencil> shapes = msynth::ParseStencils(o.Factors);
-  const std::vector<std::string> problems = msynth::CheckPatternPairs(exemplars, model, 5);
-  std::cout << path << ": " << model.Size(0) << " x " << model.Size(1) << " x " << model.Size(2)
-            << "\n";
   double mean = 0.0;
   for (const msynth::Stencil& s : shapes)
   {
-    const double kl = msynth::PatternKL(exemplars, model, s);
+    const double kl = FieldValue(fd, "KL_" + s.Name);
     mean += kl / static_cast<double>(shapes.size());
-    std::cout << "KL " << s.Name << ": " << Number(kl) << "\n";
+    std::cout << "KL " << s.Name << ": " << JsonNumber(kl) << "\n";
   }
   if (shapes.size() > 1)
-    std::cout << "KL mean: " << Number(mean) << "\n";
-  std::vector<msynth::Stencil> soft;
-  for (const msynth::Stencil& s : shapes)
-    if (s.Offsets.size() > 2)
-      soft.push_back(s);
-  std::cout << "log probability: "
-            << Number(msynth::PatternLogProbability(exemplars, model, soft, o.Epsilon)) << "\n";
-  if (problems.empty())
+    std::cout << "KL mean: " << JsonNumber(mean) << "\n";
+  std::cout << "log probability: " << JsonNumber(FieldValue(fd, "PatternLogProbability")) << "\n";
+  if (CountOf(fd, "Valid") == 1)
   {
     std::cout << "every pair of neighbours occurs in an exemplar\n";
     return 0;
   }
-  for (const auto& p : problems)
-    std::cout << "seam: " << p << "\n";
+  if (auto* lines = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Problems")))
+    for (vtkIdType i = 0; i < lines->GetNumberOfValues(); ++i)
+      std::cout << "seam: " << lines->GetValue(i) << "\n";
   return 1;
 }
 } // namespace

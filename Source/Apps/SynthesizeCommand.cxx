@@ -553,15 +553,16 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
 void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
 {
   vtkFieldData* fd = model->GetFieldData();
-  msynth::WriteFileAtomically(dir + "/statistics.json",
-    [&](std::ostream& out)
-    {
-      out << "{\n  \"example\": " << JsonString(o.Example) << ",\n  \"size\": [" << o.Size3[0]
-          << ", " << o.Size3[1] << ", " << o.Size3[2] << "],\n  \"block\": [" << o.Block[0] << ", "
-          << o.Block[1] << ", " << o.Block[2] << "],\n  \"seed\": " << o.Seed << ",\n";
-      msynth::WriteStatisticsJSON(out, StatisticsOf(fd));
-      out << "  \"Message\": " << JsonString(MessageOf(fd)) << "\n}\n";
-    });
+  StatisticsJson json;
+  json.Text("example", o.Example)
+    .Counts("size", { o.Size3[0], o.Size3[1], o.Size3[2] })
+    .Counts("block", { o.Block[0], o.Block[1], o.Block[2] })
+    .Count("seed", o.Seed)
+    .Solver(fd);
+  // How blocks started (block synthesis only).
+  if (auto* start = vtkStringArray::SafeDownCast(fd->GetAbstractArray("StartFrom")))
+    json.Text("StartFrom", start->GetValue(0));
+  json.Text("Message", MessageOf(fd)).Write(dir + "/statistics.json");
 }
 
 /// The files to write: --outputs, or what the example calls for.
@@ -599,14 +600,7 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   }
   if (wanted("labels"))
   {
-    // The saved model is byte-for-byte reproducible for a seed: timing goes to statistics.json.
-    vtkNew<vtkImageData> saved;
-    saved->ShallowCopy(model);
-    vtkNew<vtkFieldData> fields;
-    fields->DeepCopy(model->GetFieldData());
-    fields->RemoveArray("Seconds");
-    saved->SetFieldData(fields);
-    WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", saved.GetPointer());
+    WriteXML<vtkXMLImageDataWriter>(dir + "/labels.vti", model);
     written.push_back(dir + "/labels.vti");
   }
   if (voxel)

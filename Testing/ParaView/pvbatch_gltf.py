@@ -2,22 +2,14 @@
 (Label Geometry) is written and read back by VTK's glTF reader: as many triangles as the
 mesh's quads make, one mesh per label."""
 import os
-import sys
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.vtkIOGeometry import vtkGLTFReader
 
-DATA = os.environ["MSYNTH_DATA"]
-TMP = os.environ["MSYNTH_TMP"]
+from pvbatch_testing import DATA, TMP, check, load_plugin
 
-LoadPlugin(os.environ["MSYNTH_PLUGIN"], remote=False, ns=globals())
-
-
-def check(condition, message):
-    if not condition:
-        print("FAILED: " + message)
-        sys.exit(1)
+load_plugin(globals())
 
 
 reader = ModelSynthLabelGridReader(FileName=os.path.join(DATA, "Examples", "Village.vti"))

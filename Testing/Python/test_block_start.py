@@ -7,13 +7,14 @@ whole-model run (distinct labels within 80 %, the most frequent label's share wi
 valid by the independent check, the same for any thread count and for any region of the world.
 On Lines, whose paths the trivial start keeps closed, the automatic start stays trivial. A
 whole-model run that fails every attempt falls back to blocks (issue: first page, item 5)."""
+import json
 import os
 import unittest
 
 import numpy as np
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
-from msynth_testing import data, fresh_folder, labels_zyx, violations
+from msynth_testing import data, fresh_folder, labels_zyx, tmp, violations
 from msynth_testing import read_label_grid as read
 from msynth_testing import run_msynth as msynth
 
@@ -73,6 +74,8 @@ class BlockStartTest(unittest.TestCase):
         _, start = self.run_labels(lines, "start-lines", "--size", "128", "128", "1",
                                    "--block", "32", "32", "1", "--seed", "1")
         self.assertEqual(start, "trivial")
+        with open(os.path.join(tmp("start-lines"), "statistics.json")) as f:
+            self.assertEqual(json.load(f)["StartFrom"], "trivial")
 
     def test_undecided_sites_fail_cleanly(self):
         # The village's blocks, ringed by decided sites, cannot always be completed from an

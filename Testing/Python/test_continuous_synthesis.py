@@ -823,5 +823,50 @@ class ContinuousSynthesisTest(unittest.TestCase):
             self.assertEqual({z + 1 for z in bottoms}, tops, "decks one unit thick")
 
 
+class ModelVoxelsTest(unittest.TestCase):
+    """The OpenVDB writer voxelizes continuous models itself (what msynth synthesize passes it):
+    with the arrangement on its port 1, voxels of max(s / 4, E / 256) and a flat model as the
+    label grid ObjectType; the voxel count is capped."""
+
+    def write(self, model, arrangement, path, **options):
+        writer = modelsynth.vtkMSOpenVDBWriter()
+        writer.SetInputData(model)
+        if arrangement is not None:
+            writer.SetArrangementData(arrangement)
+        writer.SetFileName(path)
+        for name, value in options.items():
+            getattr(writer, "Set" + name)(value)
+        errors = ErrorObserver(writer)
+        if os.path.exists(path):
+            os.remove(path)
+        writer.Write()
+        return errors.text()
+
+    def test_flat_model_as_object_types(self):
+        import pyopenvdb
+        _, _, solver, mesh, errors = chain("triangle2d.obj", (12, 9, 0), spacing=1.0)
+        self.assertEqual(errors, "")
+        model, labelled = mesh.GetOutput(), solver.GetOutput()
+        path = tmp("voxels-2d.vdb")
+        self.assertIn("flat", self.write(model, None, path))  # no arrangement: no volume to write
+        self.assertEqual(self.write(model, labelled, path), "")
+        types = pyopenvdb.read(path, "ObjectType_float")  # beside the int grid, for this module
+        # Spacing 1 makes the smallest plane spacing 1: voxels of 1/4 (12/256 is smaller).
+        self.assertAlmostEqual(types.transform.voxelSize()[0], 0.25)
+        # The filled area, recomputed here from the model's polygons (shoelace), is what the
+        # non-empty voxels cover.
+        points, polys = polygons_of(model)
+        filled = vtk_to_numpy(model.GetCellData().GetArray("ObjectType"))
+        area = sum(0.5 * abs(np.dot(points[p, 0], np.roll(points[p, 1], -1)) -
+                             np.dot(points[p, 1], np.roll(points[p, 0], -1)))
+                   for p, t in zip(polys, filled) if t != 0)
+        self.assertGreater(area, 0)
+        self.assertAlmostEqual(types.activeVoxelCount() * 0.25 ** 2 / area, 1.0, delta=0.1)
+        # More voxels than allowed: refused, no file.
+        errors = self.write(model, labelled, path, MaximumVoxels=100)
+        self.assertIn("MaximumVoxels", errors)
+        self.assertFalse(os.path.exists(path))
+
+
 if __name__ == "__main__":
     unittest.main()

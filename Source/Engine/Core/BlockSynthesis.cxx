@@ -10,7 +10,6 @@
 #include <exception>
 #include <mutex>
 #include <new>
-#include <ostream>
 #include <system_error>
 #include <thread>
 
@@ -42,19 +41,6 @@ std::vector<StatisticsField> StatisticsFields(const SynthesisStatistics& s)
     count("FailedAttempts", s.Attempts - s.BlocksAccepted), count("Assignments", s.Assignments),
     count("Backtracks", s.Backtracks), count("Phases", s.Phases), count("Threads", s.Threads),
     count("Processes", s.Processes), StatisticsField{ "Seconds", s.Seconds, false } };
-}
-
-void WriteStatisticsJSON(std::ostream& out, const std::vector<StatisticsField>& fields)
-{
-  for (const auto& f : fields)
-  {
-    out << "  \"" << f.Name << "\": ";
-    if (f.Integer)
-      out << static_cast<long long>(f.Value);
-    else
-      out << f.Value;
-    out << ",\n";
-  }
 }
 
 std::string Summary(const SynthesisStatistics& s, bool wholeModel)

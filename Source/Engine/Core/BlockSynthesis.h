@@ -106,9 +106,6 @@ struct StatisticsField
 /// Backtracks, Phases, Threads, Processes, Seconds.
 std::vector<StatisticsField> StatisticsFields(const SynthesisStatistics& s);
 
-/// The fields as JSON members ("  \"Blocks\": 12,\n" ...), each line ending with a comma.
-void WriteStatisticsJSON(std::ostream& out, const std::vector<StatisticsField>& fields);
-
 /// The one-line summary of a finished run: "whole-model synthesis succeeded" or "A of B blocks
 /// synthesized, F left at their previous labels[, R rolled back by the soft constraints]".
 std::string Summary(const SynthesisStatistics& s, bool wholeModel);

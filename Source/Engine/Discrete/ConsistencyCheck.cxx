@@ -26,30 +26,39 @@ ConsistencyReport CheckPairs(const std::set<std::tuple<int, Label, Label>>& allo
 ConsistencyReport CheckConsistency(const std::array<std::vector<std::pair<int, int>>, 3>& pairs,
   const LabelGrid& model, std::size_t maxReported)
 {
-  std::set<std::tuple<int, Label, Label>> allowed;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const auto& p : pairs[static_cast<std::size_t>(axis)])
-      allowed.emplace(axis, p.first, p.second);
-  return CheckPairs(allowed, model, maxReported);
+  return CheckConsistency(std::vector<LabelGrid>(), pairs, model, maxReported);
 }
 
 ConsistencyReport CheckConsistency(
   const LabelGrid& example, const LabelGrid& model, std::size_t maxReported)
 {
-  // Eq. 3.1 directly: the set of (axis, E(x'), E(x' + d)) over the example.
+  return CheckConsistency(std::vector<LabelGrid>{ example }, {}, model, maxReported);
+}
+
+ConsistencyReport CheckConsistency(const std::vector<LabelGrid>& examples,
+  const std::array<std::vector<std::pair<int, int>>, 3>& pairs, const LabelGrid& model,
+  std::size_t maxReported)
+{
   std::set<std::tuple<int, Label, Label>> allowed;
-  const auto& e = example.Dimensions();
-  for (std::int64_t z = 0; z < e[2]; ++z)
-    for (std::int64_t y = 0; y < e[1]; ++y)
-      for (std::int64_t x = 0; x < e[0]; ++x)
-      {
-        if (x + 1 < e[0])
-          allowed.emplace(0, example.At(x, y, z), example.At(x + 1, y, z));
-        if (y + 1 < e[1])
-          allowed.emplace(1, example.At(x, y, z), example.At(x, y + 1, z));
-        if (z + 1 < e[2])
-          allowed.emplace(2, example.At(x, y, z), example.At(x, y, z + 1));
-      }
+  for (int axis = 0; axis < 3; ++axis)
+    for (const auto& p : pairs[static_cast<std::size_t>(axis)])
+      allowed.emplace(axis, p.first, p.second);
+  // Eq. 3.1 directly: the set of (axis, E(x'), E(x' + d)) over each example.
+  for (const LabelGrid& example : examples)
+  {
+    const auto& e = example.Dimensions();
+    for (std::int64_t z = 0; z < e[2]; ++z)
+      for (std::int64_t y = 0; y < e[1]; ++y)
+        for (std::int64_t x = 0; x < e[0]; ++x)
+        {
+          if (x + 1 < e[0])
+            allowed.emplace(0, example.At(x, y, z), example.At(x + 1, y, z));
+          if (y + 1 < e[1])
+            allowed.emplace(1, example.At(x, y, z), example.At(x, y + 1, z));
+          if (z + 1 < e[2])
+            allowed.emplace(2, example.At(x, y, z), example.At(x, y, z + 1));
+        }
+  }
   return CheckPairs(allowed, model, maxReported);
 }
 

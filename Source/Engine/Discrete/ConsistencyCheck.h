@@ -44,4 +44,10 @@ ConsistencyReport CheckConsistency(
 ConsistencyReport CheckConsistency(const std::array<std::vector<std::pair<int, int>>, 3>& allowed,
   const LabelGrid& model, std::size_t maxReported = 10);
 
+/// Every adjacent pair of @p model must occur along its axis in one of @p examples or be listed
+/// in @p allowed (a tileset's pairs); the exemplars of pattern synthesis, or a mix.
+ConsistencyReport CheckConsistency(const std::vector<LabelGrid>& examples,
+  const std::array<std::vector<std::pair<int, int>>, 3>& allowed, const LabelGrid& model,
+  std::size_t maxReported = 10);
+
 } // namespace msynth

@@ -32,6 +32,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -137,4 +138,19 @@ vtkMSArrangementStorage::ArrangementRecord vtkMSArrangementStorage::LoadArrangem
     throw msynth::Error(where + ": the arrangement's quantum is not positive");
   }
   return r;
+}
+
+double vtkMSArrangementStorage::SmallestSpacing(vtkFieldData* fields)
+{
+  if (!fields || !fields->GetArray("FamilySpacings"))
+    return 0;
+  const ArrangementRecord record = LoadArrangement(fields, "the arrangement");
+  const msynth::PlaneFamilySet families(record.Normals);
+  double smallest = 0;
+  for (int f = 0; f < families.Size(); ++f)
+  {
+    const double world = record.Parameters.Spacing(families, f);
+    smallest = f == 0 ? world : std::min(smallest, world);
+  }
+  return smallest;
 }

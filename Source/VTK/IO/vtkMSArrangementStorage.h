@@ -35,6 +35,10 @@ public:
 
   /// @throw msynth::Error naming @p where and the missing or malformed array.
   static ArrangementRecord LoadArrangement(vtkFieldData* fields, const std::string& where);
+
+  /// The smallest distance between parallel planes of the arrangement @p fields carries (world
+  /// units); 0 when @p fields carry none.
+  static double SmallestSpacing(vtkFieldData* fields);
 };
 
 #endif

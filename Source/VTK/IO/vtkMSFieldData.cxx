@@ -38,6 +38,27 @@
 #include <map>
 #include <vector>
 
+bool vtkMSFieldData::IsTiming(const char* name)
+{
+  if (!name)
+    return false;
+  const std::string n(name);
+  return n == "Seconds" || n == "FirstValidSeconds" || n == "SampleSeconds";
+}
+
+vtkSmartPointer<vtkDataObject> vtkMSFieldData::WithoutTiming(vtkDataObject* data)
+{
+  vtkSmartPointer<vtkDataObject> copy = vtkSmartPointer<vtkDataObject>::Take(data->NewInstance());
+  copy->ShallowCopy(data);
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(data->GetFieldData());
+  for (int i = fields->GetNumberOfArrays() - 1; i >= 0; --i)
+    if (IsTiming(fields->GetArrayName(i)))
+      fields->RemoveArray(i);
+  copy->SetFieldData(fields);
+  return copy;
+}
+
 std::string vtkMSFieldData::ExampleName(vtkDataObject* data)
 {
   if (data)

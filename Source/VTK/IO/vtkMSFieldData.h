@@ -2,7 +2,7 @@
 /**
  * @class vtkMSFieldData
  * @brief Field data the classes share: one-value arrays, a solver's statistics under their one
- * naming, the example's file name.
+ * naming, the timing left out of written files, the example's file name.
  *
  * Static functions shared by ModelSynth's VTK classes (not wrapped for Python: their signatures
  * use engine types).
@@ -14,6 +14,7 @@
 #include "ModelSynthIOModule.h"  // for export macro
 #include "vtkFieldData.h"        // for AddFieldValue
 #include "vtkNew.h"              // for AddFieldValue
+#include "vtkSmartPointer.h"     // for WithoutTiming
 
 #include <string>
 
@@ -40,6 +41,17 @@ public:
    */
   static void AddStatistics(vtkFieldData* fields, const msynth::SynthesisStatistics& statistics,
     msynth::SynthesisStatus status, const std::string& message);
+
+  /// True for the field data of a run's timing (`Seconds`, `FirstValidSeconds`,
+  /// `SampleSeconds`), which differ between equal runs.
+  static bool IsTiming(const char* name);
+
+  /**
+   * What outputs are written from, reproducibly: a shallow copy of @p data without its timing
+   * field data (IsTiming), so the same inputs and seed give byte-identical files; the timing
+   * goes to statistics.json only.
+   */
+  static vtkSmartPointer<vtkDataObject> WithoutTiming(vtkDataObject* data);
 
   /// The example's file name from field data `ExampleFile`, else "the input".
   static std::string ExampleName(vtkDataObject* data);

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSOpenVDBWriter.h"
 
+#include "vtkMSArrangementStorage.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
@@ -28,6 +30,7 @@
 #include "vtkVariant.h"
 #include "vtkVoronoiKernel.h"
 
+#include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
 #include "VDB/VDBFile.h"
 
@@ -51,6 +54,7 @@ struct vtkMSOpenVDBWriter::Internals
 vtkMSOpenVDBWriter::vtkMSOpenVDBWriter()
   : Internal(new Internals)
 {
+  this->SetNumberOfInputPorts(2);
 }
 
 vtkMSOpenVDBWriter::~vtkMSOpenVDBWriter() = default;
@@ -70,9 +74,15 @@ void vtkMSOpenVDBWriter::ClearMetadata()
   this->Modified();
 }
 
-int vtkMSOpenVDBWriter::FillInputPortInformation(int, vtkInformation* info)
+int vtkMSOpenVDBWriter::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
@@ -97,6 +107,11 @@ vtkTypeBool vtkMSOpenVDBWriter::ProcessRequest(
     {
       inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
       inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    }
+    if (vtkInformation* arrangement = inputVector[1]->GetInformationObject(0))
+    {
+      arrangement->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      arrangement->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
     }
     return 1;
   }
@@ -172,7 +187,7 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
   return true;
 }
 /// File metadata: every single-valued array of @p field (strings such as ExampleFile, numbers
-/// such as the solver's Seed and statistics; not Seconds, so equal runs give equal files), then
+/// such as the solver's Seed and statistics; not the timing, so equal runs give equal files), then
 /// the pairs given.
 msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::MetadataMap& extra)
 {
@@ -181,7 +196,7 @@ msynth::vdb::MetadataMap FileMetadata(vtkFieldData* field, const msynth::vdb::Me
   {
     vtkAbstractArray* array = field->GetAbstractArray(i);
     if (!array || !array->GetName() || array->GetNumberOfValues() != 1 ||
-      std::string(array->GetName()) == "Seconds")
+      vtkMSFieldData::IsTiming(array->GetName()))
     {
       continue;
     }
@@ -317,16 +332,20 @@ void vtkMSOpenVDBWriter::WriteData()
     return;
   }
   vtkSmartPointer<vtkImageData> resampled;
+  bool types = false; // a continuous model voxelized: its ObjectType labels
   if (auto* poly = vtkPolyData::SafeDownCast(this->GetInput()))
   {
-    if (poly->GetNumberOfPolys() > 0)
+    auto* arrangement = vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0));
+    types =
+      arrangement && (poly->GetNumberOfPolys() == 0 || poly->GetCellData()->GetArray("ObjectType"));
+    if (poly->GetNumberOfPolys() > 0 && !types)
     {
       this->WriteMesh(poly);
       return;
     }
     try
     {
-      resampled = this->ResamplePoints(poly);
+      resampled = types ? this->VoxelizeTypes(poly, arrangement) : this->ResamplePoints(poly);
     }
     catch (const std::exception& e)
     {
@@ -354,8 +373,10 @@ void vtkMSOpenVDBWriter::WriteData()
     Buffers buffers;
     std::vector<msynth::vdb::DenseGridView> views;
     std::vector<std::string> skipped;
-    const LabelPolicy labels{ this->LabelArrayName, static_cast<double>(this->EmptyLabel),
-      this->WriteFloatLabels };
+    const LabelPolicy labels = types
+      ? LabelPolicy{ "ObjectType", 0.0, true }
+      : LabelPolicy{ this->LabelArrayName, static_cast<double>(this->EmptyLabel),
+          this->WriteFloatLabels };
     AddGrids(input->GetPointData(), input, points, "point", false, labels, buffers, views, skipped);
     AddGrids(input->GetCellData(), input, cells, "cell", true, labels, buffers, views, skipped);
     for (const auto& reason : skipped)
@@ -400,7 +421,9 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   input->GetBounds(bounds);
   const double extent =
     std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
-  const double voxel = this->VoxelSize > 0 ? this->VoxelSize : (extent > 0 ? extent / 128.0 : 1.0);
+  auto* arrangement = vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0));
+  const double voxel = this->ChooseVoxel(arrangement ? arrangement : input, 2, 128, extent);
+  this->WrittenVoxelSize = voxel;
   int dims[3];
   double total = 1;
   for (int a = 0; a < 3; ++a)
@@ -476,7 +499,18 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
       throw msynth::Error(
         "the mesh is flat (a 2D model encloses no volume); level sets need closed 3D surfaces");
     }
-    const double voxel = this->VoxelSize > 0 ? this->VoxelSize : extent / 256.0;
+    auto* arrangement = vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0));
+    double voxel = this->ChooseVoxel(arrangement, 4, 256, extent);
+    const bool continuous =
+      input->GetCellData()->GetArray("InsideType") && input->GetCellData()->GetArray("OutsideType");
+    if (this->VoxelSize <= 0 && this->LevelSetBudget > 0 && continuous)
+      voxel = std::max(voxel,
+        msynth::LevelSetVoxel(vtkMSPolyhedra::ToContinuousMesh(input, this->CurrentFileName), 0.0,
+          0.0, this->BandWidth, this->LevelSetBudget));
+    this->WrittenVoxelSize = voxel;
+    if (arrangement)
+      arrangement->GetBounds(bounds);
+    this->GridDimensions(bounds, voxel, false);
     auto* names =
       vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("TypeNames"));
     // Polygons per grid: the whole model (its interfaces with empty space), and per type.
@@ -548,6 +582,66 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
   }
 }
 
+double vtkMSOpenVDBWriter::ChooseVoxel(
+  vtkPolyData* arrangement, double perSpacing, double perExtent, double extent)
+{
+  if (this->VoxelSize > 0)
+    return this->VoxelSize;
+  const double spacing =
+    arrangement ? vtkMSArrangementStorage::SmallestSpacing(arrangement->GetFieldData()) : 0.0;
+  if (spacing > 0)
+  {
+    double box[6];
+    arrangement->GetBounds(box);
+    extent = std::max({ box[1] - box[0], box[3] - box[2], box[5] - box[4] });
+    const double voxel = std::max(spacing / perSpacing, extent / perExtent);
+    return voxel > 0 ? voxel : 1.0;
+  }
+  return extent > 0 ? extent / perExtent : 1.0;
+}
+
+std::array<std::int64_t, 3> vtkMSOpenVDBWriter::GridDimensions(
+  const double bounds[6], double voxel, bool planar)
+{
+  std::array<std::int64_t, 3> dims{ { 1, 1, 1 } };
+  double total = 1;
+  for (int c = 0; c < (planar ? 2 : 3); ++c)
+  {
+    const double n = std::max(1.0, std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel));
+    total *= n;
+    dims[static_cast<std::size_t>(c)] = static_cast<std::int64_t>(std::min(n, 1e18));
+  }
+  if (total > this->MaximumVoxels)
+    throw msynth::Error("voxels of " + std::to_string(voxel) + " give more than " +
+      std::to_string(static_cast<long long>(this->MaximumVoxels)) +
+      " voxels (MaximumVoxels); use a larger VoxelSize");
+  return dims;
+}
+
+vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::VoxelizeTypes(
+  vtkPolyData* model, vtkPolyData* arrangement)
+{
+  const bool planar = model->GetCellData()->GetArray("ObjectType") != nullptr;
+  double box[6];
+  arrangement->GetBounds(box);
+  const double voxel = this->ChooseVoxel(arrangement, 4, 256,
+    std::max({ box[1] - box[0], box[3] - box[2], planar ? 0.0 : box[5] - box[4] }));
+  this->WrittenVoxelSize = voxel;
+  const std::array<std::int64_t, 3> dims = this->GridDimensions(box, voxel, planar);
+  const msynth::LabelGrid volume =
+    msynth::VoxelizeModel(vtkMSPolyhedra::ToContinuousMesh(model, "model"),
+      { box[0], box[2], planar ? 0.0 : box[4] }, voxel, dims);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(
+    static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+  image->SetSpacing(voxel, voxel, voxel);
+  image->SetOrigin(box[0] + voxel / 2, box[2] + voxel / 2, planar ? 0.0 : box[4] + voxel / 2);
+  vtkSmartPointer<vtkIntArray> types;
+  types.TakeReference(vtkMSLabelArrays::NewLabelArray(volume, "ObjectType"));
+  image->GetPointData()->SetScalars(types);
+  return image;
+}
+
 std::string vtkMSOpenVDBWriter::SequenceFileName(int index) const
 {
   std::string stem = this->FileName, extension = ".vdb";
@@ -600,7 +694,9 @@ void vtkMSOpenVDBWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmptyLabel: " << this->EmptyLabel << "\n";
   os << indent << "WriteFloatLabels: " << this->WriteFloatLabels << "\n";
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
+  os << indent << "MaximumVoxels: " << this->MaximumVoxels << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "LevelSetBudget: " << this->LevelSetBudget << "\n";
   os << indent << "WriteFog: " << this->WriteFog << "\n";
   os << indent << "WriteTimeSteps: " << this->WriteTimeSteps << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";

@@ -37,6 +37,15 @@
  * VoxelSize (0: the longest extent / 128), every voxel taking the values of the nearest point,
  * and written as image data is.
  *
+ * **Continuous models:** with the model's labelled arrangement on port 1 (the output of
+ * vtkMSContinuousSynthesis: SetArrangementConnection) and VoxelSize 0, the voxels follow the
+ * planes: max(s / 4, E / 256) for the mesh, s the smallest distance between parallel planes
+ * and E the longest extent of the arrangement's box; points that carry their arrangement (the
+ * solver's output, e.g. its catalog snapshots) get max(s / 2, E / 128). A flat model (cell
+ * array `ObjectType`: a 2D example's) or one without polygons is written as the label grid
+ * `ObjectType` (and `ObjectType_float`) of the object type at each voxel's centre over the
+ * arrangement's box (`VoxelizeModel`). A grid of more than MaximumVoxels voxels is refused.
+ *
  * **Sequences:** with WriteTimeSteps and an input that has time steps (e.g. the catalog
  * snapshots of the solver filters), Write() writes one file per step, numbered from 1 with four
  * digits before the extension (`catalog.vdb` → `catalog_0001.vdb`, `catalog_0002.vdb`, …), as
@@ -55,8 +64,10 @@
 
 #include "vtkSmartPointer.h" // for the resampled image
 
-#include <memory> // for std::unique_ptr
-#include <string> // for ivars
+#include <array>   // for GridDimensions
+#include <cstdint> // for GridDimensions
+#include <memory>  // for std::unique_ptr
+#include <string>  // for ivars
 
 class vtkImageData;
 class vtkPolyData;
@@ -98,6 +109,32 @@ public:
   vtkSetClampMacro(VoxelSize, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(VoxelSize, double);
   ///@}
+
+  ///@{
+  /// Meshes and voxelized models: the most voxels a grid may have (default 10^9).
+  vtkSetClampMacro(MaximumVoxels, double, 1.0, 1e18);
+  vtkGetMacro(MaximumVoxels, double);
+  ///@}
+
+  ///@{
+  /// Port 1, optional: a continuous model's labelled arrangement (see above).
+  void SetArrangementConnection(vtkAlgorithmOutput* arrangement)
+  {
+    this->SetInputConnection(1, arrangement);
+  }
+  void SetArrangementData(vtkDataObject* arrangement) { this->SetInputData(1, arrangement); }
+  ///@}
+
+  ///@{
+  /// A continuous model's level sets (VoxelSize 0): coarser voxels where their bands would hold
+  /// more than this many voxels (msynth::LevelSetVoxel), so a large model costs about what a
+  /// small one does; 0 (the default) for no such limit.
+  vtkSetClampMacro(LevelSetBudget, double, 0.0, 1e18);
+  vtkGetMacro(LevelSetBudget, double);
+  ///@}
+
+  /// The voxel size the last write used (VoxelSize, or the one chosen).
+  vtkGetMacro(WrittenVoxelSize, double);
 
   ///@{
   /// Meshes: the narrow band's half width in voxels. Default 3.
@@ -155,6 +192,15 @@ protected:
   /// Points without polygons (a plane arrangement): their point arrays sampled on a grid of
   /// VoxelSize (0: the longest extent / 128), each voxel from the nearest point.
   vtkSmartPointer<vtkImageData> ResamplePoints(vtkPolyData* input);
+  /// A continuous model without volume (flat, or no polygons) as a label grid `ObjectType`
+  /// over the box of @p arrangement.
+  vtkSmartPointer<vtkImageData> VoxelizeTypes(vtkPolyData* model, vtkPolyData* arrangement);
+  /// VoxelSize; else from the planes of @p arrangement (when it carries them): max(s /
+  /// @p perSpacing, E / @p perExtent); else @p extent / @p perExtent (1 when 0).
+  double ChooseVoxel(vtkPolyData* arrangement, double perSpacing, double perExtent, double extent);
+  /// @throw msynth::Error when a grid over @p bounds (x and y only when @p planar) with voxels
+  /// of @p voxel would have more than MaximumVoxels; the grid's dimensions otherwise.
+  std::array<std::int64_t, 3> GridDimensions(const double bounds[6], double voxel, bool planar);
   /// Reports a failed write (once, naming the file) and sets the error code.
   void ReportFailure(const std::string& what);
 
@@ -167,7 +213,10 @@ private:
   int EmptyLabel = 0;
   bool WriteFloatLabels = false;
   double VoxelSize = 0;
+  double MaximumVoxels = 1e9;
   double BandWidth = 3;
+  double LevelSetBudget = 0;
+  double WrittenVoxelSize = 0;
   bool WriteFog = true;
   bool WriteTimeSteps = false;
   std::string CurrentFileName; ///< the file being written (FileName, or a sequence member)

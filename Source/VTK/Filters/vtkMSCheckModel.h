@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkMSCheckModel
+ * @brief The independent checks of a synthesized model, as field data: whether it satisfies
+ * its example's constraints, where it does not, and (for patterns) how much it looks like its
+ * exemplars. The checks share no code with the solvers (Discrete/ConsistencyCheck.h,
+ * Patterns/PatternQuality.h, Continuous/ContinuousMesh.h: CheckContinuousModel).
+ *
+ * Inputs:
+ *  - port 0: the model: a label image (`Label`, else the active scalars), or a continuous
+ *    model (vtkPolyData of vtkMSArrangementMesh);
+ *  - port 1, optional, one or more connections: the examples: label images (every adjacent
+ *    pair of the model must occur along its axis in one of them, Eq. 3.1), or the polyhedral
+ *    example of a continuous model (its neighbourhoods, Eq. 4.1).
+ *
+ * A label image may instead be checked against a tileset's neighbor rules (TilesetFile; with no
+ * example connected, the tileset the model's field data names, as the synthesis records it).
+ *
+ * Output: the model (shallow copy) with field data `Valid` (1 or 0), `Violations` (the number
+ * of problems: adjacent pairs that do not occur; 1 for an invalid continuous model),
+ * `PairsChecked`, `Problems` (one line each, at most MaximumReported); for label images the
+ * first violations as `ViolationSites` (x, y, z of the pair's first site), `ViolationAxes`
+ * (0, 1, 2: the pair is (x, x + axis)) and `ViolationLabels` (the two labels); with Shapes,
+ * `KL_<shape>` per shape (the KL divergence of the model's configurations to the examples', Yeh
+ * et al. 2012 §7) and `PatternLogProbability` (Eq. 3 with the shapes of more than two sites as
+ * soft factors worth 1 + Epsilon); for continuous models `Objects` and `DistinctLabels`.
+ * Bad input (no example and no tileset, a model without labels) is an error naming it.
+ *
+ * @sa msynth check, msynth quality
+ */
+#ifndef vtkMSCheckModel_h
+#define vtkMSCheckModel_h
+
+#include "ModelSynthFiltersModule.h" // for export macro
+#include "vtkPassInputTypeAlgorithm.h"
+
+#include <string> // for ivars
+
+class vtkFieldData;
+class vtkImageData;
+class vtkPolyData;
+
+class MODELSYNTHFILTERS_EXPORT vtkMSCheckModel : public vtkPassInputTypeAlgorithm
+{
+public:
+  static vtkMSCheckModel* New();
+  vtkTypeMacro(vtkMSCheckModel, vtkPassInputTypeAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Adds an example (data, not a pipeline connection) on port 1.
+  void AddExampleData(vtkDataObject* example) { this->AddInputDataObject(1, example); }
+  /// Adds an example's connection on port 1.
+  void AddExampleConnection(vtkAlgorithmOutput* example) { this->AddInputConnection(1, example); }
+  /// Removes every example (port 1).
+  void RemoveAllExamples() { this->SetInputConnection(1, nullptr); }
+
+  ///@{
+  /// A tileset (.xml) whose neighbor rules a label image must follow (label k is the
+  /// tileset's label k), its subset and the folder of a voxel tileset's tiles. "" (the default):
+  /// the tileset the model's field data names (`TilesetFile`, `TilesetSubset`, `TilesFolder`)
+  /// when no example is connected.
+  vtkSetStdStringFromCharMacro(TilesetFile);
+  vtkGetCharFromStdStringMacro(TilesetFile);
+  vtkSetStdStringFromCharMacro(TilesetSubset);
+  vtkGetCharFromStdStringMacro(TilesetSubset);
+  vtkSetStdStringFromCharMacro(TilesFolder);
+  vtkGetCharFromStdStringMacro(TilesFolder);
+  ///@}
+
+  ///@{
+  /// Factor shapes whose KL divergence to the examples is measured ("4H,4V", "3x3", as
+  /// vtkMSPatternSynthesis's SoftFactors); "" (the default): none.
+  vtkSetStdStringFromCharMacro(Shapes);
+  vtkGetCharFromStdStringMacro(Shapes);
+  ///@}
+
+  ///@{
+  /// Epsilon of `PatternLogProbability` (default 0.1).
+  vtkSetClampMacro(Epsilon, double, 0.0, 1e300);
+  vtkGetMacro(Epsilon, double);
+  ///@}
+
+  ///@{
+  /// The most violations listed (default 10); all are counted.
+  vtkSetClampMacro(MaximumReported, int, 0, 1000000);
+  vtkGetMacro(MaximumReported, int);
+  ///@}
+
+protected:
+  vtkMSCheckModel();
+  ~vtkMSCheckModel() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkMSCheckModel(const vtkMSCheckModel&) = delete;
+  void operator=(const vtkMSCheckModel&) = delete;
+
+  bool CheckLabels(vtkImageData* model, vtkInformationVector* examples, vtkFieldData* out);
+  bool CheckContinuous(vtkPolyData* model, vtkInformationVector* examples, vtkFieldData* out);
+
+  std::string TilesetFile;
+  std::string TilesetSubset;
+  std::string TilesFolder;
+  std::string Shapes;
+  double Epsilon = 0.1;
+  int MaximumReported = 10;
+};
+
+#endif
