@@ -264,7 +264,8 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
       ->check(NonNegativeReal()));
   continuous(s.add_option("--voxel", o.Voxel,
                 "voxel size of model.vdb (default: a quarter of the smallest plane spacing, at "
-                "least 1/256 of the model's extent)")
+                "least 1/256 of the model's extent, coarser where the level sets would hold "
+                "over 10^6 voxels; statistics.json's VoxelSize)")
                ->check(NonNegativeReal()));
   for (CLI::Option* option : AddTypesOption(s, o.Reading))
     continuous(option);
