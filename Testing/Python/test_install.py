@@ -4,6 +4,7 @@ and the plugin in pvbatch, each run with an environment that knows nothing of th
 
 Usage (ctest): python3 test_install.py CMAKE_COMMAND BUILD_DIR"""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -75,6 +76,46 @@ class InstalledTreeTest(unittest.TestCase):
                         self.assertNotIn(BUILD, line, path)
                         self.assertNotIn(os.path.dirname(BUILD), line, path)
         self.assertGreaterEqual(found, 8)  # msynth, 4 libraries, 2 Python modules, the plugin
+
+    def test_debian_package_holds_the_installed_tree(self):
+        """`cpack -G DEB` makes a package of exactly the installed files, with dependencies."""
+        cpack = os.path.join(os.path.dirname(CMAKE), "cpack")
+        out = tmp("install-deb")
+        shutil.rmtree(out, ignore_errors=True)
+        r = subprocess.run([cpack, "-G", "DEB", "-B", out], cwd=BUILD, capture_output=True,
+                           text=True, timeout=3 * TIMEOUT)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        debs = [n for n in os.listdir(out) if n.endswith(".deb")]
+        self.assertEqual(len(debs), 1, debs)
+        deb = os.path.join(out, debs[0])
+        listing = subprocess.run(["dpkg-deb", "-c", deb], capture_output=True, text=True).stdout
+        # "perms owner size date time ./path[ -> target]"; paths may hold spaces.
+        packaged = {line.split(None, 5)[5].split(" -> ")[0].lstrip(".")
+                    for line in listing.splitlines() if not line.startswith("d")}
+        installed = set()
+        for folder, _, files in os.walk(ROOT):
+            for name in files:
+                installed.add("/" + os.path.relpath(os.path.join(folder, name), ROOT))
+        self.assertIn("/usr/bin/msynth", packaged)
+        # The package is the runtime: it leaves out the development pieces (static wrapping
+        # libraries, link names) that a full install also writes.
+        development = {p for p in installed
+                       if p.endswith(".a") or re.fullmatch(r"/usr/lib/lib\w+\.so", p)}
+        self.assertEqual(installed - packaged - development, set())
+        # Unpacked anywhere, its msynth runs (libraries found $ORIGIN-relative).
+        unpacked = tmp("install-deb-root")
+        shutil.rmtree(unpacked, ignore_errors=True)
+        subprocess.run(["dpkg-deb", "-x", deb, unpacked], check=True)
+        folder = tmp("install-deb-run")
+        shutil.rmtree(folder, ignore_errors=True)
+        done = run([os.path.join(unpacked, "usr", "bin", "msynth"), "synthesize",
+                    data("Examples/Village.vti"), "--size", "12", "10", "5", "--outputs", "labels",
+                    "--out", folder])
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertTrue(os.path.isfile(os.path.join(folder, "labels.vti")))
+        depends = subprocess.run(["dpkg-deb", "-f", deb, "Depends"], capture_output=True,
+                                 text=True).stdout
+        self.assertIn("paraview", depends)
 
     def test_msynth_runs_and_synthesizes(self):
         msynth = os.path.join(USR, "bin", "msynth")
