@@ -74,6 +74,12 @@ int vtkMSDiscreteSynthesis::GridSize(int axis) const
                                : this->OutputSize[axis] - this->PatternSize + 1;
 }
 
+bool vtkMSDiscreteSynthesis::ProducesSubExtents() const
+{
+  return this->ComputeRequestedExtent && !this->HasRegion() &&
+    this->GetActiveSource() != SAMPLE_SOURCE;
+}
+
 bool vtkMSDiscreteSynthesis::HasRegion() const
 {
   for (int v : this->Region)
@@ -203,8 +209,7 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     outInfo->Set(vtkMSTileImage::TILESET(), this->TilesetSubset.c_str(), 1);
   }
 
-  if (this->ComputeRequestedExtent && !this->HasRegion() &&
-    this->GetActiveSource() != SAMPLE_SOURCE)
+  if (this->ProducesSubExtents())
     outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
   else
     outInfo->Remove(CAN_PRODUCE_SUB_EXTENT());
@@ -402,10 +407,7 @@ bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::Synthes
 std::array<int, 6> RequestedExtent(vtkMSDiscreteSynthesis* self, vtkInformation* outInfo)
 {
   std::array<int, 6> none{ { -1, -1, -1, -1, -1, -1 } }, whole{}, update{};
-  const int* region = self->GetRegion();
-  if (!self->GetComputeRequestedExtent() ||
-    std::any_of(region, region + 6, [](int v) { return v; }) ||
-    self->GetActiveSource() == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ||
+  if (!self->ProducesSubExtents() ||
     !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     return none;
   outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());

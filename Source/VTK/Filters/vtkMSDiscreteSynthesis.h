@@ -190,6 +190,8 @@ public:
   vtkSetMacro(ComputeRequestedExtent, bool);
   vtkGetMacro(ComputeRequestedExtent, bool);
   vtkBooleanMacro(ComputeRequestedExtent, bool);
+  /// Whether requested extents are computed: ComputeRequestedExtent, without Region or a sample.
+  bool ProducesSubExtents() const;
   ///@}
 
   ///@{
