@@ -19,8 +19,8 @@ WorldLattice::WorldLattice(const WorldBox& world, const WorldBox& m, const World
       throw Error("world lattice: sizes must be positive and steps at most the block");
     // Origins k · step for k = 0 .. K - 1, the last the first with k · step + m >= n.
     this->Counts[a] = world[a] <= m[a] ? 1 : (world[a] - m[a] + step[a] - 1) / step[a] + 1;
-    this->Period[a] = this->Counts[a] > 1 ? (m[a] + 1 + step[a] - 1) / step[a] : 1;
-    this->NumberOfPhases *= static_cast<int>(this->Period[a]);
+    this->Periods[a] = this->Counts[a] > 1 ? (m[a] + 1 + step[a] - 1) / step[a] : 1;
+    this->NumberOfPhases *= static_cast<int>(this->Periods[a]);
   }
 }
 
@@ -33,8 +33,8 @@ BoxBlock<3> WorldLattice::At(const WorldBox& g) const
   {
     b.Origin[a] = g[a] * this->Step[a];
     b.Dims[a] = std::min(this->M[a], this->N[a] - b.Origin[a]);
-    b.Phase += radix * static_cast<int>(g[a] % this->Period[a]);
-    radix *= static_cast<int>(this->Period[a]);
+    b.Phase += radix * static_cast<int>(g[a] % this->Periods[a]);
+    radix *= static_cast<int>(this->Periods[a]);
   }
   return b;
 }
@@ -46,13 +46,13 @@ void WorldLattice::Meeting(
   int rest = phase;
   for (std::size_t a = 0; a < 3; ++a)
   {
-    const auto digit = static_cast<std::int64_t>(rest % static_cast<int>(this->Period[a]));
-    rest /= static_cast<int>(this->Period[a]);
+    const auto digit = static_cast<std::int64_t>(rest % static_cast<int>(this->Periods[a]));
+    rest /= static_cast<int>(this->Periods[a]);
     // Blocks [k · step, k · step + m) with k · step < hi and k · step + m > lo.
     const std::int64_t first = std::max<std::int64_t>(0, (lo[a] - this->M[a]) / this->Step[a]);
     const std::int64_t last = std::min(this->Counts[a] - 1, (hi[a] - 1) / this->Step[a]);
     for (std::int64_t k = first; k <= last; ++k)
-      if (k % this->Period[a] == digit && k * this->Step[a] < hi[a] &&
+      if (k % this->Periods[a] == digit && k * this->Step[a] < hi[a] &&
         k * this->Step[a] + this->M[a] > lo[a])
         along[a].push_back(k);
   }

@@ -41,6 +41,10 @@ public:
     return this->Counts[0] * this->Counts[1] * this->Counts[2];
   }
   const WorldBox& World() const { return this->N; }
+  /// Lattice positions apart along axis @p a that blocks of one phase are.
+  std::int64_t Period(int a) const { return this->Periods[static_cast<std::size_t>(a)]; }
+  /// The block step along axis @p a.
+  std::int64_t StepAlong(int a) const { return this->Step[static_cast<std::size_t>(a)]; }
 
   /// The block at lattice position @p g (its index: g0 + C0 · (g1 + C1 · g2)).
   BoxBlock<3> At(const WorldBox& g) const;
@@ -50,7 +54,7 @@ public:
     int phase, const WorldBox& lo, const WorldBox& hi, std::vector<BoxBlock<3>>& out) const;
 
 private:
-  WorldBox N, M, Step, Counts, Period;
+  WorldBox N, M, Step, Counts, Periods;
   int NumberOfPhases = 1;
 };
 

@@ -14,6 +14,7 @@
 #include "Discrete/BlockSolver.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
+#include "Discrete/WindowRun.h"
 
 #include <algorithm>
 #include <chrono>
@@ -244,9 +245,6 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
   return client;
 }
 
-/// Passes after the first that repair failed blocks (SynthesisOptions::RepairFailedBlocks).
-constexpr int RepairPasses = 3;
-
 /**
  * One pass of second tries at failed blocks (SynthesisOptions::RepairFailedBlocks): a pass over
  * the phases after every earlier one, running those of @p candidates (in phase order) still
@@ -359,12 +357,23 @@ bool AllDecided(const std::vector<std::int32_t>& model, const Coord& n, Synthesi
   return false;
 }
 
-/// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
-/// mirror plan or symmetry seams when a part of a symmetric output is synthesized; with
-/// @p cone, the output is the cone's window of a world and its blocks are the cone's.
-SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOptions& options,
-  const MirrorPlan* plan, const SymmetryPlan* seams, const RegionCone* cone = nullptr)
+/// The values of the labels of @p shared (every site decided) as @p r's model.
+void ModelFromShared(
+  const AdjacencyRules& rules, SharedModel& shared, const Coord& n, SynthesisResult& r)
 {
+  std::vector<Label> values(shared.Model.size());
+  for (std::size_t s = 0; s < values.size(); ++s)
+    values[s] = rules.LabelValues()[static_cast<std::size_t>(shared.Model[s])];
+  r.Model = LabelGrid(n, std::move(values));
+  r.LastBlock = std::move(shared.LastBlock);
+}
+} // namespace
+
+SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
+  const SynthesisOptions& options, const MirrorPlan* plan, const SymmetryPlan* seams,
+  const WindowRun* run)
+{
+  const RegionCone* cone = run ? run->Cone : nullptr;
   const auto start = std::chrono::steady_clock::now();
   if (options.AttemptsPerBlock < 1)
     throw Error("attempts per block must be at least 1");
@@ -405,8 +414,10 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
     static_cast<bool>(options.Soft.Fitness);
   policy.Progress = options.Progress;
-  BlockDriver driver(
-    std::move(policy), options.Seed, options.AttemptsPerBlock, blocks.size(), start);
+  std::size_t most = blocks.size(); // the workers a later pass may use too
+  for (std::size_t p = 1; cone && p < cone->Passes.size(); ++p)
+    most = std::max(most, cone->Passes[p].size());
+  BlockDriver driver(std::move(policy), options.Seed, options.AttemptsPerBlock, most, start);
   Workers workers;
   workers.First = &solver;
   solver.Attach(&driver, 0);
@@ -419,6 +430,10 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   if (!wholeModel && options.Pins)
     solver.PlacePins(m, options.Seed, stats.Assignments);
   solver.StartSnapshots();
+  if (run && run->Carry)
+    run->Carry(shared);
+  if (run && run->Failures)
+    stats.Failures = *run->Failures;
   result.Status =
     driver.Run(BlockSchedule::Of(blocks), MakeClient(blocks, workers, soft, shared, stats), stats);
   // Passes of second tries over the phases: a block next to one repaired in a pass meets new
@@ -445,16 +460,18 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
             "Try another seed, more attempts, or block synthesis");
         }))
     return result;
-  if (undecided && !AllDecided(shared.Model, n, result))
-    return result;
-  std::vector<Label> values(shared.Model.size());
-  for (std::size_t s = 0; s < values.size(); ++s)
-    values[s] = rules.LabelValues()[static_cast<std::size_t>(shared.Model[s])];
-  result.Model = LabelGrid(n, std::move(values));
-  result.LastBlock = std::move(shared.LastBlock);
   result.Message = Summary(stats, wholeModel);
+  if (run && run->Failures)
+    *run->Failures = stats.Failures;
+  if (run && run->Keep)
+    *run->Keep = std::move(shared);
+  else if (!undecided || AllDecided(shared.Model, n, result))
+    ModelFromShared(rules, shared, n, result);
   return result;
 }
+
+namespace
+{
 
 /**
  * A part of the output (a mirrored half; a period or a quadrant) spread over the whole output:
@@ -551,7 +568,9 @@ SynthesisResult SynthesizeSeamSymmetric(
 /// Refuses, before anything is allocated, a model whose memory would exceed what is available:
 /// per site the model, the last-block record and the caller's copies (about 24 bytes), plus a
 /// catalog (two bit sets of the labels and bookkeeping) over each block being solved at once.
-void CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o)
+} // namespace
+
+void detail::CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o)
 {
   std::uint64_t sites = 1, blockSites = 1;
   for (std::size_t a = 0; a < 3; ++a)
@@ -569,7 +588,6 @@ void CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o
       std::to_string(o.Size[2]) + " model of " + std::to_string(rules.NumberOfLabels()) +
       " labels");
 }
-} // namespace
 
 std::int64_t CountBlocks(const SynthesisOptions& requested)
 {
@@ -711,59 +729,6 @@ void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options)
   const SynthesisResult start = Synthesize(rules, whole);
   if (start.Succeeded())
     options.Start = start.Model;
-}
-
-SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
-  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
-{
-  for (std::size_t a = 0; a < 3; ++a)
-    if (world.Size[a] < 1 || world.Size[a] > (std::int64_t(1) << 31))
-      throw Error(
-        "a world has 1 to 2^31 sites along each axis, not " + std::to_string(world.Size[a]));
-  if (AnyMirror(world) || AnySeamSymmetry(world) || world.Soft.Active() || world.Pins ||
-    world.Guide || world.Start || world.SnapshotsPerBlock > 0 ||
-    world.Choice == LabelChoice::Resemblance)
-    throw Error("a region of a world takes no symmetry, soft constraints, pins, guide, given "
-                "start, snapshots or resemblance choice (each needs the whole world)");
-  Coord m, step;
-  BlockGeometry<3>(world.Size, world.BlockSize, world.Overlap, m, step);
-  const RegionCone cone = PlanRegion(
-    WorldLattice(world.Size, m, step), low, high, world.RepairFailedBlocks ? 1 + RepairPasses : 1);
-  SynthesisOptions window = world;
-  window.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    window.Size[a] = cone.WindowHigh[a] - cone.WindowLow[a];
-    if ((window.Size[a] == 1) != (world.Size[a] == 1))
-      throw Error("a region's window must keep the world's flat axes");
-    if (cone.WindowLow[a] > 0) // boundary labels only on the world's own faces
-      window.Boundary[2 * a].reset();
-    if (cone.WindowHigh[a] < world.Size[a])
-      window.Boundary[2 * a + 1].reset();
-  }
-  CheckSynthesisMemory(rules, window);
-  SynthesisResult r = SynthesizeDirect(rules, window, nullptr, nullptr, &cone);
-  if (!r.Succeeded())
-    return r;
-  const Coord& w = window.Size;
-  LabelGrid model(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
-  std::vector<std::int32_t> last(static_cast<std::size_t>(model.NumberOfSites()));
-  std::size_t i = 0;
-  for (std::int64_t z = low[2]; z < high[2]; ++z)
-    for (std::int64_t y = low[1]; y < high[1]; ++y)
-      for (std::int64_t x = low[0]; x < high[0]; ++x, ++i)
-      {
-        const auto s = static_cast<std::size_t>((x - cone.WindowLow[0]) +
-          w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
-        model.Data()[i] = r.Model.Data()[s];
-        last[i] = r.LastBlock[s];
-      }
-  r.Model = std::move(model);
-  r.LastBlock = std::move(last);
-  r.Message += " (the region's cone of " + std::to_string(cone.Blocks.size()) +
-    " blocks in a window of " + std::to_string(w[0]) + " x " + std::to_string(w[1]) + " x " +
-    std::to_string(w[2]) + " sites)";
-  return r;
 }
 
 } // namespace msynth

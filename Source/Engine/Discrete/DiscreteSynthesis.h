@@ -279,6 +279,47 @@ struct SynthesisResult
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high);
 
+/// How a streamed run (SynthesizeStreamed) cuts its world: slabs of Thickness sites along Axis
+/// (the last may be thinner), each spanning the world on the other axes.
+struct StreamLayout
+{
+  int Axis = 1;
+  std::int64_t Thickness = 1;
+  int Chunks = 1;
+  /// The box [low, high) of chunk @p j in the world.
+  void Box(int j, std::array<std::int64_t, 3>& low, std::array<std::int64_t, 3>& high) const;
+  std::array<std::int64_t, 3> World{ { 1, 1, 1 } };
+};
+
+/// The layout of a streamed run of @p world: along the axis with the most blocks (the higher
+/// axis on a tie), slabs of @p thickness sites (0: about 2^21 sites a slab, at least one block
+/// step). @throw Error when the world is one block.
+StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness = 0);
+
+/// A finished slab of a streamed world.
+struct StreamChunk
+{
+  int Index = 0;
+  std::array<std::int64_t, 3> Low{}, High{}; ///< its box in the world
+  LabelGrid Model;                           ///< its labels (values)
+  std::vector<std::int32_t> LastBlock;       ///< per site, the world key of its last block
+};
+
+/**
+ * The world of @p world's options computed slab by slab in bounded memory: the blocks run as a
+ * wavefront along the layout's axis (each phase of each pass trailing the one before it by the
+ * blocks' reach), a window at a time, each window carrying its labels and failed blocks into
+ * the next; every slab is handed to @p onChunk (false cancels) as soon as no later block can
+ * change it, then dropped. The slabs equal the same sites of a whole run (Synthesize, or
+ * SynthesizeRegion): the order respects every dependency of the world's schedule. From
+ * @p firstChunk on (a resumed run), only the blocks the slabs from there need run. Memory is set
+ * by the slab and the wavefront's depth (phases × passes × reach), not by the world. The result
+ * has no Model; its statistics count the blocks run. Options as SynthesizeRegion.
+ */
+SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk,
+  int firstChunk = 0);
+
 /**
  * Block synthesis of rules none of whose labels may touch itself on every axis (MarkovJunior's
  * PartitionedEdges, say) has no trivial start of one label (Algorithm 3.4, lines 3-5): sets

@@ -1,0 +1,527 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file WorldStream.cxx
+ * @brief Parts of a world (Core/WorldSchedule.h) declared in Discrete/DiscreteSynthesis.h: a
+ * region computed from its dependency cone (SynthesizeRegion), and the whole world streamed
+ * slab by slab as a wavefront of its blocks in bounded memory (SynthesizeStreamed).
+ */
+#include "Core/Error.h"
+#include "Core/WorldSchedule.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/WindowRun.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace msynth
+{
+using namespace detail;
+
+void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+    if (world.Size[a] < 1 || world.Size[a] > (std::int64_t(1) << 31))
+      throw Error(
+        "a world has 1 to 2^31 sites along each axis, not " + std::to_string(world.Size[a]));
+  const bool mirror =
+    world.Symmetry[0].Enabled || world.Symmetry[1].Enabled || world.Symmetry[2].Enabled;
+  const bool seams = world.Rotate.Enabled || world.Translate[0].Enabled ||
+    world.Translate[1].Enabled || world.Translate[2].Enabled;
+  if (mirror || seams || world.Soft.Active() || world.Pins || world.Guide || world.Start ||
+    world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance)
+    throw Error(std::string(what) +
+      " takes no symmetry, soft constraints, pins, guide, given start, snapshots or "
+      "resemblance choice (each needs the whole world)");
+}
+
+SynthesisOptions detail::WindowOptions(
+  const AdjacencyRules& rules, const SynthesisOptions& world, const RegionCone& cone)
+{
+  SynthesisOptions window = world;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    window.Size[a] = cone.WindowHigh[a] - cone.WindowLow[a];
+    if ((window.Size[a] == 1) != (world.Size[a] == 1))
+      throw Error("a region's window must keep the world's flat axes");
+    if (cone.WindowLow[a] > 0) // boundary labels only on the world's own faces
+      window.Boundary[2 * a].reset();
+    if (cone.WindowHigh[a] < world.Size[a])
+      window.Boundary[2 * a + 1].reset();
+  }
+  CheckSynthesisMemory(rules, window);
+  return window;
+}
+
+namespace
+{
+/// The block lattice of @p world's options.
+WorldLattice LatticeOf(const SynthesisOptions& world)
+{
+  Coord m, step;
+  BlockGeometry<3>(world.Size, world.BlockSize, world.Overlap, m, step);
+  return WorldLattice(world.Size, m, step);
+}
+
+int Passes(const SynthesisOptions& world)
+{
+  return world.RepairFailedBlocks ? 1 + RepairPasses : 1;
+}
+} // namespace
+
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
+{
+  CheckWorldOptions(world, "a region of a world");
+  const RegionCone cone = PlanRegion(LatticeOf(world), low, high, Passes(world));
+  SynthesisOptions resolved = world;
+  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
+  const SynthesisOptions window = WindowOptions(rules, resolved, cone);
+  WindowRun run;
+  run.Cone = &cone;
+  SynthesisResult r = SynthesizeDirect(rules, window, nullptr, nullptr, &run);
+  if (!r.Succeeded())
+    return r;
+  const Coord& w = window.Size;
+  LabelGrid model(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
+  std::vector<std::int32_t> last(static_cast<std::size_t>(model.NumberOfSites()));
+  std::size_t i = 0;
+  for (std::int64_t z = low[2]; z < high[2]; ++z)
+    for (std::int64_t y = low[1]; y < high[1]; ++y)
+      for (std::int64_t x = low[0]; x < high[0]; ++x, ++i)
+      {
+        const auto s = static_cast<std::size_t>((x - cone.WindowLow[0]) +
+          w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
+        model.Data()[i] = r.Model.Data()[s];
+        last[i] = r.LastBlock[s];
+      }
+  r.Model = std::move(model);
+  r.LastBlock = std::move(last);
+  r.Message += " (the region's cone of " + std::to_string(cone.Blocks.size()) +
+    " blocks in a window of " + std::to_string(w[0]) + " x " + std::to_string(w[1]) + " x " +
+    std::to_string(w[2]) + " sites)";
+  return r;
+}
+
+namespace
+{
+/**
+ * The world's schedule as a wavefront along one axis: block b of global phase t (pass t / P,
+ * phase t % P) at lattice row g runs at step g + t · Lag. Blocks that touch lie fewer than Lag
+ * rows apart, so of two touching blocks the one of the earlier phase runs at an earlier step,
+ * and the blocks of one step never touch: every block sees what it sees in a whole run.
+ */
+struct Wavefront
+{
+  Wavefront(const WorldLattice& lattice, int axis, int passes)
+    : Lattice(lattice)
+    , Axis(axis)
+    , P(lattice.Phases())
+    , T(lattice.Phases() * passes)
+    , Lag(lattice.Period(axis))
+    , Rows(lattice.Count(axis))
+  {
+  }
+
+  /// Restricts the run to the cone of the slab from @p low to the world's end along the axis
+  /// (Core/WorldSchedule.h's walk, along one axis): MinRow[t], the first row phase t runs.
+  void From(std::int64_t low)
+  {
+    const auto a = static_cast<std::size_t>(this->Axis);
+    std::int64_t radix = 1;
+    for (int b = 0; b < this->Axis; ++b)
+      radix *= this->Lattice.Period(b);
+    const std::int64_t period = this->Lattice.Period(this->Axis);
+    this->MinRow.assign(static_cast<std::size_t>(this->T), this->Rows);
+    for (int t = this->T - 1; t >= 0; --t)
+    {
+      const std::int64_t digit = ((t % this->P) / radix) % period;
+      for (std::int64_t g = digit; g < this->Rows; g += period)
+      {
+        const WorldBox probe{ { 0, 0, 0 } };
+        WorldBox at = probe;
+        at[a] = g;
+        const BoxBlock<3> b = this->Lattice.At(at);
+        if (b.Origin[a] + b.Dims[a] > low)
+        {
+          this->MinRow[static_cast<std::size_t>(t)] = g;
+          low = std::min(low, std::max<std::int64_t>(0, b.Origin[a] - 1));
+          break;
+        }
+      }
+    }
+    this->FirstStep = this->LastStep();
+    for (int t = 0; t < this->T; ++t)
+      if (this->MinRow[static_cast<std::size_t>(t)] < this->Rows)
+        this->FirstStep =
+          std::min(this->FirstStep, this->MinRow[static_cast<std::size_t>(t)] + t * this->Lag);
+  }
+
+  std::int64_t LastStep() const { return this->Rows - 1 + (this->T - 1) * this->Lag; }
+
+  /// Appends the blocks of step @p s and global phase @p t.
+  void Blocks(std::int64_t s, int t, std::vector<BoxBlock<3>>& out) const
+  {
+    const std::int64_t g = s - t * this->Lag;
+    if (g < this->MinRow[static_cast<std::size_t>(t)] || g >= this->Rows)
+      return;
+    const int o1 = this->Axis == 0 ? 1 : 0, o2 = this->Axis == 2 ? 1 : 2;
+    WorldBox at{};
+    at[static_cast<std::size_t>(this->Axis)] = g;
+    for (at[static_cast<std::size_t>(o2)] = 0;
+         at[static_cast<std::size_t>(o2)] < this->Lattice.Count(o2);
+         ++at[static_cast<std::size_t>(o2)])
+      for (at[static_cast<std::size_t>(o1)] = 0;
+           at[static_cast<std::size_t>(o1)] < this->Lattice.Count(o1);
+           ++at[static_cast<std::size_t>(o1)])
+      {
+        const BoxBlock<3> b = this->Lattice.At(at);
+        if (b.Phase == t % this->P)
+          out.push_back(b);
+      }
+  }
+
+  /// Rows [0, Final(s)) along the axis are final once the steps before @p s have run.
+  std::int64_t Final(std::int64_t s) const
+  {
+    const std::int64_t n = this->Lattice.World()[static_cast<std::size_t>(this->Axis)];
+    if (s > this->LastStep())
+      return n;
+    const std::int64_t g = s - (this->T - 1) * this->Lag;
+    return g <= 0 ? 0 : std::min(n, g * this->Lattice.StepAlong(this->Axis) - 1);
+  }
+
+  const WorldLattice& Lattice;
+  int Axis, P, T;
+  std::int64_t Lag, Rows;
+  std::vector<std::int64_t> MinRow;
+  std::int64_t FirstStep = 0;
+};
+
+/// Labels (indices) and last blocks of the slab [Low, High) of a world along the stream's axis.
+struct Slab
+{
+  std::int64_t Low = 0, High = 0;
+  std::vector<std::int32_t> Model, LastBlock;
+};
+
+/// The stream's state between windows.
+class Stream
+{
+public:
+  Stream(const AdjacencyRules& rules, const SynthesisOptions& world, const StreamLayout& layout,
+    const std::function<bool(StreamChunk&&)>& onChunk)
+    : Rules(rules)
+    , World(world)
+    , Layout(layout)
+    , OnChunk(onChunk)
+    , Axis(static_cast<std::size_t>(layout.Axis))
+  {
+  }
+
+  /// Runs the blocks @p passes (world coordinates) in a window that also holds every site not
+  /// yet handed out; false when cancelled or failed (@p r says which).
+  bool RunWindow(std::vector<std::vector<BoxBlock<3>>>& passes, SynthesisResult& r);
+  /// Hands out every slab below @p final and keeps what later windows read; false when a slab
+  /// holds undecided sites (@p r failed) or the receiver cancels.
+  bool Emit(std::int64_t final, SynthesisResult& r);
+
+  int NextChunk = 0;
+  std::vector<BlockFailure> Failures;
+  SynthesisStatistics Totals;
+  std::function<bool(double)> Progress;
+  int Phases = 1;
+
+private:
+  /// Sites per row before the stream's axis (x-fastest order), and rows of those after it.
+  std::int64_t Inner() const;
+  std::int64_t Outer() const;
+  void Add(const SynthesisStatistics& s);
+
+  const AdjacencyRules& Rules;
+  const SynthesisOptions& World;
+  const StreamLayout& Layout;
+  const std::function<bool(StreamChunk&&)>& OnChunk;
+  std::size_t Axis;
+  Slab Held; ///< what the last window left that is still needed or not yet handed out
+  bool First = true;
+};
+
+/// Copies rows [@p a, @p b) along the stream's axis from a slab starting at @p srcLow,
+/// @p srcRows thick, to one starting at @p dstLow, @p dstRows thick (@p inner sites per row
+/// before the axis, @p outer after it, as in x-fastest order).
+template <class T>
+void CopyRows(const std::vector<T>& src, std::int64_t srcLow, std::int64_t srcRows,
+  std::vector<T>& dst, std::int64_t dstLow, std::int64_t dstRows, std::int64_t a, std::int64_t b,
+  std::int64_t inner, std::int64_t outer)
+{
+  if (b <= a)
+    return;
+  const auto count = inner * (b - a);
+  for (std::int64_t o = 0; o < outer; ++o)
+  {
+    const auto from = src.begin() + inner * ((a - srcLow) + srcRows * o);
+    std::copy(from, from + count, dst.begin() + inner * ((a - dstLow) + dstRows * o));
+  }
+}
+
+void Stream::Add(const SynthesisStatistics& s)
+{
+  SynthesisStatistics& t = this->Totals;
+  t.Blocks += s.Blocks;
+  t.BlocksAccepted += s.BlocksAccepted;
+  t.BlocksFailed += s.BlocksFailed;
+  t.BlocksRejected += s.BlocksRejected;
+  t.BlocksRepaired += s.BlocksRepaired;
+  t.Attempts += s.Attempts;
+  t.Assignments += s.Assignments;
+  t.Backtracks += s.Backtracks;
+  t.Threads = std::max(t.Threads, s.Threads);
+  t.Processes = std::max(t.Processes, s.Processes);
+  if (this->First)
+  {
+    t.TrivialLabel = s.TrivialLabel;
+    t.StartFrom = s.StartFrom;
+  }
+}
+
+std::int64_t Stream::Inner() const
+{
+  std::int64_t inner = 1;
+  for (std::size_t k = 0; k < this->Axis; ++k)
+    inner *= this->World.Size[k];
+  return inner;
+}
+
+std::int64_t Stream::Outer() const
+{
+  std::int64_t outer = 1;
+  for (std::size_t k = this->Axis + 1; k < 3; ++k)
+    outer *= this->World.Size[k];
+  return outer;
+}
+
+bool Stream::RunWindow(std::vector<std::vector<BoxBlock<3>>>& passes, SynthesisResult& r)
+{
+  const std::size_t a = this->Axis;
+  const std::int64_t n = this->World.Size[a];
+  WorldBox chunkLow, chunkHigh;
+  this->Layout.Box(this->NextChunk, chunkLow, chunkHigh);
+  std::int64_t low = this->NextChunk < this->Layout.Chunks ? chunkLow[a] : n;
+  std::int64_t high = this->Held.High;
+  for (auto& pass : passes)
+  {
+    for (const auto& b : pass)
+    {
+      low = std::min(low, std::max<std::int64_t>(0, b.Origin[a] - 1));
+      high = std::max(high, std::min(n, b.Origin[a] + b.Dims[a] + 1));
+    }
+    std::sort(pass.begin(), pass.end(),
+      [](const BoxBlock<3>& x, const BoxBlock<3>& y)
+      { return x.Phase != y.Phase ? x.Phase < y.Phase : x.Index < y.Index; });
+  }
+  RegionCone cone;
+  cone.World = this->World.Size;
+  cone.Phases = this->Phases;
+  cone.WindowHigh = this->World.Size;
+  cone.WindowLow[a] = low;
+  cone.WindowHigh[a] = high;
+  cone.Passes = passes;
+  cone.Blocks = passes.front();
+  SynthesisOptions window = WindowOptions(this->Rules, this->World, cone);
+  window.Progress = this->Progress;
+  const Slab& held = this->Held;
+  const std::int64_t inner = this->Inner(), outer = this->Outer();
+  WindowRun run;
+  run.Cone = &cone;
+  run.Failures = &this->Failures;
+  SharedModel keep;
+  run.Keep = &keep;
+  run.Carry = [&](SharedModel& m)
+  {
+    const std::int64_t from = std::max(low, held.Low), to = std::min(high, held.High);
+    CopyRows(
+      held.Model, held.Low, held.High - held.Low, m.Model, low, high - low, from, to, inner, outer);
+    CopyRows(held.LastBlock, held.Low, held.High - held.Low, m.LastBlock, low, high - low, from, to,
+      inner, outer);
+  };
+  r = SynthesizeDirect(this->Rules, window, nullptr, nullptr, &run);
+  this->Add(r.Statistics);
+  this->First = false;
+  if (!r.Succeeded())
+    return false;
+  this->Held.Low = low;
+  this->Held.High = high;
+  this->Held.Model = std::move(keep.Model);
+  this->Held.LastBlock = std::move(keep.LastBlock);
+  return true;
+}
+
+bool Stream::Emit(std::int64_t final, SynthesisResult& r)
+{
+  const std::size_t a = this->Axis;
+  const std::int64_t inner = this->Inner(), outer = this->Outer();
+  Slab& held = this->Held;
+  const auto& values = this->Rules.LabelValues();
+  while (this->NextChunk < this->Layout.Chunks)
+  {
+    StreamChunk c;
+    c.Index = this->NextChunk;
+    this->Layout.Box(c.Index, c.Low, c.High);
+    if (c.High[a] > final || c.High[a] > held.High || c.Low[a] < held.Low)
+      break;
+    const std::int64_t rows = c.High[a] - c.Low[a];
+    std::vector<std::int32_t> model(static_cast<std::size_t>(inner * outer * rows));
+    c.LastBlock.resize(model.size());
+    CopyRows(held.Model, held.Low, held.High - held.Low, model, c.Low[a], rows, c.Low[a], c.High[a],
+      inner, outer);
+    CopyRows(held.LastBlock, held.Low, held.High - held.Low, c.LastBlock, c.Low[a], rows, c.Low[a],
+      c.High[a], inner, outer);
+    const Coord dims{ { c.High[0] - c.Low[0], c.High[1] - c.Low[1], c.High[2] - c.Low[2] } };
+    std::vector<Label> labels(model.size());
+    for (std::size_t s = 0; s < model.size(); ++s)
+    {
+      if (model[s] < 0)
+      {
+        const auto i = static_cast<std::int64_t>(s);
+        const Coord p{ { c.Low[0] + i % dims[0], c.Low[1] + (i / dims[0]) % dims[1],
+          c.Low[2] + i / (dims[0] * dims[1]) } };
+        r.Status = SynthesisStatus::Failed;
+        r.Message = "block synthesis from an undecided start left site " + Format(p) +
+          " undecided (every block over it failed). Try another seed, larger blocks, or the "
+          "trivial start";
+        return false;
+      }
+      labels[s] = values[static_cast<std::size_t>(model[s])];
+    }
+    c.Model = LabelGrid(dims, std::move(labels));
+    ++this->NextChunk;
+    if (!this->OnChunk(std::move(c)))
+    {
+      r.Status = SynthesisStatus::Cancelled;
+      r.Message = "cancelled";
+      return false;
+    }
+  }
+  // Keep only what a later window reads or a later slab holds.
+  WorldBox low, high;
+  this->Layout.Box(std::min(this->NextChunk, this->Layout.Chunks - 1), low, high);
+  const std::int64_t keep =
+    std::min(final, this->NextChunk < this->Layout.Chunks ? low[a] : this->World.Size[a]);
+  if (keep > held.Low && !held.Model.empty())
+  {
+    Slab rest;
+    rest.Low = std::min(keep, held.High);
+    rest.High = held.High;
+    rest.Model.resize(static_cast<std::size_t>(inner * outer * (rest.High - rest.Low)));
+    rest.LastBlock.resize(rest.Model.size());
+    CopyRows(held.Model, held.Low, held.High - held.Low, rest.Model, rest.Low, rest.High - rest.Low,
+      rest.Low, rest.High, inner, outer);
+    CopyRows(held.LastBlock, held.Low, held.High - held.Low, rest.LastBlock, rest.Low,
+      rest.High - rest.Low, rest.Low, rest.High, inner, outer);
+    held = std::move(rest);
+  }
+  return true;
+}
+} // namespace
+
+SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk)
+{
+  const auto start = std::chrono::steady_clock::now();
+  CheckWorldOptions(world, "a streamed world");
+  if (firstChunk < 0 || firstChunk >= layout.Chunks || layout.World != world.Size)
+    throw Error("a streamed run resumes at one of its own slabs");
+  const WorldLattice lattice = LatticeOf(world);
+  if (lattice.NumberOfBlocks() == 1)
+    throw Error("a streamed world is computed in blocks: give blocks smaller than the world");
+  SynthesisOptions resolved = world;
+  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, as every region's
+  Wavefront wave(lattice, layout.Axis, Passes(world));
+  WorldBox low, high;
+  layout.Box(firstChunk, low, high);
+  wave.From(low[static_cast<std::size_t>(layout.Axis)]);
+  Stream stream(rules, resolved, layout, onChunk);
+  stream.NextChunk = firstChunk;
+  stream.Phases = lattice.Phases();
+  const std::int64_t step = lattice.StepAlong(layout.Axis);
+  const std::int64_t g = std::max<std::int64_t>(1, (layout.Thickness + step - 1) / step);
+  const double total = static_cast<double>(wave.LastStep() - wave.FirstStep + 1);
+  SynthesisResult r;
+  r.Status = SynthesisStatus::Succeeded;
+  for (std::int64_t s0 = wave.FirstStep; s0 <= wave.LastStep(); s0 += g)
+  {
+    const std::int64_t s1 = std::min(s0 + g, wave.LastStep() + 1);
+    std::vector<std::vector<BoxBlock<3>>> passes(static_cast<std::size_t>(Passes(world)));
+    bool any = false;
+    for (std::int64_t s = s0; s < s1; ++s)
+      for (int t = 0; t < wave.T; ++t)
+      {
+        auto& pass = passes[static_cast<std::size_t>(t / wave.P)];
+        wave.Blocks(s, t, pass);
+        any = any || !pass.empty();
+      }
+    stream.Progress = nullptr;
+    if (world.Progress)
+      stream.Progress = [&world, s0, s1, total, first = wave.FirstStep](double f)
+      {
+        return world.Progress(
+          (static_cast<double>(s0 - first) + f * static_cast<double>(s1 - s0)) / total);
+      };
+    if ((any && !stream.RunWindow(passes, r)) || !stream.Emit(wave.Final(s1), r))
+      break;
+  }
+  const SynthesisStatus status = r.Status;
+  const std::string message = r.Message;
+  r = SynthesisResult();
+  r.Status = status;
+  r.Statistics = stream.Totals;
+  r.Statistics.Failures = stream.Failures;
+  r.Statistics.Phases = lattice.Phases();
+  r.Statistics.Seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.Message = status == SynthesisStatus::Succeeded
+    ? Summary(r.Statistics, false) + " (streamed in " + std::to_string(layout.Chunks - firstChunk) +
+      " slabs along " + "xyz"[layout.Axis] + ")"
+    : message;
+  return r;
+}
+
+void StreamLayout::Box(
+  int j, std::array<std::int64_t, 3>& low, std::array<std::int64_t, 3>& high) const
+{
+  low = { { 0, 0, 0 } };
+  high = this->World;
+  const auto a = static_cast<std::size_t>(this->Axis);
+  low[a] = static_cast<std::int64_t>(j) * this->Thickness;
+  high[a] = std::min(this->World[a], low[a] + this->Thickness);
+}
+
+StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness)
+{
+  CheckWorldOptions(world, "a streamed world");
+  const WorldLattice lattice = LatticeOf(world);
+  if (lattice.NumberOfBlocks() == 1)
+    throw Error("a streamed world is computed in blocks: give blocks smaller than the world");
+  StreamLayout layout;
+  layout.World = world.Size;
+  for (int a = 0; a < 3; ++a)
+    if (lattice.Count(a) >= lattice.Count(layout.Axis) && lattice.Count(a) > 1)
+      layout.Axis = a;
+  if (lattice.Count(layout.Axis) == 1)
+    layout.Axis = 0;
+  const auto a = static_cast<std::size_t>(layout.Axis);
+  const std::int64_t cross = world.Size[0] * world.Size[1] * world.Size[2] / world.Size[a];
+  if (thickness < 0)
+    throw Error("a stream's slabs must be at least one site thick");
+  layout.Thickness = thickness > 0 ? thickness
+                                   : std::max(lattice.StepAlong(layout.Axis),
+                                       (std::int64_t(1) << 21) / std::max<std::int64_t>(1, cross));
+  layout.Thickness = std::min(layout.Thickness, world.Size[a]);
+  const std::int64_t chunks = (world.Size[a] + layout.Thickness - 1) / layout.Thickness;
+  if (chunks > 1000000)
+    throw Error("a stream of " + std::to_string(chunks) + " slabs is too many: make them thicker");
+  layout.Chunks = static_cast<int>(chunks);
+  return layout;
+}
+
+} // namespace msynth

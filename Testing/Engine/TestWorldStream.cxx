@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Streamed worlds (SynthesizeStreamed): the slabs a wavefront of blocks hands out equal the same
+// sites of a whole run (label grids and tilesets, failed and repaired blocks, any thread count,
+// any slab thickness), a resumed stream equals the rest of a fresh one, and the slabs pass the
+// example's pairs, seams included.
+#include "Core/Error.h"
+#include "Core/WorldSchedule.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/ExampleAnalysis.h"
+#include "Formats/Tileset.h"
+
+#include "Fixtures.h"
+
+#include <gtest/gtest.h>
+
+using namespace msynth;
+
+namespace
+{
+/// The slabs of a streamed run from @p first, pasted into a model of the world's size (sites of
+/// earlier slabs stay -2); fails the test when the stream fails.
+LabelGrid Stream(const AdjacencyRules& rules, const SynthesisOptions& o, std::int64_t thickness,
+  int first = 0, SynthesisResult* result = nullptr)
+{
+  const StreamLayout layout = PlanStream(o, thickness);
+  LabelGrid world(o.Size[0], o.Size[1], o.Size[2], -2);
+  int expected = first;
+  const SynthesisResult r = SynthesizeStreamed(
+    rules, o, layout,
+    [&](StreamChunk&& c)
+    {
+      EXPECT_EQ(c.Index, expected++);
+      for (std::int64_t z = c.Low[2]; z < c.High[2]; ++z)
+        for (std::int64_t y = c.Low[1]; y < c.High[1]; ++y)
+          for (std::int64_t x = c.Low[0]; x < c.High[0]; ++x)
+            world.Set(x, y, z, c.Model.At(x - c.Low[0], y - c.Low[1], z - c.Low[2]));
+      return true;
+    },
+    first);
+  EXPECT_TRUE(r.Succeeded()) << r.Message;
+  EXPECT_EQ(expected, layout.Chunks);
+  if (result)
+    *result = r;
+  return world;
+}
+} // namespace
+
+TEST(WorldStream, SlabsEqualTheWholeRun)
+{
+  const LabelGrid village = msynth_test::Village();
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(village));
+  SynthesisOptions o;
+  o.Size = { { 30, 52, 5 } };
+  o.BlockSize = { { 8, 8, 5 } };
+  for (std::uint64_t seed : { 1, 2 })
+    for (int threads : { 1, 2 })
+    {
+      o.Seed = seed;
+      o.Threads = threads;
+      const SynthesisResult whole = Synthesize(rules, o);
+      ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+      for (std::int64_t thickness : { 5, 16, 52 })
+        EXPECT_EQ(Stream(rules, o, thickness).Data(), whole.Model.Data())
+          << "seed " << seed << ", " << threads << " threads, slabs of " << thickness;
+    }
+}
+
+TEST(WorldStream, FailedAndRepairedBlocksStreamAsInTheWholeRun)
+{
+  // Few attempts and no backtracking make blocks fail, so the repair passes do work.
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 70, 150, 1 } };
+  o.BlockSize = { { 6, 6, 1 } };
+  o.AttemptsPerBlock = 1;
+  o.BacktracksPerAttempt = 0;
+  o.Seed = 11;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_GT(whole.Statistics.BlocksRepaired, 0) << whole.Message;
+  SynthesisResult streamed;
+  const LabelGrid world = Stream(rules, o, 20, 0, &streamed);
+  EXPECT_EQ(world.Data(), whole.Model.Data());
+  EXPECT_TRUE(CheckConsistency(lines.Pairs, world).Consistent);
+  EXPECT_EQ(streamed.Statistics.Blocks, whole.Statistics.Blocks);
+  EXPECT_EQ(streamed.Statistics.BlocksRepaired, whole.Statistics.BlocksRepaired);
+  EXPECT_EQ(streamed.Statistics.BlocksFailed, whole.Statistics.BlocksFailed);
+  EXPECT_EQ(streamed.Statistics.Failures.size(), whole.Statistics.Failures.size());
+
+  // Resumed at slab 4: the blocks its cone needs run again, and slabs 4.. equal the whole run.
+  const LabelGrid rest = Stream(rules, o, 20, 4);
+  for (std::int64_t y = 80; y < o.Size[1]; ++y)
+    for (std::int64_t x = 0; x < o.Size[0]; ++x)
+      ASSERT_EQ(rest.At(x, y, 0), whole.Model.At(x, y, 0)) << x << " " << y;
+  EXPECT_EQ(rest.At(0, 79, 0), -2);
+}
+
+TEST(WorldStream, TheUndecidedStartStreams)
+{
+  const LabelGrid village = msynth_test::Village();
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(village));
+  SynthesisOptions o;
+  o.Size = { { 24, 60, 5 } };
+  o.BlockSize = { { 12, 12, 5 } };
+  o.StartFrom = BlockStart::Undecided;
+  o.Seed = 3;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_EQ(Stream(rules, o, 10).Data(), whole.Model.Data());
+}
+
+TEST(WorldStream, LayoutsAndRefusals)
+{
+  SynthesisOptions o;
+  o.Size = { { 100, 40, 1 } };
+  o.BlockSize = { { 10, 10, 1 } };
+  StreamLayout layout = PlanStream(o, 30);
+  EXPECT_EQ(layout.Axis, 0); // the axis with the most blocks
+  EXPECT_EQ(layout.Chunks, 4);
+  WorldBox lo, hi;
+  layout.Box(3, lo, hi);
+  EXPECT_EQ(lo, (WorldBox{ { 90, 0, 0 } }));
+  EXPECT_EQ(hi, (WorldBox{ { 100, 40, 1 } }));
+  o.Size = { { 100, 100, 1 } };
+  EXPECT_EQ(PlanStream(o, 30).Axis, 1); // a tie goes to the higher axis
+  o.BlockSize = { { 0, 0, 0 } };
+  EXPECT_THROW(PlanStream(o), Error); // one block is the whole world
+  o.BlockSize = { { 10, 10, 1 } };
+  o.Symmetry[0].Enabled = true;
+  EXPECT_THROW(PlanStream(o), Error);
+}
