@@ -16,6 +16,8 @@
 
 class vtkAlgorithm;
 class vtkImageData;
+class vtkMSDiscreteSynthesis;
+class vtkMSLabelGridReader;
 class vtkXMLImageDataReader;
 
 namespace msynth
@@ -43,6 +45,9 @@ struct SynthesizeOptions
   std::vector<int> Block{ 0, 0, 0 };
   std::vector<int> Overlap{ -1, -1, -1 };
   std::vector<int> Region{ 0, 0, 0, 0, 0, 0 };
+  bool Stream = false; ///< compute the world slab by slab (StreamCommand.cxx)
+  bool Resume = false; ///< resume an interrupted stream
+  int Slab = 0;        ///< a stream's slab thickness in sites (0: automatic)
   int Threads = 0;
   std::vector<int> Ground, Empty; ///< at most one value each
   std::string Outputs;            ///< comma-separated kinds; empty: what the example calls for
@@ -78,6 +83,26 @@ struct SynthesizeOptions
 
 /// Discrete synthesis into the staging folder @p dir.
 int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir);
+/// The example of @p o read by @p reader (a label grid) or named to @p synthesis (a tileset, an
+/// image sample), and every option of @p o set on @p synthesis.
+void SetUpDiscrete(
+  const SynthesizeOptions& o, vtkMSLabelGridReader* reader, vtkMSDiscreteSynthesis* synthesis);
+/// The picture of a tileset model or image sample's patterns as @p path (with a note and no
+/// file when the tileset has no tile images).
+void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& path,
+  std::vector<std::string>& written);
+/// DIR/statistics.json from the model's field data, with @p extra members (JSON values by name).
+void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
+  const std::vector<std::pair<std::string, std::string>>& extra = {});
+/// The files to write: --outputs, or what the example calls for.
+std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth::Tileset* voxels);
+/**
+ * The world of @p o computed slab by slab in bounded memory (`--stream`, `--resume`;
+ * StreamCommand.cxx): DIR/labels.pvti over DIR/labels/labels_J.vti, per-slab pictures and VDB
+ * volumes and an overview picture, written as slabs finish into DIR/.msynth-stream (which an
+ * interrupted run leaves for --resume) and published together at the end.
+ */
+int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir);
 /// Reads the guide volume (.vti) at @p path with @p guide (errors name the file) and connects it
 /// to input @p port of @p synthesis.
 void ConnectGuide(

@@ -141,6 +141,15 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "from the blocks it depends on: the same sites as a whole run")
              ->expected(6)
              ->check(CLI::Range(0, 2147483647)));
+  discrete(s.add_flag("--stream", o.Stream,
+    "compute the world slab by slab in bounded memory: DIR/labels.pvti over DIR/labels/, "
+    "per-slab pictures and volumes; needs --block"));
+  discrete(s.add_option("--slab", o.Slab,
+              "a stream's slab thickness in sites (default: about "
+              "2 million sites a slab)")
+             ->check(CLI::Range(1, 1 << 30)));
+  discrete(s.add_flag("--resume", o.Resume,
+    "go on with the stream an interrupted --stream run left in DIR, keeping its finished slabs"));
   discrete(s.add_option("--overlap", o.Overlap,
               "overlap of consecutive blocks OX OY OZ (default -1: half a block)")
              ->expected(3)
@@ -480,9 +489,9 @@ void ConnectGuide(
 namespace
 {
 
-/// The picture of a tileset model or of an image sample's patterns (msynth::WritePng at fast
-/// compression), when the tile images are there.
-void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
+} // namespace
+
+void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& path,
   std::vector<std::string>& written)
 {
   vtkNew<vtkMSTileImage> tiles;
@@ -512,9 +521,12 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
     }
     throw std::runtime_error(messages);
   }
-  WritePicturePng(composer->GetOutput(), dir + "/picture.png");
-  written.push_back(dir + "/picture.png");
+  WritePicturePng(composer->GetOutput(), path);
+  written.push_back(path);
 }
+
+namespace
+{
 
 /// mesh.vtp (@p vtp) and mesh.glb (@p glb) of the model's geometry, with any --pieces.
 void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
@@ -551,7 +563,10 @@ void WriteMesh(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   }
 }
 
-void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir)
+} // namespace
+
+void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std::string& dir,
+  const std::vector<std::pair<std::string, std::string>>& extra)
 {
   vtkFieldData* fd = model->GetFieldData();
   StatisticsJson json;
@@ -563,10 +578,11 @@ void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std:
   // How blocks started (block synthesis only).
   if (auto* start = vtkStringArray::SafeDownCast(fd->GetAbstractArray("StartFrom")))
     json.Text("StartFrom", start->GetValue(0));
+  for (const auto& [name, value] : extra)
+    json.Raw(name, value);
   json.Text("Message", MessageOf(fd)).Write(dir + "/statistics.json");
 }
 
-/// The files to write: --outputs, or what the example calls for.
 std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth::Tileset* voxels)
 {
   if (!o.Outputs.empty())
@@ -582,6 +598,8 @@ std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth
   return list;
 }
 
+namespace
+{
 void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   const std::string& dir, std::vector<std::string>& written)
 {
@@ -625,7 +643,7 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
   if ((wanted("mesh") || wanted("glb")) && (!voxel || !o.Pieces.empty()))
     WriteMesh(model, o, tileset, dir, written, wanted("mesh"), wanted("glb"));
   if (wanted("picture") && !voxel)
-    WritePicture(model, o, dir, written);
+    WritePicture(model, o, dir + "/picture.png", written);
   if (wanted("vdb"))
   {
     vtkNew<vtkMSOpenVDBWriter> vdb;
@@ -641,15 +659,12 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
 }
 } // namespace
 
-int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
+void SetUpDiscrete(
+  const SynthesizeOptions& o, vtkMSLabelGridReader* reader, vtkMSDiscreteSynthesis* synthesis)
 {
-  const auto start = std::chrono::steady_clock::now();
-  vtkNew<vtkMSLabelGridReader> reader;
   reader->GenerateGeometryOff();
-  vtkNew<vtkMSDiscreteSynthesis> synthesis;
   synthesis->GenerateGeometryOff(); // the mesh is made by vtkMSLabelGeometry, with any pieces
-  const bool tileset = IsTileset(o.Example);
-  if (tileset)
+  if (IsTileset(o.Example))
   {
     synthesis->SetTilesetFile(o.Example.c_str());
     synthesis->SetTilesetSubset(o.Subset.c_str());
@@ -662,6 +677,17 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
     synthesis->SetInputConnection(reader->GetOutputPort());
   }
   Configure(synthesis, o);
+}
+
+int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
+{
+  if (o.Stream || o.Resume)
+    return SynthesizeStream(o, dir);
+  const auto start = std::chrono::steady_clock::now();
+  vtkNew<vtkMSLabelGridReader> reader;
+  vtkNew<vtkMSDiscreteSynthesis> synthesis;
+  const bool tileset = IsTileset(o.Example);
+  SetUpDiscrete(o, reader, synthesis);
   vtkNew<vtkXMLImageDataReader> guide;
   if (!o.Guide.empty())
   {

@@ -229,12 +229,25 @@ void OutputFolder::Publish()
         !std::binary_search(written.begin(), written.end(), name))
         stale.push_back(name);
   }
+  std::vector<std::string> replaced; // folders this run replaces, removed once it is published
   for (const auto& name : written)
-    if (std::rename((this->StagePath + "/" + name).c_str(), (this->Dir + "/" + name).c_str()) != 0)
-      throw Error::InFile(
-        this->Dir + "/" + name, std::string("could not be published: ") + std::strerror(errno));
+  {
+    const std::string target = this->Dir + "/" + name;
+    struct stat info;
+    if (::lstat(target.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+    {
+      replaced.push_back(this->Dir + "/.msynth-discard-" + std::to_string(::getpid()) + "-" +
+        std::to_string(replaced.size()) + "-" + name);
+      if (std::rename(target.c_str(), replaced.back().c_str()) != 0)
+        throw Error::InFile(target, std::string("could not be replaced: ") + std::strerror(errno));
+    }
+    if (std::rename((this->StagePath + "/" + name).c_str(), target.c_str()) != 0)
+      throw Error::InFile(target, std::string("could not be published: ") + std::strerror(errno));
+  }
   for (const auto& name : stale)
-    ::unlink((this->Dir + "/" + name).c_str());
+    RemoveTree(this->Dir + "/" + name);
+  for (const auto& folder : replaced)
+    RemoveTree(folder);
   WriteFileAtomically(this->Dir + "/" + ManifestName,
     [&](std::ostream& out)
     {

@@ -296,10 +296,13 @@ struct StreamLayout
 /// step). @throw Error when the world is one block.
 StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness = 0);
 
-/// A finished slab of a streamed world.
+/// A finished slab of a streamed world. Its box starts Shared (0 or 1) layers before the
+/// layout's slab: the previous slab's last layer, as the pieces of a VTK image share their
+/// border points (and so every pair of neighbours lies in one slab).
 struct StreamChunk
 {
   int Index = 0;
+  std::int64_t Shared = 0;
   std::array<std::int64_t, 3> Low{}, High{}; ///< its box in the world
   LabelGrid Model;                           ///< its labels (values)
   std::vector<std::int32_t> LastBlock;       ///< per site, the world key of its last block

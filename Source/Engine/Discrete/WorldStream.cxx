@@ -106,9 +106,10 @@ namespace
 {
 /**
  * The world's schedule as a wavefront along one axis: block b of global phase t (pass t / P,
- * phase t % P) at lattice row g runs at step g + t · Lag. Blocks that touch lie fewer than Lag
- * rows apart, so of two touching blocks the one of the earlier phase runs at an earlier step,
- * and the blocks of one step never touch: every block sees what it sees in a whole run.
+ * phase t % P) at lattice row g runs in step g + Delay[t]; a window runs a run of steps, its
+ * blocks by global phase. Of two blocks that touch, the one of the earlier phase t1 must not
+ * run in a later window than the other (t2): it lies at most Need(t1, t2) rows further along,
+ * and Delay[t2] - Delay[t1] >= Need(t1, t2). So every block sees what it sees in a whole run.
  */
 struct Wavefront
 {
@@ -117,9 +118,35 @@ struct Wavefront
     , Axis(axis)
     , P(lattice.Phases())
     , T(lattice.Phases() * passes)
-    , Lag(lattice.Period(axis))
     , Rows(lattice.Count(axis))
   {
+    // Delay: the longest path through Need, in phase order.
+    this->Delay.assign(static_cast<std::size_t>(this->T), 0);
+    for (int t2 = 1; t2 < this->T; ++t2)
+    {
+      auto& d = this->Delay[static_cast<std::size_t>(t2)];
+      d = this->Delay[static_cast<std::size_t>(t2 - 1)];
+      for (int t1 = 0; t1 < t2; ++t1)
+        d = std::max(d, this->Delay[static_cast<std::size_t>(t1)] + this->Need(t1, t2));
+    }
+  }
+
+  /// Phase @p t's digit along the axis: its blocks lie in the rows g with g % Period == digit.
+  std::int64_t Digit(int t) const
+  {
+    std::int64_t radix = 1;
+    for (int b = 0; b < this->Axis; ++b)
+      radix *= this->Lattice.Period(b);
+    return ((t % this->P) / radix) % this->Lattice.Period(this->Axis);
+  }
+
+  /// How many rows further along a block of phase @p t1 may lie than one of phase @p t2 it
+  /// touches (blocks touch when fewer than Period rows apart).
+  std::int64_t Need(int t1, int t2) const
+  {
+    const std::int64_t period = this->Lattice.Period(this->Axis);
+    const std::int64_t d = ((this->Digit(t1) - this->Digit(t2)) % period + period) % period;
+    return d; // 0 .. period - 1, each a distance at which such blocks touch
   }
 
   /// Restricts the run to the cone of the slab from @p low to the world's end along the axis
@@ -127,14 +154,11 @@ struct Wavefront
   void From(std::int64_t low)
   {
     const auto a = static_cast<std::size_t>(this->Axis);
-    std::int64_t radix = 1;
-    for (int b = 0; b < this->Axis; ++b)
-      radix *= this->Lattice.Period(b);
     const std::int64_t period = this->Lattice.Period(this->Axis);
     this->MinRow.assign(static_cast<std::size_t>(this->T), this->Rows);
     for (int t = this->T - 1; t >= 0; --t)
     {
-      const std::int64_t digit = ((t % this->P) / radix) % period;
+      const std::int64_t digit = this->Digit(t);
       for (std::int64_t g = digit; g < this->Rows; g += period)
       {
         const WorldBox probe{ { 0, 0, 0 } };
@@ -152,16 +176,16 @@ struct Wavefront
     this->FirstStep = this->LastStep();
     for (int t = 0; t < this->T; ++t)
       if (this->MinRow[static_cast<std::size_t>(t)] < this->Rows)
-        this->FirstStep =
-          std::min(this->FirstStep, this->MinRow[static_cast<std::size_t>(t)] + t * this->Lag);
+        this->FirstStep = std::min(this->FirstStep,
+          this->MinRow[static_cast<std::size_t>(t)] + this->Delay[static_cast<std::size_t>(t)]);
   }
 
-  std::int64_t LastStep() const { return this->Rows - 1 + (this->T - 1) * this->Lag; }
+  std::int64_t LastStep() const { return this->Rows - 1 + this->Delay.back(); }
 
   /// Appends the blocks of step @p s and global phase @p t.
   void Blocks(std::int64_t s, int t, std::vector<BoxBlock<3>>& out) const
   {
-    const std::int64_t g = s - t * this->Lag;
+    const std::int64_t g = s - this->Delay[static_cast<std::size_t>(t)];
     if (g < this->MinRow[static_cast<std::size_t>(t)] || g >= this->Rows)
       return;
     const int o1 = this->Axis == 0 ? 1 : 0, o2 = this->Axis == 2 ? 1 : 2;
@@ -186,13 +210,14 @@ struct Wavefront
     const std::int64_t n = this->Lattice.World()[static_cast<std::size_t>(this->Axis)];
     if (s > this->LastStep())
       return n;
-    const std::int64_t g = s - (this->T - 1) * this->Lag;
+    const std::int64_t g = s - this->Delay.back();
     return g <= 0 ? 0 : std::min(n, g * this->Lattice.StepAlong(this->Axis) - 1);
   }
 
   const WorldLattice& Lattice;
   int Axis, P, T;
-  std::int64_t Lag, Rows;
+  std::int64_t Rows;
+  std::vector<std::int64_t> Delay;
   std::vector<std::int64_t> MinRow;
   std::int64_t FirstStep = 0;
 };
@@ -306,7 +331,8 @@ bool Stream::RunWindow(std::vector<std::vector<BoxBlock<3>>>& passes, SynthesisR
   const std::int64_t n = this->World.Size[a];
   WorldBox chunkLow, chunkHigh;
   this->Layout.Box(this->NextChunk, chunkLow, chunkHigh);
-  std::int64_t low = this->NextChunk < this->Layout.Chunks ? chunkLow[a] : n;
+  std::int64_t low =
+    this->NextChunk < this->Layout.Chunks ? std::max<std::int64_t>(0, chunkLow[a] - 1) : n;
   std::int64_t high = this->Held.High;
   for (auto& pass : passes)
   {
@@ -367,6 +393,8 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
     StreamChunk c;
     c.Index = this->NextChunk;
     this->Layout.Box(c.Index, c.Low, c.High);
+    c.Shared = c.Low[a] > 0 ? 1 : 0; // the previous slab's last layer, as VTK's pieces share
+    c.Low[a] -= c.Shared;
     if (c.High[a] > final || c.High[a] > held.High || c.Low[a] < held.Low)
       break;
     const std::int64_t rows = c.High[a] - c.Low[a];
@@ -405,8 +433,9 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
   // Keep only what a later window reads or a later slab holds.
   WorldBox low, high;
   this->Layout.Box(std::min(this->NextChunk, this->Layout.Chunks - 1), low, high);
-  const std::int64_t keep =
-    std::min(final, this->NextChunk < this->Layout.Chunks ? low[a] : this->World.Size[a]);
+  const std::int64_t keep = std::min(final,
+    this->NextChunk < this->Layout.Chunks ? std::max<std::int64_t>(0, low[a] - 1)
+                                          : this->World.Size[a]);
   if (keep > held.Low && !held.Model.empty())
   {
     Slab rest;

@@ -53,6 +53,15 @@ struct vtkMSDiscreteSynthesis::Internals
   msynth::Tileset Tiles; ///< the tileset of the last run, when TilesetFile is set
   /// The requested extent the last run computed (ComputeRequestedExtent); all -1: the world.
   std::array<int, 6> Extent{ { -1, -1, -1, -1, -1, -1 } };
+  /// A streamed run under way (StreamWorld).
+  struct StreamRequest
+  {
+    vtkIdType Thickness = 0;
+    int First = 0;
+    std::function<bool(vtkImageData*, int, int)> Receive;
+    vtkImageData* Input = nullptr;
+  };
+  std::unique_ptr<StreamRequest> Stream;
 };
 
 int vtkMSDiscreteSynthesis::GetActiveSource() const
@@ -555,8 +564,32 @@ bool vtkMSDiscreteSynthesis::Solve(
 }
 
 msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
-  const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options) const
+  const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options)
 {
+  if (const auto* stream = this->Internal->Stream.get())
+  {
+    const msynth::StreamLayout layout = msynth::PlanStream(options, stream->Thickness);
+    return msynth::SynthesizeStreamed(
+      rules, options, layout,
+      [&](msynth::StreamChunk&& c)
+      {
+        msynth::SynthesisResult piece;
+        piece.Status = msynth::SynthesisStatus::Succeeded;
+        piece.Message = "slab " + std::to_string(c.Index) + " of a streamed world";
+        piece.Model = std::move(c.Model);
+        piece.LastBlock = std::move(c.LastBlock);
+        int extent[6];
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          extent[2 * a] = static_cast<int>(c.Low[a]);
+          extent[2 * a + 1] = static_cast<int>(c.High[a]) - 1;
+        }
+        vtkNew<vtkImageData> slab;
+        this->FillOutput(stream->Input, slab, 0, piece, extent);
+        return stream->Receive(slab, c.Index, layout.Chunks);
+      },
+      stream->First);
+  }
   const std::array<int, 6>& e = this->Internal->Extent;
   if (e[0] >= 0) // a requested extent of the world
     return msynth::SynthesizeRegion(
@@ -580,15 +613,14 @@ void vtkMSDiscreteSynthesis::SolveSample(msynth::SynthesisOptions& options)
   const msynth::PatternSet patterns =
     msynth::ExtractPatterns(msynth::ReadImage(this->SampleFile), po, this->SampleFile);
   patterns.Configure(options, { { this->Translate[0] != 0, this->Translate[1] != 0 } });
-  this->Internal->Cache.Result = msynth::Synthesize(patterns.Rules(), options);
+  this->Internal->Cache.Result = this->Run(patterns.Rules(), options);
 }
 
-void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step)
+void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step,
+  const msynth::SynthesisResult& result, const int e[6])
 {
   const Internals& run = *this->Internal;
-  const msynth::SynthesisResult& result = run.Cache.Result;
   const auto& size = result.Model.Dimensions();
-  const std::array<int, 6>& e = run.Extent;
   if (e[0] >= 0) // where the requested extent lies in the world
     output->SetExtent(e[0], e[1], e[2], e[3], e[4], e[5]);
   else
@@ -651,6 +683,27 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   }
 }
 
+namespace
+{
+/// Ends an armed stream with the update that streams (StreamNextUpdate).
+template <class Request, class Cache>
+struct StreamDisarm
+{
+  std::unique_ptr<Request>& Stream;
+  Cache& Kept;
+  ~StreamDisarm()
+  {
+    if (this->Stream)
+    {
+      this->Stream.reset();
+      this->Kept.Clear(); // not the output's own result
+    }
+  }
+};
+template <class Request, class Cache>
+StreamDisarm(std::unique_ptr<Request>&, Cache&) -> StreamDisarm<Request, Cache>;
+} // namespace
+
 int vtkMSDiscreteSynthesis::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -658,6 +711,7 @@ int vtkMSDiscreteSynthesis::RequestData(
   vtkImageData* guide = vtkImageData::GetData(inputVector[1], 0);
   vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  const StreamDisarm disarm{ this->Internal->Stream, this->Internal->Cache };
   vtkDataArray* labels = nullptr;
   const int source = this->GetActiveSource();
   if (this->Source == AUTOMATIC_SOURCE && !this->TilesetFile.empty() && !this->SampleFile.empty())
@@ -695,15 +749,24 @@ int vtkMSDiscreteSynthesis::RequestData(
       return 0;
     }
   }
+  if (this->Internal->Stream && (this->HasRegion() || this->ComputeRequestedExtent))
+  {
+    vtkErrorMacro(<< "A streamed world is the whole world: clear Region and "
+                     "ComputeRequestedExtent.");
+    return 0;
+  }
   msynth::SynthesisOptions options;
   if (!BuildOptions(this, guide, options) || !ReadPins(this, fixed, options))
     return 0;
   const Internals& run = *this->Internal;
   auto& cache = this->Internal->Cache;
   const std::array<int, 6> extent = RequestedExtent(this, outputVector->GetInformationObject(0));
-  const bool fresh = cache.Fresh(this, { input, guide, fixed }) || extent != run.Extent;
+  const bool fresh =
+    run.Stream || cache.Fresh(this, { input, guide, fixed }) || extent != run.Extent;
   this->Internal->Extent = extent;
-  if (extent[0] < 0)
+  if (run.Stream)
+    run.Stream->Input = input;
+  else if (extent[0] < 0)
     SetUpExchange(this, labels, fresh, options);
   if (fresh)
   {
@@ -719,7 +782,7 @@ int vtkMSDiscreteSynthesis::RequestData(
     ? 0
     : vtkMSPipeline::RequestedStep(
         vtkMSPipeline::RequestingPort(request, outputVector), run.Snapshots.size());
-  this->FillOutput(input, output, step);
+  this->FillOutput(input, output, step, cache.Result, run.Extent.data());
   std::string problem;
   // A voxel tileset's model shows its tiles' voxels, else the sites as voxels.
   vtkNew<vtkImageData> voxels;
@@ -744,6 +807,17 @@ int vtkMSDiscreteSynthesis::RequestData(
       ->GetInformation()
       ->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(step));
   return 1;
+}
+
+void vtkMSDiscreteSynthesis::StreamNextUpdate(
+  vtkIdType thickness, int first, const std::function<bool(vtkImageData*, int, int)>& receive)
+{
+  auto request = std::make_unique<Internals::StreamRequest>();
+  request->Thickness = thickness;
+  request->First = first;
+  request->Receive = receive;
+  this->Internal->Stream = std::move(request);
+  this->Modified();
 }
 
 void vtkMSDiscreteSynthesis::SetBoundaryFace(int face, int use)

@@ -97,8 +97,9 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
-#include <memory> // for std::unique_ptr
-#include <string> // for ivar
+#include <functional> // for std::function
+#include <memory>     // for std::unique_ptr
+#include <string>     // for ivar
 
 class vtkDataArray;
 class vtkImageData;
@@ -465,9 +466,27 @@ public:
   /// Whether Region is set (not all 0).
   bool HasRegion() const;
 
-  /// Synthesize, or SynthesizeRegion with a Region.
+  /// Synthesize, SynthesizeRegion with a Region or a requested extent, or SynthesizeStreamed
+  /// within StreamWorld.
   msynth::SynthesisResult Run(
-    const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options) const;
+    const msynth::AdjacencyRules& rules, const msynth::SynthesisOptions& options);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Makes the next update compute the world slab by slab in bounded memory instead of as one
+   * output (msynth::SynthesizeStreamed; `msynth synthesize --stream`): slabs of @p thickness
+   * sites along the axis with the most blocks (0: about 2^21 sites a slab), from slab @p first
+   * on, each handed to @p receive (with its index and the number of slabs) as soon as no later
+   * block can change it: an image placed where it lies in the world, with the output's arrays
+   * and field data. False from @p receive cancels; what it throws fails the update with its
+   * message. The slabs equal the same sites of the whole output. Needs blocks smaller than the
+   * world, no Region or requested extent, and no option that needs the whole world (symmetry,
+   * soft constraints, pins, guide, snapshots, resemblance). That update's output holds no
+   * sites, only the run's field data, until the filter is modified again.
+   */
+  void StreamNextUpdate(vtkIdType thickness, int first,
+    const std::function<bool(vtkImageData* slab, int index, int count)>& receive);
+#endif
 
 protected:
   vtkMSDiscreteSynthesis();
@@ -488,8 +507,10 @@ private:
   bool Solve(vtkImageData* input, vtkDataArray* labels, msynth::SynthesisOptions& options);
   /// The patterns of SampleFile and their synthesis, into the cache.
   void SolveSample(msynth::SynthesisOptions& options);
-  /// The model (or the requested snapshot), LastBlock and the field data on @p output.
-  void FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step);
+  /// The model of @p result (or the requested snapshot) placed at @p extent in the world (all
+  /// -1: at the origin), LastBlock and the field data on @p output.
+  void FillOutput(vtkImageData* input, vtkImageData* output, std::size_t step,
+    const msynth::SynthesisResult& result, const int extent[6]);
 
   int OutputSize[3] = { 32, 32, 8 };
   int BlockSize[3] = { 0, 0, 0 };

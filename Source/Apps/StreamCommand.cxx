@@ -1,0 +1,470 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `msynth synthesize EXAMPLE --size ... --block ... --stream [--slab N] [--resume]`: the world
+// computed slab by slab in bounded memory (vtkMSDiscreteSynthesis::StreamNextUpdate, the engine's
+// SynthesizeStreamed). Finished slabs go to DIR/.msynth-stream as they come, with a list of
+// their files and checksums; the finished run publishes DIR/labels.pvti over DIR/labels/, the
+// per-slab pictures and volumes and an overview picture together. An interrupted run leaves
+// the stream folder; --resume checks every listed slab against the world's definition and its
+// checksum and goes on from the first missing or damaged one.
+#include "Common.h"
+#include "Synthesize.h"
+
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMSDiscreteSynthesis.h"
+#include "vtkMSLabelGridReader.h"
+#include "vtkMSOpenVDBWriter.h"
+#include "vtkNew.h"
+#include "vtkPNGReader.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include "Core/AtomicFile.h"
+#include "Core/OutputFolder.h"
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace msynth
+{
+namespace cli
+{
+namespace
+{
+constexpr const char* StreamFolder = ".msynth-stream";
+
+/// "SIZE:HASH" of a file's bytes (FNV-1a, 64 bits); empty when it cannot be read.
+std::string FileStamp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return "";
+  std::uint64_t hash = 1469598103934665603ull, size = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
+  {
+    for (std::streamsize i = 0; i < in.gcount(); ++i)
+      hash = (hash ^ static_cast<unsigned char>(buffer[i])) * 1099511628211ull;
+    size += static_cast<std::uint64_t>(in.gcount());
+  }
+  char text[48];
+  std::snprintf(text, sizeof(text), "%llu:%016llx", static_cast<unsigned long long>(size),
+    static_cast<unsigned long long>(hash));
+  return text;
+}
+
+/// What defines a stream's world: the example's bytes and every option that changes a label or
+/// the slabs.
+std::string WorldDefinition(const SynthesizeOptions& o)
+{
+  std::ostringstream d;
+  auto list = [&d](const char* name, const auto& values)
+  {
+    d << name;
+    for (const auto& v : values)
+      d << " " << v;
+    d << "\n";
+  };
+  d << "example " << o.Example << " " << FileStamp(o.Example) << "\n";
+  list("size", o.Size3);
+  list("block", o.Block);
+  list("overlap", o.Overlap);
+  d << "seed " << o.Seed << "\nattempts " << o.Attempts << "\nbacktracks " << o.Backtracks
+    << "\nrepair " << !o.NoRepair << "\nstart " << o.Start << "\norder " << o.Order << "\nchoice "
+    << o.Choice << "\nsubset " << o.Subset << "\ntiles " << o.Tiles << "\npattern " << o.Pattern
+    << " " << o.Symmetry << " " << o.NoPeriodicInput << " " << o.SampleGround << "\nslab " << o.Slab
+    << "\n";
+  list("ground", o.Ground);
+  list("empty", o.Empty);
+  return d.str();
+}
+
+std::string ReadText(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/**
+ * The slabs an interrupted stream in @p folder finished, as lines "J FILE=STAMP ...", each file
+ * checked against its stamp: the list ends at the first slab missing or damaged (a note says
+ * which). @throw std::runtime_error when the folder holds a stream of another world.
+ */
+std::vector<std::string> KeptSlabs(const std::string& folder, const std::string& definition)
+{
+  std::vector<std::string> kept;
+  struct stat info;
+  if (::stat((folder + "/definition.txt").c_str(), &info) != 0)
+  {
+    std::cerr << "msynth: note: no interrupted stream to resume in '" << folder
+              << "': starting one\n";
+    return kept;
+  }
+  if (ReadText(folder + "/definition.txt") != definition)
+    throw std::runtime_error("'" + folder +
+      "' holds a stream of another world (another example or other options): run with --stream "
+      "instead of --resume to start again");
+  std::ifstream slabs(folder + "/slabs.txt");
+  std::string line;
+  while (std::getline(slabs, line))
+  {
+    std::istringstream in(line);
+    int j = -1;
+    in >> j;
+    if (j != static_cast<int>(kept.size()))
+      break;
+    std::string entry, damaged;
+    while (damaged.empty() && in >> entry)
+    {
+      const std::size_t eq = entry.rfind('=');
+      if (entry.rfind("extent=", 0) == 0)
+        continue;
+      if (eq == std::string::npos ||
+        FileStamp(folder + "/" + entry.substr(0, eq)) != entry.substr(eq + 1))
+        damaged = entry.substr(0, eq);
+    }
+    if (!damaged.empty())
+    {
+      std::cerr << "msynth: note: slab " << j << " of the stream is damaged ('" << damaged
+                << "'): computing it again\n";
+      break;
+    }
+    kept.push_back(line);
+  }
+  return kept;
+}
+
+/// The pieces file over the slabs' .vti files.
+void WritePvti(const std::string& path, vtkImageData* first, const std::array<int, 3>& size,
+  const std::vector<std::array<int, 6>>& extents)
+{
+  double origin[3], spacing[3];
+  first->GetOrigin(origin);
+  first->GetSpacing(spacing);
+  WriteFileAtomically(path,
+    [&](std::ostream& out)
+    {
+      out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PImageData\" version=\"1.0\" "
+             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <PImageData WholeExtent=\"0 "
+          << size[0] - 1 << " 0 " << size[1] - 1 << " 0 " << size[2] - 1
+          << "\" GhostLevel=\"0\" Origin=\"" << origin[0] << " " << origin[1] << " " << origin[2]
+          << "\" Spacing=\"" << spacing[0] << " " << spacing[1] << " " << spacing[2]
+          << "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <PPointData Scalars=\"Label\">\n"
+             "      <PDataArray type=\"Int32\" Name=\"Label\"/>\n"
+             "      <PDataArray type=\"Int32\" Name=\"LastBlock\"/>\n    </PPointData>\n";
+      for (std::size_t j = 0; j < extents.size(); ++j)
+      {
+        const auto& e = extents[j];
+        char name[40];
+        std::snprintf(name, sizeof(name), "labels/labels_%05zu.vti", j);
+        out << "    <Piece Extent=\"" << e[0] << " " << e[1] << " " << e[2] << " " << e[3] << " "
+            << e[4] << " " << e[5] << "\" Source=\"" << name << "\"/>\n";
+      }
+      out << "  </PImageData>\n</VTKFile>\n";
+    });
+}
+
+/// The peak resident memory of the process so far, in MB.
+double PeakMegabytes()
+{
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+/// A picture of the whole world at most 2048 pixels a side (nearest pixels), made from the slabs'
+/// pictures @p pictures (of the sites @p extents) read back one at a time.
+void WriteOverview(const std::vector<std::string>& pictures,
+  const std::vector<std::array<int, 6>>& extents, const std::array<int, 3>& size,
+  const std::string& path)
+{
+  vtkNew<vtkImageData> overview;
+  int scale = 1, components = 4;
+  double tile[2] = { 1, 1 };
+  for (std::size_t j = 0; j < pictures.size(); ++j)
+  {
+    vtkNew<vtkPNGReader> png;
+    png->SetFileName(pictures[j].c_str());
+    Run(png);
+    vtkImageData* slab = png->GetOutput();
+    int dims[3];
+    slab->GetDimensions(dims);
+    const auto& e = extents[j];
+    if (j == 0)
+    {
+      tile[0] = static_cast<double>(dims[0]) / (e[1] - e[0] + 1);
+      tile[1] = static_cast<double>(dims[1]) / (e[3] - e[2] + 1);
+      const double w = tile[0] * size[0], h = tile[1] * size[1];
+      scale = std::max(1, static_cast<int>(std::ceil(std::max(w, h) / 2048.0)));
+      overview->SetDimensions(
+        static_cast<int>(std::ceil(w / scale)), static_cast<int>(std::ceil(h / scale)), 1);
+      overview->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+      std::fill_n(static_cast<unsigned char*>(overview->GetScalarPointer()),
+        overview->GetNumberOfPoints() * 4, 0);
+    }
+    components = slab->GetNumberOfScalarComponents();
+    if (components != 3 && components != 4)
+      throw std::runtime_error("'" + pictures[j] + "': not an RGB or RGBA picture");
+    int out[3];
+    overview->GetDimensions(out);
+    const int x0 = static_cast<int>(e[0] * tile[0]), y0 = static_cast<int>(e[2] * tile[1]);
+    auto* to = static_cast<unsigned char*>(overview->GetScalarPointer());
+    const auto* from = static_cast<const unsigned char*>(slab->GetScalarPointer());
+    for (int v = 0; v < out[1]; ++v)
+      for (int u = 0; u < out[0]; ++u)
+      {
+        const int x = u * scale - x0, y = v * scale - y0;
+        if (x < 0 || y < 0 || x >= dims[0] || y >= dims[1])
+          continue;
+        unsigned char* pixel = to + (static_cast<std::size_t>(v) * out[0] + u) * 4;
+        std::copy_n(
+          from + (static_cast<std::size_t>(y) * dims[0] + x) * components, components, pixel);
+        if (components == 3)
+          pixel[3] = 255;
+      }
+  }
+  if (!pictures.empty())
+    WritePicturePng(overview, path);
+}
+
+/// "slab 3/16, 1.2 M sites/s, 25 s left" on a terminal's stderr.
+class StreamProgress
+{
+public:
+  explicit StreamProgress(int first)
+    : Start(std::chrono::steady_clock::now())
+    , First(first)
+    , Shown(::isatty(STDERR_FILENO) != 0)
+  {
+  }
+  ~StreamProgress()
+  {
+    if (this->Shown && this->Done > 0)
+      std::cerr << "\n";
+  }
+  void Slab(int j, int count, double sites)
+  {
+    this->Sites += sites;
+    this->Done = j + 1 - this->First;
+    if (!this->Shown)
+      return;
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+    const double left = seconds / this->Done * (count - j - 1);
+    std::fprintf(stderr, "\rstream: slab %d/%d, %.2f M sites/s, %.0f s left   ", j + 1, count,
+      this->Sites / std::max(seconds, 1e-9) / 1e6, left);
+  }
+
+private:
+  std::chrono::steady_clock::time_point Start;
+  int First = 0;
+  bool Shown = false;
+  int Done = 0;
+  double Sites = 0;
+};
+
+/// What --stream writes per slab: labels always, pictures and volumes as --outputs asks.
+struct StreamOutputs
+{
+  bool Picture = false, Volume = false;
+};
+
+StreamOutputs StreamKinds(const SynthesizeOptions& o)
+{
+  const bool pictured = IsTileset(o.Example) || IsSample(o.Example);
+  const std::string list = !o.Outputs.empty() ? o.Outputs
+    : pictured                                ? "labels,picture"
+                                              : "labels,vdb";
+  StreamOutputs kinds;
+  std::istringstream in(list);
+  std::string kind;
+  while (std::getline(in, kind, ','))
+  {
+    if (kind == "picture" && pictured)
+      kinds.Picture = true;
+    else if (kind == "vdb")
+      kinds.Volume = true;
+    else if (kind != "labels")
+      throw std::runtime_error("--stream writes labels, pictures (of a tileset or an image "
+                               "sample) and vdb volumes slab by slab, not '" +
+        kind + "'");
+  }
+  return kinds;
+}
+
+/// A finished slab as slabs.txt lists it.
+struct ListedSlab
+{
+  std::array<int, 6> Extent{};
+  std::string Picture, Volume;
+};
+
+std::vector<ListedSlab> ListedSlabs(const std::string& folder)
+{
+  std::vector<ListedSlab> listed;
+  std::ifstream in(folder + "/slabs.txt");
+  std::string line;
+  while (std::getline(in, line))
+  {
+    std::istringstream fields(line);
+    std::string entry;
+    fields >> entry; // the index
+    ListedSlab slab;
+    while (fields >> entry)
+    {
+      if (entry.rfind("extent=", 0) == 0)
+        std::sscanf(entry.c_str() + 7, "%d,%d,%d,%d,%d,%d", &slab.Extent[0], &slab.Extent[1],
+          &slab.Extent[2], &slab.Extent[3], &slab.Extent[4], &slab.Extent[5]);
+      else if (entry.rfind("picture/", 0) == 0)
+        slab.Picture = entry.substr(0, entry.rfind('='));
+      else if (entry.rfind("vdb/", 0) == 0)
+        slab.Volume = entry.substr(0, entry.rfind('='));
+    }
+    listed.push_back(slab);
+  }
+  return listed;
+}
+
+/// Moves the finished stream from @p folder into the staging folder @p dir with its pieces
+/// file, overview picture and statistics, and says what was written.
+int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std::string& folder,
+  vtkImageData* output, std::size_t resumed, std::chrono::steady_clock::time_point start)
+{
+  const std::vector<ListedSlab> slabs = ListedSlabs(folder);
+  std::vector<std::array<int, 6>> extents;
+  std::vector<std::string> pictures;
+  bool volumes = false;
+  for (const auto& slab : slabs)
+  {
+    extents.push_back(slab.Extent);
+    if (!slab.Picture.empty())
+      pictures.push_back(dir + "/" + slab.Picture);
+    volumes = volumes || !slab.Volume.empty();
+  }
+  std::vector<std::string> written{ dir + "/labels.pvti", dir + "/labels/" };
+  std::vector<std::string> moved{ "labels" };
+  if (pictures.size() == slabs.size() && !pictures.empty())
+    moved.push_back("picture");
+  if (volumes)
+    moved.push_back("vdb");
+  for (const auto& sub : moved)
+    if (std::rename((folder + "/" + sub).c_str(), (dir + "/" + sub).c_str()) != 0)
+      throw std::runtime_error("'" + dir + "/" + sub + "': could not be made");
+  WritePvti(dir + "/labels.pvti", output, o.Size3, extents);
+  if (moved.size() > 1 && moved[1] == "picture")
+  {
+    WriteOverview(pictures, extents, o.Size3, dir + "/picture.png");
+    written.push_back(dir + "/picture/");
+    written.push_back(dir + "/picture.png");
+  }
+  if (volumes)
+    written.push_back(dir + "/vdb/");
+  WriteStatistics(output, o, dir,
+    { { "Slabs", std::to_string(slabs.size()) }, { "SlabsResumed", std::to_string(resumed) },
+      { "PeakMemoryMB", JsonNumber(PeakMegabytes()) } });
+  written.push_back(dir + "/statistics.json");
+  msynth::RemoveTree(folder);
+  vtkFieldData* fd = output->GetFieldData();
+  char timing[96];
+  std::snprintf(timing, sizeof(timing), "total %.2f s, peak memory %.0f MB",
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+    PeakMegabytes());
+  std::cout << MessageOf(fd) << "\n"
+            << o.Size3[0] << " x " << o.Size3[1] << " x " << o.Size3[2] << " sites in "
+            << slabs.size() << " slabs, " << CountOf(fd, "Blocks") << " blocks ("
+            << CountOf(fd, "BlocksFailed") << " failed), " << timing << "\nwrote ";
+  for (std::size_t i = 0; i < written.size(); ++i)
+    std::cout << (i ? ", " : "") << written[i];
+  std::cout << "\n";
+  return 0;
+}
+} // namespace
+
+int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!o.Guide.empty() || !o.Fixed.empty() || o.Snapshots > 0)
+    throw std::runtime_error("--stream computes the world a slab at a time: it takes no "
+                             "--guide, --fixed or --snapshots (each needs the whole world)");
+  if (std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; }))
+    throw std::runtime_error("--stream computes the whole world: use --region without it for "
+                             "one region");
+  const StreamOutputs kinds = StreamKinds(o);
+  // The stream's own folder beside the staging folder, in the output folder: kept when the run
+  // is interrupted, for --resume.
+  const std::string folder = dir.substr(0, dir.rfind('/')) + "/" + StreamFolder;
+  const std::string definition = WorldDefinition(o);
+  std::vector<std::string> kept;
+  if (o.Resume)
+    kept = KeptSlabs(folder, definition);
+  if (kept.empty())
+    msynth::RemoveTree(folder);
+  for (const char* sub : { "", "/labels", "/picture", "/vdb" })
+    ::mkdir((folder + sub).c_str(), 0755);
+  WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
+  WriteFileAtomically(folder + "/slabs.txt",
+    [&](std::ostream& out)
+    {
+      for (const auto& line : kept)
+        out << line << "\n";
+    });
+  std::ofstream slabs(folder + "/slabs.txt", std::ios::app);
+
+  vtkNew<vtkMSLabelGridReader> reader;
+  vtkNew<vtkMSDiscreteSynthesis> synthesis;
+  SetUpDiscrete(o, reader, synthesis);
+  StreamProgress progress(static_cast<int>(kept.size()));
+  synthesis->StreamNextUpdate(o.Slab, static_cast<int>(kept.size()),
+    [&](vtkImageData* slab, int j, int count)
+    {
+      char name[3][48];
+      std::snprintf(name[0], sizeof(name[0]), "labels/labels_%05d.vti", j);
+      std::snprintf(name[1], sizeof(name[1]), "picture/picture_%05d.png", j);
+      std::snprintf(name[2], sizeof(name[2]), "vdb/model_%05d.vdb", j);
+      WriteXML<vtkXMLImageDataWriter>(folder + "/" + name[0], slab);
+      int e[6];
+      slab->GetExtent(e);
+      std::string line = std::to_string(j) + " extent=" + std::to_string(e[0]);
+      for (int k = 1; k < 6; ++k)
+        line += "," + std::to_string(e[k]);
+      line += std::string(" ") + name[0] + "=" + FileStamp(folder + "/" + name[0]);
+      std::vector<std::string> pictures;
+      if (kinds.Picture)
+        WritePicture(slab, o, folder + "/" + name[1], pictures);
+      if (!pictures.empty())
+        line += std::string(" ") + name[1] + "=" + FileStamp(folder + "/" + name[1]);
+      if (kinds.Volume)
+      {
+        vtkNew<vtkMSOpenVDBWriter> vdb;
+        vdb->SetInputData(slab);
+        vdb->SetFileName((folder + "/" + name[2]).c_str());
+        vdb->WriteFloatLabelsOn();
+        vdb->AddMetadata("msynth_command", "synthesize --stream");
+        vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
+        Run(vdb);
+        line += std::string(" ") + name[2] + "=" + FileStamp(folder + "/" + name[2]);
+      }
+      slabs << line << "\n" << std::flush;
+      if (!slabs)
+        throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
+      progress.Slab(j, count, static_cast<double>(slab->GetNumberOfPoints()));
+      return true;
+    });
+  Run(synthesis);
+  return PublishStream(o, dir, folder, synthesis->GetOutput(), kept.size(), start);
+}
+
+} // namespace cli
+} // namespace msynth
