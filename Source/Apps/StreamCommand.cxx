@@ -392,6 +392,20 @@ int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std:
 }
 } // namespace
 
+void AddStreamOptions(
+  CLI::App& s, SynthesizeOptions& o, const std::function<void(CLI::Option*)>& discrete)
+{
+  discrete(s.add_flag("--stream", o.Stream,
+    "compute the world slab by slab in bounded memory: DIR/labels.pvti over DIR/labels/, "
+    "per-slab pictures and volumes; needs --block"));
+  discrete(s.add_option("--slab", o.Slab,
+              "a stream's slab thickness in sites (default: about "
+              "2 million sites a slab)")
+             ->check(CLI::Range(1, 1 << 30)));
+  discrete(s.add_flag("--resume", o.Resume,
+    "go on with the stream an interrupted --stream run left in DIR, keeping its finished slabs"));
+}
+
 int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
 {
   const auto start = std::chrono::steady_clock::now();

@@ -14,6 +14,11 @@
 #include <string>
 #include <vector>
 
+namespace CLI
+{
+class App;
+class Option;
+}
 class vtkAlgorithm;
 class vtkImageData;
 class vtkMSDiscreteSynthesis;
@@ -103,6 +108,9 @@ std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth
  * interrupted run leaves for --resume) and published together at the end.
  */
 int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir);
+/// --stream, --slab and --resume on @p s, each passed to @p discrete (discrete synthesis only).
+void AddStreamOptions(
+  CLI::App& s, SynthesizeOptions& o, const std::function<void(CLI::Option*)>& discrete);
 /// Reads the guide volume (.vti) at @p path with @p guide (errors name the file) and connects it
 /// to input @p port of @p synthesis.
 void ConnectGuide(

@@ -141,15 +141,6 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
               "from the blocks it depends on: the same sites as a whole run")
              ->expected(6)
              ->check(CLI::Range(0, 2147483647)));
-  discrete(s.add_flag("--stream", o.Stream,
-    "compute the world slab by slab in bounded memory: DIR/labels.pvti over DIR/labels/, "
-    "per-slab pictures and volumes; needs --block"));
-  discrete(s.add_option("--slab", o.Slab,
-              "a stream's slab thickness in sites (default: about "
-              "2 million sites a slab)")
-             ->check(CLI::Range(1, 1 << 30)));
-  discrete(s.add_flag("--resume", o.Resume,
-    "go on with the stream an interrupted --stream run left in DIR, keeping its finished slabs"));
   discrete(s.add_option("--overlap", o.Overlap,
               "overlap of consecutive blocks OX OY OZ (default -1: half a block)")
              ->expected(3)
@@ -775,6 +766,9 @@ CommandRunner AddSynthesize(CLI::App& app)
   AddOutOption(*s, o.Out);
   r.Command = s;
   AddDiscreteOptions(*s, r);
+  AddStreamOptions(*s, o,
+    [&r](CLI::Option* option)
+    { r.DiscreteOnly.push_back(option->group("Discrete synthesis (label grids, tilesets)")); });
   AddSampleOptions(*s, r);
   AddFixedOptions(*s, r);
   AddContinuousOptions(*s, r);

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSDiscreteSynthesisOptions.h"
+
+#include "vtkMSDiscreteSynthesis.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSSynthesisRun.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+
+#include "Core/Error.h"
+#include "Core/TextLists.h"
+
+#include <map>
+#include <string>
+
+namespace
+{
+/// Label maps "a:b,c:d" of a symmetry property (@p both: each pair both ways).
+bool ReadMap(vtkMSDiscreteSynthesis* self, const char* property, const char* value, bool both,
+  std::map<msynth::Label, msynth::Label>& map)
+{
+  try
+  {
+    map = msynth::ParseLabelPairs(value ? value : "", both, property);
+    return true;
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << e.what() << ".");
+    return false;
+  }
+}
+
+/// The symmetries (D§3.5.2) and soft constraints (M07§4.2) of the filter's properties.
+bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions& options)
+{
+  const int* mirror = self->GetMirror();
+  if (mirror[0] || mirror[1] || mirror[2])
+  {
+    std::map<msynth::Label, msynth::Label> swaps;
+    if (!ReadMap(self, "MirrorSwaps", self->GetMirrorSwaps(), true, swaps))
+      return false;
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      options.Symmetry[axis].Map = swaps;
+  }
+  const int* translate = self->GetTranslate();
+  if (translate[0] || translate[1] || translate[2])
+  {
+    std::map<msynth::Label, msynth::Label> shift;
+    if (!ReadMap(self, "TranslationMap", self->GetTranslationMap(), false, shift))
+      return false;
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      options.Translate[axis].Map = shift;
+  }
+  if (self->GetRotate() &&
+    !ReadMap(self, "RotationMap", self->GetRotationMap(), false, options.Rotate.Map))
+    return false;
+  try
+  {
+    const char* targets = self->GetTargetFractions();
+    for (const auto& [label, fraction] :
+      msynth::ParseLabelValues(targets ? targets : "", "TargetFractions", "fraction"))
+    {
+      options.Soft.TargetFractions[label] = fraction;
+      options.Soft.Temperature = self->GetSoftTemperature();
+    }
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << e.what() << ".");
+    return false;
+  }
+  return true;
+}
+
+/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label>.
+bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
+{
+  msynth::GuideVolume volume;
+  int dims[3];
+  guide->GetDimensions(dims);
+  volume.Dims = { { dims[0], dims[1], dims[2] } };
+  std::vector<std::pair<std::string, std::vector<float>>> arrays;
+  try
+  {
+    arrays = vtkMSSynthesisRun::GuideWeights(guide);
+  }
+  catch (const msynth::Error& e)
+  {
+    vtkErrorWithObjectMacro(self, << "The " << e.what() << " (Weight_<label>).");
+    return false;
+  }
+  for (auto& [suffix, weights] : arrays)
+  {
+    char* end = nullptr;
+    const long value = std::strtol(suffix.c_str(), &end, 10);
+    if (end == suffix.c_str() || *end != '\0')
+    {
+      vtkErrorWithObjectMacro(self, << "Guide array 'Weight_" << suffix
+                                    << "' must be named Weight_<label> with one component.");
+      return false;
+    }
+    volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
+  }
+  if (volume.Weights.empty())
+  {
+    vtkWarningWithObjectMacro(
+      self, << "The guide has no point array named Weight_<label>; it has no effect.");
+  }
+  options.Guide = std::move(volume);
+  return true;
+}
+
+} // namespace
+
+namespace vtkMSDiscreteSynthesisOptions
+{
+/// The engine's options from the filter's sizes and symmetries (shared by RequestInformation,
+/// which counts the time steps, and RequestData).
+msynth::SynthesisOptions SizeOptions(vtkMSDiscreteSynthesis* self)
+{
+  msynth::SynthesisOptions options;
+  for (int a = 0; a < 3; ++a)
+  {
+    options.Symmetry[static_cast<std::size_t>(a)].Enabled = self->GetMirror()[a] != 0;
+    options.Translate[static_cast<std::size_t>(a)].Enabled = self->GetTranslate()[a] != 0;
+    options.Translate[static_cast<std::size_t>(a)].Period = self->GetTranslationPeriod()[a];
+    options.Size[a] = self->GridSize(a);
+    options.BlockSize[a] = self->GetBlockSize()[a];
+    options.Overlap[a] = self->GetBlockOverlap()[a];
+  }
+  options.Rotate.Enabled = self->GetRotate();
+  options.SnapshotsPerBlock = self->GetCatalogSnapshotsPerBlock();
+  return options;
+}
+
+/// The engine's options from every property of the filter (and the guide, when connected).
+bool BuildOptions(
+  vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
+{
+  options = SizeOptions(self);
+  options.AttemptsPerBlock = self->GetAttemptsPerBlock();
+  options.BacktracksPerAttempt = self->GetBacktracksPerAttempt();
+  options.RepairFailedBlocks = self->GetRepairFailedBlocks();
+  options.StartFrom = static_cast<msynth::BlockStart>(self->GetBlockStart());
+  options.BlocksWhenWholeFails = self->GetBlocksWhenWholeFails();
+  options.Threads = self->GetNumberOfThreads();
+  options.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  options.Choice = static_cast<msynth::LabelChoice>(self->GetLabelChoice());
+  options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
+  for (int f = 0; f < 6; ++f)
+    if (self->GetUseBoundary()[f] || self->GetBoundaryFace(f))
+      options.Boundary[static_cast<std::size_t>(f)] = self->GetBoundaryLabels()[f];
+  if (self->GetUseTrivialLabel())
+    options.TrivialLabel = self->GetTrivialLabel();
+  options.ResemblanceWindow = self->GetResemblanceWindow();
+  options.Progress = vtkMSSynthesisRun::Progress(self);
+  return ReadSymmetryAndSoft(self, options) && (!guide || ReadGuide(self, guide, options));
+}
+
+/// The pinned sites of input port 2 (when connected): its label array, -1 where free.
+bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::SynthesisOptions& options)
+{
+  if (!fixed)
+    return true;
+  msynth::LabelGrid pins;
+  std::string problem;
+  if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))
+  {
+    vtkErrorWithObjectMacro(self, << "Bad pinned sites (Fixed input): " << problem);
+    return false;
+  }
+  options.Pins = std::move(pins);
+  return true;
+}
+
+} // namespace vtkMSDiscreteSynthesisOptions
