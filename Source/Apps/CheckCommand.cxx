@@ -7,16 +7,20 @@
 #include "Common.h"
 #include "Examples.h"
 
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkMSCheckModel.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPolyhedralExampleReader.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Error.h"
+#include "Core/FileBytes.h"
 #include "Core/Memory.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
@@ -29,6 +33,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <sys/stat.h>
 
 namespace msynth
@@ -172,18 +177,12 @@ int CheckVoxels(const std::string& example, const std::string& modelPath, const 
   return 1;
 }
 
-/// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
-int CheckDiscrete(const std::string& example, const std::string& modelPath,
-  const std::string& subset, const std::string& tiles)
+/// @p check of the model @p m reads against @p example (read by @p e) or its tileset.
+void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLabelGridReader* m,
+  const std::string& example, const std::string& subset, const std::string& tiles)
 {
-  if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
-    modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
-    return CheckVoxels(example, modelPath, tiles);
-  vtkNew<vtkMSLabelGridReader> e, m;
   e->GenerateGeometryOff(); // the labels are checked, not shown
   m->GenerateGeometryOff();
-  m->SetFileName(modelPath.c_str());
-  vtkNew<vtkMSCheckModel> check;
   check->SetInputConnection(m->GetOutputPort());
   if (IsTileset(example))
   {
@@ -196,6 +195,19 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
     e->SetFileName(example.c_str());
     check->AddExampleConnection(e->GetOutputPort());
   }
+}
+
+/// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
+int CheckDiscrete(const std::string& example, const std::string& modelPath,
+  const std::string& subset, const std::string& tiles)
+{
+  if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
+    modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
+    return CheckVoxels(example, modelPath, tiles);
+  vtkNew<vtkMSLabelGridReader> e, m;
+  m->SetFileName(modelPath.c_str());
+  vtkNew<vtkMSCheckModel> check;
+  SetUpDiscreteCheck(check, e, m, example, subset, tiles);
   Run(check);
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
@@ -209,6 +221,141 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
             << example << "\n";
   verdict.PrintProblems("  ");
   return 1;
+}
+
+/// A piece of a streamed model's pieces file.
+struct Piece
+{
+  std::array<int, 6> Extent{};
+  std::string Source;
+};
+
+/// The six integers of attribute @p name in @p text from @p at on; false when missing.
+bool ExtentAttribute(
+  const std::string& text, std::size_t at, const char* name, std::array<int, 6>& extent)
+{
+  const std::size_t found = text.find(std::string(name) + "=\"", at);
+  if (found == std::string::npos)
+    return false;
+  std::istringstream in(text.substr(found + std::strlen(name) + 2, 200));
+  for (int& v : extent)
+    if (!(in >> v))
+      return false;
+  return true;
+}
+
+/// The whole extent and the pieces of the pieces file @p path (`synthesize --stream`).
+std::vector<Piece> ReadPieces(const std::string& path, std::array<int, 6>& whole)
+{
+  const std::string text = msynth::ReadFileBytes(path, 64 << 20, "is too large for a pieces file");
+  if (!ExtentAttribute(text, 0, "WholeExtent", whole))
+    throw std::runtime_error("'" + path + "': not a pieces file of image data (no WholeExtent)");
+  std::vector<Piece> pieces;
+  for (std::size_t at = text.find("<Piece "); at != std::string::npos;
+       at = text.find("<Piece ", at + 1))
+  {
+    Piece piece;
+    const std::size_t source = text.find("Source=\"", at);
+    const std::size_t end = source == std::string::npos ? source : text.find('"', source + 8);
+    if (!ExtentAttribute(text, at, "Extent", piece.Extent) || end == std::string::npos)
+      throw std::runtime_error(
+        "'" + path + "': piece " + std::to_string(pieces.size()) + " has no Extent or Source");
+    piece.Source = text.substr(source + 8, end - source - 8);
+    pieces.push_back(piece);
+  }
+  if (pieces.empty())
+    throw std::runtime_error("'" + path + "': no pieces");
+  return pieces;
+}
+
+/// The axis the pieces follow one another along; @throw std::runtime_error when they do not
+/// tile @p whole as slabs sharing their border layers.
+int SlabAxis(
+  const std::string& path, const std::array<int, 6>& whole, const std::vector<Piece>& pieces)
+{
+  int axis = 2;
+  for (int a = 0; a < 3 && pieces.size() > 1; ++a)
+    if (pieces[0].Extent[2 * a + 1] != whole[2 * a + 1])
+      axis = a;
+  for (std::size_t j = 0; j < pieces.size(); ++j)
+  {
+    const auto& e = pieces[j].Extent;
+    bool ok = e[2 * axis] == (j == 0 ? whole[2 * axis] : pieces[j - 1].Extent[2 * axis + 1]);
+    for (int a = 0; a < 3; ++a)
+      ok = ok && (a == axis || (e[2 * a] == whole[2 * a] && e[2 * a + 1] == whole[2 * a + 1]));
+    if (!ok || (j + 1 == pieces.size() && e[2 * axis + 1] != whole[2 * axis + 1]))
+      throw std::runtime_error("'" + path + "': piece " + std::to_string(j) +
+        " does not continue the slabs of the whole extent (each shares the previous one's last "
+        "layer)");
+  }
+  return axis;
+}
+
+/// Layer @p k along @p axis of the labels @p a of an image of @p dims.
+std::vector<int> Layer(vtkDataArray* a, const int dims[3], int axis, int k)
+{
+  std::vector<int> layer;
+  int p[3];
+  for (p[2] = 0; p[2] < dims[2]; ++p[2])
+    for (p[1] = 0; p[1] < dims[1]; ++p[1])
+      for (p[0] = 0; p[0] < dims[0]; ++p[0])
+        if (p[axis] == k)
+          layer.push_back(static_cast<int>(
+            a->GetTuple1(p[0] + static_cast<vtkIdType>(dims[0]) * (p[1] + dims[1] * p[2]))));
+  return layer;
+}
+
+/// A streamed model (labels.pvti) piece by piece, one in memory at a time: every piece against
+/// the example (the pieces share their border layers, so every adjacent pair lies in one), the
+/// pieces tiling the whole extent, and each shared layer the same in both pieces.
+int CheckPieces(const std::string& example, const std::string& path, const std::string& subset,
+  const std::string& tiles)
+{
+  std::array<int, 6> whole;
+  const std::vector<Piece> pieces = ReadPieces(path, whole);
+  const int axis = SlabAxis(path, whole, pieces);
+  const std::string dir =
+    path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
+  vtkNew<vtkMSLabelGridReader> e, m;
+  vtkNew<vtkMSCheckModel> check;
+  SetUpDiscreteCheck(check, e, m, example, subset, tiles);
+  long long pairs = 0, violations = 0;
+  std::vector<int> last;
+  for (std::size_t j = 0; j < pieces.size(); ++j)
+  {
+    const std::string file = dir + "/" + pieces[j].Source;
+    CheckInputFile(file, true);
+    m->SetFileName(file.c_str());
+    Run(check);
+    const Verdict verdict{ check->GetOutput()->GetFieldData() };
+    pairs += CountOf(verdict.Fields, "PairsChecked");
+    violations += CountOf(verdict.Fields, "Violations");
+    if (!verdict.Valid())
+    {
+      std::cout << "inconsistent: piece " << j << " (" << file << ")\n";
+      verdict.PrintProblems("  ");
+    }
+    vtkImageData* labels = m->GetOutput();
+    int dims[3];
+    labels->GetDimensions(dims);
+    const auto& x = pieces[j].Extent;
+    vtkDataArray* a = labels->GetPointData()->GetScalars();
+    if (!a || dims[0] != x[1] - x[0] + 1 || dims[1] != x[3] - x[2] + 1 ||
+      dims[2] != x[5] - x[4] + 1)
+      throw std::runtime_error("'" + file + "': not the piece's extent or no labels");
+    if (j > 0 && Layer(a, dims, axis, 0) != last)
+    {
+      std::cout << "inconsistent: piece " << j << " does not share piece " << j - 1
+                << "'s last layer\n";
+      ++violations;
+    }
+    last = Layer(a, dims, axis, dims[axis] - 1);
+  }
+  if (violations > 0)
+    return 1;
+  std::cout << "consistent: all " << pairs << " adjacent pairs of the " << pieces.size()
+            << " pieces of " << path << " (seams included) occur in " << example << "\n";
+  return 0;
 }
 } // namespace
 
@@ -226,8 +373,9 @@ CommandRunner AddCheck(CLI::App& app)
   check->add_option("EXAMPLE", o->Example, "the example the model was synthesized from")
     ->required();
   check
-    ->add_option(
-      "MODEL", o->Model, "the model (.vti, .txt, .vox; .vtp for continuous; .png for a sample)")
+    ->add_option("MODEL", o->Model,
+      "the model (.vti, .txt, .vox; labels.pvti of a streamed run, piece by piece; .vtp for "
+      "continuous; .png for a sample)")
     ->required();
   AddSubsetOption(*check, o->Subset);
   check->add_option("--tiles", o->Tiles,
@@ -249,6 +397,8 @@ CommandRunner AddCheck(CLI::App& app)
     }
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);
+    if (o->Model.size() > 5 && o->Model.compare(o->Model.size() - 5, 5, ".pvti") == 0)
+      return CheckPieces(o->Example, o->Model, o->Subset, o->Tiles);
     return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles);
   };
 }

@@ -77,7 +77,7 @@ void CheckInputFile(const std::string& path, bool model)
   }
   static const char* const known[] = { ".vti", ".txt", ".vox", ".xml", ".png", ".bmp", ".obj",
     ".vtp", ".ply", ".stl" };
-  bool ok = false;
+  bool ok = model && ext == ".pvti"; // a streamed model's pieces
   for (const char* k : known)
   {
     ok |= ext == k;
@@ -87,7 +87,7 @@ void CheckInputFile(const std::string& path, bool model)
     throw std::runtime_error("'" + path + "': " +
       (ext.empty() ? std::string("has no extension")
                    : "has the unknown extension '" + msynth::Printable(ext) + "'") +
-      (model ? "; models are .vti, .txt, .vox or .vtp files"
+      (model ? "; models are .vti, .pvti, .txt, .vox or .vtp files"
              : "; examples are label grids (.vti, .txt, .vox), tilesets (.xml), image samples "
                "(.png, .bmp) or polyhedra (.obj, .vtp, .ply, .stl)"));
   }

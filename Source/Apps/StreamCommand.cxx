@@ -22,6 +22,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/OutputFolder.h"
+#include "Discrete/DiscreteSynthesis.h"
 
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -304,6 +305,26 @@ StreamOutputs StreamKinds(const SynthesizeOptions& o)
   return kinds;
 }
 
+/// --slab, or for pictures slabs of about 2^18 sites (a picture of 8 x 8 pixel tiles then has
+/// 16 M pixels); 0: the engine's choice.
+int SlabThickness(const SynthesizeOptions& o, const StreamOutputs& kinds)
+{
+  if (o.Slab > 0 || !kinds.Picture)
+    return o.Slab;
+  msynth::SynthesisOptions shape;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    shape.Size[a] = o.Size3[a];
+    shape.BlockSize[a] = o.Block[a];
+    shape.Overlap[a] = o.Overlap[a];
+  }
+  const msynth::StreamLayout layout = msynth::PlanStream(shape);
+  const auto axis = static_cast<std::size_t>(layout.Axis);
+  const std::int64_t cross = shape.Size[0] * shape.Size[1] * shape.Size[2] / shape.Size[axis];
+  return static_cast<int>(
+    std::max<std::int64_t>(1, (std::int64_t(1) << 18) / std::max<std::int64_t>(1, cross)));
+}
+
 /// A finished slab as slabs.txt lists it.
 struct ListedSlab
 {
@@ -440,7 +461,8 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   vtkNew<vtkMSDiscreteSynthesis> synthesis;
   SetUpDiscrete(o, reader, synthesis);
   StreamProgress progress(static_cast<int>(kept.size()));
-  synthesis->StreamNextUpdate(o.Slab, static_cast<int>(kept.size()),
+  const int thickness = SlabThickness(o, kinds);
+  synthesis->StreamNextUpdate(thickness, static_cast<int>(kept.size()),
     [&](vtkImageData* slab, int j, int count)
     {
       char name[3][48];

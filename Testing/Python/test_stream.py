@@ -1,0 +1,150 @@
+"""Streamed worlds (issue: worlds, §2): `msynth synthesize --stream` computes the world slab by
+slab in bounded memory. The slabs (labels.pvti over labels/, read by VTK's own pieces reader)
+equal a whole run of the same world, pass the independent check (pairs recomputed from the
+example here, `msynth check` piece by piece), and an interrupted stream resumes: finished slabs
+are kept, a damaged one is computed again, and a stream of another world is refused."""
+import json
+import os
+import signal
+import subprocess
+import time
+import unittest
+
+import numpy as np
+from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
+
+from msynth_testing import BIN, data, fresh_folder, labels_zyx, violations
+from msynth_testing import read_label_grid as read
+from msynth_testing import run_msynth as msynth
+
+
+MSYNTH = os.path.join(BIN, "msynth")
+
+
+def read_pieces(path):
+    reader = vtkXMLPImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+class StreamTest(unittest.TestCase):
+    def test_label_grid_stream_equals_the_whole_run(self):
+        village = data("Examples/Village.vti")
+        common = ["--size", "60", "140", "5", "--block", "12", "12", "5", "--seed", "5"]
+        whole = fresh_folder("stream-whole")
+        done = msynth("synthesize", village, *common, "--outputs", "labels", "--out", whole)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        out = fresh_folder("stream-village")
+        done = msynth("synthesize", village, *common, "--stream", "--slab", "30", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("streamed in 5 slabs along y", done.stdout)
+        streamed = read_pieces(os.path.join(out, "labels.pvti"))
+        self.assertEqual(streamed.GetDimensions(), (60, 140, 5))
+        labels = labels_zyx(streamed)
+        np.testing.assert_array_equal(labels, labels_zyx(read(os.path.join(whole, "labels.vti"))))
+        self.assertEqual(violations(labels_zyx(read(village)), labels), [])
+        self.assertGreaterEqual(len(np.unique(labels)), 3)  # not a blank world (4 labels in all)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "vdb"))),
+                         ["model_%05d.vdb" % j for j in range(5)])
+        stats = json.load(open(os.path.join(out, "statistics.json")))
+        self.assertEqual(stats["Slabs"], 5)
+        self.assertEqual(stats["SlabsResumed"], 0)
+        self.assertFalse(os.path.exists(os.path.join(out, ".msynth-stream")))
+        check = msynth("check", village, os.path.join(out, "labels.pvti"))
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        self.assertIn("5 pieces", check.stdout)
+
+    def test_check_finds_a_wrong_piece_and_a_broken_seam(self):
+        lines = data("Tilesets/Lines.xml")
+        out = fresh_folder("stream-check")
+        done = msynth("synthesize", lines, "--size", "40", "90", "1", "--block", "16", "16", "1",
+                      "--stream", "--slab", "30", "--seed", "2", "--outputs", "labels", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        pvti = os.path.join(out, "labels.pvti")
+        self.assertEqual(msynth("check", lines, pvti).returncode, 0)
+        # Piece 1 replaced by piece 2 (same size, other labels): its seams no longer match.
+        text = open(pvti).read()
+        wrong = os.path.join(out, "wrong.pvti")
+        open(wrong, "w").write(text.replace('Source="labels/labels_00001.vti"',
+                                            'Source="labels/labels_00002.vti"', 1))
+        check = msynth("check", lines, wrong)
+        self.assertEqual(check.returncode, 1, check.stdout + check.stderr)
+        self.assertIn("does not share piece", check.stdout)
+        # A gap between the pieces is refused in one line.
+        gap = os.path.join(out, "gap.pvti")
+        open(gap, "w").write(text.replace('Extent="0 39 29 59', 'Extent="0 39 31 59', 1))
+        check = msynth("check", lines, gap)
+        self.assertNotEqual(check.returncode, 0)
+        self.assertIn("does not continue the slabs", check.stderr)
+
+    def test_an_interrupted_stream_resumes(self):
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "400", "2400", "1", "--block", "32", "32", "1", "--seed", "8",
+                  "--stream", "--slab", "100", "--threads", "1"]
+        out = fresh_folder("stream-resume")
+        stream = os.path.join(out, ".msynth-stream")
+        run = subprocess.Popen([MSYNTH, "synthesize", lines, *common, "--out", out],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        listed = os.path.join(stream, "slabs.txt")
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and run.poll() is None:
+            if os.path.exists(listed) and len(open(listed).read().splitlines()) >= 4:
+                break
+            time.sleep(0.02)
+        self.assertIsNone(run.poll(), "the stream ended before it could be interrupted")
+        run.send_signal(signal.SIGKILL)
+        run.wait()
+        kept = open(listed).read().splitlines()
+        self.assertGreaterEqual(len(kept), 4)
+        self.assertFalse(os.path.exists(os.path.join(out, "labels.pvti")))  # nothing published
+        # Damage slab 2: it and the slabs after it are computed again.
+        piece = os.path.join(stream, "labels", "labels_00002.vti")
+        raw = bytearray(open(piece, "rb").read())
+        raw[len(raw) // 2] ^= 0xFF
+        open(piece, "wb").write(raw)
+        done = msynth("synthesize", lines, *common, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("slab 2 of the stream is damaged", done.stderr)
+        stats = json.load(open(os.path.join(out, "statistics.json")))
+        self.assertEqual(stats["SlabsResumed"], 2)
+        fresh = fresh_folder("stream-fresh")
+        done = msynth("synthesize", lines, *common, "--out", fresh)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(
+            labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))),
+            labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti"))))
+        self.assertEqual(msynth("check", lines, os.path.join(out, "labels.pvti")).returncode, 0)
+        # A stream of another world is not resumed.
+        again = fresh_folder("stream-other")
+        run = subprocess.Popen([MSYNTH, "synthesize", lines, *common, "--out", again],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        listed = os.path.join(again, ".msynth-stream", "slabs.txt")
+        while run.poll() is None and not (os.path.exists(listed) and open(listed).read()):
+            time.sleep(0.02)
+        run.send_signal(signal.SIGKILL)
+        run.wait()
+        other = [c if c != "8" else "9" for c in common]
+        done = msynth("synthesize", lines, *other, "--resume", "--out", again)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("holds a stream of another world", done.stderr)
+        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+
+    def test_streams_refuse_what_needs_the_whole_world(self):
+        lines = data("Tilesets/Lines.xml")
+        out = fresh_folder("stream-refused")
+        for extra, words in ((["--mirror", "x"], "symmetry"),
+                             (["--snapshots", "1"], "--snapshots"),
+                             (["--outputs", "labels,mesh"], "not 'mesh'")):
+            done = msynth("synthesize", lines, "--size", "40", "40", "1", "--block", "16", "16",
+                          "1", "--stream", *extra, "--out", out)
+            self.assertNotEqual(done.returncode, 0, extra)
+            self.assertIn(words, done.stderr)
+            self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        done = msynth("synthesize", lines, "--size", "40", "40", "1", "--stream", "--out", out)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("give blocks smaller than the world", done.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
