@@ -130,6 +130,36 @@ class StreamTest(unittest.TestCase):
         self.assertIn("holds a stream of another world", done.stderr)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
 
+    def test_the_filter_streams_slabs_to_a_python_observer(self):
+        import modelsynth
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetTilesetFile(data("Tilesets/Lines.xml"))
+        synthesis.SetOutputSize(48, 100, 1)
+        synthesis.SetBlockSize(16, 16, 1)
+        synthesis.SetSeed(6)
+        synthesis.GenerateGeometryOff()
+        synthesis.Update()
+        whole = labels_zyx(synthesis.GetOutput())
+        world = np.full(whole.shape, -2, dtype=whole.dtype)
+        seen = []
+
+        def on_slab(caller, event):
+            slab = caller.GetCurrentSlab()
+            x0, x1, y0, y1, z0, z1 = slab.GetExtent()
+            world[z0:z1 + 1, y0:y1 + 1, x0:x1 + 1] = labels_zyx(slab)
+            seen.append((caller.GetCurrentSlabIndex(), caller.GetNumberOfSlabs()))
+
+        synthesis.AddObserver(modelsynth.vtkMSDiscreteSynthesis.SlabEvent, on_slab)
+        synthesis.StreamNextUpdate(25, 0)
+        synthesis.Update()
+        self.assertEqual(seen, [(j, 4) for j in range(4)])
+        np.testing.assert_array_equal(world, whole)
+        self.assertEqual(synthesis.GetOutput().GetNumberOfPoints(), 0)  # the slabs were the output
+        # The next update after a change computes the whole output again.
+        synthesis.Modified()
+        synthesis.Update()
+        np.testing.assert_array_equal(labels_zyx(synthesis.GetOutput()), whole)
+
     def test_streams_refuse_what_needs_the_whole_world(self):
         lines = data("Tilesets/Lines.xml")
         out = fresh_folder("stream-refused")

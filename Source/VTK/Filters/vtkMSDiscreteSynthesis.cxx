@@ -67,6 +67,7 @@ struct vtkMSDiscreteSynthesis::Internals
     vtkImageData* Input = nullptr;
   };
   std::unique_ptr<StreamRequest> Stream;
+  vtkImageData* CurrentSlab = nullptr; ///< the slab SlabEvent is about
 };
 
 int vtkMSDiscreteSynthesis::GetActiveSource() const
@@ -662,6 +663,25 @@ void vtkMSDiscreteSynthesis::StreamNextUpdate(
   request->Receive = receive;
   this->Internal->Stream = std::move(request);
   this->Modified();
+}
+
+void vtkMSDiscreteSynthesis::StreamNextUpdate(vtkIdType thickness, int first)
+{
+  this->StreamNextUpdate(thickness, first,
+    [this](vtkImageData* slab, int index, int count)
+    {
+      this->Internal->CurrentSlab = slab;
+      this->CurrentSlabIndex = index;
+      this->NumberOfSlabs = count;
+      this->InvokeEvent(SlabEvent, &index);
+      this->Internal->CurrentSlab = nullptr;
+      return !this->AbortExecute;
+    });
+}
+
+vtkImageData* vtkMSDiscreteSynthesis::GetCurrentSlab()
+{
+  return this->Internal->CurrentSlab;
 }
 
 void vtkMSDiscreteSynthesis::SetBoundaryFace(int face, int use)

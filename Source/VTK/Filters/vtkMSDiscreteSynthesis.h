@@ -488,6 +488,21 @@ public:
     const std::function<bool(vtkImageData* slab, int index, int count)>& receive);
 #endif
 
+  /// The event StreamNextUpdate(thickness, first) invokes for each slab.
+  enum
+  {
+    SlabEvent = 0x4D530001 // vtkCommand::UserEvent range
+  };
+  /**
+   * StreamNextUpdate for scripts: each slab becomes GetCurrentSlab() (with its index in
+   * GetCurrentSlabIndex() of GetNumberOfSlabs()) while SlabEvent is invoked; setting
+   * AbortExecute in an observer cancels.
+   */
+  void StreamNextUpdate(vtkIdType thickness, int first);
+  vtkImageData* GetCurrentSlab();
+  vtkGetMacro(CurrentSlabIndex, int);
+  vtkGetMacro(NumberOfSlabs, int);
+
 protected:
   vtkMSDiscreteSynthesis();
   ~vtkMSDiscreteSynthesis() override;
@@ -555,6 +570,8 @@ private:
   vtkIdType MaximumSnapshotMemory = vtkIdType(1) << 31;
   bool GenerateGeometry = true;
   int EmptyLabel = 0;
+  int CurrentSlabIndex = -1;
+  int NumberOfSlabs = 0;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
