@@ -196,3 +196,42 @@ TEST(WorldRegion, OptionsThatNeedTheWholeWorldAreRefused)
   EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 21, 4, 5 } }), Error);
   EXPECT_THROW(SynthesizeRegion(rules, o, { { 3, 0, 0 } }, { { 3, 4, 5 } }), Error);
 }
+
+TEST(WorldRegion, TheFirstPassAloneServesRegionsNoFailedBlockCovers)
+{
+  // Blocks fail here and there; regions over none of them take the first pass's narrower cone,
+  // the others the repair passes' too: both equal the whole run.
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 96, 96, 1 } };
+  o.BlockSize = { { 6, 6, 1 } };
+  o.AttemptsPerBlock = 1;
+  o.BacktracksPerAttempt = 0;
+  o.Seed = 5;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  ASSERT_GT(whole.Statistics.BlocksRepaired, 0) << whole.Message;
+  int shortcut = 0, full = 0;
+  for (std::int64_t y = 0; y < 96; y += 24)
+    for (std::int64_t x = 0; x < 96; x += 32)
+    {
+      const WorldBox lo{ { x, y, 0 } }, hi{ { x + 32, y + 24, 1 } };
+      const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+      ASSERT_TRUE(region.Succeeded()) << region.Message;
+      EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data()) << x << " " << y;
+      (region.Message.find("no repair pass was needed") != std::string::npos ? shortcut : full)++;
+    }
+  EXPECT_GT(full, 0);
+  // Smaller regions are more often clear of failed blocks.
+  for (std::int64_t y = 0; y < 96; y += 16)
+    for (std::int64_t x = 0; x < 96; x += 16)
+    {
+      const WorldBox lo{ { x, y, 0 } }, hi{ { x + 8, y + 8, 1 } };
+      const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+      ASSERT_TRUE(region.Succeeded()) << region.Message;
+      EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data()) << x << " " << y;
+      (region.Message.find("no repair pass was needed") != std::string::npos ? shortcut : full)++;
+    }
+  EXPECT_GT(shortcut, 0);
+}

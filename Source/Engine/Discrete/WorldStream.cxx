@@ -68,38 +68,96 @@ int Passes(const SynthesisOptions& world)
 }
 } // namespace
 
-SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
-  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
+namespace
 {
-  CheckWorldOptions(world, "a region of a world");
-  const RegionCone cone = PlanRegion(LatticeOf(world), low, high, Passes(world));
-  SynthesisOptions resolved = world;
-  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
+/// Runs @p cone's blocks in its window and crops the region [@p low, @p high); failed when a
+/// site of the region is left undecided.
+SynthesisResult RegionOfCone(const AdjacencyRules& rules, const SynthesisOptions& resolved,
+  const RegionCone& cone, const WorldBox& low, const WorldBox& high)
+{
   const SynthesisOptions window = WindowOptions(rules, resolved, cone);
   WindowRun run;
   run.Cone = &cone;
+  SharedModel keep;
+  run.Keep = &keep;
   SynthesisResult r = SynthesizeDirect(rules, window, nullptr, nullptr, &run);
   if (!r.Succeeded())
     return r;
   const Coord& w = window.Size;
-  LabelGrid model(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
-  std::vector<std::int32_t> last(static_cast<std::size_t>(model.NumberOfSites()));
-  std::size_t i = 0;
+  std::vector<Label> labels;
+  labels.reserve(
+    static_cast<std::size_t>((high[0] - low[0]) * (high[1] - low[1]) * (high[2] - low[2])));
+  std::vector<std::int32_t> last;
+  last.reserve(labels.capacity());
   for (std::int64_t z = low[2]; z < high[2]; ++z)
     for (std::int64_t y = low[1]; y < high[1]; ++y)
-      for (std::int64_t x = low[0]; x < high[0]; ++x, ++i)
+      for (std::int64_t x = low[0]; x < high[0]; ++x)
       {
         const auto s = static_cast<std::size_t>((x - cone.WindowLow[0]) +
           w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
-        model.Data()[i] = r.Model.Data()[s];
-        last[i] = r.LastBlock[s];
+        if (keep.Model[s] < 0)
+        {
+          r.Status = SynthesisStatus::Failed;
+          r.Message = "block synthesis from an undecided start left site " +
+            Format({ { x, y, z } }) +
+            " undecided (every block over it failed). Try another "
+            "seed, larger blocks, or the trivial start";
+          return r;
+        }
+        labels.push_back(rules.LabelValues()[static_cast<std::size_t>(keep.Model[s])]);
+        last.push_back(keep.LastBlock[s]);
       }
-  r.Model = std::move(model);
+  r.Model =
+    LabelGrid({ { high[0] - low[0], high[1] - low[1], high[2] - low[2] } }, std::move(labels));
   r.LastBlock = std::move(last);
   r.Message += " (the region's cone of " + std::to_string(cone.Blocks.size()) +
     " blocks in a window of " + std::to_string(w[0]) + " x " + std::to_string(w[1]) + " x " +
     std::to_string(w[2]) + " sites)";
   return r;
+}
+
+/// Whether a block of @p failures (world keys of @p lattice) covers a site of [@p low, @p high).
+bool FailedOver(const WorldLattice& lattice, const std::vector<BlockFailure>& failures,
+  const WorldBox& low, const WorldBox& high)
+{
+  for (const BlockFailure& f : failures)
+  {
+    const std::int64_t c0 = lattice.Count(0), c1 = lattice.Count(1);
+    const BoxBlock<3> b =
+      lattice.At({ { f.Block % c0, (f.Block / c0) % c1, f.Block / (c0 * c1) } });
+    bool meets = true;
+    for (std::size_t a = 0; a < 3; ++a)
+      meets = meets && b.Origin[a] < high[a] && b.Origin[a] + b.Dims[a] > low[a];
+    if (meets)
+      return true;
+  }
+  return false;
+}
+} // namespace
+
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+  const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
+{
+  CheckWorldOptions(world, "a region of a world");
+  const WorldLattice lattice = LatticeOf(world);
+  SynthesisOptions resolved = world;
+  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
+  if (world.RepairFailedBlocks)
+  {
+    // The repair passes run failed blocks only, so they change the region only when a block over
+    // it failed: first the narrower cone of the first pass alone.
+    SynthesisOptions once = resolved;
+    once.RepairFailedBlocks = false;
+    SynthesisResult r = RegionOfCone(rules, once, PlanRegion(lattice, low, high, 1), low, high);
+    if (r.Status == SynthesisStatus::Cancelled ||
+      (r.Succeeded() && !FailedOver(lattice, r.Statistics.Failures, low, high)))
+    {
+      if (r.Succeeded())
+        r.Message += "; no block over the region failed, so no repair pass was needed";
+      return r;
+    }
+  }
+  return RegionOfCone(rules, resolved, PlanRegion(lattice, low, high, Passes(world)), low, high);
 }
 
 namespace
