@@ -242,10 +242,16 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
       vmin = std::min(vmin, v);
       vmax = std::max(vmax, v);
     }
+    const double extent = vmax - vmin;
+    const double tolerance = 1e-4 * extent + 0.5 + 2 * spread[static_cast<std::size_t>(f)];
+    const double faces = ApproximateGcd(vs, tolerance);
     vs.push_back(vmin);
     vs.push_back(vmax);
-    const double extent = vmax - vmin;
-    double g = ApproximateGcd(vs, 1e-4 * extent + 0.5 + 2 * spread[static_cast<std::size_t>(f)]);
+    double g = ApproximateGcd(vs, tolerance);
+    // Extremes that are corners off the faces' lattice (an output model of a polygon with sides
+    // of any length, used as an example) would collapse the spacing: the faces' own spacing then.
+    if (g < extent / 256.0 && faces >= extent / 256.0)
+      g = faces;
     g = std::max(g, extent / 256.0);
     p.Spacings.push_back(std::max<std::int64_t>(1, std::llround(g)));
     world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
