@@ -4,9 +4,11 @@
 // non-trihedral labels (TVCG §4.4). The solver itself is ContinuousSynthesis.cxx.
 #include "Continuous/ContinuousSynthesis.h"
 
+#include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace msynth
@@ -37,6 +39,7 @@ ArrangementRules::ArrangementRules(
     }
     this->LabelFamilies.push_back(mask);
   }
+  this->KeepCornersApart(analysis);
   std::map<NeighbourhoodLabel, int> ids;
   const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
   this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
@@ -80,6 +83,50 @@ ArrangementRules::ArrangementRules(
   this->Finish();
 }
 
+void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
+{
+  // Slivers: where a plane of another family passes within a fraction of the smallest spacing of
+  // a vertex without going through it (planes of directions of large integers nearly meet), a
+  // corner there would be that close to a face, edge or corner on the other plane, or its own
+  // edge would be that short. Such vertices take no corner labels: a model's corners are at least
+  // the fraction of a spacing away from every plane they are not on.
+  const PlaneArrangement& arr = this->Arrangement;
+  const PlaneFamilySet& set = arr.Families();
+  const ArrangementParameters& p = arr.Parameters();
+  const int m = set.Size();
+  double smallest = 0;
+  std::vector<double> world(static_cast<std::size_t>(m));
+  for (int f = 0; f < m; ++f)
+  {
+    world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
+    smallest = f == 0 ? world[0] : std::min(smallest, world[static_cast<std::size_t>(f)]);
+  }
+  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+    if (analysis.Label(a).Kind == FeatureKind::Vertex)
+      this->CornerLabels.push_back(a);
+  this->NoCorner.assign(static_cast<std::size_t>(arr.NumberOfVertices()), 0);
+  if (this->CornerLabels.empty() || !(smallest > 0))
+    return;
+  const double apart = MinimumFeatureFraction * smallest;
+  for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
+  {
+    const Point3& q = arr.Position(v);
+    for (int f = 0; f < m && !this->NoCorner[static_cast<std::size_t>(v)]; ++f)
+    {
+      if ((arr.FamilyMask(v) >> f) & 1u)
+        continue;
+      const IntVec3& n = set.Normal(f);
+      double x = 0;
+      for (int c = 0; c < 3; ++c)
+        x += static_cast<double>(n[static_cast<std::size_t>(c)]) * (q[c] - p.Origin[c]) / p.Quantum;
+      const double s = (x - static_cast<double>(p.Offsets[static_cast<std::size_t>(f)])) /
+        static_cast<double>(p.Spacings[static_cast<std::size_t>(f)]);
+      const double off = std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)];
+      this->NoCorner[static_cast<std::size_t>(v)] = off < apart ? 1 : 0;
+    }
+  }
+}
+
 void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes) const
 {
   const int w = this->Words();
@@ -92,6 +139,9 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
       out[a >> 6] |= std::uint64_t(1) << (a & 63);
     }
   }
+  if (this->NoCorner[static_cast<std::size_t>(v)])
+    for (int a : this->CornerLabels)
+      out[a >> 6] &= ~(std::uint64_t(1) << (a & 63));
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
   {
     bool acrossSeam = false;

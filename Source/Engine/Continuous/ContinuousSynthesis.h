@@ -46,9 +46,16 @@ public:
     return this->Evaluations[static_cast<std::size_t>(d) * this->NumberOfLabels() + label];
   }
 
+  /// Whether vertex @p v takes no corner labels (a plane not through it passes within
+  /// MinimumFeatureFraction of the smallest spacing: a corner there would make a sliver).
+  bool NoCornerAt(std::int64_t v) const { return this->NoCorner[static_cast<std::size_t>(v)] != 0; }
+
 private:
+  void KeepCornersApart(const PolyhedralAnalysis& analysis);
   const PlaneArrangement& Arrangement;
   int Empty = -1;
+  std::vector<int> CornerLabels; ///< labels of kind Vertex
+  std::vector<char> NoCorner;    ///< per vertex
   std::vector<std::uint64_t> LabelFamilies; ///< family mask per label
   std::vector<int> Evaluations;             ///< [direction][label]
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
