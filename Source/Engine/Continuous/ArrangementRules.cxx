@@ -89,7 +89,9 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
   // a vertex without going through it (planes of directions of large integers nearly meet), a
   // corner there would be that close to a face, edge or corner on the other plane, or its own
   // edge would be that short. Such vertices take no corner labels: a model's corners are at least
-  // the fraction of a spacing away from every plane they are not on.
+  // the fraction of a spacing away from every plane they are not on. Within a thousandth of a
+  // spacing, where the arrangement's own faces are slivers, the model's surface does not pass at
+  // all (only volume labels), so no polygon of the mesh has an edge shorter than that.
   const PlaneArrangement& arr = this->Arrangement;
   const PlaneFamilySet& set = arr.Families();
   const ArrangementParameters& p = arr.Parameters();
@@ -102,16 +104,20 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
     smallest = f == 0 ? world[0] : std::min(smallest, world[static_cast<std::size_t>(f)]);
   }
   for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+  {
     if (analysis.Label(a).Kind == FeatureKind::Vertex)
       this->CornerLabels.push_back(a);
-  this->NoCorner.assign(static_cast<std::size_t>(arr.NumberOfVertices()), 0);
-  if (this->CornerLabels.empty() || !(smallest > 0))
+    if (analysis.Label(a).Kind != FeatureKind::Volume)
+      this->SurfaceLabels.push_back(a);
+  }
+  this->Clearance.assign(static_cast<std::size_t>(arr.NumberOfVertices()), 0);
+  if (!(smallest > 0))
     return;
-  const double apart = MinimumFeatureFraction * smallest;
   for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
   {
     const Point3& q = arr.Position(v);
-    for (int f = 0; f < m && !this->NoCorner[static_cast<std::size_t>(v)]; ++f)
+    double nearest = HUGE_VAL; // the nearest plane not through v
+    for (int f = 0; f < m; ++f)
     {
       if ((arr.FamilyMask(v) >> f) & 1u)
         continue;
@@ -121,9 +127,11 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
         x += static_cast<double>(n[static_cast<std::size_t>(c)]) * (q[c] - p.Origin[c]) / p.Quantum;
       const double s = (x - static_cast<double>(p.Offsets[static_cast<std::size_t>(f)])) /
         static_cast<double>(p.Spacings[static_cast<std::size_t>(f)]);
-      const double off = std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)];
-      this->NoCorner[static_cast<std::size_t>(v)] = off < apart ? 1 : 0;
+      nearest = std::min(nearest, std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)]);
     }
+    this->Clearance[static_cast<std::size_t>(v)] = nearest < SurfaceClearance * smallest ? 2
+      : nearest < MinimumFeatureFraction * smallest                                       ? 1
+                                                                                          : 0;
   }
 }
 
@@ -139,8 +147,9 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
       out[a >> 6] |= std::uint64_t(1) << (a & 63);
     }
   }
-  if (this->NoCorner[static_cast<std::size_t>(v)])
-    for (int a : this->CornerLabels)
+  const char clearance = this->Clearance[static_cast<std::size_t>(v)];
+  for (int a : clearance == 2 ? this->SurfaceLabels : this->CornerLabels)
+    if (clearance > 0)
       out[a >> 6] &= ~(std::uint64_t(1) << (a & 63));
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
   {

@@ -46,16 +46,23 @@ public:
     return this->Evaluations[static_cast<std::size_t>(d) * this->NumberOfLabels() + label];
   }
 
-  /// Whether vertex @p v takes no corner labels (a plane not through it passes within
-  /// MinimumFeatureFraction of the smallest spacing: a corner there would make a sliver).
-  bool NoCornerAt(std::int64_t v) const { return this->NoCorner[static_cast<std::size_t>(v)] != 0; }
+  /// Within this fraction of the smallest spacing of a plane not through it, a vertex takes
+  /// only volume labels (the arrangement's faces there are slivers).
+  static constexpr double SurfaceClearance = 1e-3;
+  /**
+   * 0: vertex @p v takes any label; 1: no corner labels (a plane not through it passes within
+   * MinimumFeatureFraction of the smallest spacing: a corner there would make a sliver); 2: only
+   * volume labels (a plane passes within SurfaceClearance).
+   */
+  int ClearanceAt(std::int64_t v) const { return this->Clearance[static_cast<std::size_t>(v)]; }
 
 private:
   void KeepCornersApart(const PolyhedralAnalysis& analysis);
   const PlaneArrangement& Arrangement;
   int Empty = -1;
-  std::vector<int> CornerLabels; ///< labels of kind Vertex
-  std::vector<char> NoCorner;    ///< per vertex
+  std::vector<int> CornerLabels;  ///< labels of kind Vertex
+  std::vector<int> SurfaceLabels; ///< labels of any kind but Volume
+  std::vector<char> Clearance;    ///< per vertex, see ClearanceAt
   std::vector<std::uint64_t> LabelFamilies; ///< family mask per label
   std::vector<int> Evaluations;             ///< [direction][label]
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
