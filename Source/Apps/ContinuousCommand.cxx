@@ -103,6 +103,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
     .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
+    .Count("NarrowPartsRemoved", CountOf(fd, "NarrowPartsRemoved"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))
     .Number("MatchError", match ? match->GetTuple1(0) : 0.0)
