@@ -151,8 +151,8 @@ TEST(Slivers, ModelOfARotatedPrismAsAnExampleIsQuick)
     EXPECT_LT(again.Vertices, 5000);
     EXPECT_LT(seconds, 10);
     EXPECT_TRUE(again.Report.Valid) << again.Report.Problem;
-    EXPECT_GE(SmallestFeature(again.Mesh, again.Spacing).Width,
-      MinimumFeatureFraction * again.Spacing);
+    EXPECT_GE(
+      SmallestFeature(again.Mesh, again.Spacing).Width, MinimumFeatureFraction * again.Spacing);
   }
   // A finer model of a rotated prism (spacing 0.3) as an example: valid and without slivers too.
   const auto r = Rotated(0.7);

@@ -130,8 +130,8 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
       nearest = std::min(nearest, std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)]);
     }
     this->Clearance[static_cast<std::size_t>(v)] = nearest < SurfaceClearance * smallest ? 2
-      : nearest < MinimumFeatureFraction * smallest                                       ? 1
-                                                                                          : 0;
+      : nearest < MinimumFeatureFraction * smallest                                      ? 1
+                                                                                         : 0;
   }
 }
 
@@ -189,7 +189,8 @@ std::vector<std::int64_t> ArrangementRules::NarrowCorners(
               if (!((across >> g) & 1u))
                 continue;
               const IntVec3& n = set.Normal(g);
-              const double len = std::sqrt(static_cast<double>(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+              const double len =
+                std::sqrt(static_cast<double>(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
               double d = 0;
               for (int k = 0; k < 3; ++k)
                 d += static_cast<double>(n[static_cast<std::size_t>(k)]) * (q[k] - r[k]);

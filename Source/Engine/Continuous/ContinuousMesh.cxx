@@ -545,10 +545,9 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
   if (smallestSpacing > 0 && width.Width < MinimumFeatureFraction * smallestSpacing)
   {
     const Point3& w = width.Where;
-    report.Problem = "a face, edge or gap is only " + std::to_string(width.Width) +
-      " wide at (" + std::to_string(w[0]) + ", " + std::to_string(w[1]) + ", " +
-      std::to_string(w[2]) + "): under " +
-      std::to_string(static_cast<int>(MinimumFeatureFraction * 100)) +
+    report.Problem = "a face, edge or gap is only " + std::to_string(width.Width) + " wide at (" +
+      std::to_string(w[0]) + ", " + std::to_string(w[1]) + ", " + std::to_string(w[2]) +
+      "): under " + std::to_string(static_cast<int>(MinimumFeatureFraction * 100)) +
       " % of the smallest plane spacing " + std::to_string(smallestSpacing);
     return report;
   }

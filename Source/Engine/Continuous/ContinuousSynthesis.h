@@ -66,9 +66,9 @@ private:
   const PlaneArrangement& Arrangement;
   int Empty = -1;
   std::vector<FeatureKind> LabelKinds;
-  std::vector<int> SurfaceLabels; ///< labels of any kind but Volume
-  double Smallest = 0;            ///< the smallest world spacing
-  std::vector<char> Clearance;    ///< per vertex, see ClearanceAt
+  std::vector<int> SurfaceLabels;           ///< labels of any kind but Volume
+  double Smallest = 0;                      ///< the smallest world spacing
+  std::vector<char> Clearance;              ///< per vertex, see ClearanceAt
   std::vector<std::uint64_t> LabelFamilies; ///< family mask per label
   std::vector<int> Evaluations;             ///< [direction][label]
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty

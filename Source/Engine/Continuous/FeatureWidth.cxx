@@ -197,7 +197,8 @@ FeatureWidth SmallestFeature(const ContinuousMesh& mesh, double radius)
   {
     CellKey k{};
     for (int c = 0; c < 3; ++c)
-      k[static_cast<std::size_t>(c)] = static_cast<std::int64_t>(std::floor((p[c] + shift - lo[c]) / cell));
+      k[static_cast<std::size_t>(c)] =
+        static_cast<std::int64_t>(std::floor((p[c] + shift - lo[c]) / cell));
     return k;
   };
   std::unordered_map<CellKey, std::vector<std::int32_t>, CellHash> grid;

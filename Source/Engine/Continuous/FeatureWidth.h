@@ -24,8 +24,8 @@ struct FeatureWidth
 {
   /// The narrowest width found, or the search radius when nothing is narrower.
   double Width = 0;
-  Point3 Where{};          ///< the corner where it was found (when Found)
-  bool Found = false;      ///< whether a width under the radius was found
+  Point3 Where{};           ///< the corner where it was found (when Found)
+  bool Found = false;       ///< whether a width under the radius was found
   std::int64_t Corners = 0; ///< corners measured
 };
 

@@ -26,8 +26,8 @@
 
 #include "Continuous/ContinuousConstraints.h"
 #include "Continuous/ContinuousMesh.h"
-#include "Continuous/FeatureWidth.h"
 #include "Continuous/DetailSubstitution.h"
+#include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
 
 vtkStandardNewMacro(vtkMSArrangementMesh);
@@ -291,13 +291,13 @@ int vtkMSArrangementMesh::RequestData(
       output->GetFieldData(), "SmallestSpacing", spacing);
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       output->GetFieldData(), "SmallestFeature", width.Width);
-    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(output->GetFieldData(),
-      "SmallestFeatureFraction", spacing > 0 ? width.Width / spacing : 0.0);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      output->GetFieldData(), "SmallestFeatureFraction", spacing > 0 ? width.Width / spacing : 0.0);
     if (this->CheckModel)
     {
       // The synthesized model (before any substitution) against the example.
-      const auto report = msynth::CheckContinuousModel(
-        analysis, detail ? synthesized : mesh, ex.TypeNames, spacing);
+      const auto report =
+        msynth::CheckContinuousModel(analysis, detail ? synthesized : mesh, ex.TypeNames, spacing);
       vtkNew<vtkStringArray> check;
       check->SetName("ModelCheck");
       check->InsertNextValue(report.Valid ? "valid" : report.Problem);
