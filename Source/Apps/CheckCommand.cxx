@@ -127,6 +127,11 @@ int CheckContinuous(
               << " polygons, " << CountOf(verdict.Fields, "Objects")
               << " objects) has only neighbourhoods of " << example << " ("
               << CountOf(verdict.Fields, "DistinctLabels") << " distinct)\n";
+    vtkDataArray* width = verdict.Fields->GetArray("SmallestFeature");
+    vtkDataArray* fraction = verdict.Fields->GetArray("SmallestFeatureFraction");
+    if (width && fraction && fraction->GetTuple1(0) > 0)
+      std::cout << "narrowest face, edge or gap: " << width->GetTuple1(0) << " ("
+                << fraction->GetTuple1(0) << " of the smallest plane spacing)\n";
     return 0;
   }
   std::cout << "invalid: " << modelPath << ": ";

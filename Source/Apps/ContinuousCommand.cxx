@@ -73,6 +73,13 @@ double WriteModelVDB(
   return vdb->GetWrittenVoxelSize();
 }
 
+/// One number of field data @p name, 0 when absent.
+double NumberOf(vtkFieldData* fd, const char* name)
+{
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+}
+
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
   const std::string& dir, const std::vector<std::pair<std::string, double>>& stages, double voxel)
 {
@@ -96,9 +103,13 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
     .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
+    .Count("NarrowPartsRemoved", CountOf(fd, "NarrowPartsRemoved"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))
     .Number("MatchError", match ? match->GetTuple1(0) : 0.0)
+    // The narrowest face, edge or gap (up to the smallest plane spacing), and as a fraction of it.
+    .Number("SmallestFeature", NumberOf(model->GetFieldData(), "SmallestFeature"))
+    .Number("SmallestFeatureFraction", NumberOf(model->GetFieldData(), "SmallestFeatureFraction"))
     // Shares of the solid per object type: by volume of the model written, and by vertex
     // occupancy (what the proportions steer).
     .Prefixed("TypeShares", model->GetFieldData(), "VolumeShare_")

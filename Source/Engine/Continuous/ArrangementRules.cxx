@@ -4,9 +4,12 @@
 // non-trihedral labels (TVCG §4.4). The solver itself is ContinuousSynthesis.cxx.
 #include "Continuous/ContinuousSynthesis.h"
 
+#include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
 
 namespace msynth
@@ -37,6 +40,7 @@ ArrangementRules::ArrangementRules(
     }
     this->LabelFamilies.push_back(mask);
   }
+  this->KeepCornersApart(analysis);
   std::map<NeighbourhoodLabel, int> ids;
   const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
   this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
@@ -80,6 +84,128 @@ ArrangementRules::ArrangementRules(
   this->Finish();
 }
 
+void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
+{
+  // Slivers: where a plane of another family passes within a fraction of the smallest spacing of
+  // a vertex without going through it (planes of directions of large integers nearly meet), a
+  // corner there may be that close to a face, edge or corner on the other plane (NarrowCorners
+  // finds those of a model). Within a thousandth of a spacing, where the arrangement's own faces
+  // are slivers, the model's surface does not pass at all (only volume labels), so no polygon of
+  // the mesh has an edge shorter than that.
+  const PlaneArrangement& arr = this->Arrangement;
+  const PlaneFamilySet& set = arr.Families();
+  const ArrangementParameters& p = arr.Parameters();
+  const int m = set.Size();
+  double smallest = 0;
+  std::vector<double> world(static_cast<std::size_t>(m));
+  for (int f = 0; f < m; ++f)
+  {
+    world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
+    smallest = f == 0 ? world[0] : std::min(smallest, world[static_cast<std::size_t>(f)]);
+  }
+  for (int a = 0; a < analysis.NumberOfLabels(); ++a)
+  {
+    this->LabelKinds.push_back(analysis.Label(a).Kind);
+    if (analysis.Label(a).Kind != FeatureKind::Volume)
+      this->SurfaceLabels.push_back(a);
+  }
+  this->Smallest = smallest;
+  this->Clearance.assign(static_cast<std::size_t>(arr.NumberOfVertices()), 0);
+  if (!(smallest > 0))
+    return;
+  for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
+  {
+    const Point3& q = arr.Position(v);
+    double nearest = HUGE_VAL; // the nearest plane not through v
+    for (int f = 0; f < m; ++f)
+    {
+      if ((arr.FamilyMask(v) >> f) & 1u)
+        continue;
+      const IntVec3& n = set.Normal(f);
+      double x = 0;
+      for (int c = 0; c < 3; ++c)
+        x += static_cast<double>(n[static_cast<std::size_t>(c)]) * (q[c] - p.Origin[c]) / p.Quantum;
+      const double s = (x - static_cast<double>(p.Offsets[static_cast<std::size_t>(f)])) /
+        static_cast<double>(p.Spacings[static_cast<std::size_t>(f)]);
+      nearest = std::min(nearest, std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)]);
+    }
+    this->Clearance[static_cast<std::size_t>(v)] = nearest < SurfaceClearance * smallest ? 2
+      : nearest < MinimumFeatureFraction * smallest                                      ? 1
+                                                                                         : 0;
+  }
+}
+
+std::vector<std::int64_t> ArrangementRules::NarrowCorners(
+  const std::vector<std::int32_t>& labels) const
+{
+  // A corner (a vertex label) within the fraction of a spacing of a plane g not through it is
+  // narrow when a vertex near it on that plane has a type change across g (a face, edge or
+  // corner on g). Near: within a few of the largest spacings, the size of the arrangement's
+  // faces, so a face of g passing close to the corner has such a vertex (more removes a part
+  // that was wide enough, never keeps a narrow one the search misses on the faces' vertices).
+  std::vector<std::int64_t> out;
+  const PlaneArrangement& arr = this->Arrangement;
+  const PlaneFamilySet& set = arr.Families();
+  const ArrangementParameters& p = arr.Parameters();
+  const double apart = MinimumFeatureFraction * this->Smallest;
+  double largest = 0;
+  for (int f = 0; f < set.Size(); ++f)
+    largest = std::max(largest, p.Spacing(set, f));
+  const double reach = 3 * largest;
+  const auto kind = [&](std::int64_t v)
+  { return this->LabelKinds[static_cast<std::size_t>(labels[static_cast<std::size_t>(v)])]; };
+  const auto cellOf = [&](const Point3& q)
+  {
+    return std::array<std::int64_t, 3>{ static_cast<std::int64_t>(std::floor(q[0] / reach)),
+      static_cast<std::int64_t>(std::floor(q[1] / reach)),
+      static_cast<std::int64_t>(std::floor(q[2] / reach)) };
+  };
+  std::map<std::array<std::int64_t, 3>, std::vector<std::int64_t>> grid;
+  for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
+    if (kind(v) != FeatureKind::Volume)
+      grid[cellOf(arr.Position(v))].push_back(v);
+  for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
+  {
+    if (this->Clearance[static_cast<std::size_t>(v)] != 1 || kind(v) != FeatureKind::Vertex)
+      continue;
+    const Point3& q = arr.Position(v);
+    const auto c = cellOf(q);
+    bool narrow = false;
+    for (std::int64_t dx = -1; dx <= 1 && !narrow; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && !narrow; ++dy)
+        for (std::int64_t dz = -1; dz <= 1 && !narrow; ++dz)
+        {
+          const auto it = grid.find({ c[0] + dx, c[1] + dy, c[2] + dz });
+          if (it == grid.end())
+            continue;
+          for (std::int64_t u : it->second)
+          {
+            const Point3& r = arr.Position(u);
+            const std::uint64_t across =
+              this->LabelFamilies[static_cast<std::size_t>(labels[static_cast<std::size_t>(u)])] &
+              ~arr.FamilyMask(v);
+            for (int g = 0; g < set.Size() && !narrow && across != 0; ++g)
+            {
+              if (!((across >> g) & 1u))
+                continue;
+              const IntVec3& n = set.Normal(g);
+              const double len =
+                std::sqrt(static_cast<double>(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+              double d = 0;
+              for (int k = 0; k < 3; ++k)
+                d += static_cast<double>(n[static_cast<std::size_t>(k)]) * (q[k] - r[k]);
+              narrow = std::abs(d) / len < apart;
+            }
+            if (narrow)
+              break;
+          }
+        }
+    if (narrow)
+      out.push_back(v);
+  }
+  return out;
+}
+
 void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int seamAxes) const
 {
   const int w = this->Words();
@@ -92,6 +218,9 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
       out[a >> 6] |= std::uint64_t(1) << (a & 63);
     }
   }
+  if (this->Clearance[static_cast<std::size_t>(v)] == 2)
+    for (int a : this->SurfaceLabels)
+      out[a >> 6] &= ~(std::uint64_t(1) << (a & 63));
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
   {
     bool acrossSeam = false;

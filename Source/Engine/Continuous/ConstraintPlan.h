@@ -95,6 +95,9 @@ public:
    * seeds (with blocks, a later block can split a grown part).
    */
   Removed RemoveStrayParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  /// Empties every connected solid part holding one of @p vertices; returns how many.
+  std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
+    const std::vector<std::int64_t>& vertices) const;
   /// Whether RemoveStrayParts has anything to do.
   bool RemovesStrayParts() const;
   /// When every solid type grows from seeds, the number of seeds; else 0.

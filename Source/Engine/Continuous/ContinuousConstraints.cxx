@@ -628,6 +628,28 @@ ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
   return removed;
 }
 
+std::int64_t ConstraintPlan::EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
+  const std::vector<std::int64_t>& vertices) const
+{
+  if (vertices.empty())
+    return 0;
+  std::vector<std::int64_t> component;
+  const std::int64_t parts = SolidComponents(
+    this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
+    this->TypesOfLabel, component);
+  std::vector<char> empty(static_cast<std::size_t>(parts), 0);
+  for (const std::int64_t v : vertices)
+    if (component[static_cast<std::size_t>(v)] >= 0)
+      empty[static_cast<std::size_t>(component[static_cast<std::size_t>(v)])] = 1;
+  for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
+  {
+    const std::int64_t c = component[static_cast<std::size_t>(v)];
+    if (c >= 0 && empty[static_cast<std::size_t>(c)])
+      labels[static_cast<std::size_t>(v)] = emptyLabel;
+  }
+  return std::count(empty.begin(), empty.end(), 1);
+}
+
 } // namespace detail
 
 ArrangementMeasures MeasureArrangement(const PolyhedralAnalysis& analysis,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Continuous/ContinuousMesh.h"
 
+#include "Continuous/FeatureWidth.h"
+
 #include "Core/Error.h"
 
 #include "Continuous/Point3Math.h"
@@ -479,7 +481,7 @@ NeighbourhoodLabel MapLabel(
 } // namespace
 
 ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
-  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames)
+  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames, double smallestSpacing)
 {
   ContinuousModelReport report;
   if (mesh.Polygons.empty())
@@ -534,6 +536,20 @@ ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
         std::to_string(where[2]) + ") is not one of the example's labels";
       return report;
     }
+  }
+  // Slivers: the narrowest feature, measured on the polygons alone (FeatureWidth.h).
+  const double radius = smallestSpacing > 0 ? smallestSpacing : model.Diagonal() / 64;
+  const FeatureWidth width = SmallestFeature(mesh, radius);
+  report.SmallestFeature = width.Width;
+  report.SmallestSpacing = smallestSpacing;
+  if (smallestSpacing > 0 && width.Width < MinimumFeatureFraction * smallestSpacing)
+  {
+    const Point3& w = width.Where;
+    report.Problem = "a face, edge or gap is only " + std::to_string(width.Width) + " wide at (" +
+      std::to_string(w[0]) + ", " + std::to_string(w[1]) + ", " + std::to_string(w[2]) +
+      "): under " + std::to_string(static_cast<int>(MinimumFeatureFraction * 100)) +
+      " % of the smallest plane spacing " + std::to_string(smallestSpacing);
+    return report;
   }
   report.Valid = true;
   return report;

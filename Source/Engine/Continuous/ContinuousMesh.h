@@ -89,14 +89,20 @@ struct ContinuousModelReport
   int DistinctLabels = 0; ///< distinct neighbourhoods found on the model
   std::int64_t SampledFeatures = 0;
   int Objects = 0;
+  /// The narrowest face, edge or gap (FeatureWidth.h), up to the smallest spacing.
+  double SmallestFeature = 0;
+  double SmallestSpacing = 0; ///< as given (0: unknown, features not held to the fraction)
 };
 
 /**
  * Checks a synthesized mesh without trusting the solver: the mesh must be a valid closed,
  * outward-oriented polyhedral model (the example validation), and the example analysis run on
  * it must find only neighbourhoods that are labels of @p example (vertices, edge pieces, faces).
+ * With @p smallestSpacing > 0 (the arrangement's smallest plane spacing), no face, edge or gap
+ * may be narrower than MinimumFeatureFraction of it (SmallestFeature, measured on the polygons).
  */
 ContinuousModelReport CheckContinuousModel(const PolyhedralAnalysis& example,
-  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames);
+  const ContinuousMesh& mesh, const std::map<int, std::string>& typeNames,
+  double smallestSpacing = 0);
 
 } // namespace msynth

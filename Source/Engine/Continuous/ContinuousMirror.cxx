@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Continuous/ContinuousMirror.h"
 
+#include "Continuous/ConstraintPlan.h"
 #include "Core/Error.h"
 
 #include <algorithm>
@@ -289,6 +290,12 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
     result.Labels[static_cast<std::size_t>(v)] =
       reflected ? plan.LabelImage[static_cast<std::size_t>(label)] : label;
   }
+  // A corner near the seam and its image may come closer than a tenth of a spacing: parts with
+  // such corners are emptied on the whole arrangement, as the half's run did within the half.
+  const ArrangementRules rules(analysis, arrangement);
+  result.NarrowPartsRemoved +=
+    detail::ConstraintPlan(analysis, arrangement, ContinuousConstraints(), options.Seed)
+      .EmptyPartsAt(result.Labels, empty, rules.NarrowCorners(result.Labels));
   result.Message += ", mirrored across the plane at " + std::to_string(seam);
   return result;
 }

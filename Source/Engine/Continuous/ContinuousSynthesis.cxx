@@ -144,6 +144,12 @@ public:
   {
     return this->Plan->RemoveStrayParts(this->Result.Labels, this->Rules.EmptyLabel());
   }
+  /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
+  std::int64_t RemoveNarrowParts()
+  {
+    return this->Plan->EmptyPartsAt(this->Result.Labels, this->Rules.EmptyLabel(),
+      this->Rules.NarrowCorners(this->Result.Labels));
+  }
 
   bool WholeModel() const { return this->Whole; }
   std::int64_t NumberOfBlocks() const { return this->Blocks; }
@@ -665,11 +671,15 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const auto removed = run.RemoveStrayParts();
   result.FloatingPartsRemoved = removed.Floating;
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
+  result.NarrowPartsRemoved = run.RemoveNarrowParts();
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
     result.Message +=
       ", " + std::to_string(result.FloatingPartsRemoved) + " floating parts emptied";
+  if (result.NarrowPartsRemoved > 0)
+    result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
+      " parts emptied for features under a tenth of a spacing";
   if (removed.BeyondSeeds > 0)
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";

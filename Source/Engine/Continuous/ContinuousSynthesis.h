@@ -46,9 +46,29 @@ public:
     return this->Evaluations[static_cast<std::size_t>(d) * this->NumberOfLabels() + label];
   }
 
+  /// Within this fraction of the smallest spacing of a plane not through it, a vertex takes
+  /// only volume labels (the arrangement's faces there are slivers).
+  static constexpr double SurfaceClearance = 1e-3;
+  /**
+   * 0: no plane that does not pass through vertex @p v comes within MinimumFeatureFraction of
+   * the smallest spacing; 1: one does (a corner at @p v may be narrow: NarrowCorners); 2: one
+   * comes within SurfaceClearance, and @p v takes only volume labels.
+   */
+  int ClearanceAt(std::int64_t v) const { return this->Clearance[static_cast<std::size_t>(v)]; }
+  /**
+   * The corners of a labelling (vertices with a vertex label) closer than MinimumFeatureFraction
+   * of the smallest spacing to a face, edge or corner on a plane that does not pass through them.
+   */
+  std::vector<std::int64_t> NarrowCorners(const std::vector<std::int32_t>& labels) const;
+
 private:
+  void KeepCornersApart(const PolyhedralAnalysis& analysis);
   const PlaneArrangement& Arrangement;
   int Empty = -1;
+  std::vector<FeatureKind> LabelKinds;
+  std::vector<int> SurfaceLabels;           ///< labels of any kind but Volume
+  double Smallest = 0;                      ///< the smallest world spacing
+  std::vector<char> Clearance;              ///< per vertex, see ClearanceAt
   std::vector<std::uint64_t> LabelFamilies; ///< family mask per label
   std::vector<int> Evaluations;             ///< [direction][label]
   std::vector<std::uint64_t> EmptyToward;   ///< [direction][word]: eval is empty
@@ -97,6 +117,9 @@ struct ContinuousSynthesisResult
   std::string Message; ///< why it failed, or a summary
   /// Grounded runs: solid parts that did not touch the ground and were emptied.
   std::int64_t FloatingPartsRemoved = 0;
+  /// Solid parts emptied because a corner came closer than MinimumFeatureFraction of the
+  /// smallest spacing to another plane's face, edge or corner (ArrangementRules::NarrowCorners).
+  std::int64_t NarrowPartsRemoved = 0;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).
   std::int64_t PartsBeyondSeedsRemoved = 0;

@@ -52,6 +52,23 @@ double ApproximateGcd(std::vector<double> values, double tolerance)
   return g;
 }
 
+/// A family's spacing in exact units: the approximate GCD of its faces' positions @p values and
+/// its extremes @p vmin and @p vmax (faces spread by @p spread), at least 1/256 of the extent.
+double FamilySpacing(std::vector<double> values, double vmin, double vmax, double spread)
+{
+  const double extent = vmax - vmin;
+  const double tolerance = 1e-4 * extent + 0.5 + 2 * spread;
+  const double faces = ApproximateGcd(values, tolerance);
+  values.push_back(vmin);
+  values.push_back(vmax);
+  double g = ApproximateGcd(values, tolerance);
+  // Extremes that are corners off the faces' lattice (an output model of a polygon with sides of
+  // any length, used as an example) would collapse the spacing: the faces' own spacing then.
+  if (g < extent / 256.0 && faces >= extent / 256.0)
+    g = faces;
+  return std::max(g, extent / 256.0);
+}
+
 } // namespace
 
 double ArrangementParameters::Spacing(const PlaneFamilySet& families, int family) const
@@ -242,11 +259,7 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
       vmin = std::min(vmin, v);
       vmax = std::max(vmax, v);
     }
-    vs.push_back(vmin);
-    vs.push_back(vmax);
-    const double extent = vmax - vmin;
-    double g = ApproximateGcd(vs, 1e-4 * extent + 0.5 + 2 * spread[static_cast<std::size_t>(f)]);
-    g = std::max(g, extent / 256.0);
+    const double g = FamilySpacing(vs, vmin, vmax, spread[static_cast<std::size_t>(f)]);
     p.Spacings.push_back(std::max<std::int64_t>(1, std::llround(g)));
     world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
   }

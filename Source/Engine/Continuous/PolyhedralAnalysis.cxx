@@ -61,7 +61,7 @@ IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInt
     throw Error("cannot snap a zero or non-finite direction");
   }
   const Point3 u = Unit(unit);
-  auto within = [&](const IntVec3& v)
+  auto within = [&](const IntVec3& v, double tolerance)
   {
     const Point3 w{ double(v[0]), double(v[1]), double(v[2]) };
     const double n = Norm(w);
@@ -70,7 +70,7 @@ IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInt
       return false;
     }
     const double sine = Norm(point3::Cross(w, u)) / n;
-    return Dot(w, u) > 0 && sine <= std::sin(angleTolerance);
+    return Dot(w, u) > 0 && sine <= std::sin(tolerance);
   };
   auto reduced = [](IntVec3 v)
   {
@@ -84,13 +84,37 @@ IntVec3 SnapDirection(const Point3& unit, double angleTolerance, int maxSmallInt
     }
     return v;
   };
+  // The smallest integers within the tolerance, unless larger ones (up to the limit) give the
+  // direction exactly: a model synthesized on snapped directions, used as an example, keeps its
+  // own directions (a neighbour within the tolerance would spread its faces' positions, and the
+  // spacing derived from them would collapse into a huge arrangement).
+  IntVec3 first{};
+  bool found = false;
   for (int n = 1; n <= maxSmallInteger; ++n)
   {
     const IntVec3 v{ std::llround(unit[0] / m * n), std::llround(unit[1] / m * n),
       std::llround(unit[2] / m * n) };
-    if (within(v))
+    if (within(v, std::min(1e-9, angleTolerance)))
     {
       return reduced(v);
+    }
+    if (!found && within(v, angleTolerance))
+    {
+      first = v;
+      found = true;
+    }
+  }
+  if (found)
+  {
+    return reduced(first);
+  }
+  for (int n = maxSmallInteger + 1; n <= 4096; ++n)
+  {
+    const IntVec3 v{ std::llround(unit[0] / m * n), std::llround(unit[1] / m * n),
+      std::llround(unit[2] / m * n) };
+    if (within(v, std::min(1e-9, angleTolerance)))
+    {
+      return reduced(v); // exactly a direction of integers up to 4096: no 24-bit approximation
     }
   }
   constexpr double scale = double(1 << 24);

@@ -27,6 +27,7 @@
 #include "Continuous/ContinuousConstraints.h"
 #include "Continuous/ContinuousMesh.h"
 #include "Continuous/DetailSubstitution.h"
+#include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
 
 vtkStandardNewMacro(vtkMSArrangementMesh);
@@ -281,11 +282,22 @@ int vtkMSArrangementMesh::RequestData(
       output->GetFieldData(), "AngleTolerance", record.AngleToleranceDegrees);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(
       output->GetFieldData(), "MaximumSmallInteger", record.MaximumSmallInteger);
+    // The smallest plane spacing (a check holds features to a fraction of it) and the narrowest
+    // feature of the synthesized model, measured on its polygons (FeatureWidth.h).
+    const double spacing = vtkMSArrangementStorage::SmallestSpacing(labelled->GetFieldData());
+    const msynth::FeatureWidth width =
+      msynth::SmallestFeature(detail ? synthesized : mesh, spacing);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      output->GetFieldData(), "SmallestSpacing", spacing);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      output->GetFieldData(), "SmallestFeature", width.Width);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      output->GetFieldData(), "SmallestFeatureFraction", spacing > 0 ? width.Width / spacing : 0.0);
     if (this->CheckModel)
     {
       // The synthesized model (before any substitution) against the example.
       const auto report =
-        msynth::CheckContinuousModel(analysis, detail ? synthesized : mesh, ex.TypeNames);
+        msynth::CheckContinuousModel(analysis, detail ? synthesized : mesh, ex.TypeNames, spacing);
       vtkNew<vtkStringArray> check;
       check->SetName("ModelCheck");
       check->InsertNextValue(report.Valid ? "valid" : report.Problem);

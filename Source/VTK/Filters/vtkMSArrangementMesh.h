@@ -16,7 +16,9 @@
  *   polygons with InsideType t and, reversed, those with OutsideType t: closed and oriented.
  * - 2D: the faces of the line arrangement with an object, with cell array `ObjectType`.
  * Point array `ArrangementVertex`; field data `ExampleFile` and `TypeNames` (the object type
- * names by type id, 0 = "empty").
+ * names by type id, 0 = "empty"), `SmallestSpacing` (the arrangement's, for a later check) and
+ * the narrowest face, edge or gap of the synthesized model, `SmallestFeature` and
+ * `SmallestFeatureFraction` (of SmallestSpacing; msynth::SmallestFeature).
  *
  * With CheckModel on, the output is verified without trusting the solver (the example
  * analysis is run on it: msynth::CheckContinuousModel); the field data array `ModelCheck`

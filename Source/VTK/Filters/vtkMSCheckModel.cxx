@@ -24,6 +24,7 @@
 #include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 
+#include <cmath>
 #include <exception>
 
 vtkStandardNewMacro(vtkMSCheckModel);
@@ -212,11 +213,21 @@ bool vtkMSCheckModel::CheckContinuous(
     const msynth::PolyhedralAnalysis analysis =
       vtkMSPolyhedra::AnalyzeExample(example, degrees, static_cast<int>(largest), ex);
     const auto mesh = vtkMSPolyhedra::ToContinuousMesh(model, "the model");
-    const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames);
+    // Features are held to a fraction of the smallest plane spacing the mesh filter recorded.
+    const double spacing = RecordedNumber(fd, "SmallestSpacing", 0);
+    if (!(spacing >= 0) || !std::isfinite(spacing))
+    {
+      vtkErrorMacro(<< "The model's SmallestSpacing is out of range.");
+      return false;
+    }
+    const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames, spacing);
     AddVerdict(out, report.Valid, report.Valid ? 0 : 1, 0,
       report.Valid ? std::vector<std::string>() : std::vector<std::string>{ report.Problem });
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Objects", report.Objects);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "DistinctLabels", report.DistinctLabels);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "SmallestFeature", report.SmallestFeature);
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+      out, "SmallestFeatureFraction", spacing > 0 ? report.SmallestFeature / spacing : 0.0);
   }
   catch (const std::exception& e)
   {

@@ -23,7 +23,9 @@
  * (0, 1, 2: the pair is (x, x + axis)) and `ViolationLabels` (the two labels); with Shapes,
  * `KL_<shape>` per shape (the KL divergence of the model's configurations to the examples', Yeh
  * et al. 2012 §7) and `PatternLogProbability` (Eq. 3 with the shapes of more than two sites as
- * soft factors worth 1 + Epsilon); for continuous models `Objects` and `DistinctLabels`.
+ * soft factors worth 1 + Epsilon); for continuous models `Objects`, `DistinctLabels` and the
+ * narrowest face, edge or gap `SmallestFeature` and `SmallestFeatureFraction` (of the model's
+ * recorded `SmallestSpacing`; under MinimumFeatureFraction of it the model is invalid).
  * Bad input (no example and no tileset, a model without labels) is an error naming it.
  *
  * @sa msynth check, msynth quality

@@ -287,6 +287,8 @@ void vtkMSContinuousSynthesis::FillOutput(
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "FloatingPartsRemoved", static_cast<vtkIdType>(result.FloatingPartsRemoved));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "NarrowPartsRemoved", static_cast<vtkIdType>(result.NarrowPartsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "PartsBeyondSeedsRemoved", static_cast<vtkIdType>(result.PartsBeyondSeedsRemoved));
   for (const auto& [type, share] : m.TypeShares)
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(

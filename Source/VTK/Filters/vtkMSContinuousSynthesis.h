@@ -23,7 +23,9 @@
  * stretched over the output box whose point arrays `Weight_<type>` (a type number or name) weight
  * the labels holding that type, 0 removing them there. The field data then also has `Components`,
  * `GroundedComponents`, `FloatingPartsRemoved`, `PartsBeyondSeedsRemoved` and `TypeShare_<type>`
- * (vertex occupancy; the mesh filter gives volume shares).
+ * (vertex occupancy; the mesh filter gives volume shares). Always: `NarrowPartsRemoved`, the solid
+ * parts emptied because a corner came within a tenth of the smallest spacing of another plane's
+ * face, edge or corner (no slivers).
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
