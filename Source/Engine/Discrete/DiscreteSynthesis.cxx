@@ -12,6 +12,7 @@
 #include "Core/Random.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
+#include "Discrete/LabelCounts.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
 
@@ -275,13 +276,18 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   pass.Attempts = 2 * options.AttemptsPerBlock;
   pass.Later = true;
   SynthesisStatistics second;
+  for (unsigned w = 0; w < driver.Workers(); ++w)
+    workers[w].SetRepairing(true); // every block has run: keep the others' own counts
   const BlockClient client = MakeClient(again, workers, soft, shared, second,
     order == SiteOrder::MinimumEntropy
       ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
       : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order });
   const SynthesisStatus status = driver.Run(BlockSchedule::Of(again), client, second, pass);
   for (unsigned w = 0; w < driver.Workers(); ++w)
+  {
     workers[w].SetOrder(order);
+    workers[w].SetRepairing(false);
+  }
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
@@ -359,6 +365,23 @@ bool AllDecided(const std::vector<std::int32_t>& model, const Coord& n, Synthesi
   return false;
 }
 
+/// @p r with its label counts, failed when a count is missed (failed blocks left their own sites
+/// as they were); @p misses attempts solved their block but missed its counts.
+SynthesisResult KeptCounts(const SynthesisOptions& options, SynthesisResult r, std::int64_t misses)
+{
+  r.Counts = CountLabels(options.Counts, r.Model);
+  const std::string miss = CountMiss(r.Counts);
+  if (miss.empty())
+    return r;
+  r.Status = SynthesisStatus::Failed;
+  r.Message = "the label counts were not kept: " + miss + " (" +
+    std::to_string(r.Statistics.BlocksFailed) + " blocks failed, " + std::to_string(misses) +
+    " solved attempts missed their counts). Try another seed, more attempts, larger blocks or "
+    "wider counts";
+  r.Model = LabelGrid();
+  return r;
+}
+
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
 /// mirror plan or symmetry seams when a part of a symmetric output is synthesized; with
 /// @p cone, the output is the cone's window of a world and its blocks are the cone's.
@@ -418,6 +441,13 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
 
   if (!wholeModel && options.Pins)
     solver.PlacePins(m, options.Seed, stats.Assignments);
+  std::unique_ptr<CountBudget> budget;
+  if (!options.Counts.empty())
+  {
+    budget = std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
+    for (unsigned w = 0; w < driver.Workers(); ++w)
+      workers[w].UseCounts(budget.get());
+  }
   solver.StartSnapshots();
   result.Status =
     driver.Run(BlockSchedule::Of(blocks), MakeClient(blocks, workers, soft, shared, stats), stats);
@@ -435,8 +465,12 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
       RepairFailedBlocks(options, candidates, driver, workers, soft, shared, stats, round);
   }
   stats.Backtracks = solver.Backtracks();
+  std::int64_t misses = solver.CountMisses();
   for (const auto& extra : workers.Extra)
+  {
     stats.Backtracks += extra->Backtracks();
+    misses += extra->CountMisses();
+  }
   if (!driver.End(result.Status, result.Message, stats, wholeModel,
         [&](const BlockFailure& f)
         {
@@ -444,7 +478,11 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
             options.AttemptsPerBlock, "the catalog became empty at site " + Format(f.EmptySite),
             "Try another seed, more attempts, or block synthesis");
         }))
+  {
+    if (misses > 0)
+      result.Message += " (" + std::to_string(misses) + " solved attempts missed the label counts)";
     return result;
+  }
   if (undecided && !AllDecided(shared.Model, n, result))
     return result;
   std::vector<Label> values(shared.Model.size());
@@ -453,7 +491,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   result.Model = LabelGrid(n, std::move(values));
   result.LastBlock = std::move(shared.LastBlock);
   result.Message = Summary(stats, wholeModel);
-  return result;
+  return budget ? KeptCounts(options, std::move(result), misses) : result;
 }
 
 /**
@@ -621,6 +659,7 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
+  CheckCountRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);
   Coord m, step, block;
   if (r.Status != SynthesisStatus::Failed || !options.BlocksWhenWholeFails ||
@@ -722,9 +761,10 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
         "a world has 1 to 2^31 sites along each axis, not " + std::to_string(world.Size[a]));
   if (AnyMirror(world) || AnySeamSymmetry(world) || world.Soft.Active() || world.Pins ||
     world.Guide || world.Start || world.SnapshotsPerBlock > 0 ||
-    world.Choice == LabelChoice::Resemblance)
+    world.Choice == LabelChoice::Resemblance || !world.Counts.empty())
     throw Error("a region of a world takes no symmetry, soft constraints, pins, guide, given "
-                "start, snapshots or resemblance choice (each needs the whole world)");
+                "start, snapshots, resemblance choice or label counts (each needs the whole "
+                "world)");
   Coord m, step;
   BlockGeometry<3>(world.Size, world.BlockSize, world.Overlap, m, step);
   const RegionCone cone = PlanRegion(
