@@ -16,20 +16,22 @@ VILLAGE = data("Examples/Village.vti")
 LINES = data("Tilesets/Lines.xml")
 # (example, size, block, counts as label or tile -> (min, max))
 CASES = [
-    (VILLAGE, ["24", "24", "5"], ["12", "12", "5"], {"2": (60, 90), "3": (40, 60)}),
-    (LINES, ["24", "24", "1"], ["12", "12", "1"], {"corner": (20, 40), "line": (30, 80)}),
+    (VILLAGE, ["24", "24", "5"], ["12", "12", "5"], {"2": (150, 300), "3": (100, 180)}),
+    (LINES, ["24", "24", "1"], ["12", "12", "1"], {"corner": (100, 150), "empty": (200, 400)}),
 ]
 
 
+# Lines.xml's labels by tile, in the format's order: empty (X, one orientation), line (I, two),
+# corner (L, four).
+LINES_TILES = {"empty": [0], "line": [1, 2], "corner": [3, 4, 5, 6]}
+
+
 def counted(model, name):
-    """Sites of `model` (image data) holding label `name`, or any label of tile `name`."""
+    """Sites of `model` (image data) holding label `name`, or any label of Lines' tile `name`."""
     labels = labels_zyx(model).ravel()
-    names = model.GetFieldData().GetAbstractArray("TileNames")
     if name.lstrip("-").isdigit():
         return int(np.count_nonzero(labels == int(name)))
-    values = [b for b in range(names.GetNumberOfValues())
-              if names.GetValue(b) == name or names.GetValue(b).split(" ")[0] == name]
-    return int(np.isin(labels, values).sum())
+    return int(np.isin(labels, LINES_TILES[name]).sum())
 
 
 class CountsTest(unittest.TestCase):
@@ -65,7 +67,7 @@ class CountsTest(unittest.TestCase):
 
     def test_check_finds_a_missed_count(self):
         out = fresh_folder("counts-plain")
-        r = run_msynth("synthesize", LINES, "--size", "16", "16", "--seed", "1", "--outputs", "labels",
+        r = run_msynth("synthesize", LINES, "--size", "16", "16", "1", "--seed", "1", "--outputs", "labels",
                        "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
         c = run_msynth("check", LINES, os.path.join(out, "labels.vti"), "--count", "corner:0:0")
@@ -88,14 +90,14 @@ class CountsTest(unittest.TestCase):
             self.assertEqual(len(lines), 1, r.stderr)
             self.assertIn(message, lines[0])
             self.assertFalse(os.path.exists(out), "nothing is written")
-        r = run_msynth("synthesize", LINES, "--size", "8", "8", "--count", "bridge:1:2")
+        r = run_msynth("synthesize", LINES, "--size", "8", "8", "1", "--count", "bridge:1:2")
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("no tile or label named 'bridge'", r.stderr)
 
     def test_the_filter_reports_the_counts(self):
         synthesis = modelsynth.vtkMSDiscreteSynthesis()
         output, errors = run_algorithm(synthesis, TilesetFile=LINES, OutputSize=(20, 20, 1),
-                                       BlockSize=(10, 10, 1), Seed=5, Counts="corner:10:20, 0:100:400")
+                                       BlockSize=(10, 10, 1), Seed=5, Counts="corner:60:100, 0:100:250")
         self.assertEqual(errors, "")
         fd = output.GetFieldData()
         names = fd.GetAbstractArray("CountNames")
@@ -103,7 +105,7 @@ class CountsTest(unittest.TestCase):
         achieved = fd.GetArray("CountAchieved")
         self.assertEqual(achieved.GetValue(0), counted(output, "corner"))
         self.assertEqual(achieved.GetValue(1), counted(output, "0"))
-        self.assertTrue(10 <= achieved.GetValue(0) <= 20 and 100 <= achieved.GetValue(1) <= 400)
+        self.assertTrue(60 <= achieved.GetValue(0) <= 100 and 100 <= achieved.GetValue(1) <= 250)
         _, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=LINES,
                                   OutputSize=(20, 20, 1), Counts="corner:500:600")
         self.assertIn("asks for at least 500 sites, but the output has 400", errors)
