@@ -7,8 +7,8 @@
 #include "Common.h"
 #include "Examples.h"
 
-#include "vtkDataObject.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSCheckModel.h"
@@ -88,8 +88,8 @@ bool CheckCounts(const std::vector<std::string>& counts, const std::string& exam
         e.Name)
         values.insert(b);
     if (values.empty())
-      throw std::runtime_error("--count: '" + e.Name + "' is neither a label value nor a name of " +
-        example);
+      throw std::runtime_error(
+        "--count: '" + e.Name + "' is neither a label value nor a name of " + example);
     long long n = 0;
     for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
       n += values.count(static_cast<long long>(labels->GetTuple1(i))) ? 1 : 0;
@@ -232,8 +232,8 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
   {
     if (!counts.empty())
-      throw std::runtime_error("--count checks a model's labels (labels.vti), not '" + modelPath +
-        "'");
+      throw std::runtime_error(
+        "--count checks a model's labels (labels.vti), not '" + modelPath + "'");
     return CheckVoxels(example, modelPath, tiles);
   }
   vtkNew<vtkMSLabelGridReader> e, m;
@@ -255,7 +255,8 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   }
   Run(check);
   const bool kept = counts.empty() ||
-    CheckCounts(counts, example, subset, tiles, vtkImageData::SafeDownCast(m->GetOutputDataObject(0)));
+    CheckCounts(
+      counts, example, subset, tiles, vtkImageData::SafeDownCast(m->GetOutputDataObject(0)));
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {

@@ -122,11 +122,14 @@ TEST(LabelCounts, ImpossibleCountsAreOneLineBeforeAnyWork)
   o.Counts = { Count(7, 0, 5) };
   EXPECT_EQ(ErrorOf(o), "the count of label 7: label 7 does not occur in the example");
   o.Counts = { Count(2, 3000, 3000) };
-  EXPECT_EQ(ErrorOf(o), "the count of label 2 asks for at least 3000 sites, but the output has 2880");
+  EXPECT_EQ(
+    ErrorOf(o), "the count of label 2 asks for at least 3000 sites, but the output has 2880");
   o.Counts = { Count(2, 2000, 2880), Count(3, 1000, 2880) };
-  EXPECT_EQ(ErrorOf(o), "the label counts ask for at least 3000 sites together, but the output has 2880");
+  EXPECT_EQ(
+    ErrorOf(o), "the label counts ask for at least 3000 sites together, but the output has 2880");
   o.Counts = { Count(0, 0, 10), Count(1, 0, 10), Count(2, 0, 10), Count(3, 0, 10) };
-  EXPECT_EQ(ErrorOf(o), "the label counts allow at most 40 sites together, but the output has 2880");
+  EXPECT_EQ(
+    ErrorOf(o), "the label counts allow at most 40 sites together, but the output has 2880");
   o.Counts = { Count(2, 5, 3) };
   EXPECT_EQ(ErrorOf(o), "the count of label 2 asks for 5 to 3 sites (need 0 <= MIN <= MAX)");
   o.Counts = { Count(2, 0, 5), Count(2, 0, 5) };

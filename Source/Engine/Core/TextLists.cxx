@@ -140,14 +140,14 @@ std::vector<CountEntry> ParseCountEntries(const std::string& text, const std::st
       continue;
     item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
     const std::size_t second = item.rfind(':');
-    const std::size_t colon = second == std::string::npos || second == 0
-      ? std::string::npos
-      : item.rfind(':', second - 1);
+    const std::size_t colon =
+      second == std::string::npos || second == 0 ? std::string::npos : item.rfind(':', second - 1);
     CountEntry e;
     const long long most = std::numeric_limits<long long>::max() / 4;
     if (colon == std::string::npos || colon == 0 ||
-      !ParseInteger(std::string(SplitText(item.substr(colon + 1, second - colon - 1), ':', true)[0]),
-        0, most, e.Minimum) ||
+      !ParseInteger(
+        std::string(SplitText(item.substr(colon + 1, second - colon - 1), ':', true)[0]), 0, most,
+        e.Minimum) ||
       !ParseInteger(SplitText(item.substr(second + 1), ':', true)[0], 0, most, e.Maximum) ||
       e.Maximum < e.Minimum)
       throw Error(what + ": '" + item + "' is not 'label:min:max' with 0 <= min <= max");

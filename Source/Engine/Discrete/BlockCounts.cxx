@@ -44,7 +44,8 @@ void BlockSolver::TallySite(std::int64_t local)
   const auto i = static_cast<std::size_t>(local);
   if (!this->Own[i])
     return;
-  const int now = this->Cat.Count(local) == 1 ? this->Budget->Position(this->Cat.Single(local)) : -2;
+  const int now =
+    this->Cat.Count(local) == 1 ? this->Budget->Position(this->Cat.Single(local)) : -2;
   int& was = this->Tally[i];
   if (now == was)
     return;
@@ -137,7 +138,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
         {
           double& w = weight[static_cast<std::size_t>(a)];
           w = this->Budget->Position(a) == static_cast<int>(c) ? (mine > 0.0 ? w * factor : factor)
-                                                                 : w * otherwise;
+                                                               : w * otherwise;
           return true;
         });
     };
@@ -171,7 +172,8 @@ bool BlockSolver::CountsKept(const Block& block)
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
     const Coord c = cat.Coordinates(local);
-    const auto s = static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
+    const auto s =
+      static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
     const int now = this->Budget->Position(cat.Single(local));
     const std::int32_t owner = this->Budget->Owner(s);
     if (owner == block.Index)
@@ -197,7 +199,8 @@ bool BlockSolver::CountsKept(const Block& block)
     kept = kept && own[c] >= this->Budget->Minimum(block.Index, c) &&
       own[c] <= this->Budget->Maximum(block.Index, c);
   for (const auto& kv : others)
-    kept = kept && std::all_of(kv.second.begin(), kv.second.end(), [](std::int64_t d) { return d == 0; });
+    kept = kept &&
+      std::all_of(kv.second.begin(), kv.second.end(), [](std::int64_t d) { return d == 0; });
   if (!kept)
     ++this->Misses;
   return kept;

@@ -365,23 +365,6 @@ bool AllDecided(const std::vector<std::int32_t>& model, const Coord& n, Synthesi
   return false;
 }
 
-/// @p r with its label counts, failed when a count is missed (failed blocks left their own sites
-/// as they were); @p misses attempts solved their block but missed its counts.
-SynthesisResult KeptCounts(const SynthesisOptions& options, SynthesisResult r, std::int64_t misses)
-{
-  r.Counts = CountLabels(options.Counts, r.Model);
-  const std::string miss = CountMiss(r.Counts);
-  if (miss.empty())
-    return r;
-  r.Status = SynthesisStatus::Failed;
-  r.Message = "the label counts were not kept: " + miss + " (" +
-    std::to_string(r.Statistics.BlocksFailed) + " blocks failed, " + std::to_string(misses) +
-    " solved attempts missed their counts). Try another seed, more attempts, larger blocks or "
-    "wider counts";
-  r.Model = LabelGrid();
-  return r;
-}
-
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
 /// mirror plan or symmetry seams when a part of a symmetric output is synthesized; with
 /// @p cone, the output is the cone's window of a world and its blocks are the cone's.
@@ -441,13 +424,11 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
 
   if (!wholeModel && options.Pins)
     solver.PlacePins(m, options.Seed, stats.Assignments);
-  std::unique_ptr<CountBudget> budget;
-  if (!options.Counts.empty())
-  {
-    budget = std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
-    for (unsigned w = 0; w < driver.Workers(); ++w)
-      workers[w].UseCounts(budget.get());
-  }
+  const auto budget = options.Counts.empty()
+    ? nullptr
+    : std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
+  for (unsigned w = 0; budget && w < driver.Workers(); ++w)
+    workers[w].UseCounts(budget.get());
   solver.StartSnapshots();
   result.Status =
     driver.Run(BlockSchedule::Of(blocks), MakeClient(blocks, workers, soft, shared, stats), stats);
@@ -478,11 +459,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
             options.AttemptsPerBlock, "the catalog became empty at site " + Format(f.EmptySite),
             "Try another seed, more attempts, or block synthesis");
         }))
-  {
-    if (misses > 0)
-      result.Message += " (" + std::to_string(misses) + " solved attempts missed the label counts)";
-    return result;
-  }
+    return CountsKept(options, std::move(result), misses, false);
   if (undecided && !AllDecided(shared.Model, n, result))
     return result;
   std::vector<Label> values(shared.Model.size());
@@ -491,7 +468,7 @@ SynthesisResult SynthesizeDirect(const AdjacencyRules& rules, const SynthesisOpt
   result.Model = LabelGrid(n, std::move(values));
   result.LastBlock = std::move(shared.LastBlock);
   result.Message = Summary(stats, wholeModel);
-  return budget ? KeptCounts(options, std::move(result), misses) : result;
+  return budget ? CountsKept(options, std::move(result), misses, true) : result;
 }
 
 /**

@@ -109,8 +109,8 @@ void CheckCountRequest(const AdjacencyRules& rules, const SynthesisOptions& opti
       std::to_string(sites));
   if (static_cast<int>(seen.size()) == rules.NumberOfLabels() && maximum < sites)
     throw Error("the label counts allow at most " +
-      std::to_string(static_cast<std::int64_t>(maximum)) +
-      " sites together, but the output has " + std::to_string(sites));
+      std::to_string(static_cast<std::int64_t>(maximum)) + " sites together, but the output has " +
+      std::to_string(sites));
   const std::vector<char> alive = Possible(rules, options);
   if (std::find(alive.begin(), alive.end(), 1) == alive.end())
     throw Error("the label counts of maximum 0 leave no label the rules can fill the output with");
@@ -145,10 +145,32 @@ std::string CountMiss(const std::vector<LabelCountResult>& results)
 {
   for (const LabelCountResult& r : results)
     if (r.Achieved < r.Requested.Minimum || r.Achieved > r.Requested.Maximum)
-      return NameOf(r.Requested) + " holds " +
-        std::to_string(r.Achieved) + " sites, not " + std::to_string(r.Requested.Minimum) +
-        " to " + std::to_string(r.Requested.Maximum);
+      return NameOf(r.Requested) + " holds " + std::to_string(r.Achieved) + " sites, not " +
+        std::to_string(r.Requested.Minimum) + " to " + std::to_string(r.Requested.Maximum);
   return std::string();
+}
+
+SynthesisResult CountsKept(
+  const SynthesisOptions& options, SynthesisResult r, std::int64_t misses, bool finished)
+{
+  if (!finished)
+  {
+    if (misses > 0)
+      r.Message += " (" + std::to_string(misses) + " solved attempts missed the label counts)";
+    return r;
+  }
+  r.Counts = CountLabels(options.Counts, r.Model);
+  const std::string miss = CountMiss(r.Counts);
+  if (miss.empty())
+    return r;
+  r.Status = SynthesisStatus::Failed;
+  r.Message = "the label counts were not kept: " + miss + " (" +
+    std::to_string(r.Statistics.BlocksFailed) + " blocks failed, " + std::to_string(misses) +
+    " solved attempts missed their counts). Try another seed, more attempts, larger blocks or "
+    "wider counts";
+  r.Model = LabelGrid();
+  r.LastBlock.clear();
+  return r;
 }
 
 CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& options,

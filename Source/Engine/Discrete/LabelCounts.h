@@ -34,6 +34,13 @@ std::vector<LabelCountResult> CountLabels(
 /// One line naming the first count @p results miss, or empty when all are kept.
 std::string CountMiss(const std::vector<LabelCountResult>& results);
 
+/**
+ * @p r with its counts (@p finished: a model was made), failed with one line when a count is
+ * missed; @p misses attempts solved their block but missed its counts (named in a failure).
+ */
+SynthesisResult CountsKept(
+  const SynthesisOptions& options, SynthesisResult r, std::int64_t misses, bool finished);
+
 /// The shares of a run's blocks (see the file comment).
 class CountBudget
 {

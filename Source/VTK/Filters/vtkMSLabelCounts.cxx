@@ -32,17 +32,18 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
     {
       for (int b = 0; b < tiles->NumberOfLabels(); ++b)
       {
-        const auto& tile = tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
+        const auto& tile =
+          tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
         if (tile.Name == e.Name || tiles->LabelName(b) == e.Name)
           c.Values.push_back(b);
       }
       if (c.Values.empty())
-        throw msynth::Error("Counts: the tileset has no tile or label named '" +
-          msynth::Printable(e.Name) + "'");
+        throw msynth::Error(
+          "Counts: the tileset has no tile or label named '" + msynth::Printable(e.Name) + "'");
     }
     else
-      throw msynth::Error("Counts: '" + msynth::Printable(e.Name) +
-        "' is not a label value (names need a tileset)");
+      throw msynth::Error(
+        "Counts: '" + msynth::Printable(e.Name) + "' is not a label value (names need a tileset)");
     counts.push_back(c);
   }
   return counts;
