@@ -37,6 +37,8 @@ void BlockSolver::StartCounts(const Block& block)
   this->ChangedSeen = 0;
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
     this->TallySite(local);
+  this->Offered.assign(this->Have.size(), 0);
+  this->Choices = 0;
 }
 
 void BlockSolver::TallySite(std::int64_t local)
@@ -99,11 +101,13 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
         weight[static_cast<std::size_t>(b)] = this->SiteWeight(cell, b);
         return true;
       });
-  // Each counted label's probability is moved into [need, room] / (own sites left): up to the
+  // Each counted label's probability is moved into [need, room] / (own sites left where it may
+  // go): up to the
   // rate that reaches its minimum (a quarter faster), down to
   // the rate that keeps its maximum, and to 0 once the maximum is reached. Have and Left count
   // the sites propagation decided too (SyncCounts).
   const double left = static_cast<double>(std::max<std::int64_t>(1, this->Left));
+  ++this->Choices;
   const std::vector<int>& labels = this->Budget->Labels();
   for (std::size_t c = 0; c < labels.size(); ++c)
   {
@@ -127,6 +131,11 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
       });
     if (!present)
       continue;
+    // The own sites left where the count's labels may still go, estimated from the share of
+    // this attempt's choices that offered them.
+    ++this->Offered[c];
+    const double open =
+      left * static_cast<double>(this->Offered[c]) / static_cast<double>(this->Choices);
     const std::int64_t need = this->Budget->Minimum(this->OwnBlock, c) - this->Have[c];
     const std::int64_t room = this->Budget->Maximum(this->OwnBlock, c) - this->Have[c];
     const double others = total - mine;
@@ -147,8 +156,8 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
       scale(0.0, 1.0);
       continue;
     }
-    const double low = 1.25 * static_cast<double>(need) / left;
-    const double high = static_cast<double>(room) / left;
+    const double low = 1.25 * static_cast<double>(need) / open;
+    const double high = static_cast<double>(room) / open;
     const double target = share < low ? low : (share > high ? high : share);
     if (target >= 1.0 || !(others > 0.0))
       scale(1.0, 0.0); // only the count's labels

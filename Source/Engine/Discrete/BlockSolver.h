@@ -303,13 +303,15 @@ private:
   const CountBudget* Budget = nullptr; ///< label counts, or nullptr
   bool Repairing = false;
   std::int64_t Misses = 0;
-  std::int64_t OwnBlock = -1;     ///< the block whose shares apply (counts)
-  std::vector<std::uint8_t> Own;  ///< per local site: one of the block's own sites
-  std::vector<std::int64_t> Have; ///< per counted label: own sites decided to hold it
-  std::int64_t Left = 0;          ///< own sites still to choose
-  std::vector<double> Steer;      ///< the counted choice's weights
-  std::vector<int> Tally;         ///< per own site: its count, -1 none, -2 undecided
-  std::size_t ChangedSeen = 0;    ///< catalog changes already tallied
+  std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
+  std::vector<std::uint8_t> Own;     ///< per local site: one of the block's own sites
+  std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
+  std::int64_t Left = 0;             ///< own sites still to choose
+  std::vector<double> Steer;         ///< the counted choice's weights
+  std::vector<int> Tally;            ///< per own site: its count, -1 none, -2 undecided
+  std::vector<std::int64_t> Offered; ///< per count: own choices whose catalog held its labels
+  std::int64_t Choices = 0;          ///< choices at own sites in this attempt
+  std::size_t ChangedSeen = 0;       ///< catalog changes already tallied
 };
 
 /**
