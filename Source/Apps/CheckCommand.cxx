@@ -22,8 +22,10 @@
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
 #include "Core/Memory.h"
+#include "Core/TextLists.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
+#include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 #include "Formats/VoxModel.h"
 #include "Formats/VoxelTileset.h"
@@ -33,6 +35,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <sys/stat.h>
 
@@ -52,7 +55,53 @@ struct CheckOptions
   OverlappingOptions Patterns;
   bool NoPeriodicInput = false;
   std::string Translate;
+  std::vector<std::string> Counts;
 };
+
+/**
+ * `--count L:MIN:MAX`: the sites of @p model holding L (a label value, or with a tileset
+ * @p example a tile's name, all its orientations, or a label's name "tile k"), counted here
+ * from the written labels. Prints one line per count; false when one is outside its range.
+ */
+bool CheckCounts(const std::vector<std::string>& counts, const std::string& example,
+  const std::string& subset, const std::string& tiles, vtkImageData* model)
+{
+  vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
+  if (!labels)
+    throw std::runtime_error("--count: the model has no Label array");
+  msynth::Tileset set;
+  if (IsTileset(example))
+    set = msynth::ReadTilesetFile(example, subset, tiles);
+  bool kept = true;
+  std::string list;
+  for (const std::string& c : counts)
+    list += c + ",";
+  for (const msynth::CountEntry& e : msynth::ParseCountEntries(list, "--count"))
+  {
+    std::set<long long> values;
+    long long v = 0;
+    if (msynth::ParseInteger(e.Name, -(1LL << 31), (1LL << 31) - 1, v))
+      values.insert(v);
+    for (int b = 0; b < set.NumberOfLabels() && values.empty(); ++b)
+      if (set.LabelName(b) == e.Name)
+        values.insert(b);
+    for (int b = 0; b < set.NumberOfLabels(); ++b)
+      if (set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name ==
+        e.Name)
+        values.insert(b);
+    if (values.empty())
+      throw std::runtime_error(
+        "--count: '" + e.Name + "' is neither a label value nor a name of " + example);
+    long long n = 0;
+    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+      n += values.count(static_cast<long long>(labels->GetTuple1(i))) ? 1 : 0;
+    const bool ok = n >= e.Minimum && n <= e.Maximum;
+    kept = kept && ok;
+    std::cout << (ok ? "count kept: " : "count missed: ") << e.Name << " holds " << n
+              << " sites (wanted " << e.Minimum << " to " << e.Maximum << ")\n";
+  }
+  return kept;
+}
 
 /// A picture against the windows of its image sample (Discrete/OverlappingModel.h's
 /// CheckPicture, which shares no code with the patterns' synthesis).
@@ -204,22 +253,30 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
 
 /// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
-  const std::string& subset, const std::string& tiles)
+  const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts)
 {
   if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
+  {
+    if (!counts.empty())
+      throw std::runtime_error(
+        "--count checks a model's labels (labels.vti), not '" + modelPath + "'");
     return CheckVoxels(example, modelPath, tiles);
+  }
   vtkNew<vtkMSLabelGridReader> e, m;
   m->SetFileName(modelPath.c_str());
   vtkNew<vtkMSCheckModel> check;
   SetUpDiscreteCheck(check, e, m, example, subset, tiles);
   Run(check);
+  const bool kept = counts.empty() ||
+    CheckCounts(
+      counts, example, subset, tiles, vtkImageData::SafeDownCast(m->GetOutputDataObject(0)));
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
     std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
               << " adjacent pairs of " << modelPath << " occur in " << example << "\n";
-    return 0;
+    return kept ? 0 : 1;
   }
   std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
             << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never occur in "
@@ -392,6 +449,11 @@ CommandRunner AddCheck(CLI::App& app)
     ->group(sample);
   check->add_flag("--ground", o->Patterns.Ground, "the bottom row is the sample's ground")
     ->group(sample);
+  check
+    ->add_option("--count", o->Counts,
+      "also check that the sites holding label (or tile) L number MIN to MAX (L:MIN:MAX; "
+      "repeatable), counted from the model's labels")
+    ->allow_extra_args(false);
   return [o]()
   {
     CheckInputFile(o->Example);
@@ -400,11 +462,18 @@ CommandRunner AddCheck(CLI::App& app)
     {
       return CheckContinuous(o->Example, o->Model, o->Reading);
     }
+    if (!o->Counts.empty() && (IsPolyhedral(o->Example) || IsSample(o->Example)))
+      throw UsageError{ "--count checks the labels of a discrete model (a label grid or "
+                        "tileset's labels.vti)" };
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);
     if (o->Model.size() > 5 && o->Model.compare(o->Model.size() - 5, 5, ".pvti") == 0)
+    {
+      if (!o->Counts.empty())
+        throw UsageError{ "--count checks one labels.vti, not the pieces of a streamed model" };
       return CheckPieces(o->Example, o->Model, o->Subset, o->Tiles);
-    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles);
+    }
+    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts);
   };
 }
 

@@ -265,6 +265,23 @@ StatisticsJson& StatisticsJson::Prefixed(
   return this->Raw(key, "{" + json + "}");
 }
 
+StatisticsJson& StatisticsJson::LabelCounts(vtkFieldData* fd)
+{
+  auto* names = vtkStringArray::SafeDownCast(fd->GetAbstractArray("CountNames"));
+  vtkDataArray* low = fd->GetArray("CountMinimum");
+  vtkDataArray* high = fd->GetArray("CountMaximum");
+  vtkDataArray* achieved = fd->GetArray("CountAchieved");
+  if (!names || !low || !high || !achieved)
+    return *this;
+  std::string json;
+  for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
+    json += std::string(i ? ", " : "") + "{\"label\": " + JsonString(names->GetValue(i)) +
+      ", \"minimum\": " + std::to_string(static_cast<long long>(low->GetTuple1(i))) +
+      ", \"maximum\": " + std::to_string(static_cast<long long>(high->GetTuple1(i))) +
+      ", \"achieved\": " + std::to_string(static_cast<long long>(achieved->GetTuple1(i))) + "}";
+  return this->Raw("Counts", "[" + json + "]");
+}
+
 void StatisticsJson::Write(const std::string& path) const
 {
   msynth::WriteFileAtomically(path,

@@ -94,6 +94,9 @@ public:
   /// An object of the one-value arrays of @p fd whose names start with @p prefix (the prefix
   /// dropped from the keys).
   StatisticsJson& Prefixed(const std::string& key, vtkFieldData* fd, const std::string& prefix);
+  /// "Counts": [{"label", "minimum", "maximum", "achieved"}, ...] from field data `CountNames`,
+  /// `CountMinimum`, `CountMaximum`, `CountAchieved` (vtkMSDiscreteSynthesis); nothing without.
+  StatisticsJson& LabelCounts(vtkFieldData* fd);
   /// The file @p path, written atomically.
   void Write(const std::string& path) const;
 

@@ -63,6 +63,7 @@ struct SynthesizeOptions
   std::string Subset;
   std::string Tiles; ///< a voxel tileset's tiles folder ("" : beside the XML)
   std::vector<std::string> Targets;
+  std::vector<std::string> Counts;
   double Temperature = 0.01;
   std::string Mirror, Translate; ///< sets of axes
   std::vector<std::string> Swaps, Shifts, Turns;

@@ -215,6 +215,11 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     ->allow_extra_args(false)
     ->check(LabelFraction, "L:F")
     ->group("Constraints (both kinds)");
+  discrete(s.add_option("--count", o.Counts,
+              "the sites holding label L (with a tileset: a label, a tile's name for all its "
+              "orientations, or \"tile k\") number MIN to MAX (L:MIN:MAX; repeatable; whole "
+              "model or blocks, not with symmetry, --target or --region)")
+             ->allow_extra_args(false));
   discrete(s.add_option("--temperature", o.Temperature,
               "temperature of the soft constraints' Metropolis acceptance")
              ->check(CLI::PositiveNumber));
@@ -419,6 +424,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetMirror(mirror);
   synthesis->SetTargetFractions(Join(o.Targets).c_str());
   synthesis->SetSoftTemperature(o.Temperature);
+  synthesis->SetCounts(Join(o.Counts).c_str());
   synthesis->SetMirrorSwaps(Join(o.Swaps).c_str());
   synthesis->SetTranslate(translate);
   synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);
@@ -565,7 +571,8 @@ void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std:
     .Counts("size", { o.Size3[0], o.Size3[1], o.Size3[2] })
     .Counts("block", { o.Block[0], o.Block[1], o.Block[2] })
     .Count("seed", o.Seed)
-    .Solver(fd);
+    .Solver(fd)
+    .LabelCounts(fd);
   // How blocks started (block synthesis only).
   if (auto* start = vtkStringArray::SafeDownCast(fd->GetAbstractArray("StartFrom")))
     json.Text("StartFrom", start->GetValue(0));

@@ -6,7 +6,10 @@
 #include "Discrete/VoxelSurface.h"
 #include "Formats/Tileset.h"
 
+#include <algorithm>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -69,6 +72,54 @@ BENCHMARK(BM_SynthesizeBlocks)
   ->Args({ 100, 2 })
   ->Args({ 316, 1 })
   ->Args({ 316, 2 })
+  ->Unit(benchmark::kMillisecond);
+
+// The cost of label counts (SynthesisOptions::Counts): the runs above (first argument: n, 0 for
+// the whole 40 × 40 × 10 model) with the three commonest labels of the same run without counts
+// held to 90 % to 105 % of their sites there (second argument 1: 50 % to 90 %, which the
+// commonest label, mostly decided by propagation, cannot meet), and one rarer label to 100 % to
+// 400 % (150 % to 400 %); second argument 2: each of the four to 0 to 400 %, always met (the
+// bookkeeping's cost alone). failed_runs tells whether the counts were met.
+static void BM_SynthesizeCounts(benchmark::State& state)
+{
+  msynth::SynthesisOptions o;
+  const std::int64_t n = state.range(0);
+  o.Size = n > 0 ? std::array<std::int64_t, 3>{ { n, n, 10 } }
+                 : std::array<std::int64_t, 3>{ { 40, 40, 10 } };
+  o.BlockSize = n > 0 ? std::array<std::int64_t, 3>{ { 20, 20, 10 } }
+                      : std::array<std::int64_t, 3>{ { 0, 0, 0 } };
+  o.Threads = 1;
+  const msynth::LabelGrid plain = msynth::Synthesize(CityRules(), o).Model;
+  std::map<msynth::Label, std::int64_t> sites;
+  for (msynth::Label v : plain.Data())
+    ++sites[v];
+  std::vector<std::pair<std::int64_t, msynth::Label>> order;
+  for (const auto& [v, c] : sites)
+    order.emplace_back(c, v);
+  std::sort(order.rbegin(), order.rend());
+  for (std::size_t i = 0; i < 4 && i < order.size(); ++i)
+  {
+    msynth::LabelCount c;
+    const std::size_t at = i < 3 ? i : order.size() / 4; // a label of the upper middle
+    c.Values = { order[at].second };
+    c.Name = std::to_string(order[at].second);
+    const std::int64_t had = order[at].first;
+    const bool hard = state.range(1) == 1, wide = state.range(1) == 2;
+    c.Minimum = wide ? 0 : (i < 3 ? had * (hard ? 50 : 90) / 100 : had * (hard ? 150 : 100) / 100);
+    c.Maximum = wide ? had * 4 : (i < 3 ? had * (hard ? 90 : 105) / 100 : had * 4);
+    o.Counts.push_back(c);
+  }
+  state.counters["counts"] = static_cast<double>(o.Counts.size());
+  RunSynthesis(state, o);
+}
+BENCHMARK(BM_SynthesizeCounts)
+  ->Args({ 0, 0 })
+  ->Args({ 100, 0 })
+  ->Args({ 0, 1 })
+  ->Args({ 100, 1 })
+  ->Args({ 0, 2 })
+  ->Args({ 100, 2 })
+  ->Iterations(1)
   ->Unit(benchmark::kMillisecond);
 // 10^7 sites: run explicitly (--benchmark_filter=BM_SynthesizeBlocksLarge), about a minute.
 static void BM_SynthesizeBlocksLarge(benchmark::State& state)

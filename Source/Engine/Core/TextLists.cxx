@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -125,6 +126,36 @@ std::map<Label, double> ParseLabelValues(
       return true;
     });
   return values;
+}
+
+std::vector<CountEntry> ParseCountEntries(const std::string& text, const std::string& what)
+{
+  std::vector<CountEntry> entries;
+  std::string list = text;
+  std::replace(list.begin(), list.end(), ';', ',');
+  for (std::string item : SplitText(list, ','))
+  {
+    const std::size_t first = item.find_first_not_of(" \t");
+    if (first == std::string::npos)
+      continue;
+    item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
+    const std::size_t second = item.rfind(':');
+    const std::size_t colon =
+      second == std::string::npos || second == 0 ? std::string::npos : item.rfind(':', second - 1);
+    CountEntry e;
+    const long long most = std::numeric_limits<long long>::max() / 4;
+    if (colon == std::string::npos || colon == 0 ||
+      !ParseInteger(
+        std::string(SplitText(item.substr(colon + 1, second - colon - 1), ':', true)[0]), 0, most,
+        e.Minimum) ||
+      !ParseInteger(SplitText(item.substr(second + 1), ':', true)[0], 0, most, e.Maximum) ||
+      e.Maximum < e.Minimum)
+      throw Error(what + ": '" + item + "' is not 'label:min:max' with 0 <= min <= max");
+    e.Name = item.substr(0, colon);
+    e.Name = e.Name.substr(0, e.Name.find_last_not_of(" \t") + 1);
+    entries.push_back(e);
+  }
+  return entries;
 }
 
 } // namespace msynth

@@ -40,4 +40,19 @@ std::map<Label, Label> ParseLabelPairs(const std::string& text, bool both, const
 std::map<Label, double> ParseLabelValues(
   const std::string& text, const std::string& what, const std::string& value = "number");
 
+/// One entry "NAME:MIN:MAX" of a count list.
+struct CountEntry
+{
+  std::string Name; ///< a label value or a name, as written (spaces around it dropped)
+  long long Minimum = 0;
+  long long Maximum = 0;
+};
+
+/**
+ * Label counts "a:min:max,b:min:max" (entries separated by commas or semicolons; a a label
+ * value or a name, min and max integers with 0 <= min <= max).
+ * @throw Error "@p what: 'x' is not 'label:min:max' ..."
+ */
+std::vector<CountEntry> ParseCountEntries(const std::string& text, const std::string& what);
+
 } // namespace msynth

@@ -186,6 +186,8 @@ bool BlockSolver::ConstrainAcrossSeams(const Block& block, std::int64_t local, c
 
 int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
 {
+  if (this->Budget && this->Own[static_cast<std::size_t>(local)])
+    return this->ChooseCounted(local, rng);
   // The guide's weights of this site's region multiply the choice's (D§3.5.3).
   const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
   if (this->Options.Choice == LabelChoice::Resemblance)
@@ -229,6 +231,8 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
   std::int64_t empty = this->ConstrainBlock(block, free);
   if (empty >= 0)
     return global(empty);
+  if (this->Budget)
+    this->StartCounts(block);
 
   // Assign the free sites (lines 19-29), in the chosen order, with bounded chronological
   // backtracking (BlockSearch.cxx): a choice that empties a catalog is undone and ruled out there.
@@ -267,6 +271,8 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
   }
   if (empty >= 0)
     return global(empty);
+  if (this->Budget && !this->CountsKept(block))
+    return global(0); // solved, but the label counts missed: another attempt
 
   // Success: commit the block.
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
@@ -327,6 +333,8 @@ std::int64_t BlockSolver::AssignByEntropy(
         heap.push(
           { entropy(local) + noise[static_cast<std::size_t>(local)], local, cat.Count(local) });
     }
+    if (this->Budget)
+      this->SyncCounts(); // before the changes are dropped
     cat.ClearChanged();
   }
   // Every free site is now decided (a single label) or was never undecided.

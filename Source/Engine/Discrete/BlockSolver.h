@@ -29,6 +29,8 @@ namespace msynth
 namespace detail
 {
 
+class CountBudget;
+
 using Coord = std::array<std::int64_t, 3>;
 using Block = BoxBlock<3>;
 
@@ -105,6 +107,13 @@ public:
   /// Drops the snapshots of the block just run (it keeps its previous labels).
   void DropSnapshots() { this->Pending.clear(); }
 
+  /// Keeps label counts by @p budget from now on (not owned; nullptr: none). BlockCounts.cxx.
+  void UseCounts(const CountBudget* budget) { this->Budget = budget; }
+  /// In a repair pass every block has run: a block must keep the others' own counts.
+  void SetRepairing(bool repairing) { this->Repairing = repairing; }
+  /// Attempts that solved their block but missed its label counts, over all blocks so far.
+  std::int64_t CountMisses() const { return this->Misses; }
+
 private:
   friend class BlockSearch;
 
@@ -114,6 +123,19 @@ private:
   void CheckPinsPropagate(const Coord& lo, const Coord& hi);
   /// The bounding box [@p lo, @p hi] of the pins face-connected to site @p first.
   void PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const;
+
+  /// Label counts (BlockCounts.cxx): the block's own sites and their decided counts after the
+  /// block is constrained.
+  void StartCounts(const Block& block);
+  /// Brings Have and Left up to date with the catalog's changes since the last call.
+  void SyncCounts();
+  /// Re-tallies own site @p local from the catalog.
+  void TallySite(std::int64_t local);
+  /// The label of a free own site @p local, drawn with the counted labels' weights steered
+  /// toward the block's shares (see CountBudget).
+  int ChooseCounted(std::int64_t local, Random& rng);
+  /// Whether the solved block keeps its shares (and, repairing, the other blocks' counts).
+  bool CountsKept(const Block& block);
 
   /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
   void SetUpResemblance();
@@ -278,6 +300,18 @@ private:
   std::vector<std::int32_t>& Fixed;     ///< boundary label indices; -1 free (shared)
   std::vector<std::int32_t>& LastBlock; ///< block that last changed each site (shared)
   std::vector<double> WLogW;
+  const CountBudget* Budget = nullptr; ///< label counts, or nullptr
+  bool Repairing = false;
+  std::int64_t Misses = 0;
+  std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
+  std::vector<std::uint8_t> Own;     ///< per local site: one of the block's own sites
+  std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
+  std::int64_t Left = 0;             ///< own sites still to choose
+  std::vector<double> Steer;         ///< the counted choice's weights
+  std::vector<int> Tally;            ///< per own site: its count, -1 none, -2 undecided
+  std::vector<std::int64_t> Offered; ///< per count: own choices whose catalog held its labels
+  std::int64_t Choices = 0;          ///< choices at own sites in this attempt
+  std::size_t ChangedSeen = 0;       ///< catalog changes already tallied
 };
 
 /**

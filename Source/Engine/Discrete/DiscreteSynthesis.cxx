@@ -12,6 +12,7 @@
 #include "Core/Random.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
+#include "Discrete/LabelCounts.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
 #include "Discrete/WindowRun.h"
@@ -273,13 +274,18 @@ SynthesisStatus RepairFailedBlocks(const SynthesisOptions& options,
   pass.Attempts = 2 * options.AttemptsPerBlock;
   pass.Later = true;
   SynthesisStatistics second;
+  for (unsigned w = 0; w < driver.Workers(); ++w)
+    workers[w].SetRepairing(true); // every block has run: keep the others' own counts
   const BlockClient client = MakeClient(again, workers, soft, shared, second,
     order == SiteOrder::MinimumEntropy
       ? std::vector<SiteOrder>{ SiteOrder::ScanLine, SiteOrder::MinimumEntropy }
       : std::vector<SiteOrder>{ SiteOrder::MinimumEntropy, order });
   const SynthesisStatus status = driver.Run(BlockSchedule::Of(again), client, second, pass);
   for (unsigned w = 0; w < driver.Workers(); ++w)
+  {
     workers[w].SetOrder(order);
+    workers[w].SetRepairing(false);
+  }
   stats.BlocksRepaired += second.BlocksAccepted;
   stats.BlocksAccepted += second.BlocksAccepted;
   stats.BlocksFailed -= second.BlocksAccepted;
@@ -429,6 +435,11 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
 
   if (!wholeModel && options.Pins)
     solver.PlacePins(m, options.Seed, stats.Assignments);
+  const auto budget = options.Counts.empty()
+    ? nullptr
+    : std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
+  for (unsigned w = 0; budget && w < driver.Workers(); ++w)
+    workers[w].UseCounts(budget.get());
   solver.StartSnapshots();
   if (run && run->Carry)
     run->Carry(shared);
@@ -450,8 +461,12 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
       RepairFailedBlocks(options, candidates, driver, workers, soft, shared, stats, round);
   }
   stats.Backtracks = solver.Backtracks();
+  std::int64_t misses = solver.CountMisses();
   for (const auto& extra : workers.Extra)
+  {
     stats.Backtracks += extra->Backtracks();
+    misses += extra->CountMisses();
+  }
   if (!driver.End(result.Status, result.Message, stats, wholeModel,
         [&](const BlockFailure& f)
         {
@@ -459,15 +474,19 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
             options.AttemptsPerBlock, "the catalog became empty at site " + Format(f.EmptySite),
             "Try another seed, more attempts, or block synthesis");
         }))
-    return result;
+    return CountsKept(options, std::move(result), misses, false);
   result.Message = Summary(stats, wholeModel);
   if (run && run->Failures)
     *run->Failures = stats.Failures;
   if (run && run->Keep)
+  {
     *run->Keep = std::move(shared);
-  else if (!undecided || AllDecided(shared.Model, n, result))
-    ModelFromShared(rules, shared, n, result);
-  return result;
+    return result;
+  }
+  if (undecided && !AllDecided(shared.Model, n, result))
+    return result;
+  ModelFromShared(rules, shared, n, result);
+  return budget ? CountsKept(options, std::move(result), misses, true) : result;
 }
 
 namespace
@@ -639,6 +658,7 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
+  CheckCountRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);
   Coord m, step, block;
   if (r.Status != SynthesisStatus::Failed || !options.BlocksWhenWholeFails ||

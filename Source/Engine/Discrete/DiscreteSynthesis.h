@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -152,6 +153,25 @@ enum class BlockStart
   Undecided ///< every site free until a block decides it; sites no block decides fail the run
 };
 
+/**
+ * A count constraint: the number of output sites holding any of the labels @p Values (one
+ * label, or the orientations of a tile) lies in [Minimum, Maximum] (SynthesisOptions::Counts).
+ */
+struct LabelCount
+{
+  std::vector<Label> Values;
+  std::string Name; ///< as the user named it (a label value or a tile name), for messages
+  std::int64_t Minimum = 0;
+  std::int64_t Maximum = std::numeric_limits<std::int64_t>::max();
+};
+
+/// A count constraint of a finished run with the number of sites that hold its label.
+struct LabelCountResult
+{
+  LabelCount Requested;
+  std::int64_t Achieved = 0;
+};
+
 /// The block edge (sites per axis) of SynthesisOptions::BlocksWhenWholeFails.
 constexpr std::int64_t FallbackBlockEdge = 32;
 
@@ -229,6 +249,15 @@ struct SynthesisOptions
   Rotation Rotate;
   /// Soft constraints; inactive by default.
   SoftConstraint Soft;
+  /**
+   * Label counts: each listed label holds between its Minimum and Maximum sites of the output
+   * (a hard constraint; Discrete/LabelCounts.h). The range is split over the blocks, each
+   * keeping the sites it writes last within its share; the choice prefers a label below its
+   * share and bans one that reached it; an attempt that misses its share fails and is tried
+   * again. Counts the rules, sizes, boundary labels or pins make impossible are an Error before
+   * any work. Not with symmetry, soft constraints or regions of a world. Empty: none.
+   */
+  std::vector<LabelCount> Counts;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
   /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
@@ -265,6 +294,8 @@ struct SynthesisResult
   /// Per site, the index of the last block that changed it (-1: never changed).
   std::vector<std::int32_t> LastBlock;
   SynthesisStatistics Statistics;
+  /// SynthesisOptions::Counts with the number of sites of each label in Model.
+  std::vector<LabelCountResult> Counts;
 };
 
 /**

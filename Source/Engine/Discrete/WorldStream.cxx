@@ -28,10 +28,11 @@ void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
   const bool seams = world.Rotate.Enabled || world.Translate[0].Enabled ||
     world.Translate[1].Enabled || world.Translate[2].Enabled;
   if (mirror || seams || world.Soft.Active() || world.Pins || world.Guide || world.Start ||
-    world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance)
+    world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance ||
+    !world.Counts.empty())
     throw Error(std::string(what) +
-      " takes no symmetry, soft constraints, pins, guide, given start, snapshots or "
-      "resemblance choice (each needs the whole world)");
+      " takes no symmetry, soft constraints, pins, guide, given start, snapshots, resemblance "
+      "choice or label counts (each needs the whole world)");
 }
 
 SynthesisOptions detail::WindowOptions(

@@ -5,6 +5,7 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSLabelCounts.h"
 #include "vtkMSPatternImage.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
@@ -361,10 +362,6 @@ void AddExampleFields(
 }
 } // namespace
 
-namespace
-{
-} // namespace
-
 bool vtkMSDiscreteSynthesis::Solve(
   vtkImageData* input, vtkDataArray* labels, msynth::SynthesisOptions& options)
 {
@@ -404,6 +401,7 @@ bool vtkMSDiscreteSynthesis::Solve(
         if (run.Tiles.Voxel && mirror.Enabled && mirror.Map.empty())
           mirror.Map = run.Tiles.MirrorMap(a);
       }
+      options.Counts = vtkMSLabelCounts::Read(this->Counts, &run.Tiles);
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
         msynth::StartFromWholeModel(rules, options);
@@ -513,6 +511,7 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   vtkFieldData* fd = output->GetFieldData();
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
+  vtkMSLabelCounts::AddFields(fd, result.Counts);
   AddExampleFields(fd, input, this->TilesetFile.c_str(),
     this->GetActiveSource() != TILESET_SOURCE ? nullptr : &run.Tiles);
   if (this->GetActiveSource() ==
@@ -728,6 +727,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateGeometry: " << this->GenerateGeometry << " (EmptyLabel "
      << this->EmptyLabel << ")\n";
   os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
+  os << indent << "Counts: '" << this->Counts << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

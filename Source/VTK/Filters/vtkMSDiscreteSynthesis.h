@@ -41,6 +41,9 @@
  * E = N · Σ (fraction − target)², so label fractions drift toward the targets. Block
  * synthesis only; field data `BlocksRejected` counts the blocks rolled back.
  *
+ * Label counts: Counts "L:MIN:MAX,..." keeps the number of sites of each label (or, with a
+ * tileset, tile) L within [MIN, MAX]; impossible counts fail before any work.
+ *
  * Large-scale constraints (§3.5.3): an optional second input, the guide, is vtkImageData
  * stretched over the output box whose point arrays `Weight_<label>` (e.g. `Weight_2`) give
  * each label's relative probability per guide point; 0 removes the label there. Labels without
@@ -320,6 +323,15 @@ public:
   ///@}
 
   ///@{
+  /// Label counts (a hard constraint, msynth::SynthesisOptions::Counts): "L:MIN:MAX,..." ("" for
+  /// none; default), the sites holding L are MIN to MAX; with a tileset L may name a tile (all
+  /// its orientations) or a label ("tile k"). Field data `CountNames`, `CountMinimum`,
+  /// `CountMaximum`, `CountAchieved` report them.
+  vtkSetStdStringFromCharMacro(Counts);
+  vtkGetCharFromStdStringMacro(Counts);
+  ///@}
+
+  ///@{
   /// Threads for block synthesis; 0 uses one per core. The model does not depend on it.
   /// Default 0.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -561,6 +573,7 @@ private:
   std::string TilesFolder;
   std::string TargetFractions;
   double SoftTemperature = 0.01;
+  std::string Counts;
   std::string TilesetSubset;
   std::string SampleFile;
   int PatternSize = 3;

@@ -3,6 +3,7 @@
 
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSLabelCounts.h"
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkDataArray.h"
@@ -66,6 +67,8 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
       options.Soft.TargetFractions[label] = fraction;
       options.Soft.Temperature = self->GetSoftTemperature();
     }
+    if (self->GetActiveSource() != vtkMSDiscreteSynthesis::TILESET_SOURCE) // else tile names too
+      options.Counts = vtkMSLabelCounts::Read(self->GetCounts(), nullptr);
   }
   catch (const msynth::Error& e)
   {

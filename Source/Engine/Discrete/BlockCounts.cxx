@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/BlockSolver.h"
+
+#include "Core/LabelDraw.h"
+#include "Discrete/LabelCounts.h"
+
+#include <algorithm>
+#include <map>
+
+// Label counts in one block attempt (SynthesisOptions::Counts, Discrete/LabelCounts.h): the
+// block's own sites, the steered choice there, and the check of the solved block.
+
+namespace msynth
+{
+namespace detail
+{
+
+void BlockSolver::StartCounts(const Block& block)
+{
+  const Catalog& cat = this->Cat;
+  const Coord& o = block.Origin;
+  this->OwnBlock = block.Index;
+  this->Have.assign(this->Budget->Labels().size(), 0);
+  this->Left = 0;
+  this->Own.assign(static_cast<std::size_t>(cat.NumberOfSites()), 0);
+  this->Tally.assign(static_cast<std::size_t>(cat.NumberOfSites()), -2);
+  for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+  {
+    const Coord c = cat.Coordinates(local);
+    const auto s =
+      static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
+    if (this->Budget->Owner(s) != block.Index)
+      continue;
+    this->Own[static_cast<std::size_t>(local)] = 1;
+    ++this->Left; // undecided until tallied
+  }
+  this->ChangedSeen = 0;
+  for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+    this->TallySite(local);
+  this->Offered.assign(this->Have.size(), 0);
+  this->Choices = 0;
+}
+
+void BlockSolver::TallySite(std::int64_t local)
+{
+  const auto i = static_cast<std::size_t>(local);
+  if (!this->Own[i])
+    return;
+  const int now =
+    this->Cat.Count(local) == 1 ? this->Budget->Position(this->Cat.Single(local)) : -2;
+  int& was = this->Tally[i];
+  if (now == was)
+    return;
+  if (was >= 0)
+    --this->Have[static_cast<std::size_t>(was)];
+  if (was == -2)
+    --this->Left;
+  if (now >= 0)
+    ++this->Have[static_cast<std::size_t>(now)];
+  if (now == -2)
+    ++this->Left;
+  was = now;
+}
+
+void BlockSolver::SyncCounts()
+{
+  const std::vector<std::int64_t>& changed = this->Cat.Changed();
+  if (this->ChangedSeen > changed.size())
+    this->ChangedSeen = 0; // cleared since
+  for (std::size_t i = this->ChangedSeen; i < changed.size(); ++i)
+    this->TallySite(changed[i]);
+  this->ChangedSeen = changed.size();
+}
+
+int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
+{
+  const int k = this->Rules.NumberOfLabels();
+  const int words = this->Rules.Words();
+  const std::uint64_t* domain = this->Cat.Domain(local);
+  const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
+  this->SyncCounts();
+  std::vector<double>& weight = this->Steer;
+  weight.assign(static_cast<std::size_t>(k), 0.0);
+  double sum = 0.0;
+  if (this->Options.Choice == LabelChoice::Resemblance)
+  {
+    this->ResemblanceWeights(local, this->ChoiceWeights);
+    ForEachLabel(domain, words,
+      [&](int b)
+      {
+        const auto i = static_cast<std::size_t>(b);
+        weight[i] = this->ChoiceWeights[i] * (this->HasGuide() ? this->GuideWeight(cell, b) : 1.0);
+        sum += weight[i];
+        return true;
+      });
+  }
+  if (!(sum > 0.0))
+    ForEachLabel(domain, words,
+      [&](int b)
+      {
+        weight[static_cast<std::size_t>(b)] = this->SiteWeight(cell, b);
+        return true;
+      });
+  // Each counted label's probability is moved into [need, room] / (own sites left where it may
+  // go): up to the
+  // rate that reaches its minimum (a quarter faster), down to
+  // the rate that keeps its maximum, and to 0 once the maximum is reached. Have and Left count
+  // the sites propagation decided too (SyncCounts).
+  const double left = static_cast<double>(std::max<std::int64_t>(1, this->Left));
+  ++this->Choices;
+  const std::vector<int>& labels = this->Budget->Labels();
+  for (std::size_t c = 0; c < labels.size(); ++c)
+  {
+    // The count's labels in the domain move together: their summed weight is scaled.
+    double mine = 0.0, total = 0.0;
+    ForEachLabel(domain, words,
+      [&](int a)
+      {
+        const double w = weight[static_cast<std::size_t>(a)];
+        total += w;
+        if (this->Budget->Position(a) == static_cast<int>(c))
+          mine += w;
+        return true;
+      });
+    bool present = false;
+    ForEachLabel(domain, words,
+      [&](int a)
+      {
+        present |= this->Budget->Position(a) == static_cast<int>(c);
+        return !present;
+      });
+    if (!present)
+      continue;
+    // The own sites left where the count's labels may still go, estimated from the share of
+    // this attempt's choices that offered them.
+    ++this->Offered[c];
+    const double open =
+      left * static_cast<double>(this->Offered[c]) / static_cast<double>(this->Choices);
+    const std::int64_t need = this->Budget->Minimum(this->OwnBlock, c) - this->Have[c];
+    const std::int64_t room = this->Budget->Maximum(this->OwnBlock, c) - this->Have[c];
+    const double others = total - mine;
+    const double share = total > 0.0 ? mine / total : 0.0;
+    const auto scale = [&](double factor, double otherwise)
+    {
+      ForEachLabel(domain, words,
+        [&](int a)
+        {
+          double& w = weight[static_cast<std::size_t>(a)];
+          w = this->Budget->Position(a) == static_cast<int>(c) ? (mine > 0.0 ? w * factor : factor)
+                                                               : w * otherwise;
+          return true;
+        });
+    };
+    if (room <= 0)
+    {
+      scale(0.0, 1.0);
+      continue;
+    }
+    const double low = 1.25 * static_cast<double>(need) / open;
+    const double high = static_cast<double>(room) / open;
+    const double target = share < low ? low : (share > high ? high : share);
+    if (target >= 1.0 || !(others > 0.0))
+      scale(1.0, 0.0); // only the count's labels
+    else if (target != share)
+    {
+      const double wanted = target * others / (1.0 - target);
+      scale(mine > 0.0 ? wanted / mine : wanted, 1.0);
+    }
+  }
+  return DrawLabel(
+    domain, words, [&](int b) { return weight[static_cast<std::size_t>(b)]; }, rng.Uniform());
+}
+
+bool BlockSolver::CountsKept(const Block& block)
+{
+  const Catalog& cat = this->Cat;
+  const Coord& o = block.Origin;
+  const std::size_t counted = this->Budget->Labels().size();
+  std::vector<std::int64_t> own(counted, 0);
+  std::map<std::int32_t, std::vector<std::int64_t>> others; // repairing: change per owner
+  for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
+  {
+    const Coord c = cat.Coordinates(local);
+    const auto s =
+      static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
+    const int now = this->Budget->Position(cat.Single(local));
+    const std::int32_t owner = this->Budget->Owner(s);
+    if (owner == block.Index)
+    {
+      if (now >= 0)
+        ++own[static_cast<std::size_t>(now)];
+      continue;
+    }
+    if (!this->Repairing)
+      continue; // a later block of the run owns the site and will write it
+    const int was = this->Model[s] >= 0 ? this->Budget->Position(this->Model[s]) : -1;
+    if (now == was)
+      continue;
+    auto& change = others[owner];
+    change.resize(counted, 0);
+    if (now >= 0)
+      ++change[static_cast<std::size_t>(now)];
+    if (was >= 0)
+      --change[static_cast<std::size_t>(was)];
+  }
+  bool kept = true;
+  for (std::size_t c = 0; c < counted; ++c)
+    kept = kept && own[c] >= this->Budget->Minimum(block.Index, c) &&
+      own[c] <= this->Budget->Maximum(block.Index, c);
+  for (const auto& kv : others)
+    kept = kept &&
+      std::all_of(kv.second.begin(), kv.second.end(), [](std::int64_t d) { return d == 0; });
+  if (!kept)
+    ++this->Misses;
+  return kept;
+}
+
+} // namespace detail
+} // namespace msynth

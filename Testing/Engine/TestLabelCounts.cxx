@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Label counts (SynthesisOptions::Counts): every model of a matrix (whole and in blocks, seeds,
+// 1 and 2 threads) is verified by counting its labels here and by CheckConsistency (the pairs
+// recomputed from the example); impossible counts are one line before any work.
+#include "Core/Error.h"
+#include "Discrete/ConsistencyCheck.h"
+#include "Discrete/DiscreteSynthesis.h"
+
+#include "Fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace msynth;
+
+using msynth_test::Village;
+
+namespace
+{
+LabelCount Count(Label value, std::int64_t low, std::int64_t high)
+{
+  LabelCount c;
+  c.Values = { value };
+  c.Name = std::to_string(value);
+  c.Minimum = low;
+  c.Maximum = high;
+  return c;
+}
+
+SynthesisOptions Options(std::array<std::int64_t, 3> block, std::uint64_t seed, int threads)
+{
+  SynthesisOptions o;
+  o.Size = { { 24, 24, 5 } };
+  o.BlockSize = block;
+  o.Seed = seed;
+  o.Threads = threads;
+  o.Boundary[4] = 1; // ground along -z
+  return o;
+}
+
+std::int64_t Sites(const LabelGrid& model, Label value)
+{
+  return static_cast<std::int64_t>(std::count(model.Data().begin(), model.Data().end(), value));
+}
+
+std::string ErrorOf(const SynthesisOptions& o)
+{
+  try
+  {
+    const LabelGrid example = Village();
+    Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example)), o);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
+// Walls (2) and roofs (3) within ranges far from what the solver makes unsteered, whole and in
+// blocks, on seeds and thread counts; the same model for 1 and 2 threads.
+TEST(LabelCounts, CountsHoldOnEveryRunOfTheMatrix)
+{
+  const LabelGrid example = Village();
+  const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
+  const std::vector<LabelCount> counts = { Count(2, 60, 90), Count(3, 40, 60), Count(0, 0, 2300) };
+  for (const auto& block :
+    { std::array<std::int64_t, 3>{ { 0, 0, 0 } }, std::array<std::int64_t, 3>{ { 12, 12, 5 } } })
+    for (std::uint64_t seed : { 1u, 2u, 3u })
+    {
+      LabelGrid first;
+      for (int threads : { 1, 2 })
+      {
+        SynthesisOptions o = Options(block, seed, threads);
+        o.Counts = counts;
+        const SynthesisResult r = Synthesize(rules, o);
+        ASSERT_TRUE(r.Succeeded()) << r.Message;
+        const ConsistencyReport report = CheckConsistency(example, r.Model);
+        EXPECT_TRUE(report.Consistent) << (report.First.empty() ? "" : report.First[0].Describe());
+        ASSERT_EQ(r.Counts.size(), counts.size());
+        for (std::size_t c = 0; c < counts.size(); ++c)
+        {
+          const std::int64_t n = Sites(r.Model, counts[c].Values[0]);
+          EXPECT_GE(n, counts[c].Minimum) << "label " << counts[c].Name << ", seed " << seed;
+          EXPECT_LE(n, counts[c].Maximum) << "label " << counts[c].Name << ", seed " << seed;
+          EXPECT_EQ(r.Counts[c].Achieved, n);
+        }
+        if (threads == 1)
+          first = r.Model;
+        else
+          EXPECT_TRUE(r.Model.Data() == first.Data()) << "the same model on any thread count";
+      }
+    }
+}
+
+// Without counts nothing changes (TestOutputHashes pins the models); a count of 0 to the whole
+// output changes nothing either but is reported.
+TEST(LabelCounts, ResultsReportTheCounts)
+{
+  const LabelGrid example = Village();
+  const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
+  SynthesisOptions o = Options({ { 12, 12, 5 } }, 4, 1);
+  const SynthesisResult plain = Synthesize(rules, o);
+  ASSERT_TRUE(plain.Succeeded());
+  EXPECT_TRUE(plain.Counts.empty());
+  o.Counts = { Count(3, 0, 2880) };
+  const SynthesisResult counted = Synthesize(rules, o);
+  ASSERT_TRUE(counted.Succeeded()) << counted.Message;
+  ASSERT_EQ(counted.Counts.size(), 1u);
+  EXPECT_EQ(counted.Counts[0].Achieved, Sites(counted.Model, 3));
+}
+
+// Impossible counts and options that cannot keep counts are one line before any work.
+TEST(LabelCounts, ImpossibleCountsAreOneLineBeforeAnyWork)
+{
+  const std::array<std::int64_t, 3> whole{ { 0, 0, 0 } };
+  SynthesisOptions o = Options(whole, 1, 1);
+  o.Counts = { Count(7, 0, 5) };
+  EXPECT_EQ(ErrorOf(o), "the count of label 7: label 7 does not occur in the example");
+  o.Counts = { Count(2, 3000, 3000) };
+  EXPECT_EQ(
+    ErrorOf(o), "the count of label 2 asks for at least 3000 sites, but the output has 2880");
+  o.Counts = { Count(2, 2000, 2880), Count(3, 1000, 2880) };
+  EXPECT_EQ(
+    ErrorOf(o), "the label counts ask for at least 3000 sites together, but the output has 2880");
+  o.Counts = { Count(0, 0, 10), Count(1, 0, 10), Count(2, 0, 10), Count(3, 0, 10) };
+  EXPECT_EQ(
+    ErrorOf(o), "the label counts allow at most 40 sites together, but the output has 2880");
+  o.Counts = { Count(2, 5, 3) };
+  EXPECT_EQ(ErrorOf(o), "the count of label 2 asks for 5 to 3 sites (need 0 <= MIN <= MAX)");
+  o.Counts = { Count(2, 0, 5), Count(2, 0, 5) };
+  EXPECT_EQ(ErrorOf(o), "the count of label 2: label 2 is counted twice");
+  // The ground boundary leaves 2304 sites.
+  o.Counts = { Count(2, 2500, 2880) };
+  EXPECT_EQ(ErrorOf(o),
+    "label 2 can hold at most 2304 sites (the others are boundary labels or pins), fewer than its "
+    "minimum 2500");
+  // The ground boundary already holds 576 sites of label 1.
+  o.Counts = { Count(1, 0, 100) };
+  EXPECT_EQ(ErrorOf(o),
+    "the boundary labels and pins already place 576 sites of label 1, more than its maximum 100");
+  o.Counts = { Count(3, 0, 10) };
+  o.Symmetry[0].Enabled = true;
+  EXPECT_EQ(ErrorOf(o),
+    "label counts cannot be combined with symmetry (only a part of the output is synthesized)");
+}
+
+// A region of a world needs the whole world's state to keep counts.
+TEST(LabelCounts, RegionsOfAWorldAreRefused)
+{
+  const LabelGrid example = Village();
+  const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
+  SynthesisOptions o = Options({ { 12, 12, 5 } }, 1, 1);
+  o.Counts = { Count(3, 0, 10) };
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 12, 12, 5 } }), Error);
+}
