@@ -187,6 +187,18 @@ struct Workers
   std::vector<std::unique_ptr<BlockSolver>> Extra;
   BlockSolver* First = nullptr;
   BlockSolver& operator[](unsigned w) { return w == 0 ? *this->First : *this->Extra[w - 1]; }
+  /// Adds every worker's backtracks to @p stats; returns their attempts that missed the counts.
+  std::int64_t Totals(SynthesisStatistics& stats) const
+  {
+    stats.Backtracks = this->First->Backtracks();
+    std::int64_t misses = this->First->CountMisses();
+    for (const auto& extra : this->Extra)
+    {
+      stats.Backtracks += extra->Backtracks();
+      misses += extra->CountMisses();
+    }
+    return misses;
+  }
 };
 
 /// The blocks as the driver's client: attempts (with @p orders alternating per attempt when
@@ -363,6 +375,39 @@ bool AllDecided(const std::vector<std::int32_t>& model, const Coord& n, Synthesi
   return false;
 }
 
+/**
+ * The start of block synthesis (Algorithm 3.4, lines 3-5) on @p solver's model, checked, and the
+ * pins applied after it; records it in @p stats. Returns whether the start is undecided (the
+ * free sites stay -1, which blocks read as free).
+ */
+bool StartBlocks(const AdjacencyRules& rules, const SynthesisOptions& options, BlockSolver& solver,
+  const SharedModel& shared, const RegionCone* cone, bool wholeModel, SynthesisStatistics& stats)
+{
+  const bool undecided = !wholeModel && options.StartFrom == BlockStart::Undecided;
+  if (!wholeModel)
+    stats.StartFrom = undecided ? "undecided" : "trivial";
+  if (!wholeModel && !undecided)
+    stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
+  if (cone && !undecided)
+    CheckStartInWindow(*cone, shared.Model, solver.Size());
+  solver.ApplyPins(); // after the start's own checks: the pins are placed into it later
+  return undecided;
+}
+
+/// The runner's policy: snapshots need one thread; seams link blocks of one phase; a fitness
+/// function sees the whole model, so its decisions must follow every block in order.
+BlockRunner::Policy PolicyOf(
+  const SynthesisOptions& options, const BlockSolver& solver, const SymmetryPlan* seams)
+{
+  BlockRunner::Policy policy;
+  policy.Threads = options.Threads;
+  policy.Exchange = options.Exchange;
+  policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
+    static_cast<bool>(options.Soft.Fitness);
+  policy.Progress = options.Progress;
+  return policy;
+}
+
 /// The values of the labels of @p shared (every site decided) as @p r's model.
 void ModelFromShared(
   const AdjacencyRules& rules, SharedModel& shared, const Coord& n, SynthesisResult& r)
@@ -393,15 +438,7 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
 
   SynthesisResult result;
   SynthesisStatistics& stats = result.Statistics;
-  // An undecided start leaves the model's free sites at -1, which blocks read as free.
-  const bool undecided = !wholeModel && options.StartFrom == BlockStart::Undecided;
-  if (!wholeModel)
-    stats.StartFrom = undecided ? "undecided" : "trivial";
-  if (!wholeModel && !undecided)
-    stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
-  if (cone && !undecided)
-    CheckStartInWindow(*cone, shared.Model, n);
-  solver.ApplyPins(); // after the start's own checks: the pins are placed into it below
+  const bool undecided = StartBlocks(rules, options, solver, shared, cone, wholeModel, stats);
   const std::vector<Block> blocks = cone
     ? WindowBlocks(*cone)
     : PlanBoxBlocks<3>(n, m, step, PhasePolicy::NonTouching, stats.Phases);
@@ -412,14 +449,7 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
     throw Error("soft constraints (Metropolis acceptance of block changes) need block synthesis");
   SoftConstraints soft(rules, options, shared, n, blocks.size(), stats);
 
-  // Snapshots need one thread; seams link blocks of one phase; a fitness function sees the
-  // whole model, so its decisions must follow every block in order.
-  BlockRunner::Policy policy;
-  policy.Threads = options.Threads;
-  policy.Exchange = options.Exchange;
-  policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
-    static_cast<bool>(options.Soft.Fitness);
-  policy.Progress = options.Progress;
+  BlockRunner::Policy policy = PolicyOf(options, solver, seams);
   std::size_t most = blocks.size(); // the workers a later pass may use too
   for (std::size_t p = 1; cone && p < cone->Passes.size(); ++p)
     most = std::max(most, cone->Passes[p].size());
@@ -460,13 +490,7 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
     result.Status =
       RepairFailedBlocks(options, candidates, driver, workers, soft, shared, stats, round);
   }
-  stats.Backtracks = solver.Backtracks();
-  std::int64_t misses = solver.CountMisses();
-  for (const auto& extra : workers.Extra)
-  {
-    stats.Backtracks += extra->Backtracks();
-    misses += extra->CountMisses();
-  }
+  const std::int64_t misses = workers.Totals(stats);
   if (!driver.End(result.Status, result.Message, stats, wholeModel,
         [&](const BlockFailure& f)
         {

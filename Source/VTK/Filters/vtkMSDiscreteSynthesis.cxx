@@ -13,11 +13,13 @@
 
 #include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationIntegerVectorKey.h"
 #include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
@@ -135,6 +137,23 @@ vtkPolyData* vtkMSDiscreteSynthesis::GetGeometryOutput()
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
 }
 
+namespace
+{
+/// Pieces as slabs across the highest long axis (X/Y/Z_SLAB_MODE): its blocks' phase digit
+/// changes slowest, so a slab's dependency cone reaches least far along it
+/// (Core/WorldSchedule.h).
+int PieceSplitMode(vtkMSDiscreteSynthesis* self)
+{
+  int longest = 0;
+  for (int a = 1; a < 3; ++a)
+    longest = self->GridSize(a) > self->GridSize(longest) ? a : longest;
+  for (int a = 2; a > longest; --a)
+    if (2 * self->GridSize(a) >= self->GridSize(longest))
+      return a;
+  return longest;
+}
+} // namespace
+
 int vtkMSDiscreteSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -204,7 +223,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
   }
 
   if (this->ProducesSubExtents())
+  {
     outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
+    outInfo->Set(vtkExtentTranslator::UPDATE_SPLIT_MODE(), PieceSplitMode(this));
+  }
   else
     outInfo->Remove(CAN_PRODUCE_SUB_EXTENT());
   vtkInformation* geometryInfo = outputVector->GetInformationObject(1);
