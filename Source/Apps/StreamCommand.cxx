@@ -21,6 +21,7 @@
 #include "vtkXMLImageDataWriter.h"
 
 #include "Core/AtomicFile.h"
+#include "Core/Memory.h"
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
 
@@ -425,6 +426,32 @@ void AddStreamOptions(
              ->check(CLI::Range(1, 1 << 30)));
   discrete(s.add_flag("--resume", o.Resume,
     "go on with the stream an interrupted --stream run left in DIR, keeping its finished slabs"));
+}
+
+bool StreamsForMemory(const SynthesizeOptions& o)
+{
+  double sites = 1;
+  bool blocks = false;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    sites *= o.Size3[a];
+    blocks = blocks || (o.Block[a] > 0 && o.Block[a] < o.Size3[a]);
+  }
+  const bool whole = !o.Guide.empty() || !o.Fixed.empty() || o.Snapshots > 0 || !o.Mirror.empty() ||
+    !o.Translate.empty() || o.Rotate || !o.Targets.empty() || !o.Counts.empty() ||
+    o.Choice == "resemblance" ||
+    std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; });
+  // The model, its last blocks, the output's arrays and the writer's copy: about 24 bytes a
+  // site, besides what the outputs (meshes, volumes) take.
+  const double bytes = 24 * sites;
+  const double available = static_cast<double>(msynth::AvailableMemory());
+  if (!blocks || whole || bytes < 0.5 * available)
+    return false;
+  std::cerr << "msynth: note: a " << o.Size3[0] << " x " << o.Size3[1] << " x " << o.Size3[2]
+            << " model would take about " << msynth::FormatBytes(static_cast<std::uint64_t>(bytes))
+            << " of the " << msynth::FormatBytes(static_cast<std::uint64_t>(available))
+            << " available: it is streamed slab by slab instead (labels.pvti; --stream)\n";
+  return true;
 }
 
 int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)

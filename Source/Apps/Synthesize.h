@@ -109,6 +109,9 @@ std::string OutputsWanted(const SynthesizeOptions& o, bool tileset, const msynth
  * interrupted run leaves for --resume) and published together at the end.
  */
 int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir);
+/// Whether a block run of @p o would not comfortably fit in memory (over half of what is
+/// available) and can be streamed instead (no option that needs the whole world); says so.
+bool StreamsForMemory(const SynthesizeOptions& o);
 /// --stream, --slab and --resume on @p s, each passed to @p discrete (discrete synthesis only).
 void AddStreamOptions(
   CLI::App& s, SynthesizeOptions& o, const std::function<void(CLI::Option*)>& discrete);

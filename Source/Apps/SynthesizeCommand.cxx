@@ -679,7 +679,7 @@ void SetUpDiscrete(
 
 int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
 {
-  if (o.Stream || o.Resume)
+  if (o.Stream || o.Resume || StreamsForMemory(o))
     return SynthesizeStream(o, dir);
   const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkMSLabelGridReader> reader;

@@ -160,6 +160,24 @@ class StreamTest(unittest.TestCase):
         synthesis.Update()
         np.testing.assert_array_equal(labels_zyx(synthesis.GetOutput()), whole)
 
+    def test_a_world_too_large_for_memory_streams(self):
+        lines = data("Tilesets/Lines.xml")
+        out = fresh_folder("stream-auto")
+        env = dict(os.environ, MSYNTH_AVAILABLE_MEMORY=str(60 * 2 ** 20))  # a 60 MB machine
+        done = subprocess.run([MSYNTH, "synthesize", lines, "--size", "1400", "1400", "1",
+                               "--block", "32", "32", "1", "--slab", "400", "--seed", "4",
+                               "--outputs", "labels", "--out", out],
+                              capture_output=True, text=True, env=env, timeout=300)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("is streamed slab by slab instead", done.stderr)
+        self.assertTrue(os.path.exists(os.path.join(out, "labels.pvti")))
+        self.assertEqual(msynth("check", lines, os.path.join(out, "labels.pvti")).returncode, 0)
+        # Without blocks a world cannot be streamed: the memory check refuses it in one line.
+        done = subprocess.run([MSYNTH, "synthesize", lines, "--size", "1400", "1400", "1",
+                               "--out", out], capture_output=True, text=True, env=env, timeout=300)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("more than the", done.stderr)
+
     def test_streams_refuse_what_needs_the_whole_world(self):
         lines = data("Tilesets/Lines.xml")
         out = fresh_folder("stream-refused")

@@ -17,7 +17,8 @@ namespace msynth
 /**
  * Bytes this process can still expect to allocate: the system's available memory
  * (MemAvailable of /proc/meminfo), capped by the address-space and data limits (RLIMIT_AS,
- * RLIMIT_DATA) less what the process already uses. UINT64_MAX when nothing is known.
+ * RLIMIT_DATA) less what the process already uses, and by the environment variable
+ * MSYNTH_AVAILABLE_MEMORY (bytes) when set. UINT64_MAX when nothing is known.
  */
 std::uint64_t AvailableMemory();
 
