@@ -21,6 +21,16 @@ from msynth_testing import run_msynth as msynth
 MSYNTH = os.path.join(BIN, "msynth")
 
 
+def text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def write(path, content, mode="w"):
+    with open(path, mode) as f:
+        f.write(content)
+
+
 def read_pieces(path):
     reader = vtkXMLPImageDataReader()
     reader.SetFileName(path)
@@ -47,7 +57,7 @@ class StreamTest(unittest.TestCase):
         self.assertGreaterEqual(len(np.unique(labels)), 3)  # not a blank world (4 labels in all)
         self.assertEqual(sorted(os.listdir(os.path.join(out, "vdb"))),
                          ["model_%05d.vdb" % j for j in range(5)])
-        stats = json.load(open(os.path.join(out, "statistics.json")))
+        stats = json.loads(text(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["Slabs"], 5)
         self.assertEqual(stats["SlabsResumed"], 0)
         self.assertFalse(os.path.exists(os.path.join(out, ".msynth-stream")))
@@ -64,16 +74,16 @@ class StreamTest(unittest.TestCase):
         pvti = os.path.join(out, "labels.pvti")
         self.assertEqual(msynth("check", lines, pvti).returncode, 0)
         # Piece 1 replaced by piece 2 (same size, other labels): its seams no longer match.
-        text = open(pvti).read()
+        pieces = text(pvti)
         wrong = os.path.join(out, "wrong.pvti")
-        open(wrong, "w").write(text.replace('Source="labels/labels_00001.vti"',
+        write(wrong, pieces.replace('Source="labels/labels_00001.vti"',
                                             'Source="labels/labels_00002.vti"', 1))
         check = msynth("check", lines, wrong)
         self.assertEqual(check.returncode, 1, check.stdout + check.stderr)
         self.assertIn("does not share piece", check.stdout)
         # A gap between the pieces is refused in one line.
         gap = os.path.join(out, "gap.pvti")
-        open(gap, "w").write(text.replace('Extent="0 39 29 59', 'Extent="0 39 31 59', 1))
+        write(gap, pieces.replace('Extent="0 39 29 59', 'Extent="0 39 31 59', 1))
         check = msynth("check", lines, gap)
         self.assertNotEqual(check.returncode, 0)
         self.assertIn("does not continue the slabs", check.stderr)
@@ -89,24 +99,25 @@ class StreamTest(unittest.TestCase):
         listed = os.path.join(stream, "slabs.txt")
         deadline = time.monotonic() + 60
         while time.monotonic() < deadline and run.poll() is None:
-            if os.path.exists(listed) and len(open(listed).read().splitlines()) >= 4:
+            if os.path.exists(listed) and len(text(listed).splitlines()) >= 4:
                 break
             time.sleep(0.02)
         self.assertIsNone(run.poll(), "the stream ended before it could be interrupted")
         run.send_signal(signal.SIGKILL)
         run.wait()
-        kept = open(listed).read().splitlines()
+        kept = text(listed).splitlines()
         self.assertGreaterEqual(len(kept), 4)
         self.assertFalse(os.path.exists(os.path.join(out, "labels.pvti")))  # nothing published
         # Damage slab 2: it and the slabs after it are computed again.
         piece = os.path.join(stream, "labels", "labels_00002.vti")
-        raw = bytearray(open(piece, "rb").read())
+        with open(piece, "rb") as f:
+            raw = bytearray(f.read())
         raw[len(raw) // 2] ^= 0xFF
-        open(piece, "wb").write(raw)
+        write(piece, bytes(raw), "wb")
         done = msynth("synthesize", lines, *common, "--resume", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertIn("slab 2 of the stream is damaged", done.stderr)
-        stats = json.load(open(os.path.join(out, "statistics.json")))
+        stats = json.loads(text(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["SlabsResumed"], 2)
         fresh = fresh_folder("stream-fresh")
         done = msynth("synthesize", lines, *common, "--out", fresh)
@@ -120,7 +131,7 @@ class StreamTest(unittest.TestCase):
         run = subprocess.Popen([MSYNTH, "synthesize", lines, *common, "--out", again],
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         listed = os.path.join(again, ".msynth-stream", "slabs.txt")
-        while run.poll() is None and not (os.path.exists(listed) and open(listed).read()):
+        while run.poll() is None and not (os.path.exists(listed) and text(listed)):
             time.sleep(0.02)
         run.send_signal(signal.SIGKILL)
         run.wait()

@@ -532,12 +532,12 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   stream.NextChunk = firstChunk;
   stream.Phases = lattice.Phases();
   const std::int64_t step = lattice.StepAlong(layout.Axis);
-  // Each window advances by a slab, or by about 2^21 sites when slabs are thinner (a window's
-  // start and carry cost about its size, whatever it computes).
+  // Each window advances by a slab, or when slabs are thinner by up to four slabs and about
+  // 2^21 sites (a window's start and carry cost about its size, whatever it computes).
   const auto a = static_cast<std::size_t>(layout.Axis);
   const std::int64_t cross = world.Size[0] * world.Size[1] * world.Size[2] / world.Size[a];
   const std::int64_t advance = std::max(layout.Thickness,
-    std::min(world.Size[a], (std::int64_t(1) << 21) / std::max<std::int64_t>(1, cross)));
+    std::min(4 * layout.Thickness, (std::int64_t(1) << 21) / std::max<std::int64_t>(1, cross)));
   const std::int64_t g = std::max<std::int64_t>(1, (advance + step - 1) / step);
   const double total = static_cast<double>(wave.LastStep() - wave.FirstStep + 1);
   SynthesisResult r;
