@@ -186,15 +186,16 @@ double PeakMegabytes()
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
-/// A picture of the whole world at most 2048 pixels a side (nearest pixels), made from the slabs'
+/// A picture of the whole world at most 2048 pixels a side, each pixel the mean of the
+/// scale × scale pixels it stands for (thin lines stay visible as a tint), made from the slabs'
 /// pictures @p pictures (of the sites @p extents) read back one at a time.
 void WriteOverview(const std::vector<std::string>& pictures,
   const std::vector<std::array<int, 6>>& extents, const std::array<int, 3>& size,
   const std::string& path)
 {
-  vtkNew<vtkImageData> overview;
-  int scale = 1, components = 4;
+  int scale = 1, out[2] = { 0, 0 };
   double tile[2] = { 1, 1 };
+  std::vector<std::uint32_t> sums; // RGBA sums and a count per overview pixel
   for (std::size_t j = 0; j < pictures.size(); ++j)
   {
     vtkNew<vtkPNGReader> png;
@@ -210,35 +211,48 @@ void WriteOverview(const std::vector<std::string>& pictures,
       tile[1] = static_cast<double>(dims[1]) / (e[3] - e[2] + 1);
       const double w = tile[0] * size[0], h = tile[1] * size[1];
       scale = std::max(1, static_cast<int>(std::ceil(std::max(w, h) / 2048.0)));
-      overview->SetDimensions(
-        static_cast<int>(std::ceil(w / scale)), static_cast<int>(std::ceil(h / scale)), 1);
-      overview->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-      std::fill_n(static_cast<unsigned char*>(overview->GetScalarPointer()),
-        overview->GetNumberOfPoints() * 4, 0);
+      if (scale > 2048) // the sums below would overflow
+      {
+        std::cerr << "msynth: note: no overview picture: the world's picture would be "
+                  << static_cast<long long>(w) << " pixels wide\n";
+        return;
+      }
+      out[0] = static_cast<int>(std::ceil(w / scale));
+      out[1] = static_cast<int>(std::ceil(h / scale));
+      sums.assign(static_cast<std::size_t>(out[0]) * out[1] * 5, 0);
     }
-    components = slab->GetNumberOfScalarComponents();
+    const int components = slab->GetNumberOfScalarComponents();
     if (components != 3 && components != 4)
       throw std::runtime_error("'" + pictures[j] + "': not an RGB or RGBA picture");
-    int out[3];
-    overview->GetDimensions(out);
     const int x0 = static_cast<int>(e[0] * tile[0]), y0 = static_cast<int>(e[2] * tile[1]);
-    auto* to = static_cast<unsigned char*>(overview->GetScalarPointer());
     const auto* from = static_cast<const unsigned char*>(slab->GetScalarPointer());
-    for (int v = 0; v < out[1]; ++v)
-      for (int u = 0; u < out[0]; ++u)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
       {
-        const int x = u * scale - x0, y = v * scale - y0;
-        if (x < 0 || y < 0 || x >= dims[0] || y >= dims[1])
+        const int u = (x0 + x) / scale, v = (y0 + y) / scale;
+        if (u >= out[0] || v >= out[1])
           continue;
-        unsigned char* pixel = to + (static_cast<std::size_t>(v) * out[0] + u) * 4;
-        std::copy_n(
-          from + (static_cast<std::size_t>(y) * dims[0] + x) * components, components, pixel);
-        if (components == 3)
-          pixel[3] = 255;
+        std::uint32_t* sum = sums.data() + (static_cast<std::size_t>(v) * out[0] + u) * 5;
+        const unsigned char* pixel =
+          from + (static_cast<std::size_t>(y) * dims[0] + x) * components;
+        for (int c = 0; c < 4; ++c)
+          sum[c] += c < components ? pixel[c] : 255;
+        ++sum[4];
       }
   }
-  if (!pictures.empty())
-    WritePicturePng(overview, path);
+  if (pictures.empty())
+    return;
+  vtkNew<vtkImageData> overview;
+  overview->SetDimensions(out[0], out[1], 1);
+  overview->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  auto* to = static_cast<unsigned char*>(overview->GetScalarPointer());
+  for (std::size_t p = 0; p < static_cast<std::size_t>(out[0]) * out[1]; ++p)
+  {
+    const std::uint32_t n = std::max<std::uint32_t>(1, sums[p * 5 + 4]);
+    for (std::size_t c = 0; c < 4; ++c)
+      to[p * 4 + c] = static_cast<unsigned char>((sums[p * 5 + c] + n / 2) / n);
+  }
+  WritePicturePng(overview, path);
 }
 
 /// "slab 3/16, 1.2 M sites/s, 25 s left" on a terminal's stderr.

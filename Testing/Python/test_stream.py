@@ -31,6 +31,18 @@ def write(path, content, mode="w"):
         f.write(content)
 
 
+def png_rgb(path):
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
+    return pixels[:, :, :3].astype(float)
+
+
 def read_pieces(path):
     reader = vtkXMLPImageDataReader()
     reader.SetFileName(path)
@@ -64,6 +76,25 @@ class StreamTest(unittest.TestCase):
         check = msynth("check", village, os.path.join(out, "labels.pvti"))
         self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
         self.assertIn("5 pieces", check.stdout)
+
+    def test_the_overview_picture_looks_like_the_whole_picture(self):
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "600", "600", "1", "--block", "32", "32", "1", "--seed", "3"]
+        whole = fresh_folder("stream-picture-whole")
+        done = msynth("synthesize", lines, *common, "--out", whole)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        out = fresh_folder("stream-picture")
+        done = msynth("synthesize", lines, *common, "--stream", "--slab", "100", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(len(os.listdir(os.path.join(out, "picture"))), 6)
+        full, overview = (png_rgb(os.path.join(folder, "picture.png")) for folder in (whole, out))
+        self.assertLessEqual(max(overview.shape), 2048)
+        self.assertGreater(full.shape[0], overview.shape[0])  # downsampled
+        # Each overview pixel is the mean of the pixels it stands for: the same mean colour, and
+        # the lines still show (not one colour everywhere).
+        np.testing.assert_allclose(overview.mean(axis=(0, 1)), full.mean(axis=(0, 1)), atol=2.0)
+        self.assertGreater(overview.std(axis=(0, 1)).max(), 0.5 * full.std(axis=(0, 1)).max() / 4)
+        self.assertGreater(len(np.unique(overview.reshape(-1, 3), axis=0)), 2)
 
     def test_check_finds_a_wrong_piece_and_a_broken_seam(self):
         lines = data("Tilesets/Lines.xml")
