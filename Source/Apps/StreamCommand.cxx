@@ -21,6 +21,7 @@
 #include "vtkXMLImageDataWriter.h"
 
 #include "Core/AtomicFile.h"
+#include "Core/FileBytes.h"
 #include "Core/Memory.h"
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -91,14 +92,6 @@ std::string WorldDefinition(const SynthesizeOptions& o)
   return d.str();
 }
 
-std::string ReadText(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /**
  * The slabs an interrupted stream in @p folder finished, as lines "J FILE=STAMP ...", each file
  * checked against its stamp: the list ends at the first slab missing or damaged (a note says
@@ -114,7 +107,8 @@ std::vector<std::string> KeptSlabs(const std::string& folder, const std::string&
               << "': starting one\n";
     return kept;
   }
-  if (ReadText(folder + "/definition.txt") != definition)
+  if (msynth::ReadFileBytes(folder + "/definition.txt", 1 << 20,
+        "is too large for a stream's definition") != definition)
     throw std::runtime_error("'" + folder +
       "' holds a stream of another world (another example or other options): run with --stream "
       "instead of --resume to start again");
@@ -333,11 +327,7 @@ int SlabThickness(const SynthesizeOptions& o, const StreamOutputs& kinds)
     shape.BlockSize[a] = o.Block[a];
     shape.Overlap[a] = o.Overlap[a];
   }
-  const msynth::StreamLayout layout = msynth::PlanStream(shape);
-  const auto axis = static_cast<std::size_t>(layout.Axis);
-  const std::int64_t cross = shape.Size[0] * shape.Size[1] * shape.Size[2] / shape.Size[axis];
-  return static_cast<int>(
-    std::max<std::int64_t>(1, (std::int64_t(1) << 18) / std::max<std::int64_t>(1, cross)));
+  return static_cast<int>(msynth::PlanStream(shape).LayersOf(std::int64_t(1) << 18));
 }
 
 /// A finished slab as slabs.txt lists it.

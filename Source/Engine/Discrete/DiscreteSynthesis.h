@@ -319,6 +319,17 @@ struct StreamLayout
   int Chunks = 1;
   /// The box [low, high) of chunk @p j in the world.
   void Box(int j, std::array<std::int64_t, 3>& low, std::array<std::int64_t, 3>& high) const;
+  /// Sites in one layer across Axis.
+  std::int64_t Cross() const
+  {
+    return this->World[0] * this->World[1] * this->World[2] /
+      this->World[static_cast<std::size_t>(this->Axis)];
+  }
+  /// Layers across Axis that make about @p sites sites (at least 1).
+  std::int64_t LayersOf(std::int64_t sites) const
+  {
+    return std::max<std::int64_t>(1, sites / std::max<std::int64_t>(1, this->Cross()));
+  }
   std::array<std::int64_t, 3> World{ { 1, 1, 1 } };
 };
 

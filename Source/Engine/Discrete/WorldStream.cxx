@@ -71,6 +71,15 @@ int Passes(const SynthesisOptions& world)
 
 namespace
 {
+/// Fails @p r: the site @p p was left undecided.
+void LeftUndecided(const Coord& p, SynthesisResult& r)
+{
+  r.Status = SynthesisStatus::Failed;
+  r.Message = "block synthesis from an undecided start left site " + Format(p) +
+    " undecided (every block over it failed). Try another seed, larger blocks, or the trivial "
+    "start";
+}
+
 /// Runs @p cone's blocks in its window and crops the region [@p low, @p high); failed when a
 /// site of the region is left undecided.
 SynthesisResult RegionOfCone(const AdjacencyRules& rules, const SynthesisOptions& resolved,
@@ -98,11 +107,7 @@ SynthesisResult RegionOfCone(const AdjacencyRules& rules, const SynthesisOptions
           w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
         if (keep.Model[s] < 0)
         {
-          r.Status = SynthesisStatus::Failed;
-          r.Message = "block synthesis from an undecided start left site " +
-            Format({ { x, y, z } }) +
-            " undecided (every block over it failed). Try another "
-            "seed, larger blocks, or the trivial start";
+          LeftUndecided({ { x, y, z } }, r);
           return r;
         }
         labels.push_back(rules.LabelValues()[static_cast<std::size_t>(keep.Model[s])]);
@@ -472,10 +477,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
         const auto i = static_cast<std::int64_t>(s);
         const Coord p{ { c.Low[0] + i % dims[0], c.Low[1] + (i / dims[0]) % dims[1],
           c.Low[2] + i / (dims[0] * dims[1]) } };
-        r.Status = SynthesisStatus::Failed;
-        r.Message = "block synthesis from an undecided start left site " + Format(p) +
-          " undecided (every block over it failed). Try another seed, larger blocks, or the "
-          "trivial start";
+        LeftUndecided(p, r);
         return false;
       }
       labels[s] = values[static_cast<std::size_t>(model[s])];
@@ -534,10 +536,8 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   const std::int64_t step = lattice.StepAlong(layout.Axis);
   // Each window advances by a slab, or when slabs are thinner by up to four slabs and about
   // 2^21 sites (a window's start and carry cost about its size, whatever it computes).
-  const auto a = static_cast<std::size_t>(layout.Axis);
-  const std::int64_t cross = world.Size[0] * world.Size[1] * world.Size[2] / world.Size[a];
-  const std::int64_t advance = std::max(layout.Thickness,
-    std::min(4 * layout.Thickness, (std::int64_t(1) << 21) / std::max<std::int64_t>(1, cross)));
+  const std::int64_t advance = std::max(
+    layout.Thickness, std::min(4 * layout.Thickness, layout.LayersOf(std::int64_t(1) << 21)));
   const std::int64_t g = std::max<std::int64_t>(1, (advance + step - 1) / step);
   const double total = static_cast<double>(wave.LastStep() - wave.FirstStep + 1);
   SynthesisResult r;
@@ -604,12 +604,11 @@ StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness)
   if (lattice.Count(layout.Axis) == 1)
     layout.Axis = 0;
   const auto a = static_cast<std::size_t>(layout.Axis);
-  const std::int64_t cross = world.Size[0] * world.Size[1] * world.Size[2] / world.Size[a];
   if (thickness < 0)
     throw Error("a stream's slabs must be at least one site thick");
-  layout.Thickness = thickness > 0 ? thickness
-                                   : std::max(lattice.StepAlong(layout.Axis),
-                                       (std::int64_t(1) << 21) / std::max<std::int64_t>(1, cross));
+  layout.Thickness = thickness > 0
+    ? thickness
+    : std::max(lattice.StepAlong(layout.Axis), layout.LayersOf(std::int64_t(1) << 21));
   layout.Thickness = std::min(layout.Thickness, world.Size[a]);
   const std::int64_t chunks = (world.Size[a] + layout.Thickness - 1) / layout.Thickness;
   if (chunks > 1000000)
