@@ -126,6 +126,7 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetBlockSize(o.Blocks);
   synthesis->SetAttempts(o.Attempts);
+  synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);

@@ -258,6 +258,8 @@ class ContinuousSynthesisTest(unittest.TestCase):
                                    "--out", out], capture_output=True, text=True)
             self.assertEqual(done.returncode, 0, done.stderr)
             stats = json.load(open(os.path.join(out, "statistics.json")))
+            if os.cpu_count() >= 2:  # --threads reaches the solver
+                self.assertEqual(stats["Threads"], int(threads))
             self.assertIn("model.vdb", stats["StageSeconds"])
             self.assertGreater(stats["VoxelSize"], 0)
             reader = vtkXMLPolyDataReader()

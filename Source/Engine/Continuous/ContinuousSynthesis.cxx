@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -23,6 +24,20 @@ namespace msynth
 
 namespace
 {
+/// A double's bits as an integer for the block exchange, and back.
+std::int64_t BitsOf(double x)
+{
+  std::int64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+double DoubleOf(std::int64_t bits)
+{
+  double x = 0;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 /**
  * What the workers of one run share, read-only while blocks run: the rules, each vertex's
  * starting catalog, the compiled constraints, the block layout and the schedule.
@@ -139,6 +154,15 @@ public:
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
   std::int64_t BlockAt(std::size_t position) const { return this->Order[position]; }
+  /// The vertices of the block labelled @p position-th, ascending.
+  std::vector<std::int64_t> VerticesOf(std::size_t position) const
+  {
+    if (!this->Whole)
+      return this->Layout->Vertices(this->BlockAt(position));
+    std::vector<std::int64_t> all(static_cast<std::size_t>(this->N));
+    std::iota(all.begin(), all.end(), std::int64_t(0));
+    return all;
+  }
   /// Empties stray solid parts: floating (grounded runs), beyond the seeds (connectivity).
   detail::ConstraintPlan::Removed RemoveStrayParts()
   {
@@ -606,6 +630,32 @@ SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
   };
   client.Describe = [](std::size_t, const BlockOutcome& out, BlockFailure& f)
   { f.EmptyIndex = out.Empty; };
+  // Processes: a block travels as its vertices' labels and the model's shares it left.
+  client.Pack = [&](std::size_t i, BlockRunner::Bytes& out)
+  {
+    for (std::int64_t v : run.VerticesOf(i))
+      out.Put(result.Labels[static_cast<std::size_t>(v)]);
+    out.Put(static_cast<std::int64_t>(tallies[i].size()));
+    for (double share : tallies[i])
+      out.Put(BitsOf(share));
+  };
+  client.Unpack = [&](std::size_t i, BlockRunner::Bytes& in, bool remote)
+  {
+    for (std::int64_t v : run.VerticesOf(i))
+    {
+      const auto label = static_cast<std::int32_t>(in.Get());
+      if (remote)
+        result.Labels[static_cast<std::size_t>(v)] = label;
+    }
+    const std::int64_t shares = in.Get();
+    if (shares < 0 || shares > 64)
+      throw Error("block exchange: a block's shares are damaged");
+    std::vector<double> tally(static_cast<std::size_t>(shares));
+    for (double& share : tally)
+      share = DoubleOf(in.Get());
+    if (remote)
+      tallies[i] = std::move(tally);
+  };
   client.After = [&](std::size_t i, const BlockOutcome&)
   {
     const std::vector<double>& phase = run.PhaseTally();
@@ -650,6 +700,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   // spreading outward from connectivity seeds one after the other.
   BlockRunner::Policy policy;
   policy.Threads = options.Threads;
+  policy.Exchange = options.Exchange;
   policy.Serial = run.Snapshots() || !parts.Parallel;
   policy.Progress = options.Progress;
   BlockDriver driver(

@@ -87,6 +87,10 @@ struct ContinuousSynthesisOptions
   /// model does not depend on it. Runs with connectivity seeds (blocks spread outward from them
   /// one after the other) and with snapshots use one thread.
   int Threads = 0;
+  /// Processes (MPI ranks) sharing the blocks of each phase: each runs its share and the
+  /// finished blocks' labels are exchanged after the phase, so every process ends with the
+  /// whole model, the same as one process computes. Inactive by default; serial runs ignore it.
+  BlockExchange Exchange;
   /// Which undecided vertex is labelled next: scan line (z, then y, then x; the dissertation),
   /// a seeded random order, or the fewest remaining labels first (ties at random).
   SiteOrder Order = SiteOrder::MinimumEntropy;

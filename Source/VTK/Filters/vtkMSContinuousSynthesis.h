@@ -93,6 +93,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Under MPI (pvbatch --mpi, a parallel pvserver): spread the blocks of each phase over the
+   * ranks and exchange the finished blocks after it. Rank 0, which holds the arrangement, sends
+   * the ranks the example and the arrangement's parameters; the model is the one a single
+   * process computes, and rank 0 outputs it (the arrangement's piece). Runs whose blocks go one
+   * after the other (connectivity seeds, snapshots) are computed on every rank. Default on.
+   */
+  vtkSetMacro(DistributeBlocks, bool);
+  vtkGetMacro(DistributeBlocks, bool);
+  vtkBooleanMacro(DistributeBlocks, bool);
+  ///@}
+
+  ///@{
   /// Vertex order (SiteOrders). Default MINIMUM_ENTROPY.
   vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
   vtkGetMacro(SiteOrder, int);
@@ -190,6 +203,7 @@ private:
   double BlockSize = 4;
   int Attempts = 20;
   int NumberOfThreads = 0;
+  bool DistributeBlocks = true;
   int SiteOrder = MINIMUM_ENTROPY;
   int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;

@@ -11,7 +11,6 @@
 #include "vtkMSSynthesisRun.h"
 #include "vtkMSTileImage.h"
 
-#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
@@ -316,33 +315,7 @@ void SetUpExchange(
         source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ? self->GetSampleFile() : "" },
       values, options));
   }
-  vtkIdType low = 0, high = 0;
-  controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
-  controller->AllReduce(&fingerprint, &high, 1, vtkCommunicator::MAX_OP);
-  if (low == 0 || low != high)
-    return;
-  options.Exchange.Rank = controller->GetLocalProcessId();
-  options.Exchange.Processes = controller->GetNumberOfProcesses();
-  options.Exchange.AllGather = [controller](const std::vector<char>& mine)
-  {
-    // The lengths first, then the bytes of every rank.
-    const int ranks = controller->GetNumberOfProcesses();
-    vtkIdType length = static_cast<vtkIdType>(mine.size());
-    std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
-    controller->AllGather(&length, lengths.data(), 1);
-    vtkIdType total = 0;
-    for (std::size_t r = 0; r < lengths.size(); ++r)
-    {
-      offsets[r] = total;
-      total += lengths[r];
-    }
-    std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
-    controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
-    std::vector<std::vector<char>> parts(lengths.size());
-    for (std::size_t r = 0; r < lengths.size(); ++r)
-      parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
-    return parts;
-  };
+  options.Exchange = vtkMSSynthesisRun::ProcessExchange(fingerprint);
 }
 
 /// What the example says of its labels goes with the model: its file, the text format's piece
