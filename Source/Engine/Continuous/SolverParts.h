@@ -11,8 +11,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <queue>
 #include <tuple>
 #include <vector>
