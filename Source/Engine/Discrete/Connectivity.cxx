@@ -31,11 +31,12 @@ struct Component
  */
 template <class LabelFn, class OpenFn, class FoundFn>
 void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& open, FoundFn&& found,
-  std::vector<std::uint8_t>& seen, std::vector<std::int64_t>& stack)
+  std::vector<std::int32_t>& seen, std::vector<std::int64_t>& stack)
 {
   const std::int64_t total = n[0] * n[1] * n[2];
   const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
   seen.assign(static_cast<std::size_t>(total), 0);
+  std::int32_t number = 0; // seen: the component's number + 1
   for (std::int64_t first = 0; first < total; ++first)
   {
     if (seen[static_cast<std::size_t>(first)] || rule.Sides(label(first)) < 0)
@@ -43,7 +44,7 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
     Component c;
     c.Low = { { first % n[0], (first / n[0]) % n[1], first / (n[0] * n[1]) } };
     c.High = c.Low;
-    seen[static_cast<std::size_t>(first)] = 1;
+    seen[static_cast<std::size_t>(first)] = ++number;
     stack.assign(1, first);
     while (!stack.empty())
     {
@@ -70,7 +71,7 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
         const int other = rule.Sides(label(q));
         if (other < 0 || !((other >> (d ^ 1)) & 1) || seen[static_cast<std::size_t>(q)])
           continue;
-        seen[static_cast<std::size_t>(q)] = 1;
+        seen[static_cast<std::size_t>(q)] = number;
         stack.push_back(q);
       }
     }
@@ -78,11 +79,14 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
   }
 }
 
-std::vector<Component> FindComponents(
-  const NetworkRule& rule, const std::vector<std::int32_t>& model, const Coord& n)
+/// The components of @p model; @p ids (when given) receives each site's component number + 1
+/// (0: not in the network).
+std::vector<Component> FindComponents(const NetworkRule& rule,
+  const std::vector<std::int32_t>& model, const Coord& n, std::vector<std::int32_t>* ids = nullptr)
 {
   std::vector<Component> out;
-  std::vector<std::uint8_t> seen;
+  std::vector<std::int32_t> scratch;
+  std::vector<std::int32_t>& seen = ids ? *ids : scratch;
   std::vector<std::int64_t> stack;
   Flood(
     rule, n, [&](std::int64_t s) { return model[static_cast<std::size_t>(s)]; },
@@ -180,7 +184,7 @@ bool NetworkGuard::Keeps(
     local = (p[0] - o[0]) + block.Dims[0] * ((p[1] - o[1]) + block.Dims[1] * (p[2] - o[2]));
     return true;
   };
-  std::vector<std::uint8_t> seen;
+  std::vector<std::int32_t> seen;
   std::vector<std::int64_t> stack;
   auto tally = [&](bool after, std::int64_t& closed, std::int64_t& open)
   {
@@ -212,98 +216,183 @@ bool NetworkGuard::Keeps(
 
 namespace
 {
-/**
- * One repair of @p c: boxes around it grown by 1, 2, 4, ... up to MaximumGrowth sites,
- * AttemptsPerBlock attempts each, until a result has fewer components than @p parts (then
- * @p parts is the new list). Block indices from @p key on.
- */
-bool RepairComponent(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
-  const SynthesisOptions& options, const Component& c, std::int64_t& key,
-  SynthesisStatistics& stats, std::vector<Component>& parts)
+/// The repairs' state: the model, the components and scratch space.
+struct Repair
 {
-  constexpr std::int64_t MaximumGrowth = 16;
-  const Coord n = solver.Size();
-  std::vector<double> sparse(static_cast<std::size_t>(rule.Labels()), 1.0);
-  for (std::size_t b = 0; b < sparse.size(); ++b)
-    if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
-      sparse[b] = 1.0 / 64;
-  std::vector<std::int32_t> savedModel, savedLast;
-  bool whole = false;
-  for (std::int64_t grow = 1; grow <= MaximumGrowth && !whole; grow *= 2)
+  BlockSolver& Solver;
+  SharedModel& Shared;
+  const NetworkRule& Rule;
+  const SynthesisOptions& Options;
+  SynthesisStatistics& Stats;
+  std::int64_t Key = 0;          ///< the next box's block index
+  std::vector<Component> Parts;  ///< the components now
+  std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
+  std::vector<double> Sparse;    ///< the network's labels' weights scaled down
+  std::vector<std::int32_t> SavedModel, SavedLast;
+
+  Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+    const SynthesisOptions& options, SynthesisStatistics& stats)
+    : Solver(solver)
+    , Shared(shared)
+    , Rule(rule)
+    , Options(options)
+    , Stats(stats)
   {
+    this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
+    this->Sparse.assign(static_cast<std::size_t>(rule.Labels()), 1.0);
+    for (std::size_t b = 0; b < this->Sparse.size(); ++b)
+      if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
+        this->Sparse[b] = 1.0 / 64;
+  }
+
+  /**
+   * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
+   * (every other one drawing the network's labels rarely, so the box keeps only the paths its
+   * surroundings force), until one leaves fewer components. Returns whether one did.
+   */
+  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow)
+  {
+    const Coord n = this->Solver.Size();
     Block box;
-    box.Index = key++;
-    whole = true;
+    box.Index = this->Key++;
     for (std::size_t a = 0; a < 3; ++a)
     {
-      box.Origin[a] = std::max<std::int64_t>(0, c.Low[a] - grow);
-      box.Dims[a] = std::min(n[a], c.High[a] + grow + 1) - box.Origin[a];
-      whole = whole && box.Dims[a] == n[a];
+      box.Origin[a] = std::max<std::int64_t>(0, lo[a] - grow);
+      box.Dims[a] = std::min(n[a], hi[a] + grow + 1) - box.Origin[a];
     }
-    savedModel.clear();
-    savedLast.clear();
+    this->SavedModel.clear();
+    this->SavedLast.clear();
     ForEachSite(box, n,
       [&](std::size_t s)
       {
-        savedModel.push_back(shared.Model[s]);
-        savedLast.push_back(shared.LastBlock[s]);
+        this->SavedModel.push_back(this->Shared.Model[s]);
+        this->SavedLast.push_back(this->Shared.LastBlock[s]);
       });
-    for (int attempt = 0; attempt < options.AttemptsPerBlock; ++attempt)
+    for (int attempt = 0; attempt < this->Options.AttemptsPerBlock; ++attempt)
     {
-      Random rng = Random::Derived(options.Seed, static_cast<std::uint64_t>(box.Index),
+      Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
         static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
-      ++stats.Attempts;
-      // Every other attempt draws the network's labels rarely: the box keeps only the paths
-      // its surroundings force, which continue those outside.
-      solver.ScaleWeights(attempt % 2 == 1 ? &sparse : nullptr);
-      const std::int64_t empty = solver.RunBlock(box, rng, stats.Assignments);
-      solver.ScaleWeights(nullptr);
+      ++this->Stats.Attempts;
+      this->Solver.ScaleWeights(attempt % 2 == 1 ? &this->Sparse : nullptr);
+      const std::int64_t empty = this->Solver.RunBlock(box, rng, this->Stats.Assignments);
+      this->Solver.ScaleWeights(nullptr);
       if (empty >= 0)
         continue; // a failed attempt leaves the model as it was
-      std::vector<Component> now = FindComponents(rule, shared.Model, n);
-      if (now.size() < parts.size())
+      std::vector<std::int32_t> ids;
+      std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
+      if (now.size() < this->Parts.size())
       {
-        parts = std::move(now);
+        this->Parts = std::move(now);
+        this->Ids = std::move(ids);
         return true;
       }
       std::size_t i = 0;
       ForEachSite(box, n,
         [&](std::size_t s)
         {
-          shared.Model[s] = savedModel[i];
-          shared.LastBlock[s] = savedLast[i++];
+          this->Shared.Model[s] = this->SavedModel[i];
+          this->Shared.LastBlock[s] = this->SavedLast[i++];
         });
     }
+    return false;
   }
-  return false;
-}
+
+  /// The nearest site of another component to component @p c (number @p c + 1) by face steps
+  /// (at most MaximumGap), in @p to, and the site of @p c it was reached from, in @p from.
+  bool Gap(std::int32_t c, std::int64_t& from, std::int64_t& to) const
+  {
+    constexpr std::int32_t MaximumGap = 16;
+    const Coord n = this->Solver.Size();
+    const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+    std::vector<std::int64_t> origin(this->Ids.size(), -1), front, next;
+    for (std::size_t s = 0; s < this->Ids.size(); ++s)
+      if (this->Ids[s] == c + 1)
+      {
+        origin[s] = static_cast<std::int64_t>(s);
+        front.push_back(static_cast<std::int64_t>(s));
+      }
+    for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
+    {
+      next.clear();
+      for (std::int64_t s : front)
+        for (int d = 0; d < 6; ++d)
+        {
+          const auto a = static_cast<std::size_t>(d / 2);
+          const std::int64_t along = (s / stride[a]) % n[a];
+          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
+            continue;
+          const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
+          if (origin[static_cast<std::size_t>(q)] >= 0)
+            continue;
+          origin[static_cast<std::size_t>(q)] = origin[static_cast<std::size_t>(s)];
+          const std::int32_t id = this->Ids[static_cast<std::size_t>(q)];
+          if (id != 0 && id != c + 1)
+          {
+            from = origin[static_cast<std::size_t>(q)];
+            to = q;
+            return true;
+          }
+          next.push_back(q);
+        }
+      front.swap(next);
+    }
+    return false;
+  }
+
+  /// Joins component @p c to its nearest neighbour through boxes over the gap between them,
+  /// else removes it (or joins it) through boxes around it grown by 1, 2, ..., 16 sites.
+  bool Fix(std::size_t c)
+  {
+    const Coord n = this->Solver.Size();
+    auto at = [&](std::int64_t s) {
+      return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+    };
+    std::int64_t from = 0, to = 0;
+    if (this->Gap(static_cast<std::int32_t>(c), from, to))
+    {
+      const Coord p = at(from), q = at(to);
+      Coord lo, hi;
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(p[a], q[a]);
+        hi[a] = std::max(p[a], q[a]);
+      }
+      for (std::int64_t grow = 1; grow <= 4; grow *= 2)
+        if (this->TryBox(lo, hi, grow))
+          return true;
+    }
+    const Component part = this->Parts[c];
+    for (std::int64_t grow = 1; grow <= 16; grow *= 2)
+      if (this->TryBox(part.Low, part.High, grow))
+        return true;
+    return false;
+  }
+};
 } // namespace
 
 std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
   const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,
   ConnectedResult& out)
 {
-  const Coord n = solver.Size();
-  std::vector<Component> parts = FindComponents(rule, shared.Model, n);
-  out.Before = static_cast<std::int64_t>(parts.size());
-  std::int64_t key = firstIndex;
-  while (static_cast<std::int64_t>(parts.size()) > out.Maximum)
+  Repair repair(solver, shared, rule, options, stats);
+  repair.Key = firstIndex;
+  out.Before = static_cast<std::int64_t>(repair.Parts.size());
+  while (static_cast<std::int64_t>(repair.Parts.size()) > out.Maximum)
   {
     // The smallest components first (the first of equal ones): the cheapest to join or remove;
     // one that can be neither gives way to the next.
-    std::vector<std::size_t> order(parts.size());
+    std::vector<std::size_t> order(repair.Parts.size());
     for (std::size_t i = 0; i < order.size(); ++i)
       order[i] = i;
     std::stable_sort(order.begin(), order.end(),
-      [&](std::size_t a, std::size_t b) { return parts[a].Sites < parts[b].Sites; });
+      [&](std::size_t a, std::size_t b) { return repair.Parts[a].Sites < repair.Parts[b].Sites; });
     bool repaired = false;
     for (std::size_t i = 0; i < order.size() && !repaired; ++i)
-      repaired = RepairComponent(
-        solver, shared, rule, options, Component(parts[order[i]]), key, stats, parts);
+      repaired = repair.Fix(order[i]);
     if (!repaired)
     {
-      const Component& c = parts[order[0]];
-      return NetworkName(options.Connected) + " has " + std::to_string(parts.size()) +
+      const Component& c = repair.Parts[order[0]];
+      return NetworkName(options.Connected) + " has " + std::to_string(repair.Parts.size()) +
         " components, more than " + std::to_string(out.Maximum) +
         ", and none could be joined to another or removed (the smallest: " +
         std::to_string(c.Sites) + " sites at " + Format(c.Low) +
@@ -311,7 +400,7 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
     }
     ++out.Repairs;
   }
-  out.Components = static_cast<std::int64_t>(parts.size());
+  out.Components = static_cast<std::int64_t>(repair.Parts.size());
   return std::string();
 }
 
