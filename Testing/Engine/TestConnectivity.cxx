@@ -110,9 +110,8 @@ std::int64_t Components(const LabelGrid& model, const std::vector<int>& sides)
     for (int a = 0; a < 3; ++a)
     {
       const std::int64_t along = (i / stride[a]) % d[static_cast<std::size_t>(a)];
-      if (along + 1 < d[static_cast<std::size_t>(a)] && mask(i) >= 0 &&
-        mask(i + stride[a]) >= 0 && ((mask(i) >> (2 * a)) & 1) &&
-        ((mask(i + stride[a]) >> (2 * a + 1)) & 1))
+      if (along + 1 < d[static_cast<std::size_t>(a)] && mask(i) >= 0 && mask(i + stride[a]) >= 0 &&
+        ((mask(i) >> (2 * a)) & 1) && ((mask(i + stride[a]) >> (2 * a + 1)) & 1))
         parent[static_cast<std::size_t>(find(i))] = find(i + stride[a]);
     }
   std::int64_t count = 0;
@@ -157,14 +156,14 @@ TEST(Connectivity, TileSidesTurnWithTheirOrientation)
   const Tileset set = Paths();
   ASSERT_EQ(set.LabelSides.size(), 11u); // empty, line 0-1, corner 0-3, t 0-3
   EXPECT_EQ(set.LabelSides[0], 0);
-  EXPECT_EQ(set.LabelSides[1], 1 | 2);             // line 0: right, left
-  EXPECT_EQ(set.LabelSides[2], 4 | 8);             // line 1: top, bottom
-  EXPECT_EQ(set.LabelSides[3], 1 | 4);             // corner 0: right, top
-  EXPECT_EQ(set.LabelSides[4], 4 | 2);             // corner 1: top, left
-  EXPECT_EQ(set.LabelSides[5], 2 | 8);             // corner 2: left, bottom
-  EXPECT_EQ(set.LabelSides[6], 8 | 1);             // corner 3: bottom, right
-  EXPECT_EQ(set.LabelSides[7], 1 | 4 | 2);         // t 0: right, top, left
-  EXPECT_EQ(set.LabelSides[8], 4 | 2 | 8);         // t 1: top, left, bottom
+  EXPECT_EQ(set.LabelSides[1], 1 | 2);     // line 0: right, left
+  EXPECT_EQ(set.LabelSides[2], 4 | 8);     // line 1: top, bottom
+  EXPECT_EQ(set.LabelSides[3], 1 | 4);     // corner 0: right, top
+  EXPECT_EQ(set.LabelSides[4], 4 | 2);     // corner 1: top, left
+  EXPECT_EQ(set.LabelSides[5], 2 | 8);     // corner 2: left, bottom
+  EXPECT_EQ(set.LabelSides[6], 8 | 1);     // corner 3: bottom, right
+  EXPECT_EQ(set.LabelSides[7], 1 | 4 | 2); // t 0: right, top, left
+  EXPECT_EQ(set.LabelSides[8], 4 | 2 | 8); // t 1: top, left, bottom
 }
 
 TEST(Connectivity, SidesThatBreakTheSymmetryAreOneLine)
@@ -190,8 +189,8 @@ TEST(Connectivity, OneNetworkWholeAndInBlocks)
 {
   const Tileset set = BundledPaths();
   const AdjacencyRules rules = set.Rules();
-  for (const auto& block : { std::array<std::int64_t, 3>{ { 0, 0, 0 } },
-         std::array<std::int64_t, 3>{ { 12, 12, 1 } } })
+  for (const auto& block :
+    { std::array<std::int64_t, 3>{ { 0, 0, 0 } }, std::array<std::int64_t, 3>{ { 12, 12, 1 } } })
     for (std::uint64_t seed : { 1u, 2u, 3u })
     {
       SynthesisOptions plain = Options(set, block, seed);
