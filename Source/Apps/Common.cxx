@@ -282,6 +282,22 @@ StatisticsJson& StatisticsJson::LabelCounts(vtkFieldData* fd)
   return this->Raw("Counts", "[" + json + "]");
 }
 
+StatisticsJson& StatisticsJson::Connected(vtkFieldData* fd)
+{
+  auto* names = vtkStringArray::SafeDownCast(fd->GetAbstractArray("ConnectedLabels"));
+  if (!names || names->GetNumberOfValues() < 1)
+    return *this;
+  std::string json = "\"labels\": " + JsonString(names->GetValue(0));
+  for (const char* key : { "Maximum", "Components", "Before", "Repairs", "Redone" })
+    if (vtkDataArray* a = fd->GetArray((std::string("Connected") + key).c_str()))
+    {
+      std::string lower = key;
+      lower[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[0])));
+      json += ", \"" + lower + "\": " + std::to_string(static_cast<long long>(a->GetTuple1(0)));
+    }
+  return this->Raw("Connected", "{" + json + "}");
+}
+
 void StatisticsJson::Write(const std::string& path) const
 {
   msynth::WriteFileAtomically(path,

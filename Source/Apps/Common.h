@@ -97,6 +97,9 @@ public:
   /// "Counts": [{"label", "minimum", "maximum", "achieved"}, ...] from field data `CountNames`,
   /// `CountMinimum`, `CountMaximum`, `CountAchieved` (vtkMSDiscreteSynthesis); nothing without.
   StatisticsJson& LabelCounts(vtkFieldData* fd);
+  /// "Connected": {"labels", "maximum", "components", "before", "repairs", "redone"} from field
+  /// data `Connected*` (vtkMSDiscreteSynthesis); nothing without.
+  StatisticsJson& Connected(vtkFieldData* fd);
   /// The file @p path, written atomically.
   void Write(const std::string& path) const;
 

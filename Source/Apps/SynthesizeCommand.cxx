@@ -287,11 +287,12 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "TYPE reaches at most one plane spacing past what holds it up (its undersides "
                 "are one spacing wide at most: eaves, no roofs spanning thin columns)")
                ->allow_extra_args(false));
-  continuous(s.add_option("--connected", o.Connected,
-                "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
-                "(default 1), so it forms that many connected objects, growing until it fills "
-                "as much of the box as of the example's")
-               ->allow_extra_args(false));
+  s.add_option("--connected", o.Connected,
+     "grids, tilesets: the sites of LABELS (values or tile names, commas between) form at most N "
+     "components (LABELS[:N], N 1 if left out), through the tiles' connecting sides. Polyhedral: "
+     "TYPE (or 'solid') grows from SEEDS seeds (TYPE:SEEDS, default 1): that many objects")
+    ->allow_extra_args(false)
+    ->group("Constraints (both kinds)");
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
     "the output, mapped onto the part's bounding box from the example's (TYPE=FILE; "
@@ -425,6 +426,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetTargetFractions(Join(o.Targets).c_str());
   synthesis->SetSoftTemperature(o.Temperature);
   synthesis->SetCounts(Join(o.Counts).c_str());
+  synthesis->SetConnected(Join(o.Connected).c_str());
   synthesis->SetMirrorSwaps(Join(o.Swaps).c_str());
   synthesis->SetTranslate(translate);
   synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);
@@ -572,7 +574,8 @@ void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std:
     .Counts("block", { o.Block[0], o.Block[1], o.Block[2] })
     .Count("seed", o.Seed)
     .Solver(fd)
-    .LabelCounts(fd);
+    .LabelCounts(fd)
+    .Connected(fd);
   // How blocks started (block synthesis only).
   if (auto* start = vtkStringArray::SafeDownCast(fd->GetAbstractArray("StartFrom")))
     json.Text("StartFrom", start->GetValue(0));

@@ -397,6 +397,7 @@ bool vtkMSDiscreteSynthesis::Solve(
           mirror.Map = run.Tiles.MirrorMap(a);
       }
       options.Counts = vtkMSLabelCounts::Read(this->Counts, &run.Tiles);
+      options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, &run.Tiles);
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
         msynth::StartFromWholeModel(rules, options);
@@ -507,6 +508,7 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
   vtkMSLabelCounts::AddFields(fd, result.Counts);
+  vtkMSLabelCounts::AddConnectedFields(fd, result.Connected);
   AddExampleFields(fd, input, this->TilesetFile.c_str(),
     this->GetActiveSource() != TILESET_SOURCE ? nullptr : &run.Tiles);
   if (this->GetActiveSource() ==
@@ -723,6 +725,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
      << this->EmptyLabel << ")\n";
   os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
   os << indent << "Counts: '" << this->Counts << "'\n";
+  os << indent << "Connected: '" << this->Connected << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

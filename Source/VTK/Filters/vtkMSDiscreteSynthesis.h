@@ -332,6 +332,16 @@ public:
   ///@}
 
   ///@{
+  /// A connected network (a hard constraint, msynth::SynthesisOptions::Connected): "LABELS[:N]"
+  /// ("" for none; default), the sites holding any of LABELS (values, or with a tileset tile or
+  /// label names; commas between) form at most N (default 1) components, through the tiles'
+  /// `connects` sides where the tileset gives them. Field data `ConnectedComponents`,
+  /// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` report the run.
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
+  ///@}
+
+  ///@{
   /// Threads for block synthesis; 0 uses one per core. The model does not depend on it.
   /// Default 0.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -574,6 +584,7 @@ private:
   std::string TargetFractions;
   double SoftTemperature = 0.01;
   std::string Counts;
+  std::string Connected;
   std::string TilesetSubset;
   std::string SampleFile;
   int PatternSize = 3;
