@@ -1,7 +1,7 @@
 """Writes Data/Continuous/town.obj, a town block of about 500 polygons for continuous synthesis
 (issue 29 item 5): two roads crossing, and in the four quarters gabled houses (ridges along x
 and along y), flat-roofed shops and trees as bounding volumes (unit boxes, tree.obj substituted
-into them), every object on the ground. Object types: wall, roof, shop, shoproof, road, tree.
+into them), every object on the ground. Object types: wall, roof, shop, tree, road, shoproof.
 
     /usr/bin/python3 Utilities/make-town.py [Data/Continuous]
 
@@ -36,6 +36,10 @@ class Obj:
         self.objects.append((name, [[self.at(p) for p in face] for face in faces]))
 
     def write(self, path):
+        # Types are numbered in order of first appearance; this order gives them the gallery's
+        # colours: walls beige, roofs red, shops blue, trees green, roads grey, shop roofs orange.
+        order = ["wall", "roof", "shop", "tree", "road", "shoproof"]
+        self.objects.sort(key=lambda o: order.index(o[0].split(".")[0]))
         faces = sum(len(f) for _, f in self.objects)
         with open(path, "w") as out:
             out.write(HEADER.format(faces=faces))
@@ -85,8 +89,8 @@ def town():
     for k in range(0, size, 2):
         tiles.add((k, lane[0]))
         tiles.add((lane[0], k))
-    for x, y in sorted(tiles):
-        obj.add("road", box(x, y, 0, x + 2, y + 2, 0.5))
+    for k, (x, y) in enumerate(sorted(tiles)):
+        obj.add("road.%03d" % (k + 1), box(x, y, 0, x + 2, y + 2, 0.5))  # one object per tile
     # The quarters: [0, 14) and [16, 30) in x and y; one layout, turned for variety.
     houses_x = [(1, 1, 7, 5), (1, 8, 7, 12), (10, 1, 13, 6)]  # ridges along the longer side
     shops = [(10, 9, 13, 13)]

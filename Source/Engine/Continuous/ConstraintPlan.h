@@ -55,8 +55,22 @@ public:
       ->Share[static_cast<std::size_t>(label) * this->Types.size() + static_cast<std::size_t>(t)];
   }
 
-  /// Connectivity: the types that only grow next to themselves (0: none).
+  /// Connectivity: the types that only grow next to their group (0: none).
   std::uint64_t GrowMask() const { return this->Grow; }
+  /**
+   * The growing types that may not be chosen where the decided neighbours reach the types
+   * @p reach: every group of growing types that @p reach does not meet. A group is the solid as
+   * a whole (grounded runs, "solid" connectivity: a roof may start on a wall) or one type (it
+   * grows only next to itself); a type in several groups needs each of them reached.
+   */
+  std::uint64_t Unreached(std::uint64_t reach) const
+  {
+    std::uint64_t out = 0;
+    for (std::uint64_t group : this->GrowGroups)
+      if (!(reach & group))
+        out |= group;
+    return out;
+  }
   /// Types that may start at vertex @p v (seeds; the ground when grounded).
   std::uint64_t StartTypes(std::int64_t v) const;
   /// Types a seed at @p v should start (the pick prefers labels holding them).
@@ -123,6 +137,7 @@ private:
   int Words = 0;
   std::vector<int> Types;
   std::uint64_t Solid = 0, Grow = 0;
+  std::vector<std::uint64_t> GrowGroups; ///< type bits that grow together (see Unreached)
   std::vector<std::uint64_t> TypesOfLabel, TypesOfEdge;
   std::vector<double> Share;
   int GroundAxis = 2;

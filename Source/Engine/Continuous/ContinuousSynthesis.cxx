@@ -468,7 +468,8 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   std::uint64_t forbidden = 0, seeded = 0;
   if (this->Plan->GrowMask())
   {
-    // Growing types only next to themselves (TVCG §4.6), or where a seed or the ground starts them.
+    // Growing types only next to their group (TVCG §4.6: a type, or the solid as a whole), or
+    // where a seed or the ground starts them.
     std::uint64_t reach = this->Plan->StartTypes(v);
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
@@ -481,7 +482,7 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
         u >= 0 ? this->Domains.Single(u) : this->Result.Labels[static_cast<std::size_t>(l->Vertex)];
       reach |= this->Plan->EdgeTypes(l->Direction ^ 1, label);
     }
-    forbidden = this->Plan->GrowMask() & ~reach;
+    forbidden = this->Plan->Unreached(reach);
     seeded = this->Plan->SeedTypes(v);
   }
   auto& c = this->Candidates;
