@@ -141,16 +141,15 @@ def tree_detail(path):
     faces.append(low[::-1])
     for k in range(8):
         faces.append([low[k], low[(k + 1) % 8], high[(k + 1) % 8], high[k]])
-    faces.append(high)
     crown = ring(0.5, 0.75)
     points.append((0.5, 0.5, 3))
     top = len(points)
-    faces.append(crown[::-1])
-    for k in range(8):
+    for k in range(8):  # the crown's underside, from the trunk out (facing down)
+        faces.append([high[k], high[(k + 1) % 8], crown[(k + 1) % 8], crown[k]])
         faces.append([crown[k], crown[(k + 1) % 8], top])
     with open(path, "w") as out:
         out.write("# A tree for the town's bounding volumes (Data/Continuous/town.obj, type tree):\n"
-                  "# a trunk and an octagonal crown inside [0, 1] x [0, 1] x [0, 3]. Made by\n"
+                  "# a trunk under an octagonal crown, one closed surface, inside [0, 1] x [0, 1] x [0, 3]. Made by\n"
                   "# Utilities/make-town.py.\no tree\n")
         out.write("".join("v %.6f %.6f %g\n" % p for p in points))
         out.write("".join("f %s\n" % " ".join(map(str, f)) for f in faces))
