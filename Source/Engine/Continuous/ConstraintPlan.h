@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace msynth
@@ -109,6 +110,24 @@ public:
    * seeds (with blocks, a later block can split a grown part).
    */
   Removed RemoveStrayParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  /// Shares within this fraction of their targets (relative) are what proportions promise.
+  static constexpr double ProportionTolerance = 0.25;
+  /// KeepProportionateParts stops once every share is this near (the steering's vertex
+  /// occupancy differs a little from the volume the mesh holds).
+  static constexpr double ProportionMargin = 0.04;
+  struct Proportioned
+  {
+    std::int64_t Removed = 0; ///< parts emptied
+    std::vector<int> Outside; ///< object types still further than ProportionTolerance
+    std::string Reason;       ///< per such type, its share, the example's, and why
+  };
+  /**
+   * With proportions steered: empties whole solid parts, one at a time, each the one whose
+   * removal brings the types' shares nearest the targets (largest relative deviation first),
+   * while that is nearer than keeping it and some type is further than ProportionMargin off.
+   * Always consistent, as RemoveStrayParts; deterministic (ties: the part found first).
+   */
+  Proportioned KeepProportionateParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
   /// Empties every connected solid part holding one of @p vertices; returns how many.
   std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
     const std::vector<std::int64_t>& vertices) const;

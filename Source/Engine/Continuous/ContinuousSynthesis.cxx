@@ -144,6 +144,11 @@ public:
   {
     return this->Plan->RemoveStrayParts(this->Result.Labels, this->Rules.EmptyLabel());
   }
+  /// Empties solid parts that keep the types' shares from their targets (proportions).
+  detail::ConstraintPlan::Proportioned KeepProportions()
+  {
+    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel());
+  }
   /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
   std::int64_t RemoveNarrowParts()
   {
@@ -673,6 +678,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.FloatingPartsRemoved = removed.Floating;
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.NarrowPartsRemoved = run.RemoveNarrowParts();
+  const auto proportioned = run.KeepProportions();
+  result.ProportionPartsRemoved = proportioned.Removed;
+  result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
@@ -681,6 +689,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (result.NarrowPartsRemoved > 0)
     result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
       " parts emptied for features under a tenth of a spacing";
+  if (proportioned.Removed > 0)
+    result.Message += ", " + std::to_string(proportioned.Removed) +
+      " parts emptied for the types' proportions";
   if (removed.BeyondSeeds > 0)
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";
