@@ -27,12 +27,14 @@ EXAMPLES = {
     "house": ("house.obj", ["--thickness", "wall:z", "--overhang", "roof", "--thickness", "wall:x:2+",
                             "--thickness", "wall:y:2+"], (16, 16, 8), (24, 24, 10)),
     "box-building": ("box-building.obj", ["--thickness", "building:z:6", "--thickness", "roof:z"],
-                     (16, 16, 10), (24, 24, 10)),
+                     (24, 24, 10), (48, 48, 10)),
     "cottage": ("cottage.obj", ["--thickness", "wall:z:8", "--overhang", "roof", "--thickness",
-                                "wall:x:2+", "--thickness", "wall:y:2+"], (16, 16, 8), (24, 24, 8)),
-    "domed-building": ("domed-building.obj", ["--thickness", "wall:z:3"], (16, 16, 10),
-                       (24, 24, 10)),
-    "town": ("town.obj", [], (40, 40, 6), (100, 100, 10)),
+                                "wall:x:2+", "--thickness", "wall:y:2+"], (12, 12, 8), (16, 16, 8)),
+    "domed-building": ("domed-building.obj", ["--thickness", "wall:z:3"], (24, 24, 10),
+                       (48, 48, 10)),
+    "town": ("town.obj", ["--thickness", "wall:z:4", "--thickness", "shop:z:6", "--thickness",
+                          "shoproof:z", "--thickness", "road:z", "--thickness", "tree:x",
+                          "--thickness", "tree:y"], (24, 24, 6), (100, 100, 10)),
 }
 
 

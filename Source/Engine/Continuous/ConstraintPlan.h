@@ -122,7 +122,8 @@ public:
     std::string Reason;       ///< per such type, its share, the example's, and why
   };
   /**
-   * With proportions steered: empties whole solid parts, one at a time, each the one whose
+   * With proportions steered (and no guide weights, which ask for other shares in places):
+   * empties whole solid parts, one at a time, each the one whose
    * removal brings the types' shares nearest the targets (largest relative deviation first),
    * while that is nearer than keeping it and some type is further than ProportionMargin off.
    * Always consistent, as RemoveStrayParts; deterministic (ties: the part found first).

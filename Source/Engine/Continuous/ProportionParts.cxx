@@ -54,8 +54,8 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   std::vector<std::int32_t>& labels, int emptyLabel) const
 {
   Proportioned out;
-  if (!this->Proportions)
-    return out;
+  if (!this->Proportions || this->HasGuideWeights)
+    return out; // guide weights ask for other shares in places: emptying parts would undo them
   std::vector<std::int64_t> component;
   const std::int64_t parts = SolidComponents(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
