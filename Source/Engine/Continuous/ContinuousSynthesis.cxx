@@ -678,7 +678,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.FloatingPartsRemoved = removed.Floating;
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.NarrowPartsRemoved = run.RemoveNarrowParts();
-  const auto proportioned = run.KeepProportions();
+  // Not on the half of a mirrored model (its seam edges are free until it is reflected).
+  const auto proportioned =
+    options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
   result.ProportionPartsRemoved = proportioned.Removed;
   result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
