@@ -692,8 +692,8 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
       " parts emptied for features under a tenth of a spacing";
   if (proportioned.Removed > 0)
-    result.Message += ", " + std::to_string(proportioned.Removed) +
-      " parts emptied for the types' proportions";
+    result.Message +=
+      ", " + std::to_string(proportioned.Removed) + " parts emptied for the types' proportions";
   if (removed.BeyondSeeds > 0)
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";

@@ -48,6 +48,56 @@ Deviation DeviationOf(const std::vector<double>& total, const std::vector<double
   }
   return d;
 }
+
+/**
+ * Each part's volume per type bit ([part][type]): the mesh of the labels (polygons oriented
+ * from InsideType to OutsideType), each polygon's divergence-theorem term added to its inside
+ * type and taken from its outside type, in the part of its first corner (a polygon bounds one
+ * part: its corners are joined by edges that touch solid). Vertex occupancy, which the
+ * steering tallies, counts regions of many planes (roof slopes) several times over.
+ */
+template <typename BitOf>
+std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels,
+  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, BitOf bitOf)
+{
+  std::vector<double> volumes(static_cast<std::size_t>(parts) * nt, 0.0);
+  if (parts == 0)
+    return volumes;
+  const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, labels);
+  const Point3 origin = arrangement.Position(0);
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    const auto& poly = mesh.Polygons[f];
+    const std::int64_t c =
+      component[static_cast<std::size_t>(mesh.PointVertex[static_cast<std::size_t>(poly[0])])];
+    if (c < 0)
+      continue;
+    double volume = 0; // fan from the first corner: a·(b × e) / 6, or the area in 2D
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+    {
+      double a[3], b[3], e[3];
+      for (std::size_t i = 0; i < 3; ++i)
+      {
+        a[i] = mesh.Points[static_cast<std::size_t>(poly[0])][i] - origin[i];
+        b[i] = mesh.Points[static_cast<std::size_t>(poly[k])][i] - origin[i];
+        e[i] = mesh.Points[static_cast<std::size_t>(poly[k + 1])][i] - origin[i];
+      }
+      volume += mesh.Planar
+        ? ((b[0] - a[0]) * (e[1] - a[1]) - (b[1] - a[1]) * (e[0] - a[0])) / 2
+        : (a[0] * (b[1] * e[2] - b[2] * e[1]) + a[1] * (b[2] * e[0] - b[0] * e[2]) +
+            a[2] * (b[0] * e[1] - b[1] * e[0])) /
+          6;
+    }
+    const int inside = bitOf(mesh.InsideType[f]);
+    const int outside = mesh.Planar ? 0 : bitOf(mesh.OutsideType[f]);
+    if (inside > 0)
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += volume;
+    if (outside > 0)
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= volume;
+  }
+  return volumes;
+}
 } // namespace
 
 ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
@@ -61,51 +111,13 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
     this->TypesOfLabel, component);
   const std::size_t nt = this->Types.size();
-  // Each part's volume per type, and the model's: the mesh of the labels (polygons oriented
-  // from InsideType to OutsideType), each polygon's divergence-theorem term added to its inside
-  // type and taken from its outside type, in the part of its first corner (a polygon bounds one
-  // part: its corners are joined by edges that touch solid). Vertex occupancy, which the
-  // steering tallies, counts regions of many planes (roof slopes) several times over.
-  std::vector<double> occupancy(static_cast<std::size_t>(parts) * nt, 0.0), total(nt, 0.0);
-  if (parts > 0)
-  {
-    const ContinuousMesh mesh = ExtractMesh(this->Analysis, this->Arrangement, labels);
-    const Point3 origin = this->Arrangement.Position(0);
-    auto at = [&](std::int32_t p, std::size_t k) { return mesh.Points[static_cast<std::size_t>(p)][k] - origin[k]; };
-    for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
-    {
-      const auto& poly = mesh.Polygons[f];
-      const std::int64_t c =
-        component[static_cast<std::size_t>(mesh.PointVertex[static_cast<std::size_t>(poly[0])])];
-      if (c < 0)
-        continue;
-      double volume = 0; // fan from the first corner: a·(b × c) / 6, or the area in 2D
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k)
-      {
-        double a[3], b[3], e[3];
-        for (std::size_t i = 0; i < 3; ++i)
-        {
-          a[i] = at(poly[0], i);
-          b[i] = at(poly[k], i);
-          e[i] = at(poly[k + 1], i);
-        }
-        volume += mesh.Planar
-          ? ((b[0] - a[0]) * (e[1] - a[1]) - (b[1] - a[1]) * (e[0] - a[0])) / 2
-          : (a[0] * (b[1] * e[2] - b[2] * e[1]) + a[1] * (b[2] * e[0] - b[0] * e[2]) +
-              a[2] * (b[0] * e[1] - b[1] * e[0])) /
-            6;
-      }
-      const int inside = this->BitOf(mesh.InsideType[f]);
-      const int outside = mesh.Planar ? 0 : this->BitOf(mesh.OutsideType[f]);
-      if (inside > 0)
-        occupancy[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += volume;
-      if (outside > 0)
-        occupancy[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= volume;
-    }
-    for (std::int64_t c = 0; c < parts; ++c)
-      for (std::size_t t = 1; t < nt; ++t)
-        total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
-  }
+  // Each part's volume per type, and the model's.
+  const std::vector<double> occupancy = PartVolumes(this->Analysis, this->Arrangement, labels,
+    component, parts, nt, [this](int type) { return this->BitOf(type); });
+  std::vector<double> total(nt, 0.0);
+  for (std::int64_t c = 0; c < parts; ++c)
+    for (std::size_t t = 1; t < nt; ++t)
+      total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
