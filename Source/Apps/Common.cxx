@@ -311,9 +311,9 @@ void StatisticsJson::Write(const std::string& path) const
     });
 }
 
-std::string MessageOf(vtkFieldData* fd)
+std::string MessageOf(vtkFieldData* fd, const char* name)
 {
-  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
+  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray(name));
   return message && message->GetNumberOfValues() > 0 ? message->GetValue(0) : std::string();
 }
 

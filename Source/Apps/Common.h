@@ -108,7 +108,7 @@ private:
 };
 
 /// The solver's one-line message from field data `Message`.
-std::string MessageOf(vtkFieldData* fd);
+std::string MessageOf(vtkFieldData* fd, const char* name = "Message");
 /// The one-value count @p name of field data (0 when it is not there).
 long long CountOf(vtkFieldData* fd, const char* name);
 

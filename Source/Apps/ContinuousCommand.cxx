@@ -104,6 +104,9 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
     .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
     .Count("NarrowPartsRemoved", CountOf(fd, "NarrowPartsRemoved"))
+    // Proportions: parts emptied to keep the types' shares, and the types still outside 25 %.
+    .Count("ProportionPartsRemoved", CountOf(fd, "ProportionPartsRemoved"))
+    .Text("ProportionsOutside", MessageOf(fd, "ProportionsOutside"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))
     .Number("MatchError", match ? match->GetTuple1(0) : 0.0)

@@ -168,6 +168,11 @@ public:
   {
     return this->Plan->RemoveStrayParts(this->Result.Labels, this->Rules.EmptyLabel());
   }
+  /// Empties solid parts that keep the types' shares from their targets (proportions).
+  detail::ConstraintPlan::Proportioned KeepProportions()
+  {
+    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel());
+  }
   /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
   std::int64_t RemoveNarrowParts()
   {
@@ -492,7 +497,8 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   std::uint64_t forbidden = 0, seeded = 0;
   if (this->Plan->GrowMask())
   {
-    // Growing types only next to themselves (TVCG §4.6), or where a seed or the ground starts them.
+    // Growing types only next to their group (TVCG §4.6: a type, or the solid as a whole), or
+    // where a seed or the ground starts them.
     std::uint64_t reach = this->Plan->StartTypes(v);
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
@@ -505,7 +511,7 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
         u >= 0 ? this->Domains.Single(u) : this->Result.Labels[static_cast<std::size_t>(l->Vertex)];
       reach |= this->Plan->EdgeTypes(l->Direction ^ 1, label);
     }
-    forbidden = this->Plan->GrowMask() & ~reach;
+    forbidden = this->Plan->Unreached(reach);
     seeded = this->Plan->SeedTypes(v);
   }
   auto& c = this->Candidates;
@@ -723,6 +729,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.FloatingPartsRemoved = removed.Floating;
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.NarrowPartsRemoved = run.RemoveNarrowParts();
+  // Not on the half of a mirrored model (its seam edges are free until it is reflected).
+  const auto proportioned =
+    options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
+  result.ProportionPartsRemoved = proportioned.Removed;
+  result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
@@ -731,6 +742,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (result.NarrowPartsRemoved > 0)
     result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
       " parts emptied for features under a tenth of a spacing";
+  if (proportioned.Removed > 0)
+    result.Message +=
+      ", " + std::to_string(proportioned.Removed) + " parts emptied for the types' proportions";
   if (removed.BeyondSeeds > 0)
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";

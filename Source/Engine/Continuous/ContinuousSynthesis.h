@@ -124,6 +124,10 @@ struct ContinuousSynthesisResult
   /// Solid parts emptied because a corner came closer than MinimumFeatureFraction of the
   /// smallest spacing to another plane's face, edge or corner (ArrangementRules::NarrowCorners).
   std::int64_t NarrowPartsRemoved = 0;
+  /// Proportions steered: solid parts emptied to bring the types' shares within the tolerance
+  /// (ConstraintPlan::KeepProportionateParts), and the types still outside it with why ("").
+  std::int64_t ProportionPartsRemoved = 0;
+  std::string ProportionsOutside;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).
   std::int64_t PartsBeyondSeedsRemoved = 0;

@@ -24,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
@@ -374,6 +375,10 @@ void vtkMSContinuousSynthesis::FillOutput(
     fields, "NarrowPartsRemoved", static_cast<vtkIdType>(result.NarrowPartsRemoved));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "PartsBeyondSeedsRemoved", static_cast<vtkIdType>(result.PartsBeyondSeedsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "ProportionPartsRemoved", static_cast<vtkIdType>(result.ProportionPartsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkStringArray>(
+    fields, "ProportionsOutside", result.ProportionsOutside);
   for (const auto& [type, share] : m.TypeShares)
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       fields, ("TypeShare_" + std::to_string(type)).c_str(), share);

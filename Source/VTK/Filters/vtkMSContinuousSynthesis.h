@@ -25,7 +25,9 @@
  * `GroundedComponents`, `FloatingPartsRemoved`, `PartsBeyondSeedsRemoved` and `TypeShare_<type>`
  * (vertex occupancy; the mesh filter gives volume shares). Always: `NarrowPartsRemoved`, the solid
  * parts emptied because a corner came within a tenth of the smallest spacing of another plane's
- * face, edge or corner (no slivers).
+ * face, edge or corner (no slivers), and with proportions steered `ProportionPartsRemoved`
+ * (solid parts emptied to bring the types' shares within 25 % of the example's) and
+ * `ProportionsOutside` (the types still outside, their shares and why; empty when none).
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
