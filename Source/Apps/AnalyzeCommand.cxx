@@ -5,6 +5,7 @@
 #include "Commands.h"
 #include "Common.h"
 #include "Examples.h"
+#include "Synthesize.h"
 
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -126,6 +127,14 @@ int PolyhedralToFolder(
   return 0;
 }
 } // namespace
+
+CLI::Option* AddViaInfallible(CLI::App& synthesize, SynthesizeOptions& o)
+{
+  return synthesize.add_flag("--via-infallible", o.ViaInfallible,
+    "label grids: run Algorithm 3.1 (whole model, scan-line order, one attempt) on an "
+    "infallible refinement E_I of the example and map the model back (D 3.3.8; msynth analyze "
+    "--infallible shows the search); an error when none is found");
+}
 
 CommandRunner AddAnalyze(CLI::App& app)
 {

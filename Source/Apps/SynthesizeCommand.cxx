@@ -155,6 +155,7 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_flag("--no-fallback", o.NoFallback,
     "when whole-model synthesis fails every attempt, fail, rather than synthesize the model in "
     "32-site blocks instead"));
+  discrete(AddViaInfallible(s, o));
   discrete(s.add_option("--start", o.Start,
               "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
               "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
@@ -392,6 +393,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
   synthesis->SetRepairFailedBlocks(!o.NoRepair);
   synthesis->SetBlocksWhenWholeFails(!o.NoFallback);
+  synthesis->SetViaInfallible(o.ViaInfallible);
   synthesis->SetBlockStart(IndexIn(o.Start.empty() ? "auto" : o.Start, Starts));
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));

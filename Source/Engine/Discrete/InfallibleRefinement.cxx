@@ -511,4 +511,55 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
   return result;
 }
 
+namespace
+{
+/// The first option that --via-infallible cannot honour, or empty.
+std::string Unsupported(const SynthesisOptions& o)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+    if (o.BlockSize[a] > 0 && o.BlockSize[a] < o.Size[a])
+      return "blocks (it runs Algorithm 3.1 on the whole model)";
+  if (o.Order != SiteOrder::ScanLine)
+    return "a site order other than scan-line (the proof of infallibility is for scan-line order)";
+  if (o.Pins || o.Start)
+    return "pinned sites or a given start";
+  if (!o.Counts.empty() || o.Soft.Active() || o.Guide)
+    return "counts, soft targets or a guide";
+  for (std::size_t a = 0; a < 3; ++a)
+    if (o.Symmetry[a].Enabled || o.Translate[a].Enabled)
+      return "symmetry";
+  if (o.Rotate.Enabled)
+    return "symmetry";
+  for (const auto& b : o.Boundary)
+    if (b)
+      return "boundary labels";
+  return {};
+}
+} // namespace
+
+SynthesisResult SynthesizeViaInfallible(const LabelGrid& example, SynthesisOptions options,
+  const RefinementOptions& search, InfallibleRefinement* refinement)
+{
+  const std::string unsupported = Unsupported(options);
+  if (!unsupported.empty())
+    throw Error("synthesis via an infallible refinement does not take " + unsupported);
+  InfallibleRefinement found = FindInfallibleRefinement(example, options.Size, search);
+  if (!found.Found)
+    throw Error("no infallible refinement of the example was found: " + found.Summary);
+  options.BlocksWhenWholeFails = false;
+  options.AttemptsPerBlock = 1;
+  options.BacktracksPerAttempt = 0;
+  options.BlockSize = { { 0, 0, 0 } };
+  options.Example = &found.Refined;
+  SynthesisResult result = Synthesize(
+    AdjacencyRules::FromExample(ExampleAnalysis::FromExample(found.Refined)), options);
+  if (result.Succeeded())
+    result.Model = MapLabels(result.Model, found.Map);
+  result.Message += std::string(result.Message.empty() ? "" : "; ") + "via an infallible " +
+    "refinement (D 3.3.8): " + found.Summary;
+  if (refinement)
+    *refinement = std::move(found);
+  return result;
+}
+
 } // namespace msynth

@@ -29,6 +29,7 @@
  * variants before label a + 1's). Everything is deterministic.
  */
 #include "Core/LabelGrid.h"
+#include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/Infallibility.h"
 
 #include <array>
@@ -108,5 +109,17 @@ Equation313Check CheckEquation313(const LabelGrid& example, const LabelGrid& ref
 
 /// f(@p model). @throw Error naming a label that f does not map.
 LabelGrid MapLabels(const LabelGrid& model, const LabelMap& f);
+
+/**
+ * D§3.3.8: finds E_I (FindInfallibleRefinement for @p options.Size), runs Algorithm 3.1 on it
+ * (the whole model, scan-line order, one attempt, no backtracking, no fallback to blocks: a
+ * proved example cannot fail) and maps the model back with f. The message names the split.
+ * Fills @p refinement when given.
+ * @throw Error when no refinement is found, or for options that speak of E's labels or of blocks
+ * (blocks, another site order, pins, counts, soft targets, a guide, symmetry, boundary labels,
+ * a given start).
+ */
+SynthesisResult SynthesizeViaInfallible(const LabelGrid& example, SynthesisOptions options,
+  const RefinementOptions& search = {}, InfallibleRefinement* refinement = nullptr);
 
 } // namespace msynth
