@@ -480,7 +480,13 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
       const Equation313Check check =
         CheckEquation313(example, c.Grid, c.Map, outputSize, 1, options);
       step.Equation313 = check.Text;
-      step.Accepted = check.Holds && check.Sizes > 0;
+      // Accepted when checked on outputs of at least 2 sites along every axis of the output.
+      bool enough = check.Holds && check.Sizes > 0;
+      for (std::size_t a = 0; a < 3; ++a)
+        enough = enough && check.Largest[a] >= std::min<std::int64_t>(2, outputSize[a]);
+      step.Accepted = enough;
+      if (check.Holds && !enough)
+        step.Equation313 += " (too small a check to accept)";
       if (step.Accepted) // at the faces too?
       {
         const Equation313Check faces =
