@@ -136,15 +136,18 @@ TEST(InfallibleRefinement, NotFoundIsReportedAndRefused)
   const LabelGrid e =
     Grid2D({ { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 5, 1, 4, 0 }, { 0, 0, 0, 5, 7, 3, 4, 0 },
       { 0, 3, 1, 6, 7, 6, 2, 0 }, { 0, 0, 0, 5, 7, 6, 3, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } });
-  const auto r = FindInfallibleRefinement(e, { { 24, 24, 1 } });
+  RefinementOptions some;
+  some.MaxCandidates = 30;
+  const auto r = FindInfallibleRefinement(e, { { 24, 24, 1 } }, some);
   EXPECT_FALSE(r.Found);
-  EXPECT_GT(r.Steps.size(), 10u);
+  EXPECT_EQ(r.Steps.size(), 31u);
   EXPECT_NE(r.Summary.find("no refinement"), std::string::npos);
   SynthesisOptions o;
   o.Size = { { 24, 24, 1 } };
   try
   {
-    SynthesizeViaInfallible(e, o);
+    some.MaxCandidates = 5;
+    SynthesizeViaInfallible(e, o, some);
     ADD_FAILURE() << "no error";
   }
   catch (const Error& error)
