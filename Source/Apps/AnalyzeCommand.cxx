@@ -7,6 +7,7 @@
 #include "Examples.h"
 #include "Synthesize.h"
 
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkMSLabelArrays.h"
@@ -17,7 +18,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkXMLImageDataWriter.h"
-#include "vtkFieldData.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include "Discrete/InfallibleRefinement.h"
@@ -67,23 +67,21 @@ int InfallibleSearch(const AnalyzeOptions& o)
 {
   const ExampleTables a = AnalyzeLabelGrid(o.Example);
   vtkImageData* image = a.Reader->GetOutput();
-  const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(
-    image, vtkMSLabelArrays::FindLabelArray(image, nullptr));
+  const msynth::LabelGrid example =
+    vtkMSLabelArrays::ToLabelGrid(image, vtkMSLabelArrays::FindLabelArray(image, nullptr));
   std::array<std::int64_t, 3> size{ { 1, 1, 1 } };
   for (std::size_t i = 0; i < 3; ++i)
-    size[i] = o.Size.empty() ? (example.Size(static_cast<int>(i)) > 1 ? 64 : 1)
-                             : o.Size[i];
+    size[i] = o.Size.empty() ? (example.Size(static_cast<int>(i)) > 1 ? 64 : 1) : o.Size[i];
   const msynth::InfallibleRefinement r = msynth::FindInfallibleRefinement(example, size);
-  std::cout << "refinements of " << o.Example << " (" << r.Steps.front().Labels
-            << " labels) for " << size[0] << " x " << size[1] << " x " << size[2]
-            << " outputs, smallest first:\n"
+  std::cout << "refinements of " << o.Example << " (" << r.Steps.front().Labels << " labels) for "
+            << size[0] << " x " << size[1] << " x " << size[2] << " outputs, smallest first:\n"
             << "step | split | labels | Algorithm 3.6 | Eq. 3.13 | why\n";
   int n = 0;
   for (const auto& step : r.Steps)
     std::cout << n++ << " | " << step.Split << " | " << step.Labels << " | "
               << (step.Proved ? "proved" : "not proved") << " | "
-              << (step.Equation313.empty() ? "-" : step.Equation313) << " | "
-              << step.Infallibility << "\n";
+              << (step.Equation313.empty() ? "-" : step.Equation313) << " | " << step.Infallibility
+              << "\n";
   std::cout << (r.Found ? "infallible: " : "not converted: ") << r.Summary << "\n";
   if (!r.Found)
     return 3;
@@ -92,8 +90,8 @@ int InfallibleSearch(const AnalyzeOptions& o)
     if (from != to)
       std::cout << " " << from << "->" << to;
   std::cout << (r.Map.size() == static_cast<std::size_t>(r.Steps.front().Labels)
-                   ? " (identity)\n"
-                   : " (other labels map to themselves)\n");
+      ? " (identity)\n"
+      : " (other labels map to themselves)\n");
   if (!o.WriteInfallible.empty())
   {
     vtkNew<vtkImageData> out;
@@ -166,7 +164,8 @@ CommandRunner AddAnalyze(CLI::App& app)
     if (o->Infallible)
     {
       if (IsTileset(o->Example) || IsPolyhedral(o->Example) || IsSample(o->Example))
-        throw UsageError{ "'" + o->Example + "': --infallible needs a label grid (.vti, .txt, .vox)" };
+        throw UsageError{ "'" + o->Example +
+          "': --infallible needs a label grid (.vti, .txt, .vox)" };
       return InfallibleSearch(*o);
     }
     if (IsTileset(o->Example))

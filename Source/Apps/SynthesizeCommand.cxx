@@ -155,7 +155,6 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_flag("--no-fallback", o.NoFallback,
     "when whole-model synthesis fails every attempt, fail, rather than synthesize the model in "
     "32-site blocks instead"));
-  discrete(AddViaInfallible(s, o));
   discrete(s.add_option("--start", o.Start,
               "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
               "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
@@ -245,6 +244,8 @@ void AddFixedOptions(CLI::App& s, Registered& r)
        "with --fixed: sites of label 0 (a MagicaVoxel model's empty voxels) are synthesized too")
       ->needs("--fixed")
       ->group(group));
+  r.DiscreteOnly.push_back(
+    AddViaInfallible(s, o)->group("Discrete synthesis (label grids, tilesets)"));
 }
 
 void AddSampleOptions(CLI::App& s, Registered& r)

@@ -81,8 +81,8 @@ TEST(InfallibleRefinement, WholeRunsOnTheRefinementNeverFail)
     for (std::uint64_t seed = 0; seed < 20; ++seed)
     {
       SynthesisOptions o;
-      o.Size = { { 12 + static_cast<std::int64_t>(seed % 9), 8 + static_cast<std::int64_t>(seed % 5),
-        1 } };
+      o.Size = { { 12 + static_cast<std::int64_t>(seed % 9),
+        8 + static_cast<std::int64_t>(seed % 5), 1 } };
       o.Seed = seed;
       const SynthesisResult m = SynthesizeViaInfallible(e, o);
       ASSERT_TRUE(m.Succeeded()) << "seed " << seed << ": " << m.Message;

@@ -181,7 +181,9 @@ LabelGrid Split(
       ++count[{ labels[i], keys[i] }];
   for (auto& [a, known] : variants)
     std::stable_sort(known.begin(), known.end(),
-      [&, a = a](const auto& p, const auto& q) { return count[{ a, p }] > count[{ a, q }]; });
+      [&, a = a](const auto& p, const auto& q) {
+        return count[{ a, p }] > count[{ a, q }];
+      });
   // Values: variant 0 keeps a; the others follow the largest label, label by label.
   Label next = variants.rbegin()->first;
   std::map<Label, std::vector<Label>> value;
@@ -213,16 +215,15 @@ public:
       this->Next[static_cast<std::size_t>(axis)].assign(
         static_cast<std::size_t>(this->K * this->Words), 0);
       for (const auto& t : a.Transitions(axis))
-        this->Next[static_cast<std::size_t>(axis)]
-                  [static_cast<std::size_t>(t.From * this->Words + t.To / 64)] |=
-          std::uint64_t(1) << (t.To % 64);
+        this->Next[static_cast<std::size_t>(axis)][static_cast<std::size_t>(
+          t.From * this->Words + t.To / 64)] |= std::uint64_t(1) << (t.To % 64);
     }
   }
   /// Labels that may follow @p from along +@p axis, ANDed into @p set.
   void Restrict(int axis, int from, std::vector<std::uint64_t>& set) const
   {
-    const auto* row = &this->Next[static_cast<std::size_t>(axis)]
-                                 [static_cast<std::size_t>(from * this->Words)];
+    const auto* row =
+      &this->Next[static_cast<std::size_t>(axis)][static_cast<std::size_t>(from * this->Words)];
     for (int w = 0; w < this->Words; ++w)
       set[static_cast<std::size_t>(w)] &= row[w];
   }
@@ -238,8 +239,8 @@ private:
 class Enumeration
 {
 public:
-  Enumeration(const Successors& rules, const std::array<std::int64_t, 3>& dims,
-    std::int64_t& nodes, std::int64_t maxNodes)
+  Enumeration(const Successors& rules, const std::array<std::int64_t, 3>& dims, std::int64_t& nodes,
+    std::int64_t maxNodes)
     : Rules(rules)
     , Dims(dims)
     , Nodes(nodes)
@@ -312,6 +313,43 @@ std::string SizeText(const std::array<std::int64_t, 3>& s)
 {
   return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
 }
+/// A refinement to try.
+struct Candidate
+{
+  std::string Split;
+  LabelGrid Grid;
+  LabelMap Map;
+  std::size_t Labels;
+};
+
+/// Every context applied to each label and to all, without repeats, the smallest first.
+std::vector<Candidate> Candidates(const LabelGrid& example, const ExampleAnalysis& analysis)
+{
+  std::vector<Candidate> candidates;
+  std::set<std::vector<Label>> seen;
+  for (const Context& context : Contexts(example))
+  {
+    std::vector<std::vector<Label>> scopes;
+    for (Label v : analysis.Labels())
+      scopes.push_back({ v });
+    scopes.push_back({});
+    for (const auto& scope : scopes)
+    {
+      Candidate c;
+      c.Grid = Split(example, context, scope, c.Map);
+      c.Labels = c.Map.size();
+      if (c.Labels == static_cast<std::size_t>(analysis.NumberOfLabels()) ||
+        !seen.insert(c.Grid.Data()).second)
+        continue;
+      c.Split = (scope.empty() ? std::string("every label") : "label " + std::to_string(scope[0])) +
+        " by " + context.Name;
+      candidates.push_back(std::move(c));
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+    [](const Candidate& a, const Candidate& b) { return a.Labels < b.Labels; });
+  return candidates;
+}
 } // namespace
 
 LabelGrid MapLabels(const LabelGrid& model, const LabelMap& f)
@@ -342,8 +380,8 @@ Equation313Check CheckEquation313(const LabelGrid& example, const LabelGrid& ref
   {
     const int i = ia.IndexOf(from), e = ea.IndexOf(to);
     if (i >= 0 && e >= 0)
-      preimage[static_cast<std::size_t>(e)][static_cast<std::size_t>(i / 64)] |=
-        std::uint64_t(1) << (i % 64);
+      preimage[static_cast<std::size_t>(e)][static_cast<std::size_t>(i / 64)] |= std::uint64_t(1)
+        << (i % 64);
   }
   Equation313Check check;
   std::int64_t nodes = 0;
@@ -414,8 +452,8 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
   {
     const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(grid));
     step.Labels = rules.NumberOfLabels();
-    const InfallibilityReport report = AnalyzeInfallibility(
-      rules, outputSize, options.MaxConfigurations, rules.NumberOfLabels() <= 64 ? options.MaxRegion : 2);
+    const InfallibilityReport report = AnalyzeInfallibility(rules, outputSize,
+      options.MaxConfigurations, rules.NumberOfLabels() <= 64 ? options.MaxRegion : 2);
     step.Proved = report.Proved;
     step.Infallibility = report.Explanation;
     return report;
@@ -436,37 +474,7 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
   }
   result.Steps.push_back(none);
 
-  // Every candidate, then the smallest first.
-  struct Candidate
-  {
-    std::string Split;
-    LabelGrid Grid;
-    LabelMap Map;
-    std::size_t Labels;
-  };
-  std::vector<Candidate> candidates;
-  std::set<std::vector<Label>> seen;
-  for (const Context& context : Contexts(example))
-  {
-    std::vector<std::vector<Label>> scopes;
-    for (Label v : analysis.Labels())
-      scopes.push_back({ v });
-    scopes.push_back({});
-    for (const auto& scope : scopes)
-    {
-      Candidate c;
-      c.Grid = Split(example, context, scope, c.Map);
-      c.Labels = c.Map.size();
-      if (c.Labels == static_cast<std::size_t>(analysis.NumberOfLabels()) ||
-        !seen.insert(c.Grid.Data()).second)
-        continue;
-      c.Split = (scope.empty() ? std::string("every label") : "label " + std::to_string(scope[0])) +
-        " by " + context.Name;
-      candidates.push_back(std::move(c));
-    }
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-    [](const Candidate& a, const Candidate& b) { return a.Labels < b.Labels; });
+  std::vector<Candidate> candidates = Candidates(example, analysis);
   int tried = 0;
   for (const Candidate& c : candidates)
   {
@@ -501,17 +509,16 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
         result.Report = report;
         result.Check = check;
         result.Steps.push_back(step);
-        result.Summary = "refined by splitting " + c.Split + ": " +
-          std::to_string(c.Labels) + " labels instead of " +
-          std::to_string(analysis.NumberOfLabels()) + ", proved infallible; Eq. 3.13 " +
-          check.Text;
+        result.Summary = "refined by splitting " + c.Split + ": " + std::to_string(c.Labels) +
+          " labels instead of " + std::to_string(analysis.NumberOfLabels()) +
+          ", proved infallible; Eq. 3.13 " + check.Text;
         return result;
       }
     }
     result.Steps.push_back(step);
   }
-  result.Summary = "no refinement among the " + std::to_string(std::min<std::size_t>(
-                                                  candidates.size(), options.MaxCandidates)) +
+  result.Summary = "no refinement among the " +
+    std::to_string(std::min<std::size_t>(candidates.size(), options.MaxCandidates)) +
     " tried (of " + std::to_string(candidates.size()) +
     ") is both proved infallible and true to Eq. 3.13";
   return result;
@@ -557,8 +564,8 @@ SynthesisResult SynthesizeViaInfallible(const LabelGrid& example, SynthesisOptio
   options.BacktracksPerAttempt = 0;
   options.BlockSize = { { 0, 0, 0 } };
   options.Example = &found.Refined;
-  SynthesisResult result = Synthesize(
-    AdjacencyRules::FromExample(ExampleAnalysis::FromExample(found.Refined)), options);
+  SynthesisResult result =
+    Synthesize(AdjacencyRules::FromExample(ExampleAnalysis::FromExample(found.Refined)), options);
   if (result.Succeeded())
     result.Model = MapLabels(result.Model, found.Map);
   result.Message += std::string(result.Message.empty() ? "" : "; ") + "via an infallible " +

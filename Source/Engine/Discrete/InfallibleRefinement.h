@@ -46,10 +46,10 @@ using LabelMap = std::vector<std::pair<Label, Label>>;
 
 struct RefinementOptions
 {
-  int MaxCandidates = 200;                 ///< refinements tested (after the example itself)
+  int MaxCandidates = 200;                ///< refinements tested (after the example itself)
   std::int64_t MaxConfigurations = 20000; ///< per infallibility analysis (and region size)
-  int MaxRegion = 3;                       ///< region sizes of the analysis (Infallibility.h)
-  std::int64_t CheckNodes = 2000000;       ///< search nodes of one Eq. 3.13 check
+  int MaxRegion = 3;                      ///< region sizes of the analysis (Infallibility.h)
+  std::int64_t CheckNodes = 2000000;      ///< search nodes of one Eq. 3.13 check
   int CheckEdge = 5; ///< outputs of up to this many sites per axis (with the frame)
 };
 
