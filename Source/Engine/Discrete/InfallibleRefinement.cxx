@@ -322,13 +322,27 @@ struct Candidate
   std::size_t Labels;
 };
 
-/// Every context applied to each label and to all, without repeats, the smallest first.
-std::vector<Candidate> Candidates(const LabelGrid& example, const ExampleAnalysis& analysis)
+/// Every context applied to each label and to all, without repeats, the smallest first. The
+/// list stops (@p cut set) once the sites visited or the sites of the grids kept pass a budget,
+/// which bounds time and memory on large examples.
+std::vector<Candidate> Candidates(
+  const LabelGrid& example, const ExampleAnalysis& analysis, bool& cut)
 {
+  constexpr std::int64_t MaxVisits = 200000000, MaxKept = 20000000;
+  std::int64_t visits = 0, kept = 0;
+  cut = false;
   std::vector<Candidate> candidates;
   std::set<std::vector<Label>> seen;
   for (const Context& context : Contexts(example))
   {
+    const std::int64_t cost =
+      example.NumberOfSites() * static_cast<std::int64_t>(context.Offsets.size() + 1);
+    if (visits + cost * (analysis.NumberOfLabels() + 1) > MaxVisits || kept > MaxKept)
+    {
+      cut = true;
+      break;
+    }
+    visits += cost * (analysis.NumberOfLabels() + 1);
     std::vector<std::vector<Label>> scopes;
     for (Label v : analysis.Labels())
       scopes.push_back({ v });
@@ -343,6 +357,7 @@ std::vector<Candidate> Candidates(const LabelGrid& example, const ExampleAnalysi
         continue;
       c.Split = (scope.empty() ? std::string("every label") : "label " + std::to_string(scope[0])) +
         " by " + context.Name;
+      kept += c.Grid.NumberOfSites();
       candidates.push_back(std::move(c));
     }
   }
@@ -474,7 +489,8 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
   }
   result.Steps.push_back(none);
 
-  std::vector<Candidate> candidates = Candidates(example, analysis);
+  bool cut = false;
+  std::vector<Candidate> candidates = Candidates(example, analysis, cut);
   int tried = 0;
   for (const Candidate& c : candidates)
   {
@@ -520,7 +536,8 @@ InfallibleRefinement FindInfallibleRefinement(const LabelGrid& example,
   result.Summary = "no refinement among the " +
     std::to_string(std::min<std::size_t>(candidates.size(), options.MaxCandidates)) +
     " tried (of " + std::to_string(candidates.size()) +
-    ") is both proved infallible and true to Eq. 3.13";
+    ") is both proved infallible and true to Eq. 3.13" +
+    (cut ? "; the list of refinements was cut short by its budget (a large example)" : "");
   return result;
 }
 
