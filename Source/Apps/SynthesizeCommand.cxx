@@ -244,6 +244,8 @@ void AddFixedOptions(CLI::App& s, Registered& r)
        "with --fixed: sites of label 0 (a MagicaVoxel model's empty voxels) are synthesized too")
       ->needs("--fixed")
       ->group(group));
+  r.DiscreteOnly.push_back(
+    AddViaInfallible(s, o)->group("Discrete synthesis (label grids, tilesets)"));
 }
 
 void AddSampleOptions(CLI::App& s, Registered& r)
@@ -393,6 +395,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
   synthesis->SetRepairFailedBlocks(!o.NoRepair);
   synthesis->SetBlocksWhenWholeFails(!o.NoFallback);
+  synthesis->SetViaInfallible(o.ViaInfallible);
   synthesis->SetBlockStart(IndexIn(o.Start.empty() ? "auto" : o.Start, Starts));
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSDiscreteSynthesis.h"
+
+#include "Discrete/InfallibleRefinement.h"
 #include "vtkMSDiscreteSynthesisOptions.h"
 
 #include "vtkMSEngineBridge.h"
@@ -372,12 +374,21 @@ bool vtkMSDiscreteSynthesis::Solve(
     {
       if (this->GetActiveSource() == SAMPLE_SOURCE)
       {
+        if (this->ViaInfallible)
+          throw std::runtime_error("ViaInfallible needs a label-grid example, not a sample");
         this->SolveSample(options);
         return;
       }
       if (this->GetActiveSource() != TILESET_SOURCE)
       {
         const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
+        if (this->ViaInfallible)
+        {
+          if (this->HasRegion() || this->Internal->Extent[0] >= 0 || this->Internal->Stream)
+            throw std::runtime_error("ViaInfallible makes the whole model: no region or stream");
+          run.Cache.Result = msynth::SynthesizeViaInfallible(example, options);
+          return;
+        }
         const auto analysis = msynth::ExampleAnalysis::FromExample(example);
         options.Example = &example;
         run.Cache.Result = this->Run(msynth::AdjacencyRules::FromExample(analysis), options);
@@ -386,6 +397,8 @@ bool vtkMSDiscreteSynthesis::Solve(
       if (options.Choice == msynth::LabelChoice::Resemblance)
         throw std::runtime_error(
           "resemblance-weighted choice needs an example grid, not a tileset");
+      if (this->ViaInfallible)
+        throw std::runtime_error("ViaInfallible needs a label-grid example, not a tileset");
       run.Tiles =
         msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset, this->TilesFolder);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
@@ -710,6 +723,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Source: " << this->Source << "\n";
   os << indent << "ComputeRequestedExtent: " << this->ComputeRequestedExtent << "\n";
   os << indent << "BlocksWhenWholeFails: " << this->BlocksWhenWholeFails << "\n";
+  os << indent << "ViaInfallible: " << this->ViaInfallible << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
