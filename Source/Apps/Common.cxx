@@ -164,6 +164,14 @@ void WriteCSV(const std::string& path, vtkTable* table)
     });
 }
 
+std::string Joined(const std::vector<std::string>& items, const char* separator)
+{
+  std::string out;
+  for (const auto& item : items)
+    out += (out.empty() ? "" : separator) + item;
+  return out;
+}
+
 std::string JsonString(const std::string& text)
 {
   std::string out = "\"";

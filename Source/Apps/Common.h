@@ -69,6 +69,8 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 
 /// @p table as CSV (a header of column names), written atomically.
 void WriteCSV(const std::string& path, vtkTable* table);
+/// @p items joined by @p separator (a filter's list property from repeated options).
+std::string Joined(const std::vector<std::string>& items, const char* separator = ",");
 /// @p text as a JSON string literal.
 std::string JsonString(const std::string& text);
 /// @p value as JSON writes it ("%g" with six significant digits: 0.25, 1e-07).

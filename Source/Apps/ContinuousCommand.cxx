@@ -139,17 +139,10 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetModelCandidates(o.Models);
   synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,
     o.Mirror.find('y') != std::string::npos, o.Mirror.find('z') != std::string::npos);
-  auto joined = [](const std::vector<std::string>& items)
-  {
-    std::string out;
-    for (const auto& item : items)
-      out += (out.empty() ? "" : ",") + item;
-    return out;
-  };
-  synthesis->SetThickness(joined(o.Thickness).c_str());
-  synthesis->SetOverhang(joined(o.Overhang).c_str());
-  synthesis->SetConnected(joined(o.Connected).c_str());
-  synthesis->SetTargetFractions(joined(o.Targets).c_str());
+  synthesis->SetThickness(Joined(o.Thickness).c_str());
+  synthesis->SetOverhang(Joined(o.Overhang).c_str());
+  synthesis->SetConnected(Joined(o.Connected).c_str());
+  synthesis->SetTargetFractions(Joined(o.Targets).c_str());
 }
 
 /// --detail TYPE=FILE: the detail mesh read (in the example's up axis) and substituted for the

@@ -109,14 +109,6 @@ std::string OutputList(const std::string& text)
   return std::string();
 }
 
-std::string Join(const std::vector<std::string>& items)
-{
-  std::string out;
-  for (const auto& s : items)
-    out += (out.empty() ? "" : ",") + s;
-  return out;
-}
-
 struct Registered
 {
   std::shared_ptr<SynthesizeOptions> Options;
@@ -426,16 +418,16 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
     translate[a] = o.Translate.find(static_cast<char>('x' + a)) != std::string::npos;
   }
   synthesis->SetMirror(mirror);
-  synthesis->SetTargetFractions(Join(o.Targets).c_str());
+  synthesis->SetTargetFractions(Joined(o.Targets).c_str());
   synthesis->SetSoftTemperature(o.Temperature);
-  synthesis->SetCounts(Join(o.Counts).c_str());
-  synthesis->SetConnected(Join(o.Connected).c_str());
-  synthesis->SetMirrorSwaps(Join(o.Swaps).c_str());
+  synthesis->SetCounts(Joined(o.Counts).c_str());
+  synthesis->SetConnected(Joined(o.Connected).c_str());
+  synthesis->SetMirrorSwaps(Joined(o.Swaps).c_str());
   synthesis->SetTranslate(translate);
   synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);
-  synthesis->SetTranslationMap(Join(o.Shifts).c_str());
+  synthesis->SetTranslationMap(Joined(o.Shifts).c_str());
   synthesis->SetRotate(o.Rotate);
-  synthesis->SetRotationMap(Join(o.Turns).c_str());
+  synthesis->SetRotationMap(Joined(o.Turns).c_str());
   synthesis->SetCatalogSnapshotsPerBlock(o.Snapshots);
   if (IsSample(o.Example))
   {
