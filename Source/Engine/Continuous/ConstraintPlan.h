@@ -122,7 +122,7 @@ public:
     std::string Reason;       ///< per such type, its share, the example's, and why
   };
   /**
-   * With proportions steered (and no guide weights, which ask for other shares in places):
+   * With proportions steered (and no guide, which asks for types in places, masks included):
    * empties whole solid parts, one at a time, each the one whose
    * removal brings the types' shares nearest the targets (largest relative deviation first),
    * while that is nearer than keeping it and some type is further than ProportionMargin off.

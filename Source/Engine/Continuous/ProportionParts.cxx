@@ -104,8 +104,8 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   std::vector<std::int32_t>& labels, int emptyLabel) const
 {
   Proportioned out;
-  if (!this->Proportions || this->HasGuideWeights)
-    return out; // guide weights ask for other shares in places: emptying parts would undo them
+  if (!this->Proportions || !this->GuideWeights.empty())
+    return out; // a guide asks for types in places (masks too): emptying parts would undo it
   std::vector<std::int64_t> component;
   const std::int64_t parts = SolidComponents(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
