@@ -89,6 +89,32 @@ def ball(x, y, z):
     return 1 if x == z else (2 if x == z - 1 else 0)
 
 
+# The dissertation's two fallible examples (D§3.3.4, Figs. 3.5(a) and 3.6(a); their pictures are
+# not in the text we have, so these follow what the text says of them). Rows top first, y up.
+FIG_3_5A = """
+0 0 0 0 0 0 0 0 0 0
+0 3 4 5 0 0 7 4 5 0
+0 2 0 6 0 0 2 1 6 0
+8 8 8 8 8 8 8 8 8 8"""
+# Fig. 3.5(a): every 2 has a 6 two sites to its right, joined through either of two paths (a 0 or
+# a 1 between them), and the labels above (3 or 7, then 4, 5) are what ties the 2 to its 6. E_I
+# of Fig. 3.15 is this with the 0 between 2 and 6 made a 9 (Eq. 3.12).
+FIG_3_6A = """
+0 0 0 0 0 0 0
+0 0 4 1 5 0 0
+0 0 2 3 2 0 0
+6 6 6 6 6 6 6"""
+# Fig. 3.6(a): a pair of 2s two sites apart joined by a path (4 1 5) over them; 2s must come in
+# pairs, but a row 2 3 2 3 2 is consistent locally, so Algorithm 3.1 may go on after its model
+# can no longer be completed.
+
+
+def picture_image(text):
+    rows = [[int(v) for v in line.split()] for line in text.strip().splitlines()]
+    height = len(rows)
+    return label_image((len(rows[0]), height, 1), lambda x, y, z: rows[height - 1 - y][x])
+
+
 def main():
     examples = os.path.join(DATA, "Examples")
     malformed = os.path.join(DATA, "Malformed")
@@ -102,6 +128,8 @@ def main():
     sample_images(DATA)
     write(label_image((4, 4, 1), lambda x, y, z: (x + y) % 2), os.path.join(examples, "Checkerboard.vti"))
     write(label_image((6, 1, 8), ball), os.path.join(examples, "Ball.vti"))
+    write(picture_image(FIG_3_5A), os.path.join(examples, "Fallible-Fig3.5a.vti"))
+    write(picture_image(FIG_3_6A), os.path.join(examples, "Fallible-Fig3.6a.vti"))
 
     # Labels as cell data (one label per voxel) must read the same as point data.
     cells = vtkImageData()

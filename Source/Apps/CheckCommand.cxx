@@ -34,6 +34,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -56,7 +57,96 @@ struct CheckOptions
   bool NoPeriodicInput = false;
   std::string Translate;
   std::vector<std::string> Counts;
+  std::string Connected;
 };
+
+/**
+ * `--connected LABELS[:N]`: the sites of @p model holding any of LABELS (values, or with a
+ * tileset @p example tile or label names) form at most N components (1 when left out), counted
+ * here by a union-find of its own over face neighbours, joined through the sides the tileset's
+ * `connects` attributes give (every side for a tile without one). Prints one line.
+ */
+bool CheckConnected(const std::string& spec, const std::string& example, const std::string& subset,
+  const std::string& tiles, vtkImageData* model)
+{
+  vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
+  if (!labels)
+    throw std::runtime_error("--connected: the model has no Label array");
+  msynth::Tileset set;
+  if (IsTileset(example))
+    set = msynth::ReadTilesetFile(example, subset, tiles);
+  std::string list = spec;
+  long long most = 1;
+  const std::size_t colon = list.rfind(':');
+  if (colon != std::string::npos)
+  {
+    if (!msynth::ParseInteger(list.substr(colon + 1), 1, 1LL << 40, most))
+      throw std::runtime_error(
+        "--connected: '" + list.substr(colon + 1) + "' is not a number of components (1 or more)");
+    list.resize(colon);
+  }
+  std::map<long long, int>
+    sides; // network label -> the sides it joins through (bits +x -x +y -y +z -z)
+  for (const std::string& name : msynth::SplitText(list, ','))
+  {
+    long long v = 0;
+    const std::size_t before = sides.size();
+    if (msynth::ParseInteger(name, -(1LL << 31), (1LL << 31) - 1, v))
+      sides[v] = 63;
+    for (int b = 0; b < set.NumberOfLabels(); ++b)
+      if (set.LabelName(b) == name ||
+        set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name ==
+          name)
+        sides[b] = 63;
+    if (sides.size() == before && !name.empty())
+      throw std::runtime_error(
+        "--connected: '" + name + "' is neither a label value nor a name of " + example);
+  }
+  for (auto& [label, mask] : sides)
+    if (label >= 0 && label < static_cast<long long>(set.LabelSides.size()) &&
+      set.LabelSides[static_cast<std::size_t>(label)] >= 0)
+      mask = set.LabelSides[static_cast<std::size_t>(label)];
+  int dims[3];
+  model->GetDimensions(dims);
+  const vtkIdType total = labels->GetNumberOfTuples();
+  std::vector<vtkIdType> parent(static_cast<std::size_t>(total));
+  std::vector<int> mask(static_cast<std::size_t>(total), -1);
+  for (vtkIdType i = 0; i < total; ++i)
+  {
+    parent[static_cast<std::size_t>(i)] = i;
+    const auto found = sides.find(static_cast<long long>(labels->GetTuple1(i)));
+    if (found != sides.end())
+      mask[static_cast<std::size_t>(i)] = found->second;
+  }
+  auto root = [&](vtkIdType i)
+  {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  for (vtkIdType i = 0; i < total; ++i)
+  {
+    const int here = mask[static_cast<std::size_t>(i)];
+    const vtkIdType at[3] = { i % dims[0], (i / dims[0]) % dims[1], i / stride[2] };
+    for (int a = 0; a < 3 && here >= 0; ++a)
+    {
+      if (at[a] + 1 >= dims[a] || !((here >> (2 * a)) & 1))
+        continue;
+      const int there = mask[static_cast<std::size_t>(i + stride[a])];
+      if (there >= 0 && ((there >> (2 * a + 1)) & 1))
+        parent[static_cast<std::size_t>(root(i))] = root(i + stride[a]);
+    }
+  }
+  long long components = 0;
+  for (vtkIdType i = 0; i < total; ++i)
+    components += mask[static_cast<std::size_t>(i)] >= 0 && root(i) == i ? 1 : 0;
+  const bool ok = components <= most;
+  std::cout << (ok ? "connected: " : "not connected: ") << list << " form " << components
+            << " component" << (components == 1 ? "" : "s") << " (wanted at most " << most << ")\n";
+  return ok;
+}
 
 /**
  * `--count L:MIN:MAX`: the sites of @p model holding L (a label value, or with a tileset
@@ -253,14 +343,15 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
 
 /// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
-  const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts)
+  const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts,
+  const std::string& connected)
 {
   if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
   {
-    if (!counts.empty())
+    if (!counts.empty() || !connected.empty())
       throw std::runtime_error(
-        "--count checks a model's labels (labels.vti), not '" + modelPath + "'");
+        "--count and --connected check a model's labels (labels.vti), not '" + modelPath + "'");
     return CheckVoxels(example, modelPath, tiles);
   }
   vtkNew<vtkMSLabelGridReader> e, m;
@@ -268,9 +359,9 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   vtkNew<vtkMSCheckModel> check;
   SetUpDiscreteCheck(check, e, m, example, subset, tiles);
   Run(check);
-  const bool kept = counts.empty() ||
-    CheckCounts(
-      counts, example, subset, tiles, vtkImageData::SafeDownCast(m->GetOutputDataObject(0)));
+  auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
+  bool kept = counts.empty() || CheckCounts(counts, example, subset, tiles, labels);
+  kept = (connected.empty() || CheckConnected(connected, example, subset, tiles, labels)) && kept;
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
@@ -454,6 +545,10 @@ CommandRunner AddCheck(CLI::App& app)
       "also check that the sites holding label (or tile) L number MIN to MAX (L:MIN:MAX; "
       "repeatable), counted from the model's labels")
     ->allow_extra_args(false);
+  check->add_option("--connected", o->Connected,
+    "also check that the sites holding any of LABELS (values or tile names, commas between) "
+    "form at most N components (LABELS[:N], N 1 when left out), through the tileset's "
+    "connecting sides");
   return [o]()
   {
     CheckInputFile(o->Example);
@@ -462,18 +557,20 @@ CommandRunner AddCheck(CLI::App& app)
     {
       return CheckContinuous(o->Example, o->Model, o->Reading);
     }
-    if (!o->Counts.empty() && (IsPolyhedral(o->Example) || IsSample(o->Example)))
-      throw UsageError{ "--count checks the labels of a discrete model (a label grid or "
-                        "tileset's labels.vti)" };
+    if ((!o->Counts.empty() || !o->Connected.empty()) &&
+      (IsPolyhedral(o->Example) || IsSample(o->Example)))
+      throw UsageError{ "--count and --connected check the labels of a discrete model (a label "
+                        "grid or tileset's labels.vti)" };
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);
     if (o->Model.size() > 5 && o->Model.compare(o->Model.size() - 5, 5, ".pvti") == 0)
     {
-      if (!o->Counts.empty())
-        throw UsageError{ "--count checks one labels.vti, not the pieces of a streamed model" };
+      if (!o->Counts.empty() || !o->Connected.empty())
+        throw UsageError{ "--count and --connected check one labels.vti, not the pieces of a "
+                          "streamed model" };
       return CheckPieces(o->Example, o->Model, o->Subset, o->Tiles);
     }
-    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts);
+    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected);
   };
 }
 

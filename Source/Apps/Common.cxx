@@ -164,6 +164,14 @@ void WriteCSV(const std::string& path, vtkTable* table)
     });
 }
 
+std::string Joined(const std::vector<std::string>& items, const char* separator)
+{
+  std::string out;
+  for (const auto& item : items)
+    out += (out.empty() ? "" : separator) + item;
+  return out;
+}
+
 std::string JsonString(const std::string& text)
 {
   std::string out = "\"";
@@ -282,6 +290,22 @@ StatisticsJson& StatisticsJson::LabelCounts(vtkFieldData* fd)
   return this->Raw("Counts", "[" + json + "]");
 }
 
+StatisticsJson& StatisticsJson::Connected(vtkFieldData* fd)
+{
+  auto* names = vtkStringArray::SafeDownCast(fd->GetAbstractArray("ConnectedLabels"));
+  if (!names || names->GetNumberOfValues() < 1)
+    return *this;
+  std::string json = "\"labels\": " + JsonString(names->GetValue(0));
+  for (const char* key : { "Maximum", "Components", "Before", "Repairs", "Redone" })
+    if (vtkDataArray* a = fd->GetArray((std::string("Connected") + key).c_str()))
+    {
+      std::string lower = key;
+      lower[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[0])));
+      json += ", \"" + lower + "\": " + std::to_string(static_cast<long long>(a->GetTuple1(0)));
+    }
+  return this->Raw("Connected", "{" + json + "}");
+}
+
 void StatisticsJson::Write(const std::string& path) const
 {
   msynth::WriteFileAtomically(path,
@@ -295,9 +319,9 @@ void StatisticsJson::Write(const std::string& path) const
     });
 }
 
-std::string MessageOf(vtkFieldData* fd)
+std::string MessageOf(vtkFieldData* fd, const char* name)
 {
-  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Message"));
+  auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray(name));
   return message && message->GetNumberOfValues() > 0 ? message->GetValue(0) : std::string();
 }
 

@@ -69,6 +69,8 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 
 /// @p table as CSV (a header of column names), written atomically.
 void WriteCSV(const std::string& path, vtkTable* table);
+/// @p items joined by @p separator (a filter's list property from repeated options).
+std::string Joined(const std::vector<std::string>& items, const char* separator = ",");
 /// @p text as a JSON string literal.
 std::string JsonString(const std::string& text);
 /// @p value as JSON writes it ("%g" with six significant digits: 0.25, 1e-07).
@@ -97,6 +99,9 @@ public:
   /// "Counts": [{"label", "minimum", "maximum", "achieved"}, ...] from field data `CountNames`,
   /// `CountMinimum`, `CountMaximum`, `CountAchieved` (vtkMSDiscreteSynthesis); nothing without.
   StatisticsJson& LabelCounts(vtkFieldData* fd);
+  /// "Connected": {"labels", "maximum", "components", "before", "repairs", "redone"} from field
+  /// data `Connected*` (vtkMSDiscreteSynthesis); nothing without.
+  StatisticsJson& Connected(vtkFieldData* fd);
   /// The file @p path, written atomically.
   void Write(const std::string& path) const;
 
@@ -105,7 +110,7 @@ private:
 };
 
 /// The solver's one-line message from field data `Message`.
-std::string MessageOf(vtkFieldData* fd);
+std::string MessageOf(vtkFieldData* fd, const char* name = "Message");
 /// The one-value count @p name of field data (0 when it is not there).
 long long CountOf(vtkFieldData* fd, const char* name);
 

@@ -104,6 +104,9 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
     .Count("PartsBeyondSeedsRemoved", CountOf(fd, "PartsBeyondSeedsRemoved"))
     .Count("NarrowPartsRemoved", CountOf(fd, "NarrowPartsRemoved"))
+    // Proportions: parts emptied to keep the types' shares, and the types still outside 25 %.
+    .Count("ProportionPartsRemoved", CountOf(fd, "ProportionPartsRemoved"))
+    .Text("ProportionsOutside", MessageOf(fd, "ProportionsOutside"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))
     .Number("MatchError", match ? match->GetTuple1(0) : 0.0)
@@ -126,6 +129,7 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetSeed(static_cast<vtkIdType>(o.Seed));
   synthesis->SetBlockSize(o.Blocks);
   synthesis->SetAttempts(o.Attempts);
+  synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);
@@ -135,17 +139,10 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetModelCandidates(o.Models);
   synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,
     o.Mirror.find('y') != std::string::npos, o.Mirror.find('z') != std::string::npos);
-  auto joined = [](const std::vector<std::string>& items)
-  {
-    std::string out;
-    for (const auto& item : items)
-      out += (out.empty() ? "" : ",") + item;
-    return out;
-  };
-  synthesis->SetThickness(joined(o.Thickness).c_str());
-  synthesis->SetOverhang(joined(o.Overhang).c_str());
-  synthesis->SetConnected(joined(o.Connected).c_str());
-  synthesis->SetTargetFractions(joined(o.Targets).c_str());
+  synthesis->SetThickness(Joined(o.Thickness).c_str());
+  synthesis->SetOverhang(Joined(o.Overhang).c_str());
+  synthesis->SetConnected(Joined(o.Connected).c_str());
+  synthesis->SetTargetFractions(Joined(o.Targets).c_str());
 }
 
 /// --detail TYPE=FILE: the detail mesh read (in the example's up axis) and substituted for the

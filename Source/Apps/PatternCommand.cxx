@@ -76,14 +76,6 @@ std::string SoftOf(const std::string& factors)
   return soft;
 }
 
-std::string Joined(const std::vector<std::string>& items, const char* sep)
-{
-  std::string out;
-  for (const auto& item : items)
-    out += (out.empty() ? "" : sep) + item;
-  return out;
-}
-
 vtkSmartPointer<vtkMSLabelGridReader> OpenGrid(const std::string& path, const char* array = "Label")
 {
   auto reader = vtkSmartPointer<vtkMSLabelGridReader>::New();

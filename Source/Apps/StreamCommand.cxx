@@ -443,7 +443,7 @@ bool StreamsForMemory(const SynthesizeOptions& o)
   }
   const bool whole = !o.Guide.empty() || !o.Fixed.empty() || o.Snapshots > 0 || !o.Mirror.empty() ||
     !o.Translate.empty() || o.Rotate || !o.Targets.empty() || !o.Counts.empty() ||
-    o.Choice == "resemblance" ||
+    !o.Connected.empty() || o.Choice == "resemblance" ||
     std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; });
   // The model, its last blocks, the output's arrays and the writer's copy: about 24 bytes a
   // site, besides what the outputs (meshes, volumes) take.

@@ -31,6 +31,10 @@ struct Tileset;
 namespace cli
 {
 
+struct SynthesizeOptions;
+/// --via-infallible (AnalyzeCommand.cxx, beside analyze --infallible).
+CLI::Option* AddViaInfallible(CLI::App& synthesize, SynthesizeOptions& o);
+
 struct SynthesizeOptions
 {
   std::string Example;
@@ -42,6 +46,7 @@ struct SynthesizeOptions
   bool NoRepair = false;          ///< no second try at failed blocks
   std::string Start;              ///< how blocks start: auto (empty), trivial, undecided
   bool NoFallback = false;        ///< no blocks when the whole model fails
+  bool ViaInfallible = false;     ///< Algorithm 3.1 on an infallible refinement (D§3.3.8)
   std::string Order;              ///< empty: scanline (discrete), entropy (continuous)
   std::string Choice = "uniform";
   int Snapshots = 0;

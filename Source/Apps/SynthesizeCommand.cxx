@@ -109,14 +109,6 @@ std::string OutputList(const std::string& text)
   return std::string();
 }
 
-std::string Join(const std::vector<std::string>& items)
-{
-  std::string out;
-  for (const auto& s : items)
-    out += (out.empty() ? "" : ",") + s;
-  return out;
-}
-
 struct Registered
 {
   std::shared_ptr<SynthesizeOptions> Options;
@@ -244,6 +236,8 @@ void AddFixedOptions(CLI::App& s, Registered& r)
        "with --fixed: sites of label 0 (a MagicaVoxel model's empty voxels) are synthesized too")
       ->needs("--fixed")
       ->group(group));
+  r.DiscreteOnly.push_back(
+    AddViaInfallible(s, o)->group("Discrete synthesis (label grids, tilesets)"));
 }
 
 void AddSampleOptions(CLI::App& s, Registered& r)
@@ -287,11 +281,12 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "TYPE reaches at most one plane spacing past what holds it up (its undersides "
                 "are one spacing wide at most: eaves, no roofs spanning thin columns)")
                ->allow_extra_args(false));
-  continuous(s.add_option("--connected", o.Connected,
-                "connectivity constraint: TYPE (or 'solid') grows from SEEDS random seeds "
-                "(default 1), so it forms that many connected objects, growing until it fills "
-                "as much of the box as of the example's")
-               ->allow_extra_args(false));
+  s.add_option("--connected", o.Connected,
+     "grids, tilesets: the sites of LABELS (values or tile names, commas between) form at most N "
+     "components (LABELS[:N], N 1 if left out), through the tiles' connecting sides. Polyhedral: "
+     "TYPE (or 'solid') grows from SEEDS seeds (TYPE:SEEDS, default 1): that many objects")
+    ->allow_extra_args(false)
+    ->group("Constraints (both kinds)");
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
     "the output, mapped onto the part's bounding box from the example's (TYPE=FILE; "
@@ -392,6 +387,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetBacktracksPerAttempt(static_cast<vtkIdType>(o.Backtracks));
   synthesis->SetRepairFailedBlocks(!o.NoRepair);
   synthesis->SetBlocksWhenWholeFails(!o.NoFallback);
+  synthesis->SetViaInfallible(o.ViaInfallible);
   synthesis->SetBlockStart(IndexIn(o.Start.empty() ? "auto" : o.Start, Starts));
   synthesis->SetNumberOfThreads(o.Threads);
   synthesis->SetSiteOrder(IndexIn(o.Order, Orders));
@@ -422,15 +418,16 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
     translate[a] = o.Translate.find(static_cast<char>('x' + a)) != std::string::npos;
   }
   synthesis->SetMirror(mirror);
-  synthesis->SetTargetFractions(Join(o.Targets).c_str());
+  synthesis->SetTargetFractions(Joined(o.Targets).c_str());
   synthesis->SetSoftTemperature(o.Temperature);
-  synthesis->SetCounts(Join(o.Counts).c_str());
-  synthesis->SetMirrorSwaps(Join(o.Swaps).c_str());
+  synthesis->SetCounts(Joined(o.Counts).c_str());
+  synthesis->SetConnected(Joined(o.Connected).c_str());
+  synthesis->SetMirrorSwaps(Joined(o.Swaps).c_str());
   synthesis->SetTranslate(translate);
   synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);
-  synthesis->SetTranslationMap(Join(o.Shifts).c_str());
+  synthesis->SetTranslationMap(Joined(o.Shifts).c_str());
   synthesis->SetRotate(o.Rotate);
-  synthesis->SetRotationMap(Join(o.Turns).c_str());
+  synthesis->SetRotationMap(Joined(o.Turns).c_str());
   synthesis->SetCatalogSnapshotsPerBlock(o.Snapshots);
   if (IsSample(o.Example))
   {
@@ -572,7 +569,8 @@ void WriteStatistics(vtkImageData* model, const SynthesizeOptions& o, const std:
     .Counts("block", { o.Block[0], o.Block[1], o.Block[2] })
     .Count("seed", o.Seed)
     .Solver(fd)
-    .LabelCounts(fd);
+    .LabelCounts(fd)
+    .Connected(fd);
   // How blocks started (block synthesis only).
   if (auto* start = vtkStringArray::SafeDownCast(fd->GetAbstractArray("StartFrom")))
     json.Text("StartFrom", start->GetValue(0));

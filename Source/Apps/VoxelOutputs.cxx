@@ -41,7 +41,7 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
     vtkNew<vtkPolyData> mesh;
     std::string problem;
     if (!vtkMSLabelArrays::TileVoxels(set, model, voxels, problem) ||
-      !vtkMSLabelArrays::VoxelSurface(voxels, 0, 0, 1, mesh, problem))
+      !vtkMSLabelArrays::VoxelSurface(voxels, 0, 0, 1, mesh, problem, true))
       throw std::runtime_error(problem);
     WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer());
     written.push_back(dir + "/mesh.vtp");

@@ -104,6 +104,37 @@ void BM_ContinuousConstraints(benchmark::State& state)
 }
 BENCHMARK(BM_ContinuousConstraints)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
+/// Continuous blocks on threads (issue 29 item 3): the house at 48 × 48 × 10 in blocks of 4
+/// spacings, the solver alone (arrangement built once), with range(0) threads and range(1) = 1
+/// grounded. Wall time (UseRealTime): the speed-up is the ratio of the two thread counts.
+void BM_ContinuousThreads(benchmark::State& state)
+{
+  const Example& e = Load("house.obj");
+  const auto p =
+    msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { 48, 48, 10 }, 0, {});
+  const msynth::PlaneArrangement arrangement(e.Analysis.Families(), p);
+  msynth::ContinuousSynthesisOptions options;
+  options.BlockSize = 4;
+  options.Seed = 5;
+  options.Threads = static_cast<int>(state.range(0));
+  options.Constraints.Grounded = state.range(1) == 1;
+  for (auto _ : state)
+  {
+    const auto r = msynth::SynthesizeContinuous(e.Analysis, arrangement, options);
+    if (!r.Succeeded())
+      state.SkipWithError(r.Message.c_str());
+    benchmark::DoNotOptimize(r.Labels.data());
+  }
+  state.counters["vertices"] = static_cast<double>(arrangement.NumberOfVertices());
+}
+BENCHMARK(BM_ContinuousThreads)
+  ->Args({ 1, 0 })
+  ->Args({ 2, 0 })
+  ->Args({ 1, 1 })
+  ->Args({ 2, 1 })
+  ->UseRealTime()
+  ->Unit(benchmark::kMillisecond);
+
 /// The independent check of a model (the example analysis run on the output).
 void BM_ContinuousCheck(benchmark::State& state)
 {

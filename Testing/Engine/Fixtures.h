@@ -5,7 +5,10 @@
 #include "Core/LabelGrid.h"
 #include "Formats/PolyhedralExample.h"
 
+#include <condition_variable>
 #include <csignal>
+#include <cstdint>
+#include <mutex>
 #include <string>
 #include <sys/resource.h>
 #include <vector>
@@ -85,5 +88,41 @@ inline msynth::LabelGrid Village()
     }
   return g;
 }
+
+/// An all-gather among threads standing in for MPI ranks: each call blocks until every rank
+/// has contributed, then returns all contributions in rank order.
+class ThreadAllGather
+{
+public:
+  explicit ThreadAllGather(int ranks)
+    : Ranks(ranks)
+    , Slots(static_cast<std::size_t>(ranks))
+  {
+  }
+  std::vector<std::vector<char>> operator()(int rank, const std::vector<char>& mine)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    const std::int64_t generation = this->Generation;
+    this->Slots[static_cast<std::size_t>(rank)] = mine;
+    if (++this->Arrived == this->Ranks)
+    {
+      this->Result = this->Slots;
+      this->Arrived = 0;
+      ++this->Generation;
+      this->Changed.notify_all();
+    }
+    else
+      this->Changed.wait(lock, [&] { return this->Generation != generation; });
+    return this->Result;
+  }
+
+private:
+  int Ranks;
+  int Arrived = 0;
+  std::int64_t Generation = 0;
+  std::vector<std::vector<char>> Slots, Result;
+  std::mutex Mutex;
+  std::condition_variable Changed;
+};
 
 } // namespace msynth_test

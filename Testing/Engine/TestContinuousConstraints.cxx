@@ -209,6 +209,7 @@ TEST(ContinuousConstraints, ThicknessInMultiplesLeavesNoThinWalls)
     ContinuousSynthesisOptions o;
     o.Seed = 3;
     o.BlockSize = 4;
+    o.Constraints.KeepProportions = false; // the slabs alone (proportions empty post houses too)
     o.Constraints.Grounded = true;
     o.Constraints.Overhang = { Roof };
     o.Constraints.Thickness.push_back({ Wall, z, 1, {}, false });

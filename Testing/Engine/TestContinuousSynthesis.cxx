@@ -387,6 +387,54 @@ TEST(ContinuousSynthesis, ThreadsGiveTheSameModel)
   EXPECT_EQ(s.Statistics.Phases, s.Statistics.Blocks);
 }
 
+TEST(ContinuousSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
+{
+  // Two "processes" (threads with an all-gather, as MPI ranks under pvbatch) each run half of
+  // every phase and exchange the blocks' labels and shares: both end with the one-process
+  // model, with proportions steered (shares travel with the blocks) and grounded.
+  const Loaded l = Load("house.obj");
+  const ArrangementParameters p =
+    DefaultArrangementParameters(l.Example, l.Analysis, { 32, 32, 8 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  for (bool grounded : { false, true })
+  {
+    ContinuousSynthesisOptions options;
+    options.Seed = 7;
+    options.BlockSize = 4;
+    options.Threads = 1;
+    options.Constraints.Grounded = grounded;
+    const ContinuousSynthesisResult single = SynthesizeContinuous(l.Analysis, arrangement, options);
+    ASSERT_TRUE(single.Succeeded()) << single.Message;
+    const int ranks = 2;
+    msynth_test::ThreadAllGather gather(ranks);
+    std::vector<ContinuousSynthesisResult> results(static_cast<std::size_t>(ranks));
+    std::vector<std::thread> pool;
+    for (int r = 0; r < ranks; ++r)
+      pool.emplace_back(
+        [&, r]
+        {
+          ContinuousSynthesisOptions mine = options;
+          mine.Exchange.Rank = r;
+          mine.Exchange.Processes = ranks;
+          mine.Exchange.AllGather = [&gather, r](const std::vector<char>& bytes)
+          { return gather(r, bytes); };
+          results[static_cast<std::size_t>(r)] =
+            SynthesizeContinuous(l.Analysis, arrangement, mine);
+        });
+    for (auto& t : pool)
+      t.join();
+    for (const auto& r : results)
+    {
+      ASSERT_TRUE(r.Succeeded()) << r.Message;
+      EXPECT_EQ(r.Statistics.Processes, ranks);
+      EXPECT_LT(r.Statistics.Phases, r.Statistics.Blocks);
+      EXPECT_EQ(r.Labels, single.Labels) << "grounded " << grounded;
+      EXPECT_EQ(r.FloatingPartsRemoved, single.FloatingPartsRemoved);
+    }
+    EXPECT_EQ(CheckArrangementLabels(l.Analysis, arrangement, results[1].Labels), "");
+  }
+}
+
 TEST(ContinuousMesh, LevelSetVoxelsGrowWithTheSurface)
 {
   // A unit cube of type 1 (area 6) on a cube of type 2 (the face between them counts for both).

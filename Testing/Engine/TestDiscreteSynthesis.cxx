@@ -740,45 +740,6 @@ TEST(DiscreteSynthesis, FallibleExampleFailsWholeButSucceedsInBlocks)
   EXPECT_LT(searchFailures, wholeFailures);
 }
 
-namespace
-{
-/// An all-gather among threads standing in for MPI ranks: each call blocks until every rank
-/// has contributed, then returns all contributions in rank order.
-class ThreadAllGather
-{
-public:
-  explicit ThreadAllGather(int ranks)
-    : Ranks(ranks)
-    , Slots(static_cast<std::size_t>(ranks))
-  {
-  }
-  std::vector<std::vector<char>> operator()(int rank, const std::vector<char>& mine)
-  {
-    std::unique_lock<std::mutex> lock(this->Mutex);
-    const std::int64_t generation = this->Generation;
-    this->Slots[static_cast<std::size_t>(rank)] = mine;
-    if (++this->Arrived == this->Ranks)
-    {
-      this->Result = this->Slots;
-      this->Arrived = 0;
-      ++this->Generation;
-      this->Changed.notify_all();
-    }
-    else
-      this->Changed.wait(lock, [&] { return this->Generation != generation; });
-    return this->Result;
-  }
-
-private:
-  int Ranks;
-  int Arrived = 0;
-  std::int64_t Generation = 0;
-  std::vector<std::vector<char>> Slots, Result;
-  std::mutex Mutex;
-  std::condition_variable Changed;
-};
-} // namespace
-
 TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
 {
   // Three "processes" (threads with an all-gather, as MPI ranks under pvbatch) each run a third
@@ -806,7 +767,7 @@ TEST(DiscreteSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)
     const auto single = Synthesize(rules, o);
     ASSERT_TRUE(single.Succeeded()) << single.Message;
     const int ranks = 3;
-    ThreadAllGather gather(ranks);
+    msynth_test::ThreadAllGather gather(ranks);
     std::vector<SynthesisResult> results(static_cast<std::size_t>(ranks));
     std::vector<std::thread> pool;
     for (int r = 0; r < ranks; ++r)

@@ -457,6 +457,28 @@ for c in range(housemodel.GetNumberOfCells()):
         zs.add(round(b[4], 6))
 check(zs <= {0.0, 2.0} and zs, "wall floors and ceilings at z = 0 and 2 only: %s" % sorted(zs))
 
+# Under MPI the continuous blocks of each phase are spread over the ranks as well (rank 0 sends
+# the example and the arrangement's parameters); the model is the one-process one and valid.
+spread = ModelSynthContinuousSynthesis(Input=house, Seed=5, BlockSize=4,
+                                       Arrangement=ModelSynthPlaneArrangement(Input=house,
+                                                                              OutputSize=[48, 48, 6]))
+spreadmesh = ModelSynthArrangementMesh(Input=house, Arrangement=spread, CheckModel=1)
+spreadmesh.UpdatePipeline()
+shared = servermanager.Fetch(spread)
+sf = shared.GetFieldData()
+check(sf.GetArray("Processes").GetValue(0) == ranks, "continuous blocks over %d processes, expected %d"
+      % (sf.GetArray("Processes").GetValue(0), ranks))
+check(sf.GetArray("Phases").GetValue(0) < sf.GetArray("Blocks").GetValue(0), "blocks in phases")
+check(servermanager.Fetch(spreadmesh).GetFieldData().GetAbstractArray("ModelCheck").GetValue(0) == "valid",
+      "the distributed continuous model passes the check")
+spread.DistributeBlocks = 0
+alone = servermanager.Fetch(spread)
+check(alone.GetFieldData().GetArray("Processes").GetValue(0) == 1, "one process without distribution")
+la, lb = alone.GetPointData().GetArray("Label"), shared.GetPointData().GetArray("Label")
+check(la.GetNumberOfTuples() == lb.GetNumberOfTuples() > 0
+      and all(la.GetValue(i) == lb.GetValue(i) for i in range(la.GetNumberOfTuples())),
+      "the distributed continuous model equals the one-process model")
+
 # OpenVDB from the continuous chain: the mesh as level sets, the catalog as a sequence.
 folder = os.path.join(TMP, "pvbatch-vdb-%s" % suffix)
 os.makedirs(folder, exist_ok=True)

@@ -17,6 +17,7 @@ from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 import modelsynth
 from msynth_testing import ErrorObserver, data, tmp, winding_numbers
+from proportions import read_obj
 
 N2D, EPS2D = 720, 1e-6
 K = np.arange(500) + 0.5
@@ -92,22 +93,9 @@ def typed_surfaces(poly):
 
 def read_example(name):
     """The example's points and {type: [polygon]}, types as the reader numbers them, from the
-    OBJ text (objects 'o name'; the reader gives each distinct base name a type in order)."""
-    points, surfaces, current, names = [], {}, None, []
-    for line in open(data("Continuous/" + name)):
-        w = line.split()
-        if not w or w[0].startswith("#"):
-            continue
-        if w[0] in ("o", "g"):
-            base = w[1].rstrip("0123456789").rstrip("._-") or w[1]
-            if base not in names:
-                names.append(base)
-            current = names.index(base) + 1
-        elif w[0] == "v":
-            points.append([float(x) for x in w[1:4]])
-        elif w[0] == "f":
-            surfaces.setdefault(current or 1, []).append([int(x.split("/")[0]) - 1 for x in w[1:]])
-    return np.array(points), surfaces
+    OBJ text (proportions.read_obj)."""
+    points, surfaces, _ = read_obj(data("Continuous/" + name))
+    return points, surfaces
 
 
 def inside_2d(polygon, q):
@@ -258,6 +246,8 @@ class ContinuousSynthesisTest(unittest.TestCase):
                                    "--out", out], capture_output=True, text=True)
             self.assertEqual(done.returncode, 0, done.stderr)
             stats = json.load(open(os.path.join(out, "statistics.json")))
+            if os.cpu_count() >= 2:  # --threads reaches the solver
+                self.assertEqual(stats["Threads"], int(threads))
             self.assertIn("model.vdb", stats["StageSeconds"])
             self.assertGreater(stats["VoxelSize"], 0)
             reader = vtkXMLPolyDataReader()

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace msynth
@@ -55,8 +56,22 @@ public:
       ->Share[static_cast<std::size_t>(label) * this->Types.size() + static_cast<std::size_t>(t)];
   }
 
-  /// Connectivity: the types that only grow next to themselves (0: none).
+  /// Connectivity: the types that only grow next to their group (0: none).
   std::uint64_t GrowMask() const { return this->Grow; }
+  /**
+   * The growing types that may not be chosen where the decided neighbours reach the types
+   * @p reach: every group of growing types that @p reach does not meet. A group is the solid as
+   * a whole (grounded runs, "solid" connectivity: a roof may start on a wall) or one type (it
+   * grows only next to itself); a type in several groups needs each of them reached.
+   */
+  std::uint64_t Unreached(std::uint64_t reach) const
+  {
+    std::uint64_t out = 0;
+    for (std::uint64_t group : this->GrowGroups)
+      if (!(reach & group))
+        out |= group;
+    return out;
+  }
   /// Types that may start at vertex @p v (seeds; the ground when grounded).
   std::uint64_t StartTypes(std::int64_t v) const;
   /// Types a seed at @p v should start (the pick prefers labels holding them).
@@ -95,6 +110,25 @@ public:
    * seeds (with blocks, a later block can split a grown part).
    */
   Removed RemoveStrayParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  /// Shares within this fraction of their targets (relative) are what proportions promise.
+  static constexpr double ProportionTolerance = 0.25;
+  /// KeepProportionateParts stops once every share is this near (the steering's vertex
+  /// occupancy differs a little from the volume the mesh holds).
+  static constexpr double ProportionMargin = 0.04;
+  struct Proportioned
+  {
+    std::int64_t Removed = 0; ///< parts emptied
+    std::vector<int> Outside; ///< object types still further than ProportionTolerance
+    std::string Reason;       ///< per such type, its share, the example's, and why
+  };
+  /**
+   * With proportions steered (and no guide weights, which ask for other shares in places):
+   * empties whole solid parts, one at a time, each the one whose
+   * removal brings the types' shares nearest the targets (largest relative deviation first),
+   * while that is nearer than keeping it and some type is further than ProportionMargin off.
+   * Always consistent, as RemoveStrayParts; deterministic (ties: the part found first).
+   */
+  Proportioned KeepProportionateParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
   /// Empties every connected solid part holding one of @p vertices; returns how many.
   std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
     const std::vector<std::int64_t>& vertices) const;
@@ -123,6 +157,7 @@ private:
   int Words = 0;
   std::vector<int> Types;
   std::uint64_t Solid = 0, Grow = 0;
+  std::vector<std::uint64_t> GrowGroups; ///< type bits that grow together (see Unreached)
   std::vector<std::uint64_t> TypesOfLabel, TypesOfEdge;
   std::vector<double> Share;
   int GroundAxis = 2;

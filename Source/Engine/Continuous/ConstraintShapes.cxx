@@ -128,8 +128,11 @@ void ConstraintPlan::PlanThickness()
       if (!ends)
         SetLabel(s.InnerAllowed, a);
     }
-    // Slabs are counted from the lowest plane of the family in the box.
+    // Slabs are counted from the lowest plane of the family in the box: the ground's for a
+    // family whose normal points down (storeys stand on the ground whichever way the example's
+    // faces made the normal point).
     s.Lowest = std::numeric_limits<std::int64_t>::max();
+    std::int64_t highest = std::numeric_limits<std::int64_t>::min();
     const IntVec3& n = set.Normal(c.Family);
     for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
@@ -139,11 +142,14 @@ void ConstraintPlan::PlanThickness()
       double dot = 0;
       for (std::size_t k = 0; k < 3; ++k)
         dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
-      s.Lowest = std::min(s.Lowest,
-        static_cast<std::int64_t>(std::llround(
-          (dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(c.Family)])) /
-          static_cast<double>(params.Spacings[static_cast<std::size_t>(c.Family)]))));
+      const auto plane = static_cast<std::int64_t>(std::llround(
+        (dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(c.Family)])) /
+        static_cast<double>(params.Spacings[static_cast<std::size_t>(c.Family)])));
+      s.Lowest = std::min(s.Lowest, plane);
+      highest = std::max(highest, plane);
     }
+    if (n[static_cast<std::size_t>(this->GroundAxis)] < 0 && highest >= s.Lowest)
+      s.Lowest = highest;
     this->Thickness.push_back(std::move(s));
   }
 }

@@ -265,6 +265,7 @@ void ConstraintPlan::PlanGround()
         SetLabel(this->AboveAllowed, a);
     }
     this->Grow |= this->Solid;
+    this->GrowGroups.push_back(this->Solid);
   }
 }
 
@@ -347,6 +348,7 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
       continue;
     const std::uint64_t mask = c.Type == 0 ? this->Solid : Bit(t);
     this->Grow |= mask;
+    this->GrowGroups.push_back(mask);
     this->FillMask |= mask;
     const int interior =
       this->Analysis.Find(NeighbourhoodLabel::Constant(c.Type == 0 ? this->Types.back() : c.Type));

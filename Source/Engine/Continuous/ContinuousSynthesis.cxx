@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -23,6 +24,20 @@ namespace msynth
 
 namespace
 {
+/// A double's bits as an integer for the block exchange, and back.
+std::int64_t BitsOf(double x)
+{
+  std::int64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+double DoubleOf(std::int64_t bits)
+{
+  double x = 0;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 /**
  * What the workers of one run share, read-only while blocks run: the rules, each vertex's
  * starting catalog, the compiled constraints, the block layout and the schedule.
@@ -139,10 +154,24 @@ public:
 
   /// The block labelled @p position-th (blocks spread outward from connectivity seeds).
   std::int64_t BlockAt(std::size_t position) const { return this->Order[position]; }
+  /// The vertices of the block labelled @p position-th, ascending.
+  std::vector<std::int64_t> VerticesOf(std::size_t position) const
+  {
+    if (!this->Whole)
+      return this->Layout->Vertices(this->BlockAt(position));
+    std::vector<std::int64_t> all(static_cast<std::size_t>(this->N));
+    std::iota(all.begin(), all.end(), std::int64_t(0));
+    return all;
+  }
   /// Empties stray solid parts: floating (grounded runs), beyond the seeds (connectivity).
   detail::ConstraintPlan::Removed RemoveStrayParts()
   {
     return this->Plan->RemoveStrayParts(this->Result.Labels, this->Rules.EmptyLabel());
+  }
+  /// Empties solid parts that keep the types' shares from their targets (proportions).
+  detail::ConstraintPlan::Proportioned KeepProportions()
+  {
+    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel());
   }
   /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
   std::int64_t RemoveNarrowParts()
@@ -468,7 +497,8 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   std::uint64_t forbidden = 0, seeded = 0;
   if (this->Plan->GrowMask())
   {
-    // Growing types only next to themselves (TVCG §4.6), or where a seed or the ground starts them.
+    // Growing types only next to their group (TVCG §4.6: a type, or the solid as a whole), or
+    // where a seed or the ground starts them.
     std::uint64_t reach = this->Plan->StartTypes(v);
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
@@ -481,7 +511,7 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
         u >= 0 ? this->Domains.Single(u) : this->Result.Labels[static_cast<std::size_t>(l->Vertex)];
       reach |= this->Plan->EdgeTypes(l->Direction ^ 1, label);
     }
-    forbidden = this->Plan->GrowMask() & ~reach;
+    forbidden = this->Plan->Unreached(reach);
     seeded = this->Plan->SeedTypes(v);
   }
   auto& c = this->Candidates;
@@ -606,6 +636,32 @@ SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
   };
   client.Describe = [](std::size_t, const BlockOutcome& out, BlockFailure& f)
   { f.EmptyIndex = out.Empty; };
+  // Processes: a block travels as its vertices' labels and the model's shares it left.
+  client.Pack = [&](std::size_t i, BlockRunner::Bytes& out)
+  {
+    for (std::int64_t v : run.VerticesOf(i))
+      out.Put(result.Labels[static_cast<std::size_t>(v)]);
+    out.Put(static_cast<std::int64_t>(tallies[i].size()));
+    for (double share : tallies[i])
+      out.Put(BitsOf(share));
+  };
+  client.Unpack = [&](std::size_t i, BlockRunner::Bytes& in, bool remote)
+  {
+    for (std::int64_t v : run.VerticesOf(i))
+    {
+      const auto label = static_cast<std::int32_t>(in.Get());
+      if (remote)
+        result.Labels[static_cast<std::size_t>(v)] = label;
+    }
+    const std::int64_t shares = in.Get();
+    if (shares < 0 || shares > 64)
+      throw Error("block exchange: a block's shares are damaged");
+    std::vector<double> tally(static_cast<std::size_t>(shares));
+    for (double& share : tally)
+      share = DoubleOf(in.Get());
+    if (remote)
+      tallies[i] = std::move(tally);
+  };
   client.After = [&](std::size_t i, const BlockOutcome&)
   {
     const std::vector<double>& phase = run.PhaseTally();
@@ -650,6 +706,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   // spreading outward from connectivity seeds one after the other.
   BlockRunner::Policy policy;
   policy.Threads = options.Threads;
+  policy.Exchange = options.Exchange;
   policy.Serial = run.Snapshots() || !parts.Parallel;
   policy.Progress = options.Progress;
   BlockDriver driver(
@@ -672,6 +729,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.FloatingPartsRemoved = removed.Floating;
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.NarrowPartsRemoved = run.RemoveNarrowParts();
+  // Not on the half of a mirrored model (its seam edges are free until it is reflected).
+  const auto proportioned =
+    options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
+  result.ProportionPartsRemoved = proportioned.Removed;
+  result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
@@ -680,6 +742,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (result.NarrowPartsRemoved > 0)
     result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
       " parts emptied for features under a tenth of a spacing";
+  if (proportioned.Removed > 0)
+    result.Message +=
+      ", " + std::to_string(proportioned.Removed) + " parts emptied for the types' proportions";
   if (removed.BeyondSeeds > 0)
     result.Message +=
       ", " + std::to_string(removed.BeyondSeeds) + " parts beyond the seeds emptied";

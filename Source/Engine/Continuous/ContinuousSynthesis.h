@@ -87,6 +87,10 @@ struct ContinuousSynthesisOptions
   /// model does not depend on it. Runs with connectivity seeds (blocks spread outward from them
   /// one after the other) and with snapshots use one thread.
   int Threads = 0;
+  /// Processes (MPI ranks) sharing the blocks of each phase: each runs its share and the
+  /// finished blocks' labels are exchanged after the phase, so every process ends with the
+  /// whole model, the same as one process computes. Inactive by default; serial runs ignore it.
+  BlockExchange Exchange;
   /// Which undecided vertex is labelled next: scan line (z, then y, then x; the dissertation),
   /// a seeded random order, or the fewest remaining labels first (ties at random).
   SiteOrder Order = SiteOrder::MinimumEntropy;
@@ -120,6 +124,10 @@ struct ContinuousSynthesisResult
   /// Solid parts emptied because a corner came closer than MinimumFeatureFraction of the
   /// smallest spacing to another plane's face, edge or corner (ArrangementRules::NarrowCorners).
   std::int64_t NarrowPartsRemoved = 0;
+  /// Proportions steered: solid parts emptied to bring the types' shares within the tolerance
+  /// (ConstraintPlan::KeepProportionateParts), and the types still outside it with why ("").
+  std::int64_t ProportionPartsRemoved = 0;
+  std::string ProportionsOutside;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).
   std::int64_t PartsBeyondSeedsRemoved = 0;

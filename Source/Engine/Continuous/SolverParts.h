@@ -11,8 +11,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
-#include <set>
+#include <queue>
 #include <tuple>
 #include <vector>
 
@@ -178,11 +179,11 @@ public:
   void Update(std::int64_t i, int count)
   {
     auto& old = this->Counts[static_cast<std::size_t>(i)];
-    if (old > 1)
-      this->Pending.erase(this->Entry(i, old));
+    this->Undecided += (count > 1 ? 1 : 0) - (old > 1 ? 1 : 0);
+    const bool same = old > 1 && count > 1 && this->Entry(i, old) == this->Entry(i, count);
     old = count;
-    if (count > 1)
-      this->Pending.insert(this->Entry(i, count));
+    if (count > 1 && !same) // the entry it had is left in the heap, stale
+      this->Pending.push(this->Entry(i, count));
   }
 
   /// Puts vertex @p i on the growth front (labelled before the vertices off it).
@@ -198,11 +199,20 @@ public:
   bool OnFront(std::int64_t i) const { return this->Front[static_cast<std::size_t>(i)] != 0; }
 
   /// The next undecided vertex, or -1.
-  std::int64_t Next() const
+  std::int64_t Next()
   {
-    return this->Pending.empty() ? -1 : std::get<2>(*this->Pending.begin());
+    while (!this->Pending.empty())
+    {
+      const auto& top = this->Pending.top();
+      const std::int64_t i = std::get<2>(top);
+      const int count = this->Counts[static_cast<std::size_t>(i)];
+      if (count > 1 && this->Entry(i, count) == top)
+        return i;
+      this->Pending.pop(); // stale: the vertex was decided or its entry changed since
+    }
+    return -1;
   }
-  std::int64_t Remaining() const { return static_cast<std::int64_t>(this->Pending.size()); }
+  std::int64_t Remaining() const { return this->Undecided; }
 
 private:
   std::tuple<int, std::uint64_t, std::int64_t> Entry(std::int64_t i, int count) const
@@ -216,7 +226,11 @@ private:
   std::vector<int> Counts;
   std::vector<char> Front;
   std::vector<std::uint64_t> Key;
-  std::set<std::tuple<int, std::uint64_t, std::int64_t>> Pending;
+  using Item = std::tuple<int, std::uint64_t, std::int64_t>;
+  /// The smallest entry on top; entries of vertices decided or changed since stay until they
+  /// surface (a vertex's current entry is the one Entry gives for its count).
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> Pending;
+  std::int64_t Undecided = 0; ///< vertices with more than one label left
 };
 
 } // namespace detail

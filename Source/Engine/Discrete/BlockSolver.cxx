@@ -4,6 +4,7 @@
 #include "Core/LabelDraw.h"
 
 #include "Core/Error.h"
+#include "Discrete/Connectivity.h"
 
 #include <algorithm>
 #include <cmath>
@@ -209,6 +210,12 @@ int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
     // No example site matches any possible label (labels only reachable through
     // propagation): fall back to the weighted choice below.
   }
+  if (this->Scale)
+    return DrawLabel(
+      this->Cat.Domain(local), this->Rules.Words(),
+      [this, cell](int b)
+      { return this->SiteWeight(cell, b) * (*this->Scale)[static_cast<std::size_t>(b)]; },
+      rng.Uniform());
   return DrawLabel(
     this->Cat.Domain(local), this->Rules.Words(),
     [this, cell](int b) { return this->SiteWeight(cell, b); }, rng.Uniform());
@@ -275,6 +282,9 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
     return global(empty);
   if (this->Budget && !this->CountsKept(block))
     return global(0); // solved, but the label counts missed: another attempt
+  if (this->Network && !this->FinalAttempt && !this->Repairing &&
+    !this->Network->Keeps(block, cat, this->Model))
+    return global(0); // solved, but it closes a component of the network off: another attempt
 
   // Success: commit the block.
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)

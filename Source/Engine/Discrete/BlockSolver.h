@@ -30,6 +30,7 @@ namespace detail
 {
 
 class CountBudget;
+class NetworkGuard;
 
 using Coord = std::array<std::int64_t, 3>;
 using Block = BoxBlock<3>;
@@ -39,6 +40,17 @@ inline std::string Format(const Coord& c)
 {
   return "(" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
     ")";
+}
+
+/// Visits the model index of every site of @p block (x fastest).
+template <typename Visit>
+void ForEachSite(const Block& block, const Coord& n, Visit&& visit)
+{
+  Coord p;
+  for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
+    for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
+      for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
+        visit(static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2])));
 }
 
 /// The model being synthesized, shared by the solvers of all threads. Blocks of one phase
@@ -94,6 +106,9 @@ public:
     this->Worker = worker;
   }
 
+  /// Attempts per block (the options').
+  int Attempts() const { return this->Options.AttemptsPerBlock; }
+
   /// The size of the model (the part synthesized, for a symmetric output).
   const Coord& Size() const { return this->N; }
 
@@ -113,6 +128,15 @@ public:
   void SetRepairing(bool repairing) { this->Repairing = repairing; }
   /// Attempts that solved their block but missed its label counts, over all blocks so far.
   std::int64_t CountMisses() const { return this->Misses; }
+
+  /// Checks each solved block against a connected network by @p guard (not owned; nullptr:
+  /// none); Connectivity.h.
+  void UseNetwork(NetworkGuard* guard) { this->Network = guard; }
+  /// Whether the coming attempt is its block's last (kept even when it closes a component off).
+  void SetFinalAttempt(bool last) { this->FinalAttempt = last; }
+  /// Multiplies the weight of each label index by @p scale's (not owned; nullptr: none) in the
+  /// weighted choice (a network's repairs).
+  void ScaleWeights(const std::vector<double>* scale) { this->Scale = scale; }
 
 private:
   friend class BlockSearch;
@@ -301,6 +325,9 @@ private:
   std::vector<std::int32_t>& LastBlock; ///< block that last changed each site (shared)
   std::vector<double> WLogW;
   const CountBudget* Budget = nullptr; ///< label counts, or nullptr
+  NetworkGuard* Network = nullptr;     ///< a connected network's check, or nullptr
+  bool FinalAttempt = false;
+  const std::vector<double>* Scale = nullptr; ///< per label index, or nullptr
   bool Repairing = false;
   std::int64_t Misses = 0;
   std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)

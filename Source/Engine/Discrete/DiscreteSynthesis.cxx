@@ -12,6 +12,7 @@
 #include "Core/Random.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
+#include "Discrete/Connectivity.h"
 #include "Discrete/LabelCounts.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
@@ -31,17 +32,6 @@ using namespace detail;
 
 namespace
 {
-/// Visits the model index of every site of @p block (x fastest).
-template <typename Visit>
-void ForEachSite(const Block& block, const Coord& n, Visit&& visit)
-{
-  Coord p;
-  for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
-    for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
-      for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
-        visit(static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2])));
-}
-
 /**
  * Soft constraints (M07§4.2): keeps or rolls back each synthesized block with the Metropolis
  * probability, from the label counts of the model (target fractions) and an optional fitness
@@ -210,10 +200,12 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
   const Coord n = solver.Size();
   BlockClient client;
   client.Enter = [&blocks, &soft](unsigned, std::size_t i) { soft.Save(i, blocks[i]); };
-  client.Attempt = [&blocks, &workers, orders](
+  const int attempts = solver.Attempts();
+  client.Attempt = [&blocks, &workers, orders, attempts](
                      unsigned w, std::size_t i, int attempt, Random& rng, std::int64_t& assignments)
   {
     BlockSolver& worker = workers[w];
+    worker.SetFinalAttempt(attempt + 1 >= attempts);
     if (!orders.empty())
       worker.SetOrder(orders[static_cast<std::size_t>(attempt) % orders.size()]);
     return worker.RunBlock(blocks[i], rng, assignments);
@@ -403,7 +395,7 @@ BlockRunner::Policy PolicyOf(
   policy.Threads = options.Threads;
   policy.Exchange = options.Exchange;
   policy.Serial = solver.Snapshots() || (seams && !seams->Arcs.Empty()) ||
-    static_cast<bool>(options.Soft.Fitness);
+    static_cast<bool>(options.Soft.Fitness) || options.Connected.Active();
   policy.Progress = options.Progress;
   return policy;
 }
@@ -470,6 +462,9 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
     : std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
   for (unsigned w = 0; budget && w < driver.Workers(); ++w)
     workers[w].UseCounts(budget.get());
+  const auto network = options.Connected.Active() && !(run && run->Keep)
+    ? std::make_unique<NetworkRun>(rules, options, blocks, solver) // one thread (PolicyOf)
+    : nullptr;
   solver.StartSnapshots();
   if (run && run->Carry)
     run->Carry(shared);
@@ -508,6 +503,8 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
     return result;
   }
   if (undecided && !AllDecided(shared.Model, n, result))
+    return result;
+  if (network && !network->Keep(options, solver, shared, blocks, result))
     return result;
   ModelFromShared(rules, shared, n, result);
   return budget ? CountsKept(options, std::move(result), misses, true) : result;
@@ -683,6 +680,7 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   CheckCountRequest(rules, options);
+  CheckConnectedRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);
   Coord m, step, block;
   if (r.Status != SynthesisStatus::Failed || !options.BlocksWhenWholeFails ||

@@ -172,6 +172,36 @@ struct LabelCountResult
   std::int64_t Achieved = 0;
 };
 
+/**
+ * A connectivity constraint (SynthesisOptions::Connected): the output sites holding any of the
+ * labels @p Values form at most @p Maximum connected components. Two such sites p and
+ * q = p + e_a are joined when the side of p's label toward +a and the side of q's label toward
+ * -a both connect (Sides); labels without an entry connect through every side (face
+ * neighbours).
+ */
+struct ConnectedNetwork
+{
+  std::vector<Label> Values;
+  std::string Name; ///< as the user named the labels, for messages
+  std::int64_t Maximum = 1;
+  /// Per label value, the sides it connects through: bit 2a the side toward +a, bit 2a+1 the
+  /// side toward -a (a tileset's `connects`); a label not listed connects through every side.
+  std::map<Label, std::uint8_t> Sides;
+  bool Active() const { return !this->Values.empty(); }
+};
+
+/// What a run did about SynthesisOptions::Connected.
+struct ConnectedResult
+{
+  bool Requested = false;
+  std::int64_t Maximum = 1;
+  std::string Name;
+  std::int64_t Before = 0;     ///< components when the blocks were done, before the repairs
+  std::int64_t Components = 0; ///< components of the result
+  std::int64_t Repairs = 0;    ///< boxes re-synthesized and kept (each joined or removed one)
+  std::int64_t Redone = 0;     ///< block attempts redone because they closed a component off
+};
+
 /// The block edge (sites per axis) of SynthesisOptions::BlocksWhenWholeFails.
 constexpr std::int64_t FallbackBlockEdge = 32;
 
@@ -258,6 +288,15 @@ struct SynthesisOptions
    * any work. Not with symmetry, soft constraints or regions of a world. Empty: none.
    */
   std::vector<LabelCount> Counts;
+  /**
+   * A connected network (Discrete/Connectivity.h): the sites of its labels form at most Maximum
+   * components. Blocks redo an attempt that closes a component off (it touches no site a later
+   * block writes) while that leaves too many; when the blocks are done, boxes around the
+   * smallest surplus components are synthesized again until they join another or vanish; a
+   * model that still has too many fails with one line. Not with symmetry, soft constraints,
+   * label counts or regions of a world; runs on one thread. Inactive: none.
+   */
+  ConnectedNetwork Connected;
   /// Large-scale constraints; empty for none.
   std::optional<GuideVolume> Guide;
   /// Threads for block synthesis (blocks of a phase run concurrently); 0: one per core. The
@@ -296,6 +335,8 @@ struct SynthesisResult
   SynthesisStatistics Statistics;
   /// SynthesisOptions::Counts with the number of sites of each label in Model.
   std::vector<LabelCountResult> Counts;
+  /// SynthesisOptions::Connected and what the run did about it.
+  ConnectedResult Connected;
 };
 
 /**

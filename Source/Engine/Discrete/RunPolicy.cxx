@@ -73,7 +73,8 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
   if (!whole) // a probe of its own: no messages to other processes, the first 1 % of progress
   {
     probe.Exchange = BlockExchange();
-    probe.Counts.clear(); // the counts are the whole output's
+    probe.Counts.clear();                 // the counts are the whole output's
+    probe.Connected = ConnectedNetwork(); // so is the network
     if (options.Progress)
       probe.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.01 * f)); };
   }

@@ -38,6 +38,16 @@ VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
   const std::array<double, 3>& origin, const std::array<double, 3>& spacing,
   const SiteSlab& slab = SiteSlab());
 
+/**
+ * The voxel surface of @p grid with its faces merged: the faces of one label that face one way
+ * in one plane become rectangles (greedy, row by row, in scan order). Each label covers the
+ * same area in each direction as in ExtractVoxelSurface, with far fewer quads; where rectangles
+ * meet there are T-junctions, so this is a surface to render and export (mesh.vtp of a voxel
+ * model), not a closed mesh.
+ */
+VoxelSurface ExtractMergedVoxelSurface(const LabelGrid& grid, Label empty,
+  const std::array<double, 3>& origin, const std::array<double, 3>& spacing);
+
 /// The slab of piece @p piece of @p pieces (0 <= piece < pieces) that splits @p grid evenly
 /// along its longest axis (pieces beyond the axis's length get empty slabs).
 SiteSlab PieceSlab(const LabelGrid& grid, int piece, int pieces);

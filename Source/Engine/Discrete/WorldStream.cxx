@@ -29,10 +29,10 @@ void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
     world.Translate[1].Enabled || world.Translate[2].Enabled;
   if (mirror || seams || world.Soft.Active() || world.Pins || world.Guide || world.Start ||
     world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance ||
-    !world.Counts.empty())
+    !world.Counts.empty() || world.Connected.Active())
     throw Error(std::string(what) +
       " takes no symmetry, soft constraints, pins, guide, given start, snapshots, resemblance "
-      "choice or label counts (each needs the whole world)");
+      "choice, label counts or connected network (each needs the whole world)");
 }
 
 SynthesisOptions detail::WindowOptions(

@@ -81,6 +81,17 @@ int TransformOrientation(char symmetry, int i, bool mirror)
   }
 }
 
+int TransformSides(int sides, int element)
+{
+  // Bits +x, -x, +y, -y. A quarter turn counter-clockwise moves +x to +y, +y to -x, -x to -y
+  // and -y to +x, as AddRule turns positions; the mirror swaps +x and -x.
+  for (int r = 0; r < element % 4; ++r)
+    sides = ((sides & 1) << 2) | ((sides & 4) >> 1) | ((sides & 2) << 2) | ((sides & 8) >> 3);
+  if (element >= 4)
+    sides = (sides & 12) | ((sides & 1) << 1) | ((sides & 2) >> 1);
+  return sides;
+}
+
 int DihedralAction(char symmetry, int orientation, int element)
 {
   int o = orientation;
@@ -304,12 +315,52 @@ private:
           "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
           t.Line);
     tile.FirstLabel = this->Set.NumberOfLabels();
+    const std::vector<int> sides = this->ReadConnects(t, tile);
     for (int k = 0; k < tile.Orientations; ++k)
     {
       this->Set.LabelTile.push_back(static_cast<int>(this->Set.Tiles.size()));
       this->Set.LabelOrientation.push_back(k);
+      this->Set.LabelSides.push_back(sides[static_cast<std::size_t>(k)]);
     }
     this->Set.Tiles.push_back(tile);
+  }
+
+  /// The `connects` attribute of @p t: per orientation the sides it connects through (-1
+  /// without the attribute), orientation 0's as written, the others turned and mirrored.
+  std::vector<int> ReadConnects(const XmlElement& t, const TilesetTile& tile) const
+  {
+    std::vector<int> sides(static_cast<std::size_t>(tile.Orientations), -1);
+    const std::string* text = t.Attribute("connects");
+    if (!text)
+      return sides;
+    static const char* const names[4][2] = { { "right", "+x" }, { "left", "-x" }, { "top", "+y" },
+      { "bottom", "-y" } };
+    int first = 0;
+    std::istringstream words(*text);
+    for (std::string w; words >> w;)
+    {
+      int bit = -1;
+      for (int b = 0; b < 4; ++b)
+        if (w == names[b][0] || w == names[b][1])
+          bit = b;
+      if (bit < 0)
+        this->Xml.Fail("tile '" + tile.Name + "' connects through '" + w +
+            "'; the sides are right, left, top and bottom (+x, -x, +y, -y)",
+          t.Line);
+      first |= 1 << bit;
+    }
+    for (int element = 0; element < 8; ++element)
+    {
+      const int o = DihedralAction(tile.Symmetry, 0, element);
+      const int turned = TransformSides(first, element);
+      int& at = sides[static_cast<std::size_t>(o)];
+      if (at >= 0 && at != turned)
+        this->Xml.Fail("tile '" + tile.Name + "': the sides it connects through (\"" + *text +
+            "\") do not have its symmetry " + std::string(1, tile.Symmetry),
+          t.Line);
+      at = turned;
+    }
+    return sides;
   }
 
   /// One side of a <neighbor>: its tile and orientation. False for a tile outside the subset.

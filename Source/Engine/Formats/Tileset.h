@@ -51,6 +51,10 @@ struct Tileset
   std::vector<int> LabelTile;        ///< per label: index into Tiles
   std::vector<int> LabelOrientation; ///< per label: orientation (voxel sets: a symmetry giving it)
   std::array<std::vector<std::pair<int, int>>, 3> Pairs; ///< allowed (first, second) per axis
+  /// Per label, the sides a path through it connects (a tile's `connects="right top"`, turned
+  /// with its orientation): bit 0 +x (right), 1 -x (left), 2 +y (top), 3 -y (bottom); -1 for a
+  /// tile that does not say (it joins its neighbours through every side).
+  std::vector<int> LabelSides;
 
   /// MarkovJunior voxel tilesets (root <tileset>, Formats/VoxelTileset.h): a label is a tile's
   /// distinct image under the square's 8 symmetries (the cube's 48 with FullSymmetry).
@@ -84,6 +88,8 @@ int TransformOrientation(char symmetry, int orientation, bool mirror);
  * rule means DihedralAction(symmetry, 0, k), so "b_i 3" (class I) is orientation 1.
  */
 int DihedralAction(char symmetry, int orientation, int element);
+/// The sides @p sides (bits +x, -x, +y, -y) after dihedral element @p element (as DihedralAction).
+int TransformSides(int sides, int element);
 /// Number of distinct orientations of class @p symmetry (1, 2, 4 or 8), 0 for an unknown class.
 int OrientationCount(char symmetry);
 /// A tile's `weight` attribute (both tileset formats): a finite positive number, else false.

@@ -17,11 +17,14 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
@@ -55,6 +58,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "Attempts: " << this->Attempts << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "DistributeBlocks: " << this->DistributeBlocks << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "NumberOfSnapshots: " << this->NumberOfSnapshots << "\n";
@@ -140,10 +144,60 @@ msynth::ContinuousConstraints Constraints(vtkMSContinuousSynthesis* self, vtkIma
   return c;
 }
 
+/// What the ranks compare before they share blocks: the solver's properties and the
+/// arrangement's size (never 0).
+std::int64_t Fingerprint(
+  vtkMSContinuousSynthesis* self, const msynth::PlaneArrangement& arrangement)
+{
+  std::ostringstream text;
+  const int* mirror = self->GetMirror();
+  text << self->GetSeed() << ' ' << self->GetBlockSize() << ' ' << self->GetAttempts() << ' '
+       << self->GetSiteOrder() << ' ' << self->GetLabelChoice() << ' '
+       << self->GetNumberOfSnapshots() << ' ' << self->GetGrounded() << ' '
+       << self->GetKeepProportions() << ' ' << self->GetBlockCandidates() << ' '
+       << self->GetModelCandidates() << ' ' << mirror[0] << mirror[1] << mirror[2] << ' '
+       << arrangement.NumberOfVertices() << '|'
+       << (self->GetThickness() ? self->GetThickness() : "") << '|'
+       << (self->GetOverhang() ? self->GetOverhang() : "") << '|'
+       << (self->GetConnected() ? self->GetConnected() : "") << '|'
+       << (self->GetTargetFractions() ? self->GetTargetFractions() : "");
+  std::uint64_t h = 1469598103934665603ull; // FNV-1a
+  for (const char c : text.str())
+    h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return static_cast<std::int64_t>(h | 1);
+}
+
+/// Rank 0's example, arrangement parameters (its field data) and guide, on every rank.
+void ShareInputs(vtkMultiProcessController* controller, vtkSmartPointer<vtkPolyData>& example,
+  vtkSmartPointer<vtkPolyData>& arrangement, vtkSmartPointer<vtkImageData>& guide)
+{
+  const bool root = controller->GetLocalProcessId() == 0;
+  int present[2] = { example ? 1 : 0, guide ? 1 : 0 };
+  controller->Broadcast(present, 2, 0);
+  if (!root)
+    example = vtkSmartPointer<vtkPolyData>::New();
+  if (present[0])
+    controller->Broadcast(example, 0);
+  vtkNew<vtkPolyData> parameters;
+  if (root)
+    parameters->GetFieldData()->ShallowCopy(arrangement->GetFieldData());
+  controller->Broadcast(parameters, 0);
+  if (!root)
+    arrangement = parameters.Get();
+  if (!present[1])
+    guide = nullptr;
+  else
+  {
+    if (!root)
+      guide = vtkSmartPointer<vtkImageData>::New();
+    controller->Broadcast(guide, 0);
+  }
+}
+
 /// The arrangement rebuilt exactly from its field data, checked against the example, and the
-/// solver run on it.
+/// solver run on it; @p shared: with the blocks spread over the ranks.
 msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyData* example,
-  vtkPolyData* arrangementData, vtkImageData* guide,
+  vtkPolyData* arrangementData, vtkImageData* guide, bool shared,
   std::vector<msynth::CatalogSnapshot>& snapshots, msynth::ArrangementMeasures& measures)
 {
   const auto record = vtkMSArrangementStorage::LoadArrangement(arrangementData->GetFieldData(),
@@ -157,7 +211,8 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
       ex.Source + ": the arrangement was built from another example (its plane families differ)");
   }
   const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
-  if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints())
+  if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints() &&
+    !(shared && arrangementData->GetNumberOfPoints() == 0)) // ranks > 0: its parameters alone
   {
     throw msynth::Error(ex.Source + ": the arrangement input has " +
       std::to_string(arrangementData->GetNumberOfPoints()) + " points but its parameters give " +
@@ -178,6 +233,8 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   snapshots.clear();
   options.OnSnapshot = [&snapshots](const msynth::CatalogSnapshot& s) { snapshots.push_back(s); };
   options.Progress = vtkMSSynthesisRun::Progress(self);
+  if (shared)
+    options.Exchange = vtkMSSynthesisRun::ProcessExchange(Fingerprint(self, arrangement));
   auto result = msynth::SynthesizeContinuous(analysis, arrangement, options);
   if (result.Succeeded())
     measures = msynth::MeasureArrangement(analysis, arrangement, result.Labels);
@@ -198,13 +255,41 @@ int vtkMSContinuousSynthesis::RequestData(
       << "no arrangement input (port 1): connect the ModelSynth Plane Arrangement filter");
     return 0;
   }
-  if (vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
+  Cache& cache = *this->Cached;
+  bool fresh = cache.Run.Fresh(this, { example, arrangementData, guide });
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  bool together = false; // the ranks solve together
+  if (this->DistributeBlocks && controller && controller->GetNumberOfProcesses() > 1)
+  {
+    // Rank 0 holds the arrangement and decides for every rank: they solve together, or not.
+    const bool root = controller->GetLocalProcessId() == 0;
+    int go = root && fresh && arrangementData->GetNumberOfPoints() > 0 ? 1 : 0;
+    controller->Broadcast(&go, 1, 0);
+    together = go != 0;
+    if (together)
+    {
+      vtkSmartPointer<vtkPolyData> ex = example, parameters = arrangementData;
+      vtkSmartPointer<vtkImageData> g = guide;
+      ShareInputs(controller, ex, parameters, g);
+      if (!root) // its share of the blocks; the model is output by rank 0
+      {
+        std::vector<msynth::CatalogSnapshot> snapshots;
+        msynth::ArrangementMeasures measures;
+        return vtkMSSynthesisRun::Solve(this, "Synthesis (a share of the blocks)",
+                 [&]() { Solve(this, ex, parameters, g, true, snapshots, measures); })
+          ? 1
+          : 0;
+      }
+    }
+    else if (!root)
+      return 1;
+  }
+  else if (vtkMSPipeline::UpdatePiece(outputVector->GetInformationObject(0)) > 0 &&
     arrangementData->GetNumberOfPoints() == 0)
   {
     return 1; // in parallel, the arrangement lives on piece 0
   }
-  Cache& cache = *this->Cached;
-  if (cache.Run.Fresh(this, { example, arrangementData, guide }))
+  if (fresh)
   {
     cache.Run.Clear();
     const std::string what = "Synthesis on an arrangement of " +
@@ -212,8 +297,8 @@ int vtkMSContinuousSynthesis::RequestData(
     if (!vtkMSSynthesisRun::Solve(this, what,
           [&]()
           {
-            cache.Run.Result =
-              Solve(this, example, arrangementData, guide, cache.Snapshots, cache.Measures);
+            cache.Run.Result = Solve(
+              this, example, arrangementData, guide, together, cache.Snapshots, cache.Measures);
           }))
     {
       return 0;
@@ -290,6 +375,10 @@ void vtkMSContinuousSynthesis::FillOutput(
     fields, "NarrowPartsRemoved", static_cast<vtkIdType>(result.NarrowPartsRemoved));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "PartsBeyondSeedsRemoved", static_cast<vtkIdType>(result.PartsBeyondSeedsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "ProportionPartsRemoved", static_cast<vtkIdType>(result.ProportionPartsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkStringArray>(
+    fields, "ProportionsOutside", result.ProportionsOutside);
   for (const auto& [type, share] : m.TypeShares)
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       fields, ("TypeShare_" + std::to_string(type)).c_str(), share);

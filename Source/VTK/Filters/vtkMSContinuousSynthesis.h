@@ -25,7 +25,9 @@
  * `GroundedComponents`, `FloatingPartsRemoved`, `PartsBeyondSeedsRemoved` and `TypeShare_<type>`
  * (vertex occupancy; the mesh filter gives volume shares). Always: `NarrowPartsRemoved`, the solid
  * parts emptied because a corner came within a tenth of the smallest spacing of another plane's
- * face, edge or corner (no slivers).
+ * face, edge or corner (no slivers), and with proportions steered `ProportionPartsRemoved`
+ * (solid parts emptied to bring the types' shares within 25 % of the example's) and
+ * `ProportionsOutside` (the types still outside, their shares and why; empty when none).
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
@@ -90,6 +92,19 @@ public:
   /// The model does not depend on it. Runs with connectivity seeds or snapshots use one.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Under MPI (pvbatch --mpi, a parallel pvserver): spread the blocks of each phase over the
+   * ranks and exchange the finished blocks after it. Rank 0, which holds the arrangement, sends
+   * the ranks the example and the arrangement's parameters; the model is the one a single
+   * process computes, and rank 0 outputs it (the arrangement's piece). Runs whose blocks go one
+   * after the other (connectivity seeds, snapshots) are computed on every rank. Default on.
+   */
+  vtkSetMacro(DistributeBlocks, bool);
+  vtkGetMacro(DistributeBlocks, bool);
+  vtkBooleanMacro(DistributeBlocks, bool);
   ///@}
 
   ///@{
@@ -190,6 +205,7 @@ private:
   double BlockSize = 4;
   int Attempts = 20;
   int NumberOfThreads = 0;
+  bool DistributeBlocks = true;
   int SiteOrder = MINIMUM_ENTROPY;
   int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSDiscreteSynthesis.h"
+
+#include "Discrete/InfallibleRefinement.h"
 #include "vtkMSDiscreteSynthesisOptions.h"
 
 #include "vtkMSEngineBridge.h"
@@ -11,7 +13,6 @@
 #include "vtkMSSynthesisRun.h"
 #include "vtkMSTileImage.h"
 
-#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
@@ -316,33 +317,7 @@ void SetUpExchange(
         source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ? self->GetSampleFile() : "" },
       values, options));
   }
-  vtkIdType low = 0, high = 0;
-  controller->AllReduce(&fingerprint, &low, 1, vtkCommunicator::MIN_OP);
-  controller->AllReduce(&fingerprint, &high, 1, vtkCommunicator::MAX_OP);
-  if (low == 0 || low != high)
-    return;
-  options.Exchange.Rank = controller->GetLocalProcessId();
-  options.Exchange.Processes = controller->GetNumberOfProcesses();
-  options.Exchange.AllGather = [controller](const std::vector<char>& mine)
-  {
-    // The lengths first, then the bytes of every rank.
-    const int ranks = controller->GetNumberOfProcesses();
-    vtkIdType length = static_cast<vtkIdType>(mine.size());
-    std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
-    controller->AllGather(&length, lengths.data(), 1);
-    vtkIdType total = 0;
-    for (std::size_t r = 0; r < lengths.size(); ++r)
-    {
-      offsets[r] = total;
-      total += lengths[r];
-    }
-    std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
-    controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
-    std::vector<std::vector<char>> parts(lengths.size());
-    for (std::size_t r = 0; r < lengths.size(); ++r)
-      parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
-    return parts;
-  };
+  options.Exchange = vtkMSSynthesisRun::ProcessExchange(fingerprint);
 }
 
 /// What the example says of its labels goes with the model: its file, the text format's piece
@@ -399,12 +374,21 @@ bool vtkMSDiscreteSynthesis::Solve(
     {
       if (this->GetActiveSource() == SAMPLE_SOURCE)
       {
+        if (this->ViaInfallible)
+          throw std::runtime_error("ViaInfallible needs a label-grid example, not a sample");
         this->SolveSample(options);
         return;
       }
       if (this->GetActiveSource() != TILESET_SOURCE)
       {
         const msynth::LabelGrid example = vtkMSLabelArrays::ToLabelGrid(input, labels);
+        if (this->ViaInfallible)
+        {
+          if (this->HasRegion() || this->Internal->Extent[0] >= 0 || this->Internal->Stream)
+            throw std::runtime_error("ViaInfallible makes the whole model: no region or stream");
+          run.Cache.Result = msynth::SynthesizeViaInfallible(example, options);
+          return;
+        }
         const auto analysis = msynth::ExampleAnalysis::FromExample(example);
         options.Example = &example;
         run.Cache.Result = this->Run(msynth::AdjacencyRules::FromExample(analysis), options);
@@ -413,6 +397,8 @@ bool vtkMSDiscreteSynthesis::Solve(
       if (options.Choice == msynth::LabelChoice::Resemblance)
         throw std::runtime_error(
           "resemblance-weighted choice needs an example grid, not a tileset");
+      if (this->ViaInfallible)
+        throw std::runtime_error("ViaInfallible needs a label-grid example, not a tileset");
       run.Tiles =
         msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset, this->TilesFolder);
       if (options.Rotate.Enabled && options.Rotate.Map.empty())
@@ -424,6 +410,7 @@ bool vtkMSDiscreteSynthesis::Solve(
           mirror.Map = run.Tiles.MirrorMap(a);
       }
       options.Counts = vtkMSLabelCounts::Read(this->Counts, &run.Tiles);
+      options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, &run.Tiles);
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
         msynth::StartFromWholeModel(rules, options);
@@ -534,6 +521,7 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "Seed", this->Seed);
   vtkMSFieldData::AddStatistics(fd, result.Statistics, result.Status, result.Message);
   vtkMSLabelCounts::AddFields(fd, result.Counts);
+  vtkMSLabelCounts::AddConnectedFields(fd, result.Connected);
   AddExampleFields(fd, input, this->TilesetFile.c_str(),
     this->GetActiveSource() != TILESET_SOURCE ? nullptr : &run.Tiles);
   if (this->GetActiveSource() ==
@@ -735,6 +723,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Source: " << this->Source << "\n";
   os << indent << "ComputeRequestedExtent: " << this->ComputeRequestedExtent << "\n";
   os << indent << "BlocksWhenWholeFails: " << this->BlocksWhenWholeFails << "\n";
+  os << indent << "ViaInfallible: " << this->ViaInfallible << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "LabelChoice: " << this->LabelChoice << "\n";
   os << indent << "SiteOrder: " << this->SiteOrder << "\n";
@@ -750,6 +739,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
      << this->EmptyLabel << ")\n";
   os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
   os << indent << "Counts: '" << this->Counts << "'\n";
+  os << indent << "Connected: '" << this->Connected << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

@@ -241,6 +241,17 @@ public:
   ///@}
 
   ///@{
+  /// D§3.3.8: run Algorithm 3.1 on an infallible refinement E_I of the label-grid example and
+  /// map the model back with f (msynth::SynthesizeViaInfallible): the whole model, scan-line
+  /// order, one attempt, no blocks. An error when no refinement is found, for tilesets and
+  /// samples, and with options that name E's labels or blocks. The Message field names the
+  /// split. Default off.
+  vtkSetMacro(ViaInfallible, bool);
+  vtkGetMacro(ViaInfallible, bool);
+  vtkBooleanMacro(ViaInfallible, bool);
+  ///@}
+
+  ///@{
   /// When whole-model synthesis fails every attempt, synthesize in 32-site blocks instead and say
   /// so in the Message field (not with snapshots). Default on.
   vtkSetMacro(BlocksWhenWholeFails, bool);
@@ -329,6 +340,16 @@ public:
   /// `CountMaximum`, `CountAchieved` report them.
   vtkSetStdStringFromCharMacro(Counts);
   vtkGetCharFromStdStringMacro(Counts);
+  ///@}
+
+  ///@{
+  /// A connected network (a hard constraint, msynth::SynthesisOptions::Connected): "LABELS[:N]"
+  /// ("" for none; default), the sites holding any of LABELS (values, or with a tileset tile or
+  /// label names; commas between) form at most N (default 1) components, through the tiles'
+  /// `connects` sides where the tileset gives them. Field data `ConnectedComponents`,
+  /// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` report the run.
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
   ///@}
 
   ///@{
@@ -550,6 +571,7 @@ private:
   int BlockStart = AUTOMATIC_START;
   int Source = AUTOMATIC_SOURCE;
   bool BlocksWhenWholeFails = true;
+  bool ViaInfallible = false;
   vtkIdType Seed = 0;
   int LabelChoice = UNIFORM;
   int SiteOrder = SCAN_LINE;
@@ -574,6 +596,7 @@ private:
   std::string TargetFractions;
   double SoftTemperature = 0.01;
   std::string Counts;
+  std::string Connected;
   std::string TilesetSubset;
   std::string SampleFile;
   int PatternSize = 3;

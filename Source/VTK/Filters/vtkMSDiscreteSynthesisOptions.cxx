@@ -68,7 +68,10 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
       options.Soft.Temperature = self->GetSoftTemperature();
     }
     if (self->GetActiveSource() != vtkMSDiscreteSynthesis::TILESET_SOURCE) // else tile names too
+    {
       options.Counts = vtkMSLabelCounts::Read(self->GetCounts(), nullptr);
+      options.Connected = vtkMSLabelCounts::ReadConnected(self->GetConnected(), nullptr);
+    }
   }
   catch (const msynth::Error& e)
   {

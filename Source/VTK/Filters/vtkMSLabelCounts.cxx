@@ -49,6 +49,80 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
   return counts;
 }
 
+msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Tileset* tiles)
+{
+  msynth::ConnectedNetwork network;
+  std::string list = text;
+  const std::size_t colon = list.rfind(':');
+  long long most = 1;
+  if (colon != std::string::npos && list.find(':') != colon)
+    throw msynth::Error("Connected: '" + msynth::Printable(text) +
+      "' names more than one network; give one, LABELS[:N] (the labels separated by commas)");
+  if (colon != std::string::npos)
+  {
+    if (!msynth::ParseInteger(list.substr(colon + 1), 1, std::numeric_limits<int>::max(), most))
+      throw msynth::Error("Connected: '" + msynth::Printable(list.substr(colon + 1)) +
+        "' is not a number of components (1 or more)");
+    list = list.substr(0, colon);
+  }
+  network.Maximum = most;
+  for (std::string item : msynth::SplitText(list, ','))
+  {
+    const std::size_t first = item.find_first_not_of(" \t");
+    if (first == std::string::npos)
+      continue;
+    item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
+    const std::size_t before = network.Values.size();
+    long long value = 0;
+    if (msynth::ParseInteger(item, std::numeric_limits<msynth::Label>::min(),
+          std::numeric_limits<msynth::Label>::max(), value))
+      network.Values.push_back(static_cast<msynth::Label>(value));
+    else if (tiles)
+    {
+      for (int b = 0; b < tiles->NumberOfLabels(); ++b)
+      {
+        const auto& tile =
+          tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
+        if (tile.Name == item || tiles->LabelName(b) == item)
+          network.Values.push_back(b);
+      }
+    }
+    if (network.Values.size() == before)
+      throw msynth::Error("Connected: '" + msynth::Printable(item) +
+        (tiles ? "' is neither a label value nor a tile or label name of the tileset"
+               : "' is not a label value (names need a tileset)"));
+    network.Name += (network.Name.empty() ? "" : ",") + item;
+  }
+  if (!network.Values.empty() && tiles)
+    for (msynth::Label v : network.Values)
+    {
+      const auto b = static_cast<std::size_t>(v);
+      if (b < tiles->LabelSides.size() && tiles->LabelSides[b] >= 0)
+        network.Sides[v] = static_cast<std::uint8_t>(tiles->LabelSides[b]);
+    }
+  return network;
+}
+
+void AddConnectedFields(vtkFieldData* fd, const msynth::ConnectedResult& connected)
+{
+  if (!connected.Requested)
+    return;
+  vtkNew<vtkStringArray> names;
+  names->SetName("ConnectedLabels");
+  names->InsertNextValue(connected.Name);
+  fd->AddArray(names);
+  const std::pair<const char*, std::int64_t> values[] = { { "ConnectedMaximum", connected.Maximum },
+    { "ConnectedComponents", connected.Components }, { "ConnectedBefore", connected.Before },
+    { "ConnectedRepairs", connected.Repairs }, { "ConnectedRedone", connected.Redone } };
+  for (const auto& [name, value] : values)
+  {
+    vtkNew<vtkIdTypeArray> a;
+    a->SetName(name);
+    a->InsertNextValue(static_cast<vtkIdType>(value));
+    fd->AddArray(a);
+  }
+}
+
 void AddFields(vtkFieldData* fd, const std::vector<msynth::LabelCountResult>& counts)
 {
   if (counts.empty())

@@ -27,6 +27,18 @@ namespace vtkMSLabelCounts
  */
 std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tileset* tiles);
 
+/**
+ * The connected network of @p text ("LABELS[:N]": labels or, with @p tiles, tile or label names,
+ * separated by commas; N the most components, 1 when left out); inactive for "". A tileset's
+ * `connects` sides become the labels' Sides.
+ * @throw msynth::Error naming the entry that is not a label.
+ */
+msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Tileset* tiles);
+
+/// Field arrays `ConnectedLabels` (string), `ConnectedMaximum`, `ConnectedComponents`,
+/// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` (one tuple); none without a network.
+void AddConnectedFields(vtkFieldData* fd, const msynth::ConnectedResult& connected);
+
 /// Field arrays `CountNames` (string), `CountMinimum`, `CountMaximum`, `CountAchieved` (one
 /// tuple per count); none without counts.
 void AddFields(vtkFieldData* fd, const std::vector<msynth::LabelCountResult>& counts);

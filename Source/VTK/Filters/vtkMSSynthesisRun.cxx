@@ -4,10 +4,12 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
@@ -73,6 +75,43 @@ bool Report(vtkAlgorithm* filter, msynth::SynthesisStatus status, const std::str
     vtkErrorWithObjectMacro(filter, << (context.empty() ? "" : context + ": ") << message);
   }
   return status == msynth::SynthesisStatus::Succeeded;
+}
+
+msynth::BlockExchange ProcessExchange(std::int64_t fingerprint)
+{
+  msynth::BlockExchange exchange;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() < 2)
+    return exchange;
+  auto mine = static_cast<vtkIdType>(fingerprint);
+  vtkIdType low = 0, high = 0;
+  controller->AllReduce(&mine, &low, 1, vtkCommunicator::MIN_OP);
+  controller->AllReduce(&mine, &high, 1, vtkCommunicator::MAX_OP);
+  if (low == 0 || low != high)
+    return exchange;
+  exchange.Rank = controller->GetLocalProcessId();
+  exchange.Processes = controller->GetNumberOfProcesses();
+  exchange.AllGather = [controller](const std::vector<char>& bytes)
+  {
+    // The lengths first, then the bytes of every rank.
+    const int ranks = controller->GetNumberOfProcesses();
+    vtkIdType length = static_cast<vtkIdType>(bytes.size());
+    std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
+    controller->AllGather(&length, lengths.data(), 1);
+    vtkIdType total = 0;
+    for (std::size_t r = 0; r < lengths.size(); ++r)
+    {
+      offsets[r] = total;
+      total += lengths[r];
+    }
+    std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+    controller->AllGatherV(bytes.data(), all.data(), length, lengths.data(), offsets.data());
+    std::vector<std::vector<char>> parts(lengths.size());
+    for (std::size_t r = 0; r < lengths.size(); ++r)
+      parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
+    return parts;
+  };
+  return exchange;
 }
 
 void AddCatalog(

@@ -83,6 +83,14 @@ bool Solve(vtkAlgorithm* filter, const std::string& what, const std::function<vo
 bool Report(vtkAlgorithm* filter, msynth::SynthesisStatus status, const std::string& message,
   const std::string& context = std::string());
 
+/**
+ * Blocks shared among the processes of the global controller (MPI ranks) when there are two or
+ * more and every one passes the same nonzero @p fingerprint (the same inputs and options, so
+ * the same schedule); else an inactive exchange (each process computes alone). Collective:
+ * every process calls it.
+ */
+msynth::BlockExchange ProcessExchange(std::int64_t fingerprint);
+
 /// The catalog on @p output: point arrays CatalogSize and Entropy.
 void AddCatalog(
   vtkDataSet* output, const std::vector<std::int32_t>& size, const std::vector<float>& entropy);

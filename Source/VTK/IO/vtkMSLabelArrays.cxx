@@ -156,8 +156,8 @@ vtkIntArray* vtkMSLabelArrays::NewLabelArray(const msynth::LabelGrid& grid, cons
   return array;
 }
 
-bool vtkMSLabelArrays::VoxelSurface(
-  vtkImageData* image, int empty, int piece, int pieces, vtkPolyData* output, std::string& problem)
+bool vtkMSLabelArrays::VoxelSurface(vtkImageData* image, int empty, int piece, int pieces,
+  vtkPolyData* output, std::string& problem, bool merge)
 {
   output->Initialize();
   if (!image || image->GetNumberOfPoints() == 0)
@@ -174,9 +174,11 @@ bool vtkMSLabelArrays::VoxelSurface(
     label = label == VTK_INT_MIN ? empty : label;
   }
   const double* spacing = image->GetSpacing();
-  const msynth::VoxelSurface surface =
-    msynth::ExtractVoxelSurface(grid, empty, FirstSitePosition(image),
-      { { spacing[0], spacing[1], spacing[2] } }, msynth::PieceSlab(grid, piece, pieces));
+  const std::array<double, 3> step{ { spacing[0], spacing[1], spacing[2] } };
+  const msynth::VoxelSurface surface = merge
+    ? msynth::ExtractMergedVoxelSurface(grid, empty, FirstSitePosition(image), step)
+    : msynth::ExtractVoxelSurface(
+        grid, empty, FirstSitePosition(image), step, msynth::PieceSlab(grid, piece, pieces));
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));

@@ -69,10 +69,11 @@ public:
    * decided), give none. Piece @p piece of @p pieces holds the faces of its slab of sites along
    * the longest axis; the pieces put together give the whole surface, with no faces at the
    * seams. An empty image gives an empty output. False, with @p problem, when the image has no
-   * usable label array.
+   * usable label array. @p merge (one piece only): coplanar faces of a label merged into
+   * rectangles (msynth::ExtractMergedVoxelSurface), for files of large voxel models.
    */
   static bool VoxelSurface(vtkImageData* image, int empty, int piece, int pieces,
-    vtkPolyData* output, std::string& problem);
+    vtkPolyData* output, std::string& problem, bool merge = false);
 
   /**
    * The Geometry output port (@p geometryInfo) of a filter whose port 0 is the label image

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Proportions that hold (issue 29): after synthesis, whole solid parts are emptied while that
+// brings the object types' shares nearer the targets. Emptying a connected solid part is always
+// consistent (its vertices then see only empty space), so the model stays valid.
+#include "Continuous/ConstraintPlan.h"
+#include "Continuous/ContinuousMesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace msynth
+{
+namespace detail
+{
+
+namespace
+{
+/// How far shares are from targets: the largest relative deviation over the solid types, then
+/// their sum (compared in that order). Infinite for an empty model.
+struct Deviation
+{
+  double Worst = std::numeric_limits<double>::infinity();
+  double Sum = std::numeric_limits<double>::infinity();
+  bool operator<(const Deviation& o) const
+  {
+    return this->Worst < o.Worst - 1e-12 || (this->Worst <= o.Worst + 1e-12 && this->Sum < o.Sum);
+  }
+};
+
+Deviation DeviationOf(const std::vector<double>& total, const std::vector<double>& target)
+{
+  double solid = 0;
+  for (std::size_t t = 1; t < total.size(); ++t)
+    solid += total[t];
+  Deviation d;
+  if (!(solid > 1e-9))
+    return d;
+  d.Worst = d.Sum = 0;
+  for (std::size_t t = 1; t < total.size(); ++t)
+  {
+    const double share = total[t] / solid;
+    const double off = target[t] > 0 ? std::abs(share - target[t]) / target[t] : share;
+    d.Worst = std::max(d.Worst, off);
+    d.Sum += off;
+  }
+  return d;
+}
+
+/**
+ * Each part's volume per type bit ([part][type]): the mesh of the labels (polygons oriented
+ * from InsideType to OutsideType), each polygon's divergence-theorem term added to its inside
+ * type and taken from its outside type, in the part of its first corner (a polygon bounds one
+ * part: its corners are joined by edges that touch solid). Vertex occupancy, which the
+ * steering tallies, counts regions of many planes (roof slopes) several times over.
+ */
+template <typename BitOf>
+std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels,
+  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, BitOf bitOf)
+{
+  std::vector<double> volumes(static_cast<std::size_t>(parts) * nt, 0.0);
+  if (parts == 0)
+    return volumes;
+  const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, labels);
+  const Point3 origin = arrangement.Position(0);
+  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  {
+    const auto& poly = mesh.Polygons[f];
+    const std::int64_t c =
+      component[static_cast<std::size_t>(mesh.PointVertex[static_cast<std::size_t>(poly[0])])];
+    if (c < 0)
+      continue;
+    double volume = 0; // fan from the first corner: a·(b × e) / 6, or the area in 2D
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+    {
+      double a[3], b[3], e[3];
+      for (std::size_t i = 0; i < 3; ++i)
+      {
+        a[i] = mesh.Points[static_cast<std::size_t>(poly[0])][i] - origin[i];
+        b[i] = mesh.Points[static_cast<std::size_t>(poly[k])][i] - origin[i];
+        e[i] = mesh.Points[static_cast<std::size_t>(poly[k + 1])][i] - origin[i];
+      }
+      volume += mesh.Planar
+        ? ((b[0] - a[0]) * (e[1] - a[1]) - (b[1] - a[1]) * (e[0] - a[0])) / 2
+        : (a[0] * (b[1] * e[2] - b[2] * e[1]) + a[1] * (b[2] * e[0] - b[0] * e[2]) +
+            a[2] * (b[0] * e[1] - b[1] * e[0])) /
+          6;
+    }
+    const int inside = bitOf(mesh.InsideType[f]);
+    const int outside = mesh.Planar ? 0 : bitOf(mesh.OutsideType[f]);
+    if (inside > 0)
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += volume;
+    if (outside > 0)
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= volume;
+  }
+  return volumes;
+}
+} // namespace
+
+ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
+  std::vector<std::int32_t>& labels, int emptyLabel) const
+{
+  Proportioned out;
+  if (!this->Proportions || this->HasGuideWeights)
+    return out; // guide weights ask for other shares in places: emptying parts would undo them
+  std::vector<std::int64_t> component;
+  const std::int64_t parts = SolidComponents(
+    this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
+    this->TypesOfLabel, component);
+  const std::size_t nt = this->Types.size();
+  // Each part's volume per type, and the model's.
+  const std::vector<double> occupancy = PartVolumes(this->Analysis, this->Arrangement, labels,
+    component, parts, nt, [this](int type) { return this->BitOf(type); });
+  std::vector<double> total(nt, 0.0);
+  for (std::int64_t c = 0; c < parts; ++c)
+    for (std::size_t t = 1; t < nt; ++t)
+      total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
+  // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
+  // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
+  // first, so the choice is deterministic).
+  std::vector<char> removed(static_cast<std::size_t>(parts), 0);
+  Deviation now = DeviationOf(total, this->Target);
+  std::vector<double> trial(nt);
+  while (now.Worst > ProportionMargin)
+  {
+    std::int64_t best = -1;
+    Deviation bestDeviation = now;
+    for (std::int64_t c = 0; c < parts; ++c)
+    {
+      if (removed[static_cast<std::size_t>(c)])
+        continue;
+      for (std::size_t t = 1; t < nt; ++t)
+        trial[t] = total[t] - occupancy[static_cast<std::size_t>(c) * nt + t];
+      const Deviation d = DeviationOf(trial, this->Target);
+      if (d < bestDeviation)
+      {
+        bestDeviation = d;
+        best = c;
+      }
+    }
+    if (best < 0)
+      break;
+    removed[static_cast<std::size_t>(best)] = 1;
+    for (std::size_t t = 1; t < nt; ++t)
+      total[t] -= occupancy[static_cast<std::size_t>(best) * nt + t];
+    now = bestDeviation;
+    ++out.Removed;
+  }
+  if (out.Removed > 0)
+  {
+    for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
+    {
+      const std::int64_t c = component[static_cast<std::size_t>(v)];
+      if (c >= 0 && removed[static_cast<std::size_t>(c)])
+        labels[static_cast<std::size_t>(v)] = emptyLabel;
+    }
+  }
+  // What still falls outside the tolerance, and why emptying parts could not help.
+  double solid = 0;
+  for (std::size_t t = 1; t < nt; ++t)
+    solid += total[t];
+  std::ostringstream why;
+  why << std::setprecision(2) << std::fixed;
+  for (std::size_t t = 1; t < nt && solid > 0; ++t)
+  {
+    const double share = total[t] / solid, target = this->Target[t];
+    if (target > 0 && std::abs(share - target) <= ProportionTolerance * target)
+      continue;
+    out.Outside.push_back(this->Types[t]);
+    why << (why.tellp() > 0 ? "; " : "") << "type " << this->Types[t] << ": " << share
+        << " of the solid (example " << target << "), "
+        << (share > target
+               ? "too much, and emptying any part holding it takes as much of the other types"
+               : "too little: the draw favours it, but its labels are mostly forced by the "
+                 "adjacency constraint, and emptying parts cannot add it");
+  }
+  out.Reason = why.str();
+  return out;
+}
+
+} // namespace detail
+} // namespace msynth

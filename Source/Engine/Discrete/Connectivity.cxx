@@ -1,0 +1,441 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Discrete/Connectivity.h"
+
+#include "Core/Error.h"
+#include "Discrete/MirrorPlan.h"
+#include "Discrete/SymmetryPlan.h"
+
+#include <algorithm>
+#include <limits>
+#include <set>
+
+namespace msynth
+{
+namespace detail
+{
+namespace
+{
+
+/// A component of the network found by Flood.
+struct Component
+{
+  std::int64_t Sites = 0;
+  bool Open = false;
+  Coord Low{ { 0, 0, 0 } }, High{ { 0, 0, 0 } }; ///< bounding box, inclusive
+};
+
+/**
+ * The components of the network over @p n sites whose label index at site s is label(s);
+ * open(s) says whether a later block writes s. Calls @p found for each, in the order of their
+ * first site.
+ */
+template <class LabelFn, class OpenFn, class FoundFn>
+void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& open, FoundFn&& found,
+  std::vector<std::int32_t>& seen, std::vector<std::int64_t>& stack)
+{
+  const std::int64_t total = n[0] * n[1] * n[2];
+  const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+  seen.assign(static_cast<std::size_t>(total), 0);
+  std::int32_t number = 0; // seen: the component's number + 1
+  for (std::int64_t first = 0; first < total; ++first)
+  {
+    if (seen[static_cast<std::size_t>(first)] || rule.Sides(label(first)) < 0)
+      continue;
+    Component c;
+    c.Low = { { first % n[0], (first / n[0]) % n[1], first / (n[0] * n[1]) } };
+    c.High = c.Low;
+    seen[static_cast<std::size_t>(first)] = ++number;
+    stack.assign(1, first);
+    while (!stack.empty())
+    {
+      const std::int64_t s = stack.back();
+      stack.pop_back();
+      ++c.Sites;
+      const Coord p{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        c.Low[a] = std::min(c.Low[a], p[a]);
+        c.High[a] = std::max(c.High[a], p[a]);
+      }
+      c.Open = c.Open || open(s);
+      const int sides = rule.Sides(label(s));
+      for (int d = 0; d < 6; ++d)
+      {
+        const std::size_t a = static_cast<std::size_t>(d / 2);
+        const bool up = d % 2 == 0;
+        if (!((sides >> d) & 1) || (up ? p[a] + 1 >= n[a] : p[a] == 0))
+          continue;
+        const std::int64_t q = s + (up ? stride[a] : -stride[a]);
+        if (open(q))
+          c.Open = true; // the side faces a site still to be written
+        const int other = rule.Sides(label(q));
+        if (other < 0 || !((other >> (d ^ 1)) & 1) || seen[static_cast<std::size_t>(q)])
+          continue;
+        seen[static_cast<std::size_t>(q)] = number;
+        stack.push_back(q);
+      }
+    }
+    found(c);
+  }
+}
+
+/// The components of @p model; @p ids (when given) receives each site's component number + 1
+/// (0: not in the network).
+std::vector<Component> FindComponents(const NetworkRule& rule,
+  const std::vector<std::int32_t>& model, const Coord& n, std::vector<std::int32_t>* ids = nullptr)
+{
+  std::vector<Component> out;
+  std::vector<std::int32_t> scratch;
+  std::vector<std::int32_t>& seen = ids ? *ids : scratch;
+  std::vector<std::int64_t> stack;
+  Flood(
+    rule, n, [&](std::int64_t s) { return model[static_cast<std::size_t>(s)]; },
+    [](std::int64_t) { return false; }, [&](const Component& c) { out.push_back(c); }, seen, stack);
+  return out;
+}
+
+std::string NetworkName(const ConnectedNetwork& network)
+{
+  return "the network of " + (network.Name.empty() ? std::string("its labels") : network.Name);
+}
+} // namespace
+
+NetworkRule::NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network)
+{
+  this->Mask.assign(static_cast<std::size_t>(rules.NumberOfLabels()), -1);
+  for (Label v : network.Values)
+  {
+    const int b = rules.IndexOf(v);
+    if (b < 0)
+      continue;
+    const auto side = network.Sides.find(v);
+    this->Mask[static_cast<std::size_t>(b)] = side == network.Sides.end() ? 63 : side->second;
+  }
+}
+
+void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  const ConnectedNetwork& network = options.Connected;
+  if (!network.Active())
+    return;
+  const std::string name = NetworkName(network);
+  if (AnyMirror(options) || AnySeamSymmetry(options))
+    throw Error(name +
+      " cannot be combined with symmetry (only a part of the output is "
+      "synthesized)");
+  if (options.Soft.Active())
+    throw Error(name + " cannot be combined with soft constraints (which roll blocks back)");
+  if (!options.Counts.empty())
+    throw Error(name + " cannot be combined with label counts (a repair would move them)");
+  if (network.Maximum < 1)
+    throw Error(name + " asks for at most " + std::to_string(network.Maximum) +
+      " components (need at least 1)");
+  std::set<Label> seen;
+  for (Label v : network.Values)
+  {
+    if (rules.IndexOf(v) < 0)
+      throw Error(name + ": label " + std::to_string(v) + " does not occur in the example");
+    if (!seen.insert(v).second)
+      throw Error(name + ": label " + std::to_string(v) + " is named twice");
+  }
+  for (const auto& side : network.Sides)
+    if (side.second > 63)
+      throw Error(name + ": label " + std::to_string(side.first) + " has sides beyond 6");
+}
+
+std::int64_t CountComponents(
+  const NetworkRule& rule, const std::vector<std::int32_t>& model, const Coord& n)
+{
+  return static_cast<std::int64_t>(FindComponents(rule, model, n).size());
+}
+
+NetworkGuard::NetworkGuard(
+  const NetworkRule& rule, std::int64_t maximum, const std::vector<Block>& blocks, const Coord& n)
+  : Rule(rule)
+  , Maximum(maximum)
+  , N(n)
+{
+  std::int64_t indices = 0;
+  for (const Block& b : blocks)
+    indices = std::max(indices, b.Index + 1);
+  this->Position.assign(static_cast<std::size_t>(indices), -1);
+  this->OwnerPosition.assign(static_cast<std::size_t>(n[0] * n[1] * n[2]), -1);
+  for (std::size_t i = 0; i < blocks.size(); ++i) // in run order: the last to cover a site owns it
+  {
+    const Block& b = blocks[i];
+    this->Position[static_cast<std::size_t>(b.Index)] = static_cast<std::int32_t>(i);
+    ForEachSite(
+      b, n, [&](std::size_t s) { this->OwnerPosition[s] = static_cast<std::int32_t>(i); });
+  }
+}
+
+bool NetworkGuard::Keeps(
+  const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model)
+{
+  const std::int32_t now = this->Position[static_cast<std::size_t>(block.Index)];
+  const Coord& n = this->N;
+  const Coord& o = block.Origin;
+  auto inBlock = [&](std::int64_t s, std::int64_t& local)
+  {
+    const Coord p{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] < o[a] || p[a] >= o[a] + block.Dims[a])
+        return false;
+    local = (p[0] - o[0]) + block.Dims[0] * ((p[1] - o[1]) + block.Dims[1] * (p[2] - o[2]));
+    return true;
+  };
+  std::vector<std::int32_t> seen;
+  std::vector<std::int64_t> stack;
+  auto tally = [&](bool after, std::int64_t& closed, std::int64_t& open)
+  {
+    auto label = [&](std::int64_t s)
+    {
+      std::int64_t local = 0;
+      return after && inBlock(s, local) ? static_cast<std::int32_t>(cat.Single(local))
+                                        : model[static_cast<std::size_t>(s)];
+    };
+    auto isOpen = [&](std::int64_t s)
+    {
+      const std::int32_t owner = this->OwnerPosition[static_cast<std::size_t>(s)];
+      return (after ? owner > now : owner >= now) || label(s) < 0;
+    };
+    closed = open = 0;
+    Flood(
+      this->Rule, n, label, isOpen, [&](const Component& c) { ++(c.Open ? open : closed); }, seen,
+      stack);
+  };
+  std::int64_t closedBefore = 0, openBefore = 0, closed = 0, open = 0;
+  tally(false, closedBefore, openBefore);
+  tally(true, closed, open);
+  const std::int64_t limit = open > 0 ? this->Maximum - 1 : this->Maximum;
+  const bool keeps = closed <= std::max(limit, closedBefore);
+  if (!keeps)
+    ++this->Redone;
+  return keeps;
+}
+
+namespace
+{
+/// The repairs' state: the model, the components and scratch space.
+struct Repair
+{
+  BlockSolver& Solver;
+  SharedModel& Shared;
+  const NetworkRule& Rule;
+  const SynthesisOptions& Options;
+  SynthesisStatistics& Stats;
+  std::int64_t Key = 0;          ///< the next box's block index
+  std::vector<Component> Parts;  ///< the components now
+  std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
+  std::vector<double> Sparse;    ///< the network's labels' weights scaled down
+  std::vector<std::int32_t> SavedModel, SavedLast;
+
+  Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+    const SynthesisOptions& options, SynthesisStatistics& stats)
+    : Solver(solver)
+    , Shared(shared)
+    , Rule(rule)
+    , Options(options)
+    , Stats(stats)
+  {
+    this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
+    this->Sparse.assign(static_cast<std::size_t>(rule.Labels()), 1.0);
+    for (std::size_t b = 0; b < this->Sparse.size(); ++b)
+      if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
+        this->Sparse[b] = 1.0 / 64;
+  }
+
+  /**
+   * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
+   * (every other one drawing the network's labels rarely, so the box keeps only the paths its
+   * surroundings force), until one leaves fewer components. Returns whether one did.
+   */
+  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow)
+  {
+    const Coord n = this->Solver.Size();
+    Block box;
+    box.Index = this->Key++;
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      box.Origin[a] = std::max<std::int64_t>(0, lo[a] - grow);
+      box.Dims[a] = std::min(n[a], hi[a] + grow + 1) - box.Origin[a];
+    }
+    this->SavedModel.clear();
+    this->SavedLast.clear();
+    ForEachSite(box, n,
+      [&](std::size_t s)
+      {
+        this->SavedModel.push_back(this->Shared.Model[s]);
+        this->SavedLast.push_back(this->Shared.LastBlock[s]);
+      });
+    for (int attempt = 0; attempt < this->Options.AttemptsPerBlock; ++attempt)
+    {
+      Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
+        static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
+      ++this->Stats.Attempts;
+      this->Solver.ScaleWeights(attempt % 2 == 1 ? &this->Sparse : nullptr);
+      const std::int64_t empty = this->Solver.RunBlock(box, rng, this->Stats.Assignments);
+      this->Solver.ScaleWeights(nullptr);
+      if (empty >= 0)
+        continue; // a failed attempt leaves the model as it was
+      std::vector<std::int32_t> ids;
+      std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
+      if (now.size() < this->Parts.size())
+      {
+        this->Parts = std::move(now);
+        this->Ids = std::move(ids);
+        return true;
+      }
+      std::size_t i = 0;
+      ForEachSite(box, n,
+        [&](std::size_t s)
+        {
+          this->Shared.Model[s] = this->SavedModel[i];
+          this->Shared.LastBlock[s] = this->SavedLast[i++];
+        });
+    }
+    return false;
+  }
+
+  /// The nearest site of another component to component @p c (number @p c + 1) by face steps
+  /// (at most MaximumGap), in @p to, and the site of @p c it was reached from, in @p from.
+  bool Gap(std::int32_t c, std::int64_t& from, std::int64_t& to) const
+  {
+    constexpr std::int32_t MaximumGap = 16;
+    const Coord n = this->Solver.Size();
+    const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+    std::vector<std::int64_t> origin(this->Ids.size(), -1), front, next;
+    for (std::size_t s = 0; s < this->Ids.size(); ++s)
+      if (this->Ids[s] == c + 1)
+      {
+        origin[s] = static_cast<std::int64_t>(s);
+        front.push_back(static_cast<std::int64_t>(s));
+      }
+    for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
+    {
+      next.clear();
+      for (std::int64_t s : front)
+        for (int d = 0; d < 6; ++d)
+        {
+          const auto a = static_cast<std::size_t>(d / 2);
+          const std::int64_t along = (s / stride[a]) % n[a];
+          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
+            continue;
+          const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
+          if (origin[static_cast<std::size_t>(q)] >= 0)
+            continue;
+          origin[static_cast<std::size_t>(q)] = origin[static_cast<std::size_t>(s)];
+          const std::int32_t id = this->Ids[static_cast<std::size_t>(q)];
+          if (id != 0 && id != c + 1)
+          {
+            from = origin[static_cast<std::size_t>(q)];
+            to = q;
+            return true;
+          }
+          next.push_back(q);
+        }
+      front.swap(next);
+    }
+    return false;
+  }
+
+  /// Joins component @p c to its nearest neighbour through boxes over the gap between them,
+  /// else removes it (or joins it) through boxes around it grown by 1, 2, ..., 16 sites.
+  bool Fix(std::size_t c)
+  {
+    const Coord n = this->Solver.Size();
+    auto at = [&](std::int64_t s) {
+      return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+    };
+    std::int64_t from = 0, to = 0;
+    if (this->Gap(static_cast<std::int32_t>(c), from, to))
+    {
+      const Coord p = at(from), q = at(to);
+      Coord lo, hi;
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(p[a], q[a]);
+        hi[a] = std::max(p[a], q[a]);
+      }
+      for (std::int64_t grow = 1; grow <= 4; grow *= 2)
+        if (this->TryBox(lo, hi, grow))
+          return true;
+    }
+    const Component part = this->Parts[c];
+    for (std::int64_t grow = 1; grow <= 16; grow *= 2)
+      if (this->TryBox(part.Low, part.High, grow))
+        return true;
+    return false;
+  }
+};
+} // namespace
+
+std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+  const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,
+  ConnectedResult& out)
+{
+  Repair repair(solver, shared, rule, options, stats);
+  repair.Key = firstIndex;
+  out.Before = static_cast<std::int64_t>(repair.Parts.size());
+  while (static_cast<std::int64_t>(repair.Parts.size()) > out.Maximum)
+  {
+    // The smallest components first (the first of equal ones): the cheapest to join or remove;
+    // one that can be neither gives way to the next.
+    std::vector<std::size_t> order(repair.Parts.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+      [&](std::size_t a, std::size_t b) { return repair.Parts[a].Sites < repair.Parts[b].Sites; });
+    bool repaired = false;
+    for (std::size_t i = 0; i < order.size() && !repaired; ++i)
+      repaired = repair.Fix(order[i]);
+    if (!repaired)
+    {
+      const Component& c = repair.Parts[order[0]];
+      return NetworkName(options.Connected) + " has " + std::to_string(repair.Parts.size()) +
+        " components, more than " + std::to_string(out.Maximum) +
+        ", and none could be joined to another or removed (the smallest: " +
+        std::to_string(c.Sites) + " sites at " + Format(c.Low) +
+        "). Try another seed, more attempts or a larger maximum";
+    }
+    ++out.Repairs;
+  }
+  out.Components = static_cast<std::int64_t>(repair.Parts.size());
+  return std::string();
+}
+
+NetworkRun::NetworkRun(const AdjacencyRules& rules, const SynthesisOptions& options,
+  const std::vector<Block>& blocks, BlockSolver& solver)
+  : Rule(rules, options.Connected)
+{
+  if (blocks.size() > 1)
+  {
+    this->Guard =
+      std::make_unique<NetworkGuard>(this->Rule, options.Connected.Maximum, blocks, solver.Size());
+    solver.UseNetwork(this->Guard.get());
+  }
+}
+
+bool NetworkRun::Keep(const SynthesisOptions& options, BlockSolver& solver, SharedModel& shared,
+  const std::vector<Block>& blocks, SynthesisResult& r)
+{
+  ConnectedResult& out = r.Connected;
+  out.Requested = true;
+  out.Maximum = options.Connected.Maximum;
+  out.Name = options.Connected.Name;
+  out.Redone = this->Guard ? this->Guard->Refused() : 0;
+  solver.UseNetwork(nullptr);
+  std::int64_t next = 0;
+  for (const Block& b : blocks)
+    next = std::max(next, b.Index + 1);
+  const std::string failure =
+    RepairNetwork(solver, shared, this->Rule, options, next, r.Statistics, out);
+  if (failure.empty())
+    return true;
+  r.Status = SynthesisStatus::Failed;
+  r.Message = failure;
+  return false;
+}
+
+} // namespace detail
+} // namespace msynth

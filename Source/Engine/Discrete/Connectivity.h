@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file Connectivity.h
+ * @brief Connected networks (SynthesisOptions::Connected, internal): the network's components,
+ * the check of a solved block, and the repairs after the blocks.
+ *
+ * Components are found by a flood over face neighbours joined through connecting sides
+ * (ConnectedNetwork::Sides). In block synthesis a site is *open* while a later block of the run
+ * writes it (the block that writes it last has not run: LabelCounts.h's owners); a component is
+ * open when one of its sites, or a neighbour one of its connecting sides faces, is open: it may
+ * still grow into another. A component with no open site is *closed off*: it stays as it is. A
+ * block attempt that leaves more closed-off components than the run may keep (Maximum − 1 while
+ * open components remain, Maximum at the end) and more than before it is redone, except its
+ * last attempt, which is kept as Algorithm 3.4 keeps it. When the blocks are done (or after a
+ * whole model), each surplus component, smallest first, gets a box around it synthesized again
+ * (grown by 1, 2, 4, ... sites, AttemptsPerBlock attempts each) until a result has fewer
+ * components (it joined another or vanished); a model left with more than Maximum fails.
+ */
+#include "Discrete/BlockSolver.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace msynth
+{
+namespace detail
+{
+
+/// The network's labels as label indices, and how two of them join.
+class NetworkRule
+{
+public:
+  NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network);
+  /// The sides label index @p b connects through (bit 2a: toward +a, 2a+1: toward -a), or -1
+  /// when it is not a network label (or @p b < 0, undecided).
+  int Sides(std::int32_t b) const { return b < 0 ? -1 : this->Mask[static_cast<std::size_t>(b)]; }
+
+  /// The number of label indices.
+  int Labels() const { return static_cast<int>(this->Mask.size()); }
+
+private:
+  std::vector<int> Mask;
+};
+
+/// Refuses a network the rules or options cannot keep (unknown labels, Maximum < 1, symmetry,
+/// soft constraints, counts), with one line. Needs no model.
+void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/// The number of the network's components in @p model (label indices over @p n; -1 undecided).
+std::int64_t CountComponents(
+  const NetworkRule& rule, const std::vector<std::int32_t>& model, const Coord& n);
+
+/// The check of a solved block in block synthesis (see the file comment). One thread.
+class NetworkGuard
+{
+public:
+  /// @p blocks in run order over a model of @p n sites.
+  NetworkGuard(const NetworkRule& rule, std::int64_t maximum, const std::vector<Block>& blocks,
+    const Coord& n);
+  /// Whether the attempt whose labels are in @p cat (over @p block) may be kept in @p model.
+  bool Keeps(const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model);
+  /// Attempts Keeps refused.
+  std::int64_t Refused() const { return this->Redone; }
+
+private:
+  const NetworkRule& Rule;
+  std::int64_t Maximum;
+  Coord N;
+  std::vector<std::int32_t> OwnerPosition; ///< per site, the run position of its last block
+  std::vector<std::int32_t> Position;      ///< per block index, its run position
+  std::int64_t Redone = 0;
+};
+
+/**
+ * After the blocks (or a whole model) on @p shared: the surplus components re-synthesized in
+ * boxes by @p solver (block indices from @p firstIndex, draws from @p options.Seed) until at
+ * most Maximum remain. Fills @p out; returns an empty string, or one line saying why the
+ * network could not be kept.
+ */
+std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+  const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,
+  ConnectedResult& out);
+
+/// A run's network: its rule and, with several blocks, the check @p solver makes of each.
+class NetworkRun
+{
+public:
+  NetworkRun(const AdjacencyRules& rules, const SynthesisOptions& options,
+    const std::vector<Block>& blocks, BlockSolver& solver);
+  /**
+   * After the blocks: the surplus components repaired (RepairNetwork, with block indices past
+   * those of @p blocks) and @p r's figures filled; false, with @p r failed, when too many remain.
+   */
+  bool Keep(const SynthesisOptions& options, BlockSolver& solver, SharedModel& shared,
+    const std::vector<Block>& blocks, SynthesisResult& r);
+
+private:
+  NetworkRule Rule;
+  std::unique_ptr<NetworkGuard> Guard;
+};
+
+} // namespace detail
+} // namespace msynth

@@ -1,0 +1,77 @@
+"""The grounded-proportions matrix (issue 29 item 1) on small boxes: every bundled multi-type
+example x {--grounded, --grounded + its documented constraints} x seeds 1-5, each object type's
+share of the solid volume of the written model.vtp measured here (proportions.py: the divergence
+theorem over the polygons, read by VTK's XML reader; the example's from the OBJ text), not by
+the solver.
+
+- Where the matrix holds, every share is within 25 % (relative) of the example's.
+- Everywhere, a type outside 25 % is named in statistics.json's ProportionsOutside with why, and
+  a type named there is outside (the report is true).
+The full sizes are the benchmark (Testing/Benchmarks/proportions.sh)."""
+import os
+import re
+import unittest
+
+import proportions as p
+from msynth_testing import tmp
+
+SEEDS = range(1, 6)
+# (example, with its documented constraints) whose every run keeps every share within 25 %.
+HOLDS = {("house", False), ("house", True), ("box-building", False), ("box-building", True),
+         ("domed-building", False)}
+# The rest is measured and reported, not yet held (Documentation/continuous-synthesis.md,
+# "Limits"): the cottage (its porch is rarely synthesized), the domed building with storeys
+# (one building whose dome outgrows its walls), the town.
+
+
+class ProportionsMatrix(unittest.TestCase):
+    def check(self, name, constrained, seeds=SEEDS):
+        size = p.EXAMPLES[name][2]
+        for seed in seeds:
+            out = tmp("proportions-%s-%d-%d" % (name, int(constrained), seed))
+            target, got, stats, _, names = p.run(name, size, seed, constrained, out, threads=1)
+            wrong = p.failures(target, got)
+            where = "%s %s seed %d: %s against %s" % (
+                name, "constrained" if constrained else "grounded", seed,
+                {names[t]: round(got.get(t, 0), 3) for t in target},
+                {names[t]: round(v, 3) for t, v in target.items()})
+            if (name, constrained) in HOLDS:
+                self.assertEqual(wrong, [], where)
+            reported = {int(t) for t in re.findall(r"type (\d+):", stats["ProportionsOutside"])}
+            # The solver measures its own mesh; allow a type at the border either way.
+            clear = {t for t in wrong if abs(got.get(t, 0) / target[t] - 1) > p.TOLERANCE + 0.02}
+            self.assertTrue(clear <= reported, where + "; reported: " + stats["ProportionsOutside"])
+            inside = {t for t in target if abs(got.get(t, 0) / target[t] - 1) < p.TOLERANCE - 0.02}
+            self.assertFalse(inside & reported, where + "; reported: " + stats["ProportionsOutside"])
+            self.assertGreaterEqual(stats["ProportionPartsRemoved"], 0)
+
+    def test_house(self):
+        self.check("house", False)
+        self.check("house", True)
+
+    def test_box_building(self):
+        self.check("box-building", False)
+        self.check("box-building", True)
+
+    def test_domed_building(self):
+        self.check("domed-building", False)
+        self.check("domed-building", True)
+
+    def test_cottage_and_town_report_what_falls_short(self):
+        """Seed 1 only (seconds a run; all five in the benchmark): the report is true."""
+        self.check("cottage", False, [1])
+        self.check("cottage", True, [1])
+        self.check("town", True, [1])
+
+    def test_measure_is_independent(self):
+        """The example's shares from the OBJ text: the house's walls 4 x 3 x 2 = 24 against a
+        roof prism 5 x 4 x 2 / 2 = 20."""
+        target, names = p.example_shares(os.path.join(os.environ["MSYNTH_DATA"], "Continuous",
+                                                      "house.obj"))
+        self.assertEqual(names, {1: "wall", 2: "roof"})
+        self.assertAlmostEqual(target[1], 24 / 44)
+        self.assertAlmostEqual(target[2], 20 / 44)
+
+
+if __name__ == "__main__":
+    unittest.main()
