@@ -157,6 +157,7 @@ void LabelDomains::Start(std::int64_t n)
   this->FromScratch = true;
   this->ChangedSites.clear();
   this->Trail.clear();
+  this->TrailBase = 0;
   this->Scratch.assign(static_cast<std::size_t>(this->W), 0);
 }
 
@@ -171,15 +172,6 @@ int LabelDomains::Single(std::int64_t site) const
     }
   }
   return -1;
-}
-
-void LabelDomains::Push(std::int64_t site)
-{
-  if (!this->Queued[static_cast<std::size_t>(site)])
-  {
-    this->Queued[static_cast<std::size_t>(site)] = 1;
-    this->Queue.push_back(site);
-  }
 }
 
 bool LabelDomains::Keep(std::int64_t site, const std::uint64_t* mask)
@@ -222,8 +214,28 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
   return this->Counts[static_cast<std::size_t>(site)] > 0;
 }
 
+void LabelDomains::Forget(std::size_t mark)
+{
+  if (mark <= this->TrailBase)
+  {
+    return;
+  }
+  const std::size_t drop = mark - this->TrailBase;
+  if (drop < (std::size_t(1) << 16) || 2 * drop < this->Trail.size())
+  {
+    return; // not worth moving the rest yet
+  }
+  this->Trail.erase(this->Trail.begin(), this->Trail.begin() + static_cast<std::ptrdiff_t>(drop));
+  this->TrailBase = mark;
+}
+
 void LabelDomains::Undo(std::size_t mark)
 {
+  if (mark < this->TrailBase)
+  {
+    throw Error("label domains: undo past the forgotten part of the trail");
+  }
+  mark -= this->TrailBase;
   const std::size_t entry = static_cast<std::size_t>(this->W) + 2;
   while (this->Trail.size() > mark)
   {

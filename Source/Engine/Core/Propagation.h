@@ -46,6 +46,19 @@ public:
    * the labels.
    */
   void UnionOf(int d, const std::uint64_t* domain, std::uint64_t* out) const;
+  /// UnionOf for k <= 64 (one word): the unions of the set's 8-label chunks, inline.
+  std::uint64_t UnionOfWord(int d, std::uint64_t domain) const
+  {
+    const int chunks = (this->K + 7) / 8;
+    const std::uint64_t* table = this->ChunkUnions.data() +
+      static_cast<std::size_t>(d) * static_cast<std::size_t>(chunks) * 256;
+    std::uint64_t out = 0;
+    for (int j = 0; j < chunks && domain; ++j, domain >>= 8, table += 256)
+    {
+      out |= (domain & 0xffu) ? table[domain & 0xffu] : 0;
+    }
+    return out;
+  }
   bool Allowed(int d, int b, int c) const
   {
     return (this->Compatible(d, b)[c >> 6] >> (c & 63)) & 1u;
@@ -113,9 +126,15 @@ public:
   {
     this->Recording = on;
     this->Trail.clear();
+    this->TrailBase = 0;
   }
-  std::size_t Mark() const { return this->Trail.size(); }
+  /// Marks count every word recorded since Record(true), also those that Forget() dropped.
+  std::size_t Mark() const { return this->TrailBase + this->Trail.size(); }
+  /// Restores the state of @p mark, which must not be older than the last Forget().
   void Undo(std::size_t mark);
+  /// Drops the record of the changes before @p mark (no Undo will go back past it), when that
+  /// is most of the trail: a long search keeps only the trail it can still undo.
+  void Forget(std::size_t mark);
 
   /// Sites whose sets changed since ClearChanged().
   const std::vector<std::int64_t>& Changed() const { return this->ChangedSites; }
@@ -140,6 +159,25 @@ public:
       for (std::int64_t s = 0; s < this->NumberOfSites(); ++s)
         this->Push(s);
     }
+    std::size_t head = this->W == 1 ? this->Drain<true>(rules, forEachNeighbour)
+                                    : this->Drain<false>(rules, forEachNeighbour);
+    if (this->EmptySite >= 0)
+    {
+      for (std::size_t i = head; i < this->Queue.size(); ++i)
+      {
+        this->Queued[static_cast<std::size_t>(this->Queue[i])] = 0;
+      }
+    }
+    this->Queue.clear();
+    return this->EmptySite;
+  }
+
+private:
+  /// Propagate's loop over the queue; returns how far it got. OneWord: k <= 64, the sets and
+  /// the unions as single words, inline.
+  template <bool OneWord, class ForEachNeighbour>
+  std::size_t Drain(const CompatibilityRelation& rules, ForEachNeighbour& forEachNeighbour)
+  {
     std::vector<std::uint64_t>& allowed = this->Scratch;
     std::size_t head = 0;
     while (head < this->Queue.size() && this->EmptySite < 0)
@@ -160,35 +198,80 @@ public:
           {
             return true;
           }
-          const std::uint64_t* mask;
-          if (this->Counts[static_cast<std::size_t>(v)] == this->K)
+          const bool any = this->Counts[static_cast<std::size_t>(v)] == this->K;
+          if constexpr (OneWord)
           {
-            mask = rules.CompatibleWithAny(d); // v is unconstrained: precomputed union
+            // v unconstrained: the precomputed union
+            return this->RestrictWord(
+              u, any ? *rules.CompatibleWithAny(d) : rules.UnionOfWord(d, *dv));
           }
           else
           {
-            rules.UnionOf(d, dv, allowed.data());
-            mask = allowed.data();
+            const std::uint64_t* mask;
+            if (any)
+            {
+              mask = rules.CompatibleWithAny(d); // v is unconstrained: precomputed union
+            }
+            else
+            {
+              rules.UnionOf(d, dv, allowed.data());
+              mask = allowed.data();
+            }
+            return this->Restrict(u, mask);
           }
-          return this->Restrict(u, mask);
         });
     }
-    if (this->EmptySite >= 0)
+    return head;
+  }
+  /// Restrict for one-word sets.
+  bool RestrictWord(std::int64_t site, std::uint64_t mask)
+  {
+    std::uint64_t& d = this->Bits[static_cast<std::size_t>(site)];
+    int& count = this->Counts[static_cast<std::size_t>(site)];
+    if ((d & mask) != d)
     {
-      for (std::size_t i = head; i < this->Queue.size(); ++i)
+      if (this->Recording)
       {
-        this->Queued[static_cast<std::size_t>(this->Queue[i])] = 0;
+        if (this->Trail.capacity() - this->Trail.size() < 3)
+        {
+          this->Trail.reserve(2 * this->Trail.size() + 1024);
+        }
+        this->Trail.push_back(static_cast<std::uint64_t>(site));
+        this->Trail.push_back(static_cast<std::uint64_t>(count));
+        this->Trail.push_back(d);
+      }
+      d &= mask;
+      const int now = PopCountWord(d);
+      this->DecidedSites += (now == 1) - (count == 1);
+      count = now;
+      this->ChangedSites.push_back(site);
+      this->Push(site);
+      if (now == 0 && this->EmptySite < 0)
+      {
+        this->EmptySite = site;
       }
     }
-    this->Queue.clear();
-    return this->EmptySite;
+    return count > 0;
+  }
+  static int PopCountWord(std::uint64_t x)
+  {
+    x = x - ((x >> 1) & 0x5555555555555555ull);
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return static_cast<int>((x * 0x0101010101010101ull) >> 56);
   }
 
-private:
   /// Counts, queue and trail for @p n sites whose sets are in Bits.
   void Start(std::int64_t n);
   bool Restrict(std::int64_t site, const std::uint64_t* mask);
-  void Push(std::int64_t site);
+  void Push(std::int64_t site)
+  {
+    if (!this->Queued[static_cast<std::size_t>(site)])
+    {
+      this->Queued[static_cast<std::size_t>(site)] = 1;
+      this->Queue.push_back(site);
+    }
+  }
 
   int K = 0;
   int W = 0;
@@ -203,6 +286,7 @@ private:
   bool Recording = false;
   bool FromScratch = false;         ///< set by Reset: the next Propagate revises every site
   std::vector<std::uint64_t> Trail; ///< [site, count, W old words] per recorded change
+  std::size_t TrailBase = 0;        ///< words recorded before Trail[0] (dropped by Forget)
 };
 
 } // namespace msynth

@@ -51,7 +51,10 @@ std::int64_t BlockSearch::Assign(std::int64_t local)
       cat.Record(false);
     }
     if (this->Searching)
+    {
       this->Stack.push_back({ local, label, mark });
+      this->Trim();
+    }
     this->Solver.MaybeCapture(this->Current, this->Assignments);
     return -1;
   }
@@ -78,6 +81,17 @@ std::int64_t BlockSearch::Assign(std::int64_t local)
     mark = d.Mark;
   }
   return empty;
+}
+
+void BlockSearch::Trim()
+{
+  // Each undo spends one unit of the budget, so no undo reaches further back than the last
+  // Budget choices: older choices and their trail can go (amortized: when twice as many).
+  const std::size_t keep = static_cast<std::size_t>(this->Budget) + 1;
+  if (this->Stack.size() < 2 * keep + 1024)
+    return;
+  this->Stack.erase(this->Stack.begin(), this->Stack.end() - static_cast<std::ptrdiff_t>(keep));
+  this->Solver.Cat.Forget(this->Stack.front().Mark);
 }
 
 } // namespace detail

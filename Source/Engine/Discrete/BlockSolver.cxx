@@ -269,6 +269,8 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
       empty = search.Assign(free[i]);
       if (empty >= 0)
         break;
+      if (!this->Budget)
+        cat.ClearChanged(); // nobody reads them here: a whole model would keep every change
       // After a backtrack, go on from the site whose choice was ruled out: every later site is
       // as it was before that choice.
       i = search.Resume() >= 0

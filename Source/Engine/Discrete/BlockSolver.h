@@ -375,6 +375,8 @@ private:
     int Label;
     std::size_t Mark;
   };
+  /// Drops the choices (and their trail) that the remaining budget can no longer undo.
+  void Trim();
   BlockSolver& Solver;
   const Block& Current;
   Random& Rng;

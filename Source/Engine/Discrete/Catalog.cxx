@@ -10,6 +10,26 @@ void Catalog::Reset(
   this->RegionOrigin = origin;
   this->RegionDims = dims;
   this->LabelDomains::Reset(dims[0] * dims[1] * dims[2], this->Rules.NumberOfLabels());
+  unsigned lower[3] = { 0, 0, 0 }, upper[3] = { 0, 0, 0 };
+  for (int d = 0; d < NumberOfDirections; ++d)
+  {
+    ((d & 1) ? lower : upper)[AxisOf(d)] |= 1u << d;
+  }
+  this->Inside.resize(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]));
+  std::size_t s = 0;
+  for (std::int64_t z = 0; z < dims[2]; ++z)
+  {
+    const unsigned bz = (z > 0 ? lower[2] : 0) | (z + 1 < dims[2] ? upper[2] : 0);
+    for (std::int64_t y = 0; y < dims[1]; ++y)
+    {
+      const unsigned byz = bz | (y > 0 ? lower[1] : 0) | (y + 1 < dims[1] ? upper[1] : 0);
+      for (std::int64_t x = 0; x < dims[0]; ++x)
+      {
+        this->Inside[s++] = static_cast<std::uint8_t>(
+          byz | (x > 0 ? lower[0] : 0) | (x + 1 < dims[0] ? upper[0] : 0));
+      }
+    }
+  }
 }
 
 std::array<std::int64_t, 3> Catalog::Coordinates(std::int64_t local) const
@@ -26,16 +46,15 @@ std::int64_t Catalog::Propagate()
   return this->LabelDomains::Propagate(*this->Relation,
     [&](std::int64_t v, auto&& visit)
     {
-      const std::array<std::int64_t, 3> p = this->Coordinates(v);
+      const unsigned inside = this->Inside[static_cast<std::size_t>(v)];
       for (int d = 0; d < NumberOfDirections; ++d)
       {
-        const int axis = AxisOf(d);
-        const bool minus = d & 1;
-        if ((minus && p[axis] == 0) || (!minus && p[axis] + 1 >= dims[axis]))
+        if (!((inside >> d) & 1u))
         {
           continue; // the neighbour is outside the region: fixed, nothing to revise
         }
-        if (!visit(v + (minus ? -stride[axis] : stride[axis]), d))
+        const std::int64_t step = stride[AxisOf(d)];
+        if (!visit(v + ((d & 1) ? -step : step), d))
         {
           return;
         }
@@ -45,6 +64,7 @@ std::int64_t Catalog::Propagate()
         return;
       }
       // Arcs to sites inside the region (those outside are fixed: see Constrain).
+      const std::array<std::int64_t, 3> p = this->Coordinates(v);
       const auto& o = this->RegionOrigin;
       const auto& n = arcs->Dims;
       const std::int64_t g = (o[0] + p[0]) + n[0] * ((o[1] + p[1]) + n[1] * (o[2] + p[2]));

@@ -88,6 +88,9 @@ private:
   const SiteArcs* Arcs = nullptr;
   std::array<std::int64_t, 3> RegionOrigin{ { 0, 0, 0 } };
   std::array<std::int64_t, 3> RegionDims{ { 0, 0, 0 } };
+  /// Per site, bit d set when the neighbour along direction d is inside the region (so that
+  /// propagation finds a site's neighbours without dividing its index).
+  std::vector<std::uint8_t> Inside;
 };
 
 } // namespace msynth
