@@ -22,6 +22,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/FileBytes.h"
+#include "Core/Fnv.h"
 #include "Core/Memory.h"
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -52,12 +53,11 @@ std::string FileStamp(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   if (!in)
     return "";
-  std::uint64_t hash = 1469598103934665603ull, size = 0;
+  std::uint64_t hash = msynth::FnvStart, size = 0;
   char buffer[1 << 16];
   while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
   {
-    for (std::streamsize i = 0; i < in.gcount(); ++i)
-      hash = (hash ^ static_cast<unsigned char>(buffer[i])) * 1099511628211ull;
+    hash = msynth::Fnv1a(buffer, static_cast<std::size_t>(in.gcount()), hash);
     size += static_cast<std::uint64_t>(in.gcount());
   }
   char text[48];

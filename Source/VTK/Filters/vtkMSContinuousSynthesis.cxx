@@ -28,6 +28,7 @@
 
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
+#include "Core/Fnv.h"
 
 #include <algorithm>
 #include <cmath>
@@ -161,10 +162,8 @@ std::int64_t Fingerprint(
        << (self->GetOverhang() ? self->GetOverhang() : "") << '|'
        << (self->GetConnected() ? self->GetConnected() : "") << '|'
        << (self->GetTargetFractions() ? self->GetTargetFractions() : "");
-  std::uint64_t h = 1469598103934665603ull; // FNV-1a
-  for (const char c : text.str())
-    h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-  return static_cast<std::int64_t>(h | 1);
+  const std::string bytes = text.str();
+  return static_cast<std::int64_t>(msynth::Fnv1a(bytes.data(), bytes.size()) | 1);
 }
 
 /// Rank 0's example, arrangement parameters (its field data) and guide, on every rank.
