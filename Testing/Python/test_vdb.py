@@ -1,12 +1,14 @@
 """The VDB reader refuses what it cannot handle with clear errors: grids of other types, and
 extents that would need an enormous dense allocation (files made with OpenVDB's own Python)."""
 import os
+import shutil
+import subprocess
 import unittest
 
 import pyopenvdb
 
 import modelsynth
-from msynth_testing import ErrorObserver, tmp
+from msynth_testing import BIN, ErrorObserver, data, fresh_folder, tmp
 
 
 def read(path, **options):
@@ -110,6 +112,63 @@ class VDBReaderTest(unittest.TestCase):
         _, errors = read(path)
         self.assertIn("not a readable OpenVDB file", errors)
         self.assertTrue(os.path.exists(path))
+
+
+class OpenVDBModuleTest(unittest.TestCase):
+    """OpenVDB is a module loaded on first use: runs that write no .vdb never load it (it was two
+    thirds of every start-up), runs that do write a readable file, and a missing module is one
+    line."""
+
+    def synthesize(self, folder, *extra, env=None):
+        out = fresh_folder(folder)
+        r = subprocess.run([os.path.join(BIN, "msynth"), "synthesize",
+                            data("Examples/Village.vti"), "--size", "10", "10", "5", "--seed",
+                            "2", "--out", out, *extra], capture_output=True, text=True,
+                           timeout=300, env=dict(os.environ, **(env or {})))
+        return r, out
+
+    def test_only_runs_that_write_vdb_load_openvdb(self):
+        r, out = self.synthesize("vdb-module-none", "--outputs", "labels,txt",
+                                 env={"LD_DEBUG": "files"})
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        self.assertIn("libvtkCommonCore", r.stderr)  # LD_DEBUG did list what was loaded
+        self.assertNotIn("libopenvdb", r.stderr)
+        self.assertNotIn("libModelSynthOpenVDB", r.stderr)
+        r, out = self.synthesize("vdb-module-used", env={"LD_DEBUG": "files"})
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        self.assertIn("libModelSynthOpenVDB", r.stderr)
+        self.assertIn("libopenvdb", r.stderr)
+        image, errors = read(os.path.join(out, "model.vdb"))
+        self.assertEqual(errors, "")
+        self.assertEqual(image.GetDimensions()[:2], (10, 10))
+
+    def test_a_missing_module_is_one_line_and_no_outputs(self):
+        # A copy of the build's layout (bin/, lib/) without the module.
+        root = fresh_folder("vdb-module-missing")
+        os.makedirs(os.path.join(root, "bin"))
+        os.makedirs(os.path.join(root, "lib"))
+        shutil.copy(os.path.join(BIN, "msynth"), os.path.join(root, "bin"))
+        lib = os.path.join(BIN, "..", "lib")
+        for name in os.listdir(lib):
+            if name.startswith("lib") and ".so" in name and "OpenVDB" not in name:
+                os.symlink(os.path.realpath(os.path.join(lib, name)),
+                           os.path.join(root, "lib", name))
+        out = os.path.join(root, "out")
+        r = subprocess.run([os.path.join(root, "bin", "msynth"), "synthesize",
+                            data("Examples/Village.vti"), "--size", "10", "10", "5", "--out",
+                            out], capture_output=True, text=True, timeout=300)
+        self.assertNotEqual(r.returncode, 0)
+        lines = r.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn("libModelSynthOpenVDB.so", lines[0])
+        self.assertIn("does not load", lines[0])
+        self.assertFalse(os.path.exists(out) and os.listdir(out), out)
+        # Without a .vdb output the same tree runs.
+        r = subprocess.run([os.path.join(root, "bin", "msynth"), "synthesize",
+                            data("Examples/Village.vti"), "--size", "10", "10", "5", "--out",
+                            out, "--outputs", "labels"], capture_output=True, text=True,
+                           timeout=300)
+        self.assertEqual(r.returncode, 0, r.stderr)
 
 
 if __name__ == "__main__":

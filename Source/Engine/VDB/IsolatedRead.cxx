@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "VDB/IsolatedRead.h"
+#include "VDB/VDBBackend.h"
 
 #include "Core/Error.h"
 #include "Core/Memory.h"
@@ -16,7 +17,6 @@
 #include <sstream>
 #include <sys/resource.h>
 #include <sys/wait.h>
-#include <tbb/global_control.h>
 #include <tuple>
 #include <unistd.h>
 
@@ -163,7 +163,7 @@ void PrepareChild(std::uint64_t memoryBudget)
   ::setrlimit(RLIMIT_CPU, &cpu);
   // One thread in the child: the parent's TBB workers do not exist here. Its address
   // space may grow by the budget only: sizes a damaged file claims fail fast as bad_alloc.
-  static tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  LoadedBackend().LimitToOneThread();
   if (const std::uint64_t used = VirtualSize())
   {
     rlimit limit{};

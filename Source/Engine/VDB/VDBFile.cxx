@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The only translation unit of ModelSynth that includes OpenVDB's headers (they compile
-// slowly). Everything OpenVDB-specific stays in this file, behind msynth/VDBFile.h.
-#include "VDB/VDBFile.h"
+// slowly). Everything OpenVDB-specific stays in this file, the OpenVDB module that
+// libModelSynthVDB loads on first use (VDBBackend.h); its functions reach the rest of the
+// program only through the table msynth_openvdb_backend returns.
+#include "VDB/VDBBackend.h"
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
@@ -35,11 +37,6 @@ namespace msynth
 {
 namespace vdb
 {
-
-int ComponentCount(ValueType type)
-{
-  return type == ValueType::Vec3Float ? 3 : 1;
-}
 
 namespace
 {
@@ -480,19 +477,6 @@ Archive LoadArchive(const std::string& path)
   return archive;
 }
 
-} // namespace
-
-// ---------------------------------------------------------------------------------------------
-// public API
-// ---------------------------------------------------------------------------------------------
-void WriteFile(
-  const std::string& path, const std::vector<DenseGridView>& grids, const MetadataMap& metadata)
-{
-  WriteFile(path, grids, {}, metadata);
-}
-
-namespace
-{
 /// The level set (and fog volume) of one mesh.
 /// @p grid named and classed as the level set of @p mesh (with its metadata), and its fog volume
 /// when the mesh asks for one, appended to @p out.
@@ -590,9 +574,12 @@ void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
     *transform, points, triangles, quads, static_cast<float>(mesh.HalfWidth));
   AddLevelSet(mesh, grid, out);
 }
-} // namespace
 
-void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+// ---------------------------------------------------------------------------------------------
+// the module's entry points (names local to the module, so the forwarding functions of the
+// same role in libModelSynthVDB never interpose them)
+// ---------------------------------------------------------------------------------------------
+void WriteHere(const std::string& path, const std::vector<DenseGridView>& grids,
   const std::vector<MeshGridView>& meshes, const MetadataMap& metadata)
 {
   InitializeOpenVDB();
@@ -661,14 +648,7 @@ void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
     });
 }
 
-namespace detail
-{
-void InitializeLibrary()
-{
-  InitializeOpenVDB();
-}
-
-FileContents ReadFileHere(const std::string& path, const ReadOptions& options)
+FileContents ReadHere(const std::string& path, const ReadOptions& options)
 {
   InitializeOpenVDB();
   const Archive archive = LoadArchive(path);
@@ -707,7 +687,7 @@ FileContents ReadFileHere(const std::string& path, const ReadOptions& options)
   return contents;
 }
 
-std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fileMetadata)
+std::vector<GridSummary> ListHere(const std::string& path, MetadataMap* fileMetadata)
 {
   InitializeOpenVDB();
   const Archive archive = LoadArchive(path);
@@ -728,7 +708,20 @@ std::vector<GridSummary> ListGridsHere(const std::string& path, MetadataMap* fil
   }
   return result;
 }
-} // namespace detail
+
+void LimitToOneThread()
+{
+  static tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+}
+} // namespace
 
 } // namespace vdb
 } // namespace msynth
+
+extern "C" const msynth::vdb::detail::Backend* msynth_openvdb_backend()
+{
+  using namespace msynth::vdb;
+  static const detail::Backend backend{ &InitializeOpenVDB, &WriteHere, &ReadHere, &ListHere,
+    &LimitToOneThread };
+  return &backend;
+}
