@@ -20,6 +20,7 @@
 #include "vtkMSTileImage.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
@@ -228,8 +229,9 @@ void AddFixedOptions(CLI::App& s, Registered& r)
   r.DiscreteOnly.push_back(
     s.add_option("--fixed", o.Fixed,
        "pinned sites, to complete a partial model: a label grid of the output size (.vti, "
-       ".txt, .vox) whose labels are kept and whose -1 sites are synthesized; pins that cannot "
-       "hold are an error before any work")
+       ".txt, .vox) whose labels are kept and whose -1 sites are synthesized, or for a 2D "
+       "tileset a picture (.png, .bmp) drawn with its tiles, transparent cells free; pins that "
+       "cannot hold are an error before any work")
       ->group(group));
   r.DiscreteOnly.push_back(
     s.add_flag("--fixed-empty-free", o.FixedEmptyFree,
@@ -441,27 +443,6 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
 
 } // namespace
 
-namespace
-{
-/// The pinned sites of --fixed (--fixed-empty-free: label 0 free too) into @p pins.
-void ReadPins(const SynthesizeOptions& o, vtkImageData* pins)
-{
-  CheckInputFile(o.Fixed);
-  vtkNew<vtkMSLabelGridReader> reader;
-  reader->GenerateGeometryOff();
-  reader->SetFileName(o.Fixed.c_str());
-  Run(reader);
-  pins->DeepCopy(reader->GetOutput());
-  vtkDataArray* labels = pins->GetPointData()->GetArray("Label");
-  if (!labels)
-    throw std::runtime_error("'" + o.Fixed + "': has no label array");
-  if (o.FixedEmptyFree)
-    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-      if (labels->GetTuple1(i) == 0)
-        labels->SetTuple1(i, msynth::FreeSite);
-}
-} // namespace
-
 void ConnectGuide(
   vtkAlgorithm* synthesis, int port, vtkXMLImageDataReader* guide, const std::string& path)
 {
@@ -479,11 +460,6 @@ void ConnectGuide(
   }
   synthesis->SetInputConnection(port, guide->GetOutputPort());
 }
-
-namespace
-{
-
-} // namespace
 
 void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& path,
   std::vector<std::string>& written)
@@ -689,11 +665,11 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   {
     ConnectGuide(synthesis, 1, guide, o.Guide);
   }
-  vtkNew<vtkImageData> pins;
   if (!o.Fixed.empty())
   {
-    ReadPins(o, pins);
-    synthesis->SetFixedData(pins);
+    CheckInputFile(o.Fixed);
+    synthesis->SetFixedFile(o.Fixed.c_str());
+    synthesis->SetFixedEmptyFree(o.FixedEmptyFree);
   }
   {
     ProgressBar bar(synthesis);

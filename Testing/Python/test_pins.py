@@ -8,6 +8,8 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk
 from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
 import modelsynth
@@ -46,6 +48,56 @@ def write_pins(path, labels_zyx_array):
     return path
 
 
+def png_pixels(path):
+    """A PNG's RGBA pixels, rows from the top as in the file."""
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    w, h, _ = image.GetDimensions()
+    a = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, -1)
+    return a[::-1].copy()
+
+
+def write_png(rgba_top_first, path):
+    h, w, _ = rgba_top_first.shape
+    picture = vtkImageData()
+    picture.SetDimensions(w, h, 1)
+    a = numpy_to_vtk(np.ascontiguousarray(rgba_top_first[::-1]).reshape(-1, 4), deep=True)
+    picture.GetPointData().SetScalars(a)
+    writer = vtkPNGWriter()
+    writer.SetInputData(picture)
+    writer.SetFileName(path)
+    writer.Write()
+
+
+def drawn_map_picture(pins_yx, path):
+    """The picture a user draws of the Lines map `pins_yx` ([y, x], -1 free): each pinned site's
+    tile image, composed by vtkMSTileImage, and fully transparent cells where sites are free.
+    Returns the tile size."""
+    grid = image_of(np.where(pins_yx < 0, 0, pins_yx)[None, :, :])
+    tiles = modelsynth.vtkMSTileImage()
+    tiles.SetInputData(grid)
+    tiles.SetTilesetFile(data("Tilesets/Lines.xml"))
+    tiles.Update()
+    out = tiles.GetOutput()
+    w, h, _ = out.GetDimensions()
+    t = w // pins_yx.shape[1]
+    rgba = vtk_to_numpy(out.GetPointData().GetScalars()).reshape(h, w, 4).copy()
+    for y, x in zip(*np.nonzero(pins_yx < 0)):
+        rgba[y * t:(y + 1) * t, x * t:(x + 1) * t, :] = 0
+    picture = vtkImageData()
+    picture.SetDimensions(w, h, 1)
+    a = numpy_to_vtk(rgba.reshape(-1, 4), deep=True)
+    a.SetName("RGBA")
+    picture.GetPointData().SetScalars(a)
+    writer = vtkPNGWriter()
+    writer.SetInputData(picture)
+    writer.SetFileName(path)
+    writer.Write()
+    return t
+
+
 class PinsTest(unittest.TestCase):
     def complete(self, example, size, block, patches, checked):
         """Pins `patches` (index tuples into a [z, y, x] grid) of a model of `example`, completes
@@ -76,6 +128,70 @@ class PinsTest(unittest.TestCase):
         # A map of the Lines tileset; a patch of it (a hand-drawn part) and a lone tile pinned.
         self.complete("Tilesets/Lines.xml", ("24", "24", "1"), ("12", "12", "1"),
                       [np.s_[0, 8:14, 9:15], np.s_[0, 20, 2]], "labels.vti")
+
+    def test_a_map_drawn_as_a_picture_is_completed(self):
+        # The bundled drawn map as a picture: its tiles' images, transparent where free.
+        pins = read_labels(data("Tilesets/lines-drawn.vti"))[0]
+        path = tmp("lines-drawn.png")
+        t = drawn_map_picture(pins, path)
+        kept = pins >= 0
+        for extra in ([], ["--block", "12", "12", "1"]):
+            out = fresh_folder("pins-picture")
+            r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1",
+                       "--seed", "3", "--fixed", path, "--out", out, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            model = read_labels(os.path.join(out, "labels.vti"))[0]
+            self.assertTrue(np.array_equal(model[kept], pins[kept]), extra)
+            self.assertGreater(len(np.unique(model[~kept])), 1, "the rest is synthesized")
+            check = msynth("check", data("Tilesets/Lines.xml"), os.path.join(out, "labels.vti"))
+            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        # The bundled picture (README) is that same map.
+        r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1", "--seed",
+                   "3", "--fixed", data("Tilesets/lines-drawn.png"), "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(np.array_equal(read_labels(os.path.join(out, "labels.vti"))[0][kept],
+                                       pins[kept]))
+        # The filter: a PNG reader on the Fixed input of a tileset run.
+        png = vtkPNGReader()
+        png.SetFileName(path)
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetTilesetFile(data("Tilesets/Lines.xml"))
+        synthesis.SetFixedConnection(png.GetOutputPort())
+        result, errors = run_algorithm(synthesis, OutputSize=(24, 24, 1), Seed=5)
+        self.assertEqual(errors, "")
+        self.assertTrue(np.array_equal(labels_zyx(result)[0][kept], pins[kept]))
+        # FixedFile (the GUI's file field of the tileset proxy, which has no inputs).
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetTilesetFile(data("Tilesets/Lines.xml"))
+        synthesis.SetFixedFile(path)
+        result, errors = run_algorithm(synthesis, OutputSize=(24, 24, 1), Seed=6)
+        self.assertEqual(errors, "")
+        self.assertTrue(np.array_equal(labels_zyx(result)[0][kept], pins[kept]))
+        # A cell that is no tile: one line naming the file and the site; nothing written.
+        spoiled = pins.copy()
+        drawn_map_picture(spoiled, path)
+        rgba = png_pixels(path)
+        y, x = [int(v[0]) for v in np.nonzero(kept)]
+        rgba[(23 - y) * t + 1, x * t + 1, :3] = (255, 0, 255)  # rows from the top in the file
+        write_png(rgba, path)
+        bad = tmp("pins-picture-bad")
+        subprocess.run(["rm", "-rf", bad])
+        r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1",
+                   "--fixed", path, "--out", bad)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn(path, r.stderr)
+        self.assertIn("site (%d, %d)" % (x, y), r.stderr)
+        self.assertFalse(os.path.exists(bad))
+        write_png(rgba[:-1], path)  # not a whole number of tiles
+        r = msynth("synthesize", data("Tilesets/Lines.xml"), "--size", "24", "24", "1",
+                   "--fixed", path, "--out", bad)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("not a whole number of", r.stderr)
+        r = msynth("synthesize", data("Examples/Village.vti"), "--size", "24", "24", "5",
+                   "--fixed", path, "--out", bad)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("a picture pins the tiles of a 2D tileset", r.stderr)
 
     def test_an_image_sample_keeps_a_pinned_patch(self):
         # The patterns of a City picture, a patch pinned; the picture passes the window check.

@@ -285,8 +285,20 @@ public:
   /// size whose point array "Label" (or active scalars) holds the labels to keep and -1 where
   /// sites are synthesized; nullptr removes it. Pins that cannot hold are an error before any
   /// work; with blocks each pin is first placed with a block around it, and no block changes it.
+  /// A picture on the input (unsigned char RGB(A) scalars, no "Label" array, e.g. a
+  /// vtkPNGReader's output) pins the tiles of a 2D tileset run: it is cut into tile-sized cells,
+  /// each a tile's image (pinned) or fully transparent (free) (msynth::PinsFromPicture).
   void SetFixedConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
   void SetFixedData(vtkDataObject* fixed) { this->SetInputData(2, fixed); }
+  /// The pinned sites from a file when input port 2 is not connected: a label grid (.vti, .txt,
+  /// .vox) or, for a 2D tileset, a picture drawn with its tiles (.png, .bmp). Default "": none.
+  /// The tileset and image-sample proxies, which have no inputs, offer this in the GUI.
+  vtkSetStdStringFromCharMacro(FixedFile);
+  vtkGetCharFromStdStringMacro(FixedFile);
+  /// Label 0 of the pinned sites is free too (a MagicaVoxel model's empty voxels). Default off.
+  vtkSetMacro(FixedEmptyFree, bool);
+  vtkGetMacro(FixedEmptyFree, bool);
+  vtkBooleanMacro(FixedEmptyFree, bool);
 
   ///@{
   /// A tileset (.xml) to take the rules from instead of the example, and the subset of its tiles
@@ -598,6 +610,8 @@ private:
   std::string Counts;
   std::string Connected;
   std::string TilesetSubset;
+  std::string FixedFile;
+  bool FixedEmptyFree = false;
   std::string SampleFile;
   int PatternSize = 3;
   int PatternSymmetry = 8;

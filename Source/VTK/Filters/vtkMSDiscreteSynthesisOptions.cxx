@@ -2,17 +2,24 @@
 #include "vtkMSDiscreteSynthesisOptions.h"
 
 #include "vtkMSDiscreteSynthesis.h"
+#include "vtkMSEngineBridge.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSLabelCounts.h"
+#include "vtkMSLabelGridReader.h"
 #include "vtkMSSynthesisRun.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "Core/Error.h"
 #include "Core/TextLists.h"
+#include "Formats/TilePictures.h"
 
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <string>
 
@@ -166,20 +173,116 @@ bool BuildOptions(
   return ReadSymmetryAndSoft(self, options) && (!guide || ReadGuide(self, guide, options));
 }
 
-/// The pinned sites of input port 2 (when connected): its label array, -1 where free.
-bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::SynthesisOptions& options)
+namespace
 {
-  if (!fixed)
-    return true;
+/// The RGB(A) bytes of a picture on the Fixed input (a vtkPNGReader's output: unsigned char
+/// scalars of 3 or 4 components and no label array), else nullptr.
+vtkUnsignedCharArray* PictureOf(vtkImageData* fixed)
+{
+  if (fixed->GetPointData()->GetArray("Label"))
+    return nullptr;
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(fixed->GetPointData()->GetScalars());
+  const int nc = rgba ? rgba->GetNumberOfComponents() : 0;
+  return nc == 3 || nc == 4 ? rgba : nullptr;
+}
+
+/// The picture's RGBA rows, from the top (VTK holds them from the bottom).
+msynth::RgbaImage PictureRows(vtkImageData* fixed, vtkUnsignedCharArray* bytes)
+{
+  int dims[3];
+  fixed->GetDimensions(dims);
+  if (dims[2] != 1)
+    throw msynth::Error(
+      "a picture of pinned tiles must be flat (it is " + std::to_string(dims[2]) + " pixels deep)");
+  msynth::RgbaImage picture;
+  picture.Width = dims[0];
+  picture.Height = dims[1];
+  picture.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+  const int nc = bytes->GetNumberOfComponents();
+  std::uint8_t* out = picture.Pixels.data();
+  for (int y = 0; y < dims[1]; ++y)
+    for (int x = 0; x < dims[0]; ++x, out += 4)
+    {
+      const unsigned char* in =
+        bytes->GetPointer(nc * (x + static_cast<vtkIdType>(dims[0]) * (dims[1] - 1 - y)));
+      for (int c = 0; c < 4; ++c)
+        out[c] = c < nc ? in[c] : 255;
+    }
+  return picture;
+}
+
+/// A map drawn with the tileset's tiles (msynth::PinsFromPicture); @p name names it in errors.
+msynth::LabelGrid PinsOfPicture(
+  vtkMSDiscreteSynthesis* self, const msynth::RgbaImage& picture, const std::string& name)
+{
+  const std::string file = self->GetTilesetFile();
+  const int source = self->GetActiveSource();
+  const msynth::Tileset tiles = source == vtkMSDiscreteSynthesis::TILESET_SOURCE
+    ? msynth::ReadTilesetFile(file, self->GetTilesetSubset(), self->GetTilesFolder())
+    : msynth::Tileset();
+  if (source != vtkMSDiscreteSynthesis::TILESET_SOURCE || tiles.Voxel)
+    throw msynth::Error("a picture pins the tiles of a 2D tileset; this run's rules come from " +
+      std::string(source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ? "an image sample"
+          : tiles.Voxel                                           ? "a voxel tileset"
+                                                                  : "a label grid example") +
+      " (pin its sites with a label grid: .vti, .txt, .vox)");
+  return msynth::PinsFromPicture(picture, name, msynth::LoadTilePictures(file, tiles));
+}
+
+/// The pins of FixedFile: a picture by its extension, else a label grid.
+msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path)
+{
+  std::string extension = path.substr(std::min(path.size(), path.rfind('.')));
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".png" || extension == ".bmp")
+    return PinsOfPicture(self, msynth::ReadImage(path), path);
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw msynth::Error(messages);
+  msynth::LabelGrid pins;
+  if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
+    throw msynth::Error::InFile(path, messages);
+  return pins;
+}
+
+/// The pins of input port 2: its labels, or a picture drawn with a tileset's tiles.
+msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed)
+{
+  if (vtkUnsignedCharArray* picture = PictureOf(fixed))
+    return PinsOfPicture(self, PictureRows(fixed, picture), "the picture of pinned tiles");
   msynth::LabelGrid pins;
   std::string problem;
   if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))
+    throw msynth::Error(problem);
+  return pins;
+}
+} // namespace
+
+/// The pinned sites of input port 2 (when connected), else of FixedFile: labels, -1 where free
+/// (and 0 with FixedEmptyFree); or, with a tileset, a picture drawn with its tiles.
+bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::SynthesisOptions& options)
+{
+  const std::string file = self->GetFixedFile();
+  if (!fixed && file.empty())
+    return true;
+  try
   {
-    vtkErrorWithObjectMacro(self, << "Bad pinned sites (Fixed input): " << problem);
+    msynth::LabelGrid pins = fixed ? PinsOfInput(self, fixed) : PinsOfFile(self, file);
+    if (self->GetFixedEmptyFree())
+      std::replace(pins.Data().begin(), pins.Data().end(), msynth::Label(0), msynth::FreeSite);
+    options.Pins = std::move(pins);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(
+      self, << "Bad pinned sites (" << (fixed ? "Fixed input" : "Fixed File") << "): " << e.what());
     return false;
   }
-  options.Pins = std::move(pins);
-  return true;
 }
 
 } // namespace vtkMSDiscreteSynthesisOptions

@@ -18,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "Formats/Image.h"
+#include "Formats/TilePictures.h"
 #include "Formats/Tileset.h"
 
 #include <algorithm>
@@ -109,103 +110,6 @@ int vtkMSTileImage::RequestUpdateExtent(
   return 1;
 }
 
-namespace
-{
-/// A tile image as RGBA rows, bottom row first (VTK's order).
-struct Picture
-{
-  int Size = 0;
-  std::vector<unsigned char> RGBA; ///< Size × Size × 4
-  const unsigned char* At(int i, int j) const
-  {
-    return this->RGBA.data() +
-      4 * (static_cast<std::size_t>(j) * this->Size + static_cast<std::size_t>(i));
-  }
-};
-
-/// Orientation k+1 = orientation k turned 90° counter-clockwise (pixel (i, j) of the result is
-/// pixel (j, T-1-i) of the source, rows bottom first); 4-7 mirror 0-3 left-right.
-Picture Oriented(const Picture& p, int orientation)
-{
-  Picture out = p;
-  const int t = p.Size;
-  for (int r = 0; r < orientation % 4; ++r)
-  {
-    Picture turned = out;
-    for (int j = 0; j < t; ++j)
-      for (int i = 0; i < t; ++i)
-        std::copy(out.At(j, t - 1 - i), out.At(j, t - 1 - i) + 4,
-          turned.RGBA.begin() +
-            4 * (static_cast<std::size_t>(j) * t + static_cast<std::size_t>(i)));
-    out = turned;
-  }
-  if (orientation >= 4)
-  {
-    // Mirror of orientation k - 4: mirror the turned image.
-    Picture mirrored = out;
-    for (int j = 0; j < t; ++j)
-      for (int i = 0; i < t; ++i)
-        std::copy(out.At(t - 1 - i, j), out.At(t - 1 - i, j) + 4,
-          mirrored.RGBA.begin() +
-            4 * (static_cast<std::size_t>(j) * t + static_cast<std::size_t>(i)));
-    out = mirrored;
-  }
-  return out;
-}
-} // namespace
-
-namespace
-{
-/// One picture per label of @p tiles: its tile's image turned and mirrored to its orientation
-/// (or its own image in a unique set), rows bottom first. @throw std::runtime_error saying which
-/// image is missing, unreadable or of another size.
-std::vector<Picture> LoadPictures(
-  const std::string& tilesetFile, const msynth::Tileset& tiles, int& size)
-{
-  std::vector<Picture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
-  size = 0;
-  for (int b = 0; b < tiles.NumberOfLabels(); ++b)
-  {
-    const auto& tile =
-      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
-    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
-    const std::string path = msynth::TileImageFile(tilesetFile, tiles, tile, k);
-    msynth::RgbaImage image;
-    try
-    {
-      image = msynth::ReadImage(path);
-    }
-    catch (const std::exception& e)
-    {
-      throw std::runtime_error(std::string(e.what()) + " (tile '" + tile.Name + "')");
-    }
-    std::string problem;
-    if (image.Width != image.Height)
-      problem = "tile images must be square (this one is " + std::to_string(image.Width) + " x " +
-        std::to_string(image.Height) + ").";
-    else if (tiles.TileSize && image.Width != tiles.TileSize)
-      problem = "is " + std::to_string(image.Width) +
-        " pixels wide; the tileset's <set size> says " + std::to_string(tiles.TileSize) + ".";
-    else if (size && image.Width != size)
-      problem = "is " + std::to_string(image.Width) + " pixels wide; the other tiles are " +
-        std::to_string(size) + ".";
-    if (!problem.empty())
-      throw std::runtime_error("'" + path + "': " + problem);
-    size = image.Width;
-    Picture p;
-    p.Size = size;
-    p.RGBA.resize(static_cast<std::size_t>(size) * size * 4);
-    for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
-    {
-      std::copy(image.At(0, size - 1 - j), image.At(0, size - 1 - j) + 4 * size,
-        p.RGBA.begin() + 4 * static_cast<std::ptrdiff_t>(j) * size);
-    }
-    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
-  }
-  return pictures;
-}
-} // namespace
-
 int vtkMSTileImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -243,11 +147,12 @@ int vtkMSTileImage::RequestData(
     return 0;
   }
 
-  std::vector<Picture> pictures;
+  std::vector<msynth::TilePicture> pictures;
   int size = 0;
   try
   {
-    pictures = LoadPictures(file, tiles, size);
+    pictures = msynth::LoadTilePictures(file, tiles);
+    size = pictures.empty() ? 0 : pictures.front().Size;
   }
   catch (const std::exception& e)
   {
@@ -275,7 +180,7 @@ int vtkMSTileImage::RequestData(
                       << file << "'.");
         return 0;
       }
-      const Picture& p = pictures[static_cast<std::size_t>(b)];
+      const msynth::TilePicture& p = pictures[static_cast<std::size_t>(b)];
       for (int j = 0; j < size; ++j) // one row of the tile at a time
         std::copy(p.At(0, j), p.At(0, j) + 4 * size,
           rgba->GetPointer(4 *

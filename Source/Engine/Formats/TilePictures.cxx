@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Formats/TilePictures.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <cstring>
+#include <unordered_map>
+
+namespace msynth
+{
+
+namespace
+{
+/// Orientation k+1 = orientation k turned 90° counter-clockwise (pixel (i, j) of the result is
+/// pixel (j, T-1-i) of the source, rows bottom first); 4-7 mirror 0-3 left-right.
+TilePicture Oriented(const TilePicture& p, int orientation)
+{
+  TilePicture out = p;
+  const int t = p.Size;
+  const auto at = [t](int i, int j)
+  {
+    return 4 *
+      (static_cast<std::size_t>(j) * static_cast<std::size_t>(t) + static_cast<std::size_t>(i));
+  };
+  for (int r = 0; r < orientation % 4; ++r)
+  {
+    TilePicture turned = out;
+    for (int j = 0; j < t; ++j)
+      for (int i = 0; i < t; ++i)
+        std::copy(out.At(j, t - 1 - i), out.At(j, t - 1 - i) + 4,
+          turned.RGBA.begin() + static_cast<std::ptrdiff_t>(at(i, j)));
+    out = turned;
+  }
+  if (orientation >= 4)
+  {
+    TilePicture mirrored = out;
+    for (int j = 0; j < t; ++j)
+      for (int i = 0; i < t; ++i)
+        std::copy(out.At(t - 1 - i, j), out.At(t - 1 - i, j) + 4,
+          mirrored.RGBA.begin() + static_cast<std::ptrdiff_t>(at(i, j)));
+    out = mirrored;
+  }
+  return out;
+}
+
+/// The size problem of @p image (tile images are square and all of one size), or "".
+std::string SizeProblem(const RgbaImage& image, const Tileset& tiles, int size)
+{
+  if (image.Width != image.Height)
+    return "tile images must be square (this one is " + std::to_string(image.Width) + " x " +
+      std::to_string(image.Height) + ").";
+  if (tiles.TileSize && image.Width != tiles.TileSize)
+    return "is " + std::to_string(image.Width) + " pixels wide; the tileset's <set size> says " +
+      std::to_string(tiles.TileSize) + ".";
+  if (size && image.Width != size)
+    return "is " + std::to_string(image.Width) + " pixels wide; the other tiles are " +
+      std::to_string(size) + ".";
+  return std::string();
+}
+} // namespace
+
+std::vector<TilePicture> LoadTilePictures(const std::string& xmlPath, const Tileset& tiles)
+{
+  std::vector<TilePicture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
+  int size = 0;
+  for (int b = 0; b < tiles.NumberOfLabels(); ++b)
+  {
+    const auto& tile =
+      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
+    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
+    const std::string path = TileImageFile(xmlPath, tiles, tile, k);
+    RgbaImage image;
+    try
+    {
+      image = ReadImage(path);
+    }
+    catch (const std::exception& e)
+    {
+      throw Error(std::string(e.what()) + " (tile '" + tile.Name + "')");
+    }
+    const std::string problem = SizeProblem(image, tiles, size);
+    if (!problem.empty())
+      throw Error::InFile(path, problem);
+    size = image.Width;
+    TilePicture p;
+    p.Size = size;
+    p.RGBA.resize(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 4);
+    const std::size_t row = 4 * static_cast<std::size_t>(size);
+    for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
+      std::memcpy(
+        p.RGBA.data() + row * static_cast<std::size_t>(j), image.At(0, size - 1 - j), row);
+    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
+  }
+  return pictures;
+}
+
+LabelGrid PinsFromPicture(
+  const RgbaImage& picture, const std::string& path, const std::vector<TilePicture>& tiles)
+{
+  if (tiles.empty())
+    throw Error::InFile(path, "cannot be read as a map: the tileset has no tiles");
+  const int t = tiles.front().Size;
+  if (t < 1 || picture.Width % t != 0 || picture.Height % t != 0 || picture.Width == 0 ||
+    picture.Height == 0)
+    throw Error::InFile(path,
+      "is " + std::to_string(picture.Width) + " x " + std::to_string(picture.Height) +
+        " pixels, not a whole number of " + std::to_string(t) + " x " + std::to_string(t) +
+        " tiles");
+  const std::size_t row = 4 * static_cast<std::size_t>(t);
+  // Labels by their picture's bytes (rows bottom first); the lowest label of equal pictures.
+  std::unordered_map<std::string, Label> byPicture;
+  for (std::size_t b = tiles.size(); b-- > 0;)
+    byPicture[std::string(tiles[b].RGBA.begin(), tiles[b].RGBA.end())] = static_cast<Label>(b);
+  const int nx = picture.Width / t, ny = picture.Height / t;
+  LabelGrid pins(nx, ny, 1, Label(-1));
+  std::string cell(row * static_cast<std::size_t>(t), '\0');
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+    {
+      bool transparent = true;
+      for (int j = 0; j < t; ++j) // cell row j from the bottom: picture row H - 1 - (yT + j)
+      {
+        const std::uint8_t* src = picture.At(x * t, picture.Height - 1 - (y * t + j));
+        std::memcpy(&cell[row * static_cast<std::size_t>(j)], src, row);
+        for (std::size_t i = 3; i < row && transparent; i += 4)
+          transparent = src[i] == 0;
+      }
+      if (transparent)
+        continue;
+      const auto found = byPicture.find(cell);
+      if (found == byPicture.end())
+        throw Error::InFile(path,
+          "the cell of site (" + std::to_string(x) + ", " + std::to_string(y) + ") (pixels " +
+            std::to_string(x * t) + ".." + std::to_string(x * t + t - 1) + " across, " +
+            std::to_string(picture.Height - (y + 1) * t) + ".." +
+            std::to_string(picture.Height - y * t - 1) +
+            " down) is neither a tile of the set nor transparent");
+      pins.Set(x, y, 0, found->second);
+    }
+  return pins;
+}
+
+} // namespace msynth
