@@ -270,6 +270,15 @@ upstream = servermanager.Fetch(ModelSynthTileImage(Input=tiled))
 check(upstream.GetDimensions() == (96, 72, 1) and all(
     upstream.GetPointData().GetArray("RGBA").GetValue(i) == picture.GetPointData().GetArray("RGBA").GetValue(i)
     for i in range(0, 96 * 72 * 4, 97)), "the tile picture with the upstream tileset %s" % (upstream.GetDimensions(),))
+# A map drawn as a picture with the tiles, pinned through the source proxy's Fixed File field.
+drawn_reader = ModelSynthLabelGridReader(FileName=os.path.join(DATA, "Tilesets", "lines-drawn.vti"))
+drawn_pins = servermanager.Fetch(drawn_reader).GetPointData().GetArray("Label")
+completed = ModelSynthTilesetSynthesis(TilesetFile=tileset, OutputSize=[24, 24, 1], Seed=2,
+                                       FixedFile=os.path.join(DATA, "Tilesets", "lines-drawn.png"))
+completed_labels = servermanager.Fetch(completed).GetPointData().GetArray("Label")
+pinned = [i for i in range(24 * 24) if drawn_pins.GetValue(i) >= 0]
+check(len(pinned) > 50 and all(completed_labels.GetValue(i) == drawn_pins.GetValue(i) for i in pinned),
+      "the drawn picture's %d tiles are kept" % len(pinned))
 
 # An image sample (the overlapping model) through its source proxy and the pattern picture;
 # every 3 x 3 window of the picture is checked against the sample's windows here.
