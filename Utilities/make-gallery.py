@@ -39,6 +39,15 @@ ENTRIES = [
     ("lines", "Simple-tiled tileset (.xml)", "WaveFunctionCollapse's tileset format, 3 tiles",
      "synthesize Data/Tilesets/Lines.xml --size 24 16 1 --order entropy --choice frequency "
      "--seed 3", "picture"),
+    ("lines-completed", "Simple-tiled tileset + drawn map (.png)", "A map drawn in a paint "
+     "program with the tiles' images (Data/Tilesets/lines-drawn.png: two drawn patches, "
+     "transparent elsewhere) completed; every drawn tile is kept",
+     "synthesize Data/Tilesets/Lines.xml --size 24 24 1 --fixed Data/Tilesets/lines-drawn.png "
+     "--seed 2", "picture"),
+    ("lines-counted", "Simple-tiled tileset + counts", "100 to 150 corner tiles and 200 to 400 "
+     "empty ones (of 576), in 12 × 12 blocks",
+     "synthesize Data/Tilesets/Lines.xml --size 24 24 1 --block 12 12 1 --count corner:100:150 "
+     "--count empty:200:400 --seed 1", "picture"),
     ("voxel-pipes", "Voxel tileset (MarkovJunior .xml + .vox tiles)", "4 voxel tiles under the cube's 48 "
      "symmetries (85 images), closed by empty faces; model.vox and the coloured mesh",
      "synthesize Data/Tilesets/Pipes.xml --size 12 12 6 --block 6 6 6 --empty 0 --choice frequency "
