@@ -31,6 +31,7 @@
 #include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Image.h"
+#include "Formats/TilePictures.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 #include "Formats/VoxModel.h"
@@ -464,34 +465,38 @@ void ConnectGuide(
 void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::string& path,
   std::vector<std::string>& written)
 {
-  vtkNew<vtkMSTileImage> tiles;
-  vtkNew<vtkMSPatternImage> patterns;
-  vtkImageAlgorithm* composer = tiles;
-  if (IsSample(o.Example))
-  {
-    composer = patterns;
-    patterns->SetPatternSize(o.Pattern);
-    patterns->SetPeriodicOutput(
-      o.Translate.find('x') != std::string::npos, o.Translate.find('y') != std::string::npos);
-  }
-  else
-  {
-    tiles->SetTilesetFile(o.Example.c_str());
-    tiles->SetTilesetSubset(o.Subset.c_str());
-  }
-  composer->SetInputData(model);
-  std::string messages;
   struct stat folder;
-  if (!vtkMSEngineBridge::Execute(composer, messages))
+  if (!IsSample(o.Example))
   {
-    if (composer == tiles && ::stat(msynth::TilesetImageFolder(o.Example).c_str(), &folder) != 0)
+    // Tiles: each row of picture.png composed as it is written (Formats/TilePictures.h), not the
+    // whole picture in memory first (vtkMSTileImage does that for pipelines).
+    if (::stat(msynth::TilesetImageFolder(o.Example).c_str(), &folder) != 0)
     {
       std::cerr << "msynth: note: no picture: the tileset has no folder of tile images\n";
       return;
     }
-    throw std::runtime_error(messages);
+    const msynth::Tileset set = msynth::ReadTilesetFile(o.Example, o.Subset, o.Tiles);
+    int dims[3];
+    model->GetDimensions(dims);
+    vtkDataArray* labels = vtkMSLabelArrays::FindLabelArray(model, nullptr);
+    std::vector<std::int32_t> values(
+      static_cast<std::size_t>(labels ? labels->GetNumberOfTuples() : 0));
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = static_cast<std::int32_t>(labels->GetTuple1(static_cast<vtkIdType>(i)));
+    msynth::WriteTilePicture(
+      path, values, dims[0], dims[1], msynth::LoadTilePictures(o.Example, set));
+    written.push_back(path);
+    return;
   }
-  WritePicturePng(composer->GetOutput(), path);
+  vtkNew<vtkMSPatternImage> patterns;
+  patterns->SetPatternSize(o.Pattern);
+  patterns->SetPeriodicOutput(
+    o.Translate.find('x') != std::string::npos, o.Translate.find('y') != std::string::npos);
+  patterns->SetInputData(model);
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(patterns, messages))
+    throw std::runtime_error(messages);
+  WritePicturePng(patterns->GetOutput(), path);
   written.push_back(path);
 }
 

@@ -145,6 +145,36 @@ TEST(Image, LargePicturesAreWrittenInStripsAndReadBack)
   EXPECT_THROW(WritePng(Temp("empty.png"), RgbaImage()), Error);
 }
 
+TEST(Image, FewColoursAreWrittenAsAPalette)
+{
+  // Tile pictures have a few colours: an indexed PNG (colour type 3, PLTE, tRNS for the
+  // translucent ones) that reads back to the same pixels; 257 colours fall back to RGB(A).
+  for (const int colours : { 1, 3, 256, 257 })
+    for (const bool opaque : { true, false })
+    {
+      RgbaImage image;
+      image.Width = 300;
+      image.Height = 40;
+      for (int y = 0; y < image.Height; ++y)
+        for (int x = 0; x < image.Width; ++x)
+        {
+          const int c = (x / 3 + 7 * y) % colours;
+          for (const int v :
+            { c % 256, (c * 7 + c / 256) % 256, 255 - c % 256, opaque || c % 5 ? 255 : c % 200 })
+            image.Pixels.push_back(static_cast<std::uint8_t>(v));
+        }
+      const std::string path = Temp("palette.png");
+      WritePng(path, image);
+      const std::vector<char> file = Bytes(path);
+      const std::string bytes(file.begin(), file.end());
+      ASSERT_GT(bytes.size(), 33u);
+      EXPECT_EQ(static_cast<int>(bytes[25]), colours <= 256 ? 3 : (opaque ? 2 : 6)) << colours;
+      EXPECT_EQ(bytes.find("tRNS") != std::string::npos, colours <= 256 && !opaque) << colours;
+      const RgbaImage back = ReadPng(path);
+      EXPECT_TRUE(back.Pixels == image.Pixels) << colours << " " << opaque;
+    }
+}
+
 TEST(Image, BmpIsReadAsOlderTilesetsHaveIt)
 {
   const RgbaImage image = Pattern(5, 3, true);

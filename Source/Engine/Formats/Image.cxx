@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <system_error>
 #include <thread>
 
@@ -210,11 +211,97 @@ struct Strip
   bool Failed = false;
 };
 
-void DeflateStrip(int first, int last, bool final, int width, bool opaque, int level,
+/**
+ * The colours of a picture with at most 256 of them, for an indexed PNG (colour type 3): a
+ * quarter of the bytes to filter and deflate. Colours are numbered in order of first
+ * appearance (rows from the top), so the file depends on the picture alone.
+ */
+class Palette
+{
+public:
+  /// Adds @p rgba; false once the picture has more than 256 colours.
+  bool Add(std::uint32_t rgba)
+  {
+    std::size_t at = Slot(rgba);
+    while (this->Used[at])
+    {
+      if (this->Keys[at] == rgba)
+        return true;
+      at = (at + 1) & (Size - 1);
+    }
+    if (this->Colours.size() == 256)
+      return false;
+    this->Used[at] = 1;
+    this->Keys[at] = rgba;
+    this->Index[at] = static_cast<std::uint8_t>(this->Colours.size());
+    this->Colours.push_back(rgba);
+    return true;
+  }
+  /// The index of a colour that was added.
+  std::uint8_t IndexOf(std::uint32_t rgba) const
+  {
+    std::size_t at = Slot(rgba);
+    while (this->Keys[at] != rgba)
+      at = (at + 1) & (Size - 1);
+    return this->Index[at];
+  }
+  const std::vector<std::uint32_t>& Entries() const { return this->Colours; }
+
+private:
+  static constexpr std::size_t Size = 1024; // 4 slots per colour at most: short probes
+  static std::size_t Slot(std::uint32_t c) { return (c * 2654435761u) >> 22; }
+  std::vector<std::uint32_t> Colours;
+  std::uint32_t Keys[Size] = {};
+  std::uint8_t Index[Size] = {};
+  std::uint8_t Used[Size] = {};
+};
+
+std::uint32_t PixelAt(const std::uint8_t* p)
+{
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+/// How rows are stored: RGB (opaque), RGBA, or palette indices.
+struct PngLayout
+{
+  bool Opaque = true;
+  const Palette* Indexed = nullptr; ///< set: colour type 3
+  int BytesPerPixel() const { return this->Indexed ? 1 : (this->Opaque ? 3 : 4); }
+};
+
+/// One pass over the pixels: opaque or not, and @p palette while there are few colours.
+PngLayout ScanPixels(
+  int width, int height, const std::function<const std::uint8_t*(int)>& row, Palette& palette)
+{
+  PngLayout layout;
+  bool few = true;
+  for (int y = 0; y < height && (few || layout.Opaque); ++y)
+  {
+    const std::uint8_t* r = row(y);
+    std::uint32_t last = PixelAt(r) + 1;
+    for (int x = 0; x < width && (few || layout.Opaque); ++x)
+    {
+      const std::uint32_t c = PixelAt(r + 4 * x);
+      if (c == last)
+        continue;
+      last = c;
+      layout.Opaque = layout.Opaque && r[4 * x + 3] == 255;
+      few = few && palette.Add(c);
+    }
+  }
+  if (few)
+    layout.Indexed = &palette;
+  return layout;
+}
+
+void DeflateStrip(int first, int last, bool final, int width, const PngLayout& layout, int level,
   const std::function<const std::uint8_t*(int)>& row, Strip& strip)
 {
-  const int bpp = opaque ? 3 : 4;
-  const std::size_t bytes = static_cast<std::size_t>(width) * bpp;
+  const int bpp = layout.BytesPerPixel();
+  const bool opaque = layout.Opaque;
+  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(bpp);
   std::vector<std::uint8_t> packed(bytes), above(bytes), filtered(1 + bytes);
   z_stream z{};
   if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
@@ -225,7 +312,19 @@ void DeflateStrip(int first, int last, bool final, int width, bool opaque, int l
   auto pack = [&](int y, std::vector<std::uint8_t>& to)
   {
     const std::uint8_t* src = row(y);
-    if (!opaque)
+    if (layout.Indexed)
+    {
+      std::uint32_t previous = PixelAt(src) + 1; // not the first pixel: looked up
+      std::uint8_t index = 0;
+      for (int x = 0; x < width; ++x)
+      {
+        const std::uint32_t c = PixelAt(src + 4 * x);
+        if (c != previous)
+          index = layout.Indexed->IndexOf(previous = c);
+        to[static_cast<std::size_t>(x)] = index;
+      }
+    }
+    else if (!opaque)
       std::memcpy(to.data(), src, bytes);
     else
       for (int x = 0; x < width; ++x)
@@ -292,13 +391,8 @@ void WritePng(const std::string& path, int width, int height,
     throw Error::InFile(path,
       "could not be written: a picture of " + std::to_string(width) + " x " +
         std::to_string(height) + " pixels is empty");
-  bool opaque = true;
-  for (int y = 0; y < height && opaque; ++y)
-  {
-    const std::uint8_t* r = row(y);
-    for (int x = 0; x < width && opaque; ++x)
-      opaque = r[4 * x + 3] == 255;
-  }
+  auto palette = std::make_unique<Palette>();
+  const PngLayout layout = ScanPixels(width, height, row, *palette);
   // Strips of a fixed height, so the file is the same whatever the number of threads.
   const int rowsPerStrip = std::max(1, (1 << 20) / (4 * width));
   std::vector<Strip> strips(static_cast<std::size_t>((height + rowsPerStrip - 1) / rowsPerStrip));
@@ -309,7 +403,7 @@ void WritePng(const std::string& path, int width, int height,
     {
       const int first = static_cast<int>(s) * rowsPerStrip;
       DeflateStrip(first, std::min(height, first + rowsPerStrip), s + 1 == strips.size(), width,
-        opaque, compression, row, strips[s]);
+        layout, compression, row, strips[s]);
     }
   };
   std::vector<std::thread> threads;
@@ -349,9 +443,26 @@ void WritePng(const std::string& path, int width, int height,
         header[4 + i] =
           static_cast<std::uint8_t>(static_cast<std::uint32_t>(height) >> (24 - 8 * i));
       }
-      header[8] = 8;              // bits per channel
-      header[9] = opaque ? 2 : 6; // RGB or RGBA
+      header[8] = 8; // bits per channel (or index)
+      header[9] = static_cast<std::uint8_t>(layout.Indexed ? 3 : (layout.Opaque ? 2 : 6));
       PutChunk(out, "IHDR", header, 13);
+      if (layout.Indexed)
+      {
+        // PLTE: the colours' RGB; tRNS: their alpha up to the last not opaque one.
+        std::vector<std::uint8_t> rgb, alpha;
+        for (const std::uint32_t c : layout.Indexed->Entries())
+        {
+          std::uint8_t p[4];
+          std::memcpy(p, &c, 4);
+          rgb.insert(rgb.end(), p, p + 3);
+          alpha.push_back(p[3]);
+        }
+        while (!alpha.empty() && alpha.back() == 255)
+          alpha.pop_back();
+        PutChunk(out, "PLTE", rgb.data(), rgb.size());
+        if (!alpha.empty())
+          PutChunk(out, "tRNS", alpha.data(), alpha.size());
+      }
       // The zlib stream: header (32K window, fast), the strips' deflate data, Adler-32.
       const std::uint8_t zlibHeader[2] = { 0x78, 0x01 };
       const std::uint8_t check[4] = { static_cast<std::uint8_t>(adler >> 24),

@@ -95,6 +95,57 @@ std::vector<TilePicture> LoadTilePictures(const std::string& xmlPath, const Tile
   return pictures;
 }
 
+void ComposeTileRow(const std::int32_t* labels, int nx, const std::vector<TilePicture>& tiles,
+  int j, std::uint8_t* out)
+{
+  if (tiles.empty())
+    return;
+  const int t = tiles.front().Size;
+  const std::size_t row = 4 * static_cast<std::size_t>(t);
+  if (t == 8)
+  {
+    // The common tile size, copied inline: a library call per tile row costs more than it.
+    for (int x = 0; x < nx; ++x, out += 32)
+      std::memcpy(out, tiles[static_cast<std::size_t>(labels[x])].At(0, j), 32);
+    return;
+  }
+  for (int x = 0; x < nx; ++x, out += row)
+    std::memcpy(out, tiles[static_cast<std::size_t>(labels[x])].At(0, j), row);
+}
+
+void WriteTilePicture(const std::string& path, const std::vector<std::int32_t>& labels, int nx,
+  int ny, const std::vector<TilePicture>& tiles)
+{
+  const int t = tiles.empty() ? 0 : tiles.front().Size;
+  if (static_cast<std::int64_t>(labels.size()) != static_cast<std::int64_t>(nx) * ny || t < 1)
+    throw Error::InFile(path, "not written: the model and the tiles do not fit");
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    if (labels[i] < 0 || static_cast<std::size_t>(labels[i]) >= tiles.size())
+      throw Error::InFile(path,
+        "not written: label " + std::to_string(labels[i]) + " at (" +
+          std::to_string(i % static_cast<std::size_t>(nx)) + ", " +
+          std::to_string(i / static_cast<std::size_t>(nx)) + ") is not a label of the tileset");
+  const std::int64_t height = static_cast<std::int64_t>(ny) * t;
+  const std::int64_t width = static_cast<std::int64_t>(nx) * t;
+  if (width > (std::int64_t(1) << 30) / 4 || height > (std::int64_t(1) << 30))
+    throw Error::InFile(path,
+      "not written: a picture of " + std::to_string(width) + " x " + std::to_string(height) +
+        " pixels is too large for PNG");
+  WritePng(path, static_cast<int>(width), static_cast<int>(height),
+    [&](int y)
+    {
+      // Each thread of the writer composes its rows in a buffer of its own (the pointer is
+      // used before that thread asks for another row).
+      thread_local std::vector<std::uint8_t> buffer;
+      buffer.resize(static_cast<std::size_t>(width) * 4);
+      const std::int64_t fromBottom = height - 1 - y;
+      ComposeTileRow(
+        labels.data() + static_cast<std::size_t>(fromBottom / t) * static_cast<std::size_t>(nx), nx,
+        tiles, static_cast<int>(fromBottom % t), buffer.data());
+      return static_cast<const std::uint8_t*>(buffer.data());
+    });
+}
+
 LabelGrid PinsFromPicture(
   const RgbaImage& picture, const std::string& path, const std::vector<TilePicture>& tiles)
 {

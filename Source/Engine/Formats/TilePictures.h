@@ -13,6 +13,7 @@
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,24 @@ struct TilePicture
  * @throw Error naming the image that is missing, unreadable, not square or of another size.
  */
 std::vector<TilePicture> LoadTilePictures(const std::string& xmlPath, const Tileset& tiles);
+
+/**
+ * Pixel row @p j (from the bottom of the tiles, 0 ≤ j < T) of a row of sites holding
+ * @p labels[0..nx) (each a valid label of @p tiles): nx·T RGBA pixels into @p out. A model's
+ * picture, row by row, without holding it (vtkMSTileImage, and picture.png written as it is
+ * composed).
+ */
+void ComposeTileRow(const std::int32_t* labels, int nx, const std::vector<TilePicture>& tiles,
+  int j, std::uint8_t* out);
+
+/**
+ * Writes the picture of a model of nx × ny sites (@p labels, x fastest, rows from the bottom as
+ * VTK stores them) to the PNG @p path, each row composed as the PNG writer asks for it: no
+ * picture in memory (a 2000² model of 8-pixel tiles is 1 GB of RGBA).
+ * @throw Error naming the first site whose label is not one of @p tiles, or the file.
+ */
+void WriteTilePicture(const std::string& path, const std::vector<std::int32_t>& labels, int nx,
+  int ny, const std::vector<TilePicture>& tiles);
 
 /**
  * Reads a map drawn with a tileset's tiles into pinned sites: @p picture (rows from the top,

@@ -169,23 +169,23 @@ int vtkMSTileImage::RequestData(
   rgba->SetNumberOfComponents(4);
   const vtkIdType width = static_cast<vtkIdType>(dims[0]) * size;
   rgba->SetNumberOfTuples(width * dims[1] * size);
+  std::vector<std::int32_t> row(static_cast<std::size_t>(dims[0]));
   for (int y = 0; y < dims[1]; ++y)
   {
     for (int x = 0; x < dims[0]; ++x)
     {
-      const int b = static_cast<int>(labels->GetTuple1(x + static_cast<vtkIdType>(dims[0]) * y));
-      if (b < 0 || b >= tiles.NumberOfLabels())
+      const double b = labels->GetTuple1(x + static_cast<vtkIdType>(dims[0]) * y);
+      if (!(b >= 0 && b < tiles.NumberOfLabels()))
       {
         vtkErrorMacro(<< "Label " << b << " at (" << x << ", " << y << ") is not a label of '"
                       << file << "'.");
         return 0;
       }
-      const msynth::TilePicture& p = pictures[static_cast<std::size_t>(b)];
-      for (int j = 0; j < size; ++j) // one row of the tile at a time
-        std::copy(p.At(0, j), p.At(0, j) + 4 * size,
-          rgba->GetPointer(4 *
-            ((static_cast<vtkIdType>(y) * size + j) * width + static_cast<vtkIdType>(x) * size)));
+      row[static_cast<std::size_t>(x)] = static_cast<std::int32_t>(b);
     }
+    for (int j = 0; j < size; ++j) // one row of pixels at a time
+      msynth::ComposeTileRow(row.data(), dims[0], pictures, j,
+        rgba->GetPointer(4 * ((static_cast<vtkIdType>(y) * size + j) * width)));
   }
   output->GetPointData()->SetScalars(rgba);
   return 1;
