@@ -191,12 +191,56 @@ class PinsTest(unittest.TestCase):
         r = msynth("synthesize", data("Examples/Village.vti"), "--size", "24", "24", "5",
                    "--fixed", path, "--out", bad)
         self.assertEqual(r.returncode, 1, r.stderr)
-        self.assertIn("a picture pins the tiles of a 2D tileset", r.stderr)
+        self.assertIn("a picture pins the tiles of a 2D tileset or the patterns of an image sample",
+                      r.stderr)
 
     def test_an_image_sample_keeps_a_pinned_patch(self):
         # The patterns of a City picture, a patch pinned; the picture passes the window check.
         self.complete("Samples/City.png", ("40", "40", "1"), ("20", "20", "1"), [np.s_[0, 10:16, 10:16]],
                       "picture.png")
+
+    def test_a_sample_picture_partly_drawn_is_completed(self):
+        # A Rooms picture of 24 x 24 pixels (22 x 22 sites of 3 x 3 patterns) with everything but
+        # a 10 x 10 patch made transparent: the sites whose windows lie in the patch are pinned
+        # to the patterns drawn there, the rest completed, and the picture passes the check.
+        source = fresh_folder("pins-sample-source")
+        args = ["--size", "24", "24", "1", "--pattern", "3"]
+        r = msynth("synthesize", data("Samples/Rooms.png"), *args, "--seed", "4", "--out", source)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        drawn = png_pixels(os.path.join(source, "picture.png"))
+        if drawn.shape[2] == 3:
+            drawn = np.concatenate([drawn, np.full(drawn.shape[:2] + (1,), 255, np.uint8)], axis=2)
+        patch = np.zeros(drawn.shape[:2], bool)
+        patch[5:15, 5:15] = True
+        drawn[~patch] = 0
+        path = tmp("rooms-drawn.png")
+        write_png(drawn, path)
+        out = fresh_folder("pins-sample")
+        r = msynth("synthesize", data("Samples/Rooms.png"), *args, "--seed", "9", "--fixed", path,
+                   "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        before = read_labels(os.path.join(source, "labels.vti"))[0]
+        after = read_labels(os.path.join(out, "labels.vti"))[0]
+        self.assertEqual(before.shape, (22, 22))
+        rows = [21 - row for row in range(5, 13)]  # windows starting at pixel rows 5..12
+        self.assertTrue(np.array_equal(after[rows, 5:13], before[rows, 5:13]))
+        picture = png_pixels(os.path.join(out, "picture.png"))
+        self.assertTrue(np.array_equal(picture[5:15, 5:15, :3], drawn[5:15, 5:15, :3]))
+        self.assertFalse(np.array_equal(after, before), "the rest is synthesized anew")
+        check = msynth("check", data("Samples/Rooms.png"), os.path.join(out, "picture.png"),
+                       "--pattern", "3")
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        # A colour the sample lacks: one line naming the file and the pixel.
+        drawn[7, 9] = (255, 0, 255, 255)
+        write_png(drawn, path)
+        bad = tmp("pins-sample-bad")
+        subprocess.run(["rm", "-rf", bad])
+        r = msynth("synthesize", data("Samples/Rooms.png"), *args, "--fixed", path, "--out", bad)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn(path, r.stderr)
+        self.assertIn("pixel (9, 7)", r.stderr)
+        self.assertFalse(os.path.exists(bad))
 
     def test_contradictory_pins_are_one_line_and_nothing_is_written(self):
         pins = np.full((5, 16, 16), -1, dtype=np.int32)

@@ -306,6 +306,68 @@ RgbaImage PatternSet::Compose(const LabelGrid& model, const Periodic& periodic) 
   return picture;
 }
 
+LabelGrid PatternSet::PinsFromPicture(
+  const RgbaImage& picture, const std::string& path, const Periodic& periodic) const
+{
+  const int n = this->Options.N;
+  std::array<std::int64_t, 3> sites;
+  try
+  {
+    sites = this->SitesFor(picture.Width, picture.Height, periodic);
+  }
+  catch (const Error& e)
+  {
+    throw Error::InFile(path, e.what());
+  }
+  // Each pixel's colour index; -1 where free (transparent in a colour the sample lacks).
+  std::map<std::array<std::uint8_t, 4>, int> index;
+  for (std::size_t c = 0; c < this->Colours.size(); ++c)
+    index[this->Colours[c]] = static_cast<int>(c);
+  std::vector<int> colour(
+    static_cast<std::size_t>(picture.Width) * static_cast<std::size_t>(picture.Height));
+  for (int y = 0; y < picture.Height; ++y)
+    for (int x = 0; x < picture.Width; ++x)
+    {
+      const std::uint8_t* p = picture.At(x, y);
+      const auto found = index.find({ { p[0], p[1], p[2], p[3] } });
+      int& c = colour[static_cast<std::size_t>(y) * static_cast<std::size_t>(picture.Width) +
+        static_cast<std::size_t>(x)];
+      c = found != index.end() ? found->second : -1;
+      if (c < 0 && p[3] != 0)
+        throw Error::InFile(path,
+          "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+            ") has a colour the sample does not have (and is not transparent)");
+    }
+  std::map<std::vector<std::uint16_t>, Label> byCells;
+  for (int t = this->NumberOfPatterns(); t-- > 0;)
+    byCells[std::vector<std::uint16_t>(this->Cells.begin() + static_cast<std::ptrdiff_t>(t) * n * n,
+      this->Cells.begin() + static_cast<std::ptrdiff_t>(t + 1) * n * n)] = t;
+  LabelGrid pins(sites[0], sites[1], 1, Label(-1));
+  std::vector<std::uint16_t> window(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+  for (std::int64_t row = 0; row < sites[1]; ++row)
+    for (std::int64_t x = 0; x < sites[0]; ++x)
+    {
+      bool drawn = true;
+      for (int j = 0; j < n && drawn; ++j)
+        for (int i = 0; i < n && drawn; ++i)
+        {
+          const std::int64_t px = (x + i) % picture.Width, py = (row + j) % picture.Height;
+          const int c = colour[static_cast<std::size_t>(py * picture.Width + px)];
+          drawn = c >= 0;
+          window[static_cast<std::size_t>(j * n + i)] = static_cast<std::uint16_t>(drawn ? c : 0);
+        }
+      if (!drawn)
+        continue;
+      const auto found = byCells.find(window);
+      if (found == byCells.end())
+        throw Error::InFile(path,
+          "the " + std::to_string(n) + " x " + std::to_string(n) + " window at pixel (" +
+            std::to_string(x) + ", " + std::to_string(row) + ") is none of the sample's patterns");
+      pins.Set(x, sites[1] - 1 - row, 0, found->second);
+    }
+  return pins;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The independent check: windows of RGBA pixels, compared as bytes.
 // ---------------------------------------------------------------------------------------------

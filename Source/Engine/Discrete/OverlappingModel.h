@@ -107,6 +107,15 @@ public:
   void Configure(SynthesisOptions& options, const Periodic& periodic) const;
   /// The picture of a grid of patterns (label values 0..k−1). @throw Error on other values.
   RgbaImage Compose(const LabelGrid& model, const Periodic& periodic) const;
+  /**
+   * The inverse of Compose for a partly drawn picture (`--fixed map.png`): the site whose
+   * N × N window (wrapping where @p periodic) holds no fully transparent pixel of a colour
+   * the sample lacks is pinned to the pattern equal to that window; the others are free (-1).
+   * @throw Error naming @p path and the window (its top-left pixel, rows from the top) that is
+   * none of the patterns, or a picture smaller than a pattern.
+   */
+  LabelGrid PinsFromPicture(
+    const RgbaImage& picture, const std::string& path, const Periodic& periodic) const;
 };
 
 /**

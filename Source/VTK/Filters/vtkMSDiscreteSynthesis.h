@@ -287,11 +287,13 @@ public:
   /// work; with blocks each pin is first placed with a block around it, and no block changes it.
   /// A picture on the input (unsigned char RGB(A) scalars, no "Label" array, e.g. a
   /// vtkPNGReader's output) pins the tiles of a 2D tileset run: it is cut into tile-sized cells,
-  /// each a tile's image (pinned) or fully transparent (free) (msynth::PinsFromPicture).
+  /// each a tile's image (pinned) or fully transparent (free) (msynth::PinsFromPicture); and
+  /// the patterns of an image sample run: a site whose N × N window is drawn (no transparent
+  /// pixel) is pinned to that window's pattern (msynth::PatternSet::PinsFromPicture).
   void SetFixedConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
   void SetFixedData(vtkDataObject* fixed) { this->SetInputData(2, fixed); }
   /// The pinned sites from a file when input port 2 is not connected: a label grid (.vti, .txt,
-  /// .vox) or, for a 2D tileset, a picture drawn with its tiles (.png, .bmp). Default "": none.
+  /// .vox) or, for a 2D tileset or an image sample, a picture (.png, .bmp) as above. Default "".
   /// The tileset and image-sample proxies, which have no inputs, offer this in the GUI.
   vtkSetStdStringFromCharMacro(FixedFile);
   vtkGetCharFromStdStringMacro(FixedFile);

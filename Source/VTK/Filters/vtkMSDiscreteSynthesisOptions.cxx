@@ -16,6 +16,7 @@
 
 #include "Core/Error.h"
 #include "Core/TextLists.h"
+#include "Discrete/OverlappingModel.h"
 #include "Formats/TilePictures.h"
 
 #include <algorithm>
@@ -211,20 +212,33 @@ msynth::RgbaImage PictureRows(vtkImageData* fixed, vtkUnsignedCharArray* bytes)
   return picture;
 }
 
-/// A map drawn with the tileset's tiles (msynth::PinsFromPicture); @p name names it in errors.
+/// A map drawn with the tileset's tiles (msynth::PinsFromPicture), or a picture drawn in the
+/// colours of an image sample (msynth::PatternSet::PinsFromPicture); @p name names it in errors.
 msynth::LabelGrid PinsOfPicture(
   vtkMSDiscreteSynthesis* self, const msynth::RgbaImage& picture, const std::string& name)
 {
-  const std::string file = self->GetTilesetFile();
   const int source = self->GetActiveSource();
+  if (source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE)
+  {
+    msynth::OverlappingOptions po;
+    po.N = self->GetPatternSize();
+    po.Symmetry = self->GetPatternSymmetry();
+    po.PeriodicInput = self->GetPeriodicInput();
+    po.Ground = self->GetGround();
+    const std::string sample = self->GetSampleFile();
+    const msynth::PatternSet patterns =
+      msynth::ExtractPatterns(msynth::ReadImage(sample), po, sample);
+    const int* translate = self->GetTranslate();
+    return patterns.PinsFromPicture(picture, name, { { translate[0] != 0, translate[1] != 0 } });
+  }
+  const std::string file = self->GetTilesetFile();
   const msynth::Tileset tiles = source == vtkMSDiscreteSynthesis::TILESET_SOURCE
     ? msynth::ReadTilesetFile(file, self->GetTilesetSubset(), self->GetTilesFolder())
     : msynth::Tileset();
   if (source != vtkMSDiscreteSynthesis::TILESET_SOURCE || tiles.Voxel)
-    throw msynth::Error("a picture pins the tiles of a 2D tileset; this run's rules come from " +
-      std::string(source == vtkMSDiscreteSynthesis::SAMPLE_SOURCE ? "an image sample"
-          : tiles.Voxel                                           ? "a voxel tileset"
-                                                                  : "a label grid example") +
+    throw msynth::Error("a picture pins the tiles of a 2D tileset or the patterns of an image "
+                        "sample; this run's rules come from " +
+      std::string(tiles.Voxel ? "a voxel tileset" : "a label grid example") +
       " (pin its sites with a label grid: .vti, .txt, .vox)");
   return msynth::PinsFromPicture(picture, name, msynth::LoadTilePictures(file, tiles));
 }
