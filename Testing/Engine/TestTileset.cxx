@@ -2,6 +2,7 @@
 #include "Core/Error.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/DiscreteSynthesis.h"
+#include "Formats/TilePictures.h"
 #include "Formats/Tileset.h"
 
 #include <gtest/gtest.h>
@@ -390,4 +391,49 @@ TEST(Tileset, NoFailedBlocksWithBacktracking)
   }
   EXPECT_GT(failedWithout, 0);
   EXPECT_GT(repairedWithout, 0);
+}
+
+TEST(Tileset, APictureOfTilesReadsBackAsItsLabels)
+{
+  // Lines: a model composed row by row (ComposeTileRow, as picture.png is written) and read back
+  // by PinsFromPicture gives the labels again; transparent cells are free; a changed pixel is
+  // an error naming the cell's site; a size that is not whole tiles is refused.
+  const std::string file = std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml";
+  const Tileset lines = ReadTilesetFile(file);
+  const std::vector<TilePicture> tiles = LoadTilePictures(file, lines);
+  ASSERT_EQ(static_cast<int>(tiles.size()), lines.NumberOfLabels());
+  const int t = tiles.front().Size, nx = 5, ny = 3;
+  std::vector<std::int32_t> labels(static_cast<std::size_t>(nx * ny));
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    labels[i] = static_cast<std::int32_t>((i * 5 + 1) % tiles.size());
+  RgbaImage picture;
+  picture.Width = nx * t;
+  picture.Height = ny * t;
+  picture.Pixels.resize(static_cast<std::size_t>(picture.Width * picture.Height * 4));
+  for (int y = 0; y < picture.Height; ++y) // rows from the top; sites from the bottom
+  {
+    const int fromBottom = picture.Height - 1 - y;
+    ComposeTileRow(labels.data() + (fromBottom / t) * nx, nx, tiles, fromBottom % t,
+      picture.Pixels.data() + static_cast<std::size_t>(y) * picture.Width * 4);
+  }
+  for (int y = 0; y < t; ++y) // site (1, ny - 1) transparent: free
+    std::fill_n(picture.Pixels.begin() + 4 * (y * picture.Width + t), 4 * t, std::uint8_t(0));
+  const LabelGrid pins = PinsFromPicture(picture, "drawn.png", tiles);
+  ASSERT_EQ(pins.Size(0), nx);
+  ASSERT_EQ(pins.Size(1), ny);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      EXPECT_EQ(pins.At(x, y, 0), x == 1 && y == ny - 1 ? -1 : labels[y * nx + x]) << x << y;
+  picture.Pixels[4 * (static_cast<std::size_t>(t + 2) * picture.Width + 3 * t + 1)] ^= 0x55;
+  try
+  {
+    PinsFromPicture(picture, "drawn.png", tiles);
+    ADD_FAILURE() << "a changed pixel was accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("site (3, 1)"), std::string::npos) << e.what();
+  }
+  picture.Width -= 1;
+  EXPECT_THROW(PinsFromPicture(picture, "drawn.png", tiles), Error);
 }
