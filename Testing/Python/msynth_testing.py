@@ -63,6 +63,33 @@ def read_label_grid(path):
     return reader.GetOutput()
 
 
+def read_png(path):
+    """A PNG's pixels as [row from the top, column, channel] (3 or 4 channels)."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)[::-1].copy()
+
+
+def write_png(pixels_top_first, path):
+    """Writes [row from the top, column, RGBA] pixels as a PNG."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    height, width, channels = pixels_top_first.shape
+    image = vtkImageData()
+    image.SetDimensions(width, height, 1)
+    image.GetPointData().SetScalars(numpy_to_vtk(
+        np.ascontiguousarray(pixels_top_first[::-1]).reshape(-1, channels), deep=True))
+    writer = vtkPNGWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    writer.Write()
+
+
 def run_algorithm(algorithm, port=None, data=None, **options):
     """Connects `port` (or `data`), calls Set<Name>(value) for every option, updates, and
     returns (output, error text)."""

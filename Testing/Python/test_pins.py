@@ -6,14 +6,14 @@ import subprocess
 import unittest
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
 import modelsynth
-from msynth_testing import BIN, data, fresh_folder, labels_zyx, run_algorithm, tmp, violations
+from msynth_testing import (BIN, data, fresh_folder, labels_zyx, read_png, run_algorithm, tmp,
+                            violations, write_png)
 
 MSYNTH = os.path.join(BIN, "msynth")
 TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
@@ -48,29 +48,6 @@ def write_pins(path, labels_zyx_array):
     return path
 
 
-def png_pixels(path):
-    """A PNG's RGBA pixels, rows from the top as in the file."""
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    w, h, _ = image.GetDimensions()
-    a = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, -1)
-    return a[::-1].copy()
-
-
-def write_png(rgba_top_first, path):
-    h, w, _ = rgba_top_first.shape
-    picture = vtkImageData()
-    picture.SetDimensions(w, h, 1)
-    a = numpy_to_vtk(np.ascontiguousarray(rgba_top_first[::-1]).reshape(-1, 4), deep=True)
-    picture.GetPointData().SetScalars(a)
-    writer = vtkPNGWriter()
-    writer.SetInputData(picture)
-    writer.SetFileName(path)
-    writer.Write()
-
-
 def drawn_map_picture(pins_yx, path):
     """The picture a user draws of the Lines map `pins_yx` ([y, x], -1 free): each pinned site's
     tile image, composed by vtkMSTileImage, and fully transparent cells where sites are free.
@@ -86,15 +63,7 @@ def drawn_map_picture(pins_yx, path):
     rgba = vtk_to_numpy(out.GetPointData().GetScalars()).reshape(h, w, 4).copy()
     for y, x in zip(*np.nonzero(pins_yx < 0)):
         rgba[y * t:(y + 1) * t, x * t:(x + 1) * t, :] = 0
-    picture = vtkImageData()
-    picture.SetDimensions(w, h, 1)
-    a = numpy_to_vtk(rgba.reshape(-1, 4), deep=True)
-    a.SetName("RGBA")
-    picture.GetPointData().SetScalars(a)
-    writer = vtkPNGWriter()
-    writer.SetInputData(picture)
-    writer.SetFileName(path)
-    writer.Write()
+    write_png(rgba[::-1], path)  # composed rows from the bottom
     return t
 
 
@@ -170,7 +139,7 @@ class PinsTest(unittest.TestCase):
         # A cell that is no tile: one line naming the file and the site; nothing written.
         spoiled = pins.copy()
         drawn_map_picture(spoiled, path)
-        rgba = png_pixels(path)
+        rgba = read_png(path)
         y, x = [int(v[0]) for v in np.nonzero(kept)]
         rgba[(23 - y) * t + 1, x * t + 1, :3] = (255, 0, 255)  # rows from the top in the file
         write_png(rgba, path)
@@ -207,7 +176,7 @@ class PinsTest(unittest.TestCase):
         args = ["--size", "24", "24", "1", "--pattern", "3"]
         r = msynth("synthesize", data("Samples/Rooms.png"), *args, "--seed", "4", "--out", source)
         self.assertEqual(r.returncode, 0, r.stderr)
-        drawn = png_pixels(os.path.join(source, "picture.png"))
+        drawn = read_png(os.path.join(source, "picture.png"))
         if drawn.shape[2] == 3:
             drawn = np.concatenate([drawn, np.full(drawn.shape[:2] + (1,), 255, np.uint8)], axis=2)
         patch = np.zeros(drawn.shape[:2], bool)
@@ -224,7 +193,7 @@ class PinsTest(unittest.TestCase):
         self.assertEqual(before.shape, (22, 22))
         rows = [21 - row for row in range(5, 13)]  # windows starting at pixel rows 5..12
         self.assertTrue(np.array_equal(after[rows, 5:13], before[rows, 5:13]))
-        picture = png_pixels(os.path.join(out, "picture.png"))
+        picture = read_png(os.path.join(out, "picture.png"))
         self.assertTrue(np.array_equal(picture[5:15, 5:15, :3], drawn[5:15, 5:15, :3]))
         self.assertFalse(np.array_equal(after, before), "the rest is synthesized anew")
         check = msynth("check", data("Samples/Rooms.png"), os.path.join(out, "picture.png"),

@@ -13,7 +13,7 @@ import unittest
 import numpy as np
 from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
 
-from msynth_testing import BIN, data, fresh_folder, labels_zyx, violations
+from msynth_testing import BIN, data, fresh_folder, labels_zyx, read_png, violations
 from msynth_testing import read_label_grid as read
 from msynth_testing import run_msynth as msynth
 
@@ -32,15 +32,7 @@ def write(path, content, mode="w"):
 
 
 def png_rgb(path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
-    return pixels[:, :, :3].astype(float)
+    return read_png(path)[:, :, :3].astype(float)
 
 
 def read_pieces(path):
