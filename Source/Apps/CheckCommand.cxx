@@ -58,7 +58,10 @@ struct CheckOptions
   std::string Translate;
   std::vector<std::string> Counts;
   std::string Connected;
+  std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
 };
+
+} // namespace
 
 /**
  * `--connected LABELS[:N]`: the sites of @p model holding any of LABELS (values, or with a
@@ -148,6 +151,8 @@ bool CheckConnected(const std::string& spec, const std::string& example, const s
   return ok;
 }
 
+namespace
+{
 /**
  * `--count L:MIN:MAX`: the sites of @p model holding L (a label value, or with a tileset
  * @p example a tile's name, all its orientations, or a label's name "tile k"), counted here
@@ -344,7 +349,7 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
 /// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
   const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts,
-  const std::string& connected)
+  const std::string& connected, const std::string& names)
 {
   if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
@@ -360,8 +365,9 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   SetUpDiscreteCheck(check, e, m, example, subset, tiles);
   Run(check);
   auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
-  bool kept = counts.empty() || CheckCounts(counts, example, subset, tiles, labels);
-  kept = (connected.empty() || CheckConnected(connected, example, subset, tiles, labels)) && kept;
+  const std::string& named = IsTileset(example) || names.empty() ? example : names;
+  bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels);
+  kept = (connected.empty() || CheckConnected(connected, named, subset, tiles, labels)) && kept;
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
@@ -549,6 +555,9 @@ CommandRunner AddCheck(CLI::App& app)
     "also check that the sites holding any of LABELS (values or tile names, commas between) "
     "form at most N components (LABELS[:N], N 1 when left out), through the tileset's "
     "connecting sides");
+  check->add_option("--tileset", o->Names,
+    "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
+    "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
   return [o]()
   {
     CheckInputFile(o->Example);
@@ -570,7 +579,10 @@ CommandRunner AddCheck(CLI::App& app)
                           "streamed model" };
       return CheckPieces(o->Example, o->Model, o->Subset, o->Tiles);
     }
-    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected);
+    if (!o->Names.empty())
+      CheckInputFile(o->Names);
+    return CheckDiscrete(
+      o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected, o->Names);
   };
 }
 

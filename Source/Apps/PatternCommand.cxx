@@ -50,6 +50,7 @@ struct PatternCommandOptions
   std::string Mirror;
   std::vector<std::string> Swaps;
   std::string Tileset;
+  std::string Connected;
   int Samples = 1;
   int BurnIn = 5;
   std::string Method = "blockss";
@@ -114,6 +115,8 @@ void Configure(vtkMSPatternSynthesis* s, const PatternCommandOptions& o)
   s->SetMirror(o.Mirror.find('x') != std::string::npos, o.Mirror.find('y') != std::string::npos,
     o.Mirror.find('z') != std::string::npos);
   s->SetMirrorSwaps(Joined(o.Swaps, ",").c_str());
+  s->SetConnected(o.Connected.c_str());
+  s->SetConnectedTilesetFile(o.Tileset.c_str());
   s->SetSamples(o.Samples);
   s->SetBurnIn(o.BurnIn);
   s->SetMethod(IndexIn(o.Method, Methods));
@@ -198,7 +201,8 @@ void WritePatternStatistics(const std::string& dir, const PatternCommandOptions&
   for (const char* name : { "Moves", "WalkMoves", "AnnealingMoves", "AcceptedAnnealingMoves",
          "FirstValidMoves", "HardFactors", "SoftFactors", "Tiles", "ReplacementBlocks" })
     json.Count(name, CountOf(fd, name));
-  json.Number("FirstValidSeconds", means.FirstValidSeconds)
+  json.Connected(fd)
+    .Number("FirstValidSeconds", means.FirstValidSeconds)
     .Number("Seconds", means.Seconds)
     .Raw("samples", "[\n" + samplesJson + "\n  ]")
     .Write(dir + "/statistics.json");
@@ -241,6 +245,11 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     }
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(synthesis->GetOutput());
+    // The network counted again by the command line's own union-find (CheckCommand.cxx).
+    if (!o.Connected.empty() &&
+      !CheckConnected(o.Connected, o.Tileset.empty() ? tileset : o.Tileset, "", "", image))
+      throw std::runtime_error("sample " + std::to_string(k + 1) + " has more components of " +
+        o.Connected + " than asked");
     vtkFieldData* fd = image->GetFieldData();
     samples << (k ? ",\n" : "") << "    {\"sample\": " << k + 1
             << ", \"LogProbability\": " << JsonNumber(FieldValue(fd, "LogProbability"));
@@ -376,7 +385,13 @@ CommandRunner AddPattern(CLI::App& app)
     ->check(CLI::IsMember({ "x", "y", "z", "xy", "xz", "yz", "xyz" }));
   p->add_option("--swap", o->Swaps, "labels A and B are each other's mirror images (A:B)")
     ->allow_extra_args(false);
-  p->add_option("--tileset", o->Tileset, "the tileset (.xml) whose images draw DIR/picture.png");
+  p->add_option("--tileset", o->Tileset,
+    "the tileset (.xml) whose images draw DIR/picture.png (and whose tile names and connecting "
+    "sides --connected uses)");
+  p->add_option("--connected", o->Connected,
+    "the sites holding any of LABELS (values, or tile names of the tileset; commas between) form "
+    "at most N components (LABELS[:N], N 1 when left out), joined through the tiles' connects "
+    "sides: each sample's surplus components are joined or removed by re-solving boxes");
   p->add_option("--samples", o->Samples, "samples to keep after the burn-in")
     ->check(CLI::Range(1, 100000));
   p->add_option("--burn-in", o->BurnIn, "samples discarded first")->check(CLI::Range(0, 100000));

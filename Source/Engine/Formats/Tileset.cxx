@@ -248,6 +248,12 @@ private:
         ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
       this->Set.Unique = u == "true";
     }
+    if (const std::string* turned = this->Root.Attribute("turned"))
+    {
+      if (*turned != "true" && *turned != "false")
+        this->Xml.Fail("<set turned=\"" + *turned + "\">: turned is true or false", this->Root.Line);
+      this->Set.Turned = *turned == "true";
+    }
     if (const std::string* size = this->Root.Attribute("size"))
     {
       char* end = nullptr;
@@ -309,6 +315,10 @@ private:
       this->Xml.Fail("tile '" + tile.Name + "' has symmetry '" + (symmetry ? *symmetry : "") +
           "'; the classes are X, I, \\, L, T and F",
         t.Line);
+    if (!this->Set.Turned && tile.Orientations != 1)
+      this->Xml.Fail("tile '" + tile.Name + "' has symmetry '" + std::string(1, tile.Symmetry) +
+          "' in a set whose tiles are never turned (turned=\"false\"); give it symmetry X",
+        t.Line);
     if (const std::string* weight = t.Attribute("weight"))
       if (!ParseTileWeight(*weight, tile.Weight))
         this->Xml.Fail(
@@ -349,6 +359,8 @@ private:
           t.Line);
       first |= 1 << bit;
     }
+    if (!this->Set.Turned) // one orientation, drawn as is: the sides as written
+      return std::vector<int>(1, first);
     for (int element = 0; element < 8; ++element)
     {
       const int o = DihedralAction(tile.Symmetry, 0, element);

@@ -47,6 +47,9 @@ struct Tileset
 {
   bool Unique = false; ///< one image per orientation (else per tile, rotated)
   int TileSize = 0;    ///< `<set size="...">`: the tile images' width in pixels (0: not given)
+  /// `<set turned="false">`: the tiles are never turned (pattern exemplars' tiles, each drawn
+  /// as is): every tile has one orientation (class X) and its `connects` sides are as written.
+  bool Turned = true;
   std::vector<TilesetTile> Tiles;
   std::vector<int> LabelTile;        ///< per label: index into Tiles
   std::vector<int> LabelOrientation; ///< per label: orientation (voxel sets: a symmetry giving it)

@@ -109,7 +109,7 @@ public:
 
   /// Runs Algorithm 1 (or MH) and calls @p take(tiles, lastChange) for each kept sample.
   template <typename Take>
-  bool Run(Take&& take)
+  bool Run(Take&& take, const SampleRepair& repair)
   {
     const auto start = Clock::now();
     const int total = this->O.BurnIn + this->O.Samples;
@@ -127,7 +127,11 @@ public:
         this->R.FirstValidSeconds = SecondsSince(start);
       }
       if (n >= this->O.BurnIn)
+      {
+        if (repair)
+          this->Mend(repair);
         take(this->Tiles, this->LastChange, SecondsSince(start));
+      }
       // After each sample, as the block solvers after each block: told at once, not throttled.
       if (this->O.Progress && !this->O.Progress(double(n + 1) / double(total)))
       {
@@ -139,6 +143,17 @@ public:
   }
 
 private:
+  /// The kept sample mended by @p repair; its changed sites take the move count as last change
+  /// (the next sample's slice is drawn from the mended pattern).
+  void Mend(const SampleRepair& repair)
+  {
+    this->Saved = this->Tiles;
+    repair(this->Tiles);
+    for (std::size_t i = 0; i < this->Tiles.size(); ++i)
+      if (this->Tiles[i] != this->Saved[i])
+        this->LastChange[i] = this->R.Moves;
+  }
+
   // ---------------------------------------------------------------------------------------
   // Slices (Algorithm 1) and bookkeeping
   // ---------------------------------------------------------------------------------------
@@ -610,10 +625,11 @@ private:
 } // namespace
 
 bool RunSampler(const PatternProblem& problem, const PatternOptions& options,
-  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take)
+  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take,
+  const SampleRepair& repair)
 {
   Sampler sampler(problem, options, start, result);
-  return sampler.Run(take);
+  return sampler.Run(take, repair);
 }
 
 } // namespace detail

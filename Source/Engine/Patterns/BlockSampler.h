@@ -18,13 +18,19 @@ namespace detail
 using SampleSink =
   std::function<void(const std::vector<std::int32_t>&, const std::vector<std::int64_t>&, double)>;
 
+/// Mends each kept sample's tile indices in place before it is taken (a connected network's
+/// repairs); the chain goes on from the mended pattern.
+using SampleRepair = std::function<void(std::vector<std::int32_t>&)>;
+
 /**
  * Runs the burn-in and the samples of @p options on @p problem from @p start (tile indices; empty:
- * drawn at random), counting moves in @p result.
+ * drawn at random), counting moves in @p result. @p repair (may be empty) mends each kept sample
+ * first; the sites it changes take the move count as their last change.
  * @return false when the progress callback cancelled. @throw Error when MaxMoves runs out.
  */
 bool RunSampler(const PatternProblem& problem, const PatternOptions& options,
-  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take);
+  const std::vector<std::int32_t>& start, PatternResult& result, const SampleSink& take,
+  const SampleRepair& repair = SampleRepair());
 
 } // namespace detail
 } // namespace msynth

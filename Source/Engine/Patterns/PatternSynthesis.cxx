@@ -6,6 +6,7 @@
 #include "Core/MirrorFold.h"
 #include "Core/Random.h"
 #include "Core/TextLists.h"
+#include "Discrete/Connectivity.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Patterns/BlockSampler.h"
 
@@ -13,6 +14,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 namespace msynth
@@ -54,6 +56,9 @@ void CheckOptions(const FactorModel& m, const PatternOptions& o)
     }
   if (!mirrored)
     return;
+  if (o.Connected.Active())
+    throw Error("a connected network cannot be combined with mirroring (only half the output is "
+                "synthesized)");
   const int t = m.NumberOfTiles();
   std::vector<std::int32_t> f(static_cast<std::size_t>(t));
   for (int b = 0; b < t; ++b)
@@ -129,6 +134,20 @@ PatternSample MakeSample(const PatternProblem& scorer, const FactorModel& m,
   return s;
 }
 
+/// @p network without the labels no exemplar (or tileset rule) holds: a tileset's names may
+/// cover more tiles than the exemplars use. @throw Error when none is left.
+ConnectedNetwork HeldNetwork(const FactorModel& m, const ConnectedNetwork& network)
+{
+  ConnectedNetwork held = network;
+  held.Values.clear();
+  for (Label v : network.Values)
+    if (m.TileIndex(v) >= 0)
+      held.Values.push_back(v);
+  if (network.Active() && held.Values.empty())
+    throw Error("the network of " + network.Name + ": none of its labels occurs in the exemplars");
+  return held;
+}
+
 /// The discrete solver's rules from the hard pairs.
 AdjacencyRules PairRules(const FactorModel& m)
 {
@@ -179,13 +198,17 @@ SynthesisOptions SolverOptions(
   return so;
 }
 
-/// One run of the discrete solver as tile indices; empty when cancelled.
+/// One run of the discrete solver as tile indices (its network's figures in @p connected, when
+/// given); empty when cancelled.
 std::vector<std::int32_t> SolveOnce(const FactorModel& m, const AdjacencyRules& rules,
-  SynthesisOptions& so, std::uint64_t seed, PatternResult& result)
+  SynthesisOptions& so, std::uint64_t seed, PatternResult& result,
+  ConnectedResult* connected = nullptr)
 {
   so.Seed = seed;
   SynthesisResult r = Synthesize(rules, so);
   result.Moves += r.Statistics.Assignments;
+  if (connected)
+    *connected = r.Connected;
   if (r.Status == SynthesisStatus::Cancelled)
   {
     result.Status = SynthesisStatus::Cancelled;
@@ -206,14 +229,18 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
   const auto start = std::chrono::steady_clock::now();
   const AdjacencyRules rules = PairRules(m);
   SynthesisOptions so = SolverOptions(m, scorer, o, true);
+  so.Connected = HeldNetwork(m, o.Connected);
   for (int n = 0; n < o.Samples; ++n)
   {
-    std::vector<std::int32_t> tiles = SolveOnce(
-      m, rules, so, Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(), result);
+    ConnectedResult connected;
+    std::vector<std::int32_t> tiles =
+      SolveOnce(m, rules, so, Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(),
+        result, &connected);
     if (result.Status == SynthesisStatus::Cancelled)
       return;
     std::vector<std::int64_t> last(tiles.size(), 0);
     PatternSample s = MakeSample(scorer, m, o, std::move(tiles), std::move(last));
+    s.Connected = connected;
     s.Moves = result.Moves;
     s.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (n == 0)
@@ -224,6 +251,60 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
     result.Samples.push_back(std::move(s));
   }
 }
+
+/**
+ * A connected network's repairs of BLOCKSS and MH samples (PatternOptions::Connected): the
+ * discrete solver on the hard pairs, with the site classes as its guide, re-solves boxes over
+ * and around the surplus components (detail::RepairNetwork) of each kept sample.
+ */
+class NetworkRepair
+{
+public:
+  NetworkRepair(const FactorModel& m, const PatternProblem& problem, const PatternOptions& o)
+    : Rules(PairRules(m))
+    , Options(SolverOptions(m, problem, o, false))
+  {
+    this->Options.Connected = HeldNetwork(m, o.Connected);
+    this->Options.AttemptsPerBlock = 10;
+    detail::CheckConnectedRequest(this->Rules, this->Options);
+    this->Rule = std::make_unique<detail::NetworkRule>(this->Rules, this->Options.Connected);
+    this->Solver = std::make_unique<detail::BlockSolver>(
+      this->Rules, this->Options, nullptr, nullptr, this->Shared);
+  }
+
+  /// Mends sample @p tiles (tile indices, the same as the pair rules' label indices) until
+  /// the network has at most Maximum components; its figures into @p out. @throw Error when
+  /// no surplus component can be joined or removed.
+  void Mend(std::vector<std::int32_t>& tiles, PatternResult& result, ConnectedResult& out)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    this->Options.Seed = Random::Derived(this->Seed, 0xc011, this->Mended++).Next();
+    this->Shared.Model = tiles;
+    std::fill(this->Shared.LastBlock.begin(), this->Shared.LastBlock.end(), -1);
+    out.Requested = true;
+    out.Maximum = this->Options.Connected.Maximum;
+    out.Name = this->Options.Connected.Name;
+    SynthesisStatistics stats;
+    const std::string failure =
+      detail::RepairNetwork(*this->Solver, this->Shared, *this->Rule, this->Options, 0, stats, out);
+    result.NetworkAssignments += stats.Assignments;
+    result.NetworkSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!failure.empty())
+      throw Error(failure);
+    tiles = this->Shared.Model;
+  }
+
+  std::uint64_t Seed = 0;
+
+private:
+  AdjacencyRules Rules;
+  SynthesisOptions Options;
+  detail::SharedModel Shared;
+  std::unique_ptr<detail::NetworkRule> Rule;
+  std::unique_ptr<detail::BlockSolver> Solver;
+  std::uint64_t Mended = 0;
+};
 
 } // namespace
 
@@ -312,7 +393,17 @@ PatternResult SynthesizePattern(
       if (result.Status == SynthesisStatus::Cancelled)
         return result;
     }
-    detail::RunSampler(problem, options, initial, result,
+    std::unique_ptr<NetworkRepair> network;
+    ConnectedResult connected; // the last repair's figures, for the sample taken next
+    detail::SampleRepair repair;
+    if (options.Connected.Active())
+    {
+      network = std::make_unique<NetworkRepair>(model, problem, options);
+      network->Seed = options.Seed;
+      repair = [&](std::vector<std::int32_t>& tiles) { network->Mend(tiles, result, connected); };
+    }
+    detail::RunSampler(
+      problem, options, initial, result,
       [&](const std::vector<std::int32_t>& tiles, const std::vector<std::int64_t>& last,
         double seconds)
       {
@@ -326,8 +417,10 @@ PatternResult SynthesizePattern(
           MakeSample(scorer, model, options, std::move(fullTiles), std::move(fullLast));
         s.Moves = result.Moves;
         s.Seconds = seconds;
+        s.Connected = connected;
         result.Samples.push_back(std::move(s));
-      });
+      },
+      repair);
   }
   result.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -26,6 +26,7 @@
  */
 #include "Core/BlockSynthesis.h"
 #include "Core/LabelGrid.h"
+#include "Discrete/DiscreteSynthesis.h"
 #include "Patterns/FactorGraph.h"
 
 #include <array>
@@ -87,6 +88,16 @@ struct PatternOptions
    */
   std::array<bool, 3> Mirror{ { false, false, false } };
   std::map<Label, Label> MirrorMap;
+  /**
+   * A connected network (our addition, as SynthesisOptions::Connected): the sites holding its
+   * labels form at most Maximum components, joined through the labels' Sides. Each kept sample
+   * is repaired before it is taken: the surplus components, smallest first, get boxes over the
+   * gap to their nearest neighbour (else around them) solved again on the hard pairs by the
+   * discrete solver (Discrete/Connectivity.h's repairs; zones and fixed sites hold there), and
+   * the chain goes on from the repaired pattern. The constraint solver runs with the network.
+   * Not with mirroring. Inactive: none.
+   */
+  ConnectedNetwork Connected;
 
   PatternMethod Method = PatternMethod::BlockSS;
   PatternStart Start = PatternStart::Random;
@@ -123,6 +134,8 @@ struct PatternSample
   double LogProbability = 0.0; ///< unnormalised: Σ log φ over the soft factors
   std::int64_t Moves = 0;      ///< moves since the run began, when this sample was taken
   double Seconds = 0.0;        ///< since the run began
+  /// With PatternOptions::Connected: the network before and after the sample's repairs.
+  ConnectedResult Connected;
 };
 
 struct PatternResult
@@ -141,6 +154,9 @@ struct PatternResult
   std::int64_t SoftFactors = 0;
   int Tiles = 0;
   std::int64_t ReplacementBlocks = 0;
+  /// Moves of the network's repairs' discrete solver (assignments), over all samples.
+  std::int64_t NetworkAssignments = 0;
+  double NetworkSeconds = 0.0; ///< time spent in the network's repairs
 };
 
 /**

@@ -3,6 +3,7 @@
 
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSLabelCounts.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSSynthesisRun.h"
 
@@ -239,13 +240,18 @@ bool vtkMSPatternSynthesis::ParseLists(msynth::PatternOptions& options)
       for (std::int32_t e : numbers)
         options.ZoneExemplars[zone].push_back(e - 1); // numbered from 1 in the interface
     options.MirrorMap = msynth::ParseMirrorSwaps(this->MirrorSwaps);
+    msynth::Tileset tiles;
     if (!this->TilesetFile.empty())
     {
-      const msynth::Tileset tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
+      tiles = msynth::ReadTilesetFile(this->TilesetFile, this->TilesetSubset);
       for (std::size_t a = 0; a < 3; ++a)
         for (const auto& [b, c] : tiles.Pairs[a])
           options.ExtraPairs[a].emplace_back(b, c);
     }
+    if (!this->ConnectedTilesetFile.empty())
+      tiles = msynth::ReadTilesetFile(this->ConnectedTilesetFile);
+    const bool named = !this->TilesetFile.empty() || !this->ConnectedTilesetFile.empty();
+    options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, named ? &tiles : nullptr);
     msynth::LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   }
   catch (const msynth::Error& e)
@@ -326,6 +332,9 @@ void vtkMSPatternSynthesis::AddFields(
     vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, name, static_cast<vtkIdType>(value));
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fd, "FirstValidSeconds", result.FirstValidSeconds);
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fd, "Seconds", result.Seconds);
+  vtkMSLabelCounts::AddConnectedFields(fd, sample.Connected);
+  if (sample.Connected.Requested)
+    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fd, "NetworkSeconds", result.NetworkSeconds);
   vtkNew<vtkStringArray> method;
   method->SetName("Method");
   method->InsertNextValue(MethodName(this->Method));
@@ -353,4 +362,6 @@ void vtkMSPatternSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mirror: " << this->Mirror[0] << " " << this->Mirror[1] << " " << this->Mirror[2]
      << "\n";
   os << indent << "MirrorSwaps: " << this->MirrorSwaps << "\n";
+  os << indent << "Connected: " << this->Connected << "\n";
+  os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
 }

@@ -24,7 +24,9 @@
  * `Sample`, `Samples`, `LogProbability`, `KL_<shape>` per soft shape (PatternQuality.h),
  * the run's counts (`Moves`, `WalkMoves`, `AnnealingMoves`, `AcceptedAnnealingMoves`,
  * `FirstValidMoves`, `FirstValidSeconds`, `Seconds`, `HardFactors`, `SoftFactors`, `Tiles`,
- * `ReplacementBlocks`), `Method` and `Seed`. The samples are computed once and cached: asking
+ * `ReplacementBlocks`), `Method` and `Seed`; with Connected, the sample's `ConnectedLabels`,
+ * `ConnectedMaximum`, `ConnectedComponents`, `ConnectedBefore` (before its repairs),
+ * `ConnectedRepairs` and `ConnectedRedone`, and the run's `NetworkSeconds`. The samples are computed once and cached: asking
  * for another time step does not sample again.
  *
  * @sa msynth/PatternSynthesis.h, vtkMSTileImage (pictures of tileset patterns)
@@ -144,6 +146,16 @@ public:
   vtkGetCharFromStdStringMacro(MirrorSwaps);
   ///@}
 
+  ///@{
+  /// A connected network "LABELS[:N]" (see the class comment); "" for none. Its labels' names
+  /// and connecting sides come from ConnectedTilesetFile (a tileset that only names and draws
+  /// the tiles, e.g. Data/Patterns/City.xml), else from TilesetFile.
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
+  vtkSetStdStringFromCharMacro(ConnectedTilesetFile);
+  vtkGetCharFromStdStringMacro(ConnectedTilesetFile);
+  ///@}
+
 protected:
   vtkMSPatternSynthesis();
   ~vtkMSPatternSynthesis() override;
@@ -191,6 +203,8 @@ private:
   std::string ZoneExemplars;
   int Mirror[3] = { 0, 0, 0 };
   std::string MirrorSwaps;
+  std::string Connected;
+  std::string ConnectedTilesetFile;
 
   struct Cache;
   std::unique_ptr<Cache> Cached;

@@ -43,7 +43,8 @@ bool vtkMSFieldData::IsTiming(const char* name)
   if (!name)
     return false;
   const std::string n(name);
-  return n == "Seconds" || n == "FirstValidSeconds" || n == "SampleSeconds";
+  return n == "Seconds" || n == "FirstValidSeconds" || n == "SampleSeconds" ||
+    n == "NetworkSeconds";
 }
 
 vtkSmartPointer<vtkDataObject> vtkMSFieldData::WithoutTiming(vtkDataObject* data)
