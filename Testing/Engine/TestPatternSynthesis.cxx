@@ -332,6 +332,77 @@ TEST(PatternSynthesis, BadOptionsAreClearErrors)
   }
 }
 
+namespace
+{
+/// Components of the sites holding @p road in @p g (face neighbours), by a flood of the test's.
+int RoadComponents(const LabelGrid& g, Label road)
+{
+  const std::int64_t nx = g.Size(0), ny = g.Size(1);
+  std::vector<char> seen(static_cast<std::size_t>(nx * ny), 0);
+  int count = 0;
+  for (std::int64_t start = 0; start < nx * ny; ++start)
+  {
+    if (seen[static_cast<std::size_t>(start)] || g.Data()[static_cast<std::size_t>(start)] != road)
+      continue;
+    ++count;
+    std::vector<std::int64_t> stack{ start };
+    seen[static_cast<std::size_t>(start)] = 1;
+    while (!stack.empty())
+    {
+      const std::int64_t s = stack.back();
+      stack.pop_back();
+      const std::int64_t x = s % nx, y = s / nx;
+      const std::int64_t next[4][2] = { { x + 1, y }, { x - 1, y }, { x, y + 1 }, { x, y - 1 } };
+      for (const auto& q : next)
+      {
+        const std::int64_t i = q[0] + nx * q[1];
+        if (q[0] < 0 || q[0] >= nx || q[1] < 0 || q[1] >= ny || seen[static_cast<std::size_t>(i)] ||
+          g.Data()[static_cast<std::size_t>(i)] != road)
+          continue;
+        seen[static_cast<std::size_t>(i)] = 1;
+        stack.push_back(i);
+      }
+    }
+  }
+  return count;
+}
+} // namespace
+
+TEST(PatternSynthesis, ConnectedNetworkIsOneComponentInEverySample)
+{
+  const std::vector<LabelGrid> ex{ Art({ "..........", ".###..##..", ".#......#.", ".#..###.#.",
+                                         "....#.....", ".........." },
+    ".#") };
+  // (Metropolis-Hastings on this exemplar, whose pairs allow anything, percolates: a network
+  // of half the sites that boxes seldom mend; test_pattern_connected runs it on the city.)
+  for (PatternMethod method : { PatternMethod::BlockSS, PatternMethod::ConstraintSolver })
+  {
+    PatternOptions o = Options(30, 24);
+    o.Method = method;
+    o.Samples = 2;
+    const PatternResult plain = SynthesizePattern(ex, o);
+    o.Connected.Values = { 1 };
+    o.Connected.Name = "road";
+    const PatternResult r = SynthesizePattern(ex, o);
+    ExpectValid(ex, r);
+    EXPECT_GT(RoadComponents(plain.Samples[0].Labels, 1), 1) << "the plain run has one already";
+    for (const PatternSample& s : r.Samples)
+    {
+      EXPECT_EQ(RoadComponents(s.Labels, 1), 1);
+      EXPECT_TRUE(s.Connected.Requested);
+      EXPECT_EQ(s.Connected.Components, 1);
+    }
+    const PatternResult again = SynthesizePattern(ex, o);
+    EXPECT_EQ(again.Samples.back().Labels.Data(), r.Samples.back().Labels.Data());
+  }
+  PatternOptions o = Options(12, 12);
+  o.Connected.Values = { 5 };
+  EXPECT_THROW(SynthesizePattern(ex, o), Error); // no exemplar holds 5
+  o.Connected.Values = { 1 };
+  o.Mirror[0] = true;
+  EXPECT_THROW(SynthesizePattern(ex, o), Error);
+}
+
 TEST(PatternQuality, KLDivergenceAndSmoothing)
 {
   const LabelGrid f = Facade();
