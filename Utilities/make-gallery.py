@@ -114,6 +114,11 @@ ENTRIES = [
      "pattern Data/Patterns/city-suburban.vti Data/Patterns/city-urban.vti --size 170 170 "
      "--fixed Data/Patterns/city-crossroads-170.vti --tileset Data/Patterns/City.xml --seed 1",
      "picture"),
+    ("city-roads", "Pattern exemplars (.vti)", "The same city with its roads one network "
+     "(--connected: labels 1-15 are the road tiles)",
+     "pattern Data/Patterns/city-suburban.vti Data/Patterns/city-urban.vti --size 170 170 "
+     "--fixed Data/Patterns/city-crossroads-170.vti --tileset Data/Patterns/City.xml --seed 1 "
+     "--connected 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15", "picture"),
     ("border", "Pattern exemplar (.vti)", "A mirrored border around a free middle",
      "pattern Data/Patterns/border.vti --size 24 16 --factors 2H,2V,3x3 "
      "--zones Data/Patterns/border-zones.vti --zone-tiles 1:1,2,3,4,5,6,7,8 --zone-tiles 0:0 "
