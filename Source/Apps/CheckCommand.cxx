@@ -59,7 +59,78 @@ struct CheckOptions
   std::vector<std::string> Counts;
   std::string Connected;
   std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
+  std::vector<std::string> Path;
 };
+
+/// The label values @p name gives: a value, or the labels of a tile or label name of @p set.
+std::vector<long long> NamedValues(const std::string& name, const msynth::Tileset& set)
+{
+  std::vector<long long> values;
+  long long v = 0;
+  if (msynth::ParseInteger(name, -(1LL << 31), (1LL << 31) - 1, v))
+    values.push_back(v);
+  for (int b = 0; b < set.NumberOfLabels(); ++b)
+    if (set.LabelName(b) == name ||
+      set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name == name)
+      values.push_back(b);
+  return values;
+}
+
+/**
+ * `--path A B ...`: the sites (x,y[,z]) and every site of the labels (values or names of
+ * @p set) hold network labels (@p mask >= 0) and share one root of the union-find @p root.
+ * Prints one line; false when they do not. @throw std::runtime_error for a site outside the
+ * model or an item that is neither a site nor a label.
+ */
+bool CheckPathJoined(const std::vector<std::string>& path, const msynth::Tileset& set,
+  vtkDataArray* labels, const std::vector<int>& mask,
+  const std::function<vtkIdType(vtkIdType)>& root, const int dims[3])
+{
+  std::vector<vtkIdType> sites;
+  for (const std::string& item : path)
+  {
+    const std::vector<std::string> parts = msynth::SplitText(item, ',');
+    long long c[3] = { 0, 0, 0 };
+    bool isSite = parts.size() == 2 || parts.size() == 3;
+    for (std::size_t a = 0; isSite && a < parts.size(); ++a)
+      isSite = msynth::ParseInteger(parts[a], -(1LL << 40), 1LL << 40, c[a]);
+    if (isSite)
+    {
+      for (int a = 0; a < 3; ++a)
+        if (c[a] < 0 || c[a] >= dims[a])
+          throw std::runtime_error("--path: site " + item + " is outside the model (" +
+            std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+            std::to_string(dims[2]) + " sites)");
+      sites.push_back(static_cast<vtkIdType>(c[0] + dims[0] * (c[1] + dims[1] * c[2])));
+      continue;
+    }
+    const std::vector<long long> values = NamedValues(item, set);
+    if (values.empty())
+      throw std::runtime_error(
+        "--path: '" + item + "' is neither a site x,y[,z] nor a label value or name");
+    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+      if (std::find(values.begin(), values.end(), static_cast<long long>(labels->GetTuple1(i))) !=
+        values.end())
+        sites.push_back(i);
+  }
+  std::set<vtkIdType> roots;
+  for (vtkIdType s : sites)
+  {
+    if (mask[static_cast<std::size_t>(s)] < 0)
+    {
+      std::cout << "path not joined: site (" << s % dims[0] << ", " << (s / dims[0]) % dims[1]
+                << ", " << s / (static_cast<vtkIdType>(dims[0]) * dims[1]) << ") holds label "
+                << static_cast<long long>(labels->GetTuple1(s)) << ", not one of the network's\n";
+      return false;
+    }
+    roots.insert(root(s));
+  }
+  const bool ok = roots.size() <= 1;
+  std::cout << (ok ? "path joined: " : "path not joined: ") << sites.size() << " site"
+            << (sites.size() == 1 ? "" : "s") << " in " << roots.size() << " component"
+            << (roots.size() == 1 ? "" : "s") << " of the network\n";
+  return ok;
+}
 
 } // namespace
 
@@ -70,7 +141,7 @@ struct CheckOptions
  * `connects` attributes give (every side for a tile without one). Prints one line.
  */
 bool CheckConnected(const std::string& spec, const std::string& example, const std::string& subset,
-  const std::string& tiles, vtkImageData* model)
+  const std::string& tiles, vtkImageData* model, const std::vector<std::string>& path)
 {
   vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
   if (!labels)
@@ -92,15 +163,9 @@ bool CheckConnected(const std::string& spec, const std::string& example, const s
     sides; // network label -> the sides it joins through (bits +x -x +y -y +z -z)
   for (const std::string& name : msynth::SplitText(list, ','))
   {
-    long long v = 0;
     const std::size_t before = sides.size();
-    if (msynth::ParseInteger(name, -(1LL << 31), (1LL << 31) - 1, v))
+    for (long long v : NamedValues(name, set))
       sides[v] = 63;
-    for (int b = 0; b < set.NumberOfLabels(); ++b)
-      if (set.LabelName(b) == name ||
-        set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name ==
-          name)
-        sides[b] = 63;
     if (sides.size() == before && !name.empty())
       throw std::runtime_error(
         "--connected: '" + name + "' is neither a label value nor a name of " + example);
@@ -148,7 +213,7 @@ bool CheckConnected(const std::string& spec, const std::string& example, const s
   const bool ok = components <= most;
   std::cout << (ok ? "connected: " : "not connected: ") << list << " form " << components
             << " component" << (components == 1 ? "" : "s") << " (wanted at most " << most << ")\n";
-  return ok;
+  return (path.empty() || CheckPathJoined(path, set, labels, mask, root, dims)) && ok;
 }
 
 namespace
@@ -349,7 +414,7 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
 /// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
   const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts,
-  const std::string& connected, const std::string& names)
+  const std::string& connected, const std::string& names, const std::vector<std::string>& path)
 {
   if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
@@ -367,7 +432,7 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
   const std::string& named = IsTileset(example) || names.empty() ? example : names;
   bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels);
-  kept = (connected.empty() || CheckConnected(connected, named, subset, tiles, labels)) && kept;
+  kept = (connected.empty() || CheckConnected(connected, named, subset, tiles, labels, path)) && kept;
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
@@ -555,6 +620,9 @@ CommandRunner AddCheck(CLI::App& app)
     "also check that the sites holding any of LABELS (values or tile names, commas between) "
     "form at most N components (LABELS[:N], N 1 when left out), through the tileset's "
     "connecting sides");
+  check->add_option("--path", o->Path,
+    "with --connected: also check that these sites (x,y[,z]) and every site of these labels "
+    "hold network labels and lie in one component");
   check->add_option("--tileset", o->Names,
     "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
     "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
@@ -581,8 +649,10 @@ CommandRunner AddCheck(CLI::App& app)
     }
     if (!o->Names.empty())
       CheckInputFile(o->Names);
+    if (!o->Path.empty() && o->Connected.empty())
+      throw UsageError{ "--path needs --connected LABELS: the labels that carry the path" };
     return CheckDiscrete(
-      o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected, o->Names);
+      o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected, o->Names, o->Path);
   };
 }
 

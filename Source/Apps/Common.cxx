@@ -296,7 +296,7 @@ StatisticsJson& StatisticsJson::Connected(vtkFieldData* fd)
   if (!names || names->GetNumberOfValues() < 1)
     return *this;
   std::string json = "\"labels\": " + JsonString(names->GetValue(0));
-  for (const char* key : { "Maximum", "Components", "Before", "Repairs", "Redone" })
+  for (const char* key : { "Maximum", "Components", "Before", "Repairs", "Redone", "PathSites" })
     if (vtkDataArray* a = fd->GetArray((std::string("Connected") + key).c_str()))
     {
       std::string lower = key;

@@ -69,6 +69,7 @@ struct SynthesizeOptions
   std::string Tiles; ///< a voxel tileset's tiles folder ("" : beside the XML)
   std::vector<std::string> Targets;
   std::vector<std::string> Counts;
+  std::vector<std::string> Path; ///< --path: sites x,y[,z] and labels the network joins
   double Temperature = 0.01;
   std::string Mirror, Translate; ///< sets of axes
   std::vector<std::string> Swaps, Shifts, Turns;

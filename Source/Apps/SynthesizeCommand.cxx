@@ -290,6 +290,10 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
      "TYPE (or 'solid') grows from SEEDS seeds (TYPE:SEEDS, default 1): that many objects")
     ->allow_extra_args(false)
     ->group("Constraints (both kinds)");
+  r.DiscreteOnly.push_back(s.add_option("--path", o.Path,
+       "with --connected: one component of the network joins these sites (x,y[,z]) and every "
+       "site of these labels (values or tile names), e.g. --path 0,0 39,39")
+      ->group("Discrete synthesis (label grids, tilesets)"));
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "
     "the output, mapped onto the part's bounding box from the example's (TYPE=FILE; "
@@ -425,6 +429,7 @@ void Configure(vtkMSDiscreteSynthesis* synthesis, const SynthesizeOptions& o)
   synthesis->SetSoftTemperature(o.Temperature);
   synthesis->SetCounts(Joined(o.Counts).c_str());
   synthesis->SetConnected(Joined(o.Connected).c_str());
+  synthesis->SetPath(Joined(o.Path, ";").c_str());
   synthesis->SetMirrorSwaps(Joined(o.Swaps).c_str());
   synthesis->SetTranslate(translate);
   synthesis->SetTranslationPeriod(o.Period[0], o.Period[1], o.Period[2]);

@@ -6,6 +6,7 @@
 #include "Discrete/SymmetryPlan.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <set>
 
@@ -98,6 +99,34 @@ std::string NetworkName(const ConnectedNetwork& network)
 {
   return "the network of " + (network.Name.empty() ? std::string("its labels") : network.Name);
 }
+
+/// Refuses path sites outside the model or pinned to a label the network does not hold, and
+/// path labels that are not the network's, with one line.
+void CheckPath(const ConnectedNetwork& network, const SynthesisOptions& options,
+  const std::string& name)
+{
+  const Coord& n = options.Size;
+  for (const Coord& p : network.PathSites)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] < 0 || p[a] >= n[a])
+        throw Error("the path's site " + Format(p) + " is outside the model (" +
+          std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) +
+          " sites)");
+    if (options.Pins)
+    {
+      const Label pin = options.Pins->Data()[static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2]))];
+      if (pin != FreeSite &&
+        std::find(network.Values.begin(), network.Values.end(), pin) == network.Values.end())
+        throw Error("the path's site " + Format(p) + " is pinned to label " + std::to_string(pin) +
+          ", which cannot carry " + name);
+    }
+  }
+  for (Label v : network.PathLabels)
+    if (std::find(network.Values.begin(), network.Values.end(), v) == network.Values.end())
+      throw Error("the path's label " + std::to_string(v) + " cannot carry " + name +
+        " (it is not one of the network's labels)");
+}
 } // namespace
 
 NetworkRule::NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network)
@@ -111,13 +140,24 @@ NetworkRule::NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& ne
     const auto side = network.Sides.find(v);
     this->Mask[static_cast<std::size_t>(b)] = side == network.Sides.end() ? 63 : side->second;
   }
+  this->Path.assign(this->Mask.size(), 0);
+  for (Label v : network.PathLabels)
+  {
+    const int b = rules.IndexOf(v);
+    if (b >= 0)
+      this->Path[static_cast<std::size_t>(b)] = 1;
+  }
 }
 
 void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   const ConnectedNetwork& network = options.Connected;
   if (!network.Active())
+  {
+    if (network.HasPath())
+      throw Error("a path (--path) needs a network (--connected LABELS): the labels that carry it");
     return;
+  }
   const std::string name = NetworkName(network);
   if (AnyMirror(options) || AnySeamSymmetry(options))
     throw Error(name +
@@ -141,6 +181,7 @@ void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& 
   for (const auto& side : network.Sides)
     if (side.second > 63)
       throw Error(name + ": label " + std::to_string(side.first) + " has sides beyond 6");
+  CheckPath(network, options, name);
 }
 
 std::int64_t CountComponents(
@@ -216,7 +257,13 @@ bool NetworkGuard::Keeps(
 
 namespace
 {
-/// The repairs' state: the model, the components and scratch space.
+/**
+ * How far a model is from what the network asks, compared lexicographically (smaller is nearer):
+ * listed path sites outside the network, components holding path sites, all components.
+ */
+using Shortfall = std::array<std::int64_t, 3>;
+
+/// The repairs' state: the model, the components, the path and scratch space.
 struct Repair
 {
   BlockSolver& Solver;
@@ -229,6 +276,11 @@ struct Repair
   std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
   std::vector<double> Sparse;    ///< the network's labels' weights scaled down
   std::vector<std::int32_t> SavedModel, SavedLast;
+  std::vector<std::int64_t> PathSites; ///< the listed path sites' model indices
+  std::vector<char> PathLabel;         ///< per label index, whether it is a path label
+  std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
+  std::vector<char> PathPart;          ///< per component, whether it holds a path site
+  Shortfall Now{ { 0, 0, 0 } };
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
     const SynthesisOptions& options, SynthesisStatistics& stats)
@@ -243,12 +295,62 @@ struct Repair
     for (std::size_t b = 0; b < this->Sparse.size(); ++b)
       if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
         this->Sparse[b] = 1.0 / 64;
+    const Coord n = solver.Size();
+    for (const Coord& p : options.Connected.PathSites)
+      this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
+    this->PathLabel.assign(static_cast<std::size_t>(rule.Labels()), 0);
+    for (int b = 0; b < rule.Labels(); ++b)
+      this->PathLabel[static_cast<std::size_t>(b)] = rule.OnPath(b) ? 1 : 0;
+    this->PathLabelSites = this->CountPathLabelSites(shared.Model);
+    this->Now = this->Measure(this->Parts, this->Ids, this->PathPart);
+  }
+
+  std::int64_t CountPathLabelSites(const std::vector<std::int32_t>& model) const
+  {
+    std::int64_t count = 0;
+    for (std::int32_t b : model)
+      count += b >= 0 && this->PathLabel[static_cast<std::size_t>(b)] ? 1 : 0;
+    return count;
+  }
+
+  /// The shortfall of @p parts (site numbers @p ids); @p pathPart marks the components holding
+  /// path sites.
+  Shortfall Measure(const std::vector<Component>& parts, const std::vector<std::int32_t>& ids,
+    std::vector<char>& pathPart) const
+  {
+    pathPart.assign(parts.size(), 0);
+    Shortfall f{ { 0, 0, static_cast<std::int64_t>(parts.size()) } };
+    for (std::int64_t s : this->PathSites)
+    {
+      const std::int32_t id = ids[static_cast<std::size_t>(s)];
+      if (id == 0)
+        ++f[0];
+      else
+        pathPart[static_cast<std::size_t>(id - 1)] = 1;
+    }
+    if (!this->Options.Connected.PathLabels.empty())
+      for (std::size_t s = 0; s < ids.size(); ++s)
+      {
+        const std::int32_t b = this->Shared.Model[s];
+        if (b >= 0 && this->PathLabel[static_cast<std::size_t>(b)] && ids[s] != 0)
+          pathPart[static_cast<std::size_t>(ids[s] - 1)] = 1;
+      }
+    for (char c : pathPart)
+      f[1] += c;
+    return f;
+  }
+
+  /// Whether the model has what the network asks.
+  bool Done() const
+  {
+    return this->Now[0] == 0 && this->Now[1] <= 1 && this->Now[2] <= this->Options.Connected.Maximum;
   }
 
   /**
    * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
    * (every other one drawing the network's labels rarely, so the box keeps only the paths its
-   * surroundings force), until one leaves fewer components. Returns whether one did.
+   * surroundings force), until one leaves a smaller shortfall (and no fewer sites of the path's
+   * labels). Returns whether one did.
    */
   bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow)
   {
@@ -279,11 +381,15 @@ struct Repair
       if (empty >= 0)
         continue; // a failed attempt leaves the model as it was
       std::vector<std::int32_t> ids;
+      std::vector<char> pathPart;
       std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
-      if (now.size() < this->Parts.size())
+      const Shortfall f = this->Measure(now, ids, pathPart);
+      if (f < this->Now && this->CountPathLabelSites(this->Shared.Model) >= this->PathLabelSites)
       {
         this->Parts = std::move(now);
         this->Ids = std::move(ids);
+        this->PathPart = std::move(pathPart);
+        this->Now = f;
         return true;
       }
       std::size_t i = 0;
@@ -297,9 +403,12 @@ struct Repair
     return false;
   }
 
-  /// The nearest site of another component to component @p c (number @p c + 1) by face steps
-  /// (at most MaximumGap), in @p to, and the site of @p c it was reached from, in @p from.
-  bool Gap(std::int32_t c, std::int64_t& from, std::int64_t& to) const
+  /**
+   * The nearest site of another component to component @p c (number @p c + 1) by face steps
+   * (at most MaximumGap), with @p toPath one that holds path sites, in @p to, and the site of
+   * @p c it was reached from, in @p from.
+   */
+  bool Gap(std::int32_t c, bool toPath, std::int64_t& from, std::int64_t& to) const
   {
     constexpr std::int32_t MaximumGap = 16;
     const Coord n = this->Solver.Size();
@@ -326,7 +435,8 @@ struct Repair
             continue;
           origin[static_cast<std::size_t>(q)] = origin[static_cast<std::size_t>(s)];
           const std::int32_t id = this->Ids[static_cast<std::size_t>(q)];
-          if (id != 0 && id != c + 1)
+          if (id != 0 && id != c + 1 &&
+            (!toPath || this->PathPart[static_cast<std::size_t>(id - 1)]))
           {
             from = origin[static_cast<std::size_t>(q)];
             to = q;
@@ -339,18 +449,21 @@ struct Repair
     return false;
   }
 
-  /// Joins component @p c to its nearest neighbour through boxes over the gap between them,
-  /// else removes it (or joins it) through boxes around it grown by 1, 2, ..., 16 sites.
-  bool Fix(std::size_t c)
+  Coord At(std::int64_t s) const
   {
     const Coord n = this->Solver.Size();
-    auto at = [&](std::int64_t s) {
-      return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
-    };
+    return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+  }
+
+  /// Joins component @p c to its nearest neighbour (with @p toPath, one holding path sites)
+  /// through boxes over the gap between them, else removes it (or joins it) through boxes
+  /// around it grown by 1, 2, ..., 16 sites.
+  bool Fix(std::size_t c, bool toPath)
+  {
     std::int64_t from = 0, to = 0;
-    if (this->Gap(static_cast<std::int32_t>(c), from, to))
+    if (this->Gap(static_cast<std::int32_t>(c), toPath, from, to))
     {
-      const Coord p = at(from), q = at(to);
+      const Coord p = this->At(from), q = this->At(to);
       Coord lo, hi;
       for (std::size_t a = 0; a < 3; ++a)
       {
@@ -367,6 +480,54 @@ struct Repair
         return true;
     return false;
   }
+
+  /// One step nearer: a listed path site brought into the network, else a component holding
+  /// path sites joined to another such, else any component joined or removed (smallest first).
+  bool Step()
+  {
+    for (std::int64_t s : this->PathSites)
+      if (this->Ids[static_cast<std::size_t>(s)] == 0)
+      {
+        const Coord p = this->At(s);
+        for (std::int64_t grow = 1; grow <= 8; grow *= 2)
+          if (this->TryBox(p, p, grow))
+            return true;
+      }
+    std::vector<std::size_t> order(this->Parts.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+      [&](std::size_t a, std::size_t b) { return this->Parts[a].Sites < this->Parts[b].Sites; });
+    if (this->Now[1] > 1)
+      for (std::size_t c : order)
+        if (this->PathPart[c] && this->Fix(c, true))
+          return true;
+    for (std::size_t c : order)
+      if (this->Fix(c, false))
+        return true;
+    return false;
+  }
+
+  /// Why the network cannot be kept, in one line.
+  std::string Failure() const
+  {
+    const std::string name = NetworkName(this->Options.Connected);
+    if (this->Now[0] > 0 || this->Now[1] > 1)
+      return name + " does not join the path: " +
+        (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
+                          : "its sites lie in " + std::to_string(this->Now[1]) + " components") +
+        ", and no repair brought them nearer. Try another seed, more attempts or nearer sites";
+    std::size_t smallest = 0;
+    for (std::size_t c = 1; c < this->Parts.size(); ++c)
+      if (this->Parts[c].Sites < this->Parts[smallest].Sites)
+        smallest = c;
+    const Component& c = this->Parts[smallest];
+    return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
+      std::to_string(this->Options.Connected.Maximum) +
+      ", and none could be joined to another or removed (the smallest: " +
+      std::to_string(c.Sites) + " sites at " + Format(c.Low) +
+      "). Try another seed, more attempts or a larger maximum";
+  }
 };
 } // namespace
 
@@ -377,30 +538,16 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
   Repair repair(solver, shared, rule, options, stats);
   repair.Key = firstIndex;
   out.Before = static_cast<std::int64_t>(repair.Parts.size());
-  while (static_cast<std::int64_t>(repair.Parts.size()) > out.Maximum)
+  out.PathComponentsBefore = repair.Now[1];
+  while (!repair.Done())
   {
-    // The smallest components first (the first of equal ones): the cheapest to join or remove;
-    // one that can be neither gives way to the next.
-    std::vector<std::size_t> order(repair.Parts.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-      [&](std::size_t a, std::size_t b) { return repair.Parts[a].Sites < repair.Parts[b].Sites; });
-    bool repaired = false;
-    for (std::size_t i = 0; i < order.size() && !repaired; ++i)
-      repaired = repair.Fix(order[i]);
-    if (!repaired)
-    {
-      const Component& c = repair.Parts[order[0]];
-      return NetworkName(options.Connected) + " has " + std::to_string(repair.Parts.size()) +
-        " components, more than " + std::to_string(out.Maximum) +
-        ", and none could be joined to another or removed (the smallest: " +
-        std::to_string(c.Sites) + " sites at " + Format(c.Low) +
-        "). Try another seed, more attempts or a larger maximum";
-    }
+    if (!repair.Step())
+      return repair.Failure();
     ++out.Repairs;
   }
   out.Components = static_cast<std::int64_t>(repair.Parts.size());
+  out.PathSites = static_cast<std::int64_t>(repair.PathSites.size()) +
+    repair.CountPathLabelSites(shared.Model);
   return std::string();
 }
 

@@ -16,6 +16,10 @@
  * whole model), each surplus component, smallest first, gets a box around it synthesized again
  * (grown by 1, 2, 4, ... sites, AttemptsPerBlock attempts each) until a result has fewer
  * components (it joined another or vanished); a model left with more than Maximum fails.
+ * With a path (ConnectedNetwork::PathSites, PathLabels) the repairs first bring each listed
+ * site into the network (boxes around it), then join the components holding path sites (boxes
+ * over the gap to the nearest other such): a result is kept when it is nearer, compared in
+ * the order listed sites outside the network, components holding path sites, components.
  */
 #include "Discrete/BlockSolver.h"
 
@@ -39,9 +43,12 @@ public:
 
   /// The number of label indices.
   int Labels() const { return static_cast<int>(this->Mask.size()); }
+  /// Whether label index @p b is one of the path's labels (ConnectedNetwork::PathLabels).
+  bool OnPath(int b) const { return this->Path[static_cast<std::size_t>(b)] != 0; }
 
 private:
   std::vector<int> Mask;
+  std::vector<char> Path;
 };
 
 /// Refuses a network the rules or options cannot keep (unknown labels, Maximum < 1, symmetry,

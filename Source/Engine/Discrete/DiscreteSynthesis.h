@@ -187,7 +187,16 @@ struct ConnectedNetwork
   /// Per label value, the sides it connects through: bit 2a the side toward +a, bit 2a+1 the
   /// side toward -a (a tileset's `connects`); a label not listed connects through every side.
   std::map<Label, std::uint8_t> Sides;
+  /**
+   * A path (`--path`): these sites (x, y, z) and every site holding one of PathLabels (values,
+   * each one of Values) are joined by one component of the network: each listed site holds a
+   * network label, and one component holds them all. The repairs keep it as they keep Maximum
+   * (Connectivity.h); they never lower the number of sites holding PathLabels. Empty: none.
+   */
+  std::vector<std::array<std::int64_t, 3>> PathSites;
+  std::vector<Label> PathLabels;
   bool Active() const { return !this->Values.empty(); }
+  bool HasPath() const { return !this->PathSites.empty() || !this->PathLabels.empty(); }
 };
 
 /// What a run did about SynthesisOptions::Connected.
@@ -200,6 +209,10 @@ struct ConnectedResult
   std::int64_t Components = 0; ///< components of the result
   std::int64_t Repairs = 0;    ///< boxes re-synthesized and kept (each joined or removed one)
   std::int64_t Redone = 0;     ///< block attempts redone because they closed a component off
+  /// With a path: the sites it joins (the listed sites and the path labels' sites at the end),
+  /// and the components holding them before the repairs (1 at the end).
+  std::int64_t PathSites = 0;
+  std::int64_t PathComponentsBefore = 0;
 };
 
 /// The block edge (sites per axis) of SynthesisOptions::BlocksWhenWholeFails.

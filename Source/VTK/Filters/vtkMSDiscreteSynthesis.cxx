@@ -410,7 +410,7 @@ bool vtkMSDiscreteSynthesis::Solve(
           mirror.Map = run.Tiles.MirrorMap(a);
       }
       options.Counts = vtkMSLabelCounts::Read(this->Counts, &run.Tiles);
-      options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, &run.Tiles);
+      options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, &run.Tiles, this->Path);
       const msynth::AdjacencyRules rules = run.Tiles.Rules();
       if (run.Tiles.Voxel)
         msynth::StartFromWholeModel(rules, options);
@@ -740,6 +740,7 @@ void vtkMSDiscreteSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TilesFolder: '" << this->TilesFolder << "'\n";
   os << indent << "Counts: '" << this->Counts << "'\n";
   os << indent << "Connected: '" << this->Connected << "'\n";
+  os << indent << "Path: '" << this->Path << "'\n";
   os << indent << "SampleFile: '" << this->SampleFile << "' (pattern " << this->PatternSize
      << ", symmetry " << this->PatternSymmetry << ", periodic input " << this->PeriodicInput
      << ", ground " << this->Ground << ")\n";

@@ -364,6 +364,11 @@ public:
   /// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` report the run.
   vtkSetStdStringFromCharMacro(Connected);
   vtkGetCharFromStdStringMacro(Connected);
+  /// A path the network joins, "A;B;...": sites "x,y[,z]" and labels (values or names: every
+  /// site holding one), all in one component of the Connected network (which must be given);
+  /// field data `ConnectedPathSites`. "" for none (default).
+  vtkSetStdStringFromCharMacro(Path);
+  vtkGetCharFromStdStringMacro(Path);
   ///@}
 
   ///@{
@@ -611,6 +616,7 @@ private:
   double SoftTemperature = 0.01;
   std::string Counts;
   std::string Connected;
+  std::string Path;
   std::string TilesetSubset;
   std::string FixedFile;
   bool FixedEmptyFree = false;

@@ -10,6 +10,7 @@
 #include "Core/TextLists.h"
 #include "Formats/Tileset.h"
 
+#include <array>
 #include <limits>
 
 namespace vtkMSLabelCounts
@@ -49,7 +50,71 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
   return counts;
 }
 
-msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Tileset* tiles)
+namespace
+{
+/// The label values @p item names: a value, or with @p tiles a tile's or a label's name.
+std::vector<msynth::Label> NamedLabels(const std::string& item, const msynth::Tileset* tiles)
+{
+  std::vector<msynth::Label> values;
+  long long value = 0;
+  if (msynth::ParseInteger(item, std::numeric_limits<msynth::Label>::min(),
+        std::numeric_limits<msynth::Label>::max(), value))
+    values.push_back(static_cast<msynth::Label>(value));
+  else if (tiles)
+    for (int b = 0; b < tiles->NumberOfLabels(); ++b)
+    {
+      const auto& tile =
+        tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
+      if (tile.Name == item || tiles->LabelName(b) == item)
+        values.push_back(b);
+    }
+  return values;
+}
+
+/// @p text with the blanks around it removed.
+std::string Trimmed(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t");
+  return first == std::string::npos
+    ? std::string()
+    : text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+/// The path of @p text ("A;B;...": sites "x,y[,z]" or labels) into @p network.
+void ReadPath(
+  const std::string& text, const msynth::Tileset* tiles, msynth::ConnectedNetwork& network)
+{
+  for (const std::string& raw : msynth::SplitText(text, ';'))
+  {
+    const std::string item = Trimmed(raw);
+    if (item.empty())
+      continue;
+    const std::vector<std::string> parts = msynth::SplitText(item, ',');
+    std::array<std::int64_t, 3> site{ { 0, 0, 0 } };
+    bool isSite = parts.size() == 2 || parts.size() == 3;
+    for (std::size_t a = 0; isSite && a < parts.size(); ++a)
+    {
+      long long v = 0;
+      isSite = msynth::ParseInteger(Trimmed(parts[a]), -(1LL << 40), 1LL << 40, v);
+      site[a] = v;
+    }
+    if (isSite)
+    {
+      network.PathSites.push_back(site);
+      continue;
+    }
+    const std::vector<msynth::Label> values = NamedLabels(item, tiles);
+    if (values.empty())
+      throw msynth::Error("Path: '" + msynth::Printable(item) +
+        "' is neither a site x,y[,z] nor a label value" +
+        (tiles ? " or a tile or label name of the tileset" : " (names need a tileset)"));
+    network.PathLabels.insert(network.PathLabels.end(), values.begin(), values.end());
+  }
+}
+} // namespace
+
+msynth::ConnectedNetwork ReadConnected(
+  const std::string& text, const msynth::Tileset* tiles, const std::string& path)
 {
   msynth::ConnectedNetwork network;
   std::string list = text;
@@ -73,20 +138,8 @@ msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Ti
       continue;
     item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
     const std::size_t before = network.Values.size();
-    long long value = 0;
-    if (msynth::ParseInteger(item, std::numeric_limits<msynth::Label>::min(),
-          std::numeric_limits<msynth::Label>::max(), value))
-      network.Values.push_back(static_cast<msynth::Label>(value));
-    else if (tiles)
-    {
-      for (int b = 0; b < tiles->NumberOfLabels(); ++b)
-      {
-        const auto& tile =
-          tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
-        if (tile.Name == item || tiles->LabelName(b) == item)
-          network.Values.push_back(b);
-      }
-    }
+    const std::vector<msynth::Label> values = NamedLabels(item, tiles);
+    network.Values.insert(network.Values.end(), values.begin(), values.end());
     if (network.Values.size() == before)
       throw msynth::Error("Connected: '" + msynth::Printable(item) +
         (tiles ? "' is neither a label value nor a tile or label name of the tileset"
@@ -100,6 +153,7 @@ msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Ti
       if (b < tiles->LabelSides.size() && tiles->LabelSides[b] >= 0)
         network.Sides[v] = static_cast<std::uint8_t>(tiles->LabelSides[b]);
     }
+  ReadPath(path, tiles, network);
   return network;
 }
 
@@ -113,7 +167,8 @@ void AddConnectedFields(vtkFieldData* fd, const msynth::ConnectedResult& connect
   fd->AddArray(names);
   const std::pair<const char*, std::int64_t> values[] = { { "ConnectedMaximum", connected.Maximum },
     { "ConnectedComponents", connected.Components }, { "ConnectedBefore", connected.Before },
-    { "ConnectedRepairs", connected.Repairs }, { "ConnectedRedone", connected.Redone } };
+    { "ConnectedRepairs", connected.Repairs }, { "ConnectedRedone", connected.Redone },
+    { "ConnectedPathSites", connected.PathSites } };
   for (const auto& [name, value] : values)
   {
     vtkNew<vtkIdTypeArray> a;

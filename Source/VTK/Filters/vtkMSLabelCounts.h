@@ -30,10 +30,12 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
 /**
  * The connected network of @p text ("LABELS[:N]": labels or, with @p tiles, tile or label names,
  * separated by commas; N the most components, 1 when left out); inactive for "". A tileset's
- * `connects` sides become the labels' Sides.
- * @throw msynth::Error naming the entry that is not a label.
+ * `connects` sides become the labels' Sides. @p path ("A;B;...") lists the path: each item a
+ * site "x,y[,z]" or a label (value or name: every site holding it).
+ * @throw msynth::Error naming the entry that is not a label or site.
  */
-msynth::ConnectedNetwork ReadConnected(const std::string& text, const msynth::Tileset* tiles);
+msynth::ConnectedNetwork ReadConnected(
+  const std::string& text, const msynth::Tileset* tiles, const std::string& path = "");
 
 /// Field arrays `ConnectedLabels` (string), `ConnectedMaximum`, `ConnectedComponents`,
 /// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` (one tuple); none without a network.
