@@ -142,3 +142,99 @@ class ConnectedTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+def path_components(labels, sides, sites):
+    """The components (as sets of sites) of the network holding `sites` [(x, y)], or None when a
+    site holds no network label: the same flood as `components`, from each site."""
+    ny, nx = labels.shape
+    found = []
+    for x0, y0 in sites:
+        if sides[labels[y0, x0]] is None:
+            return None
+        if any((x0, y0) in c for c in found):
+            continue
+        part, queue = {(x0, y0)}, deque([(x0, y0)])
+        while queue:
+            x, y = queue.popleft()
+            for dx, dy in sides[labels[y, x]]:
+                q = (x + dx, y + dy)
+                if 0 <= q[0] < nx and 0 <= q[1] < ny and q not in part:
+                    other = sides[labels[q[1], q[0]]]
+                    if other is not None and (-dx, -dy) in other:
+                        part.add(q)
+                        queue.append(q)
+        found.append(part)
+    return found
+
+
+class PathTest(unittest.TestCase):
+    def test_sites_and_labels_are_joined_whole_and_in_blocks(self):
+        network = NETWORKS[PATHS]
+        sides = network_sides(PATHS, network.split(","))
+        plain = fresh_folder("path-plain")
+        r = run_msynth("synthesize", PATHS, "--size", "40", "40", "1", "--seed", "1",
+                       "--outputs", "labels", "--out", plain)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        labels = labels_zyx(read_label_grid(os.path.join(plain, "labels.vti")))[0]
+        empty = [(x, y) for y in range(40) for x in range(40) if sides[labels[y, x]] is None]
+        sites = [empty[0], empty[len(empty) // 2], empty[-1]]  # outside the plain network
+        self.assertIsNone(path_components(labels, sides, sites))
+        args = ["%d,%d" % s for s in sites]
+        c = run_msynth("check", PATHS, os.path.join(plain, "labels.vti"), "--connected",
+                       network + ":100", "--path", *args)
+        self.assertEqual(c.returncode, 1, c.stdout + c.stderr)
+        self.assertIn("path not joined", c.stdout)
+        for blocks in ([], ["--block", "16", "16", "1"]):
+            out = fresh_folder("path-sites-%d" % len(blocks))
+            r = run_msynth("synthesize", PATHS, "--size", "40", "40", "1", *blocks, "--seed", "1",
+                           "--connected", network + ":100", "--path", *args,
+                           "--outputs", "labels", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            path = os.path.join(out, "labels.vti")
+            labels = labels_zyx(read_label_grid(path))[0]
+            parts = path_components(labels, sides, sites)
+            self.assertIsNotNone(parts, "a path site holds no network label")
+            self.assertEqual(len(parts), 1, blocks)
+            c = run_msynth("check", PATHS, path, "--connected", network + ":100", "--path", *args)
+            self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
+            self.assertIn("path joined: 3 sites in 1 component", c.stdout)
+            with open(os.path.join(out, "statistics.json")) as f:
+                self.assertEqual(json.load(f)["Connected"]["pathSites"], 3)
+        # Every site of a label: the circuit's connections, many components apart without it.
+        circuit = NETWORKS[CIRCUITS]
+        csides = network_sides(CIRCUITS, circuit.split(","))
+        for blocks in ([], ["--block", "16", "16", "1"]):
+            out = fresh_folder("path-label-%d" % len(blocks))
+            r = run_msynth("synthesize", CIRCUITS, "--size", "48", "48", "1", *blocks, "--seed", "1",
+                           "--connected", circuit + ":10000", "--path", "connection",
+                           "--outputs", "labels", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            labels = labels_zyx(read_label_grid(os.path.join(out, "labels.vti")))[0]
+            connection = [i for i, s in enumerate(network_sides(CIRCUITS, ["connection"]))
+                          if s is not None]
+            sites = [(x, y) for y in range(48) for x in range(48) if labels[y, x] in connection]
+            self.assertGreater(len(sites), 10)
+            self.assertEqual(len(path_components(labels, csides, sites)), 1, blocks)
+            with open(os.path.join(out, "statistics.json")) as f:
+                stats = json.load(f)["Connected"]
+            self.assertEqual(stats["pathSites"], len(sites))
+            self.assertGreater(stats["repairs"], 0)
+
+    def test_paths_it_cannot_keep_are_one_line(self):
+        for args, message in [
+                (["--connected", "line", "--path", "40,3"], "the path's site (40, 3, 0) is outside"),
+                (["--connected", "line", "--path", "1,1,9"], "is outside the model"),
+                (["--connected", "line", "--path", "empty"], "cannot carry the network of line"),
+                (["--path", "1,1"], "needs a network of labels to carry it"),
+                (["--connected", "line", "--path", "nothing"], "'nothing' is neither a site")]:
+            out = os.path.join(fresh_folder("path-bad"), "out")
+            r = run_msynth("synthesize", PATHS, "--size", "40", "40", "1", *args, "--out", out)
+            self.assertNotEqual(r.returncode, 0, args)
+            lines = r.stderr.strip().splitlines()
+            self.assertEqual(len(lines), 1, r.stderr)
+            self.assertIn(message, lines[0])
+            self.assertFalse(os.path.exists(out), "nothing is written")
+        c = run_msynth("check", PATHS, PATHS, "--path", "1,1")
+        self.assertNotEqual(c.returncode, 0)
+        self.assertIn("--path needs --connected", c.stderr)

@@ -155,7 +155,7 @@ void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& 
   if (!network.Active())
   {
     if (network.HasPath())
-      throw Error("a path (--path) needs a network (--connected LABELS): the labels that carry it");
+      throw Error("a path (--path) needs a network of labels to carry it (--connected LABELS)");
     return;
   }
   const std::string name = NetworkName(network);
