@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -86,9 +87,10 @@ ConnectedNetwork Network(const Tileset& set, std::int64_t maximum = 1)
   return c;
 }
 
-/// Components of @p model's sites with a mask in @p sides (bits +x -x +y -y +z -z; -1: not in
-/// the network), joined where both facing sides connect: a union-find of the test's own.
-std::int64_t Components(const LabelGrid& model, const std::vector<int>& sides)
+/// Per site of @p model, the root of its component (-1: not in the network), the sites with a
+/// mask in @p sides (bits +x -x +y -y +z -z; -1: not in the network) joined where both facing
+/// sides connect: a union-find of the test's own.
+std::vector<std::int64_t> Roots(const LabelGrid& model, const std::vector<int>& sides)
 {
   const auto d = model.Dimensions();
   const std::int64_t n = d[0] * d[1] * d[2];
@@ -114,9 +116,20 @@ std::int64_t Components(const LabelGrid& model, const std::vector<int>& sides)
         ((mask(i) >> (2 * a)) & 1) && ((mask(i + stride[a]) >> (2 * a + 1)) & 1))
         parent[static_cast<std::size_t>(find(i))] = find(i + stride[a]);
     }
-  std::int64_t count = 0;
+  std::vector<std::int64_t> roots(static_cast<std::size_t>(n), -1);
   for (std::int64_t i = 0; i < n; ++i)
-    count += mask(i) >= 0 && find(i) == i ? 1 : 0;
+    if (mask(i) >= 0)
+      roots[static_cast<std::size_t>(i)] = find(i);
+  return roots;
+}
+
+/// The number of components of the network (see Roots).
+std::int64_t Components(const LabelGrid& model, const std::vector<int>& sides)
+{
+  const std::vector<std::int64_t> roots = Roots(model, sides);
+  std::int64_t count = 0;
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    count += roots[i] == static_cast<std::int64_t>(i) ? 1 : 0;
   return count;
 }
 
@@ -208,6 +221,38 @@ TEST(Connectivity, OneNetworkWholeAndInBlocks)
         EXPECT_GT(r.Connected.Before, 1) << "the test should start from several components";
       }
     }
+}
+
+TEST(Connectivity, APathJoinsItsSitesWholeAndInBlocks)
+{
+  const Tileset set = BundledPaths();
+  const AdjacencyRules rules = set.Rules();
+  const std::vector<std::array<std::int64_t, 3>> sites{ { { 0, 0, 0 } }, { { 39, 39, 0 } },
+    { { 3, 30, 0 } }, { { 35, 4, 0 } } };
+  for (const auto& block :
+    { std::array<std::int64_t, 3>{ { 0, 0, 0 } }, std::array<std::int64_t, 3>{ { 12, 12, 1 } } })
+    for (std::uint64_t seed : { 1u, 2u })
+    {
+      SynthesisOptions o = Options(set, block, seed);
+      o.Connected.Maximum = 1000;
+      o.Connected.PathSites = sites;
+      const SynthesisResult r = Synthesize(rules, o);
+      ASSERT_TRUE(r.Succeeded()) << r.Message;
+      EXPECT_TRUE(CheckConsistency(set.Pairs, r.Model).Consistent);
+      const std::vector<std::int64_t> roots = Roots(r.Model, SidesOf(set));
+      std::set<std::int64_t> joined;
+      for (const auto& p : sites)
+        joined.insert(roots[static_cast<std::size_t>(p[0] + 40 * p[1])]);
+      EXPECT_EQ(joined, std::set<std::int64_t>{ roots[0] }) << "seed " << seed;
+      EXPECT_GE(roots[0], 0);
+      EXPECT_EQ(r.Connected.PathSites, 4);
+    }
+  SynthesisOptions o = Options(set, { { 0, 0, 0 } }, 1);
+  o.Connected.PathSites = { { { 40, 0, 0 } } };
+  EXPECT_NE(ErrorOf(rules, o).find("outside the model"), std::string::npos);
+  o.Connected.PathSites.clear();
+  o.Connected.PathLabels = { 0 };
+  EXPECT_NE(ErrorOf(rules, o).find("cannot carry"), std::string::npos);
 }
 
 TEST(Connectivity, AtMostNComponentsAndTheSameModelForAnyThreadCount)

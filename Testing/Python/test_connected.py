@@ -221,6 +221,21 @@ class PathTest(unittest.TestCase):
             self.assertEqual(stats["pathSites"], len(sites))
             self.assertGreater(stats["repairs"], 0)
 
+    def test_the_filter_joins_its_path(self):
+        network = NETWORKS[CIRCUITS]
+        output, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=CIRCUITS,
+                                       OutputSize=(32, 32, 1), Seed=2, Connected=network + ":1000",
+                                       Path="0,0;31,31;connection")
+        self.assertEqual(errors, "")
+        labels = labels_zyx(output)[0]
+        sides = network_sides(CIRCUITS, network.split(","))
+        connection = [i for i, s in enumerate(network_sides(CIRCUITS, ["connection"])) if s]
+        sites = [(0, 0), (31, 31)] + [(x, y) for y in range(32) for x in range(32)
+                                      if labels[y, x] in connection]
+        self.assertEqual(len(path_components(labels, sides, sites)), 1)
+        self.assertEqual(output.GetFieldData().GetArray("ConnectedPathSites").GetValue(0),
+                         len(sites))
+
     def test_paths_it_cannot_keep_are_one_line(self):
         for args, message in [
                 (["--connected", "line", "--path", "40,3"], "the path's site (40, 3, 0) is outside"),
