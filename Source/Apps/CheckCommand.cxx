@@ -432,7 +432,8 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
   const std::string& named = IsTileset(example) || names.empty() ? example : names;
   bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels);
-  kept = (connected.empty() || CheckConnected(connected, named, subset, tiles, labels, path)) && kept;
+  kept =
+    (connected.empty() || CheckConnected(connected, named, subset, tiles, labels, path)) && kept;
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {

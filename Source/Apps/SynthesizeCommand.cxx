@@ -290,9 +290,9 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
      "TYPE (or 'solid') grows from SEEDS seeds (TYPE:SEEDS, default 1): that many objects")
     ->allow_extra_args(false)
     ->group("Constraints (both kinds)");
-  r.DiscreteOnly.push_back(s.add_option("--path", o.Path,
-       "with --connected: one component of the network joins these sites (x,y[,z]) and every "
-       "site of these labels (values or tile names), e.g. --path 0,0 39,39")
+  r.DiscreteOnly.push_back(
+    s.add_option("--path", o.Path,
+       "with --connected: one component joins these sites (x,y[,z]) and labels' sites")
       ->group("Discrete synthesis (label grids, tilesets)"));
   continuous(s.add_option("--detail", o.Detail,
     "bounding volumes: substitute the closed mesh FILE for every part of object type TYPE in "

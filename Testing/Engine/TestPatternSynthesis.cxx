@@ -370,9 +370,8 @@ int RoadComponents(const LabelGrid& g, Label road)
 
 TEST(PatternSynthesis, ConnectedNetworkIsOneComponentInEverySample)
 {
-  const std::vector<LabelGrid> ex{ Art({ "..........", ".###..##..", ".#......#.", ".#..###.#.",
-                                         "....#.....", ".........." },
-    ".#") };
+  const std::vector<LabelGrid> ex{ Art(
+    { "..........", ".###..##..", ".#......#.", ".#..###.#.", "....#.....", ".........." }, ".#") };
   // (Metropolis-Hastings on this exemplar, whose pairs allow anything, percolates: a network
   // of half the sites that boxes seldom mend; test_pattern_connected runs it on the city.)
   for (PatternMethod method : { PatternMethod::BlockSS, PatternMethod::ConstraintSolver })

@@ -102,8 +102,8 @@ std::string NetworkName(const ConnectedNetwork& network)
 
 /// Refuses path sites outside the model or pinned to a label the network does not hold, and
 /// path labels that are not the network's, with one line.
-void CheckPath(const ConnectedNetwork& network, const SynthesisOptions& options,
-  const std::string& name)
+void CheckPath(
+  const ConnectedNetwork& network, const SynthesisOptions& options, const std::string& name)
 {
   const Coord& n = options.Size;
   for (const Coord& p : network.PathSites)
@@ -115,7 +115,8 @@ void CheckPath(const ConnectedNetwork& network, const SynthesisOptions& options,
           " sites)");
     if (options.Pins)
     {
-      const Label pin = options.Pins->Data()[static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2]))];
+      const Label pin =
+        options.Pins->Data()[static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2]))];
       if (pin != FreeSite &&
         std::find(network.Values.begin(), network.Values.end(), pin) == network.Values.end())
         throw Error("the path's site " + Format(p) + " is pinned to label " + std::to_string(pin) +
@@ -343,7 +344,8 @@ struct Repair
   /// Whether the model has what the network asks.
   bool Done() const
   {
-    return this->Now[0] == 0 && this->Now[1] <= 1 && this->Now[2] <= this->Options.Connected.Maximum;
+    return this->Now[0] == 0 && this->Now[1] <= 1 &&
+      this->Now[2] <= this->Options.Connected.Maximum;
   }
 
   /**
@@ -524,9 +526,8 @@ struct Repair
     const Component& c = this->Parts[smallest];
     return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
-      ", and none could be joined to another or removed (the smallest: " +
-      std::to_string(c.Sites) + " sites at " + Format(c.Low) +
-      "). Try another seed, more attempts or a larger maximum";
+      ", and none could be joined to another or removed (the smallest: " + std::to_string(c.Sites) +
+      " sites at " + Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
   }
 };
 } // namespace
@@ -546,8 +547,8 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
     ++out.Repairs;
   }
   out.Components = static_cast<std::int64_t>(repair.Parts.size());
-  out.PathSites = static_cast<std::int64_t>(repair.PathSites.size()) +
-    repair.CountPathLabelSites(shared.Model);
+  out.PathSites =
+    static_cast<std::int64_t>(repair.PathSites.size()) + repair.CountPathLabelSites(shared.Model);
   return std::string();
 }
 

@@ -251,7 +251,8 @@ private:
     if (const std::string* turned = this->Root.Attribute("turned"))
     {
       if (*turned != "true" && *turned != "false")
-        this->Xml.Fail("<set turned=\"" + *turned + "\">: turned is true or false", this->Root.Line);
+        this->Xml.Fail(
+          "<set turned=\"" + *turned + "\">: turned is true or false", this->Root.Line);
       this->Set.Turned = *turned == "true";
     }
     if (const std::string* size = this->Root.Attribute("size"))

@@ -233,9 +233,8 @@ void RunConstraintSolver(const FactorModel& m, const PatternProblem& scorer,
   for (int n = 0; n < o.Samples; ++n)
   {
     ConnectedResult connected;
-    std::vector<std::int32_t> tiles =
-      SolveOnce(m, rules, so, Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(),
-        result, &connected);
+    std::vector<std::int32_t> tiles = SolveOnce(m, rules, so,
+      Random::Derived(o.Seed, 0xc5b, static_cast<std::uint64_t>(n)).Next(), result, &connected);
     if (result.Status == SynthesisStatus::Cancelled)
       return;
     std::vector<std::int64_t> last(tiles.size(), 0);

@@ -78,7 +78,8 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
     if (self->GetActiveSource() != vtkMSDiscreteSynthesis::TILESET_SOURCE) // else tile names too
     {
       options.Counts = vtkMSLabelCounts::Read(self->GetCounts(), nullptr);
-      options.Connected = vtkMSLabelCounts::ReadConnected(self->GetConnected(), nullptr, self->GetPath());
+      options.Connected =
+        vtkMSLabelCounts::ReadConnected(self->GetConnected(), nullptr, self->GetPath());
     }
   }
   catch (const msynth::Error& e)

@@ -75,9 +75,8 @@ std::vector<msynth::Label> NamedLabels(const std::string& item, const msynth::Ti
 std::string Trimmed(const std::string& text)
 {
   const std::size_t first = text.find_first_not_of(" \t");
-  return first == std::string::npos
-    ? std::string()
-    : text.substr(first, text.find_last_not_of(" \t") - first + 1);
+  return first == std::string::npos ? std::string()
+                                    : text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
 /// The path of @p text ("A;B;...": sites "x,y[,z]" or labels) into @p network.

@@ -26,8 +26,8 @@
  * `FirstValidMoves`, `FirstValidSeconds`, `Seconds`, `HardFactors`, `SoftFactors`, `Tiles`,
  * `ReplacementBlocks`), `Method` and `Seed`; with Connected, the sample's `ConnectedLabels`,
  * `ConnectedMaximum`, `ConnectedComponents`, `ConnectedBefore` (before its repairs),
- * `ConnectedRepairs` and `ConnectedRedone`, and the run's `NetworkSeconds`. The samples are computed once and cached: asking
- * for another time step does not sample again.
+ * `ConnectedRepairs` and `ConnectedRedone`, and the run's `NetworkSeconds`. The samples are
+ * computed once and cached: asking for another time step does not sample again.
  *
  * @sa msynth/PatternSynthesis.h, vtkMSTileImage (pictures of tileset patterns)
  */
