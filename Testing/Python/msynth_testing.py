@@ -54,6 +54,18 @@ def run_msynth(*args, timeout=None):
                           timeout=limit)
 
 
+def expect_refused(test, command, args, message, name="refused"):
+    """Runs `msynth *command *args --out DIR` and asserts that it fails with one line on stderr
+    holding `message` and writes nothing."""
+    out = os.path.join(fresh_folder(name), "out")
+    r = run_msynth(*command, *args, "--out", out)
+    test.assertNotEqual(r.returncode, 0, args)
+    lines = r.stderr.strip().splitlines()
+    test.assertEqual(len(lines), 1, r.stderr)
+    test.assertIn(message, lines[0])
+    test.assertFalse(os.path.exists(out), "nothing is written")
+
+
 def read_label_grid(path):
     """The image data of a label grid file (.vti, .txt, .vox) through the ModelSynth reader."""
     import modelsynth

@@ -12,7 +12,8 @@ from collections import deque
 import numpy as np
 
 import modelsynth
-from msynth_testing import data, fresh_folder, labels_zyx, read_label_grid, run_algorithm, run_msynth
+from msynth_testing import (data, expect_refused, fresh_folder, labels_zyx, read_label_grid,
+                            run_algorithm, run_msynth)
 
 PATHS = data("Tilesets/Paths.xml")
 CIRCUITS = data("Tilesets/Circuits.xml")
@@ -116,14 +117,8 @@ class ConnectedTest(unittest.TestCase):
                 (village, ["--connected", "2,3", "--count", "2:1:900"], "label counts"),
                 (village, ["--connected", "2,3", "--block", "12", "12", "5", "--region", "0", "0", "0",
                            "12", "12", "5"], "connected network")]:
-            out = os.path.join(fresh_folder("connected-bad"), "out")
             size = ["24", "24", "5"] if example == village else ["16", "16", "1"]
-            r = run_msynth("synthesize", example, "--size", *size, *args, "--out", out)
-            self.assertNotEqual(r.returncode, 0, args)
-            lines = r.stderr.strip().splitlines()
-            self.assertEqual(len(lines), 1, r.stderr)
-            self.assertIn(message, lines[0])
-            self.assertFalse(os.path.exists(out), "nothing is written")
+            expect_refused(self, ["synthesize", example, "--size", *size], args, message)
 
     def test_the_filter_reports_the_network(self):
         synthesis = modelsynth.vtkMSDiscreteSynthesis()
@@ -243,13 +238,7 @@ class PathTest(unittest.TestCase):
                 (["--connected", "line", "--path", "empty"], "cannot carry the network of line"),
                 (["--path", "1,1"], "needs a network of labels to carry it"),
                 (["--connected", "line", "--path", "nothing"], "'nothing' is neither a site")]:
-            out = os.path.join(fresh_folder("path-bad"), "out")
-            r = run_msynth("synthesize", PATHS, "--size", "40", "40", "1", *args, "--out", out)
-            self.assertNotEqual(r.returncode, 0, args)
-            lines = r.stderr.strip().splitlines()
-            self.assertEqual(len(lines), 1, r.stderr)
-            self.assertIn(message, lines[0])
-            self.assertFalse(os.path.exists(out), "nothing is written")
+            expect_refused(self, ["synthesize", PATHS, "--size", "40", "40", "1"], args, message)
         c = run_msynth("check", PATHS, PATHS, "--path", "1,1")
         self.assertNotEqual(c.returncode, 0)
         self.assertIn("--path needs --connected", c.stderr)

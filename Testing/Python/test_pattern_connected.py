@@ -11,8 +11,8 @@ import unittest
 import numpy as np
 
 import modelsynth
-from msynth_testing import (data, fresh_folder, labels_zyx, read_label_grid, run_algorithm,
-                            run_msynth, violations)
+from msynth_testing import (data, expect_refused, fresh_folder, labels_zyx, read_label_grid,
+                            run_algorithm, run_msynth, violations)
 from test_connected import components, network_sides
 
 CITY = data("Patterns/City.xml")
@@ -90,14 +90,8 @@ class PatternConnectedTest(unittest.TestCase):
                 (["--connected", ROADS + ":0"], "is not a number of components"),
                 (["--connected", "99"], "none of its labels occurs in the exemplars"),
                 (["--connected", ROADS, "--mirror", "x"], "cannot be combined with mirroring")]:
-            out = os.path.join(fresh_folder("pconn-bad"), "out")
-            r = run_msynth("pattern", *EXEMPLARS, "--tileset", CITY, "--size", "20", "20", *args,
-                           "--out", out)
-            self.assertNotEqual(r.returncode, 0, args)
-            lines = r.stderr.strip().splitlines()
-            self.assertEqual(len(lines), 1, r.stderr)
-            self.assertIn(message, lines[0])
-            self.assertFalse(os.path.exists(out), "nothing is written")
+            expect_refused(self, ["pattern", *EXEMPLARS, "--tileset", CITY, "--size", "20", "20"],
+                           args, message)
 
     def test_the_filter_reports_the_network(self):
         readers = []
