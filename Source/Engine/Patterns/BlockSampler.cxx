@@ -126,12 +126,10 @@ public:
         this->R.FirstValidMoves = this->R.Moves;
         this->R.FirstValidSeconds = SecondsSince(start);
       }
+      if (n >= this->O.BurnIn && repair && !this->MendSample(repair, n, total))
+        return false;
       if (n >= this->O.BurnIn)
-      {
-        if (repair)
-          this->Mend(repair);
         take(this->Tiles, this->LastChange, SecondsSince(start));
-      }
       // After each sample, as the block solvers after each block: told at once, not throttled.
       if (this->O.Progress && !this->O.Progress(double(n + 1) / double(total)))
       {
@@ -143,15 +141,39 @@ public:
   }
 
 private:
-  /// The kept sample mended by @p repair; its changed sites take the move count as last change
-  /// (the next sample's slice is drawn from the mended pattern).
-  void Mend(const SampleRepair& repair)
+  /// Tries at mending one sample before the run fails.
+  static constexpr int MendTries = 10;
+
+  /// The sample mended by @p repair; its changed sites take the move count as last change (the
+  /// next sample's slice is drawn from the mended pattern). Returns why it could not be mended.
+  std::string Mend(const SampleRepair& repair)
   {
     this->Saved = this->Tiles;
-    repair(this->Tiles);
+    std::string failure = repair(this->Tiles);
     for (std::size_t i = 0; i < this->Tiles.size(); ++i)
       if (this->Tiles[i] != this->Saved[i])
         this->LastChange[i] = this->R.Moves;
+    return failure;
+  }
+
+  /// Sample @p n mended; one that cannot be moves on from the partly mended pattern by another
+  /// sample's moves and is mended again, MendTries times in all. False when cancelled.
+  /// @throw Error with the last repair's reason when every try failed.
+  bool MendSample(const SampleRepair& repair, int n, int total)
+  {
+    std::string failure = this->Mend(repair);
+    for (int tries = 1; !failure.empty(); ++tries)
+    {
+      if (tries == MendTries)
+        throw Error(failure + " (after " + std::to_string(MendTries) + " tries)");
+      const bool moved = this->O.Method == PatternMethod::MetropolisHastings
+        ? this->RunMetropolis(this->MovesPerSample, n, total)
+        : this->RunBlockSampleSAT(this->MovesPerSample, n, total);
+      if (!moved)
+        return false;
+      failure = this->Mend(repair);
+    }
+    return true;
   }
 
   // ---------------------------------------------------------------------------------------

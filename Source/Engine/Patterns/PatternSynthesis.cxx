@@ -272,9 +272,9 @@ public:
   }
 
   /// Mends sample @p tiles (tile indices, the same as the pair rules' label indices) until
-  /// the network has at most Maximum components; its figures into @p out. @throw Error when
-  /// no surplus component can be joined or removed.
-  void Mend(std::vector<std::int32_t>& tiles, PatternResult& result, ConnectedResult& out)
+  /// the network has at most Maximum components; its figures into @p out. Returns why not
+  /// when no surplus component could be joined or removed (@p tiles partly mended).
+  std::string Mend(std::vector<std::int32_t>& tiles, PatternResult& result, ConnectedResult& out)
   {
     const auto start = std::chrono::steady_clock::now();
     this->Options.Seed = Random::Derived(this->Seed, 0xc011, this->Mended++).Next();
@@ -289,9 +289,8 @@ public:
     result.NetworkAssignments += stats.Assignments;
     result.NetworkSeconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!failure.empty())
-      throw Error(failure);
     tiles = this->Shared.Model;
+    return failure;
   }
 
   std::uint64_t Seed = 0;
@@ -399,7 +398,8 @@ PatternResult SynthesizePattern(
     {
       network = std::make_unique<NetworkRepair>(model, problem, options);
       network->Seed = options.Seed;
-      repair = [&](std::vector<std::int32_t>& tiles) { network->Mend(tiles, result, connected); };
+      repair = [&](std::vector<std::int32_t>& tiles)
+      { return network->Mend(tiles, result, connected); };
     }
     detail::RunSampler(
       problem, options, initial, result,

@@ -94,8 +94,10 @@ struct PatternOptions
    * is repaired before it is taken: the surplus components, smallest first, get boxes over the
    * gap to their nearest neighbour (else around them) solved again on the hard pairs by the
    * discrete solver (Discrete/Connectivity.h's repairs; zones and fixed sites hold there), and
-   * the chain goes on from the repaired pattern. The constraint solver runs with the network.
-   * Not with mirroring. Inactive: none.
+   * the chain goes on from the repaired pattern. A sample the repairs cannot bring to Maximum
+   * moves on by another sample's moves from the partly repaired pattern and is repaired again,
+   * ten tries in all before the run fails. The constraint solver runs with the network. Not
+   * with mirroring. Inactive: none.
    */
   ConnectedNetwork Connected;
 
