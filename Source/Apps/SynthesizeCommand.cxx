@@ -55,7 +55,7 @@ namespace cli
 namespace
 {
 const std::vector<std::string> Orders{ "scanline", "random", "entropy" };
-const std::vector<std::string> Starts{ "auto", "trivial", "undecided" };
+const std::vector<std::string> Starts{ "auto", "trivial", "undecided", "whole" };
 const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
 const std::vector<std::string> OutputKinds{ "labels", "mesh", "glb", "vdb", "picture", "txt",
   "vox" };
@@ -151,8 +151,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "32-site blocks instead"));
   discrete(s.add_option("--start", o.Start,
               "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
-              "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
-              "(every site free until a block decides it; structures continue across blocks)")
+              "the model blank), trivial (Algorithm 3.4's model of one label), undecided "
+              "(every site free until a block decides it; structures continue across blocks) or "
+              "whole (a whole-model solution the blocks modify; structures may reach the faces)")
              ->check(CLI::IsMember(Starts)));
   s.add_option(
      "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")

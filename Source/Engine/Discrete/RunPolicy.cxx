@@ -3,7 +3,7 @@
  * @file RunPolicy.cxx
  * @brief The choices the engine makes for a run, declared in Discrete/DiscreteSynthesis.h: the
  * automatic block start (ChooseBlockStart: a probe world from the trivial start, and from an
- * undecided start where the first looks blank), the snapshots' memory (SnapshotBytes) and the
+ * undecided start, then a whole-model start, where the first looks blank), the snapshots' memory (SnapshotBytes) and the
  * fingerprint processes compare before they exchange blocks (RunFingerprint).
  */
 #include "Core/BlockDriver.h"
@@ -31,6 +31,14 @@ std::pair<std::size_t, double> Variety(const LabelGrid& model)
   for (const auto& c : counts)
     most = std::max(most, c.second);
   return { counts.size(), static_cast<double>(most) / static_cast<double>(model.NumberOfSites()) };
+}
+
+/// More than 1.25 times the distinct labels of @p than, or a most frequent label's share under
+/// 0.8 times its.
+bool MoreVaried(const std::pair<std::size_t, double>& v, const std::pair<std::size_t, double>& than)
+{
+  return static_cast<double>(v.first) > 1.25 * static_cast<double>(than.first) ||
+    v.second < 0.8 * than.second;
 }
 
 /// Whether a block run from the trivial start left its model blank: its trivial label covers
@@ -90,16 +98,22 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
     return keep(std::move(trivial), BlockStart::Trivial);
   if (!trivial.Succeeded() || !LooksBlank(rules, trivial))
     return keep(std::move(trivial), BlockStart::Trivial);
-  probe.StartFrom = BlockStart::Undecided;
-  SynthesisResult free = Synthesize(rules, probe);
-  if (free.Status == SynthesisStatus::Cancelled)
-    return keep(std::move(free), BlockStart::Undecided);
-  if (!free.Succeeded() || free.Statistics.BlocksFailed > 0)
-    return keep(std::move(trivial), BlockStart::Trivial);
-  const auto t = Variety(trivial.Model), u = Variety(free.Model);
-  if (static_cast<double>(u.first) > 1.25 * static_cast<double>(t.first) ||
-    u.second < 0.8 * t.second)
-    return keep(std::move(free), BlockStart::Undecided);
+  // The undecided start, then a whole-model one, when it decides every site with no failed
+  // block: the undecided start with more variety than the trivial start; the whole-model start
+  // (a whole-model output modified, so as varied as one) with any less blank model.
+  const auto t = Variety(trivial.Model);
+  for (const BlockStart start : { BlockStart::Undecided, BlockStart::WholeModel })
+  {
+    probe.StartFrom = start;
+    SynthesisResult other = Synthesize(rules, probe);
+    if (other.Status == SynthesisStatus::Cancelled)
+      return keep(std::move(other), start);
+    if (!other.Succeeded() || other.Statistics.BlocksFailed > 0)
+      continue;
+    const auto v = Variety(other.Model);
+    if (start == BlockStart::Undecided ? MoreVaried(v, t) : v.second < t.second)
+      return keep(std::move(other), start);
+  }
   return keep(std::move(trivial), BlockStart::Trivial);
 }
 
