@@ -150,10 +150,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "when whole-model synthesis fails every attempt, fail, rather than synthesize the model in "
     "32-site blocks instead"));
   discrete(s.add_option("--start", o.Start,
-              "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
-              "the model blank), trivial (Algorithm 3.4's model of one label), undecided "
-              "(every site free until a block decides it; structures continue across blocks) or "
-              "whole (a whole-model solution the blocks modify; structures may reach the faces)")
+              "how blocks start: auto (default: trivial unless a probe finds it leaves the model "
+              "blank), trivial (Algorithm 3.4's one label), undecided (every site free until a "
+              "block decides it) or whole (a whole-model solution that the blocks modify)")
              ->check(CLI::IsMember(Starts)));
   s.add_option(
      "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")

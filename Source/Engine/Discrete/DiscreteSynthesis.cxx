@@ -702,35 +702,6 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
 
 namespace
 {
-/// BlockStart::WholeModel: a whole-model run (Algorithm 3.1, the same seed, no snapshots or
-/// messages: every process computes the same one), then the blocks over it as a given start.
-SynthesisResult SynthesizeFromWholeModel(
-  const AdjacencyRules& rules, const SynthesisOptions& options)
-{
-  SynthesisOptions whole = options;
-  whole.BlockSize = { { 0, 0, 0 } };
-  whole.StartFrom = BlockStart::Trivial;
-  whole.OnSnapshot = nullptr;
-  whole.SnapshotsPerBlock = 0;
-  whole.Exchange = BlockExchange();
-  whole.BlocksWhenWholeFails = false;
-  if (options.Progress) // the whole run is the first tenth
-    whole.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.1 * f)); };
-  SynthesisResult start = SynthesizeWithStart(rules, whole);
-  if (!start.Succeeded())
-  {
-    if (start.Status != SynthesisStatus::Cancelled)
-      start.Message = "the whole-model start of the blocks failed: " + start.Message;
-    return start;
-  }
-  SynthesisOptions blocks = options;
-  blocks.Start = std::move(start.Model);
-  blocks.StartFrom = BlockStart::Trivial;
-  SynthesisResult r = SynthesizeWithStart(rules, blocks);
-  r.Statistics.StartFrom = "whole";
-  return r;
-}
-
 SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
@@ -745,7 +716,8 @@ SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const Synthesis
     SynthesisResult r = SynthesizeWithStart(rules, chosen);
     if (chosen.StartFrom != BlockStart::WholeModel || r.Status != SynthesisStatus::Failed)
       return r;
-    chosen.StartFrom = BlockStart::Trivial; // the output's whole run failed where the probe's did not
+    chosen.StartFrom =
+      BlockStart::Trivial; // the output's whole run failed where the probe's did not
     SynthesisResult trivial = SynthesizeWithStart(rules, chosen);
     trivial.Message += " (" + r.Message + ")";
     return trivial;

@@ -151,9 +151,10 @@ enum class BlockStart
   Automatic,
   Trivial,   ///< Algorithm 3.4's start (or the given SynthesisOptions::Start)
   Undecided, ///< every site free until a block decides it; sites no block decides fail the run
-  /// A whole-model solution (Algorithm 3.1, same seed, no blocks) that the blocks then modify:
-  /// for sets whose structures reach the model's faces (MarkovJunior's Partition: lines end only
-  /// at lines), which neither other start lets a block draw. A failed whole run fails the run.
+             /// A whole-model solution (Algorithm 3.1, same seed, no blocks) that the blocks then
+             /// modify: for sets whose structures reach the model's faces (MarkovJunior's
+             /// Partition: lines end only at lines), which neither other start lets a block draw. A
+             /// failed whole run fails the run.
   WholeModel
 };
 
@@ -418,6 +419,15 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
  * without blocks, with a given start, or with symmetries (which take no given start).
  */
 void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options);
+
+/**
+ * Block synthesis from BlockStart::WholeModel: a whole-model run of @p options (Algorithm 3.1,
+ * the same seed; no snapshots, no messages, so every process computes the same one), then the
+ * blocks over it as a given start; the statistics' StartFrom is "whole". A failed whole run is
+ * the result, its message saying so.
+ */
+SynthesisResult SynthesizeFromWholeModel(
+  const AdjacencyRules& rules, const SynthesisOptions& options);
 
 /**
  * The start BlockStart::Automatic resolves to for @p options (the world's options for a region),

@@ -3,8 +3,9 @@
  * @file RunPolicy.cxx
  * @brief The choices the engine makes for a run, declared in Discrete/DiscreteSynthesis.h: the
  * automatic block start (ChooseBlockStart: a probe world from the trivial start, and from an
- * undecided start, then a whole-model start, where the first looks blank), the snapshots' memory (SnapshotBytes) and the
- * fingerprint processes compare before they exchange blocks (RunFingerprint).
+ * undecided start, then a whole-model start, where the first looks blank), the snapshots' memory
+ * (SnapshotBytes) and the fingerprint processes compare before they exchange blocks
+ * (RunFingerprint).
  */
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
@@ -115,6 +116,33 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
       return keep(std::move(other), start);
   }
   return keep(std::move(trivial), BlockStart::Trivial);
+}
+
+SynthesisResult SynthesizeFromWholeModel(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  SynthesisOptions whole = options;
+  whole.BlockSize = { { 0, 0, 0 } };
+  whole.StartFrom = BlockStart::Trivial;
+  whole.OnSnapshot = nullptr;
+  whole.SnapshotsPerBlock = 0;
+  whole.Exchange = BlockExchange();
+  whole.BlocksWhenWholeFails = false;
+  if (options.Progress) // the whole run is the first tenth
+    whole.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.1 * f)); };
+  SynthesisResult start = Synthesize(rules, whole);
+  if (!start.Succeeded())
+  {
+    if (start.Status != SynthesisStatus::Cancelled)
+      start.Message = "the whole-model start of the blocks failed: " + start.Message;
+    return start;
+  }
+  SynthesisOptions blocks = options;
+  blocks.Start = std::move(start.Model);
+  blocks.StartFrom = BlockStart::Trivial;
+  SynthesisResult r = Synthesize(rules, blocks);
+  r.Statistics.StartFrom = "whole";
+  return r;
 }
 
 double SnapshotBytes(const SynthesisOptions& options)

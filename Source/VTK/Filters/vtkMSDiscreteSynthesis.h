@@ -146,9 +146,9 @@ public:
   /// How block synthesis starts (msynth::BlockStart).
   enum BlockStarts
   {
-    AUTOMATIC_START = 0, ///< a probe chooses: trivial unless it leaves the model blank
-    TRIVIAL_START = 1,   ///< Algorithm 3.4's trivial model (one label, or layers)
-    UNDECIDED_START = 2, ///< every site free until a block decides it
+    AUTOMATIC_START = 0,  ///< a probe chooses: trivial unless it leaves the model blank
+    TRIVIAL_START = 1,    ///< Algorithm 3.4's trivial model (one label, or layers)
+    UNDECIDED_START = 2,  ///< every site free until a block decides it
     WHOLE_MODEL_START = 3 ///< a whole-model solution that the blocks modify
   };
 

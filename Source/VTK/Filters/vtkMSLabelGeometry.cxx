@@ -27,8 +27,8 @@
 #include "Discrete/VoxelSurface.h"
 #include "Formats/MeshFormats.h"
 #include "Formats/Tileset.h"
-#include "Formats/VoxelTileset.h"
 #include "Formats/VTKXMLCheck.h"
+#include "Formats/VoxelTileset.h"
 
 #include <algorithm>
 #include <cctype>
