@@ -13,7 +13,8 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
-from msynth_testing import fresh_folder
+import modelsynth
+from msynth_testing import fresh_folder, labels_zyx, run_algorithm
 from msynth_testing import run_msynth as msynth
 from voxel_standins import NAMES, write_standins
 
@@ -89,6 +90,15 @@ class VoxelVarietyTest(unittest.TestCase):
                         "--out", fresh_folder("voxel-variety-region"))
         self.assertNotEqual(region.returncode, 0)
         self.assertEqual(len(region.stderr.strip().splitlines()), 1, region.stderr)
+
+    def test_the_filter_starts_from_a_whole_model(self):
+        s = modelsynth.vtkMSDiscreteSynthesis()
+        s.SetBlockStart(s.WHOLE_MODEL_START)
+        out, errors = run_algorithm(s, TilesetFile=os.path.join(self.folder, "Partition.xml"),
+                                    OutputSize=(10, 10, 6), BlockSize=(5, 5, 3), Seed=2)
+        self.assertEqual(errors, "")
+        self.assertEqual(out.GetFieldData().GetAbstractArray("StartFrom").GetValue(0), "whole")
+        self.assertGreater(len(np.unique(labels_zyx(out))), 3)
 
 
 if __name__ == "__main__":
