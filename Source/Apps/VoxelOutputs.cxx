@@ -47,7 +47,8 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
       throw std::runtime_error(problem);
     if (wanted("mesh"))
     {
-      WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer());
+      const bool small = mesh->GetNumberOfPoints() < (vtkIdType(1) << 31);
+      WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer(), small);
       written.push_back(dir + "/mesh.vtp");
     }
     if (wanted("glb"))
