@@ -121,9 +121,12 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
 SynthesisResult SynthesizeFromWholeModel(
   const AdjacencyRules& rules, const SynthesisOptions& options)
 {
+  std::array<std::int64_t, 3> m, step;
   SynthesisOptions whole = options;
-  whole.BlockSize = { { 0, 0, 0 } };
   whole.StartFrom = BlockStart::Trivial;
+  if (BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step))
+    return Synthesize(rules, whole); // no blocks: the whole run is the model
+  whole.BlockSize = { { 0, 0, 0 } };
   whole.OnSnapshot = nullptr;
   whole.SnapshotsPerBlock = 0;
   whole.Exchange = BlockExchange();
