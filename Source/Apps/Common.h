@@ -138,9 +138,11 @@ private:
 };
 
 /// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically, and
-/// reproducibly: without its timing (vtkMSFieldData::WithoutTiming).
+/// reproducibly: without its timing (vtkMSFieldData::WithoutTiming). @p int32Ids writes point
+/// ids and offsets as 32-bit integers (half the bytes to compress, for meshes of under 2^31
+/// points).
 template <typename WriterT, typename DataT>
-void WriteXML(const std::string& path, DataT* data)
+void WriteXML(const std::string& path, DataT* data, bool int32Ids = false)
 {
   const std::string tmp = msynth::TemporaryPathBeside(path);
   vtkNew<WriterT> writer;
@@ -148,6 +150,8 @@ void WriteXML(const std::string& path, DataT* data)
   writer->SetFileName(tmp.c_str());
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();
+  if (int32Ids)
+    writer->SetIdTypeToInt32();
   std::string messages;
   errno = 0;
   // The bar names the file: writing a large model can take longer than making it.

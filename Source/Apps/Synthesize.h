@@ -44,7 +44,7 @@ struct SynthesizeOptions
   int Attempts = 10;              ///< per block (continuous: default 20)
   std::int64_t Backtracks = 1000; ///< per attempt (discrete)
   bool NoRepair = false;          ///< no second try at failed blocks
-  std::string Start;              ///< how blocks start: auto (empty), trivial, undecided
+  std::string Start;              ///< how blocks start: auto (empty), trivial, undecided, whole
   bool NoFallback = false;        ///< no blocks when the whole model fails
   bool ViaInfallible = false;     ///< Algorithm 3.1 on an infallible refinement (D§3.3.8)
   std::string Order;              ///< empty: scanline (discrete), entropy (continuous)

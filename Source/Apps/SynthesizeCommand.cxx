@@ -55,7 +55,7 @@ namespace cli
 namespace
 {
 const std::vector<std::string> Orders{ "scanline", "random", "entropy" };
-const std::vector<std::string> Starts{ "auto", "trivial", "undecided" };
+const std::vector<std::string> Starts{ "auto", "trivial", "undecided", "whole" };
 const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
 const std::vector<std::string> OutputKinds{ "labels", "mesh", "glb", "vdb", "picture", "txt",
   "vox" };
@@ -150,9 +150,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "when whole-model synthesis fails every attempt, fail, rather than synthesize the model in "
     "32-site blocks instead"));
   discrete(s.add_option("--start", o.Start,
-              "how blocks start: auto (default: trivial unless a probe run finds that it leaves "
-              "the model blank), trivial (Algorithm 3.4's model of one label) or undecided "
-              "(every site free until a block decides it; structures continue across blocks)")
+              "how blocks start: auto (default: trivial unless a probe finds it leaves the model "
+              "blank), trivial (Algorithm 3.4's one label), undecided (every site free until a "
+              "block decides it) or whole (a whole-model solution that the blocks modify)")
              ->check(CLI::IsMember(Starts)));
   s.add_option(
      "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")

@@ -5,6 +5,7 @@
 #include "Synthesize.h"
 
 #include "vtkImageData.h"
+#include "vtkMSGLTFWriter.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -35,16 +36,29 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
     msynth::WriteVoxSceneFile(dir + "/model.vox", vox);
     written.push_back(dir + "/model.vox");
   }
-  if (wanted("mesh") && o.Pieces.empty())
+  if ((wanted("mesh") || wanted("glb")) && o.Pieces.empty())
   {
+    // One surface of coplanar faces merged into rectangles, coloured by the palette, for both.
     vtkNew<vtkImageData> voxels;
     vtkNew<vtkPolyData> mesh;
     std::string problem;
     if (!vtkMSLabelArrays::TileVoxels(set, model, voxels, problem) ||
       !vtkMSLabelArrays::VoxelSurface(voxels, 0, 0, 1, mesh, problem, true))
       throw std::runtime_error(problem);
-    WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer());
-    written.push_back(dir + "/mesh.vtp");
+    if (wanted("mesh"))
+    {
+      const bool small = mesh->GetNumberOfPoints() < (vtkIdType(1) << 31);
+      WriteXML<vtkXMLPolyDataWriter>(dir + "/mesh.vtp", mesh.GetPointer(), small);
+      written.push_back(dir + "/mesh.vtp");
+    }
+    if (wanted("glb"))
+    {
+      vtkNew<vtkMSGLTFWriter> writer; // a mesh per palette colour
+      writer->SetInputData(mesh);
+      writer->SetFileName((dir + "/mesh.glb").c_str());
+      Run(writer);
+      written.push_back(dir + "/mesh.glb");
+    }
   }
   const auto& d = vox.Grid.Dimensions();
   if (wanted("picture"))

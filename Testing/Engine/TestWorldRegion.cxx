@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <set>
 
@@ -234,4 +235,42 @@ TEST(WorldRegion, TheFirstPassAloneServesRegionsNoFailedBlockCovers)
       (region.Message.find("no repair pass was needed") != std::string::npos ? shortcut : full)++;
     }
   EXPECT_GT(shortcut, 0);
+}
+
+TEST(WorldRegion, WholeModelStartModifiesAWholeSolutionAndNoRegionTakesIt)
+{
+  // Rows along x of one label: a row of label 1 must reach both faces, so no block narrower than
+  // the model can draw one over the trivial start of 0s; over a whole-model start it keeps them.
+  const std::array<std::vector<std::pair<int, int>>, 3> pairs{ { { { 0, 0 }, { 1, 1 } },
+    { { 0, 0 }, { 0, 1 }, { 1, 0 }, { 1, 1 } }, { { 0, 0 }, { 0, 1 }, { 1, 0 }, { 1, 1 } } } };
+  const auto rules = AdjacencyRules::FromPairs({ 0, 1 }, { 1.0, 1.0 }, pairs);
+  SynthesisOptions o;
+  o.Size = { { 24, 12, 4 } };
+  o.BlockSize = { { 8, 6, 4 } };
+  o.Seed = 5;
+  o.StartFrom = BlockStart::Trivial;
+  const SynthesisResult trivial = Synthesize(rules, o);
+  ASSERT_TRUE(trivial.Succeeded()) << trivial.Message;
+  EXPECT_EQ(std::count(trivial.Model.Data().begin(), trivial.Model.Data().end(), 1), 0);
+  o.StartFrom = BlockStart::WholeModel;
+  const SynthesisResult r = Synthesize(rules, o);
+  ASSERT_TRUE(r.Succeeded()) << r.Message;
+  EXPECT_EQ(r.Statistics.StartFrom, "whole");
+  EXPECT_GT(r.Statistics.Blocks, 1);
+  std::int64_t ones = 0;
+  for (std::int64_t z = 0; z < 4; ++z)
+    for (std::int64_t y = 0; y < 12; ++y)
+      for (std::int64_t x = 0; x < 24; ++x)
+      {
+        ones += r.Model.At(x, y, z) == 1;
+        EXPECT_EQ(r.Model.At(x, y, z), r.Model.At(0, y, z)); // every row one label
+      }
+  EXPECT_GT(ones, 0);
+  EXPECT_LT(ones, 24 * 12 * 4);
+  EXPECT_EQ(Synthesize(rules, o).Model.Data(), r.Model.Data()); // deterministic
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 8, 6, 4 } }), Error);
+  o.BlockSize = { { 0, 0, 0 } }; // no blocks: an ordinary whole run
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_EQ(whole.Statistics.StartFrom, "");
 }

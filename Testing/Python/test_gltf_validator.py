@@ -1,6 +1,6 @@
 """The Khronos glTF validator (npm package gltf-validator, run by node) on the .glb files
 ModelSynth writes: a voxel surface by label, a .vox example's palette colours, pieces, an empty
-mesh. Every file must have no errors and no warnings. Skipped (exit 77, shown by ctest as
+mesh, a voxel tileset's mesh.glb. Every file must have no errors and no warnings. Skipped (exit 77, shown by ctest as
 "Not Run") when node or the package is missing: Utilities/install-dependencies.sh --tests
 installs it into ~/.cache/modelsynth/npm (MSYNTH_NPM_PREFIX elsewhere)."""
 import os
@@ -10,7 +10,7 @@ import subprocess
 import sys
 
 import modelsynth
-from msynth_testing import data, fresh_folder
+from msynth_testing import data, fresh_folder, run_msynth
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PREFIX = os.environ.get("MSYNTH_NPM_PREFIX",
@@ -52,6 +52,13 @@ def main():
     writer.SetInputData(vtkPolyData())
     writer.SetFileName(files[3])
     writer.Write()
+    # A voxel tileset's mesh.glb: the merged rectangles of its voxels, a mesh per palette colour.
+    tiles = os.path.join(folder, "pipes")
+    done = run_msynth("synthesize", data("Tilesets/Pipes.xml"), "--size", "4", "4", "3", "--seed",
+                      "3", "--outputs", "glb", "--out", tiles)
+    if done.returncode != 0:
+        sys.exit(done.stderr)
+    files.append(os.path.join(tiles, "mesh.glb"))
     r = subprocess.run([node, os.path.join(HERE, "validate_gltf.js"), MODULES, *files],
                        capture_output=True, text=True, timeout=120)
     print(r.stdout + r.stderr)

@@ -88,8 +88,8 @@ struct SynthesisStatistics
   double Seconds = 0.0;
   std::vector<BlockFailure> Failures;
   std::optional<Label> TrivialLabel; ///< the trivial start used (block mode)
-  /// How block synthesis started: "trivial" (Algorithm 3.4's start) or "undecided"; empty for
-  /// whole-model synthesis.
+  /// How block synthesis started: "trivial" (Algorithm 3.4's start), "undecided" or "whole"
+  /// (a whole-model solution); empty for whole-model synthesis.
   std::string StartFrom;
 };
 

@@ -713,8 +713,17 @@ SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const Synthesis
     chosen.StartFrom = ChooseBlockStart(rules, options, &done);
     if (done)
       return std::move(*done);
-    return SynthesizeWithStart(rules, chosen);
+    SynthesisResult r = SynthesizeWithStart(rules, chosen);
+    if (chosen.StartFrom != BlockStart::WholeModel || r.Status != SynthesisStatus::Failed)
+      return r;
+    chosen.StartFrom =
+      BlockStart::Trivial; // the output's whole run failed where the probe's did not
+    SynthesisResult trivial = SynthesizeWithStart(rules, chosen);
+    trivial.Message += " (" + r.Message + ")";
+    return trivial;
   }
+  if (options.StartFrom == BlockStart::WholeModel)
+    return SynthesizeFromWholeModel(rules, options);
   if (AnyMirror(options) && AnySeamSymmetry(options))
     throw Error("mirror symmetry cannot be combined with translation or rotation symmetry");
   if (!AnyMirror(options))

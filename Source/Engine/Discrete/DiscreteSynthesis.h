@@ -147,10 +147,15 @@ struct SoftConstraint
 enum class BlockStart
 {
   /// A probe chooses (ChooseBlockStart): the trivial start unless it leaves a probe world
-  /// blank where an undecided start succeeds with more variety.
+  /// blank where an undecided start, else a whole-model start, succeeds with more variety.
   Automatic,
-  Trivial,  ///< Algorithm 3.4's start (or the given SynthesisOptions::Start)
-  Undecided ///< every site free until a block decides it; sites no block decides fail the run
+  Trivial,   ///< Algorithm 3.4's start (or the given SynthesisOptions::Start)
+  Undecided, ///< every site free until a block decides it; sites no block decides fail the run
+             /// A whole-model solution (Algorithm 3.1, same seed, no blocks) that the blocks then
+             /// modify: for sets whose structures reach the model's faces (MarkovJunior's
+             /// Partition: lines end only at lines), which neither other start lets a block draw. A
+             /// failed whole run fails the run.
+  WholeModel
 };
 
 /**
@@ -429,6 +434,15 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
 void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options);
 
 /**
+ * Block synthesis from BlockStart::WholeModel: a whole-model run of @p options (Algorithm 3.1,
+ * the same seed; no snapshots, no messages, so every process computes the same one), then the
+ * blocks over it as a given start; the statistics' StartFrom is "whole". A failed whole run is
+ * the result, its message saying so.
+ */
+SynthesisResult SynthesizeFromWholeModel(
+  const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/**
  * The start BlockStart::Automatic resolves to for @p options (the world's options for a region),
  * a function of the example, options and seed alone: Trivial without blocks, with a given
  * start, soft constraints, symmetry or snapshots, and with pins or a guide when the probe is not
@@ -437,7 +451,8 @@ void StartFromWholeModel(const AdjacencyRules& rules, SynthesisOptions& options)
  * trivial label on over 90 % of the sites, or on over 1.25 times the label's share of the
  * example by weight), it is synthesized again from an undecided start, which is chosen
  * when it decides every site with no failed block and with more variety (more than 1.25 times
- * the distinct labels, or a most frequent label's share under 0.8 times the trivial run's).
+ * the distinct labels, or a most frequent label's share under 0.8 times the trivial run's);
+ * failing that, from a whole-model start (BlockStart::WholeModel), chosen on the same terms.
  * When the probe is the whole output, its chosen result is returned in @p done. Returns the
  * options' own choice when it is not Automatic.
  */

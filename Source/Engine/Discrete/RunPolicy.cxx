@@ -3,8 +3,9 @@
  * @file RunPolicy.cxx
  * @brief The choices the engine makes for a run, declared in Discrete/DiscreteSynthesis.h: the
  * automatic block start (ChooseBlockStart: a probe world from the trivial start, and from an
- * undecided start where the first looks blank), the snapshots' memory (SnapshotBytes) and the
- * fingerprint processes compare before they exchange blocks (RunFingerprint).
+ * undecided start, then a whole-model start, where the first looks blank), the snapshots' memory
+ * (SnapshotBytes) and the fingerprint processes compare before they exchange blocks
+ * (RunFingerprint).
  */
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
@@ -31,6 +32,14 @@ std::pair<std::size_t, double> Variety(const LabelGrid& model)
   for (const auto& c : counts)
     most = std::max(most, c.second);
   return { counts.size(), static_cast<double>(most) / static_cast<double>(model.NumberOfSites()) };
+}
+
+/// More than 1.25 times the distinct labels of @p than, or a most frequent label's share under
+/// 0.8 times its.
+bool MoreVaried(const std::pair<std::size_t, double>& v, const std::pair<std::size_t, double>& than)
+{
+  return static_cast<double>(v.first) > 1.25 * static_cast<double>(than.first) ||
+    v.second < 0.8 * than.second;
 }
 
 /// Whether a block run from the trivial start left its model blank: its trivial label covers
@@ -90,17 +99,53 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
     return keep(std::move(trivial), BlockStart::Trivial);
   if (!trivial.Succeeded() || !LooksBlank(rules, trivial))
     return keep(std::move(trivial), BlockStart::Trivial);
-  probe.StartFrom = BlockStart::Undecided;
-  SynthesisResult free = Synthesize(rules, probe);
-  if (free.Status == SynthesisStatus::Cancelled)
-    return keep(std::move(free), BlockStart::Undecided);
-  if (!free.Succeeded() || free.Statistics.BlocksFailed > 0)
-    return keep(std::move(trivial), BlockStart::Trivial);
-  const auto t = Variety(trivial.Model), u = Variety(free.Model);
-  if (static_cast<double>(u.first) > 1.25 * static_cast<double>(t.first) ||
-    u.second < 0.8 * t.second)
-    return keep(std::move(free), BlockStart::Undecided);
+  // The undecided start, then a whole-model one, when it decides every site with no failed
+  // block: the undecided start with more variety than the trivial start; the whole-model start
+  // (a whole-model output modified, so as varied as one) with any less blank model.
+  const auto t = Variety(trivial.Model);
+  for (const BlockStart start : { BlockStart::Undecided, BlockStart::WholeModel })
+  {
+    probe.StartFrom = start;
+    SynthesisResult other = Synthesize(rules, probe);
+    if (other.Status == SynthesisStatus::Cancelled)
+      return keep(std::move(other), start);
+    if (!other.Succeeded() || other.Statistics.BlocksFailed > 0)
+      continue;
+    const auto v = Variety(other.Model);
+    if (start == BlockStart::Undecided ? MoreVaried(v, t) : v.second < t.second)
+      return keep(std::move(other), start);
+  }
   return keep(std::move(trivial), BlockStart::Trivial);
+}
+
+SynthesisResult SynthesizeFromWholeModel(
+  const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  std::array<std::int64_t, 3> m, step;
+  SynthesisOptions whole = options;
+  whole.StartFrom = BlockStart::Trivial;
+  if (BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step))
+    return Synthesize(rules, whole); // no blocks: the whole run is the model
+  whole.BlockSize = { { 0, 0, 0 } };
+  whole.OnSnapshot = nullptr;
+  whole.SnapshotsPerBlock = 0;
+  whole.Exchange = BlockExchange();
+  whole.BlocksWhenWholeFails = false;
+  if (options.Progress) // the whole run is the first tenth
+    whole.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.1 * f)); };
+  SynthesisResult start = Synthesize(rules, whole);
+  if (!start.Succeeded())
+  {
+    if (start.Status != SynthesisStatus::Cancelled)
+      start.Message = "the whole-model start of the blocks failed: " + start.Message;
+    return start;
+  }
+  SynthesisOptions blocks = options;
+  blocks.Start = std::move(start.Model);
+  blocks.StartFrom = BlockStart::Trivial;
+  SynthesisResult r = Synthesize(rules, blocks);
+  r.Statistics.StartFrom = "whole";
+  return r;
 }
 
 double SnapshotBytes(const SynthesisOptions& options)

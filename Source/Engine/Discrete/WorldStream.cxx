@@ -141,13 +141,27 @@ bool FailedOver(const WorldLattice& lattice, const std::vector<BlockFailure>& fa
 }
 } // namespace
 
+namespace
+{
+/// The world's block start; a whole-model one is refused: no region is a function of it alone.
+BlockStart WorldStart(const AdjacencyRules& rules, const SynthesisOptions& world)
+{
+  const BlockStart start = ChooseBlockStart(rules, world);
+  if (start == BlockStart::WholeModel)
+    throw Error("the blocks of this world start from a whole-model solution (their trivial start "
+                "leaves them blank), which a region or a stream cannot compute: choose the "
+                "trivial or the undecided start");
+  return start;
+}
+} // namespace
+
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {
   CheckWorldOptions(world, "a region of a world");
   const WorldLattice lattice = LatticeOf(world);
   SynthesisOptions resolved = world;
-  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, wherever the region lies
+  resolved.StartFrom = WorldStart(rules, world); // the world's, wherever the region lies
   if (world.RepairFailedBlocks)
   {
     // The repair passes run failed blocks only, so they change the region only when a block over
@@ -525,7 +539,7 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   if (lattice.NumberOfBlocks() == 1)
     throw Error("a streamed world is computed in blocks: give blocks smaller than the world");
   SynthesisOptions resolved = world;
-  resolved.StartFrom = ChooseBlockStart(rules, world); // the world's, as every region's
+  resolved.StartFrom = WorldStart(rules, world); // the world's, as every region's
   Wavefront wave(lattice, layout.Axis, Passes(world));
   WorldBox low, high;
   layout.Box(firstChunk, low, high);

@@ -146,9 +146,10 @@ public:
   /// How block synthesis starts (msynth::BlockStart).
   enum BlockStarts
   {
-    AUTOMATIC_START = 0, ///< a probe chooses: trivial unless it leaves the model blank
-    TRIVIAL_START = 1,   ///< Algorithm 3.4's trivial model (one label, or layers)
-    UNDECIDED_START = 2  ///< every site free until a block decides it
+    AUTOMATIC_START = 0,  ///< a probe chooses: trivial unless it leaves the model blank
+    TRIVIAL_START = 1,    ///< Algorithm 3.4's trivial model (one label, or layers)
+    UNDECIDED_START = 2,  ///< every site free until a block decides it
+    WHOLE_MODEL_START = 3 ///< a whole-model solution that the blocks modify
   };
 
   ///@{
@@ -236,7 +237,7 @@ public:
   ///@{
   /// How block synthesis starts: a BlockStarts value. Default AUTOMATIC_START (the field data's
   /// StartFrom says which was used).
-  vtkSetClampMacro(BlockStart, int, AUTOMATIC_START, UNDECIDED_START);
+  vtkSetClampMacro(BlockStart, int, AUTOMATIC_START, WHOLE_MODEL_START);
   vtkGetMacro(BlockStart, int);
   ///@}
 

@@ -28,6 +28,7 @@
 #include "Formats/MeshFormats.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
+#include "Formats/VoxelTileset.h"
 
 #include <algorithm>
 #include <cctype>
@@ -56,28 +57,49 @@ bool IsFile(const std::string& path)
 }
 
 /// Reads a piece mesh with the reader its extension calls for; nullptr and @p problem on error.
-/// @p piece turned to tile orientation @p orientation: (orientation mod 4) quarter turns
-/// counter-clockwise about +z, then, for 4–7, mirrored left-right with its polygons reversed.
-vtkSmartPointer<vtkPolyData> Turned(vtkPolyData* piece, int orientation)
+/// An integer orthogonal map of a piece's points (about the site's centre): q = T p.
+using PieceTurn = std::array<std::array<int, 3>, 3>;
+
+/// The turn of a tile's orientation @p orientation: for a voxel tileset (@p voxel) the symmetry
+/// of that index in msynth::SymmetryGroup (a source lookup image(q) = tile(M q), so points move
+/// by M's transpose); else (orientation mod 4) quarter turns counter-clockwise about +z, then,
+/// for 4-7, the left-right mirror.
+PieceTurn TurnOf(int orientation, bool voxel, bool full)
 {
+  PieceTurn t{ { { { 1, 0, 0 } }, { { 0, 1, 0 } }, { { 0, 0, 1 } } } };
+  if (voxel)
+  {
+    const auto& m = msynth::SymmetryGroup(full)[static_cast<std::size_t>(orientation)].M;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j)
+        t[i][j] = m[j][i];
+    return t;
+  }
+  for (int r = 0; r < orientation % 4; ++r)
+    t = { { { { -t[1][0], -t[1][1], -t[1][2] } }, t[0], t[2] } }; // (x, y) -> (-y, x)
+  if (orientation >= 4)
+    t[0] = { { -t[0][0], -t[0][1], -t[0][2] } };
+  return t;
+}
+
+/// @p piece moved by @p turn, its polygons reversed when the turn mirrors (keeping them facing
+/// out).
+vtkSmartPointer<vtkPolyData> Turned(vtkPolyData* piece, const PieceTurn& turn)
+{
+  const int det = turn[0][0] * (turn[1][1] * turn[2][2] - turn[1][2] * turn[2][1]) -
+    turn[0][1] * (turn[1][0] * turn[2][2] - turn[1][2] * turn[2][0]) +
+    turn[0][2] * (turn[1][0] * turn[2][1] - turn[1][1] * turn[2][0]);
+  const bool mirror = det < 0;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(piece->GetNumberOfPoints());
   for (vtkIdType i = 0; i < piece->GetNumberOfPoints(); ++i)
   {
-    double p[3];
+    double p[3], q[3];
     piece->GetPoint(i, p);
-    for (int r = 0; r < orientation % 4; ++r)
-    {
-      const double x = p[0];
-      p[0] = -p[1];
-      p[1] = x;
-    }
-    if (orientation >= 4)
-    {
-      p[0] = -p[0];
-    }
-    points->SetPoint(i, p);
+    for (std::size_t a = 0; a < 3; ++a)
+      q[a] = turn[a][0] * p[0] + turn[a][1] * p[1] + turn[a][2] * p[2];
+    points->SetPoint(i, q);
   }
   vtkNew<vtkCellArray> polys;
   auto it = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
@@ -88,10 +110,8 @@ vtkSmartPointer<vtkPolyData> Turned(vtkPolyData* piece, int orientation)
     const vtkIdType* cell;
     it->GetCurrentCell(n, cell);
     ids.assign(cell, cell + n);
-    if (orientation >= 4)
-    {
+    if (mirror)
       std::reverse(ids.begin(), ids.end());
-    }
     polys->InsertNextCell(n, ids.data());
   }
   auto out = vtkSmartPointer<vtkPolyData>::New();
@@ -350,6 +370,7 @@ bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder, const 
     // Candidate names, each with the orientation to turn it by (0: as it is); the first group
     // with a file wins: the label number, the example's pieces (all), the tile.
     std::vector<std::vector<std::pair<std::string, int>>> groups{ { { std::to_string(b), 0 } } };
+    bool voxel = false, full = false; // a voxel tileset's tiles turn by its symmetry group
     if (naming.ExampleNames.count(b))
     {
       groups.emplace_back();
@@ -369,6 +390,8 @@ bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder, const 
       const int k = tileset->LabelOrientation[static_cast<std::size_t>(b)];
       groups.push_back({ { tile.Name + " " + std::to_string(k), 0 } });
       groups.push_back({ { tile.Name, k } });
+      voxel = tileset->Voxel;
+      full = tileset->FullSymmetry;
     }
     for (const auto& group : groups)
     {
@@ -380,7 +403,7 @@ bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder, const 
         auto mesh = ReadPiece(folder + "/" + file->second, problem);
         if (!mesh)
           return false;
-        pieces[b].push_back(turn ? Turned(mesh, turn) : mesh);
+        pieces[b].push_back(turn ? Turned(mesh, TurnOf(turn, voxel, full)) : mesh);
       }
       if (pieces.count(b))
         break;

@@ -180,7 +180,10 @@ bool vtkMSLabelArrays::VoxelSurface(vtkImageData* image, int empty, int piece, i
     : msynth::ExtractVoxelSurface(
         grid, empty, FirstSitePosition(image), step, msynth::PieceSlab(grid, piece, pieces));
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
+  if (merge) // large voxel models: a third less to store and compress
+    points->SetDataTypeToFloat();
+  else
+    points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
   for (std::size_t i = 0; i < surface.Points.size(); ++i)
   {

@@ -70,7 +70,8 @@ public:
    * the longest axis; the pieces put together give the whole surface, with no faces at the
    * seams. An empty image gives an empty output. False, with @p problem, when the image has no
    * usable label array. @p merge (one piece only): coplanar faces of a label merged into
-   * rectangles (msynth::ExtractMergedVoxelSurface), for files of large voxel models.
+   * rectangles (msynth::ExtractMergedVoxelSurface) with single-precision points, for files of
+   * large voxel models.
    */
   static bool VoxelSurface(vtkImageData* image, int empty, int piece, int pieces,
     vtkPolyData* output, std::string& problem, bool merge = false);
