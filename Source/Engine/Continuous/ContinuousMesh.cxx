@@ -4,10 +4,12 @@
 #include "Continuous/FeatureWidth.h"
 
 #include "Core/Error.h"
+#include "Core/ParallelChunks.h"
 
 #include "Continuous/Point3Math.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -53,6 +55,11 @@ int TypeToward(const NeighbourhoodLabel& label, Side&& side)
   return t;
 }
 
+/**
+ * Traces the faces of a labelled arrangement. The links of a vertex within a plane are taken
+ * counter-clockwise around the plane's normal: every direction in the plane has a fixed rank in
+ * that cyclic order (computed once per plane), so no vertex sorts its links.
+ */
 class FaceTracer
 {
 public:
@@ -62,49 +69,44 @@ public:
     , Arrangement(arrangement)
     , Labels(labels)
   {
+    const PlaneFamilySet& set = arrangement.Families();
+    for (int p = 0; p <= set.Size(); ++p)
+      this->RankDirections(p < set.Size() ? set.Normal(p) : IntVec3{ 0, 0, 1 });
   }
 
-  /// Links of @p v within the plane of normal @p n, counter-clockwise around n.
-  std::vector<PlaneArrangement::Link> Around(std::int64_t v, const IntVec3& n) const
+  /// The plane index of family @p p's normal; Families().Size() is the plane z = 0 (2D).
+  const IntVec3& Normal(int p) const { return this->Normals[static_cast<std::size_t>(p)]; }
+
+  /// Links of @p v within plane @p p, counter-clockwise around its normal, from the first link
+  /// in the arrangement's order.
+  std::vector<PlaneArrangement::Link> Around(std::int64_t v, int p) const
   {
+    const std::vector<int>& rank = this->Ranks[static_cast<std::size_t>(p)];
+    const int count = this->Counts[static_cast<std::size_t>(p)];
     std::vector<PlaneArrangement::Link> out;
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
-    {
-      if (DotW(n, this->Arrangement.Direction(l->Direction)) == 0)
-      {
+      if (rank[static_cast<std::size_t>(l->Direction)] >= 0)
         out.push_back(*l);
-      }
-    }
     if (out.empty())
-    {
       return out;
-    }
-    const IntVec3 r = this->Arrangement.Direction(out[0].Direction);
-    const auto half = [&](const IntVec3& d)
-    {
-      const Wide t = TripleW(r, d, n);
-      return (t > 0 || (t == 0 && DotW(r, d) > 0)) ? 0 : 1;
-    };
+    const int first = rank[static_cast<std::size_t>(out[0].Direction)];
+    const auto key = [&](const PlaneArrangement::Link& l)
+    { return (rank[static_cast<std::size_t>(l.Direction)] - first + count) % count; };
     std::sort(out.begin(), out.end(),
       [&](const PlaneArrangement::Link& a, const PlaneArrangement::Link& b)
-      {
-        const IntVec3& da = this->Arrangement.Direction(a.Direction);
-        const IntVec3& db = this->Arrangement.Direction(b.Direction);
-        const int ha = half(da), hb = half(db);
-        if (ha != hb)
-        {
-          return ha < hb;
-        }
-        return TripleW(da, db, n) > 0;
-      });
+      { return key(a) < key(b); });
     return out;
   }
 
-  /// Traces the face left of the edge leaving @p u along @p first (counter-clockwise around n).
-  std::vector<std::int64_t> Trace(
-    std::int64_t u, const PlaneArrangement::Link& first, const IntVec3& n) const
+  /**
+   * Traces the face left of the edge leaving @p u along @p first (counter-clockwise around plane
+   * @p p's normal) into @p loop. False, with the trace cut short, as soon as it meets a vertex
+   * numbered below @p u: the face is then emitted from its lowest vertex instead.
+   */
+  bool Trace(std::int64_t u, const PlaneArrangement::Link& first, int p,
+    std::vector<std::int64_t>& loop) const
   {
-    std::vector<std::int64_t> loop{ u };
+    loop.assign(1, u);
     PlaneArrangement::Link edge = first;
     for (std::size_t guard = 0;; ++guard)
     {
@@ -115,23 +117,39 @@ public:
       }
       const std::int64_t v = edge.Vertex;
       if (v == u)
-      {
-        return loop;
-      }
+        return true;
+      if (v < u)
+        return false;
       loop.push_back(v);
-      const auto around = this->Around(v, n);
-      const int back = edge.Direction ^ 1;
-      std::size_t j = 0;
-      while (j < around.size() && around[j].Direction != back)
-      {
-        ++j;
-      }
-      if (j == around.size())
-      {
-        throw Error("mesh extraction: internal error (an edge has no way back)");
-      }
-      edge = around[(j + around.size() - 1) % around.size()];
+      edge = this->Before(v, p, edge.Direction ^ 1);
     }
+  }
+
+  /// The link of @p v in plane @p p just before direction @p back counter-clockwise.
+  PlaneArrangement::Link Before(std::int64_t v, int p, int back) const
+  {
+    const std::vector<int>& rank = this->Ranks[static_cast<std::size_t>(p)];
+    const int count = this->Counts[static_cast<std::size_t>(p)];
+    const int from = rank[static_cast<std::size_t>(back)];
+    const PlaneArrangement::Link* best = nullptr;
+    int bestKey = -1;
+    bool found = false;
+    for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
+    {
+      const int r = rank[static_cast<std::size_t>(l->Direction)];
+      if (r < 0)
+        continue;
+      found = found || l->Direction == back;
+      const int key = (r - from + count) % count;
+      if (key > bestKey)
+      {
+        bestKey = key;
+        best = l;
+      }
+    }
+    if (!found || from < 0)
+      throw Error("mesh extraction: internal error (an edge has no way back)");
+    return *best;
   }
 
   const NeighbourhoodLabel& LabelOf(std::int64_t v) const
@@ -142,6 +160,46 @@ public:
   const PolyhedralAnalysis& Analysis;
   const PlaneArrangement& Arrangement;
   const std::vector<std::int32_t>& Labels;
+
+private:
+  /// Ranks the directions perpendicular to @p n by their angle counter-clockwise around it
+  /// from the first of them (-1: not in the plane).
+  void RankDirections(const IntVec3& n)
+  {
+    std::vector<int> in;
+    for (int d = 0; d < this->Arrangement.NumberOfDirections(); ++d)
+      if (DotW(n, this->Arrangement.Direction(d)) == 0)
+        in.push_back(d);
+    std::vector<int> rank(static_cast<std::size_t>(this->Arrangement.NumberOfDirections()), -1);
+    if (!in.empty())
+    {
+      const IntVec3 r = this->Arrangement.Direction(in[0]);
+      const auto half = [&](const IntVec3& d)
+      {
+        const Wide t = TripleW(r, d, n);
+        return (t > 0 || (t == 0 && DotW(r, d) > 0)) ? 0 : 1;
+      };
+      std::sort(in.begin(), in.end(),
+        [&](int a, int b)
+        {
+          const IntVec3& da = this->Arrangement.Direction(a);
+          const IntVec3& db = this->Arrangement.Direction(b);
+          const int ha = half(da), hb = half(db);
+          if (ha != hb)
+            return ha < hb;
+          return TripleW(da, db, n) > 0;
+        });
+      for (std::size_t i = 0; i < in.size(); ++i)
+        rank[static_cast<std::size_t>(in[i])] = static_cast<int>(i);
+    }
+    this->Normals.push_back(n);
+    this->Ranks.push_back(std::move(rank));
+    this->Counts.push_back(static_cast<int>(in.size()));
+  }
+
+  std::vector<IntVec3> Normals;
+  std::vector<std::vector<int>> Ranks;
+  std::vector<int> Counts;
 };
 
 /// One label per arrangement vertex, each one of the example's. @throw Error.
@@ -163,115 +221,121 @@ void CheckMeshLabels(const PolyhedralAnalysis& analysis, std::int64_t vertices,
   }
 }
 
-/// Appends the polygon of the arrangement vertices @p loop (reversed: from the first vertex
-/// the other way round) to @p mesh with its inside and outside types; a vertex becomes a mesh
-/// point the first time it is used (@p pointOf: its point, or -1).
-void EmitPolygon(ContinuousMesh& mesh, std::vector<std::int32_t>& pointOf,
-  const PlaneArrangement& arrangement, const std::vector<std::int64_t>& loop, bool reverse,
-  int inside, int outside)
+/// The faces found from a range of arrangement vertices, in the order a serial scan finds them:
+/// each face's arrangement vertices (already turned for its orientation) and its two types.
+struct FoundFaces
 {
-  std::vector<std::int32_t> polygon;
-  for (std::size_t i = 0; i < loop.size(); ++i)
+  std::vector<std::int64_t> Vertices;
+  std::vector<std::size_t> Ends;
+  std::vector<std::array<int, 2>> Types; ///< inside, outside
+
+  void Add(const std::vector<std::int64_t>& loop, bool reverse, int inside, int outside)
   {
-    const std::int64_t v = loop[reverse ? (loop.size() - i) % loop.size() : i];
-    auto& p = pointOf[static_cast<std::size_t>(v)];
-    if (p < 0)
-    {
-      p = static_cast<std::int32_t>(mesh.Points.size());
-      mesh.Points.push_back(arrangement.Position(v));
-      mesh.PointVertex.push_back(v);
-    }
-    polygon.push_back(p);
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      this->Vertices.push_back(loop[reverse ? (loop.size() - i) % loop.size() : i]);
+    this->Ends.push_back(this->Vertices.size());
+    this->Types.push_back({ inside, outside });
   }
-  mesh.Polygons.push_back(std::move(polygon));
-  mesh.InsideType.push_back(inside);
-  if (!mesh.Planar)
+};
+
+/// The faces whose lowest arrangement vertex is @p u (each face once: from its lowest vertex,
+/// the traces from its other vertices stop at that one).
+void FacesFrom(const FaceTracer& tracer, std::int64_t u, bool planar, FoundFaces& out,
+  std::vector<std::int64_t>& loop)
+{
+  const PlaneArrangement& arrangement = tracer.Arrangement;
+  const PlaneFamilySet& set = arrangement.Families();
+  const NeighbourhoodLabel& label = tracer.LabelOf(u);
+  if (label.Families.empty() && (!planar || label.Types[0] == 0))
+    return; // inside a cell: no interface (3D) or empty space (2D) starts here
+  if (planar)
   {
-    mesh.OutsideType.push_back(outside);
+    const auto around = tracer.Around(u, set.Size());
+    for (std::size_t i = 0; i < around.size(); ++i)
+    {
+      const IntVec3& a = arrangement.Direction(around[i].Direction);
+      const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
+      const IntVec3 w{ a[0] + b[0], a[1] + b[1], 0 };
+      const int type = TypeToward(label, [&](int f) { return set.Side(f, w); });
+      if (type != 0 && tracer.Trace(u, around[i], set.Size(), loop))
+        out.Add(loop, false, type, 0);
+    }
+    return;
+  }
+  for (int p : label.Families)
+  {
+    const auto around = tracer.Around(u, p);
+    if (around.size() < 4)
+      throw Error("mesh extraction: internal error (fewer than two lines in a plane)");
+    for (std::size_t i = 0; i < around.size(); ++i)
+    {
+      const IntVec3& a = arrangement.Direction(around[i].Direction);
+      const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
+      const IntVec3 w{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+      const auto side = [&](int sign)
+      { return TypeToward(label, [&](int f) { return f == p ? sign : set.Side(f, w); }); };
+      const int back = side(-1), front = side(+1);
+      if (back == front || !tracer.Trace(u, around[i], p, loop))
+        continue;
+      // Counter-clockwise around n_p: the normal points to the front side.
+      const bool backInside = front == 0 || (back != 0 && back < front);
+      if (backInside)
+        out.Add(loop, false, back, front);
+      else
+        out.Add(loop, true, front, back);
+    }
   }
 }
 
 } // namespace
 
 ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
-  const std::vector<std::int32_t>& labels)
+  const std::vector<std::int32_t>& labels, unsigned threads)
 {
   const std::int64_t n = arrangement.NumberOfVertices();
   CheckMeshLabels(analysis, n, labels);
-  const PlaneFamilySet& set = arrangement.Families();
   const FaceTracer tracer(analysis, arrangement, labels);
   ContinuousMesh mesh;
   mesh.Planar = arrangement.Planar();
+  // Faces found in chunks of vertices on threads, then added in the vertices' order: the same
+  // mesh for any thread count. A vertex becomes a mesh point the first time a face uses it.
+  constexpr std::int64_t chunk = 4096;
+  std::vector<FoundFaces> found(static_cast<std::size_t>((n + chunk - 1) / chunk));
+  RunChunks(found.size(), threads,
+    [&](std::size_t c)
+    {
+      std::vector<std::int64_t> loop;
+      const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
+      for (std::int64_t u = first; u < std::min(n, first + chunk); ++u)
+        FacesFrom(tracer, u, mesh.Planar, found[c], loop);
+    });
   std::vector<std::int32_t> pointOf(static_cast<std::size_t>(n), -1);
-  const auto emit = [&](
-                      const std::vector<std::int64_t>& loop, bool reverse, int inside, int outside)
-  { EmitPolygon(mesh, pointOf, arrangement, loop, reverse, inside, outside); };
-  const IntVec3 up{ 0, 0, 1 };
-  for (std::int64_t u = 0; u < n; ++u)
+  for (FoundFaces& faces : found)
   {
-    const NeighbourhoodLabel& label = tracer.LabelOf(u);
-    if (label.Families.empty() && (!mesh.Planar || label.Types[0] == 0))
+    std::size_t begin = 0;
+    for (std::size_t f = 0; f < faces.Ends.size(); ++f)
     {
-      continue; // inside a cell: no interface (3D) or empty space (2D) starts here
-    }
-    if (mesh.Planar)
-    {
-      const auto around = tracer.Around(u, up);
-      for (std::size_t i = 0; i < around.size(); ++i)
+      std::vector<std::int32_t> polygon;
+      polygon.reserve(faces.Ends[f] - begin);
+      for (std::size_t i = begin; i < faces.Ends[f]; ++i)
       {
-        const IntVec3& a = arrangement.Direction(around[i].Direction);
-        const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
-        const IntVec3 w{ a[0] + b[0], a[1] + b[1], 0 };
-        const int type = TypeToward(label, [&](int f) { return set.Side(f, w); });
-        if (type == 0)
+        const std::int64_t v = faces.Vertices[i];
+        auto& point = pointOf[static_cast<std::size_t>(v)];
+        if (point < 0)
         {
-          continue;
+          point = static_cast<std::int32_t>(mesh.Points.size());
+          mesh.Points.push_back(arrangement.Position(v));
+          mesh.PointVertex.push_back(v);
         }
-        const auto loop = tracer.Trace(u, around[i], up);
-        if (*std::min_element(loop.begin(), loop.end()) == u)
-        {
-          emit(loop, false, type, 0);
-        }
+        polygon.push_back(point);
       }
-      continue;
+      begin = faces.Ends[f];
+      mesh.Polygons.push_back(std::move(polygon));
+      mesh.InsideType.push_back(faces.Types[f][0]);
+      if (!mesh.Planar)
+        mesh.OutsideType.push_back(faces.Types[f][1]);
     }
-    for (int p : label.Families)
-    {
-      const IntVec3& np = set.Normal(p);
-      const auto around = tracer.Around(u, np);
-      if (around.size() < 4)
-      {
-        throw Error("mesh extraction: internal error (fewer than two lines in a plane)");
-      }
-      for (std::size_t i = 0; i < around.size(); ++i)
-      {
-        const IntVec3& a = arrangement.Direction(around[i].Direction);
-        const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
-        const IntVec3 w{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-        const auto side = [&](int sign)
-        { return TypeToward(label, [&](int f) { return f == p ? sign : set.Side(f, w); }); };
-        const int back = side(-1), front = side(+1);
-        if (back == front)
-        {
-          continue;
-        }
-        const auto loop = tracer.Trace(u, around[i], np);
-        if (*std::min_element(loop.begin(), loop.end()) != u)
-        {
-          continue;
-        }
-        // Counter-clockwise around n_p: the normal points to the front side.
-        const bool backInside = front == 0 || (back != 0 && back < front);
-        if (backInside)
-        {
-          emit(loop, false, back, front);
-        }
-        else
-        {
-          emit(loop, true, front, back);
-        }
-      }
-    }
+    faces = FoundFaces(); // its memory back
   }
   return mesh;
 }

@@ -38,9 +38,13 @@ struct ContinuousMesh
   std::vector<std::int32_t> OutsideType; ///< 3D only
 };
 
-/// @throw Error when @p labels do not fit the arrangement (a face would leave the box).
+/**
+ * The mesh of @p labels, its faces traced on @p threads threads (0: one per core); the mesh is
+ * the same for any thread count. @throw Error when @p labels do not fit the arrangement (a face
+ * would leave the box).
+ */
 ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
-  const std::vector<std::int32_t>& labels);
+  const std::vector<std::int32_t>& labels, unsigned threads = 0);
 
 /**
  * Each object type's closed surface: in 3D the polygons with InsideType t as they are and those

@@ -171,7 +171,8 @@ public:
   /// Empties solid parts that keep the types' shares from their targets (proportions).
   detail::ConstraintPlan::Proportioned KeepProportions()
   {
-    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel());
+    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel(),
+      static_cast<unsigned>(std::max(0, this->Options.Threads)));
   }
   /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
   std::int64_t RemoveNarrowParts()
@@ -733,6 +734,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const auto proportioned =
     options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
   result.ProportionPartsRemoved = proportioned.Removed;
+  result.ProportionVolumeRemoved = proportioned.VolumeRemoved;
   result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());

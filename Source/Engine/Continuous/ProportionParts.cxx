@@ -59,12 +59,13 @@ Deviation DeviationOf(const std::vector<double>& total, const std::vector<double
 template <typename BitOf>
 std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels,
-  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, BitOf bitOf)
+  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, unsigned threads,
+  BitOf bitOf)
 {
   std::vector<double> volumes(static_cast<std::size_t>(parts) * nt, 0.0);
   if (parts == 0)
     return volumes;
-  const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, labels);
+  const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, labels, threads);
   const Point3 origin = arrangement.Position(0);
   for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
   {
@@ -101,7 +102,7 @@ std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
 } // namespace
 
 ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
-  std::vector<std::int32_t>& labels, int emptyLabel) const
+  std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads) const
 {
   Proportioned out;
   if (!this->Proportions || !this->GuideWeights.empty())
@@ -113,11 +114,14 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   const std::size_t nt = this->Types.size();
   // Each part's volume per type, and the model's.
   const std::vector<double> occupancy = PartVolumes(this->Analysis, this->Arrangement, labels,
-    component, parts, nt, [this](int type) { return this->BitOf(type); });
+    component, parts, nt, threads, [this](int type) { return this->BitOf(type); });
   std::vector<double> total(nt, 0.0);
   for (std::int64_t c = 0; c < parts; ++c)
     for (std::size_t t = 1; t < nt; ++t)
       total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
+  double before = 0;
+  for (std::size_t t = 1; t < nt; ++t)
+    before += total[t];
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
@@ -162,6 +166,8 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   double solid = 0;
   for (std::size_t t = 1; t < nt; ++t)
     solid += total[t];
+  if (before > 0)
+    out.VolumeRemoved = std::max(0.0, 1 - solid / before);
   std::ostringstream why;
   why << std::setprecision(2) << std::fixed;
   for (std::size_t t = 1; t < nt && solid > 0; ++t)
