@@ -135,6 +135,30 @@ BENCHMARK(BM_ContinuousThreads)
   ->UseRealTime()
   ->Unit(benchmark::kMillisecond);
 
+/// The mesh of the house at 48 × 48 × 10 (plain, seed 5) on range(0) threads: the solver's
+/// proportion step and model.vtp both extract it.
+void BM_ExtractMesh(benchmark::State& state)
+{
+  const Example& e = Load("house.obj");
+  const auto p =
+    msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { 48, 48, 10 }, 0, {});
+  const msynth::PlaneArrangement arrangement(e.Analysis.Families(), p);
+  msynth::ContinuousSynthesisOptions options;
+  options.BlockSize = 4;
+  options.Seed = 5;
+  const auto r = msynth::SynthesizeContinuous(e.Analysis, arrangement, options);
+  std::size_t polygons = 0;
+  for (auto _ : state)
+  {
+    const auto mesh = msynth::ExtractMesh(
+      e.Analysis, arrangement, r.Labels, static_cast<unsigned>(state.range(0)));
+    polygons = mesh.Polygons.size();
+    benchmark::DoNotOptimize(mesh.Polygons.data());
+  }
+  state.counters["polygons"] = static_cast<double>(polygons);
+}
+BENCHMARK(BM_ExtractMesh)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
 /// The independent check of a model (the example analysis run on the output).
 void BM_ContinuousCheck(benchmark::State& state)
 {

@@ -72,6 +72,23 @@ public:
     const PlaneFamilySet& set = arrangement.Families();
     for (int p = 0; p <= set.Size(); ++p)
       this->RankDirections(p < set.Size() ? set.Normal(p) : IntVec3{ 0, 0, 1 });
+    const int d = arrangement.NumberOfDirections();
+    if (d <= 256)
+    {
+      this->Sides.resize(static_cast<std::size_t>(d) * static_cast<std::size_t>(d));
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b)
+          this->Sides[static_cast<std::size_t>(a * d + b)] = this->ComputeSides(a, b);
+    }
+  }
+
+  /// Bit f set when family f's normal points into the sector between directions @p a and @p b
+  /// (n_f · (a + b) > 0).
+  std::uint64_t PositiveSides(int a, int b) const
+  {
+    if (this->Sides.empty())
+      return this->ComputeSides(a, b);
+    return this->Sides[static_cast<std::size_t>(a * this->Arrangement.NumberOfDirections() + b)];
   }
 
   /// The plane index of family @p p's normal; Families().Size() is the plane z = 0 (2D).
@@ -79,23 +96,29 @@ public:
 
   /// Links of @p v within plane @p p, counter-clockwise around its normal, from the first link
   /// in the arrangement's order.
-  std::vector<PlaneArrangement::Link> Around(std::int64_t v, int p) const
+  void Around(std::int64_t v, int p, std::vector<PlaneArrangement::Link>& out) const
   {
     const std::vector<int>& rank = this->Ranks[static_cast<std::size_t>(p)];
     const int count = this->Counts[static_cast<std::size_t>(p)];
-    std::vector<PlaneArrangement::Link> out;
+    out.clear();
+    int first = 0;
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
-      if (rank[static_cast<std::size_t>(l->Direction)] >= 0)
-        out.push_back(*l);
-    if (out.empty())
-      return out;
-    const int first = rank[static_cast<std::size_t>(out[0].Direction)];
-    const auto key = [&](const PlaneArrangement::Link& l)
-    { return (rank[static_cast<std::size_t>(l.Direction)] - first + count) % count; };
-    std::sort(out.begin(), out.end(),
-      [&](const PlaneArrangement::Link& a, const PlaneArrangement::Link& b)
-      { return key(a) < key(b); });
-    return out;
+    {
+      const int r = rank[static_cast<std::size_t>(l->Direction)];
+      if (r < 0)
+        continue;
+      if (out.empty())
+        first = r;
+      // Insertion by the angle from the first link (a vertex has a few links in a plane).
+      const int key = (r - first + count) % count;
+      std::size_t i = out.size();
+      out.push_back(*l);
+      for (; i > 0 &&
+           (rank[static_cast<std::size_t>(out[i - 1].Direction)] - first + count) % count > key;
+           --i)
+        out[i] = out[i - 1];
+      out[i] = *l;
+    }
   }
 
   /**
@@ -162,6 +185,19 @@ public:
   const std::vector<std::int32_t>& Labels;
 
 private:
+  std::uint64_t ComputeSides(int a, int b) const
+  {
+    const PlaneFamilySet& set = this->Arrangement.Families();
+    const IntVec3& da = this->Arrangement.Direction(a);
+    const IntVec3& db = this->Arrangement.Direction(b);
+    const IntVec3 w{ da[0] + db[0], da[1] + db[1], da[2] + db[2] };
+    std::uint64_t mask = 0;
+    for (int f = 0; f < set.Size(); ++f)
+      if (set.Side(f, w) > 0)
+        mask |= std::uint64_t(1) << f;
+    return mask;
+  }
+
   /// Ranks the directions perpendicular to @p n by their angle counter-clockwise around it
   /// from the first of them (-1: not in the plane).
   void RankDirections(const IntVec3& n)
@@ -200,6 +236,7 @@ private:
   std::vector<IntVec3> Normals;
   std::vector<std::vector<int>> Ranks;
   std::vector<int> Counts;
+  std::vector<std::uint64_t> Sides; ///< PositiveSides of every pair of directions (few directions)
 };
 
 /// One label per arrangement vertex, each one of the example's. @throw Error.
@@ -241,7 +278,7 @@ struct FoundFaces
 /// The faces whose lowest arrangement vertex is @p u (each face once: from its lowest vertex,
 /// the traces from its other vertices stop at that one).
 void FacesFrom(const FaceTracer& tracer, std::int64_t u, bool planar, FoundFaces& out,
-  std::vector<std::int64_t>& loop)
+  std::vector<std::int64_t>& loop, std::vector<PlaneArrangement::Link>& around)
 {
   const PlaneArrangement& arrangement = tracer.Arrangement;
   const PlaneFamilySet& set = arrangement.Families();
@@ -250,13 +287,12 @@ void FacesFrom(const FaceTracer& tracer, std::int64_t u, bool planar, FoundFaces
     return; // inside a cell: no interface (3D) or empty space (2D) starts here
   if (planar)
   {
-    const auto around = tracer.Around(u, set.Size());
+    tracer.Around(u, set.Size(), around);
     for (std::size_t i = 0; i < around.size(); ++i)
     {
-      const IntVec3& a = arrangement.Direction(around[i].Direction);
-      const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
-      const IntVec3 w{ a[0] + b[0], a[1] + b[1], 0 };
-      const int type = TypeToward(label, [&](int f) { return set.Side(f, w); });
+      const std::uint64_t positive = tracer.PositiveSides(
+        around[i].Direction, around[(i + 1) % around.size()].Direction);
+      const int type = TypeToward(label, [&](int f) { return int((positive >> f) & 1u); });
       if (type != 0 && tracer.Trace(u, around[i], set.Size(), loop))
         out.Add(loop, false, type, 0);
     }
@@ -264,16 +300,18 @@ void FacesFrom(const FaceTracer& tracer, std::int64_t u, bool planar, FoundFaces
   }
   for (int p : label.Families)
   {
-    const auto around = tracer.Around(u, p);
+    tracer.Around(u, p, around);
     if (around.size() < 4)
       throw Error("mesh extraction: internal error (fewer than two lines in a plane)");
     for (std::size_t i = 0; i < around.size(); ++i)
     {
-      const IntVec3& a = arrangement.Direction(around[i].Direction);
-      const IntVec3& b = arrangement.Direction(around[(i + 1) % around.size()].Direction);
-      const IntVec3 w{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+      const std::uint64_t positive =
+        tracer.PositiveSides(around[i].Direction, around[(i + 1) % around.size()].Direction);
       const auto side = [&](int sign)
-      { return TypeToward(label, [&](int f) { return f == p ? sign : set.Side(f, w); }); };
+      {
+        return TypeToward(
+          label, [&](int f) { return f == p ? sign : int((positive >> f) & 1u); });
+      };
       const int back = side(-1), front = side(+1);
       if (back == front || !tracer.Trace(u, around[i], p, loop))
         continue;
@@ -305,9 +343,10 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
     [&](std::size_t c)
     {
       std::vector<std::int64_t> loop;
+      std::vector<PlaneArrangement::Link> around;
       const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
       for (std::int64_t u = first; u < std::min(n, first + chunk); ++u)
-        FacesFrom(tracer, u, mesh.Planar, found[c], loop);
+        FacesFrom(tracer, u, mesh.Planar, found[c], loop, around);
     });
   std::vector<std::int32_t> pointOf(static_cast<std::size_t>(n), -1);
   for (FoundFaces& faces : found)
@@ -338,6 +377,55 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
     faces = FoundFaces(); // its memory back
   }
   return mesh;
+}
+
+std::vector<MeshFace> FaceMeasures(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels, unsigned threads)
+{
+  const std::int64_t n = arrangement.NumberOfVertices();
+  CheckMeshLabels(analysis, n, labels);
+  const FaceTracer tracer(analysis, arrangement, labels);
+  const bool planar = arrangement.Planar();
+  const Point3 origin = arrangement.Position(0);
+  constexpr std::int64_t chunk = 4096;
+  std::vector<std::vector<MeshFace>> found(static_cast<std::size_t>((n + chunk - 1) / chunk));
+  RunChunks(found.size(), threads,
+    [&](std::size_t c)
+    {
+      FoundFaces faces;
+      std::vector<std::int64_t> loop;
+      std::vector<PlaneArrangement::Link> around;
+      const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
+      for (std::int64_t u = first; u < std::min(n, first + chunk); ++u)
+        FacesFrom(tracer, u, planar, faces, loop, around);
+      std::size_t begin = 0;
+      for (std::size_t f = 0; f < faces.Ends.size(); ++f)
+      {
+        const auto corner = [&](std::size_t k)
+        {
+          const Point3& q = arrangement.Position(faces.Vertices[begin + k]);
+          return Point3{ q[0] - origin[0], q[1] - origin[1], q[2] - origin[2] };
+        };
+        double measure = 0; // a fan from the first corner: a·(b × e) / 6, or the area in 2D
+        const Point3 a = corner(0);
+        for (std::size_t k = 1; k + 1 < faces.Ends[f] - begin; ++k)
+        {
+          const Point3 b = corner(k), e = corner(k + 1);
+          measure += planar
+            ? ((b[0] - a[0]) * (e[1] - a[1]) - (b[1] - a[1]) * (e[0] - a[0])) / 2
+            : (a[0] * (b[1] * e[2] - b[2] * e[1]) + a[1] * (b[2] * e[0] - b[0] * e[2]) +
+                a[2] * (b[0] * e[1] - b[1] * e[0])) /
+              6;
+        }
+        found[c].push_back({ faces.Vertices[begin], faces.Types[f][0],
+          planar ? 0 : faces.Types[f][1], measure });
+        begin = faces.Ends[f];
+      }
+    });
+  std::vector<MeshFace> out;
+  for (const auto& faces : found)
+    out.insert(out.end(), faces.begin(), faces.end());
+  return out;
 }
 
 std::map<int, std::vector<std::vector<std::int32_t>>> SurfacesByType(const ContinuousMesh& mesh)
