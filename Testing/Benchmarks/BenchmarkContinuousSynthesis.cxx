@@ -43,7 +43,7 @@ double PeakMegabytes()
 }
 
 /// The whole chain after reading: arrangement, labels (blocks of 4 spacings), mesh. The
-/// example is Data/Continuous/cottage.obj (29 polygons, 5 object types, 130 labels); the box
+/// example is Data/Continuous/cottage.obj (23 polygons, 4 object types, 116 labels); the box
 /// is S × S × 6 example units.
 void BM_ContinuousChain(benchmark::State& state)
 {
@@ -150,8 +150,8 @@ void BM_ExtractMesh(benchmark::State& state)
   std::size_t polygons = 0;
   for (auto _ : state)
   {
-    const auto mesh = msynth::ExtractMesh(
-      e.Analysis, arrangement, r.Labels, static_cast<unsigned>(state.range(0)));
+    const auto mesh =
+      msynth::ExtractMesh(e.Analysis, arrangement, r.Labels, static_cast<unsigned>(state.range(0)));
     polygons = mesh.Polygons.size();
     benchmark::DoNotOptimize(mesh.Polygons.data());
   }
