@@ -30,7 +30,8 @@ struct Deviation
   }
 };
 
-Deviation DeviationOf(const std::vector<double>& total, const std::vector<double>& target)
+Deviation DeviationOf(const std::vector<double>& total, const std::vector<double>& target,
+  const std::vector<char>& unreachable)
 {
   double solid = 0;
   for (std::size_t t = 1; t < total.size(); ++t)
@@ -41,6 +42,8 @@ Deviation DeviationOf(const std::vector<double>& total, const std::vector<double
   d.Worst = d.Sum = 0;
   for (std::size_t t = 1; t < total.size(); ++t)
   {
+    if (unreachable[t])
+      continue;
     const double share = total[t] / solid;
     const double off = target[t] > 0 ? std::abs(share - target[t]) / target[t] : share;
     d.Worst = std::max(d.Worst, off);
@@ -102,11 +105,33 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   double before = 0;
   for (std::size_t t = 1; t < nt; ++t)
     before += total[t];
+  // Types no choice of parts brings within the tolerance are left out of the aim (a union's share
+  // lies between its parts' shares): chasing them would empty part after part for nothing.
+  std::vector<char> unreachable(nt, 0);
+  std::vector<double> lowest(nt, 1.0), highest(nt, 0.0);
+  for (std::int64_t c = 0; c < parts; ++c)
+  {
+    double solid = 0;
+    for (std::size_t t = 1; t < nt; ++t)
+      solid += occupancy[static_cast<std::size_t>(c) * nt + t];
+    if (!(solid > 1e-9))
+      continue;
+    for (std::size_t t = 1; t < nt; ++t)
+    {
+      const double share = occupancy[static_cast<std::size_t>(c) * nt + t] / solid;
+      lowest[t] = std::min(lowest[t], share);
+      highest[t] = std::max(highest[t], share);
+    }
+  }
+  for (std::size_t t = 1; t < nt; ++t)
+    unreachable[t] = this->Target[t] > 0 &&
+      (highest[t] < (1 - ProportionTolerance) * this->Target[t] ||
+        lowest[t] > (1 + ProportionTolerance) * this->Target[t]);
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
   std::vector<char> removed(static_cast<std::size_t>(parts), 0);
-  Deviation now = DeviationOf(total, this->Target);
+  Deviation now = DeviationOf(total, this->Target, unreachable);
   std::vector<double> trial(nt);
   while (now.Worst > ProportionMargin)
   {
@@ -118,7 +143,7 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
         continue;
       for (std::size_t t = 1; t < nt; ++t)
         trial[t] = total[t] - occupancy[static_cast<std::size_t>(c) * nt + t];
-      const Deviation d = DeviationOf(trial, this->Target);
+      const Deviation d = DeviationOf(trial, this->Target, unreachable);
       if (d < bestDeviation)
       {
         bestDeviation = d;
@@ -157,8 +182,16 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
       continue;
     out.Outside.push_back(this->Types[t]);
     why << (why.tellp() > 0 ? "; " : "") << "type " << this->Types[t] << ": " << share
-        << " of the solid (example " << target << "), "
-        << (share > target
+        << " of the solid (example " << target << "), ";
+    if (unreachable[t])
+    {
+      why << (share > target ? "too much: every part holds at least "
+                             : "too little: no part holds more than ")
+          << (share > target ? lowest[t] : highest[t])
+          << " of it, so emptying parts cannot bring it within 25 % and none was emptied for it";
+      continue;
+    }
+    why << (share > target
                ? "too much, and emptying any part holding it takes as much of the other types"
                : "too little: the draw favours it, but its labels are mostly forced by the "
                  "adjacency constraint, and emptying parts cannot add it");
