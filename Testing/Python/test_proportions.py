@@ -58,11 +58,16 @@ class ProportionsMatrix(unittest.TestCase):
         self.check("domed-building", False)
         self.check("domed-building", True)
 
-    def test_cottage_and_town_report_what_falls_short(self):
-        """Seed 1 only (seconds a run; all five in the benchmark): the report is true."""
-        self.check("cottage", False, [1])
-        self.check("cottage", True, [1])
-        self.check("town", True, [1])
+    def test_cottage_reports_what_falls_short(self):
+        """The report is true (grounded holds in 4 of 5 seeds, the porches fall short with the
+        documented constraints)."""
+        self.check("cottage", False)
+        self.check("cottage", True)
+
+    def test_town_reports_what_falls_short(self):
+        """Seeds 1-5 (about 5 s a run): the report is true (2 of 5 documented runs hold)."""
+        self.check("town", False)
+        self.check("town", True)
 
     def test_a_guide_keeps_every_part(self):
         """A guide that spells letters with 0/1 masks asks for houses in places: no part is
