@@ -80,8 +80,8 @@ struct RunParts
             work(v, this->Initial.data() + static_cast<std::size_t>(v) * words);
         });
     };
-    eachVertex([&](std::int64_t v, std::uint64_t* domain)
-      { this->Rules.InitialDomain(v, domain, seams); });
+    eachVertex(
+      [&](std::int64_t v, std::uint64_t* domain) { this->Rules.InitialDomain(v, domain, seams); });
     if (!options.PartOf.empty())
       RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
     if (options.Choice == LabelChoice::Frequency)

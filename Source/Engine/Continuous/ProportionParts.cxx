@@ -82,6 +82,39 @@ std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
   }
   return volumes;
 }
+/**
+ * The types (by bit) that no choice of parts brings within ProportionTolerance of @p target: a
+ * union of parts has a share between its parts' own (@p lowest, @p highest), so when every
+ * part has too little of a type (or every part too much), chasing it would empty part after
+ * part for nothing.
+ */
+std::vector<char> UnreachableTypes(const std::vector<double>& occupancy, std::int64_t parts,
+  std::size_t nt, const std::vector<double>& target, std::vector<double>& lowest,
+  std::vector<double>& highest)
+{
+  lowest.assign(nt, 1.0);
+  highest.assign(nt, 0.0);
+  for (std::int64_t c = 0; c < parts; ++c)
+  {
+    double solid = 0;
+    for (std::size_t t = 1; t < nt; ++t)
+      solid += occupancy[static_cast<std::size_t>(c) * nt + t];
+    if (!(solid > 1e-9))
+      continue;
+    for (std::size_t t = 1; t < nt; ++t)
+    {
+      const double share = occupancy[static_cast<std::size_t>(c) * nt + t] / solid;
+      lowest[t] = std::min(lowest[t], share);
+      highest[t] = std::max(highest[t], share);
+    }
+  }
+  std::vector<char> unreachable(nt, 0);
+  for (std::size_t t = 1; t < nt; ++t)
+    unreachable[t] = target[t] > 0 &&
+      (highest[t] < (1 - ConstraintPlan::ProportionTolerance) * target[t] ||
+        lowest[t] > (1 + ConstraintPlan::ProportionTolerance) * target[t]);
+  return unreachable;
+}
 } // namespace
 
 ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
@@ -105,28 +138,10 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   double before = 0;
   for (std::size_t t = 1; t < nt; ++t)
     before += total[t];
-  // Types no choice of parts brings within the tolerance are left out of the aim (a union's share
-  // lies between its parts' shares): chasing them would empty part after part for nothing.
-  std::vector<char> unreachable(nt, 0);
-  std::vector<double> lowest(nt, 1.0), highest(nt, 0.0);
-  for (std::int64_t c = 0; c < parts; ++c)
-  {
-    double solid = 0;
-    for (std::size_t t = 1; t < nt; ++t)
-      solid += occupancy[static_cast<std::size_t>(c) * nt + t];
-    if (!(solid > 1e-9))
-      continue;
-    for (std::size_t t = 1; t < nt; ++t)
-    {
-      const double share = occupancy[static_cast<std::size_t>(c) * nt + t] / solid;
-      lowest[t] = std::min(lowest[t], share);
-      highest[t] = std::max(highest[t], share);
-    }
-  }
-  for (std::size_t t = 1; t < nt; ++t)
-    unreachable[t] = this->Target[t] > 0 &&
-      (highest[t] < (1 - ProportionTolerance) * this->Target[t] ||
-        lowest[t] > (1 + ProportionTolerance) * this->Target[t]);
+  // Types no choice of parts brings within the tolerance are left out of the aim.
+  std::vector<double> lowest, highest;
+  const std::vector<char> unreachable =
+    UnreachableTypes(occupancy, parts, nt, this->Target, lowest, highest);
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
@@ -192,9 +207,9 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
       continue;
     }
     why << (share > target
-               ? "too much, and emptying any part holding it takes as much of the other types"
-               : "too little: the draw favours it, but its labels are mostly forced by the "
-                 "adjacency constraint, and emptying parts cannot add it");
+        ? "too much, and emptying any part holding it takes as much of the other types"
+        : "too little: the draw favours it, but its labels are mostly forced by the "
+          "adjacency constraint, and emptying parts cannot add it");
   }
   out.Reason = why.str();
   return out;
