@@ -490,7 +490,9 @@ TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
     return sum;
   };
   // Over seeds 1-3 (one small box is a house or two, and emptying parts moves shares in steps):
-  // steering brings every model nearer, and a target raises its type's mean share.
+  // steering brings every model nearer, and a target raises its type's mean share (one some
+  // parts reach: walls 0.6, the example's 0.5; a target no part reaches does not drive the
+  // emptying of parts, KeepProportionateParts).
   double steeredWall = 0, targetedWall = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed)
   {
@@ -503,7 +505,7 @@ TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
     o.Constraints.KeepProportions = true;
     const auto steered = Synthesize(cottage, { 12, 12, 5 }, o).Fractions();
     EXPECT_LT(mismatch(steered), without) << "seed " << seed;
-    o.Constraints.TargetFractions[1] = 0.8;
+    o.Constraints.TargetFractions[1] = 0.6;
     const auto targeted = Synthesize(cottage, { 12, 12, 5 }, o).Fractions();
     steeredWall += steered.count(1) ? steered.at(1) : 0.0;
     targetedWall += targeted.count(1) ? targeted.at(1) : 0.0;
