@@ -490,9 +490,8 @@ TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
     return sum;
   };
   // Over seeds 1-3 (one small box is a house or two, and emptying parts moves shares in steps):
-  // steering brings every model nearer, and a target raises its type's mean share (one some
-  // parts reach: walls 0.6, the example's 0.5; a target no part reaches does not drive the
-  // emptying of parts, KeepProportionateParts).
+  // steering brings every model nearer, and a target raises its type's mean share (walls 0.6,
+  // the example's 0.5).
   double steeredWall = 0, targetedWall = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed)
   {

@@ -59,8 +59,8 @@ class ProportionsMatrix(unittest.TestCase):
         self.check("domed-building", True)
 
     def test_cottage_reports_what_falls_short(self):
-        """The report is true (grounded holds in 4 of 5 seeds, the porches fall short with the
-        documented constraints)."""
+        """The report is true (grounded holds in 4 of 5 seeds; with the documented constraints
+        the porches fall short)."""
         self.check("cottage", False)
         self.check("cottage", True)
 

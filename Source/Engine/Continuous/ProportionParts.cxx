@@ -30,8 +30,7 @@ struct Deviation
   }
 };
 
-Deviation DeviationOf(const std::vector<double>& total, const std::vector<double>& target,
-  const std::vector<char>& unreachable)
+Deviation DeviationOf(const std::vector<double>& total, const std::vector<double>& target)
 {
   double solid = 0;
   for (std::size_t t = 1; t < total.size(); ++t)
@@ -42,8 +41,6 @@ Deviation DeviationOf(const std::vector<double>& total, const std::vector<double
   d.Worst = d.Sum = 0;
   for (std::size_t t = 1; t < total.size(); ++t)
   {
-    if (unreachable[t])
-      continue;
     const double share = total[t] / solid;
     const double off = target[t] > 0 ? std::abs(share - target[t]) / target[t] : share;
     d.Worst = std::max(d.Worst, off);
@@ -82,39 +79,6 @@ std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
   }
   return volumes;
 }
-/**
- * The types (by bit) that no choice of parts brings within ProportionTolerance of @p target: a
- * union of parts has a share between its parts' own (@p lowest, @p highest), so when every
- * part has too little of a type (or every part too much), chasing it would empty part after
- * part for nothing.
- */
-std::vector<char> UnreachableTypes(const std::vector<double>& occupancy, std::int64_t parts,
-  std::size_t nt, const std::vector<double>& target, std::vector<double>& lowest,
-  std::vector<double>& highest)
-{
-  lowest.assign(nt, 1.0);
-  highest.assign(nt, 0.0);
-  for (std::int64_t c = 0; c < parts; ++c)
-  {
-    double solid = 0;
-    for (std::size_t t = 1; t < nt; ++t)
-      solid += occupancy[static_cast<std::size_t>(c) * nt + t];
-    if (!(solid > 1e-9))
-      continue;
-    for (std::size_t t = 1; t < nt; ++t)
-    {
-      const double share = occupancy[static_cast<std::size_t>(c) * nt + t] / solid;
-      lowest[t] = std::min(lowest[t], share);
-      highest[t] = std::max(highest[t], share);
-    }
-  }
-  std::vector<char> unreachable(nt, 0);
-  for (std::size_t t = 1; t < nt; ++t)
-    unreachable[t] = target[t] > 0 &&
-      (highest[t] < (1 - ConstraintPlan::ProportionTolerance) * target[t] ||
-        lowest[t] > (1 + ConstraintPlan::ProportionTolerance) * target[t]);
-  return unreachable;
-}
 } // namespace
 
 ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
@@ -138,15 +102,11 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   double before = 0;
   for (std::size_t t = 1; t < nt; ++t)
     before += total[t];
-  // Types no choice of parts brings within the tolerance are left out of the aim.
-  std::vector<double> lowest, highest;
-  const std::vector<char> unreachable =
-    UnreachableTypes(occupancy, parts, nt, this->Target, lowest, highest);
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
   std::vector<char> removed(static_cast<std::size_t>(parts), 0);
-  Deviation now = DeviationOf(total, this->Target, unreachable);
+  Deviation now = DeviationOf(total, this->Target);
   std::vector<double> trial(nt);
   while (now.Worst > ProportionMargin)
   {
@@ -158,7 +118,7 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
         continue;
       for (std::size_t t = 1; t < nt; ++t)
         trial[t] = total[t] - occupancy[static_cast<std::size_t>(c) * nt + t];
-      const Deviation d = DeviationOf(trial, this->Target, unreachable);
+      const Deviation d = DeviationOf(trial, this->Target);
       if (d < bestDeviation)
       {
         bestDeviation = d;
@@ -197,19 +157,11 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
       continue;
     out.Outside.push_back(this->Types[t]);
     why << (why.tellp() > 0 ? "; " : "") << "type " << this->Types[t] << ": " << share
-        << " of the solid (example " << target << "), ";
-    if (unreachable[t])
-    {
-      why << (share > target ? "too much: every part holds at least "
-                             : "too little: no part holds more than ")
-          << (share > target ? lowest[t] : highest[t])
-          << " of it, so emptying parts cannot bring it within 25 % and none was emptied for it";
-      continue;
-    }
-    why << (share > target
-        ? "too much, and emptying any part holding it takes as much of the other types"
-        : "too little: the draw favours it, but its labels are mostly forced by the "
-          "adjacency constraint, and emptying parts cannot add it");
+        << " of the solid (example " << target << "), "
+        << (share > target
+               ? "too much, and emptying any part holding it takes as much of the other types"
+               : "too little: the draw favours it, but its labels are mostly forced by the "
+                 "adjacency constraint, and emptying parts cannot add it");
   }
   out.Reason = why.str();
   return out;
