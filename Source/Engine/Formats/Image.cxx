@@ -4,13 +4,15 @@
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
-#include "Core/ParallelChunks.h"
 
 #include <png.h>
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
+#include <system_error>
+#include <thread>
 
 #include <cctype>
 #include <csetjmp>
@@ -300,13 +302,34 @@ void WritePng(const std::string& path, int width, int height,
   // Strips of a fixed height, so the file is the same whatever the number of threads.
   const int rowsPerStrip = std::max(1, (1 << 20) / (4 * width));
   std::vector<Strip> strips(static_cast<std::size_t>((height + rowsPerStrip - 1) / rowsPerStrip));
-  RunChunks(strips.size(), 0,
-    [&](std::size_t s)
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&]()
+  {
+    for (std::size_t s = next++; s < strips.size(); s = next++)
     {
       const int first = static_cast<int>(s) * rowsPerStrip;
       DeflateStrip(first, std::min(height, first + rowsPerStrip), s + 1 == strips.size(), width,
         opaque, compression, row, strips[s]);
-    });
+    }
+  };
+  std::vector<std::thread> threads;
+  const unsigned extra = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()),
+                           static_cast<unsigned>(strips.size())) -
+    1;
+  for (unsigned t = 0; t < extra; ++t)
+  {
+    try
+    {
+      threads.emplace_back(work);
+    }
+    catch (const std::system_error&)
+    {
+      break; // fewer threads: the same file, later
+    }
+  }
+  work();
+  for (auto& t : threads)
+    t.join();
   uLong adler = 1;
   for (const Strip& s : strips)
   {
