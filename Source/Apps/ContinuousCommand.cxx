@@ -106,6 +106,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("NarrowPartsRemoved", CountOf(fd, "NarrowPartsRemoved"))
     // Proportions: parts emptied to keep the types' shares, and the types still outside 25 %.
     .Count("ProportionPartsRemoved", CountOf(fd, "ProportionPartsRemoved"))
+    .Number("ProportionVolumeRemoved", NumberOf(fd, "ProportionVolumeRemoved"))
     .Text("ProportionsOutside", MessageOf(fd, "ProportionsOutside"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))

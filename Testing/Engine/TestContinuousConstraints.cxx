@@ -489,19 +489,27 @@ TEST(ContinuousConstraints, ProportionsComeCloserToTheExample)
       sum += std::abs((f.count(t) ? f.at(t) : 0.0) - target);
     return sum;
   };
-  ContinuousSynthesisOptions o;
-  o.Seed = 5;
-  o.BlockSize = 4;
-  o.Constraints.Grounded = true; // free-standing chimneys otherwise float everywhere
-  o.Constraints.KeepProportions = false;
-  const double without = mismatch(Synthesize(cottage, { 10, 10, 5 }, o).Fractions());
-  o.Constraints.KeepProportions = true;
-  const auto steered = Synthesize(cottage, { 10, 10, 5 }, o).Fractions();
-  EXPECT_LT(mismatch(steered), without);
-  // A target moves its type's share.
-  o.Constraints.TargetFractions[1] = 0.8;
-  const auto targeted = Synthesize(cottage, { 10, 10, 5 }, o).Fractions();
-  EXPECT_GT(targeted.count(1) ? targeted.at(1) : 0.0, steered.count(1) ? steered.at(1) : 0.0);
+  // Over seeds 1-3 (one small box is a house or two, and emptying parts moves shares in steps):
+  // steering brings every model nearer, and a target raises its type's mean share (walls 0.6,
+  // the example's 0.5).
+  double steeredWall = 0, targetedWall = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = seed;
+    o.BlockSize = 4;
+    o.Constraints.Grounded = true; // lone chimneys and porches would float otherwise
+    o.Constraints.KeepProportions = false;
+    const double without = mismatch(Synthesize(cottage, { 12, 12, 5 }, o).Fractions());
+    o.Constraints.KeepProportions = true;
+    const auto steered = Synthesize(cottage, { 12, 12, 5 }, o).Fractions();
+    EXPECT_LT(mismatch(steered), without) << "seed " << seed;
+    o.Constraints.TargetFractions[1] = 0.6;
+    const auto targeted = Synthesize(cottage, { 12, 12, 5 }, o).Fractions();
+    steeredWall += steered.count(1) ? steered.at(1) : 0.0;
+    targetedWall += targeted.count(1) ? targeted.at(1) : 0.0;
+  }
+  EXPECT_GT(targetedWall, steeredWall);
 }
 
 TEST(ContinuousConstraints, ParsingNamesTheProblem)

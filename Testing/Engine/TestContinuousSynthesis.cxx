@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <set>
+#include <string>
 #include <thread>
 
 using namespace msynth;
@@ -387,6 +389,51 @@ TEST(ContinuousSynthesis, ThreadsGiveTheSameModel)
   ASSERT_TRUE(s.Succeeded()) << s.Message;
   EXPECT_EQ(s.Statistics.Threads, 1);
   EXPECT_EQ(s.Statistics.Phases, s.Statistics.Blocks);
+}
+
+TEST(ContinuousMesh, TheSameMeshOnAnyNumberOfThreads)
+{
+  // Faces are traced in chunks of 4096 vertices on threads and added in the vertices' order:
+  // the mesh (points, polygons, types) is the same for 1, 2 and 3 threads, and FaceMeasures
+  // (the proportion step's volumes) lists the same faces with their divergence-theorem terms.
+  for (const char* name : { "house.obj", "triangle2d.obj" })
+  {
+    const Loaded l = Load(name);
+    const bool planar = std::string(name) == "triangle2d.obj";
+    const ArrangementParameters p = DefaultArrangementParameters(l.Example, l.Analysis,
+      planar ? Point3{ 20, 20, 1 } : Point3{ 24, 24, 8 }, planar ? 0.1 : 0, {});
+    const PlaneArrangement arrangement(l.Analysis.Families(), p);
+    ASSERT_GT(arrangement.NumberOfVertices(), 3 * 4096) << name;
+    ContinuousSynthesisOptions options;
+    options.Seed = 3;
+    options.BlockSize = 4;
+    const ContinuousSynthesisResult r = SynthesizeContinuous(l.Analysis, arrangement, options);
+    ASSERT_TRUE(r.Succeeded()) << r.Message;
+    const ContinuousMesh one = ExtractMesh(l.Analysis, arrangement, r.Labels, 1);
+    ASSERT_GT(one.Polygons.size(), 100u) << name;
+    for (unsigned threads : { 2u, 3u })
+    {
+      const ContinuousMesh other = ExtractMesh(l.Analysis, arrangement, r.Labels, threads);
+      EXPECT_EQ(one.Points, other.Points) << name << threads;
+      EXPECT_EQ(one.PointVertex, other.PointVertex) << name << threads;
+      EXPECT_EQ(one.Polygons, other.Polygons) << name << threads;
+      EXPECT_EQ(one.InsideType, other.InsideType) << name << threads;
+      EXPECT_EQ(one.OutsideType, other.OutsideType) << name << threads;
+    }
+    const auto faces = FaceMeasures(l.Analysis, arrangement, r.Labels, 2);
+    ASSERT_EQ(faces.size(), one.Polygons.size()) << name;
+    std::map<int, double> volumes;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      EXPECT_EQ(faces[f].Corner, one.PointVertex[static_cast<std::size_t>(one.Polygons[f][0])]);
+      EXPECT_EQ(faces[f].Inside, one.InsideType[f]);
+      EXPECT_EQ(faces[f].Outside, planar ? 0 : one.OutsideType[f]);
+      volumes[faces[f].Inside] += faces[f].Measure;
+      volumes[faces[f].Outside] -= faces[f].Measure;
+    }
+    for (const auto& [type, volume] : TypeVolumes(one))
+      EXPECT_NEAR(volumes[type], volume, 1e-6 * (1 + std::abs(volume))) << name << type;
+  }
 }
 
 TEST(ContinuousSynthesis, BlocksSpreadOverProcessesGiveTheSameModel)

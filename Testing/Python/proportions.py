@@ -28,7 +28,7 @@ EXAMPLES = {
                             "--thickness", "wall:y:2+"], (16, 16, 8), (24, 24, 10)),
     "box-building": ("box-building.obj", ["--thickness", "building:z:6", "--thickness", "roof:z"],
                      (24, 24, 10), (48, 48, 10)),
-    "cottage": ("cottage.obj", ["--thickness", "wall:z:8", "--overhang", "roof", "--thickness",
+    "cottage": ("cottage.obj", ["--thickness", "wall:z:2", "--overhang", "roof", "--thickness",
                                 "wall:x:2+", "--thickness", "wall:y:2+"], (12, 12, 8), (16, 16, 8)),
     "domed-building": ("domed-building.obj", ["--thickness", "wall:z:3"], (24, 24, 10),
                        (48, 48, 10)),

@@ -20,8 +20,9 @@ SEEDS = range(1, 6)
 HOLDS = {("house", False), ("house", True), ("box-building", False), ("box-building", True),
          ("domed-building", False)}
 # The rest is measured and reported, not yet held (Documentation/continuous-synthesis.md,
-# "Limits"): the cottage (its porch is rarely synthesized), the domed building with storeys
-# (one building whose dome outgrows its walls), the town.
+# "Limits"): the cottage (grounded 4 of 5; its porches too small with the documented
+# constraints), the domed building with storeys (one building whose dome outgrows its walls),
+# the town.
 
 
 class ProportionsMatrix(unittest.TestCase):
@@ -57,11 +58,16 @@ class ProportionsMatrix(unittest.TestCase):
         self.check("domed-building", False)
         self.check("domed-building", True)
 
-    def test_cottage_and_town_report_what_falls_short(self):
-        """Seed 1 only (seconds a run; all five in the benchmark): the report is true."""
-        self.check("cottage", False, [1])
-        self.check("cottage", True, [1])
-        self.check("town", True, [1])
+    def test_cottage_reports_what_falls_short(self):
+        """The report is true (grounded holds in 4 of 5 seeds; with the documented constraints
+        the porches fall short)."""
+        self.check("cottage", False)
+        self.check("cottage", True)
+
+    def test_town_reports_what_falls_short(self):
+        """Seeds 1-5 (about 5 s a run): the report is true (2 of 5 documented runs hold)."""
+        self.check("town", False)
+        self.check("town", True)
 
     def test_a_guide_keeps_every_part(self):
         """A guide that spells letters with 0/1 masks asks for houses in places: no part is

@@ -118,6 +118,7 @@ public:
   struct Proportioned
   {
     std::int64_t Removed = 0; ///< parts emptied
+    double VolumeRemoved = 0; ///< the fraction of the solid volume they held (no cap)
     std::vector<int> Outside; ///< object types still further than ProportionTolerance
     std::string Reason;       ///< per such type, its share, the example's, and why
   };
@@ -126,9 +127,12 @@ public:
    * empties whole solid parts, one at a time, each the one whose
    * removal brings the types' shares nearest the targets (largest relative deviation first),
    * while that is nearer than keeping it and some type is further than ProportionMargin off.
-   * Always consistent, as RemoveStrayParts; deterministic (ties: the part found first).
+   * Always consistent, as RemoveStrayParts; deterministic (ties: the part found first). The
+   * parts' volumes come from the labels' mesh, traced on @p threads threads (0: one per core;
+   * the same parts emptied for any count).
    */
-  Proportioned KeepProportionateParts(std::vector<std::int32_t>& labels, int emptyLabel) const;
+  Proportioned KeepProportionateParts(
+    std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads) const;
   /// Empties every connected solid part holding one of @p vertices; returns how many.
   std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
     const std::vector<std::int64_t>& vertices) const;

@@ -38,9 +38,32 @@ struct ContinuousMesh
   std::vector<std::int32_t> OutsideType; ///< 3D only
 };
 
-/// @throw Error when @p labels do not fit the arrangement (a face would leave the box).
+/**
+ * The mesh of @p labels, its faces traced on @p threads threads (0: one per core); the mesh is
+ * the same for any thread count. @throw Error when @p labels do not fit the arrangement (a face
+ * would leave the box).
+ */
 ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
-  const std::vector<std::int32_t>& labels);
+  const std::vector<std::int32_t>& labels, unsigned threads = 0);
+
+/// A polygon of ExtractMesh's mesh, as FaceMeasures gives it.
+struct MeshFace
+{
+  std::int64_t Corner = 0; ///< the arrangement vertex of its first corner
+  std::int32_t Inside = 0;
+  std::int32_t Outside = 0; ///< 3D only (0 in 2D)
+  /// Its term of the divergence theorem: the signed volume of the cone from
+  /// arrangement.Position(0) over it (3D), or its signed area (2D).
+  double Measure = 0;
+};
+
+/**
+ * ExtractMesh's polygons, in its order, without building the mesh: what volumes per part need
+ * (KeepProportionateParts). The measures are computed on @p threads threads as ExtractMesh would
+ * give them; summed in this order they are the same for any thread count.
+ */
+std::vector<MeshFace> FaceMeasures(const PolyhedralAnalysis& analysis,
+  const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels, unsigned threads);
 
 /**
  * Each object type's closed surface: in 3D the polygons with InsideType t as they are and those

@@ -3,6 +3,7 @@
 
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
+#include "Core/ParallelChunks.h"
 
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMirror.h"
@@ -66,9 +67,21 @@ struct RunParts
     int seams = 0;
     for (const ArrangementMirror* plan : options.PartOf)
       seams |= 1 << plan->Axis;
-    for (std::int64_t v = 0; v < n; ++v)
-      this->Rules.InitialDomain(
-        v, this->Initial.data() + static_cast<std::size_t>(v) * words, seams);
+    // Each vertex's starting catalog on its own (threads: chunks of vertices, the same catalogs).
+    const auto eachVertex = [&](const auto& work)
+    {
+      constexpr std::int64_t chunk = 8192;
+      RunChunks(static_cast<std::size_t>((n + chunk - 1) / chunk),
+        static_cast<unsigned>(std::max(0, options.Threads)),
+        [&](std::size_t c)
+        {
+          const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
+          for (std::int64_t v = first; v < std::min(n, first + chunk); ++v)
+            work(v, this->Initial.data() + static_cast<std::size_t>(v) * words);
+        });
+    };
+    eachVertex(
+      [&](std::int64_t v, std::uint64_t* domain) { this->Rules.InitialDomain(v, domain, seams); });
     if (!options.PartOf.empty())
       RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
     if (options.Choice == LabelChoice::Frequency)
@@ -82,8 +95,7 @@ struct RunParts
         "continuous synthesis: only uniform and frequency-weighted label choice are available");
     }
     if (options.Constraints.RestrictsCatalog())
-      for (std::int64_t v = 0; v < n; ++v)
-        this->Plan->Restrict(v, this->Initial.data() + static_cast<std::size_t>(v) * words);
+      eachVertex([&](std::int64_t v, std::uint64_t* domain) { this->Plan->Restrict(v, domain); });
     if (this->Parallel)
     {
       this->Order.resize(this->Layout->Grid.size());
@@ -171,7 +183,8 @@ public:
   /// Empties solid parts that keep the types' shares from their targets (proportions).
   detail::ConstraintPlan::Proportioned KeepProportions()
   {
-    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel());
+    return this->Plan->KeepProportionateParts(this->Result.Labels, this->Rules.EmptyLabel(),
+      static_cast<unsigned>(std::max(0, this->Options.Threads)));
   }
   /// Empties the solid parts holding a corner too close to another plane's feature (slivers).
   std::int64_t RemoveNarrowParts()
@@ -733,6 +746,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   const auto proportioned =
     options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
   result.ProportionPartsRemoved = proportioned.Removed;
+  result.ProportionVolumeRemoved = proportioned.VolumeRemoved;
   result.ProportionsOutside = proportioned.Reason;
   result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
     Summary(stats, run.WholeModel());

@@ -127,6 +127,8 @@ struct ContinuousSynthesisResult
   /// Proportions steered: solid parts emptied to bring the types' shares within the tolerance
   /// (ConstraintPlan::KeepProportionateParts), and the types still outside it with why ("").
   std::int64_t ProportionPartsRemoved = 0;
+  /// The fraction of the solid volume those parts held (uncapped; see continuous-synthesis.md).
+  double ProportionVolumeRemoved = 0;
   std::string ProportionsOutside;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).

@@ -50,58 +50,39 @@ Deviation DeviationOf(const std::vector<double>& total, const std::vector<double
 }
 
 /**
- * Each part's volume per type bit ([part][type]): the mesh of the labels (polygons oriented
- * from InsideType to OutsideType), each polygon's divergence-theorem term added to its inside
- * type and taken from its outside type, in the part of its first corner (a polygon bounds one
- * part: its corners are joined by edges that touch solid). Vertex occupancy, which the
- * steering tallies, counts regions of many planes (roof slopes) several times over.
+ * Each part's volume per type bit ([part][type]): the faces of the labels' mesh (oriented from
+ * InsideType to OutsideType), each face's divergence-theorem term added to its inside type and
+ * taken from its outside type, in the part of its first corner (a face bounds one part: its
+ * corners are joined by edges that touch solid). Vertex occupancy, which the steering tallies,
+ * counts regions of many planes (roof slopes) several times over.
  */
 template <typename BitOf>
 std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
   const PlaneArrangement& arrangement, const std::vector<std::int32_t>& labels,
-  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, BitOf bitOf)
+  const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, unsigned threads,
+  BitOf bitOf)
 {
   std::vector<double> volumes(static_cast<std::size_t>(parts) * nt, 0.0);
   if (parts == 0)
     return volumes;
-  const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, labels);
-  const Point3 origin = arrangement.Position(0);
-  for (std::size_t f = 0; f < mesh.Polygons.size(); ++f)
+  for (const MeshFace& face : FaceMeasures(analysis, arrangement, labels, threads))
   {
-    const auto& poly = mesh.Polygons[f];
-    const std::int64_t c =
-      component[static_cast<std::size_t>(mesh.PointVertex[static_cast<std::size_t>(poly[0])])];
+    const std::int64_t c = component[static_cast<std::size_t>(face.Corner)];
     if (c < 0)
       continue;
-    double volume = 0; // fan from the first corner: a·(b × e) / 6, or the area in 2D
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
-    {
-      double a[3], b[3], e[3];
-      for (std::size_t i = 0; i < 3; ++i)
-      {
-        a[i] = mesh.Points[static_cast<std::size_t>(poly[0])][i] - origin[i];
-        b[i] = mesh.Points[static_cast<std::size_t>(poly[k])][i] - origin[i];
-        e[i] = mesh.Points[static_cast<std::size_t>(poly[k + 1])][i] - origin[i];
-      }
-      volume += mesh.Planar
-        ? ((b[0] - a[0]) * (e[1] - a[1]) - (b[1] - a[1]) * (e[0] - a[0])) / 2
-        : (a[0] * (b[1] * e[2] - b[2] * e[1]) + a[1] * (b[2] * e[0] - b[0] * e[2]) +
-            a[2] * (b[0] * e[1] - b[1] * e[0])) /
-          6;
-    }
-    const int inside = bitOf(mesh.InsideType[f]);
-    const int outside = mesh.Planar ? 0 : bitOf(mesh.OutsideType[f]);
+    const int inside = bitOf(face.Inside);
+    const int outside = bitOf(face.Outside);
     if (inside > 0)
-      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += volume;
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += face.Measure;
     if (outside > 0)
-      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= volume;
+      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= face.Measure;
   }
   return volumes;
 }
 } // namespace
 
 ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
-  std::vector<std::int32_t>& labels, int emptyLabel) const
+  std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads) const
 {
   Proportioned out;
   if (!this->Proportions || !this->GuideWeights.empty())
@@ -113,11 +94,14 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   const std::size_t nt = this->Types.size();
   // Each part's volume per type, and the model's.
   const std::vector<double> occupancy = PartVolumes(this->Analysis, this->Arrangement, labels,
-    component, parts, nt, [this](int type) { return this->BitOf(type); });
+    component, parts, nt, threads, [this](int type) { return this->BitOf(type); });
   std::vector<double> total(nt, 0.0);
   for (std::int64_t c = 0; c < parts; ++c)
     for (std::size_t t = 1; t < nt; ++t)
       total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
+  double before = 0;
+  for (std::size_t t = 1; t < nt; ++t)
+    before += total[t];
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
@@ -162,6 +146,8 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   double solid = 0;
   for (std::size_t t = 1; t < nt; ++t)
     solid += total[t];
+  if (before > 0)
+    out.VolumeRemoved = std::max(0.0, 1 - solid / before);
   std::ostringstream why;
   why << std::setprecision(2) << std::fixed;
   for (std::size_t t = 1; t < nt && solid > 0; ++t)

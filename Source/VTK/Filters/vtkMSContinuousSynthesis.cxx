@@ -376,6 +376,8 @@ void vtkMSContinuousSynthesis::FillOutput(
     fields, "PartsBeyondSeedsRemoved", static_cast<vtkIdType>(result.PartsBeyondSeedsRemoved));
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "ProportionPartsRemoved", static_cast<vtkIdType>(result.ProportionPartsRemoved));
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+    fields, "ProportionVolumeRemoved", result.ProportionVolumeRemoved);
   vtkMSFieldData::AddFieldValue<vtkStringArray>(
     fields, "ProportionsOutside", result.ProportionsOutside);
   for (const auto& [type, share] : m.TypeShares)
