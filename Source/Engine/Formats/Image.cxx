@@ -4,16 +4,14 @@
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "Core/ParallelChunks.h"
 
 #include <png.h>
 #include <zlib.h>
 
 #include <algorithm>
-#include <atomic>
 #include <functional>
 #include <memory>
-#include <system_error>
-#include <thread>
 
 #include <cctype>
 #include <csetjmp>
@@ -396,34 +394,14 @@ void WritePng(const std::string& path, int width, int height,
   // Strips of a fixed height, so the file is the same whatever the number of threads.
   const int rowsPerStrip = std::max(1, (1 << 20) / (4 * width));
   std::vector<Strip> strips(static_cast<std::size_t>((height + rowsPerStrip - 1) / rowsPerStrip));
-  std::atomic<std::size_t> next{ 0 };
-  auto work = [&]()
-  {
-    for (std::size_t s = next++; s < strips.size(); s = next++)
+  // On all cores; an exception in a strip (the rows' callback, memory) reaches the caller.
+  RunChunks(strips.size(), 0,
+    [&](std::size_t s)
     {
       const int first = static_cast<int>(s) * rowsPerStrip;
       DeflateStrip(first, std::min(height, first + rowsPerStrip), s + 1 == strips.size(), width,
         layout, compression, row, strips[s]);
-    }
-  };
-  std::vector<std::thread> threads;
-  const unsigned extra = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()),
-                           static_cast<unsigned>(strips.size())) -
-    1;
-  for (unsigned t = 0; t < extra; ++t)
-  {
-    try
-    {
-      threads.emplace_back(work);
-    }
-    catch (const std::system_error&)
-    {
-      break; // fewer threads: the same file, later
-    }
-  }
-  work();
-  for (auto& t : threads)
-    t.join();
+    });
   uLong adler = 1;
   for (const Strip& s : strips)
   {
