@@ -41,10 +41,7 @@ bool IsTileset(const std::string& path)
 
 bool IsSample(const std::string& path)
 {
-  std::string ext = path.size() > 4 ? path.substr(path.size() - 4) : "";
-  for (char& c : ext)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".png" || ext == ".bmp";
+  return msynth::IsImageFile(path);
 }
 
 bool IsPolyhedral(const std::string& path)

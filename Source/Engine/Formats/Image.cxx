@@ -171,6 +171,11 @@ RgbaImage ReadImage(const std::string& path)
   return EndsWith(path, ".bmp") ? ReadBmp(path) : ReadPng(path);
 }
 
+bool IsImageFile(const std::string& path)
+{
+  return EndsWith(path, ".png") || EndsWith(path, ".bmp");
+}
+
 namespace
 {
 /// The PNG filter of one row (None, Sub or Up, whichever leaves the smallest sum of absolute

@@ -37,6 +37,8 @@ RgbaImage ReadPng(const std::string& path);
 RgbaImage ReadBmp(const std::string& path);
 /// ReadPng or ReadBmp by the file's extension (PNG for any other).
 RgbaImage ReadImage(const std::string& path);
+/// Whether @p path names a picture ReadImage reads by its extension: .png or .bmp, any case.
+bool IsImageFile(const std::string& path);
 
 /**
  * Writes @p image as an 8-bit RGBA (RGB when every pixel is opaque) PNG, atomically;

@@ -20,7 +20,6 @@
 #include "Formats/TilePictures.h"
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <string>
 
@@ -247,10 +246,7 @@ msynth::LabelGrid PinsOfPicture(
 /// The pins of FixedFile: a picture by its extension, else a label grid.
 msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path)
 {
-  std::string extension = path.substr(std::min(path.size(), path.rfind('.')));
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".png" || extension == ".bmp")
+  if (msynth::IsImageFile(path))
     return PinsOfPicture(self, msynth::ReadImage(path), path);
   vtkNew<vtkMSLabelGridReader> reader;
   reader->GenerateGeometryOff();
