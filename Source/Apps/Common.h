@@ -140,16 +140,24 @@ private:
 /// Writes @p data with the VTK XML writer @p WriterT (compressed, appended), atomically, and
 /// reproducibly: without its timing (vtkMSFieldData::WithoutTiming). @p int32Ids writes point
 /// ids and offsets as 32-bit integers (half the bytes to compress, for meshes of under 2^31
-/// points).
+/// points). @p fast compresses with LZ4 instead of zlib and stores the appended bytes raw instead
+/// of base64: for meshes of millions of faces, about ten times faster to write and to read, for a
+/// file about twice as large.
 template <typename WriterT, typename DataT>
-void WriteXML(const std::string& path, DataT* data, bool int32Ids = false)
+void WriteXML(const std::string& path, DataT* data, bool int32Ids = false, bool fast = false)
 {
   const std::string tmp = msynth::TemporaryPathBeside(path);
   vtkNew<WriterT> writer;
   writer->SetInputData(vtkMSFieldData::WithoutTiming(data));
   writer->SetFileName(tmp.c_str());
   writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
+  if (fast)
+  {
+    writer->SetCompressorTypeToLZ4();
+    writer->EncodeAppendedDataOff();
+  }
+  else
+    writer->SetCompressorTypeToZLib();
   if (int32Ids)
     writer->SetIdTypeToInt32();
   std::string messages;

@@ -4,6 +4,8 @@
   triangles, grouped by the plane they lie in and their material's colour, cover exactly the
   exposed faces of model.vox's voxels (counted here from the voxels and the palette), as
   mesh.vtp's merged rectangles do; VTK's own glTF reader loads it.
+- a mesh.vtp past a million faces (written with LZ4, raw): its rectangles, by plane and colour,
+  cover exactly the exposed voxel faces of model.vox, counted here with array operations.
 - `--pieces`: each tile's piece drawn from the tile's voxels (a small triangle at each voxel's
   centre); the pieces placed in the model (but at label 0, the mesh's empty label), turned by the set's symmetry group (the square's 8
   about z for Tracks, the cube's 48 for Pipes), put a triangle at every voxel of model.vox and
@@ -117,6 +119,56 @@ class VoxelOutputsTest(unittest.TestCase):
             gltf.SetFileName(os.path.join(out, "mesh.glb"))
             gltf.Update()
             self.assertGreater(gltf.GetOutput().GetNumberOfPoints(), 0)
+
+    @unittest.skipIf(os.environ.get("MSYNTH_SANITIZED"), "a model of 7.5 M voxels: Release only")
+    def test_a_mesh_of_millions_of_faces_is_fast_and_exact(self):
+        out = fresh_folder("voxel-large-mesh")
+        done = msynth("synthesize", PIPES, "--size", "48", "48", "26", "--block", "16", "16", "16",
+                      "--seed", "2", "--outputs", "vox,mesh", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        path = os.path.join(out, "mesh.vtp")
+        with open(path, "rb") as f:
+            head = f.read(4096)
+        self.assertIn(b'compressor="vtkLZ4DataCompressor"', head)
+        self.assertIn(b'<AppendedData encoding="raw">', head)
+        # The voxels as a dense array of palette indices (one model: 240 x 240 x 130).
+        sizes, voxels, palette = vox_models(os.path.join(out, "model.vox"))
+        self.assertEqual(len(sizes), 1)
+        grid = np.zeros(sizes[0], np.int16)
+        v = voxels[0].astype(np.int64)
+        grid[v[:, 0], v[:, 1], v[:, 2]] = v[:, 3]
+        # Exposed faces per (axis, plane, palette index): a voxel face whose neighbour differs.
+        want = Counter()
+        for axis in range(3):
+            padded = np.pad(grid, [(1, 1) if a == axis else (0, 0) for a in range(3)])
+            lo = np.take(padded, range(0, padded.shape[axis] - 1), axis=axis)
+            hi = np.take(padded, range(1, padded.shape[axis]), axis=axis)
+            for side, other in ((lo, hi), (hi, lo)):
+                exposed = (side != 0) & (side != other)
+                planes = np.nonzero(exposed)[axis]
+                colours = side[exposed]
+                keys, counts = np.unique(planes * 256 + colours, return_counts=True)
+                for k, c in zip(keys, counts):
+                    want[(axis, int(k) // 256, int(k) % 256)] += int(c)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        mesh = reader.GetOutput()
+        self.assertGreaterEqual(mesh.GetNumberOfCells(), 1 << 20)
+        xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
+        quads = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 4)
+        labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+        corners = xyz[quads] * 5 + 2.5  # in voxels, from the sites' cell corners
+        extent = corners.max(axis=1) - corners.min(axis=1)
+        axis = np.argmin(extent, axis=1)
+        self.assertTrue(np.all(extent[np.arange(len(axis)), axis] < 1e-3))
+        area = np.prod(extent, axis=1, where=np.arange(3)[None, :] != axis[:, None])
+        plane = np.rint(corners[np.arange(len(axis)), 0, axis]).astype(np.int64)
+        keys, where = np.unique((axis * 100000 + plane) * 256 + labels, return_inverse=True)
+        sums = np.rint(np.bincount(where, weights=area)).astype(np.int64)
+        got = Counter({(int(k) // 256 // 100000, int(k) // 256 % 100000, int(k) % 256): int(c)
+                       for k, c in zip(keys, sums)})
+        self.assertEqual(got, want)
 
     def test_pieces_turn_by_the_sets_symmetry_group(self):
         for xml, tile, n in ((PIPES, 5, 48), (TRACKS, 6, 8)):

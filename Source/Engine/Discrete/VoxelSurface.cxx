@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/VoxelSurface.h"
 
+#include "Core/ParallelChunks.h"
+
 #include <algorithm>
 #include <vector>
 
@@ -20,9 +22,9 @@ const int Faces[6][4][3] = {
 };
 const int Steps[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
   { 0, 0, -1 } };
-} // namespace
 
-VoxelSurface ExtractMergedVoxelSurface(const LabelGrid& grid, Label empty,
+/// The merged faces of @p grid that face direction @p d, their points numbered from 0.
+VoxelSurface MergedFacesToward(int d, const LabelGrid& grid, Label empty,
   const std::array<double, 3>& origin, const std::array<double, 3>& spacing)
 {
   VoxelSurface surface;
@@ -32,77 +34,111 @@ VoxelSurface ExtractMergedVoxelSurface(const LabelGrid& grid, Label empty,
   std::vector<Label> mask;
   std::vector<std::int64_t> plane; // per corner of the slice's plane: its point, or -1
   std::vector<std::size_t> used;   // corners of the plane numbered so far
-  for (int d = 0; d < 6; ++d)
+  // Slices across axis a; in a slice, u and v are the other two axes in increasing order.
+  // Points are shared by the rectangles of one plane (a flat-shaded surface needs no more).
+  const int a = d / 2, u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;
+  const std::int64_t toward = Steps[d][a] * stride[static_cast<std::size_t>(a)];
+  mask.assign(static_cast<std::size_t>(n[u] * n[v]), empty);
+  plane.assign(static_cast<std::size_t>((n[u] + 1) * (n[v] + 1)), -1);
+  for (std::int64_t s = 0; s < n[a]; ++s)
   {
-    // Slices across axis a; in a slice, u and v are the other two axes in increasing order.
-    // Points are shared by the rectangles of one plane (a flat-shaded surface needs no more).
-    const int a = d / 2, u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;
-    const std::int64_t toward = Steps[d][a] * stride[static_cast<std::size_t>(a)];
-    mask.assign(static_cast<std::size_t>(n[u] * n[v]), empty);
-    plane.assign(static_cast<std::size_t>((n[u] + 1) * (n[v] + 1)), -1);
-    for (std::int64_t s = 0; s < n[a]; ++s)
-    {
-      const bool inside = s + Steps[d][a] >= 0 && s + Steps[d][a] < n[a];
-      for (std::int64_t j = 0; j < n[v]; ++j)
-        for (std::int64_t i = 0; i < n[u]; ++i)
-        {
-          const std::int64_t at = s * stride[static_cast<std::size_t>(a)] +
-            i * stride[static_cast<std::size_t>(u)] + j * stride[static_cast<std::size_t>(v)];
-          const Label b = data[at];
-          const bool exposed = b != empty && (!inside || data[at + toward] != b);
-          mask[static_cast<std::size_t>(i + n[u] * j)] = exposed ? b : empty;
-        }
-      for (std::size_t c : used)
-        plane[c] = -1;
-      used.clear();
-      auto corner = [&](std::int64_t i, std::int64_t j, std::int64_t k)
+    const bool inside = s + Steps[d][a] >= 0 && s + Steps[d][a] < n[a];
+    for (std::int64_t j = 0; j < n[v]; ++j)
+      for (std::int64_t i = 0; i < n[u]; ++i)
       {
-        const auto key = static_cast<std::size_t>(i + (n[u] + 1) * j);
-        if (plane[key] < 0)
+        const std::int64_t at = s * stride[static_cast<std::size_t>(a)] +
+          i * stride[static_cast<std::size_t>(u)] + j * stride[static_cast<std::size_t>(v)];
+        const Label b = data[at];
+        const bool exposed = b != empty && (!inside || data[at + toward] != b);
+        mask[static_cast<std::size_t>(i + n[u] * j)] = exposed ? b : empty;
+      }
+    for (std::size_t c : used)
+      plane[c] = -1;
+    used.clear();
+    auto corner = [&](std::int64_t i, std::int64_t j, std::int64_t k)
+    {
+      const auto key = static_cast<std::size_t>(i + (n[u] + 1) * j);
+      if (plane[key] < 0)
+      {
+        plane[key] = static_cast<std::int64_t>(surface.Points.size());
+        used.push_back(key);
+        std::array<double, 3> p;
+        const std::array<std::int64_t, 3> lattice{ { a == 0 ? k : i, a == 1 ? k : (a == 0 ? i : j),
+          a == 2 ? k : j } };
+        for (std::size_t c = 0; c < 3; ++c)
+          p[c] = origin[c] + (double(lattice[c]) - 0.5) * spacing[c];
+        surface.Points.push_back(p);
+      }
+      return plane[key];
+    };
+    // Greedy rectangles: as wide as the row allows, then as high as whole rows allow.
+    auto cell = [&](std::int64_t i, std::int64_t j) -> Label&
+    { return mask[static_cast<std::size_t>(i + n[u] * j)]; };
+    for (std::int64_t v0 = 0; v0 < n[v]; ++v0)
+      for (std::int64_t u0 = 0; u0 < n[u];)
+      {
+        const Label b = cell(u0, v0);
+        if (b == empty)
         {
-          plane[key] = static_cast<std::int64_t>(surface.Points.size());
-          used.push_back(key);
-          std::array<double, 3> p;
-          const std::array<std::int64_t, 3> lattice{ { a == 0 ? k : i,
-            a == 1 ? k : (a == 0 ? i : j), a == 2 ? k : j } };
-          for (std::size_t c = 0; c < 3; ++c)
-            p[c] = origin[c] + (double(lattice[c]) - 0.5) * spacing[c];
-          surface.Points.push_back(p);
+          ++u0;
+          continue;
         }
-        return plane[key];
-      };
-      // Greedy rectangles: as wide as the row allows, then as high as whole rows allow.
-      auto cell = [&](std::int64_t i, std::int64_t j) -> Label&
-      { return mask[static_cast<std::size_t>(i + n[u] * j)]; };
-      for (std::int64_t v0 = 0; v0 < n[v]; ++v0)
-        for (std::int64_t u0 = 0; u0 < n[u];)
+        std::int64_t u1 = u0 + 1, v1 = v0 + 1;
+        while (u1 < n[u] && cell(u1, v0) == b)
+          ++u1;
+        for (bool whole = true; whole && v1 < n[v];)
         {
-          const Label b = cell(u0, v0);
-          if (b == empty)
-          {
-            ++u0;
-            continue;
-          }
-          std::int64_t u1 = u0 + 1, v1 = v0 + 1;
-          while (u1 < n[u] && cell(u1, v0) == b)
-            ++u1;
-          for (bool whole = true; whole && v1 < n[v];)
-          {
-            for (std::int64_t i = u0; i < u1 && whole; ++i)
-              whole = cell(i, v1) == b;
-            v1 += whole ? 1 : 0;
-          }
-          for (std::int64_t j = v0; j < v1; ++j)
-            std::fill(&cell(u0, j), &cell(u0, j) + (u1 - u0), empty);
-          std::array<std::int64_t, 4> quad;
-          for (int k = 0; k < 4; ++k) // the unit face's corner, stretched over the rectangle
-            quad[static_cast<std::size_t>(k)] =
-              corner(Faces[d][k][u] ? u1 : u0, Faces[d][k][v] ? v1 : v0, s + Faces[d][k][a]);
-          surface.Quads.push_back(quad);
-          surface.QuadLabels.push_back(b);
-          u0 = u1;
+          for (std::int64_t i = u0; i < u1 && whole; ++i)
+            whole = cell(i, v1) == b;
+          v1 += whole ? 1 : 0;
         }
+        for (std::int64_t j = v0; j < v1; ++j)
+          std::fill(&cell(u0, j), &cell(u0, j) + (u1 - u0), empty);
+        std::array<std::int64_t, 4> quad;
+        for (int k = 0; k < 4; ++k) // the unit face's corner, stretched over the rectangle
+          quad[static_cast<std::size_t>(k)] =
+            corner(Faces[d][k][u] ? u1 : u0, Faces[d][k][v] ? v1 : v0, s + Faces[d][k][a]);
+        surface.Quads.push_back(quad);
+        surface.QuadLabels.push_back(b);
+        u0 = u1;
+      }
+  }
+  return surface;
+}
+} // namespace
+
+VoxelSurface ExtractMergedVoxelSurface(const LabelGrid& grid, Label empty,
+  const std::array<double, 3>& origin, const std::array<double, 3>& spacing)
+{
+  // The six directions on threads, joined in direction order: the same surface, with the same
+  // numbering, as one pass over the directions.
+  std::array<VoxelSurface, 6> parts;
+  RunChunks(parts.size(), 0,
+    [&](std::size_t d)
+    { parts[d] = MergedFacesToward(static_cast<int>(d), grid, empty, origin, spacing); });
+  VoxelSurface surface;
+  std::size_t points = 0, quads = 0;
+  for (const VoxelSurface& part : parts)
+  {
+    points += part.Points.size();
+    quads += part.Quads.size();
+  }
+  surface.Points.reserve(points);
+  surface.Quads.reserve(quads);
+  surface.QuadLabels.reserve(quads);
+  for (VoxelSurface& part : parts)
+  {
+    const auto first = static_cast<std::int64_t>(surface.Points.size());
+    surface.Points.insert(surface.Points.end(), part.Points.begin(), part.Points.end());
+    for (auto quad : part.Quads)
+    {
+      for (auto& corner : quad)
+        corner += first;
+      surface.Quads.push_back(quad);
     }
+    surface.QuadLabels.insert(
+      surface.QuadLabels.end(), part.QuadLabels.begin(), part.QuadLabels.end());
+    part = VoxelSurface(); // its memory back before the next part is copied
   }
   return surface;
 }

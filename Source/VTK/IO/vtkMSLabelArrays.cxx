@@ -15,6 +15,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -29,6 +30,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkType.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -36,12 +38,87 @@
 #include "Discrete/VoxelSurface.h"
 #include "Formats/VoxelTileset.h"
 
+#include <algorithm>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <vector>
+
+namespace
+{
+/// @p cells filled with @p surface's quads through raw pointers, ids of @p ArrayT's width.
+template <typename ArrayT>
+void FillQuads(const msynth::VoxelSurface& surface, vtkCellArray* cells)
+{
+  using Id = typename ArrayT::ValueType;
+  const std::size_t n = surface.Quads.size();
+  vtkNew<ArrayT> offsets;
+  vtkNew<ArrayT> connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(n + 1));
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(4 * n));
+  Id* offset = offsets->GetPointer(0);
+  Id* corner = connectivity->GetPointer(0);
+  for (std::size_t q = 0; q <= n; ++q)
+    offset[q] = static_cast<Id>(4 * q);
+  for (std::size_t q = 0; q < n; ++q)
+    for (std::size_t k = 0; k < 4; ++k)
+      corner[4 * q + k] = static_cast<Id>(surface.Quads[q][k]);
+  cells->SetData(offsets, connectivity);
+}
+
+/**
+ * @p surface as quads in @p output with the cell scalars `Label`. @p compact (the files of large
+ * voxel models): single-precision points and, where they fit, 32-bit ids (a third less to
+ * store and to compress).
+ */
+void FillSurfaceMesh(const msynth::VoxelSurface& surface, bool compact, vtkPolyData* output)
+{
+  const std::size_t np = surface.Points.size();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(compact ? VTK_FLOAT : VTK_DOUBLE);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(np));
+  if (compact)
+  {
+    float* xyz = vtkFloatArray::SafeDownCast(points->GetData())->GetPointer(0);
+    for (std::size_t i = 0; i < np; ++i)
+      for (std::size_t a = 0; a < 3; ++a)
+        xyz[3 * i + a] = static_cast<float>(surface.Points[i][a]);
+  }
+  else
+  {
+    double* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
+    for (std::size_t i = 0; i < np; ++i)
+      std::copy(surface.Points[i].begin(), surface.Points[i].end(), xyz + 3 * i);
+  }
+  vtkNew<vtkCellArray> quads;
+  if (compact && np < (std::size_t(1) << 31) && 4 * surface.Quads.size() < (std::size_t(1) << 31))
+    FillQuads<vtkTypeInt32Array>(surface, quads);
+  else
+    FillQuads<vtkTypeInt64Array>(surface, quads);
+  vtkNew<vtkIntArray> labels;
+  labels->SetName("Label");
+  labels->SetNumberOfValues(static_cast<vtkIdType>(surface.QuadLabels.size()));
+  std::copy(surface.QuadLabels.begin(), surface.QuadLabels.end(), labels->GetPointer(0));
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  output->GetCellData()->SetScalars(labels);
+}
+
+/// The field array `PaletteRGBA` of @p palette (index 0 the empty voxel's entry).
+vtkSmartPointer<vtkUnsignedCharArray> NewPaletteArray(
+  const std::vector<std::array<std::uint8_t, 4>>& palette)
+{
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetName("PaletteRGBA");
+  colours->SetNumberOfComponents(4);
+  for (const auto& rgba : palette)
+    colours->InsertNextTypedTuple(rgba.data());
+  return colours;
+}
+} // namespace
 
 bool vtkMSLabelArrays::IsIntegerArray(vtkDataArray* array)
 {
@@ -175,36 +252,11 @@ bool vtkMSLabelArrays::VoxelSurface(vtkImageData* image, int empty, int piece, i
   }
   const double* spacing = image->GetSpacing();
   const std::array<double, 3> step{ { spacing[0], spacing[1], spacing[2] } };
-  const msynth::VoxelSurface surface = merge
-    ? msynth::ExtractMergedVoxelSurface(grid, empty, FirstSitePosition(image), step)
-    : msynth::ExtractVoxelSurface(
-        grid, empty, FirstSitePosition(image), step, msynth::PieceSlab(grid, piece, pieces));
-  vtkNew<vtkPoints> points;
-  if (merge) // large voxel models: a third less to store and compress
-    points->SetDataTypeToFloat();
-  else
-    points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
-  for (std::size_t i = 0; i < surface.Points.size(); ++i)
-  {
-    points->SetPoint(static_cast<vtkIdType>(i), surface.Points[i].data());
-  }
-  vtkNew<vtkCellArray> quads;
-  quads->AllocateExact(
-    static_cast<vtkIdType>(surface.Quads.size()), 4 * static_cast<vtkIdType>(surface.Quads.size()));
-  vtkNew<vtkIntArray> labels;
-  labels->SetName("Label");
-  labels->SetNumberOfTuples(static_cast<vtkIdType>(surface.Quads.size()));
-  for (std::size_t q = 0; q < surface.Quads.size(); ++q)
-  {
-    const vtkIdType ids[4] = { surface.Quads[q][0], surface.Quads[q][1], surface.Quads[q][2],
-      surface.Quads[q][3] };
-    quads->InsertNextCell(4, ids);
-    labels->SetValue(static_cast<vtkIdType>(q), surface.QuadLabels[q]);
-  }
-  output->SetPoints(points);
-  output->SetPolys(quads);
-  output->GetCellData()->SetScalars(labels);
+  FillSurfaceMesh(merge
+      ? msynth::ExtractMergedVoxelSurface(grid, empty, FirstSitePosition(image), step)
+      : msynth::ExtractVoxelSurface(
+          grid, empty, FirstSitePosition(image), step, msynth::PieceSlab(grid, piece, pieces)),
+    merge, output);
   AddPaletteColors(image->GetFieldData(), output);
   return true;
 }
@@ -264,27 +316,40 @@ bool vtkMSLabelArrays::TileVoxels(
   }
   const auto& d = composed.Dimensions();
   voxels->SetDimensions(static_cast<int>(d[0]), static_cast<int>(d[1]), static_cast<int>(d[2]));
-  const double* spacing = model->GetSpacing();
-  const std::array<double, 3> first = FirstSitePosition(model);
-  double s[3], o[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    // A site's cell [p - h/2, p + h/2] holds its tile's voxels.
-    s[a] = spacing[a] / set.VoxelSize[static_cast<std::size_t>(a)];
-    o[a] = first[static_cast<std::size_t>(a)] - spacing[a] / 2 + s[a] / 2;
-  }
-  voxels->SetSpacing(s);
-  voxels->SetOrigin(o);
+  std::array<double, 3> origin;
+  std::array<double, 3> spacing;
+  TileVoxelPlacement(set, model, origin, spacing);
+  voxels->SetSpacing(spacing.data());
+  voxels->SetOrigin(origin.data());
   vtkSmartPointer<vtkIntArray> labels;
   labels.TakeReference(NewLabelArray(composed, "Label"));
   voxels->GetPointData()->SetScalars(labels);
-  vtkNew<vtkUnsignedCharArray> colours;
-  colours->SetName("PaletteRGBA");
-  colours->SetNumberOfComponents(4);
-  for (const auto& rgba : palette)
-    colours->InsertNextTypedTuple(rgba.data());
-  voxels->GetFieldData()->AddArray(colours);
+  voxels->GetFieldData()->AddArray(NewPaletteArray(palette));
   return true;
+}
+
+void vtkMSLabelArrays::TileVoxelPlacement(const msynth::Tileset& set, vtkImageData* model,
+  std::array<double, 3>& origin, std::array<double, 3>& spacing)
+{
+  const double* step = model->GetSpacing();
+  const std::array<double, 3> first = FirstSitePosition(model);
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    // A site's cell [p - h/2, p + h/2] holds its tile's voxels.
+    spacing[a] = step[a] / set.VoxelSize[a];
+    origin[a] = first[a] - step[a] / 2 + spacing[a] / 2;
+  }
+}
+
+void vtkMSLabelArrays::MergedVoxelMesh(const msynth::LabelGrid& voxels,
+  const std::vector<std::array<std::uint8_t, 4>>& palette, const std::array<double, 3>& origin,
+  const std::array<double, 3>& spacing, vtkPolyData* output)
+{
+  output->Initialize();
+  FillSurfaceMesh(msynth::ExtractMergedVoxelSurface(voxels, 0, origin, spacing), true, output);
+  vtkNew<vtkFieldData> fields;
+  fields->AddArray(NewPaletteArray(palette));
+  AddPaletteColors(fields, output);
 }
 
 std::array<double, 3> vtkMSLabelArrays::FirstSitePosition(vtkImageData* image)

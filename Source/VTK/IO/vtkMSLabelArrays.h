@@ -14,7 +14,9 @@
 #include "ModelSynthIOModule.h"  // for export macro
 
 #include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 class vtkDataArray;
 class vtkFieldData;
@@ -25,6 +27,7 @@ class vtkPolyData;
 namespace msynth
 {
 struct Tileset;
+struct VoxelSurface;
 }
 
 class MODELSYNTHIO_EXPORT vtkMSLabelArrays
@@ -92,6 +95,23 @@ public:
    */
   static bool TileVoxels(
     const msynth::Tileset& set, vtkImageData* model, vtkImageData* voxels, std::string& problem);
+
+  /**
+   * Where TileVoxels puts the voxels of @p model's tiles: the first voxel's centre @p origin and
+   * the voxel @p spacing (a site's cell [p - h/2, p + h/2] holds its tile's voxels).
+   */
+  static void TileVoxelPlacement(const msynth::Tileset& set, vtkImageData* model,
+    std::array<double, 3>& origin, std::array<double, 3>& spacing);
+
+  /**
+   * The merged voxel surface of @p voxels (palette indices, 0 empty, as msynth::ComposeVoxels
+   * makes them) placed by @p origin and @p spacing, into @p output: quads with cell arrays
+   * `Label` and `PaletteColor` (@p palette), single-precision points and 32-bit ids, filled
+   * directly, without a second copy of the voxels. For the mesh outputs of large voxel models.
+   */
+  static void MergedVoxelMesh(const msynth::LabelGrid& voxels,
+    const std::vector<std::array<std::uint8_t, 4>>& palette, const std::array<double, 3>& origin,
+    const std::array<double, 3>& spacing, vtkPolyData* output);
 
   /**
    * With a palette (field data `PaletteRGBA` of @p fields, as a `.vox` example and the models
