@@ -557,8 +557,9 @@ double ConstraintPlan::Factor(std::int64_t v, int label, const std::vector<doubl
       // the one holding more of it (the porch's top face that carries it on, rather than the edge
       // that ends it) wins, so a scarce type grows as well as starts (issue 29: the cottage's
       // porches and chimneys).
-      factor *= std::clamp(std::pow(ratio, OccupancyGain * this->Occupancy(label, static_cast<int>(t))),
-        1.0 / 64, 64.0);
+      factor *=
+        std::clamp(std::pow(ratio, OccupancyGain * this->Occupancy(label, static_cast<int>(t))),
+          1.0 / 64, 64.0);
     }
   }
   return factor;
