@@ -74,7 +74,7 @@ ENTRIES = [
      "--grounded --thickness Wall:z --overhang Roof" % D, "model"),
     ("cottages", "Polyhedral (.obj)", "Four object types (a chimney against the gable, a porch), "
      "grounded, walls 2 spacings high and in whole 2-spacing slabs across x and y, eaves one spacing",
-     "synthesize %s/cottage.obj --size 16 16 8 --seed 5 --grounded --thickness wall:z:2 "
+     "synthesize %s/cottage.obj --size 24 24 8 --seed 5 --grounded --thickness wall:z:2 "
      "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+" % D, "model"),
     ("oil", "Polyhedral (.obj)", "Decks one unit thick on beams, grown from three seeds",
      "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "

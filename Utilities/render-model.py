@@ -2,8 +2,8 @@
 type or label, offscreen: pvpython Utilities/render-model.py MODEL.vtp OUT.png [--top] [--size W H].
 The camera is fitted to the model's bounds, so the model fills the picture. Labels 1-12 have the
 gallery's colours; every further label a colour of its own (label_colour). Without a display (DISPLAY unset) it starts its own Xvfb (xserver.py). The picture of constrained
-continuous models (Documentation/images/continuous-constraints.png) was made with it from the
-commands Documentation/guide-continuous.md lists."""
+continuous models (Documentation/images/continuous-constraints.png) is made with it by
+make-continuous-pictures.py, from the commands Documentation/guide-continuous.md lists."""
 import argparse
 import colorsys
 import os

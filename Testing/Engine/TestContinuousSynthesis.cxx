@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Continuous model synthesis II (dissertation §4.5): the plane arrangement, the label solver and
 // mesh extraction, each output checked by the example analysis run on the output mesh.
+#include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMesh.h"
 #include "Continuous/ContinuousSynthesis.h"
 #include "Continuous/SolverParts.h"
@@ -514,4 +515,49 @@ TEST(ContinuousMesh, LevelSetVoxelsGrowWithTheSurface)
   EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.4, 2, 3, 1e12), 0.1);         // a quarter spacing
   EXPECT_DOUBLE_EQ(LevelSetVoxel(mesh, 0.004, 2, 3, 1e12), 2.0 / 256); // 1/256 of the extent
   EXPECT_NEAR(LevelSetVoxel(mesh, 0.4, 2, 3, 72 / 0.25), 0.5, 1e-12);  // the budget
+}
+
+// Proportion steering (issue 29): among labels that all hold a type that is short, the one
+// holding more of it weighs more (a porch's face, half its cones, over the edge that ends it, a
+// quarter), so a scarce type grows rather than only starts; a type in excess ends sooner.
+TEST(ContinuousConstraints, ShortTypesGrowByOccupancy)
+{
+  const Loaded l = Load("cottage.obj");
+  const ArrangementParameters p =
+    DefaultArrangementParameters(l.Example, l.Analysis, { 6, 6, 4 }, 0, {});
+  const PlaneArrangement arrangement(l.Analysis.Families(), p);
+  ContinuousConstraints constraints;
+  const detail::ConstraintPlan plan(l.Analysis, arrangement, constraints, 1);
+  ASSERT_TRUE(plan.Weighted());
+  int porch = -1;
+  for (int t = 1; t < plan.NumberOfTypes(); ++t)
+    if (l.Example.TypeNames.at(plan.TypeAt(t)) == "porch")
+      porch = t;
+  ASSERT_GT(porch, 0);
+  // A face and an edge of the porch alone (porch and empty space only).
+  int face = -1, edge = -1;
+  for (int a = 0; a < l.Analysis.NumberOfLabels(); ++a)
+  {
+    if (plan.LabelTypes(a) != (detail::Bit(0) | detail::Bit(porch)))
+      continue;
+    const double f = plan.Occupancy(a, porch);
+    if (face < 0 && std::abs(f - 0.5) < 1e-9)
+      face = a;
+    if (edge < 0 && std::abs(f - 0.25) < 1e-9)
+      edge = a;
+  }
+  ASSERT_GE(face, 0);
+  ASSERT_GE(edge, 0);
+  // Occupancy per type bit (0: empty space) with the porch about 0.06 of the solid (the
+  // example: 0.084), then about 0.16. (Far from the target both factors reach their clamps.)
+  std::vector<double> tally(static_cast<std::size_t>(plan.NumberOfTypes()), 0.0);
+  for (int t = 1; t < plan.NumberOfTypes(); ++t)
+    tally[static_cast<std::size_t>(t)] = t == porch ? 18 : 100;
+  EXPECT_GT(plan.Factor(0, face, tally), 2 * plan.Factor(0, edge, tally));
+  tally[static_cast<std::size_t>(porch)] = 60;
+  EXPECT_LT(2 * plan.Factor(0, face, tally), plan.Factor(0, edge, tally));
+  // Without the steering every label weighs the same.
+  constraints.KeepProportions = false;
+  const detail::ConstraintPlan unsteered(l.Analysis, arrangement, constraints, 1);
+  EXPECT_EQ(unsteered.Factor(0, face, tally), unsteered.Factor(0, edge, tally));
 }
