@@ -210,9 +210,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     ->check(LabelFraction, "L:F")
     ->group("Constraints (both kinds)");
   discrete(s.add_option("--count", o.Counts,
-              "the sites holding label L (with a tileset: a label, a tile's name for all its "
-              "orientations, or \"tile k\") number MIN to MAX (L:MIN:MAX; repeatable; whole "
-              "model or blocks, not with symmetry, --target or --region)")
+              "sites holding label L (tileset: a label, a tile's name or \"tile k\") number MIN "
+              "to MAX (L:MIN:MAX, or region=R:L:MIN:MAX in region R of the --guide's array "
+              "Region; repeatable; not with symmetry, --target or --region)")
              ->allow_extra_args(false));
   discrete(s.add_option("--temperature", o.Temperature,
               "temperature of the soft constraints' Metropolis acceptance")

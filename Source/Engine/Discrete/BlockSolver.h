@@ -331,7 +331,7 @@ private:
   bool Repairing = false;
   std::int64_t Misses = 0;
   std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
-  std::vector<std::uint8_t> Own;     ///< per local site: one of the block's own sites
+  std::vector<std::int32_t> Own;     ///< per local site: 0, or 1 + its count slot if own
   std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
   std::int64_t Left = 0;             ///< own sites still to choose
   std::vector<double> Steer;         ///< the counted choice's weights

@@ -60,6 +60,9 @@ struct GuideVolume
   std::array<std::int64_t, 3> Dims{ { 1, 1, 1 } };
   /// Label value → one weight per guide cell (x fastest), each ≥ 0 and finite.
   std::map<Label, std::vector<float>> Weights;
+  /// The guide's regions for label counts per region (LabelCount::Region): one region number
+  /// (≥ 0) per guide cell (x fastest); a site belongs to its cell's region. Empty: none.
+  std::vector<std::int32_t> Regions;
 
   /// The cell (x fastest) holding site @p p of an output of @p size sites:
   /// floor((p + 1/2) · Dims / size) per axis, in integers.
@@ -168,6 +171,8 @@ struct LabelCount
   std::string Name; ///< as the user named it (a label value or a tile name), for messages
   std::int64_t Minimum = 0;
   std::int64_t Maximum = std::numeric_limits<std::int64_t>::max();
+  /// The guide region (GuideVolume::Regions) whose sites are counted; -1: the whole output.
+  std::int32_t Region = -1;
 };
 
 /// A count constraint of a finished run with the number of sites that hold its label.
@@ -303,7 +308,9 @@ struct SynthesisOptions
    * keeping the sites it writes last within its share; the choice prefers a label below its
    * share and bans one that reached it; an attempt that misses its share fails and is tried
    * again. Counts the rules, sizes, boundary labels or pins make impossible are an Error before
-   * any work. Not with symmetry, soft constraints or regions of a world. Empty: none.
+   * any work. A count with a Region counts only the sites of that guide region; a label may be
+   * counted once in the whole output or once per region. Not with symmetry, soft constraints or
+   * regions of a world. Empty: none.
    */
   std::vector<LabelCount> Counts;
   /**

@@ -20,6 +20,7 @@
 #include "Formats/TilePictures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -89,7 +90,33 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
   return true;
 }
 
-/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label>.
+/// The guide's regions for counts per region: its integer point array `Region` (values >= 0).
+bool ReadGuideRegions(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::GuideVolume& v)
+{
+  vtkDataArray* regions = guide->GetPointData()->GetArray("Region");
+  if (!regions)
+    return true;
+  if (regions->GetNumberOfComponents() != 1)
+  {
+    vtkErrorWithObjectMacro(self, << "The guide's array 'Region' must have one component.");
+    return false;
+  }
+  v.Regions.resize(static_cast<std::size_t>(regions->GetNumberOfTuples()));
+  for (vtkIdType t = 0; t < regions->GetNumberOfTuples(); ++t)
+  {
+    const double r = regions->GetTuple1(t);
+    if (!(r >= 0.0 && r <= 2147483647.0) || r != std::floor(r))
+    {
+      vtkErrorWithObjectMacro(self, << "The guide's array 'Region' holds " << r << " at point " << t
+                                    << "; regions are whole numbers from 0.");
+      return false;
+    }
+    v.Regions[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(r);
+  }
+  return true;
+}
+
+/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label> and Region.
 bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
 {
   msynth::GuideVolume volume;
@@ -118,10 +145,12 @@ bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::Synthe
     }
     volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
   }
-  if (volume.Weights.empty())
+  if (!ReadGuideRegions(self, guide, volume))
+    return false;
+  if (volume.Weights.empty() && volume.Regions.empty())
   {
     vtkWarningWithObjectMacro(
-      self, << "The guide has no point array named Weight_<label>; it has no effect.");
+      self, << "The guide has no point array named Weight_<label> or Region; it has no effect.");
   }
   options.Guide = std::move(volume);
   return true;
