@@ -230,9 +230,10 @@ void AddFixedOptions(CLI::App& s, Registered& r)
   r.DiscreteOnly.push_back(
     s.add_option("--fixed", o.Fixed,
        "pinned sites, to complete a partial model: a label grid of the output size (.vti, "
-       ".txt, .vox) whose labels are kept and whose -1 sites are synthesized, or a picture "
-       "(.png, .bmp) drawn with a 2D tileset's tiles or in an image sample's colours, "
-       "transparent where free; pins that cannot hold are an error before any work")
+       ".txt, .vox; a smaller .vti is placed by its extent) whose labels are kept and whose -1 "
+       "sites are synthesized, or a picture (.png, .bmp) drawn with a 2D tileset's tiles or in "
+       "an image sample's colours, transparent where free; pins that cannot hold are an error "
+       "before any work")
       ->group(group));
   r.DiscreteOnly.push_back(
     s.add_flag("--fixed-empty-free", o.FixedEmptyFree,

@@ -195,13 +195,14 @@ TEST(LabelCounts, CountsPerGuideRegionHold)
 {
   const LabelGrid example = Village();
   const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
-  const std::vector<LabelCount> counts = { InRegion(Count(3, 30, 50), 0),
-    InRegion(Count(3, 0, 8), 1), InRegion(Count(2, 20, 45), 1) };
+  const std::vector<LabelCount> counts = { InRegion(Count(3, 150, 220), 0),
+    InRegion(Count(3, 50, 100), 1), InRegion(Count(2, 60, 110), 1) };
   for (const auto& block :
     { std::array<std::int64_t, 3>{ { 0, 0, 0 } }, std::array<std::int64_t, 3>{ { 12, 12, 5 } } })
     for (std::uint64_t seed : { 1u, 2u, 3u })
     {
       SynthesisOptions o = Options(block, seed, 2);
+      o.Boundary[4].reset(); // as the command runs it (the ranges are measured without ground)
       o.Guide = TwoRegions();
       o.Counts = counts;
       const SynthesisResult r = Synthesize(rules, o);

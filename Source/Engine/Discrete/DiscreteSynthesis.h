@@ -292,8 +292,14 @@ struct SynthesisOptions
    * run's size around it, and no block changes them afterwards. Pins that contradict the rules,
    * the boundary labels or each other (through propagation over the pins' box and 16 sites around
    * it) are an Error before any work. Not with mirror, translation or rotation symmetry.
+   * Regions of a world take the pins that fall in their window (SynthesizeRegion).
    */
   std::optional<LabelGrid> Pins;
+  /**
+   * Where Pins' site (0, 0, 0) lies in the output (world coordinates): a pin grid smaller than
+   * the output, placed (it must lie inside the output). Empty: Pins covers the output exactly.
+   */
+  std::optional<std::array<std::int64_t, 3>> PinsOrigin;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
   /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.
@@ -369,8 +375,10 @@ struct SynthesisResult
  * world's): the labels a whole run with the same options gives at those sites (the repair
  * passes of RepairFailedBlocks are part of the world's schedule), computed by the blocks of the
  * region's dependency cone alone (Core/ WorldSchedule.h) in a window around it, so its cost is set
- * by the region, not the world. Statistics count the blocks run. No symmetry, soft constraints,
- * pins, guide, given start, snapshots or resemblance (each needs the whole world).
+ * by the region, not the world. Statistics count the blocks run. Pins (in world coordinates,
+ * placed by PinsOrigin) that fall in the window are taken, the window grown to hold the pin
+ * placements it meets. No symmetry, soft constraints, guide, given start, snapshots,
+ * resemblance, counts or connected network (each needs the whole world).
  * @throw Error for those options or a region outside the world.
  */
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,

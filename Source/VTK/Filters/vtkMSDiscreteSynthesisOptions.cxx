@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace
@@ -273,7 +274,19 @@ msynth::LabelGrid PinsOfPicture(
 }
 
 /// The pins of FixedFile: a picture by its extension, else a label grid.
-msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path)
+/// Where a label grid of pins whose extent does not start at 0 lies in the output: its
+/// extent's first corner (a smaller grid placed in the world); empty at 0.
+std::optional<std::array<std::int64_t, 3>> PlacedAt(vtkImageData* image)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  if (extent[0] == 0 && extent[2] == 0 && extent[4] == 0)
+    return std::nullopt;
+  return std::array<std::int64_t, 3>{ { extent[0], extent[2], extent[4] } };
+}
+
+msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path,
+  std::optional<std::array<std::int64_t, 3>>& origin)
 {
   if (msynth::IsImageFile(path))
     return PinsOfPicture(self, msynth::ReadImage(path), path);
@@ -286,11 +299,13 @@ msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& pa
   msynth::LabelGrid pins;
   if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
     throw msynth::Error::InFile(path, messages);
+  origin = PlacedAt(reader->GetOutput());
   return pins;
 }
 
 /// The pins of input port 2: its labels, or a picture drawn with a tileset's tiles.
-msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed)
+msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed,
+  std::optional<std::array<std::int64_t, 3>>& origin)
 {
   if (vtkUnsignedCharArray* picture = PictureOf(fixed))
     return PinsOfPicture(self, PictureRows(fixed, picture), "the picture of pinned tiles");
@@ -298,6 +313,7 @@ msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed)
   std::string problem;
   if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))
     throw msynth::Error(problem);
+  origin = PlacedAt(fixed);
   return pins;
 }
 } // namespace
@@ -311,7 +327,10 @@ bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::Synthes
     return true;
   try
   {
-    msynth::LabelGrid pins = fixed ? PinsOfInput(self, fixed) : PinsOfFile(self, file);
+    std::optional<std::array<std::int64_t, 3>> origin;
+    msynth::LabelGrid pins =
+      fixed ? PinsOfInput(self, fixed, origin) : PinsOfFile(self, file, origin);
+    options.PinsOrigin = origin;
     if (self->GetFixedEmptyFree())
       std::replace(pins.Data().begin(), pins.Data().end(), msynth::Label(0), msynth::FreeSite);
     options.Pins = std::move(pins);
