@@ -12,11 +12,14 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSCheckModel.h"
+#include "vtkMSEngineBridge.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPolyhedralExampleReader.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Error.h"
@@ -60,6 +63,7 @@ struct CheckOptions
   std::string Connected;
   std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
   std::vector<std::string> Path;
+  std::string Guide; ///< --guide: the guide whose Region array --count region=R:... reads
 };
 
 /// The label values @p name gives: a value, or the labels of a tile or label name of @p set.
@@ -223,8 +227,45 @@ namespace
  * @p example a tile's name, all its orientations, or a label's name "tile k"), counted here
  * from the written labels. Prints one line per count; false when one is outside its range.
  */
+/// The guide region of every site of @p model (x fastest) from the `Region` point array of
+/// the guide @p path stretched over it: a site at p of n reads the guide point
+/// floor((p + 1/2) · D / n) per axis, as `--guide` does.
+std::vector<long long> SiteRegions(const std::string& path, vtkImageData* model)
+{
+  if (path.empty())
+    throw std::runtime_error("--count region=R:...: give the guide with --guide GUIDE.vti");
+  CheckInputFile(path);
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw std::runtime_error("'" + path + "': not a readable guide volume: " + messages);
+  vtkImageData* guide = reader->GetOutput();
+  vtkDataArray* region = guide->GetPointData()->GetArray("Region");
+  if (!region)
+    throw std::runtime_error("'" + path + "': the guide has no point array Region");
+  int d[3], n[3];
+  guide->GetDimensions(d);
+  model->GetDimensions(n);
+  std::vector<long long> out;
+  out.reserve(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
+  for (long long z = 0; z < n[2]; ++z)
+    for (long long y = 0; y < n[1]; ++y)
+      for (long long x = 0; x < n[0]; ++x)
+      {
+        const long long p[3] = { x, y, z };
+        long long cell[3];
+        for (int a = 0; a < 3; ++a)
+          cell[a] = std::min<long long>(d[a] - 1, (p[a] * 2 * d[a] + d[a]) / (2LL * n[a]));
+        out.push_back(static_cast<long long>(
+          region->GetTuple1(static_cast<vtkIdType>(cell[0] + d[0] * (cell[1] + d[1] * cell[2])))));
+      }
+  return out;
+}
+
 bool CheckCounts(const std::vector<std::string>& counts, const std::string& example,
-  const std::string& subset, const std::string& tiles, vtkImageData* model)
+  const std::string& subset, const std::string& tiles, vtkImageData* model,
+  const std::string& guidePath)
 {
   vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
   if (!labels)
@@ -236,8 +277,20 @@ bool CheckCounts(const std::vector<std::string>& counts, const std::string& exam
   std::string list;
   for (const std::string& c : counts)
     list += c + ",";
-  for (const msynth::CountEntry& e : msynth::ParseCountEntries(list, "--count"))
+  std::vector<long long> regions; // read once, for the first count of a region
+  for (msynth::CountEntry e : msynth::ParseCountEntries(list, "--count"))
   {
+    long long region = -1;
+    if (e.Name.compare(0, 7, "region=") == 0)
+    {
+      const std::size_t colon = e.Name.find(':');
+      if (colon == std::string::npos ||
+        !msynth::ParseInteger(e.Name.substr(7, colon - 7), 0, (1LL << 31) - 1, region))
+        throw std::runtime_error("--count: '" + e.Name + "' is not region=R:L (R from 0)");
+      e.Name = e.Name.substr(colon + 1);
+      if (regions.empty())
+        regions = SiteRegions(guidePath, model);
+    }
     std::set<long long> values;
     long long v = 0;
     if (msynth::ParseInteger(e.Name, -(1LL << 31), (1LL << 31) - 1, v))
@@ -254,11 +307,15 @@ bool CheckCounts(const std::vector<std::string>& counts, const std::string& exam
         "--count: '" + e.Name + "' is neither a label value nor a name of " + example);
     long long n = 0;
     for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-      n += values.count(static_cast<long long>(labels->GetTuple1(i))) ? 1 : 0;
+      n += values.count(static_cast<long long>(labels->GetTuple1(i))) &&
+          (region < 0 || regions[static_cast<std::size_t>(i)] == region)
+        ? 1
+        : 0;
     const bool ok = n >= e.Minimum && n <= e.Maximum;
     kept = kept && ok;
-    std::cout << (ok ? "count kept: " : "count missed: ") << e.Name << " holds " << n
-              << " sites (wanted " << e.Minimum << " to " << e.Maximum << ")\n";
+    std::cout << (ok ? "count kept: " : "count missed: ") << e.Name
+              << (region >= 0 ? " in guide region " + std::to_string(region) : std::string())
+              << " holds " << n << " sites (wanted " << e.Minimum << " to " << e.Maximum << ")\n";
   }
   return kept;
 }
@@ -414,7 +471,8 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
 /// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
 int CheckDiscrete(const std::string& example, const std::string& modelPath,
   const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts,
-  const std::string& connected, const std::string& names, const std::vector<std::string>& path)
+  const std::string& connected, const std::string& names, const std::vector<std::string>& path,
+  const std::string& guide)
 {
   if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
     modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
@@ -431,7 +489,7 @@ int CheckDiscrete(const std::string& example, const std::string& modelPath,
   Run(check);
   auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
   const std::string& named = IsTileset(example) || names.empty() ? example : names;
-  bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels);
+  bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels, guide);
   kept =
     (connected.empty() || CheckConnected(connected, named, subset, tiles, labels, path)) && kept;
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
@@ -615,8 +673,11 @@ CommandRunner AddCheck(CLI::App& app)
   check
     ->add_option("--count", o->Counts,
       "also check that the sites holding label (or tile) L number MIN to MAX (L:MIN:MAX; "
-      "repeatable), counted from the model's labels")
+      "repeatable; region=R:L:MIN:MAX: only the sites of the guide's region R), counted from "
+      "the model's labels")
     ->allow_extra_args(false);
+  check->add_option("--guide", o->Guide,
+    "with --count region=R:...: the guide (.vti) whose point array Region gives the regions");
   check->add_option("--connected", o->Connected,
     "also check that the sites holding any of LABELS (values or tile names, commas between) "
     "form at most N components (LABELS[:N], N 1 when left out), through the tileset's "
@@ -652,8 +713,8 @@ CommandRunner AddCheck(CLI::App& app)
       CheckInputFile(o->Names);
     if (!o->Path.empty() && o->Connected.empty())
       throw UsageError{ "--path needs --connected LABELS: the labels that carry the path" };
-    return CheckDiscrete(
-      o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected, o->Names, o->Path);
+    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected,
+      o->Names, o->Path, o->Guide);
   };
 }
 

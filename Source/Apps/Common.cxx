@@ -278,9 +278,13 @@ StatisticsJson& StatisticsJson::LabelCounts(vtkFieldData* fd)
   vtkDataArray* achieved = fd->GetArray("CountAchieved");
   if (!names || !low || !high || !achieved)
     return *this;
+  vtkDataArray* region = fd->GetArray("CountRegion"); // -1: the whole model
   std::string json;
   for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
     json += std::string(i ? ", " : "") + "{\"label\": " + JsonString(names->GetValue(i)) +
+      (region && region->GetTuple1(i) >= 0
+          ? ", \"region\": " + std::to_string(static_cast<long long>(region->GetTuple1(i)))
+          : std::string()) +
       ", \"minimum\": " + std::to_string(static_cast<long long>(low->GetTuple1(i))) +
       ", \"maximum\": " + std::to_string(static_cast<long long>(high->GetTuple1(i))) +
       ", \"achieved\": " + std::to_string(static_cast<long long>(achieved->GetTuple1(i))) + "}";

@@ -210,9 +210,9 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     ->check(LabelFraction, "L:F")
     ->group("Constraints (both kinds)");
   discrete(s.add_option("--count", o.Counts,
-              "the sites holding label L (with a tileset: a label, a tile's name for all its "
-              "orientations, or \"tile k\") number MIN to MAX (L:MIN:MAX; repeatable; whole "
-              "model or blocks, not with symmetry, --target or --region)")
+              "sites holding label L (tileset: a label, a tile's name or \"tile k\") number MIN "
+              "to MAX (L:MIN:MAX, or region=R:L:MIN:MAX in region R of the --guide's array "
+              "Region; repeatable; not with symmetry, --target or --region)")
              ->allow_extra_args(false));
   discrete(s.add_option("--temperature", o.Temperature,
               "temperature of the soft constraints' Metropolis acceptance")
@@ -230,9 +230,10 @@ void AddFixedOptions(CLI::App& s, Registered& r)
   r.DiscreteOnly.push_back(
     s.add_option("--fixed", o.Fixed,
        "pinned sites, to complete a partial model: a label grid of the output size (.vti, "
-       ".txt, .vox) whose labels are kept and whose -1 sites are synthesized, or a picture "
-       "(.png, .bmp) drawn with a 2D tileset's tiles or in an image sample's colours, "
-       "transparent where free; pins that cannot hold are an error before any work")
+       ".txt, .vox; a smaller .vti is placed by its extent) whose labels are kept and whose -1 "
+       "sites are synthesized, or a picture (.png, .bmp) drawn with a 2D tileset's tiles or in "
+       "an image sample's colours, transparent where free; pins that cannot hold are an error "
+       "before any work")
       ->group(group));
   r.DiscreteOnly.push_back(
     s.add_flag("--fixed-empty-free", o.FixedEmptyFree,

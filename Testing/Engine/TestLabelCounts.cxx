@@ -158,3 +158,94 @@ TEST(LabelCounts, RegionsOfAWorldAreRefused)
   o.Counts = { Count(3, 0, 10) };
   EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 12, 12, 5 } }), Error);
 }
+
+namespace
+{
+/// A guide of two regions over the village's box: x < 12 is region 0, x >= 12 region 1.
+GuideVolume TwoRegions()
+{
+  GuideVolume g;
+  g.Dims = { { 2, 1, 1 } };
+  g.Regions = { 0, 1 };
+  return g;
+}
+
+LabelCount InRegion(LabelCount c, std::int32_t region)
+{
+  c.Region = region;
+  return c;
+}
+
+/// The sites of @p model holding @p value in the half x < 12 (@p left) or x >= 12, counted here.
+std::int64_t SitesInHalf(const LabelGrid& model, Label value, bool left)
+{
+  std::int64_t n = 0;
+  const auto& d = model.Dimensions();
+  for (std::int64_t z = 0; z < d[2]; ++z)
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+        n += (x < 12) == left && model.At(x, y, z) == value ? 1 : 0;
+  return n;
+}
+} // namespace
+
+// Counts per guide region: roofs (3) many in the left half and few in the right one, walls (2)
+// only counted on the right; whole and in blocks, on seeds; counted here by halves.
+TEST(LabelCounts, CountsPerGuideRegionHold)
+{
+  const LabelGrid example = Village();
+  const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
+  const std::vector<LabelCount> counts = { InRegion(Count(3, 150, 220), 0),
+    InRegion(Count(3, 50, 100), 1), InRegion(Count(2, 60, 110), 1) };
+  for (const auto& block :
+    { std::array<std::int64_t, 3>{ { 0, 0, 0 } }, std::array<std::int64_t, 3>{ { 12, 12, 5 } } })
+    for (std::uint64_t seed : { 1u, 2u, 3u })
+    {
+      SynthesisOptions o = Options(block, seed, 2);
+      o.Boundary[4].reset(); // as the command runs it (the ranges are measured without ground)
+      o.Guide = TwoRegions();
+      o.Counts = counts;
+      const SynthesisResult r = Synthesize(rules, o);
+      ASSERT_TRUE(r.Succeeded()) << r.Message;
+      const ConsistencyReport report = CheckConsistency(example, r.Model);
+      EXPECT_TRUE(report.Consistent);
+      ASSERT_EQ(r.Counts.size(), counts.size());
+      for (std::size_t c = 0; c < counts.size(); ++c)
+      {
+        const std::int64_t n = SitesInHalf(r.Model, counts[c].Values[0], counts[c].Region == 0);
+        EXPECT_GE(n, counts[c].Minimum) << "count " << c << ", seed " << seed;
+        EXPECT_LE(n, counts[c].Maximum) << "count " << c << ", seed " << seed;
+        EXPECT_EQ(r.Counts[c].Achieved, n);
+      }
+    }
+}
+
+// Counts of regions the guide does not have, or cannot hold, are one line before any work.
+TEST(LabelCounts, ImpossibleRegionCountsAreOneLineBeforeAnyWork)
+{
+  SynthesisOptions o = Options({ { 0, 0, 0 } }, 1, 1);
+  o.Counts = { InRegion(Count(3, 0, 5), 0) };
+  EXPECT_EQ(ErrorOf(o),
+    "the count of label 3 in guide region 0 needs a guide with regions (an integer point array "
+    "Region)");
+  o.Guide = TwoRegions();
+  o.Counts = { InRegion(Count(3, 0, 5), 4) };
+  EXPECT_EQ(ErrorOf(o),
+    "the count of label 3 in guide region 4: the guide's region 4 holds no site of the output");
+  o.Counts = { InRegion(Count(3, 1500, 1500), 1) };
+  EXPECT_EQ(ErrorOf(o),
+    "the count of label 3 in guide region 1 asks for at least 1500 sites, but the region has "
+    "1440");
+  o.Counts = { InRegion(Count(3, 800, 1440), 1), InRegion(Count(2, 800, 1440), 1) };
+  EXPECT_EQ(ErrorOf(o),
+    "the label counts ask for at least 1600 sites together, but guide region 1 has 1440");
+  o.Counts = { Count(3, 0, 100), InRegion(Count(3, 0, 5), 1) };
+  EXPECT_EQ(ErrorOf(o),
+    "the count of label 3 in guide region 1: label 3 is counted both in the whole output and in "
+    "a guide region");
+  // The ground boundary's 288 sites of label 1 in region 0 already pass its maximum.
+  o.Counts = { InRegion(Count(1, 0, 100), 0) };
+  EXPECT_EQ(ErrorOf(o),
+    "the boundary labels and pins already place 288 sites of label 1 in guide region 0, more "
+    "than its maximum 100");
+}

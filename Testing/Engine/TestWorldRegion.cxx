@@ -274,3 +274,95 @@ TEST(WorldRegion, WholeModelStartModifiesAWholeSolutionAndNoRegionTakesIt)
   ASSERT_TRUE(whole.Succeeded()) << whole.Message;
   EXPECT_EQ(whole.Statistics.StartFrom, "");
 }
+
+namespace
+{
+/// Pins cut from a model of @p rules: patches of it placed at sites of a grid whose site 0 lies
+/// at @p origin in the world, FreeSite elsewhere.
+LabelGrid PinPatches(const AdjacencyRules& rules, const WorldBox& size)
+{
+  SynthesisOptions o;
+  o.Size = { { 32, 32, 1 } };
+  o.Seed = 99;
+  const SynthesisResult source = Synthesize(rules, o);
+  LabelGrid pins(size[0], size[1], size[2], FreeSite);
+  // (source corner, size, target corner in the pin grid)
+  const std::array<std::array<std::int64_t, 6>, 3> patches{ { { { 10, 10, 6, 6, 0, 0 } },
+    { { 3, 20, 3, 8, 20, 25 } }, { { 5, 5, 1, 1, size[0] - 1, size[1] - 1 } } } };
+  for (const auto& p : patches)
+    for (std::int64_t y = 0; y < p[3]; ++y)
+      for (std::int64_t x = 0; x < p[2]; ++x)
+        pins.Set(p[4] + x, p[5] + y, 0, source.Model.At(p[0] + x, p[1] + y, 0));
+  return pins;
+}
+
+/// Whether every pin of @p pins (placed at @p origin) inside [@p lo, @p hi) holds in @p region.
+bool PinsKept(const LabelGrid& pins, const WorldBox& origin, const LabelGrid& region,
+  const WorldBox& lo, const WorldBox& hi)
+{
+  const auto& d = pins.Dimensions();
+  for (std::int64_t y = 0; y < d[1]; ++y)
+    for (std::int64_t x = 0; x < d[0]; ++x)
+    {
+      const std::int64_t wx = x + origin[0], wy = y + origin[1];
+      if (pins.At(x, y, 0) == FreeSite || wx < lo[0] || wx >= hi[0] || wy < lo[1] || wy >= hi[1])
+        continue;
+      if (region.At(wx - lo[0], wy - lo[1], 0) != pins.At(x, y, 0))
+        return false;
+    }
+  return true;
+}
+} // namespace
+
+// Regions of a world take the pins that fall in them (a pin grid placed by its origin): each
+// region equals the same sites of the whole run with the same pins, keeps its pins and is
+// consistent; the placed grid gives the whole run a world-sized grid gives.
+TEST(WorldRegion, RegionsTakeThePinsThatFallInThem)
+{
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  const WorldBox origin{ { 20, 15, 0 } };
+  const LabelGrid pins = PinPatches(rules, { { 50, 45, 1 } });
+  SynthesisOptions o;
+  o.Size = { { 96, 80, 1 } };
+  o.BlockSize = { { 16, 16, 1 } };
+  o.Pins = pins;
+  o.PinsOrigin = origin;
+  for (std::uint64_t seed : { 3, 4 })
+  {
+    o.Seed = seed;
+    const SynthesisResult whole = Synthesize(rules, o);
+    ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+    ASSERT_TRUE(PinsKept(pins, origin, whole.Model, { { 0, 0, 0 } }, o.Size));
+    SynthesisOptions spread = o; // the same pins as a grid of the world's size
+    spread.PinsOrigin.reset();
+    spread.Pins = LabelGrid(96, 80, 1, FreeSite);
+    for (std::int64_t y = 0; y < 45; ++y)
+      for (std::int64_t x = 0; x < 50; ++x)
+        spread.Pins->Set(x + origin[0], y + origin[1], 0, pins.At(x, y, 0));
+    EXPECT_EQ(Synthesize(rules, spread).Model.Data(), whole.Model.Data());
+    for (const auto& [lo, hi] :
+      { std::pair<WorldBox, WorldBox>{ { { 0, 0, 0 } }, { { 30, 24, 1 } } },
+        { { { 38, 36, 0 } }, { { 58, 52, 1 } } }, { { { 60, 50, 0 } }, { { 96, 80, 1 } } },
+        { { { 80, 0, 0 } }, { { 96, 10, 1 } } } })
+    {
+      const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+      ASSERT_TRUE(region.Succeeded()) << region.Message;
+      EXPECT_EQ(region.Model.Data(), Crop(whole.Model, lo, hi).Data()) << region.Message;
+      EXPECT_TRUE(PinsKept(pins, origin, region.Model, lo, hi));
+      EXPECT_TRUE(CheckConsistency(lines.Pairs, region.Model).Consistent);
+    }
+  }
+  // A region around pins deep inside a world of 10^6 x 10^6 sites keeps them, cheaply.
+  o.Size = { { 1000000, 1000000, 1 } };
+  o.PinsOrigin = WorldBox{ { 500000, 400000, 0 } };
+  const WorldBox lo{ { 499990, 399990, 0 } }, hi{ { 500060, 400060, 1 } };
+  const SynthesisResult far = SynthesizeRegion(rules, o, lo, hi);
+  ASSERT_TRUE(far.Succeeded()) << far.Message;
+  EXPECT_TRUE(PinsKept(pins, *o.PinsOrigin, far.Model, lo, hi));
+  EXPECT_TRUE(CheckConsistency(lines.Pairs, far.Model).Consistent);
+  EXPECT_LT(far.Statistics.Blocks, 2000) << far.Message;
+  // A pin grid outside the world is one line.
+  o.PinsOrigin = WorldBox{ { 999990, 0, 0 } };
+  EXPECT_THROW(SynthesizeRegion(rules, o, lo, hi), Error);
+}

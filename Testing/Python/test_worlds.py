@@ -125,6 +125,79 @@ class WorldsTest(unittest.TestCase):
         done = msynth("check", lines, os.path.join(check, "window.vti"))
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
 
+    def test_regions_take_the_pins_that_fall_in_them(self):
+        """A pin grid placed by its extent (a 16 x 12 grid from site 30, 20 of the world): regions
+        equal the whole run's window with the same pins, keep every pin inside them, and pass
+        `msynth check`; the filter's Region agrees."""
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "3"]
+        source = fresh_folder("worlds-pins-source")
+        done = msynth("synthesize", lines, "--size", "32", "32", "1", "--seed", "9", "--outputs", "labels",
+                      "--out", source)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        drawn = labels_zyx(read(os.path.join(source, "labels.vti")))[0]
+        pins = np.full((12, 16), -1, dtype=np.int32)  # [y, x]
+        pins[2:8, 3:9] = drawn[10:16, 10:16]  # a drawn patch
+        pins[11, 15] = drawn[4, 4]  # a lone tile
+        image = vtkImageData()
+        image.SetExtent(30, 45, 20, 31, 0, 0)
+        array = numpy_to_vtk(pins.ravel(), deep=True)
+        array.SetName("Label")
+        image.GetPointData().SetScalars(array)
+        placed = os.path.join(fresh_folder("worlds-pins-grid"), "placed.vti")
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(placed)
+        self.assertEqual(writer.Write(), 1)
+
+        whole = fresh_folder("worlds-pins-whole")
+        done = msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels", "--out", whole)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        kept = pins >= 0
+        np.testing.assert_array_equal(full[20:32, 30:46][kept], pins[kept])
+        for x0, y0, x1, y1 in ((25, 15, 60, 45), (40, 28, 50, 34), (0, 0, 20, 20)):
+            out = fresh_folder("worlds-pins-region")
+            done = msynth("synthesize", lines, *common, "--fixed", placed, "--region", str(x0), str(y0), "0",
+                          str(x1), str(y1), "1", "--outputs", "labels", "--out", out)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            part = labels_zyx(read(os.path.join(out, "labels.vti")))[0]
+            np.testing.assert_array_equal(part, full[y0:y1, x0:x1])
+            inside = np.zeros((80, 96), dtype=bool)
+            inside[20:32, 30:46] = kept
+            window = inside[y0:y1, x0:x1]
+            world_pins = np.full((80, 96), -1, dtype=np.int32)
+            world_pins[20:32, 30:46] = pins
+            np.testing.assert_array_equal(part[window], world_pins[y0:y1, x0:x1][window])
+            check = msynth("check", lines, os.path.join(out, "labels.vti"))
+            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        part, errors = run_algorithm(synthesis, TilesetFile=lines, OutputSize=[96, 80, 1],
+                                     BlockSize=[16, 16, 1], Seed=3, FixedFile=placed,
+                                     Region=[28, 18, 0, 52, 40, 1])
+        self.assertEqual(errors, "")
+        np.testing.assert_array_equal(labels_zyx(part)[0], full[18:40, 28:52])
+        # The bundled drawn map: its large patch's placement block has to grow (its first size
+        # cannot be solved), so the region's window grows with it and the region runs again.
+        drawn_map = data("Tilesets/lines-drawn.vti")
+        small = ["--size", "24", "24", "1", "--block", "12", "12", "1", "--seed", "2", "--fixed", drawn_map]
+        whole = fresh_folder("worlds-pins-drawn-whole")
+        self.assertEqual(msynth("synthesize", lines, *small, "--outputs", "labels", "--out", whole).returncode, 0)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        out = fresh_folder("worlds-pins-drawn-region")
+        done = msynth("synthesize", lines, *small, "--region", "4", "4", "0", "16", "20", "1", "--outputs",
+                      "labels", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(labels_zyx(read(os.path.join(out, "labels.vti")))[0], full[4:20, 4:16])
+        # Streams do not take pins yet: one line.
+        done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--out",
+                      fresh_folder("worlds-pins-stream"))
+        self.assertNotEqual(done.returncode, 0)
+        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -31,7 +31,7 @@ void BlockSolver::StartCounts(const Block& block)
       static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
     if (this->Budget->Owner(s) != block.Index)
       continue;
-    this->Own[static_cast<std::size_t>(local)] = 1;
+    this->Own[static_cast<std::size_t>(local)] = 1 + this->Budget->Slot(s);
     ++this->Left; // undecided until tallied
   }
   this->ChangedSeen = 0;
@@ -46,8 +46,9 @@ void BlockSolver::TallySite(std::int64_t local)
   const auto i = static_cast<std::size_t>(local);
   if (!this->Own[i])
     return;
-  const int now =
-    this->Cat.Count(local) == 1 ? this->Budget->Position(this->Cat.Single(local)) : -2;
+  const int now = this->Cat.Count(local) == 1
+    ? this->Budget->Position(this->Cat.Single(local), this->Own[i] - 1)
+    : -2;
   int& was = this->Tally[i];
   if (now == was)
     return;
@@ -78,6 +79,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
   const int words = this->Rules.Words();
   const std::uint64_t* domain = this->Cat.Domain(local);
   const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
+  const std::int32_t slot = this->Own[static_cast<std::size_t>(local)] - 1;
   this->SyncCounts();
   std::vector<double>& weight = this->Steer;
   weight.assign(static_cast<std::size_t>(k), 0.0);
@@ -118,7 +120,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
       {
         const double w = weight[static_cast<std::size_t>(a)];
         total += w;
-        if (this->Budget->Position(a) == static_cast<int>(c))
+        if (this->Budget->Position(a, slot) == static_cast<int>(c))
           mine += w;
         return true;
       });
@@ -126,7 +128,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     ForEachLabel(domain, words,
       [&](int a)
       {
-        present |= this->Budget->Position(a) == static_cast<int>(c);
+        present |= this->Budget->Position(a, slot) == static_cast<int>(c);
         return !present;
       });
     if (!present)
@@ -146,8 +148,9 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
         [&](int a)
         {
           double& w = weight[static_cast<std::size_t>(a)];
-          w = this->Budget->Position(a) == static_cast<int>(c) ? (mine > 0.0 ? w * factor : factor)
-                                                               : w * otherwise;
+          w = this->Budget->Position(a, slot) == static_cast<int>(c)
+            ? (mine > 0.0 ? w * factor : factor)
+            : w * otherwise;
           return true;
         });
     };
@@ -183,7 +186,8 @@ bool BlockSolver::CountsKept(const Block& block)
     const Coord c = cat.Coordinates(local);
     const auto s =
       static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
-    const int now = this->Budget->Position(cat.Single(local));
+    const std::int32_t slot = this->Budget->Slot(s);
+    const int now = this->Budget->Position(cat.Single(local), slot);
     const std::int32_t owner = this->Budget->Owner(s);
     if (owner == block.Index)
     {
@@ -193,7 +197,7 @@ bool BlockSolver::CountsKept(const Block& block)
     }
     if (!this->Repairing)
       continue; // a later block of the run owns the site and will write it
-    const int was = this->Model[s] >= 0 ? this->Budget->Position(this->Model[s]) : -1;
+    const int was = this->Model[s] >= 0 ? this->Budget->Position(this->Model[s], slot) : -1;
     if (now == was)
       continue;
     auto& change = others[owner];

@@ -21,16 +21,31 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace msynth
 {
+struct RegionCone;
+
 namespace detail
 {
 
 class CountBudget;
 class NetworkGuard;
+
+/// A group of touching pins by its box in world coordinates (low corner, high corner), and the
+/// scale of its placement block (BlockSolver::PlacePins: 1, 2, 4, ...).
+using PinScales = std::map<std::array<std::int64_t, 6>, std::int64_t>;
+
+/// Thrown by BlockSolver::PlacePins in a window of a world: a group's placement block must grow
+/// to Scale, which the window was not planned for.
+struct PinScaleNeeded
+{
+  std::array<std::int64_t, 6> Group;
+  std::int64_t Scale = 1;
+};
 
 using Coord = std::array<std::int64_t, 3>;
 using Block = BoxBlock<3>;
@@ -78,7 +93,11 @@ public:
   std::int64_t ApplyPins();
   /// Block synthesis: each group of touching pins not in the start yet gets a block around it
   /// (its box grown by half a block of size @p m on each side, doubled while it cannot be solved).
-  void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments);
+  /// With @p cone the model is a window of a world: draws and block boxes are the world's, and
+  /// a block that must grow past its size in @p scales (1 when not listed) throws
+  /// PinScaleNeeded (the window holds those sizes only: WindowRun.h).
+  void PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments,
+    const RegionCone* cone = nullptr, const PinScales* scales = nullptr);
 
   /// The start of Algorithm 3.4 (lines 3-5), checked for consistency (TrivialStart.cxx): one
   /// trivial label everywhere, else one per layer along an axis. Returns the label most sites
@@ -331,7 +350,7 @@ private:
   bool Repairing = false;
   std::int64_t Misses = 0;
   std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
-  std::vector<std::uint8_t> Own;     ///< per local site: one of the block's own sites
+  std::vector<std::int32_t> Own;     ///< per local site: 0, or 1 + its count slot if own
   std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
   std::int64_t Left = 0;             ///< own sites still to choose
   std::vector<double> Steer;         ///< the counted choice's weights

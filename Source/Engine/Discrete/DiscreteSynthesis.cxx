@@ -456,7 +456,11 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   }
 
   if (!wholeModel && options.Pins)
-    solver.PlacePins(m, options.Seed, stats.Assignments);
+  {
+    if (cone) // the world's block size
+      BlockGeometry<3>(cone->World, options.BlockSize, options.Overlap, m, step);
+    solver.PlacePins(m, options.Seed, stats.Assignments, cone, run ? run->Scales : nullptr);
+  }
   const auto budget = options.Counts.empty()
     ? nullptr
     : std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
@@ -677,8 +681,16 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 }
 } // namespace
 
-SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options)
+SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& given)
 {
+  std::optional<SynthesisOptions> placed; // a placed pin grid, spread over the output
+  if (given.Pins && given.PinsOrigin)
+  {
+    placed = given;
+    placed->Pins = PinsOfBox(given, { { 0, 0, 0 } }, given.Size);
+    placed->PinsOrigin.reset();
+  }
+  const SynthesisOptions& options = placed ? *placed : given;
   CheckCountRequest(rules, options);
   CheckConnectedRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);

@@ -60,6 +60,9 @@ struct GuideVolume
   std::array<std::int64_t, 3> Dims{ { 1, 1, 1 } };
   /// Label value → one weight per guide cell (x fastest), each ≥ 0 and finite.
   std::map<Label, std::vector<float>> Weights;
+  /// The guide's regions for label counts per region (LabelCount::Region): one region number
+  /// (≥ 0) per guide cell (x fastest); a site belongs to its cell's region. Empty: none.
+  std::vector<std::int32_t> Regions;
 
   /// The cell (x fastest) holding site @p p of an output of @p size sites:
   /// floor((p + 1/2) · Dims / size) per axis, in integers.
@@ -168,6 +171,8 @@ struct LabelCount
   std::string Name; ///< as the user named it (a label value or a tile name), for messages
   std::int64_t Minimum = 0;
   std::int64_t Maximum = std::numeric_limits<std::int64_t>::max();
+  /// The guide region (GuideVolume::Regions) whose sites are counted; -1: the whole output.
+  std::int32_t Region = -1;
 };
 
 /// A count constraint of a finished run with the number of sites that hold its label.
@@ -287,8 +292,14 @@ struct SynthesisOptions
    * run's size around it, and no block changes them afterwards. Pins that contradict the rules,
    * the boundary labels or each other (through propagation over the pins' box and 16 sites around
    * it) are an Error before any work. Not with mirror, translation or rotation symmetry.
+   * Regions of a world take the pins that fall in their window (SynthesizeRegion).
    */
   std::optional<LabelGrid> Pins;
+  /**
+   * Where Pins' site (0, 0, 0) lies in the output (world coordinates): a pin grid smaller than
+   * the output, placed (it must lie inside the output). Empty: Pins covers the output exactly.
+   */
+  std::optional<std::array<std::int64_t, 3>> PinsOrigin;
   /// Reflection symmetry per axis (x, y, z).
   std::array<Mirror, 3> Symmetry;
   /// Translation symmetry per axis (x, y, z); cannot be combined with mirrors or rotation.
@@ -303,7 +314,9 @@ struct SynthesisOptions
    * keeping the sites it writes last within its share; the choice prefers a label below its
    * share and bans one that reached it; an attempt that misses its share fails and is tried
    * again. Counts the rules, sizes, boundary labels or pins make impossible are an Error before
-   * any work. Not with symmetry, soft constraints or regions of a world. Empty: none.
+   * any work. A count with a Region counts only the sites of that guide region; a label may be
+   * counted once in the whole output or once per region. Not with symmetry, soft constraints or
+   * regions of a world. Empty: none.
    */
   std::vector<LabelCount> Counts;
   /**
@@ -362,8 +375,10 @@ struct SynthesisResult
  * world's): the labels a whole run with the same options gives at those sites (the repair
  * passes of RepairFailedBlocks are part of the world's schedule), computed by the blocks of the
  * region's dependency cone alone (Core/ WorldSchedule.h) in a window around it, so its cost is set
- * by the region, not the world. Statistics count the blocks run. No symmetry, soft constraints,
- * pins, guide, given start, snapshots or resemblance (each needs the whole world).
+ * by the region, not the world. Statistics count the blocks run. Pins (in world coordinates,
+ * placed by PinsOrigin) that fall in the window are taken, the window grown to hold the pin
+ * placements it meets. No symmetry, soft constraints, guide, given start, snapshots,
+ * resemblance, counts or connected network (each needs the whole world).
  * @throw Error for those options or a region outside the world.
  */
 SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,

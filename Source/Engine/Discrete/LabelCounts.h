@@ -12,10 +12,16 @@
  * (cumulative rounding, so they add up exactly and depend on sizes alone, not threads); sites
  * fixed by boundary labels or pins count where they lie. A block run again in a repair pass
  * must also leave the count of every other block's own sites inside it unchanged.
+ *
+ * A count of a guide region (LabelCount::Region) counts the sites whose guide cell belongs to
+ * the region: its range is split over the blocks in proportion to their own free sites in the
+ * region. Each site has a *slot*: 0 when its region is counted by no count, else 1 + the
+ * counted region's place; a label and a slot name at most one count.
  */
 #include "Discrete/BlockSolver.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace msynth
@@ -27,9 +33,10 @@ namespace detail
 /// keep counts (symmetry, soft constraints), with one line. Needs no model.
 void CheckCountRequest(const AdjacencyRules& rules, const SynthesisOptions& options);
 
-/// The number of sites of each counted label of @p model (label values).
-std::vector<LabelCountResult> CountLabels(
-  const std::vector<LabelCount>& counts, const LabelGrid& model);
+/// The number of sites of each counted label of @p model (label values), in the whole model or
+/// in the count's region of @p guide.
+std::vector<LabelCountResult> CountLabels(const std::vector<LabelCount>& counts,
+  const LabelGrid& model, const std::optional<GuideVolume>& guide);
 
 /// One line naming the first count @p results miss, or empty when all are kept.
 std::string CountMiss(const std::vector<LabelCountResult>& results);
@@ -55,8 +62,14 @@ public:
 
   /// The counts' positions 0, 1, ... (one per SynthesisOptions::Counts entry).
   const std::vector<int>& Labels() const { return this->Counted; }
-  /// The count (position in Labels()) that label index @p b belongs to, or -1.
-  int Position(int b) const { return this->PositionOf[static_cast<std::size_t>(b)]; }
+  /// The count (position in Labels()) that label index @p b counts in at a site of slot
+  /// @p slot (see the file comment), or -1.
+  int Position(int b, std::int32_t slot) const
+  {
+    return this->PositionOf[static_cast<std::size_t>(slot) * this->K + static_cast<std::size_t>(b)];
+  }
+  /// The slot of model site @p s.
+  std::int32_t Slot(std::size_t s) const { return this->Slots.empty() ? 0 : this->Slots[s]; }
   /// The block (BoxBlock::Index) that writes model site @p s last.
   std::int32_t Owner(std::size_t s) const { return this->Owners[s]; }
   std::int64_t Minimum(std::int64_t block, std::size_t c) const
@@ -70,7 +83,9 @@ public:
 
 private:
   std::vector<int> Counted;
-  std::vector<int> PositionOf;
+  std::vector<int> PositionOf;     ///< [slot][label index]
+  std::size_t K = 0;               ///< labels
+  std::vector<std::int32_t> Slots; ///< per site; empty: every site is of slot 0
   std::vector<std::int32_t> Owners;
   std::vector<std::int64_t> Min, Max; ///< [block index][counted label]
 };

@@ -3,7 +3,9 @@
 // before any work, then kept as fixed labels; with blocks, placed into the trivial start first.
 #include "Core/Error.h"
 #include "Core/Random.h"
+#include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
+#include "Discrete/WindowRun.h"
 
 #include <algorithm>
 #include <string>
@@ -121,13 +123,33 @@ void BlockSolver::CheckPinsPropagate(const Coord& lo, const Coord& hi)
   }
 }
 
-void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments)
+namespace
+{
+/// The first placement block of a group of pins over [@p lo, @p hi] (world coordinates) in a
+/// world of @p world sites with blocks of @p m, at @p scale: its origin and size.
+void PlacementBlock(const Coord& lo, const Coord& hi, const Coord& m, const Coord& world,
+  std::int64_t scale, Coord& origin, Coord& dims)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t want = std::max(m[a], hi[a] - lo[a] + 1 + m[a]) * scale;
+    dims[a] = std::min(want, world[a]);
+    origin[a] = std::clamp<std::int64_t>((lo[a] + hi[a] + 1 - dims[a]) / 2, 0, world[a] - dims[a]);
+  }
+}
+} // namespace
+
+void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments,
+  const RegionCone* cone, const PinScales* scales)
 {
   // Each group of touching pins not yet in the model gets a block around it: its bounding box
   // grown by half a block on each side (at least a block), solved against the start around it
   // with the pins inside fixed; a block that cannot be solved doubles, up to the whole model.
+  // In a window of a world, boxes and draws are the world's (the window at its offset).
   const LabelGrid& pins = *this->Options.Pins;
   const auto& values = this->Rules.LabelValues();
+  const Coord off = cone ? cone->WindowLow : Coord{ { 0, 0, 0 } };
+  const Coord world = cone ? cone->World : this->N;
   for (std::size_t s = 0; s < this->Model.size(); ++s)
   {
     const int b = this->Fixed[s];
@@ -135,23 +157,32 @@ void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& as
       continue;
     Coord lo, hi;
     this->PinGroupBox(static_cast<std::int64_t>(s), lo, hi);
+    const Coord site = this->Coordinates(static_cast<std::int64_t>(s));
+    const auto key = static_cast<std::uint64_t>(
+      (site[0] + off[0]) + world[0] * ((site[1] + off[1]) + world[1] * (site[2] + off[2])));
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] += off[a];
+      hi[a] += off[a];
+    }
+    const std::array<std::int64_t, 6> group{ { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] } };
+    const auto planned = scales ? scales->find(group) : PinScales::const_iterator();
+    const std::int64_t allowed = scales && planned != scales->end() ? planned->second : 1;
     std::int64_t empty = -1;
     Block block;
     block.Index = -1; // LastBlock: placed with the pins
     for (std::int64_t scale = 1;; scale *= 2)
     {
+      PlacementBlock(lo, hi, m, world, scale, block.Origin, block.Dims);
       bool whole = true;
       for (int a = 0; a < 3; ++a)
       {
-        const std::int64_t want = std::max(m[a], hi[a] - lo[a] + 1 + m[a]) * scale;
-        block.Dims[a] = std::min(want, this->N[a]);
-        block.Origin[a] = std::clamp<std::int64_t>(
-          (lo[a] + hi[a] + 1 - block.Dims[a]) / 2, 0, this->N[a] - block.Dims[a]);
-        whole = whole && block.Dims[a] == this->N[a];
+        whole = whole && block.Dims[a] == world[a];
+        block.Origin[a] -= off[a];
       }
       for (int attempt = 0; attempt < this->Options.AttemptsPerBlock; ++attempt)
       {
-        Random rng = Random::Derived(seed, static_cast<std::uint64_t>(s),
+        Random rng = Random::Derived(seed, key,
           (std::uint64_t(0x9175) << 32) + static_cast<std::uint64_t>(scale * 1000 + attempt));
         empty = this->RunBlock(block, rng, assignments); // -1: solved
         if (empty < 0)
@@ -159,6 +190,8 @@ void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& as
       }
       if (empty < 0 || whole)
         break;
+      if (cone && scale >= allowed) // the window holds blocks up to the planned scale only
+        throw PinScaleNeeded{ group, 2 * scale };
     }
     if (empty >= 0)
       throw Error("the pin " + std::to_string(values[static_cast<std::size_t>(b)]) + " at " +
@@ -166,6 +199,115 @@ void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& as
         " cannot be placed: no labelling of the whole model around it fits the start (the "
         "catalog empties at " +
         Format(this->Coordinates(empty)) + ")");
+  }
+}
+
+LabelGrid PinsOfBox(const SynthesisOptions& world, const Coord& low, const Coord& high)
+{
+  const LabelGrid& pins = *world.Pins;
+  const Coord o = world.PinsOrigin.value_or(Coord{ { 0, 0, 0 } });
+  const Coord& d = pins.Dimensions();
+  for (int a = 0; a < 3; ++a)
+    if (o[a] < 0 || o[a] + d[a] > world.Size[a])
+      throw Error("the pinned sites cover " + Format(d) + " sites from " + Format(o) +
+        ", which is not inside the output " + Format(world.Size));
+  const Coord n{ { high[0] - low[0], high[1] - low[1], high[2] - low[2] } };
+  LabelGrid out(n, std::vector<Label>(static_cast<std::size_t>(n[0] * n[1] * n[2]), FreeSite));
+  Coord from, to;
+  for (int a = 0; a < 3; ++a)
+  {
+    from[a] = std::max(low[a], o[a]);
+    to[a] = std::min(high[a], o[a] + d[a]);
+    if (from[a] >= to[a])
+      return out;
+  }
+  for (std::int64_t z = from[2]; z < to[2]; ++z)
+    for (std::int64_t y = from[1]; y < to[1]; ++y)
+      for (std::int64_t x = from[0]; x < to[0]; ++x)
+        out.Data()[static_cast<std::size_t>((x - low[0]) +
+          n[0] * ((y - low[1]) + n[1] * (z - low[2])))] = pins.At(x - o[0], y - o[1], z - o[2]);
+  return out;
+}
+
+void GrowWindowForPins(
+  const SynthesisOptions& world, const Coord& m, RegionCone& cone, const PinScales& scales)
+{
+  // The groups of touching pins of the pin grid, each's first placement block with its ring.
+  const LabelGrid& pins = *world.Pins;
+  const Coord o = world.PinsOrigin.value_or(Coord{ { 0, 0, 0 } });
+  const Coord& d = pins.Dimensions();
+  std::vector<std::array<Coord, 2>> reach; // [low, high) per group
+  std::vector<bool> seen(pins.Data().size(), false);
+  std::vector<std::int64_t> stack;
+  for (std::size_t first = 0; first < seen.size(); ++first)
+  {
+    if (seen[first] || pins.Data()[first] == FreeSite)
+      continue;
+    Coord lo{ { d[0], d[1], d[2] } }, hi{ { -1, -1, -1 } };
+    stack.assign(1, static_cast<std::int64_t>(first));
+    seen[first] = true;
+    while (!stack.empty())
+    {
+      const std::int64_t s = stack.back();
+      stack.pop_back();
+      const Coord p{ { s % d[0], (s / d[0]) % d[1], s / (d[0] * d[1]) } };
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+      for (int e = 0; e < 6; ++e)
+      {
+        Coord q = p;
+        q[e / 2] += (e & 1) ? -1 : 1;
+        if (q[e / 2] < 0 || q[e / 2] >= d[e / 2])
+          continue;
+        const auto t = static_cast<std::size_t>(q[0] + d[0] * (q[1] + d[1] * q[2]));
+        if (!seen[t] && pins.Data()[t] != FreeSite)
+        {
+          seen[t] = true;
+          stack.push_back(static_cast<std::int64_t>(t));
+        }
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] += o[a];
+      hi[a] += o[a];
+    }
+    Coord origin, dims;
+    const auto planned = scales.find({ { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] } });
+    PlacementBlock(
+      lo, hi, m, world.Size, planned == scales.end() ? 1 : planned->second, origin, dims);
+    std::array<Coord, 2> box;
+    for (int a = 0; a < 3; ++a)
+    {
+      box[0][a] = std::max<std::int64_t>(0, origin[a] - 1);
+      box[1][a] = std::min(world.Size[a], origin[a] + dims[a] + 1);
+    }
+    reach.push_back(box);
+  }
+  // Grow the window to every reach that meets it, until none is left out.
+  for (bool grown = true; grown;)
+  {
+    grown = false;
+    for (const auto& box : reach)
+    {
+      bool meets = true, inside = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        meets = meets && box[0][a] < cone.WindowHigh[a] && box[1][a] > cone.WindowLow[a];
+        inside = inside && box[0][a] >= cone.WindowLow[a] && box[1][a] <= cone.WindowHigh[a];
+      }
+      if (!meets || inside)
+        continue;
+      for (int a = 0; a < 3; ++a)
+      {
+        cone.WindowLow[a] = std::min(cone.WindowLow[a], box[0][a]);
+        cone.WindowHigh[a] = std::max(cone.WindowHigh[a], box[1][a]);
+      }
+      grown = true;
+    }
   }
 }
 

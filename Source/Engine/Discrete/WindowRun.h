@@ -33,6 +33,8 @@ struct WindowRun
   /// When given, receives the window's labels (indices, -1 undecided) instead of the result's
   /// Model, and sites left undecided are not an error (a later window decides them).
   SharedModel* Keep = nullptr;
+  /// The placement scales of pin groups the window was grown for (BlockSolver::PlacePins).
+  const PinScales* Scales = nullptr;
 };
 
 /// Algorithm 3.4 (or 3.1 for one block as large as the output) on @p options' output, with a
@@ -53,6 +55,22 @@ void CheckWorldOptions(const SynthesisOptions& world, const char* what);
 /// The estimate of the memory a run of @p o takes (model and catalogs), checked against the
 /// machine. @throw Error naming the need when it does not fit.
 void CheckSynthesisMemory(const AdjacencyRules& rules, const SynthesisOptions& o);
+
+/**
+ * The pins of @p world (Pins placed at PinsOrigin) over the box [@p low, @p high) of the world,
+ * FreeSite where none: the pins a window of the world takes.
+ * @throw Error when the placed pin grid does not lie inside the world.
+ */
+LabelGrid PinsOfBox(const SynthesisOptions& world, const Coord& low, const Coord& high);
+
+/**
+ * Grows @p cone's window until it holds, with the site ring around it, the placement block
+ * (BlockSolver::PlacePins, at its scale in @p scales, else its first size) of every group of
+ * touching pins of @p world whose block or ring meets the window: the window's placements then
+ * read and write what they do in a whole run.
+ */
+void GrowWindowForPins(
+  const SynthesisOptions& world, const Coord& m, RegionCone& cone, const PinScales& scales);
 
 /// Passes after the first that repair failed blocks (SynthesisOptions::RepairFailedBlocks).
 constexpr int RepairPasses = 3;

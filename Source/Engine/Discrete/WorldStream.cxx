@@ -27,13 +27,24 @@ void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
     world.Symmetry[0].Enabled || world.Symmetry[1].Enabled || world.Symmetry[2].Enabled;
   const bool seams = world.Rotate.Enabled || world.Translate[0].Enabled ||
     world.Translate[1].Enabled || world.Translate[2].Enabled;
-  if (mirror || seams || world.Soft.Active() || world.Pins || world.Guide || world.Start ||
+  if (mirror || seams || world.Soft.Active() || world.Guide || world.Start ||
     world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance ||
     !world.Counts.empty() || world.Connected.Active())
     throw Error(std::string(what) +
-      " takes no symmetry, soft constraints, pins, guide, given start, snapshots, resemblance "
+      " takes no symmetry, soft constraints, guide, given start, snapshots, resemblance "
       "choice, label counts or connected network (each needs the whole world)");
 }
+
+namespace
+{
+/// Streams do not take pins yet: their placements run before the wavefront (WindowRun.h).
+void CheckStreamOptions(const SynthesisOptions& world)
+{
+  CheckWorldOptions(world, "a streamed world");
+  if (world.Pins)
+    throw Error("a streamed world takes no pins yet (compute the whole world, or regions of it)");
+}
+} // namespace
 
 SynthesisOptions detail::WindowOptions(
   const AdjacencyRules& rules, const SynthesisOptions& world, const RegionCone& cone)
@@ -48,6 +59,11 @@ SynthesisOptions detail::WindowOptions(
       window.Boundary[2 * a].reset();
     if (cone.WindowHigh[a] < world.Size[a])
       window.Boundary[2 * a + 1].reset();
+  }
+  if (world.Pins) // the pins that fall in the window
+  {
+    window.Pins = PinsOfBox(world, cone.WindowLow, cone.WindowHigh);
+    window.PinsOrigin.reset();
   }
   CheckSynthesisMemory(rules, window);
   return window;
@@ -83,14 +99,39 @@ void LeftUndecided(const Coord& p, SynthesisResult& r)
 /// Runs @p cone's blocks in its window and crops the region [@p low, @p high); failed when a
 /// site of the region is left undecided.
 SynthesisResult RegionOfCone(const AdjacencyRules& rules, const SynthesisOptions& resolved,
-  const RegionCone& cone, const WorldBox& low, const WorldBox& high)
+  const RegionCone& planned, const WorldBox& low, const WorldBox& high)
 {
-  const SynthesisOptions window = WindowOptions(rules, resolved, cone);
-  WindowRun run;
-  run.Cone = &cone;
+  // With pins, the window first grows to hold the placements it meets; a placement that must
+  // grow (its block could not be solved) grows the window again and the region runs again.
+  Coord m, step;
+  const bool placed = resolved.Pins &&
+    !BlockGeometry<3>(resolved.Size, resolved.BlockSize, resolved.Overlap, m, step);
+  PinScales scales;
+  RegionCone cone;
   SharedModel keep;
-  run.Keep = &keep;
-  SynthesisResult r = SynthesizeDirect(rules, window, nullptr, nullptr, &run);
+  SynthesisResult r;
+  SynthesisOptions window;
+  for (bool again = true; again;)
+  {
+    again = false;
+    cone = planned;
+    if (placed)
+      GrowWindowForPins(resolved, m, cone, scales);
+    window = WindowOptions(rules, resolved, cone);
+    WindowRun run;
+    run.Cone = &cone;
+    run.Scales = &scales;
+    run.Keep = &keep;
+    try
+    {
+      r = SynthesizeDirect(rules, window, nullptr, nullptr, &run);
+    }
+    catch (const PinScaleNeeded& need)
+    {
+      scales[need.Group] = need.Scale;
+      again = true;
+    }
+  }
   if (!r.Succeeded())
     return r;
   const Coord& w = window.Size;
@@ -532,7 +573,7 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk)
 {
   const auto start = std::chrono::steady_clock::now();
-  CheckWorldOptions(world, "a streamed world");
+  CheckStreamOptions(world);
   if (firstChunk < 0 || firstChunk >= layout.Chunks || layout.World != world.Size)
     throw Error("a streamed run resumes at one of its own slabs");
   const WorldLattice lattice = LatticeOf(world);
@@ -606,7 +647,7 @@ void StreamLayout::Box(
 
 StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness)
 {
-  CheckWorldOptions(world, "a streamed world");
+  CheckStreamOptions(world);
   const WorldLattice lattice = LatticeOf(world);
   if (lattice.NumberOfBlocks() == 1)
     throw Error("a streamed world is computed in blocks: give blocks smaller than the world");

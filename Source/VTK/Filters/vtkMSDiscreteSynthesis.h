@@ -42,7 +42,9 @@
  * synthesis only; field data `BlocksRejected` counts the blocks rolled back.
  *
  * Label counts: Counts "L:MIN:MAX,..." keeps the number of sites of each label (or, with a
- * tileset, tile) L within [MIN, MAX]; impossible counts fail before any work.
+ * tileset, tile) L within [MIN, MAX]; impossible counts fail before any work. An entry
+ * "region=R:L:MIN:MAX" counts only the sites of region R of the guide: the guide's integer
+ * point array `Region` (stretched over the output box as its weights are) gives each site's.
  *
  * Large-scale constraints (§3.5.3): an optional second input, the guide, is vtkImageData
  * stretched over the output box whose point arrays `Weight_<label>` (e.g. `Weight_2`) give
@@ -351,8 +353,9 @@ public:
   ///@{
   /// Label counts (a hard constraint, msynth::SynthesisOptions::Counts): "L:MIN:MAX,..." ("" for
   /// none; default), the sites holding L are MIN to MAX; with a tileset L may name a tile (all
-  /// its orientations) or a label ("tile k"). Field data `CountNames`, `CountMinimum`,
-  /// `CountMaximum`, `CountAchieved` report them.
+  /// its orientations) or a label ("tile k"); "region=R:L:MIN:MAX" counts in the guide's region
+  /// R only (its point array `Region`). Field data `CountNames`, `CountMinimum`,
+  /// `CountMaximum`, `CountAchieved`, `CountRegion` (-1: whole model) report them.
   vtkSetStdStringFromCharMacro(Counts);
   vtkGetCharFromStdStringMacro(Counts);
   ///@}

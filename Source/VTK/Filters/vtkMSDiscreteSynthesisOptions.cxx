@@ -20,7 +20,9 @@
 #include "Formats/TilePictures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace
@@ -89,7 +91,33 @@ bool ReadSymmetryAndSoft(vtkMSDiscreteSynthesis* self, msynth::SynthesisOptions&
   return true;
 }
 
-/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label>.
+/// The guide's regions for counts per region: its integer point array `Region` (values >= 0).
+bool ReadGuideRegions(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::GuideVolume& v)
+{
+  vtkDataArray* regions = guide->GetPointData()->GetArray("Region");
+  if (!regions)
+    return true;
+  if (regions->GetNumberOfComponents() != 1)
+  {
+    vtkErrorWithObjectMacro(self, << "The guide's array 'Region' must have one component.");
+    return false;
+  }
+  v.Regions.resize(static_cast<std::size_t>(regions->GetNumberOfTuples()));
+  for (vtkIdType t = 0; t < regions->GetNumberOfTuples(); ++t)
+  {
+    const double r = regions->GetTuple1(t);
+    if (!(r >= 0.0 && r <= 2147483647.0) || r != std::floor(r))
+    {
+      vtkErrorWithObjectMacro(self, << "The guide's array 'Region' holds " << r << " at point " << t
+                                    << "; regions are whole numbers from 0.");
+      return false;
+    }
+    v.Regions[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(r);
+  }
+  return true;
+}
+
+/// The guide volume (D§3.5.3) of input port 1: its point arrays Weight_<label> and Region.
 bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::SynthesisOptions& options)
 {
   msynth::GuideVolume volume;
@@ -118,10 +146,12 @@ bool ReadGuide(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth::Synthe
     }
     volume.Weights[static_cast<msynth::Label>(value)] = std::move(weights);
   }
-  if (volume.Weights.empty())
+  if (!ReadGuideRegions(self, guide, volume))
+    return false;
+  if (volume.Weights.empty() && volume.Regions.empty())
   {
     vtkWarningWithObjectMacro(
-      self, << "The guide has no point array named Weight_<label>; it has no effect.");
+      self, << "The guide has no point array named Weight_<label> or Region; it has no effect.");
   }
   options.Guide = std::move(volume);
   return true;
@@ -244,7 +274,19 @@ msynth::LabelGrid PinsOfPicture(
 }
 
 /// The pins of FixedFile: a picture by its extension, else a label grid.
-msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path)
+/// Where a label grid of pins whose extent does not start at 0 lies in the output: its
+/// extent's first corner (a smaller grid placed in the world); empty at 0.
+std::optional<std::array<std::int64_t, 3>> PlacedAt(vtkImageData* image)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  if (extent[0] == 0 && extent[2] == 0 && extent[4] == 0)
+    return std::nullopt;
+  return std::array<std::int64_t, 3>{ { extent[0], extent[2], extent[4] } };
+}
+
+msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& path,
+  std::optional<std::array<std::int64_t, 3>>& origin)
 {
   if (msynth::IsImageFile(path))
     return PinsOfPicture(self, msynth::ReadImage(path), path);
@@ -257,11 +299,13 @@ msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& pa
   msynth::LabelGrid pins;
   if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
     throw msynth::Error::InFile(path, messages);
+  origin = PlacedAt(reader->GetOutput());
   return pins;
 }
 
 /// The pins of input port 2: its labels, or a picture drawn with a tileset's tiles.
-msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed)
+msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed,
+  std::optional<std::array<std::int64_t, 3>>& origin)
 {
   if (vtkUnsignedCharArray* picture = PictureOf(fixed))
     return PinsOfPicture(self, PictureRows(fixed, picture), "the picture of pinned tiles");
@@ -269,6 +313,7 @@ msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed)
   std::string problem;
   if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))
     throw msynth::Error(problem);
+  origin = PlacedAt(fixed);
   return pins;
 }
 } // namespace
@@ -282,7 +327,10 @@ bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::Synthes
     return true;
   try
   {
-    msynth::LabelGrid pins = fixed ? PinsOfInput(self, fixed) : PinsOfFile(self, file);
+    std::optional<std::array<std::int64_t, 3>> origin;
+    msynth::LabelGrid pins =
+      fixed ? PinsOfInput(self, fixed, origin) : PinsOfFile(self, file, origin);
+    options.PinsOrigin = origin;
     if (self->GetFixedEmptyFree())
       std::replace(pins.Data().begin(), pins.Data().end(), msynth::Label(0), msynth::FreeSite);
     options.Pins = std::move(pins);

@@ -26,7 +26,19 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
     c.Minimum = e.Minimum;
     c.Maximum = e.Maximum;
     long long value = 0;
-    if (msynth::ParseInteger(e.Name, std::numeric_limits<msynth::Label>::min(),
+    const std::string prefix = "region=";
+    if (c.Name.compare(0, prefix.size(), prefix) == 0) // region=R:L:MIN:MAX
+    {
+      const std::size_t colon = c.Name.find(':');
+      if (colon == std::string::npos ||
+        !msynth::ParseInteger(c.Name.substr(prefix.size(), colon - prefix.size()), 0,
+          std::numeric_limits<std::int32_t>::max(), value))
+        throw msynth::Error("Counts: '" + msynth::Printable(e.Name) +
+          "' is not region=R:L with R a guide region number (0 or more)");
+      c.Region = static_cast<std::int32_t>(value);
+      c.Name = c.Name.substr(colon + 1);
+    }
+    if (msynth::ParseInteger(c.Name, std::numeric_limits<msynth::Label>::min(),
           std::numeric_limits<msynth::Label>::max(), value))
       c.Values.push_back(static_cast<msynth::Label>(value));
     else if (tiles)
@@ -35,16 +47,16 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
       {
         const auto& tile =
           tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
-        if (tile.Name == e.Name || tiles->LabelName(b) == e.Name)
+        if (tile.Name == c.Name || tiles->LabelName(b) == c.Name)
           c.Values.push_back(b);
       }
       if (c.Values.empty())
         throw msynth::Error(
-          "Counts: the tileset has no tile or label named '" + msynth::Printable(e.Name) + "'");
+          "Counts: the tileset has no tile or label named '" + msynth::Printable(c.Name) + "'");
     }
     else
       throw msynth::Error(
-        "Counts: '" + msynth::Printable(e.Name) + "' is not a label value (names need a tileset)");
+        "Counts: '" + msynth::Printable(c.Name) + "' is not a label value (names need a tileset)");
     counts.push_back(c);
   }
   return counts;
@@ -183,7 +195,8 @@ void AddFields(vtkFieldData* fd, const std::vector<msynth::LabelCountResult>& co
     return;
   vtkNew<vtkStringArray> names;
   names->SetName("CountNames");
-  vtkNew<vtkIdTypeArray> minimum, maximum, achieved;
+  vtkNew<vtkIdTypeArray> minimum, maximum, achieved, region;
+  region->SetName("CountRegion");
   minimum->SetName("CountMinimum");
   maximum->SetName("CountMaximum");
   achieved->SetName("CountAchieved");
@@ -193,11 +206,13 @@ void AddFields(vtkFieldData* fd, const std::vector<msynth::LabelCountResult>& co
     minimum->InsertNextValue(static_cast<vtkIdType>(r.Requested.Minimum));
     maximum->InsertNextValue(static_cast<vtkIdType>(r.Requested.Maximum));
     achieved->InsertNextValue(static_cast<vtkIdType>(r.Achieved));
+    region->InsertNextValue(static_cast<vtkIdType>(r.Requested.Region));
   }
   fd->AddArray(names);
   fd->AddArray(minimum);
   fd->AddArray(maximum);
   fd->AddArray(achieved);
+  fd->AddArray(region);
 }
 
 } // namespace vtkMSLabelCounts

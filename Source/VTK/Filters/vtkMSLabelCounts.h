@@ -22,7 +22,8 @@ namespace vtkMSLabelCounts
 {
 /**
  * The counts of @p text ("L:MIN:MAX,..."): L is a label value, or with @p tiles a tile's name
- * (all its orientations or images) or a label's name ("tile k").
+ * (all its orientations or images) or a label's name ("tile k"); "region=R:L:MIN:MAX" counts
+ * only the sites of the guide's region R (LabelCount::Region).
  * @throw msynth::Error naming the entry that is not one.
  */
 std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tileset* tiles);
@@ -41,7 +42,7 @@ msynth::ConnectedNetwork ReadConnected(
 /// `ConnectedBefore`, `ConnectedRepairs`, `ConnectedRedone` (one tuple); none without a network.
 void AddConnectedFields(vtkFieldData* fd, const msynth::ConnectedResult& connected);
 
-/// Field arrays `CountNames` (string), `CountMinimum`, `CountMaximum`, `CountAchieved` (one
-/// tuple per count); none without counts.
+/// Field arrays `CountNames` (string), `CountMinimum`, `CountMaximum`, `CountAchieved`,
+/// `CountRegion` (-1: the whole model; one tuple per count); none without counts.
 void AddFields(vtkFieldData* fd, const std::vector<msynth::LabelCountResult>& counts);
 }
