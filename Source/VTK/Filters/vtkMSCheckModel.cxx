@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSCheckModel.h"
 
+#include "vtkMSCheckKinds.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
@@ -20,6 +21,7 @@
 #include "vtkStringArray.h"
 
 #include "Continuous/ContinuousMesh.h"
+#include "Core/Error.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
@@ -73,23 +75,9 @@ double RecordedNumber(vtkFieldData* fd, const char* name, double otherwise)
   return a && a->GetNumberOfTuples() == 1 ? a->GetTuple1(0) : otherwise;
 }
 
-/// The verdict's arrays: Valid, Violations, PairsChecked, Problems.
-void AddVerdict(vtkFieldData* out, bool valid, std::int64_t violations, std::int64_t pairs,
-  const std::vector<std::string>& problems)
-{
-  vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Valid", valid ? 1 : 0);
-  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
-    out, "Violations", static_cast<vtkIdType>(violations));
-  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(out, "PairsChecked", static_cast<vtkIdType>(pairs));
-  vtkNew<vtkStringArray> lines;
-  lines->SetName("Problems");
-  for (const std::string& line : problems)
-    lines->InsertNextValue(line);
-  out->AddArray(lines);
-}
-
-/// The first violations as arrays: ViolationSites, ViolationAxes, ViolationLabels.
-void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report)
+/// The first violations as arrays: ViolationSites, ViolationAxes, ViolationLabels; the verdict
+/// @p valid (the pairs' and the other checks').
+void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report, bool valid)
 {
   vtkNew<vtkIdTypeArray> sites;
   sites->SetName("ViolationSites");
@@ -109,7 +97,7 @@ void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report)
     labels->InsertNextTypedTuple(pair);
     lines.push_back(v.Describe());
   }
-  AddVerdict(out, report.Consistent, report.Violations, report.PairsChecked, lines);
+  vtkMSCheckKinds::AddVerdict(out, valid, report.Violations, report.PairsChecked, lines);
   out->AddArray(sites);
   out->AddArray(axes);
   out->AddArray(labels);
@@ -175,9 +163,22 @@ bool vtkMSCheckModel::CheckLabels(
                 .Pairs;
     report =
       msynth::CheckConsistency(grids, pairs, grid, static_cast<std::size_t>(this->MaximumReported));
-    AddViolations(out, report);
-    if (!this->Shapes.empty())
-      AddQuality(out, grids, grid, this->Shapes, this->Epsilon);
+    // Counts and network: names of ConnectedTilesetFile, else of the tileset checked against.
+    const bool own = !this->ConnectedTilesetFile.empty();
+    vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
+      own ? this->ConnectedTilesetFile : tileset,
+      own || !recorded ? this->TilesetSubset : Recorded(fd, "TilesetSubset"),
+      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {} };
+    request.Source = !request.Tileset.empty() ? request.Tileset
+      : examples->GetNumberOfInformationObjects() > 0
+      ? vtkMSFieldData::ExampleName(vtkImageData::GetData(examples, 0))
+      : std::string("the model");
+    const bool kept = vtkMSCheckKinds::CheckNetwork(grid, request, out);
+    AddViolations(out, report, report.Consistent && kept);
+    // Shapes, else the soft shapes a pattern synthesis recorded.
+    const std::string shapes = this->Shapes.empty() ? Recorded(fd, "SoftShapes") : this->Shapes;
+    if (!shapes.empty())
+      AddQuality(out, grids, grid, shapes, this->Epsilon);
   }
   catch (const std::exception& e)
   {
@@ -221,13 +222,38 @@ bool vtkMSCheckModel::CheckContinuous(
       return false;
     }
     const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames, spacing);
-    AddVerdict(out, report.Valid, report.Valid ? 0 : 1, 0,
+    vtkMSCheckKinds::AddVerdict(out, report.Valid, report.Valid ? 0 : 1, 0,
       report.Valid ? std::vector<std::string>() : std::vector<std::string>{ report.Problem });
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Objects", report.Objects);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "DistinctLabels", report.DistinctLabels);
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "SmallestFeature", report.SmallestFeature);
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       out, "SmallestFeatureFraction", spacing > 0 ? report.SmallestFeature / spacing : 0.0);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return false;
+  }
+  return true;
+}
+
+bool vtkMSCheckModel::CheckOther(vtkImageData* model, vtkFieldData* out)
+{
+  try
+  {
+    const auto limit = static_cast<std::size_t>(this->MaximumReported);
+    if (!this->SampleFile.empty())
+    {
+      vtkMSCheckKinds::PictureCheck check{ this->SampleFile, this->PatternSize,
+        this->PatternSymmetry, this->PeriodicInput, this->Ground,
+        { this->PeriodicOutput[0] != 0, this->PeriodicOutput[1] != 0 } };
+      vtkMSCheckKinds::CheckPicture(model, check, limit, out);
+    }
+    else if (this->TilesetFile.empty())
+      throw msynth::Error("A voxel model is checked against a voxel tileset: set TilesetFile.");
+    else
+      vtkMSCheckKinds::CheckVoxels(model, this->TilesetFile, this->TilesFolder, limit, out);
   }
   catch (const std::exception& e)
   {
@@ -247,7 +273,9 @@ int vtkMSCheckModel::RequestData(
   fields->DeepCopy(input->GetFieldData());
   output->SetFieldData(fields);
   auto* image = vtkImageData::SafeDownCast(input);
-  const bool checked = image
+  const bool other = image && (!this->SampleFile.empty() || this->VoxelModel);
+  const bool checked = other ? this->CheckOther(image, fields)
+    : image
     ? this->CheckLabels(image, inputVector[1], fields)
     : this->CheckContinuous(vtkPolyData::SafeDownCast(input), inputVector[1], fields);
   if (!checked)
@@ -261,6 +289,18 @@ void vtkMSCheckModel::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TilesetFile: " << this->TilesetFile << "\n";
   os << indent << "TilesetSubset: " << this->TilesetSubset << "\n";
   os << indent << "TilesFolder: " << this->TilesFolder << "\n";
+  os << indent << "SampleFile: " << this->SampleFile << "\n";
+  os << indent << "PatternSize: " << this->PatternSize << "\n";
+  os << indent << "PatternSymmetry: " << this->PatternSymmetry << "\n";
+  os << indent << "PeriodicInput: " << this->PeriodicInput << "\n";
+  os << indent << "Ground: " << this->Ground << "\n";
+  os << indent << "PeriodicOutput: " << this->PeriodicOutput[0] << " " << this->PeriodicOutput[1]
+     << "\n";
+  os << indent << "VoxelModel: " << this->VoxelModel << "\n";
+  os << indent << "Counts: " << this->Counts << "\n";
+  os << indent << "Connected: " << this->Connected << "\n";
+  os << indent << "Path: " << this->Path << "\n";
+  os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
   os << indent << "Shapes: " << this->Shapes << "\n";
   os << indent << "Epsilon: " << this->Epsilon << "\n";
   os << indent << "MaximumReported: " << this->MaximumReported << "\n";

@@ -26,6 +26,19 @@
  * soft factors worth 1 + Epsilon); for continuous models `Objects`, `DistinctLabels` and the
  * narrowest face, edge or gap `SmallestFeature` and `SmallestFeatureFraction` (of the model's
  * recorded `SmallestSpacing`; under MinimumFeatureFraction of it the model is invalid).
+ *
+ * Other models (each chosen by its property): with SampleFile, the model is a picture (colour
+ * scalars, from a PNG reader or vtkMSPatternImage) and every window of it must be one of the
+ * sample's (`Violations`: the windows found wrong, at most MaximumReported); with VoxelModel, a
+ * voxel model (palette indices and field data `PaletteRGBA`, as vtkMSLabelGridReader reads a
+ * .vox with VoxScene) whose every tile cell must be a tile of the voxel tileset TilesetFile and
+ * every adjacent pair allowed (`Cells`, `PairsChecked`).
+ *
+ * A label model's Counts, Connected network and Path are checked too (counted by a union-find of
+ * the check's own, Discrete/LabelChecks.h; tile names of ConnectedTilesetFile, else of the
+ * tileset): `CountNames`, `CountAchieved`, ..., `CountsKept`, `ConnectedComponents`,
+ * `ConnectedKept`, `PathJoined`, and `Findings` (a line each). `Valid` is 0 when one is missed.
+ *
  * Bad input (no example and no tileset, a model without labels) is an error naming it.
  *
  * @sa msynth check, msynth quality
@@ -70,8 +83,51 @@ public:
   ///@}
 
   ///@{
+  /// An image sample (.png, .bmp): the model is a picture whose every PatternSize x PatternSize
+  /// window (wrapping along the axes of PeriodicOutput) must be a window of the sample or one of
+  /// its first PatternSymmetry dihedral images (windows of the sample wrap with PeriodicInput;
+  /// with Ground the bottom row holds the ground windows). "" (the default): no picture check.
+  vtkSetStdStringFromCharMacro(SampleFile);
+  vtkGetCharFromStdStringMacro(SampleFile);
+  vtkSetClampMacro(PatternSize, int, 1, 8);
+  vtkGetMacro(PatternSize, int);
+  vtkSetClampMacro(PatternSymmetry, int, 1, 8);
+  vtkGetMacro(PatternSymmetry, int);
+  vtkSetMacro(PeriodicInput, bool);
+  vtkGetMacro(PeriodicInput, bool);
+  vtkSetMacro(Ground, bool);
+  vtkGetMacro(Ground, bool);
+  vtkSetVector2Macro(PeriodicOutput, int);
+  vtkGetVector2Macro(PeriodicOutput, int);
+  ///@}
+
+  ///@{
+  /// Whether the model is a voxel model (palette indices, field data PaletteRGBA) checked cell
+  /// by cell against the voxel tileset TilesetFile. Default off.
+  vtkSetMacro(VoxelModel, bool);
+  vtkGetMacro(VoxelModel, bool);
+  vtkBooleanMacro(VoxelModel, bool);
+  ///@}
+
+  ///@{
+  /// Label counts "L:MIN:MAX,..." the model must hold, a network "LABELS[:N]" whose sites form at
+  /// most N components (through a tileset's connecting sides), and a Path "A;B;..." (sites
+  /// x,y[,z] or labels) whose sites lie in one of them. L and LABELS are values or tile and
+  /// label names of ConnectedTilesetFile ("" the default: the tileset checked against, if any).
+  vtkSetStdStringFromCharMacro(Counts);
+  vtkGetCharFromStdStringMacro(Counts);
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
+  vtkSetStdStringFromCharMacro(Path);
+  vtkGetCharFromStdStringMacro(Path);
+  vtkSetStdStringFromCharMacro(ConnectedTilesetFile);
+  vtkGetCharFromStdStringMacro(ConnectedTilesetFile);
+  ///@}
+
+  ///@{
   /// Factor shapes whose KL divergence to the examples is measured ("4H,4V", "3x3", as
-  /// vtkMSPatternSynthesis's SoftFactors); "" (the default): none.
+  /// vtkMSPatternSynthesis's SoftFactors); "" (the default): the soft shapes the model's field
+  /// data records (`SoftShapes`, as vtkMSPatternSynthesis publishes them), else none.
   vtkSetStdStringFromCharMacro(Shapes);
   vtkGetCharFromStdStringMacro(Shapes);
   ///@}
@@ -102,10 +158,22 @@ private:
 
   bool CheckLabels(vtkImageData* model, vtkInformationVector* examples, vtkFieldData* out);
   bool CheckContinuous(vtkPolyData* model, vtkInformationVector* examples, vtkFieldData* out);
+  bool CheckOther(vtkImageData* model, vtkFieldData* out);
 
   std::string TilesetFile;
   std::string TilesetSubset;
   std::string TilesFolder;
+  std::string SampleFile;
+  int PatternSize = 3;
+  int PatternSymmetry = 8;
+  bool PeriodicInput = true;
+  bool Ground = false;
+  int PeriodicOutput[2] = { 0, 0 };
+  bool VoxelModel = false;
+  std::string Counts;
+  std::string Connected;
+  std::string Path;
+  std::string ConnectedTilesetFile;
   std::string Shapes;
   double Epsilon = 0.1;
   int MaximumReported = 10;
