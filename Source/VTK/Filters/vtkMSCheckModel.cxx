@@ -18,23 +18,38 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
 #include "Discrete/ConsistencyCheck.h"
+#include "Discrete/TimeVarying.h"
 #include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
 vtkStandardNewMacro(vtkMSCheckModel);
 
+/// What a time-varying check collects over the executions of one update.
+struct vtkMSCheckModel::TimeFrames
+{
+  std::size_t Step = 0;  ///< the execution under way
+  std::size_t Steps = 1; ///< executions in all: the most time steps of model and example
+  std::vector<double> ModelTimes, ExampleTimes;
+  msynth::TimeVaryingGrid Model, Example;
+};
+
 vtkMSCheckModel::vtkMSCheckModel()
+  : Frames(new TimeFrames)
 {
   this->SetNumberOfInputPorts(2);
 }
+
+vtkMSCheckModel::~vtkMSCheckModel() = default;
 
 int vtkMSCheckModel::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -49,6 +64,30 @@ int vtkMSCheckModel::FillInputPortInformation(int port, vtkInformation* info)
   return 1;
 }
 
+int vtkMSCheckModel::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (this->TimeVarying) // one verdict for every time step together
+  {
+    outputVector->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outputVector->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
+  return 1;
+}
+
+namespace
+{
+/// The time steps @p info announces (none: empty).
+std::vector<double> TimeSteps(vtkInformation* info)
+{
+  const auto key = vtkStreamingDemandDrivenPipeline::TIME_STEPS();
+  if (!info || !info->Has(key))
+    return {};
+  const double* t = info->Get(key);
+  return std::vector<double>(t, t + info->Length(key));
+}
+} // namespace
+
 int vtkMSCheckModel::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
@@ -56,6 +95,20 @@ int vtkMSCheckModel::RequestUpdateExtent(
   for (int port = 0; port < 2; ++port)
     for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
       vtkMSPipeline::RequestWholeExtentOnPieceZero(inputVector[port]->GetInformationObject(i), 0);
+  if (!this->TimeVarying)
+    return 1;
+  // A time-varying check executes once per time step, asking each input for its step.
+  TimeFrames& f = *this->Frames;
+  vtkInformation* example = inputVector[1]->GetInformationObject(0);
+  f.ModelTimes = TimeSteps(inputVector[0]->GetInformationObject(0));
+  f.ExampleTimes = this->ExampleTimeFromZ ? std::vector<double>() : TimeSteps(example);
+  f.Steps = std::max<std::size_t>({ 1, f.ModelTimes.size(), f.ExampleTimes.size() });
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP();
+  if (!f.ModelTimes.empty())
+    inputVector[0]->GetInformationObject(0)->Set(
+      key, f.ModelTimes[std::min(f.Step, f.ModelTimes.size() - 1)]);
+  if (!f.ExampleTimes.empty())
+    example->Set(key, f.ExampleTimes[std::min(f.Step, f.ExampleTimes.size() - 1)]);
   return 1;
 }
 
@@ -84,6 +137,8 @@ void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report, b
   sites->SetNumberOfComponents(3);
   vtkNew<vtkIntArray> axes;
   axes->SetName("ViolationAxes");
+  vtkNew<vtkIdTypeArray> times;
+  times->SetName("ViolationTimes");
   vtkNew<vtkIntArray> labels;
   labels->SetName("ViolationLabels");
   labels->SetNumberOfComponents(2);
@@ -93,6 +148,7 @@ void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report, b
     const vtkIdType site[3] = { v.Site[0], v.Site[1], v.Site[2] };
     sites->InsertNextTypedTuple(site);
     axes->InsertNextValue(v.Axis);
+    times->InsertNextValue(static_cast<vtkIdType>(v.Time));
     const int pair[2] = { v.From, v.To };
     labels->InsertNextTypedTuple(pair);
     lines.push_back(v.Describe());
@@ -101,6 +157,8 @@ void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report, b
   out->AddArray(sites);
   out->AddArray(axes);
   out->AddArray(labels);
+  if (!report.First.empty() && report.First.front().Time >= 0)
+    out->AddArray(times);
 }
 
 /// KL_<shape> per shape of @p shapes and PatternLogProbability (PatternQuality.h).
@@ -263,8 +321,64 @@ bool vtkMSCheckModel::CheckOther(vtkImageData* model, vtkFieldData* out)
   return true;
 }
 
+int vtkMSCheckModel::CheckTimeStep(
+  vtkImageData* model, vtkInformationVector* examples, vtkInformation* request, vtkFieldData* out)
+{
+  TimeFrames& f = *this->Frames;
+  try
+  {
+    if (f.Step == 0)
+      f.Model.Frames.clear(), f.Example.Frames.clear();
+    std::string problem;
+    msynth::LabelGrid grid;
+    if (f.Step < std::max<std::size_t>(1, f.ModelTimes.size()) &&
+      !vtkMSLabelArrays::ReadLabels(model, nullptr, grid, problem))
+      throw msynth::Error("Frame " + std::to_string(f.Step) + " of the model: " + problem);
+    if (!grid.Data().empty())
+      f.Model.Frames.push_back(std::move(grid));
+    const int connected = examples->GetNumberOfInformationObjects();
+    const bool series = !this->ExampleTimeFromZ && !f.ExampleTimes.empty();
+    for (int i = 0; i < connected && (f.Step == 0 || (series && f.Step < f.ExampleTimes.size()));
+         ++i)
+    {
+      msynth::LabelGrid frame;
+      vtkImageData* example = vtkImageData::GetData(examples, i);
+      if (!example || !vtkMSLabelArrays::ReadLabels(example, nullptr, frame, problem))
+        throw msynth::Error("Example " + std::to_string(i + 1) + ": " +
+          (example ? problem : "a time-varying model needs label examples"));
+      if (this->ExampleTimeFromZ)
+        f.Example = msynth::TimeVaryingGrid::FromSlices(frame);
+      else
+        f.Example.Frames.push_back(std::move(frame));
+    }
+    if (++f.Step < f.Steps)
+    {
+      request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+      return 2;
+    }
+    request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+    f.Step = 0;
+    if (f.Example.Frames.empty())
+      throw msynth::Error("Nothing to check the time-varying model against: connect its example.");
+    const msynth::ConsistencyReport report = msynth::CheckTimeVarying(f.Example, f.Model, this->Loop);
+    AddViolations(out, report, report.Consistent);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      out, "Frames", static_cast<int>(f.Model.Frames.size()));
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      out, "ExampleFrames", static_cast<int>(f.Example.Frames.size()));
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    f.Step = 0;
+    request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+}
+
 int vtkMSCheckModel::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
@@ -273,6 +387,13 @@ int vtkMSCheckModel::RequestData(
   fields->DeepCopy(input->GetFieldData());
   output->SetFieldData(fields);
   auto* image = vtkImageData::SafeDownCast(input);
+  if (this->TimeVarying && image)
+  {
+    const int step = this->CheckTimeStep(image, inputVector[1], request, fields);
+    if (step == 0)
+      output->Initialize();
+    return step == 0 ? 0 : 1;
+  }
   const bool other = image && (!this->SampleFile.empty() || this->VoxelModel);
   const bool checked = other ? this->CheckOther(image, fields)
     : image
@@ -301,6 +422,9 @@ void vtkMSCheckModel::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Connected: " << this->Connected << "\n";
   os << indent << "Path: " << this->Path << "\n";
   os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
+  os << indent << "TimeVarying: " << this->TimeVarying << "\n";
+  os << indent << "Loop: " << this->Loop << "\n";
+  os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";
   os << indent << "Shapes: " << this->Shapes << "\n";
   os << indent << "Epsilon: " << this->Epsilon << "\n";
   os << indent << "MaximumReported: " << this->MaximumReported << "\n";

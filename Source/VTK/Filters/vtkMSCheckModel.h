@@ -39,6 +39,12 @@
  * tileset): `CountNames`, `CountAchieved`, ..., `CountsKept`, `ConnectedComponents`,
  * `ConnectedKept`, `PathJoined`, and `Findings` (a line each). `Valid` is 0 when one is missed.
  *
+ * With TimeVarying, every time step of the model is a frame, checked in space and in time
+ * (D§3.5.4, Discrete/TimeVarying.h: CheckTimeVarying) against the examples' frames: the z slices
+ * of one example (ExampleTimeFromZ), else the time steps of the example (or one frame per
+ * example connected); `ViolationTimes` gives each violation's frame (axis 3 is time), `Frames`
+ * and `ExampleFrames` the counts. The output then has no time steps.
+ *
  * Bad input (no example and no tileset, a model without labels) is an error naming it.
  *
  * @sa msynth check, msynth quality
@@ -49,6 +55,7 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
 #include <string> // for ivars
 
 class vtkFieldData;
@@ -125,6 +132,20 @@ public:
   ///@}
 
   ///@{
+  /// A time-varying model (see above); with Loop, the last frame is followed by the first;
+  /// ExampleTimeFromZ: the example's z slices are its frames. Default off.
+  vtkSetMacro(TimeVarying, bool);
+  vtkGetMacro(TimeVarying, bool);
+  vtkBooleanMacro(TimeVarying, bool);
+  vtkSetMacro(Loop, bool);
+  vtkGetMacro(Loop, bool);
+  vtkBooleanMacro(Loop, bool);
+  vtkSetMacro(ExampleTimeFromZ, bool);
+  vtkGetMacro(ExampleTimeFromZ, bool);
+  vtkBooleanMacro(ExampleTimeFromZ, bool);
+  ///@}
+
+  ///@{
   /// Factor shapes whose KL divergence to the examples is measured ("4H,4V", "3x3", as
   /// vtkMSPatternSynthesis's SoftFactors); "" (the default): the soft shapes the model's field
   /// data records (`SoftShapes`, as vtkMSPatternSynthesis publishes them), else none.
@@ -146,9 +167,10 @@ public:
 
 protected:
   vtkMSCheckModel();
-  ~vtkMSCheckModel() override = default;
+  ~vtkMSCheckModel() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -159,6 +181,11 @@ private:
   bool CheckLabels(vtkImageData* model, vtkInformationVector* examples, vtkFieldData* out);
   bool CheckContinuous(vtkPolyData* model, vtkInformationVector* examples, vtkFieldData* out);
   bool CheckOther(vtkImageData* model, vtkFieldData* out);
+  int CheckTimeStep(vtkImageData* model, vtkInformationVector* examples, vtkInformation* request,
+    vtkFieldData* out);
+
+  struct TimeFrames; ///< the frames a time-varying check collects, step by step
+  std::unique_ptr<TimeFrames> Frames;
 
   std::string TilesetFile;
   std::string TilesetSubset;
@@ -170,6 +197,9 @@ private:
   bool Ground = false;
   int PeriodicOutput[2] = { 0, 0 };
   bool VoxelModel = false;
+  bool TimeVarying = false;
+  bool Loop = false;
+  bool ExampleTimeFromZ = false;
   std::string Counts;
   std::string Connected;
   std::string Path;
