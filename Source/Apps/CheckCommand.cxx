@@ -7,6 +7,7 @@
 #include "Commands.h"
 #include "Common.h"
 #include "Examples.h"
+#include "FrameSeries.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -29,6 +30,7 @@
 #include "Formats/VTKXMLCheck.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -56,6 +58,8 @@ struct CheckOptions
   std::string Connected;
   std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
   std::vector<std::string> Path;
+  bool Animation = false; ///< MODEL is frame_0000.vti of an animation
+  bool Loop = false;
 };
 
 /// The verdict of @p check (vtkMSCheckModel's field data) after it ran.
@@ -264,6 +268,57 @@ int CheckDiscrete(const CheckOptions& o)
   return 1;
 }
 
+/// An animation (MODEL is its frame_0000.vti; the frames after it follow while they exist)
+/// against the z slices of EXAMPLE, in space and in time: a frame series → vtkMSCheckModel
+/// (TimeVarying; Discrete/TimeVarying.h: CheckTimeVarying).
+int CheckAnimation(const CheckOptions& o)
+{
+  const std::string first = "0000.vti";
+  if (o.Model.size() < first.size() ||
+    o.Model.compare(o.Model.size() - first.size(), first.size(), first) != 0)
+    throw UsageError{ "--animation: MODEL is an animation's first frame (frame_0000.vti), not '" +
+      o.Model + "'" };
+  const std::string prefix = o.Model.substr(0, o.Model.size() - first.size());
+  vtkNew<vtkMSFrameSeries> series;
+  int frames = 0;
+  for (;; ++frames)
+  {
+    char number[16];
+    std::snprintf(number, sizeof(number), "%04d.vti", frames);
+    struct stat info;
+    if (frames > 0 && ::stat((prefix + number).c_str(), &info) != 0)
+      break;
+    vtkNew<vtkMSLabelGridReader> frame;
+    frame->SetFileName((prefix + number).c_str());
+    frame->GenerateGeometryOff();
+    Run(frame);
+    series->AddFrame(frame->GetOutput());
+  }
+  vtkNew<vtkMSLabelGridReader> example;
+  example->SetFileName(o.Example.c_str());
+  example->GenerateGeometryOff();
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(series->GetOutputPort());
+  check->AddExampleConnection(example->GetOutputPort());
+  check->TimeVaryingOn();
+  check->ExampleTimeFromZOn();
+  check->SetLoop(o.Loop);
+  Run(check);
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  if (verdict.Valid())
+  {
+    std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
+              << " pairs of neighbours in space and time of the " << frames << " frames from "
+              << o.Model << (o.Loop ? " (looping)" : "") << " occur in " << o.Example << "\n";
+    return 0;
+  }
+  std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
+            << CountOf(verdict.Fields, "PairsChecked")
+            << " pairs of neighbours in space and time never occur in " << o.Example << "\n";
+  verdict.PrintProblems("  ");
+  return 1;
+}
+
 /// A piece of a streamed model's pieces file.
 struct Piece
 {
@@ -443,10 +498,24 @@ CommandRunner AddCheck(CLI::App& app)
   check->add_option("--tileset", o->Names,
     "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
     "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
+  auto* animation = check->add_flag("--animation", o->Animation,
+    "MODEL is the first frame of an animation (frame_0000.vti of msynth animate): it and the "
+    "frames after it (frame_0001.vti, ...) are checked in space and in time against EXAMPLE, "
+    "whose z slices are the example's frames");
+  check->add_flag("--loop", o->Loop, "with --animation: the last frame is followed by the first")
+    ->needs(animation);
   return [o]()
   {
     CheckInputFile(o->Example);
     CheckInputFile(o->Model, true);
+    if (o->Animation)
+    {
+      if (!o->Counts.empty() || !o->Connected.empty() || IsPolyhedral(o->Example) ||
+        IsSample(o->Example) || IsTileset(o->Example))
+        throw UsageError{ "--animation checks the frames of a label grid example's animation "
+                          "(no --count, --connected, tileset, sample or polyhedral example)" };
+      return CheckAnimation(*o);
+    }
     if (IsPolyhedral(o->Example))
     {
       return CheckContinuous(o->Example, o->Model, o->Reading);

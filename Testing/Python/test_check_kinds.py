@@ -7,12 +7,16 @@ import os
 import unittest
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
 import modelsynth
-from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, run_msynth
+from msynth_testing import data, fresh_folder, labels_zyx, read_label_grid, run_algorithm, run_msynth
 from test_connected import NETWORKS, PATHS, components, network_sides
+from test_time_varying import allowed_pairs, fetch, rolling_ball
 
 
 def field(image, name):
@@ -31,7 +35,124 @@ def copy(image):
     return c
 
 
+class Frames(VTKPythonAlgorithmBase):
+    """Frames [t, z, y, x] of labels as time steps 0, 1, ... (what a file series is)."""
+    def __init__(self, frames):
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=0, nOutputPorts=1, outputType="vtkImageData")
+        self.frames = frames
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        info = outInfo.GetInformationObject(0)
+        nt, nz, ny, nx = self.frames.shape
+        info.Set(SDDP.WHOLE_EXTENT(), (0, nx - 1, 0, ny - 1, 0, nz - 1), 6)
+        info.Set(SDDP.TIME_STEPS(), [float(t) for t in range(nt)], nt)
+        info.Set(SDDP.TIME_RANGE(), [0.0, float(nt - 1)], 2)
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        info = outInfo.GetInformationObject(0)
+        t = int(round(info.Get(SDDP.UPDATE_TIME_STEP()))) if info.Has(SDDP.UPDATE_TIME_STEP()) else 0
+        nt, nz, ny, nx = self.frames.shape
+        out = vtkImageData.GetData(outInfo)
+        out.SetDimensions(nx, ny, nz)
+        labels = numpy_to_vtk(np.ascontiguousarray(self.frames[t].ravel()), deep=1)
+        labels.SetName("Label")
+        out.GetPointData().SetScalars(labels)
+        return 1
+
+
+def time_violations(example, model, loop=False):
+    """The pairs of `model` [t, z, y, x] (space and time) that `example` never shows."""
+    allowed = allowed_pairs(example)
+    bad = []
+    nt = model.shape[0]
+    for t in range(nt):
+        for axis, step in ((0, (0, 0, 1)), (1, (0, 1, 0)), (2, (1, 0, 0))):
+            f = model[t]
+            src = f[:f.shape[0] - step[0], :f.shape[1] - step[1], :f.shape[2] - step[2]]
+            dst = f[step[0]:, step[1]:, step[2]:]
+            bad += [(axis, a, b) for a, b in zip(src.ravel(), dst.ravel()) if (axis, a, b) not in allowed]
+        if t + 1 < nt or loop:
+            bad += [(3, a, b) for a, b in zip(model[t].ravel(), model[(t + 1) % nt].ravel())
+                    if (3, a, b) not in allowed]
+    return bad
+
+
 class CheckKindsTest(unittest.TestCase):
+    def test_a_time_varying_model_every_frame(self):
+        example, frames = rolling_ball()
+        s = modelsynth.vtkMSTimeVaryingSynthesis()
+        s.SetInputData(example)
+        s.SetExampleTimeFromZ(1)
+        s.SetOutputSize(6, 1, 1)
+        s.SetNumberOfFrames(8)
+        s.SetSeed(2)
+        c = modelsynth.vtkMSCheckModel()
+        c.SetInputConnection(s.GetOutputPort())
+        c.AddExampleData(example)
+        out, errors = run_algorithm(c, TimeVarying=1, ExampleTimeFromZ=1)
+        self.assertEqual(errors, "")
+        model = fetch(s, 8)
+        self.assertEqual((field(out, "Valid"), field(out, "Frames"), field(out, "ExampleFrames")), (1, 8, 8))
+        self.assertEqual(field(out, "PairsChecked"), 8 * 5 + 7 * 6)
+        self.assertEqual(time_violations(frames[:, np.newaxis], model), [])
+        # One site of one frame changed: exactly the pairs it breaks, in space and in time.
+        broken = model.copy()
+        broken[3, 0, 0, 2] = 2 if broken[3, 0, 0, 2] != 2 else 1
+        expected = time_violations(frames[:, np.newaxis], broken)
+        self.assertGreater(len(expected), 0)
+        c = modelsynth.vtkMSCheckModel()
+        series = Frames(broken)
+        c.SetInputConnection(series.GetOutputPort())
+        c.AddExampleData(example)
+        out, errors = run_algorithm(c, TimeVarying=1, ExampleTimeFromZ=1, MaximumReported=50)
+        self.assertEqual(errors, "")
+        self.assertEqual((field(out, "Valid"), field(out, "Violations")), (0, len(expected)))
+        times = out.GetFieldData().GetArray("ViolationTimes")
+        self.assertTrue(set(int(times.GetValue(i)) for i in range(times.GetNumberOfTuples())) <= {2, 3})
+        # The example as a series of time steps of its own gives the same verdict; with Loop the
+        # last frame is followed by the first.
+        c = modelsynth.vtkMSCheckModel()
+        sources = [Frames(model), Frames(frames[:, np.newaxis].astype(np.int32))]  # kept alive
+        c.SetInputConnection(sources[0].GetOutputPort())
+        c.AddExampleConnection(sources[1].GetOutputPort())
+        for loop in (0, 1):
+            out, errors = run_algorithm(c, TimeVarying=1, Loop=loop)
+            self.assertEqual(errors, "")
+            wrong = time_violations(frames[:, np.newaxis], model, loop=bool(loop))
+            self.assertEqual(field(out, "Violations"), len(wrong), loop)
+
+    def test_msynth_check_an_animation(self):
+        out = os.path.join(fresh_folder("check-kinds-animation"), "anim")
+        village = data("Examples/Village.vti")
+        r = run_msynth("animate", village, "--size", "8", "8", "1", "--frames", "3", "--seed", "1",
+                       "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        first = os.path.join(out, "frame_0000.vti")
+        c = run_msynth("check", village, first, "--animation")
+        self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
+        self.assertIn("of the 3 frames", c.stdout)
+        example = labels_zyx(read_label_grid(village))[:, np.newaxis]  # z slices as frames
+        model = np.array([labels_zyx(read_label_grid(os.path.join(out, "frame_%04d.vti" % t)))
+                          for t in range(3)])
+        # A site of the middle frame changed: exactly the pairs it breaks are counted.
+        image = read_label_grid(os.path.join(out, "frame_0001.vti"))
+        labels = labels_zyx(image)
+        labels[0, 3, 3] = 1 if labels[0, 3, 3] != 1 else 2
+        model[1, 0, 3, 3] = labels[0, 3, 3]
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(os.path.join(out, "frame_0001.vti"))
+        writer.Write()
+        expected = len(time_violations(example, model))
+        self.assertGreater(expected, 0)
+        c = run_msynth("check", village, first, "--animation")
+        self.assertEqual(c.returncode, 1, c.stdout + c.stderr)
+        self.assertIn("inconsistent: %d of" % expected, c.stdout)
+        looping = len(time_violations(example, model, loop=True))
+        c = run_msynth("check", village, first, "--animation", "--loop")
+        self.assertIn("inconsistent: %d of" % looping, c.stdout)
+
     def test_a_picture_against_its_sample(self):
         s = modelsynth.vtkMSDiscreteSynthesis()
         s.SetSampleFile(data("Samples/Rooms.png"))
