@@ -21,7 +21,6 @@
 #include <iostream>
 #include <memory>
 
-
 namespace msynth
 {
 namespace cli

@@ -216,8 +216,9 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     synthesis->UpdateInformation();
     Run(synthesis); // all samples at once; the steps below come from the filter's cache
   }
-  const std::vector<msynth::Stencil> measured = msynth::ParseStencils(
-    o.Measure.empty() ? MessageOf(synthesis->GetOutput()->GetFieldData(), "SoftShapes") : o.Measure);
+  const std::vector<msynth::Stencil> measured = msynth::ParseStencils(o.Measure.empty()
+      ? MessageOf(synthesis->GetOutput()->GetFieldData(), "SoftShapes")
+      : o.Measure);
   std::ostringstream samples;
   std::vector<double> kl(measured.size(), 0.0);
   double logp = 0.0, seconds = 0.0, firstValid = 0.0;

@@ -84,9 +84,8 @@ std::vector<std::int64_t> PathSites(
     {
       for (int a = 0; a < 3; ++a)
         if (c[a] < 0 || c[a] >= dims[a])
-          throw Error("--path: site " + item + " is outside the model (" +
-            std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
-            std::to_string(dims[2]) + " sites)");
+          throw Error("--path: site " + item + " is outside the model (" + std::to_string(dims[0]) +
+            " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " sites)");
       sites.push_back(model.Index(c[0], c[1], c[2]));
       continue;
     }
@@ -139,8 +138,8 @@ std::string CountCheck::Describe() const
     std::to_string(this->Maximum) + ")";
 }
 
-std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::string& counts,
-  const Tileset& set, const std::string& source)
+std::vector<CountCheck> CheckLabelCounts(
+  const LabelGrid& model, const std::string& counts, const Tileset& set, const std::string& source)
 {
   std::vector<CountCheck> checks;
   for (const CountEntry& e : ParseCountEntries(counts, "--count"))

@@ -40,8 +40,8 @@ std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::stri
 /// A connected network "LABELS[:N]" and its path as the model holds them.
 struct NetworkCheck
 {
-  std::string Labels;      ///< LABELS as written
-  long long Maximum = 1;   ///< N
+  std::string Labels;    ///< LABELS as written
+  long long Maximum = 1; ///< N
   long long Components = 0;
   bool HasPath = false;
   bool PathJoined = true;

@@ -53,8 +53,9 @@ void CheckPicture(
   options.PeriodicInput = check.PeriodicInput;
   options.Ground = check.Ground;
   const msynth::Periodic periodic{ { check.PeriodicOutput[0], check.PeriodicOutput[1] } };
-  const std::vector<std::string> problems = msynth::CheckPicture(msynth::ReadImage(check.SampleFile),
-    options, picture, periodic, std::max<std::size_t>(limit, 1));
+  const std::vector<std::string> problems =
+    msynth::CheckPicture(msynth::ReadImage(check.SampleFile), options, picture, periodic,
+      std::max<std::size_t>(limit, 1));
   AddVerdict(out, problems.empty(), static_cast<std::int64_t>(problems.size()), 0,
     std::vector<std::string>(
       problems.begin(), problems.begin() + static_cast<long>(std::min(limit, problems.size()))));
@@ -67,8 +68,8 @@ void CheckVoxels(vtkImageData* model, const std::string& tileset, const std::str
   std::string problem;
   if (!vtkMSLabelArrays::ReadLabels(model, nullptr, grid, problem))
     throw msynth::Error("The voxel model: " + problem);
-  auto* colours = vtkUnsignedCharArray::SafeDownCast(
-    model->GetFieldData()->GetAbstractArray("PaletteRGBA"));
+  auto* colours =
+    vtkUnsignedCharArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("PaletteRGBA"));
   if (!colours || colours->GetNumberOfComponents() != 4)
     throw msynth::Error("The voxel model has no palette (field data PaletteRGBA, as the label "
                         "grid reader gives a .vox file).");

@@ -360,7 +360,8 @@ int vtkMSCheckModel::CheckTimeStep(
     f.Step = 0;
     if (f.Example.Frames.empty())
       throw msynth::Error("Nothing to check the time-varying model against: connect its example.");
-    const msynth::ConsistencyReport report = msynth::CheckTimeVarying(f.Example, f.Model, this->Loop);
+    const msynth::ConsistencyReport report =
+      msynth::CheckTimeVarying(f.Example, f.Model, this->Loop);
     AddViolations(out, report, report.Consistent);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(
       out, "Frames", static_cast<int>(f.Model.Frames.size()));
@@ -396,9 +397,8 @@ int vtkMSCheckModel::RequestData(
   }
   const bool other = image && (!this->SampleFile.empty() || this->VoxelModel);
   const bool checked = other ? this->CheckOther(image, fields)
-    : image
-    ? this->CheckLabels(image, inputVector[1], fields)
-    : this->CheckContinuous(vtkPolyData::SafeDownCast(input), inputVector[1], fields);
+    : image                  ? this->CheckLabels(image, inputVector[1], fields)
+            : this->CheckContinuous(vtkPolyData::SafeDownCast(input), inputVector[1], fields);
   if (!checked)
     output->Initialize(); // no verdict: no output
   return checked ? 1 : 0;

@@ -313,8 +313,7 @@ msynth::RgbaImage vtkMSLabelArrays::PictureRows(
   int dims[3];
   image->GetDimensions(dims);
   if (dims[2] != 1)
-    throw msynth::Error(
-      what + " must be flat (it is " + std::to_string(dims[2]) + " pixels deep)");
+    throw msynth::Error(what + " must be flat (it is " + std::to_string(dims[2]) + " pixels deep)");
   msynth::RgbaImage picture;
   picture.Width = dims[0];
   picture.Height = dims[1];

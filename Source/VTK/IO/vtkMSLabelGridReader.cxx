@@ -37,7 +37,7 @@ struct vtkMSLabelGridReader::Internals
   std::string Key;        ///< file name, size and time of the cached model
   msynth::TextModel Text; ///< .txt and .vox files (Grid; Pieces for .txt)
   std::vector<std::array<std::uint8_t, 4>> Palette; ///< .vox files
-  int VoxModels = 0; ///< how many models the .vox file holds (0 for other files)
+  int VoxModels = 0;      ///< how many models the .vox file holds (0 for other files)
   std::string CheckedKey; ///< file name, size and time of the last .vti that passed the check
 };
 
