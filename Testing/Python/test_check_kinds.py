@@ -121,6 +121,21 @@ class CheckKindsTest(unittest.TestCase):
             self.assertEqual(errors, "")
             wrong = time_violations(frames[:, np.newaxis], model, loop=bool(loop))
             self.assertEqual(field(out, "Violations"), len(wrong), loop)
+        # One series feeding both the synthesis and the check (as a file series in ParaView):
+        # the check asks again for the example's step the synthesis moved.
+        shared = Frames(frames[:, np.newaxis].astype(np.int32))
+        s = modelsynth.vtkMSTimeVaryingSynthesis()
+        s.SetInputConnection(shared.GetOutputPort())
+        s.SetOutputSize(16, 1, 1)
+        s.SetNumberOfFrames(12)
+        s.SetSeed(3)
+        c = modelsynth.vtkMSCheckModel()
+        c.SetInputConnection(s.GetOutputPort())
+        c.AddExampleConnection(shared.GetOutputPort())
+        out, errors = run_algorithm(c, TimeVarying=1)
+        self.assertEqual(errors, "")
+        self.assertEqual((field(out, "Valid"), field(out, "ExampleFrames")), (1, 8))
+        self.assertEqual(time_violations(frames[:, np.newaxis], fetch(s, 12)), [])
 
     def test_msynth_check_an_animation(self):
         out = os.path.join(fresh_folder("check-kinds-animation"), "anim")

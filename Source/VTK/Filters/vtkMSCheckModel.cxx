@@ -39,6 +39,7 @@ struct vtkMSCheckModel::TimeFrames
 {
   std::size_t Step = 0;  ///< the execution under way
   std::size_t Steps = 1; ///< executions in all: the most time steps of model and example
+  int Retries = 0;       ///< executions of this step whose inputs came at another time
   std::vector<double> ModelTimes, ExampleTimes;
   msynth::TimeVaryingGrid Model, Example;
 };
@@ -67,6 +68,8 @@ int vtkMSCheckModel::FillInputPortInformation(int port, vtkInformation* info)
 int vtkMSCheckModel::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  this->Frames->Step = 0; // a new pipeline pass starts with the first time step
+  this->Frames->Retries = 0;
   if (this->TimeVarying) // one verdict for every time step together
   {
     outputVector->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
@@ -77,6 +80,14 @@ int vtkMSCheckModel::RequestInformation(
 
 namespace
 {
+/// Whether @p data is time step @p time (true when it does not say which it is).
+bool Delivered(vtkDataObject* data, double time)
+{
+  vtkInformation* info = data ? data->GetInformation() : nullptr;
+  return !info || !info->Has(vtkDataObject::DATA_TIME_STEP()) ||
+    info->Get(vtkDataObject::DATA_TIME_STEP()) == time;
+}
+
 /// The time steps @p info announces (none: empty).
 std::vector<double> TimeSteps(vtkInformation* info)
 {
@@ -327,6 +338,20 @@ int vtkMSCheckModel::CheckTimeStep(
   TimeFrames& f = *this->Frames;
   try
   {
+    const bool series = !this->ExampleTimeFromZ && !f.ExampleTimes.empty();
+    if ((f.Step < f.ModelTimes.size() && !Delivered(model, f.ModelTimes[f.Step])) ||
+      (series && f.Step < f.ExampleTimes.size() &&
+        !Delivered(vtkDataObject::GetData(examples, 0), f.ExampleTimes[f.Step])))
+    {
+      // An input shared with another consumer (the synthesis reading the same series) was left
+      // at that consumer's time step: ask again (nothing else moves it then).
+      if (++f.Retries > 3)
+        throw msynth::Error("Time step " + std::to_string(f.Step) +
+          " of the model or the example did not arrive; give the check its own reader.");
+      request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+      return 2;
+    }
+    f.Retries = 0;
     if (f.Step == 0)
       f.Model.Frames.clear(), f.Example.Frames.clear();
     std::string problem;
@@ -337,7 +362,6 @@ int vtkMSCheckModel::CheckTimeStep(
     if (!grid.Data().empty())
       f.Model.Frames.push_back(std::move(grid));
     const int connected = examples->GetNumberOfInformationObjects();
-    const bool series = !this->ExampleTimeFromZ && !f.ExampleTimes.empty();
     for (int i = 0; i < connected && (f.Step == 0 || (series && f.Step < f.ExampleTimes.size()));
          ++i)
     {
@@ -372,6 +396,7 @@ int vtkMSCheckModel::CheckTimeStep(
   catch (const std::exception& e)
   {
     f.Step = 0;
+    f.Retries = 0;
     request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
     vtkErrorMacro(<< e.what());
     return 0;

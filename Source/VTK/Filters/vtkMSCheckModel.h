@@ -43,7 +43,9 @@
  * (D§3.5.4, Discrete/TimeVarying.h: CheckTimeVarying) against the examples' frames: the z slices
  * of one example (ExampleTimeFromZ), else the time steps of the example (or one frame per
  * example connected); `ViolationTimes` gives each violation's frame (axis 3 is time), `Frames`
- * and `ExampleFrames` the counts. The output then has no time steps.
+ * and `ExampleFrames` the counts. The output then has no time steps. The filter executes once
+ * per time step (CONTINUE_EXECUTING); a step that comes at another time than asked (an input
+ * shared with the synthesis, which moved it) is asked for again.
  *
  * Bad input (no example and no tileset, a model without labels) is an error naming it.
  *
