@@ -3,74 +3,23 @@
 // through vtkMSTimeVaryingSynthesis. One example file: its z slices are the frames; several:
 // one frame each, given to the filter as time steps (as a file series in ParaView). Writes
 // DIR/frame_0000.vti, ... (a series ParaView opens as time steps), DIR/model_0001.vdb, ... and
-// DIR/statistics.json, after checking the animation against the example frames.
+// DIR/statistics.json, after checking the animation against the example frames (vtkMSCheckModel).
 #include "Commands.h"
 #include "Common.h"
-#include "vtkMSLabelArrays.h"
+#include "FrameSeries.h"
 
 #include "vtkFieldData.h"
-#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
+#include "vtkMSCheckModel.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSOpenVDBWriter.h"
 #include "vtkMSTimeVaryingSynthesis.h"
-#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkXMLImageDataWriter.h"
-
-#include "Discrete/TimeVarying.h"
 
 #include <iomanip>
 #include <iostream>
 #include <memory>
-
-/// Frames read beforehand, offered as time steps 0, 1, ... (what ParaView's file series is).
-class vtkMSFrameSeries : public vtkImageAlgorithm
-{
-public:
-  static vtkMSFrameSeries* New();
-  vtkTypeMacro(vtkMSFrameSeries, vtkImageAlgorithm);
-  void AddFrame(vtkImageData* frame) { this->Frames.emplace_back(frame); }
-
-protected:
-  vtkMSFrameSeries() { this->SetNumberOfInputPorts(0); }
-  int RequestInformation(
-    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkInformation* info = out->GetInformationObject(0);
-    std::vector<double> times(this->Frames.size());
-    for (std::size_t t = 0; t < times.size(); ++t)
-      times[t] = static_cast<double>(t);
-    info->Set(
-      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-    const double range[2] = { 0.0, times.empty() ? 0.0 : times.back() };
-    info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
-    if (!this->Frames.empty())
-      info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Frames[0]->GetExtent(), 6);
-    return 1;
-  }
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkInformation* info = out->GetInformationObject(0);
-    std::size_t t = 0;
-    if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-      t = static_cast<std::size_t>(
-        std::max(0.0, info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()) + 0.5));
-    if (t >= this->Frames.size())
-      return 0;
-    vtkImageData* output = vtkImageData::GetData(info);
-    output->ShallowCopy(this->Frames[t]);
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(t));
-    return 1;
-  }
-
-private:
-  std::vector<vtkSmartPointer<vtkImageData>> Frames;
-};
-vtkStandardNewMacro(vtkMSFrameSeries);
 
 namespace msynth
 {
@@ -98,43 +47,12 @@ struct AnimateOptions
   std::string Out = "msynth-output";
 };
 
-/// The example frames as the independent check reads them: each file, or one file's z slices.
-msynth::TimeVaryingGrid ReadFrames(const std::vector<std::string>& examples)
-{
-  msynth::TimeVaryingGrid example;
-  for (const auto& path : examples)
-  {
-    vtkNew<vtkMSLabelGridReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->GenerateGeometryOff();
-    Run(reader);
-    msynth::LabelGrid grid;
-    std::string problem;
-    if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, grid, problem))
-    {
-      throw std::runtime_error("'" + path + "': " + problem);
-    }
-    if (examples.size() == 1)
-    {
-      return msynth::TimeVaryingGrid::FromSlices(grid);
-    }
-    example.Frames.push_back(std::move(grid));
-  }
-  return example;
-}
-
-/// Frame @p t of the synthesis: its labels, and frame_t.vti and model_(t+1).vdb written.
-msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const std::string& dir)
+/// Frame @p t of the synthesis written: frame_t.vti and model_(t+1).vdb.
+void WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const std::string& dir)
 {
   synthesis->UpdateTimeStep(t);
   vtkNew<vtkImageData> image;
   image->DeepCopy(synthesis->GetOutput());
-  msynth::LabelGrid frame;
-  std::string problem;
-  if (!vtkMSLabelArrays::ReadLabels(image, nullptr, frame, problem))
-  {
-    throw std::runtime_error("frame " + std::to_string(t) + ": " + problem);
-  }
   char name[32];
   std::snprintf(name, sizeof(name), "/frame_%04d.vti", t);
   WriteXML<vtkXMLImageDataWriter>(dir + name, image.GetPointer());
@@ -148,7 +66,6 @@ msynth::LabelGrid WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const 
     ProgressBar bar(vdb, name + 1);
     Run(vdb);
   }
-  return frame;
 }
 
 int Animate(const AnimateOptions& o, const std::string& dir)
@@ -158,12 +75,20 @@ int Animate(const AnimateOptions& o, const std::string& dir)
   vtkNew<vtkMSFrameSeries> series;
   vtkNew<vtkMSTimeVaryingSynthesis> synthesis;
   synthesis->GenerateGeometryOff(); // frames are written as label images
+  // Every frame checked against the example frames in space and time, independently of the
+  // solver (Discrete/TimeVarying.h: CheckTimeVarying).
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(synthesis->GetOutputPort());
+  check->TimeVaryingOn();
+  check->SetLoop(o.Loop);
   if (o.Examples.size() == 1)
   {
     reader->SetFileName(o.Examples[0].c_str());
     Run(reader); // so that the reader's own error (naming the file) is the one reported
     synthesis->SetInputConnection(reader->GetOutputPort());
     synthesis->ExampleTimeFromZOn();
+    check->AddExampleConnection(reader->GetOutputPort());
+    check->ExampleTimeFromZOn();
   }
   else
   {
@@ -176,6 +101,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
       series->AddFrame(frame->GetOutput());
     }
     synthesis->SetInputConnection(series->GetOutputPort());
+    check->AddExampleConnection(series->GetOutputPort());
   }
   synthesis->SetOutputSize(o.Size[0], o.Size[1], o.Size[2]);
   synthesis->SetNumberOfFrames(o.Frames);
@@ -191,17 +117,16 @@ int Animate(const AnimateOptions& o, const std::string& dir)
     synthesis->UpdateInformation();
     Run(synthesis);
   }
-  const msynth::TimeVaryingGrid example = ReadFrames(o.Examples);
-  msynth::TimeVaryingGrid model;
   for (int t = 0; t < o.Frames; ++t)
   {
-    model.Frames.push_back(WriteFrame(synthesis, t, dir));
+    WriteFrame(synthesis, t, dir);
   }
-  const msynth::ConsistencyReport report = msynth::CheckTimeVarying(example, model, o.Loop);
-  if (!report.Consistent)
+  Run(check);
+  vtkFieldData* verdict = check->GetOutput()->GetFieldData();
+  if (CountOf(verdict, "Valid") != 1)
   {
     throw std::runtime_error(
-      "the synthesized animation breaks the example's rules: " + report.First[0].Describe());
+      "the synthesized animation breaks the example's rules: " + MessageOf(verdict, "Problems"));
   }
   vtkFieldData* fd = synthesis->GetOutput()->GetFieldData();
   const std::string message = MessageOf(fd);
@@ -210,7 +135,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
     examples += (i ? ", " : "") + JsonString(o.Examples[i]);
   StatisticsJson()
     .Raw("examples", "[" + examples + "]")
-    .Count("exampleFrames", static_cast<long long>(example.Frames.size()))
+    .Count("exampleFrames", CountOf(verdict, "ExampleFrames"))
     .Counts("size", { o.Size[0], o.Size[1], o.Size[2] })
     .Count("frames", o.Frames)
     .Flag("loop", o.Loop)
@@ -219,7 +144,7 @@ int Animate(const AnimateOptions& o, const std::string& dir)
     .Text("Message", message)
     .Write(dir + "/statistics.json");
   std::cout << message << "\n"
-            << "consistent: all " << report.PairsChecked
+            << "consistent: all " << CountOf(verdict, "PairsChecked")
             << " pairs of neighbours in space and time occur in the example\n"
             << "wrote " << dir << "/frame_0000.vti ... frame_" << std::setw(4) << std::setfill('0')
             << (o.Frames - 1) << ".vti, " << dir << "/model_0001.vdb ..., " << dir

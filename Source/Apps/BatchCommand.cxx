@@ -6,15 +6,15 @@
 #include "Common.h"
 #include "Synthesize.h"
 
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMSCheckModel.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkPointData.h"
 
 #include "Core/Error.h"
 #include "Core/OutputFolder.h"
-#include "Discrete/ConsistencyCheck.h"
-#include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/SampleList.h"
 #include "Formats/Tileset.h"
@@ -53,36 +53,46 @@ struct Outcome
   double Seconds = 0.0;
 };
 
-LabelGrid GridOf(const std::string& path)
-{
-  vtkNew<vtkMSLabelGridReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->GenerateGeometryOff();
-  Run(reader);
-  vtkImageData* image = reader->GetOutput();
-  return vtkMSLabelArrays::ToLabelGrid(image, image->GetPointData()->GetArray("Label"));
-}
-
-/// The independent check of one output folder: pictures against the sample's windows, labels
-/// against the tileset's pairs or the example's (Eq. 3.1). Empty when right.
+/// The independent check of one output folder through vtkMSCheckModel: pictures against the
+/// sample's windows, labels against the tileset's pairs or the example's (Eq. 3.1). Empty when
+/// right, else the first problem.
 std::string CheckOutput(const SampleEntry& e, const std::string& dir)
 {
+  vtkNew<vtkMSCheckModel> check;
+  check->SetMaximumReported(1);
+  vtkNew<vtkImageData> picture;
+  vtkNew<vtkMSLabelGridReader> model, example;
+  model->GenerateGeometryOff();
+  example->GenerateGeometryOff();
   if (e.Kind == SampleEntry::Overlapping)
   {
-    OverlappingOptions o;
-    o.N = e.N;
-    o.Symmetry = e.Symmetry;
-    o.PeriodicInput = e.PeriodicInput;
-    o.Ground = e.Ground;
-    const auto problems = CheckPicture(
-      ReadImage(e.File), o, ReadImage(dir + "/picture.png"), { { e.Periodic, e.Periodic } }, 1);
-    return problems.empty() ? std::string() : problems.front();
+    vtkMSLabelArrays::SetPicture(picture, ReadImage(dir + "/picture.png"));
+    check->SetInputData(picture);
+    check->SetSampleFile(e.File.c_str());
+    check->SetPatternSize(e.N);
+    check->SetPatternSymmetry(e.Symmetry);
+    check->SetPeriodicInput(e.PeriodicInput);
+    check->SetGround(e.Ground);
+    check->SetPeriodicOutput(e.Periodic ? 1 : 0, e.Periodic ? 1 : 0);
   }
-  const LabelGrid model = GridOf(dir + "/labels.vti");
-  const ConsistencyReport report = e.Kind == SampleEntry::SimpleTiled
-    ? CheckConsistency(ReadTilesetFile(e.File, e.Subset).Pairs, model)
-    : CheckConsistency(GridOf(e.File), model);
-  return report.Consistent ? std::string() : report.First.front().Describe();
+  else
+  {
+    model->SetFileName((dir + "/labels.vti").c_str());
+    check->SetInputConnection(model->GetOutputPort());
+    if (e.Kind == SampleEntry::SimpleTiled)
+    {
+      check->SetTilesetFile(e.File.c_str());
+      check->SetTilesetSubset(e.Subset.c_str());
+    }
+    else
+    {
+      example->SetFileName(e.File.c_str());
+      check->AddExampleConnection(example->GetOutputPort());
+    }
+  }
+  Run(check);
+  vtkFieldData* verdict = check->GetOutput()->GetFieldData();
+  return CountOf(verdict, "Valid") == 1 ? std::string() : MessageOf(verdict, "Problems");
 }
 
 /// `"key": value` of statistics.json as a number (0 when absent).

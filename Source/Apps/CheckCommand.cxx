@@ -2,10 +2,12 @@
 // `msynth check EXAMPLE MODEL`: the independent checks, which share no code with the solvers: a
 // label grid against the pairs of its example (Eq. 3.1) or tileset, a continuous model against
 // the neighbourhoods of its polyhedral example (Eq. 4.1, closed and oriented), a picture against
-// the windows of its image sample.
+// the windows of its image sample, a voxel model against a voxel tileset; each through
+// vtkMSCheckModel (the command: options → readers → the filter → its verdict printed).
 #include "Commands.h"
 #include "Common.h"
 #include "Examples.h"
+#include "FrameSeries.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -13,6 +15,7 @@
 #include "vtkImageData.h"
 #include "vtkMSCheckModel.h"
 #include "vtkMSEngineBridge.h"
+#include "vtkMSLabelArrays.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPolyhedralExampleReader.h"
 #include "vtkNew.h"
@@ -25,21 +28,18 @@
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
 #include "Core/Memory.h"
-#include "Core/TextLists.h"
+#include "Discrete/LabelChecks.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
-#include "Formats/VoxModel.h"
-#include "Formats/VoxelTileset.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <set>
 #include <sstream>
 #include <sys/stat.h>
 
@@ -63,302 +63,61 @@ struct CheckOptions
   std::string Connected;
   std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
   std::vector<std::string> Path;
+  bool Animation = false; ///< MODEL is frame_0000.vti of an animation
+  bool Loop = false;
   std::string Guide; ///< --guide: the guide whose Region array --count region=R:... reads
 };
-
-/// The label values @p name gives: a value, or the labels of a tile or label name of @p set.
-std::vector<long long> NamedValues(const std::string& name, const msynth::Tileset& set)
-{
-  std::vector<long long> values;
-  long long v = 0;
-  if (msynth::ParseInteger(name, -(1LL << 31), (1LL << 31) - 1, v))
-    values.push_back(v);
-  for (int b = 0; b < set.NumberOfLabels(); ++b)
-    if (set.LabelName(b) == name ||
-      set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name == name)
-      values.push_back(b);
-  return values;
-}
-
-/**
- * `--path A B ...`: the sites (x,y[,z]) and every site of the labels (values or names of
- * @p set) hold network labels (@p mask >= 0) and share one root of the union-find @p root.
- * Prints one line; false when they do not. @throw std::runtime_error for a site outside the
- * model or an item that is neither a site nor a label.
- */
-bool CheckPathJoined(const std::vector<std::string>& path, const msynth::Tileset& set,
-  vtkDataArray* labels, const std::vector<int>& mask,
-  const std::function<vtkIdType(vtkIdType)>& root, const int dims[3])
-{
-  std::vector<vtkIdType> sites;
-  for (const std::string& item : path)
-  {
-    const std::vector<std::string> parts = msynth::SplitText(item, ',');
-    long long c[3] = { 0, 0, 0 };
-    bool isSite = parts.size() == 2 || parts.size() == 3;
-    for (std::size_t a = 0; isSite && a < parts.size(); ++a)
-      isSite = msynth::ParseInteger(parts[a], -(1LL << 40), 1LL << 40, c[a]);
-    if (isSite)
-    {
-      for (int a = 0; a < 3; ++a)
-        if (c[a] < 0 || c[a] >= dims[a])
-          throw std::runtime_error("--path: site " + item + " is outside the model (" +
-            std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
-            std::to_string(dims[2]) + " sites)");
-      sites.push_back(static_cast<vtkIdType>(c[0] + dims[0] * (c[1] + dims[1] * c[2])));
-      continue;
-    }
-    const std::vector<long long> values = NamedValues(item, set);
-    if (values.empty())
-      throw std::runtime_error(
-        "--path: '" + item + "' is neither a site x,y[,z] nor a label value or name");
-    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-      if (std::find(values.begin(), values.end(), static_cast<long long>(labels->GetTuple1(i))) !=
-        values.end())
-        sites.push_back(i);
-  }
-  std::set<vtkIdType> roots;
-  for (vtkIdType s : sites)
-  {
-    if (mask[static_cast<std::size_t>(s)] < 0)
-    {
-      std::cout << "path not joined: site (" << s % dims[0] << ", " << (s / dims[0]) % dims[1]
-                << ", " << s / (static_cast<vtkIdType>(dims[0]) * dims[1]) << ") holds label "
-                << static_cast<long long>(labels->GetTuple1(s)) << ", not one of the network's\n";
-      return false;
-    }
-    roots.insert(root(s));
-  }
-  const bool ok = roots.size() <= 1;
-  std::cout << (ok ? "path joined: " : "path not joined: ") << sites.size() << " site"
-            << (sites.size() == 1 ? "" : "s") << " in " << roots.size() << " component"
-            << (roots.size() == 1 ? "" : "s") << " of the network\n";
-  return ok;
-}
-
-} // namespace
-
-/**
- * `--connected LABELS[:N]`: the sites of @p model holding any of LABELS (values, or with a
- * tileset @p example tile or label names) form at most N components (1 when left out), counted
- * here by a union-find of its own over face neighbours, joined through the sides the tileset's
- * `connects` attributes give (every side for a tile without one). Prints one line.
- */
-bool CheckConnected(const std::string& spec, const std::string& example, const std::string& subset,
-  const std::string& tiles, vtkImageData* model, const std::vector<std::string>& path)
-{
-  vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
-  if (!labels)
-    throw std::runtime_error("--connected: the model has no Label array");
-  msynth::Tileset set;
-  if (IsTileset(example))
-    set = msynth::ReadTilesetFile(example, subset, tiles);
-  std::string list = spec;
-  long long most = 1;
-  const std::size_t colon = list.rfind(':');
-  if (colon != std::string::npos)
-  {
-    if (!msynth::ParseInteger(list.substr(colon + 1), 1, 1LL << 40, most))
-      throw std::runtime_error(
-        "--connected: '" + list.substr(colon + 1) + "' is not a number of components (1 or more)");
-    list.resize(colon);
-  }
-  std::map<long long, int>
-    sides; // network label -> the sides it joins through (bits +x -x +y -y +z -z)
-  for (const std::string& name : msynth::SplitText(list, ','))
-  {
-    const std::size_t before = sides.size();
-    for (long long v : NamedValues(name, set))
-      sides[v] = 63;
-    if (sides.size() == before && !name.empty())
-      throw std::runtime_error(
-        "--connected: '" + name + "' is neither a label value nor a name of " + example);
-  }
-  for (auto& [label, mask] : sides)
-    if (label >= 0 && label < static_cast<long long>(set.LabelSides.size()) &&
-      set.LabelSides[static_cast<std::size_t>(label)] >= 0)
-      mask = set.LabelSides[static_cast<std::size_t>(label)];
-  int dims[3];
-  model->GetDimensions(dims);
-  const vtkIdType total = labels->GetNumberOfTuples();
-  std::vector<vtkIdType> parent(static_cast<std::size_t>(total));
-  std::vector<int> mask(static_cast<std::size_t>(total), -1);
-  for (vtkIdType i = 0; i < total; ++i)
-  {
-    parent[static_cast<std::size_t>(i)] = i;
-    const auto found = sides.find(static_cast<long long>(labels->GetTuple1(i)));
-    if (found != sides.end())
-      mask[static_cast<std::size_t>(i)] = found->second;
-  }
-  auto root = [&](vtkIdType i)
-  {
-    while (parent[static_cast<std::size_t>(i)] != i)
-      i = parent[static_cast<std::size_t>(i)] =
-        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-  };
-  const vtkIdType stride[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  for (vtkIdType i = 0; i < total; ++i)
-  {
-    const int here = mask[static_cast<std::size_t>(i)];
-    const vtkIdType at[3] = { i % dims[0], (i / dims[0]) % dims[1], i / stride[2] };
-    for (int a = 0; a < 3 && here >= 0; ++a)
-    {
-      if (at[a] + 1 >= dims[a] || !((here >> (2 * a)) & 1))
-        continue;
-      const int there = mask[static_cast<std::size_t>(i + stride[a])];
-      if (there >= 0 && ((there >> (2 * a + 1)) & 1))
-        parent[static_cast<std::size_t>(root(i))] = root(i + stride[a]);
-    }
-  }
-  long long components = 0;
-  for (vtkIdType i = 0; i < total; ++i)
-    components += mask[static_cast<std::size_t>(i)] >= 0 && root(i) == i ? 1 : 0;
-  const bool ok = components <= most;
-  std::cout << (ok ? "connected: " : "not connected: ") << list << " form " << components
-            << " component" << (components == 1 ? "" : "s") << " (wanted at most " << most << ")\n";
-  return (path.empty() || CheckPathJoined(path, set, labels, mask, root, dims)) && ok;
-}
-
-namespace
-{
-/**
- * `--count L:MIN:MAX`: the sites of @p model holding L (a label value, or with a tileset
- * @p example a tile's name, all its orientations, or a label's name "tile k"), counted here
- * from the written labels. Prints one line per count; false when one is outside its range.
- */
-/// The guide region of every site of @p model (x fastest) from the `Region` point array of
-/// the guide @p path stretched over it: a site at p of n reads the guide point
-/// floor((p + 1/2) · D / n) per axis, as `--guide` does.
-std::vector<long long> SiteRegions(const std::string& path, vtkImageData* model)
-{
-  if (path.empty())
-    throw std::runtime_error("--count region=R:...: give the guide with --guide GUIDE.vti");
-  CheckInputFile(path);
-  vtkNew<vtkXMLImageDataReader> reader;
-  reader->SetFileName(path.c_str());
-  std::string messages;
-  if (!vtkMSEngineBridge::Execute(reader, messages))
-    throw std::runtime_error("'" + path + "': not a readable guide volume: " + messages);
-  vtkImageData* guide = reader->GetOutput();
-  vtkDataArray* region = guide->GetPointData()->GetArray("Region");
-  if (!region)
-    throw std::runtime_error("'" + path + "': the guide has no point array Region");
-  int d[3], n[3];
-  guide->GetDimensions(d);
-  model->GetDimensions(n);
-  std::vector<long long> out;
-  out.reserve(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
-  for (long long z = 0; z < n[2]; ++z)
-    for (long long y = 0; y < n[1]; ++y)
-      for (long long x = 0; x < n[0]; ++x)
-      {
-        const long long p[3] = { x, y, z };
-        long long cell[3];
-        for (int a = 0; a < 3; ++a)
-          cell[a] = std::min<long long>(d[a] - 1, (p[a] * 2 * d[a] + d[a]) / (2LL * n[a]));
-        out.push_back(static_cast<long long>(
-          region->GetTuple1(static_cast<vtkIdType>(cell[0] + d[0] * (cell[1] + d[1] * cell[2])))));
-      }
-  return out;
-}
-
-bool CheckCounts(const std::vector<std::string>& counts, const std::string& example,
-  const std::string& subset, const std::string& tiles, vtkImageData* model,
-  const std::string& guidePath)
-{
-  vtkDataArray* labels = model ? model->GetPointData()->GetArray("Label") : nullptr;
-  if (!labels)
-    throw std::runtime_error("--count: the model has no Label array");
-  msynth::Tileset set;
-  if (IsTileset(example))
-    set = msynth::ReadTilesetFile(example, subset, tiles);
-  bool kept = true;
-  std::string list;
-  for (const std::string& c : counts)
-    list += c + ",";
-  std::vector<long long> regions; // read once, for the first count of a region
-  for (msynth::CountEntry e : msynth::ParseCountEntries(list, "--count"))
-  {
-    long long region = -1;
-    if (e.Name.compare(0, 7, "region=") == 0)
-    {
-      const std::size_t colon = e.Name.find(':');
-      if (colon == std::string::npos ||
-        !msynth::ParseInteger(e.Name.substr(7, colon - 7), 0, (1LL << 31) - 1, region))
-        throw std::runtime_error("--count: '" + e.Name + "' is not region=R:L (R from 0)");
-      e.Name = e.Name.substr(colon + 1);
-      if (regions.empty())
-        regions = SiteRegions(guidePath, model);
-    }
-    std::set<long long> values;
-    long long v = 0;
-    if (msynth::ParseInteger(e.Name, -(1LL << 31), (1LL << 31) - 1, v))
-      values.insert(v);
-    for (int b = 0; b < set.NumberOfLabels() && values.empty(); ++b)
-      if (set.LabelName(b) == e.Name)
-        values.insert(b);
-    for (int b = 0; b < set.NumberOfLabels(); ++b)
-      if (set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name ==
-        e.Name)
-        values.insert(b);
-    if (values.empty())
-      throw std::runtime_error(
-        "--count: '" + e.Name + "' is neither a label value nor a name of " + example);
-    long long n = 0;
-    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-      n += values.count(static_cast<long long>(labels->GetTuple1(i))) &&
-          (region < 0 || regions[static_cast<std::size_t>(i)] == region)
-        ? 1
-        : 0;
-    const bool ok = n >= e.Minimum && n <= e.Maximum;
-    kept = kept && ok;
-    std::cout << (ok ? "count kept: " : "count missed: ") << e.Name
-              << (region >= 0 ? " in guide region " + std::to_string(region) : std::string())
-              << " holds " << n << " sites (wanted " << e.Minimum << " to " << e.Maximum << ")\n";
-  }
-  return kept;
-}
-
-/// A picture against the windows of its image sample (Discrete/OverlappingModel.h's
-/// CheckPicture, which shares no code with the patterns' synthesis).
-int CheckSamplePicture(const CheckOptions& o)
-{
-  if (!IsSample(o.Model))
-    throw std::runtime_error(
-      "'" + o.Model + "': the model of an image sample is its picture (.png)");
-  OverlappingOptions options = o.Patterns;
-  options.PeriodicInput = !o.NoPeriodicInput;
-  const msynth::Periodic periodic{ { o.Translate.find('x') != std::string::npos,
-    o.Translate.find('y') != std::string::npos } };
-  const RgbaImage picture = ReadImage(o.Model);
-  const auto problems = CheckPicture(ReadImage(o.Example), options, picture, periodic, 10);
-  if (problems.empty())
-  {
-    std::cout << "consistent: every " << options.N << " x " << options.N << " window of " << o.Model
-              << " (" << picture.Width << " x " << picture.Height << ") occurs in " << o.Example
-              << "\n";
-    return 0;
-  }
-  std::cout << "inconsistent: " << o.Model << " has windows that are not in " << o.Example << "\n";
-  for (const auto& p : problems)
-    std::cout << "  " << p << "\n";
-  return 1;
-}
 
 /// The verdict of @p check (vtkMSCheckModel's field data) after it ran.
 struct Verdict
 {
   vtkFieldData* Fields;
   bool Valid() const { return CountOf(this->Fields, "Valid") == 1; }
-  /// Prints each problem line, after @p prefix.
-  void PrintProblems(const char* prefix) const
+  /// Prints each line of the string array @p name, after @p prefix.
+  void PrintLines(const char* name, const char* prefix) const
   {
-    if (auto* lines = vtkStringArray::SafeDownCast(this->Fields->GetAbstractArray("Problems")))
+    if (auto* lines = vtkStringArray::SafeDownCast(this->Fields->GetAbstractArray(name)))
       for (vtkIdType i = 0; i < lines->GetNumberOfValues(); ++i)
         std::cout << prefix << lines->GetValue(i) << "\n";
   }
+  /// Prints each problem line, after @p prefix.
+  void PrintProblems(const char* prefix) const { this->PrintLines("Problems", prefix); }
 };
+
+/// A picture against the windows of its image sample: the picture → vtkMSCheckModel
+/// (SampleFile; Discrete/OverlappingModel.h's CheckPicture, which shares no code with the
+/// patterns' synthesis).
+int CheckSamplePicture(const CheckOptions& o)
+{
+  if (!IsSample(o.Model))
+    throw std::runtime_error(
+      "'" + o.Model + "': the model of an image sample is its picture (.png)");
+  vtkNew<vtkImageData> picture;
+  vtkMSLabelArrays::SetPicture(picture, ReadImage(o.Model));
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputData(picture);
+  check->SetSampleFile(o.Example.c_str());
+  check->SetPatternSize(o.Patterns.N);
+  check->SetPatternSymmetry(o.Patterns.Symmetry);
+  check->SetPeriodicInput(!o.NoPeriodicInput);
+  check->SetGround(o.Patterns.Ground);
+  check->SetPeriodicOutput(o.Translate.find('x') != std::string::npos ? 1 : 0,
+    o.Translate.find('y') != std::string::npos ? 1 : 0);
+  Run(check);
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  if (verdict.Valid())
+  {
+    int dims[3];
+    picture->GetDimensions(dims);
+    std::cout << "consistent: every " << o.Patterns.N << " x " << o.Patterns.N << " window of "
+              << o.Model << " (" << dims[0] << " x " << dims[1] << ") occurs in " << o.Example
+              << "\n";
+    return 0;
+  }
+  std::cout << "inconsistent: " << o.Model << " has windows that are not in " << o.Example << "\n";
+  verdict.PrintProblems("  ");
+  return 1;
+}
 
 /// A continuous model (.vtp) against its polyhedral example: reader → vtkMSCheckModel.
 int CheckContinuous(
@@ -423,28 +182,40 @@ bool IsVoxelTileset(const std::string& path)
   return false;
 }
 
-/// A voxel model (.vox, all its models placed by its scene) against a voxel tileset: every tile
-/// cell identified by its voxels, every pair against the rules (VoxelTileset.h: CheckVoxelModel).
+/// A voxel model (.vox, all its models placed by its scene) against a voxel tileset: the reader
+/// → vtkMSCheckModel (VoxelModel: every tile cell identified by its voxels, every pair against
+/// the rules; VoxelTileset.h: CheckVoxelModel).
 int CheckVoxels(const std::string& example, const std::string& modelPath, const std::string& tiles)
 {
-  const msynth::VoxModel model = msynth::ReadVoxSceneFile(modelPath,
-    static_cast<std::int64_t>(std::min<std::uint64_t>(
-      std::uint64_t(1) << 30, msynth::AvailableMemory() / (2 * sizeof(msynth::Label)))));
-  const msynth::VoxelCheckReport report =
-    msynth::CheckVoxelModel(example, tiles, model.Grid, model.Palette);
-  const auto& d = model.Grid.Dimensions();
-  if (report.Valid)
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->SetFileName(modelPath.c_str());
+  reader->VoxSceneOn();
+  reader->GenerateGeometryOff();
+  reader->SetMaximumNumberOfSites(static_cast<vtkIdType>(std::min<std::uint64_t>(
+    std::uint64_t(1) << 30, msynth::AvailableMemory() / (2 * sizeof(msynth::Label)))));
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(reader->GetOutputPort());
+  check->VoxelModelOn();
+  check->SetTilesetFile(example.c_str());
+  check->SetTilesFolder(tiles.c_str());
+  Run(check);
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  int d[3];
+  reader->GetOutput()->GetDimensions(d);
+  const long long models = CountOf(verdict.Fields, "VoxModels");
+  if (verdict.Valid())
   {
-    std::cout << "consistent: all " << report.Cells << " tile cells of " << modelPath << " ("
-              << d[0] << " x " << d[1] << " x " << d[2] << " voxels, " << model.NumberOfModels
-              << (model.NumberOfModels == 1 ? " model" : " models") << ") are tiles of " << example
-              << " and all " << report.PairsChecked << " adjacent pairs are allowed\n";
+    std::cout << "consistent: all " << CountOf(verdict.Fields, "Cells") << " tile cells of "
+              << modelPath << " (" << d[0] << " x " << d[1] << " x " << d[2] << " voxels, "
+              << models << (models == 1 ? " model" : " models") << ") are tiles of " << example
+              << " and all " << CountOf(verdict.Fields, "PairsChecked")
+              << " adjacent pairs are allowed\n";
     return 0;
   }
-  std::cout << "inconsistent: " << report.Problems << " problems in " << modelPath << " ("
-            << report.Cells << " tile cells, " << report.PairsChecked << " pairs)\n";
-  for (const auto& line : report.First)
-    std::cout << "  " << line << "\n";
+  std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " problems in "
+            << modelPath << " (" << CountOf(verdict.Fields, "Cells") << " tile cells, "
+            << CountOf(verdict.Fields, "PairsChecked") << " pairs)\n";
+  verdict.PrintProblems("  ");
   return 1;
 }
 
@@ -455,12 +226,10 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
   e->GenerateGeometryOff(); // the labels are checked, not shown
   m->GenerateGeometryOff();
   check->SetInputConnection(m->GetOutputPort());
+  check->SetTilesetSubset(subset.c_str());
+  check->SetTilesFolder(tiles.c_str());
   if (IsTileset(example))
-  {
     check->SetTilesetFile(example.c_str());
-    check->SetTilesetSubset(subset.c_str());
-    check->SetTilesFolder(tiles.c_str());
-  }
   else
   {
     e->SetFileName(example.c_str());
@@ -468,40 +237,155 @@ void SetUpDiscreteCheck(vtkMSCheckModel* check, vtkMSLabelGridReader* e, vtkMSLa
   }
 }
 
-/// A label grid against the pairs of its example grid or tileset: readers → vtkMSCheckModel.
-int CheckDiscrete(const std::string& example, const std::string& modelPath,
-  const std::string& subset, const std::string& tiles, const std::vector<std::string>& counts,
-  const std::string& connected, const std::string& names, const std::vector<std::string>& path,
-  const std::string& guide)
+/// The guide region of every site of @p model (x fastest) from the `Region` point array of
+/// the guide @p path stretched over it: a site at p of n reads the guide point
+/// floor((p + 1/2) · D / n) per axis, as `--guide` does.
+std::vector<long long> SiteRegions(const std::string& path, vtkImageData* model)
 {
-  if (IsTileset(example) && IsVoxelTileset(example) && modelPath.size() > 4 &&
-    modelPath.compare(modelPath.size() - 4, 4, ".vox") == 0)
+  if (path.empty())
+    throw std::runtime_error("--count region=R:...: give the guide with --guide GUIDE.vti");
+  CheckInputFile(path);
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw std::runtime_error("'" + path + "': not a readable guide volume: " + messages);
+  vtkImageData* guide = reader->GetOutput();
+  vtkDataArray* region = guide->GetPointData()->GetArray("Region");
+  if (!region)
+    throw std::runtime_error("'" + path + "': the guide has no point array Region");
+  int d[3], n[3];
+  guide->GetDimensions(d);
+  model->GetDimensions(n);
+  std::vector<long long> out;
+  out.reserve(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
+  for (long long z = 0; z < n[2]; ++z)
+    for (long long y = 0; y < n[1]; ++y)
+      for (long long x = 0; x < n[0]; ++x)
+      {
+        const long long p[3] = { x, y, z };
+        long long cell[3];
+        for (int a = 0; a < 3; ++a)
+          cell[a] = std::min<long long>(d[a] - 1, (p[a] * 2 * d[a] + d[a]) / (2LL * n[a]));
+        out.push_back(static_cast<long long>(
+          region->GetTuple1(static_cast<vtkIdType>(cell[0] + d[0] * (cell[1] + d[1] * cell[2])))));
+      }
+  return out;
+}
+
+/**
+ * The `--count region=R:L:MIN:MAX` entries @p entries of @p o in @p model, counted by
+ * msynth::CheckLabelCounts over the regions of the guide `--guide` (vtkMSCheckModel counts the
+ * whole-model entries). Prints a line each; false when one is missed.
+ */
+bool CheckRegionCounts(
+  const CheckOptions& o, const std::vector<std::string>& entries, vtkImageData* model)
+{
+  const std::string& named = IsTileset(o.Example) || o.Names.empty() ? o.Example : o.Names;
+  msynth::Tileset names;
+  if (IsTileset(named))
+    names = msynth::ReadTilesetFile(named, o.Subset, o.Tiles);
+  const std::vector<long long> regions = SiteRegions(o.Guide, model);
+  bool kept = true;
+  for (const msynth::CountCheck& c : msynth::CheckLabelCounts(
+         vtkMSLabelArrays::ToLabelGrid(model, model->GetPointData()->GetArray("Label")),
+         Joined(entries, ","), names, named, &regions))
   {
-    if (!counts.empty() || !connected.empty())
+    std::cout << c.Describe() << "\n";
+    kept = kept && c.Kept();
+  }
+  return kept;
+}
+
+/// A label grid against the pairs of its example grid or tileset, its counts and network:
+/// readers → vtkMSCheckModel.
+int CheckDiscrete(const CheckOptions& o)
+{
+  if (IsTileset(o.Example) && IsVoxelTileset(o.Example) && o.Model.size() > 4 &&
+    o.Model.compare(o.Model.size() - 4, 4, ".vox") == 0)
+  {
+    if (!o.Counts.empty() || !o.Connected.empty())
       throw std::runtime_error(
-        "--count and --connected check a model's labels (labels.vti), not '" + modelPath + "'");
-    return CheckVoxels(example, modelPath, tiles);
+        "--count and --connected check a model's labels (labels.vti), not '" + o.Model + "'");
+    return CheckVoxels(o.Example, o.Model, o.Tiles);
   }
   vtkNew<vtkMSLabelGridReader> e, m;
-  m->SetFileName(modelPath.c_str());
+  m->SetFileName(o.Model.c_str());
   vtkNew<vtkMSCheckModel> check;
-  SetUpDiscreteCheck(check, e, m, example, subset, tiles);
+  SetUpDiscreteCheck(check, e, m, o.Example, o.Subset, o.Tiles);
+  std::vector<std::string> counts, regionCounts;
+  for (const std::string& c : o.Counts)
+    (c.compare(0, 7, "region=") == 0 ? regionCounts : counts).push_back(c);
+  check->SetCounts(Joined(counts, ",").c_str());
+  check->SetConnected(o.Connected.c_str());
+  check->SetPath(Joined(o.Path, ";").c_str());
+  if (!IsTileset(o.Example) && IsTileset(o.Names))
+    check->SetConnectedTilesetFile(o.Names.c_str());
   Run(check);
-  auto* labels = vtkImageData::SafeDownCast(m->GetOutputDataObject(0));
-  const std::string& named = IsTileset(example) || names.empty() ? example : names;
-  bool kept = counts.empty() || CheckCounts(counts, named, subset, tiles, labels, guide);
-  kept =
-    (connected.empty() || CheckConnected(connected, named, subset, tiles, labels, path)) && kept;
+  const Verdict verdict{ check->GetOutput()->GetFieldData() };
+  verdict.PrintLines("Findings", "");
+  const bool kept = regionCounts.empty() ||
+    CheckRegionCounts(o, regionCounts, vtkImageData::SafeDownCast(m->GetOutputDataObject(0)));
+  if (CountOf(verdict.Fields, "Violations") == 0)
+  {
+    std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
+              << " adjacent pairs of " << o.Model << " occur in " << o.Example << "\n";
+    return verdict.Valid() && kept ? 0 : 1;
+  }
+  std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
+            << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never occur in "
+            << o.Example << "\n";
+  verdict.PrintProblems("  ");
+  return 1;
+}
+
+/// An animation (MODEL is its frame_0000.vti; the frames after it follow while they exist)
+/// against the z slices of EXAMPLE, in space and in time: a frame series → vtkMSCheckModel
+/// (TimeVarying; Discrete/TimeVarying.h: CheckTimeVarying).
+int CheckAnimation(const CheckOptions& o)
+{
+  const std::string first = "0000.vti";
+  if (o.Model.size() < first.size() ||
+    o.Model.compare(o.Model.size() - first.size(), first.size(), first) != 0)
+    throw UsageError{ "--animation: MODEL is an animation's first frame (frame_0000.vti), not '" +
+      o.Model + "'" };
+  const std::string prefix = o.Model.substr(0, o.Model.size() - first.size());
+  vtkNew<vtkMSFrameSeries> series;
+  int frames = 0;
+  for (;; ++frames)
+  {
+    char number[16];
+    std::snprintf(number, sizeof(number), "%04d.vti", frames);
+    struct stat info;
+    if (frames > 0 && ::stat((prefix + number).c_str(), &info) != 0)
+      break;
+    vtkNew<vtkMSLabelGridReader> frame;
+    frame->SetFileName((prefix + number).c_str());
+    frame->GenerateGeometryOff();
+    Run(frame);
+    series->AddFrame(frame->GetOutput());
+  }
+  vtkNew<vtkMSLabelGridReader> example;
+  example->SetFileName(o.Example.c_str());
+  example->GenerateGeometryOff();
+  vtkNew<vtkMSCheckModel> check;
+  check->SetInputConnection(series->GetOutputPort());
+  check->AddExampleConnection(example->GetOutputPort());
+  check->TimeVaryingOn();
+  check->ExampleTimeFromZOn();
+  check->SetLoop(o.Loop);
+  Run(check);
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
     std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
-              << " adjacent pairs of " << modelPath << " occur in " << example << "\n";
-    return kept ? 0 : 1;
+              << " pairs of neighbours in space and time of the " << frames << " frames from "
+              << o.Model << (o.Loop ? " (looping)" : "") << " occur in " << o.Example << "\n";
+    return 0;
   }
   std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
-            << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never occur in "
-            << example << "\n";
+            << CountOf(verdict.Fields, "PairsChecked")
+            << " pairs of neighbours in space and time never occur in " << o.Example << "\n";
   verdict.PrintProblems("  ");
   return 1;
 }
@@ -688,10 +572,24 @@ CommandRunner AddCheck(CLI::App& app)
   check->add_option("--tileset", o->Names,
     "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
     "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
+  auto* animation = check->add_flag("--animation", o->Animation,
+    "MODEL is the first frame of an animation (frame_0000.vti of msynth animate): it and the "
+    "frames after it (frame_0001.vti, ...) are checked in space and in time against EXAMPLE, "
+    "whose z slices are the example's frames");
+  check->add_flag("--loop", o->Loop, "with --animation: the last frame is followed by the first")
+    ->needs(animation);
   return [o]()
   {
     CheckInputFile(o->Example);
     CheckInputFile(o->Model, true);
+    if (o->Animation)
+    {
+      if (!o->Counts.empty() || !o->Connected.empty() || IsPolyhedral(o->Example) ||
+        IsSample(o->Example) || IsTileset(o->Example))
+        throw UsageError{ "--animation checks the frames of a label grid example's animation "
+                          "(no --count, --connected, tileset, sample or polyhedral example)" };
+      return CheckAnimation(*o);
+    }
     if (IsPolyhedral(o->Example))
     {
       return CheckContinuous(o->Example, o->Model, o->Reading);
@@ -713,8 +611,7 @@ CommandRunner AddCheck(CLI::App& app)
       CheckInputFile(o->Names);
     if (!o->Path.empty() && o->Connected.empty())
       throw UsageError{ "--path needs --connected LABELS: the labels that carry the path" };
-    return CheckDiscrete(o->Example, o->Model, o->Subset, o->Tiles, o->Counts, o->Connected,
-      o->Names, o->Path, o->Guide);
+    return CheckDiscrete(*o);
   };
 }
 

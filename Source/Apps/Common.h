@@ -181,16 +181,6 @@ void WriteXML(const std::string& path, DataT* data, bool int32Ids = false, bool 
 /// The RGBA image @p rgba (VTK rows bottom first) as a PNG, top row first (msynth::WritePng).
 void WritePicturePng(vtkImageData* rgba, const std::string& path);
 
-/**
- * `--connected LABELS[:N]` on @p model's `Label` array, by a union-find of the command line's
- * own (CheckCommand.cxx): the sites holding any of LABELS (values, or names of the tileset
- * @p tileset when it is one) form at most N components, joined through the tileset's
- * `connects` sides; with @p path (`--path` items: sites x,y[,z] and labels), those sites all in
- * one component. Prints a line each; false when either fails. @throw std::runtime_error.
- */
-bool CheckConnected(const std::string& spec, const std::string& tileset, const std::string& subset,
-  const std::string& tiles, vtkImageData* model, const std::vector<std::string>& path = {});
-
 /// Writes @p source's time steps as DIR/catalog_0001.vdb, ... (voxel size @p voxel for points;
 /// 0: the writer's default) with file metadata @p key = @p value.
 void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double voxel,

@@ -64,19 +64,6 @@ struct PatternCommandOptions
   std::string Out = "msynth-output";
 };
 
-/// The soft shapes of a --factors list: every shape but the pairs, which are always hard.
-std::string SoftOf(const std::string& factors)
-{
-  std::string soft;
-  for (const msynth::Stencil& s : msynth::ParseStencils(factors))
-  {
-    if (s.Offsets.size() == 2 && (s.Name == "2H" || s.Name == "2V" || s.Name == "2D"))
-      continue;
-    soft += (soft.empty() ? "" : ",") + s.Name;
-  }
-  return soft;
-}
-
 vtkSmartPointer<vtkMSLabelGridReader> OpenGrid(const std::string& path, const char* array = "Label")
 {
   auto reader = vtkSmartPointer<vtkMSLabelGridReader>::New();
@@ -103,7 +90,7 @@ vtkSmartPointer<vtkMSLabelGridReader> OpenZones(const std::string& path)
 void Configure(vtkMSPatternSynthesis* s, const PatternCommandOptions& o)
 {
   s->SetOutputSize(o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1);
-  s->SetSoftFactors(SoftOf(o.Factors).c_str());
+  s->SetSoftFactors(msynth::SoftShapes(o.Factors).c_str());
   s->SetEpsilon(o.Epsilon);
   if (o.Blocks.size() == 2 && (o.Blocks[0] == 'B' || o.Blocks[0] == 'b') &&
     std::isdigit(static_cast<unsigned char>(o.Blocks[1])))
@@ -218,16 +205,20 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   std::string tileset; // an EXEMPLAR that is a tileset: its rules are hard pairs too
   ConnectInputs(synthesis, check, o, readers, tileset);
   Configure(synthesis, o);
-  const std::vector<msynth::Stencil> measured =
-    msynth::ParseStencils(o.Measure.empty() ? SoftOf(o.Factors) : o.Measure);
   check->SetInputConnection(synthesis->GetOutputPort());
-  check->SetShapes(o.Measure.empty() ? SoftOf(o.Factors).c_str() : o.Measure.c_str());
+  check->SetShapes(o.Measure.c_str()); // "": the soft shapes the synthesis records
   check->SetMaximumReported(1);
+  // The network counted again by the check's own union-find (Discrete/LabelChecks.h).
+  check->SetConnected(o.Connected.c_str());
+  check->SetConnectedTilesetFile((o.Tileset.empty() ? tileset : o.Tileset).c_str());
   {
     ProgressBar bar(synthesis);
     synthesis->UpdateInformation();
     Run(synthesis); // all samples at once; the steps below come from the filter's cache
   }
+  const std::vector<msynth::Stencil> measured = msynth::ParseStencils(o.Measure.empty()
+      ? MessageOf(synthesis->GetOutput()->GetFieldData(), "SoftShapes")
+      : o.Measure);
   std::ostringstream samples;
   std::vector<double> kl(measured.size(), 0.0);
   double logp = 0.0, seconds = 0.0, firstValid = 0.0;
@@ -237,19 +228,19 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
     check->UpdateTimeStep(k);
     Run(check);
     vtkFieldData* verdict = check->GetOutput()->GetFieldData();
-    if (CountOf(verdict, "Valid") != 1)
+    if (CountOf(verdict, "Violations") != 0)
     {
       auto* lines = vtkStringArray::SafeDownCast(verdict->GetAbstractArray("Problems"));
       throw std::runtime_error("sample " + std::to_string(k + 1) +
         " breaks the exemplars' pairs: " + (lines ? lines->GetValue(0) : std::string()));
     }
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(synthesis->GetOutput());
-    // The network counted again by the command line's own union-find (CheckCommand.cxx).
-    if (!o.Connected.empty() &&
-      !CheckConnected(o.Connected, o.Tileset.empty() ? tileset : o.Tileset, "", "", image))
+    if (auto* lines = vtkStringArray::SafeDownCast(verdict->GetAbstractArray("Findings")))
+      std::cout << lines->GetValue(0) << "\n"; // the network, as counted by the check
+    if (CountOf(verdict, "Valid") != 1)
       throw std::runtime_error("sample " + std::to_string(k + 1) + " has more components of " +
         o.Connected + " than asked");
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(synthesis->GetOutput());
     vtkFieldData* fd = image->GetFieldData();
     samples << (k ? ",\n" : "") << "    {\"sample\": " << k + 1
             << ", \"LogProbability\": " << JsonNumber(FieldValue(fd, "LogProbability"));
@@ -426,7 +417,7 @@ CommandRunner AddPattern(CLI::App& app)
         CheckInputFile(*path);
     try
     {
-      SoftOf(o->Factors);
+      msynth::SoftShapes(o->Factors);
       msynth::ParseStencils(o->Measure);
     }
     catch (const std::exception& e)

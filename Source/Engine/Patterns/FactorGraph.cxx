@@ -131,6 +131,18 @@ Stencil ParseStencil(const std::string& text)
   throw BadShape(text, "expected NH, NV, ND, AxB, AxBxC or offsets such as 0:0+1:0+1:1");
 }
 
+std::string SoftShapes(const std::string& factors)
+{
+  std::string soft;
+  for (const Stencil& s : ParseStencils(factors))
+  {
+    if (s.Offsets.size() == 2 && (s.Name == "2H" || s.Name == "2V" || s.Name == "2D"))
+      continue;
+    soft += (soft.empty() ? "" : ",") + s.Name;
+  }
+  return soft;
+}
+
 std::vector<Stencil> ParseStencils(const std::string& list)
 {
   std::vector<Stencil> shapes;

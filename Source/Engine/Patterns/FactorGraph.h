@@ -46,6 +46,9 @@ struct Stencil
 Stencil ParseStencil(const std::string& text);
 /// Comma-separated shapes ("2H,2V,4H,4V"); empty items are skipped.
 std::vector<Stencil> ParseStencils(const std::string& list);
+/// The soft shapes of a factor list (`msynth pattern --factors`): every shape but the pairs
+/// 2H, 2V, 2D, which are always hard; comma-separated names ("" for none).
+std::string SoftShapes(const std::string& factors);
 
 /**
  * The replacement-block schemes B1–B6 (§8.3, Fig. 5), growing sets of block shapes. The

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSCheckModel.h"
 
+#include "vtkMSCheckKinds.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
@@ -17,22 +18,39 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include "Continuous/ContinuousMesh.h"
+#include "Core/Error.h"
 #include "Discrete/ConsistencyCheck.h"
+#include "Discrete/TimeVarying.h"
 #include "Formats/Tileset.h"
 #include "Patterns/PatternQuality.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
 vtkStandardNewMacro(vtkMSCheckModel);
 
+/// What a time-varying check collects over the executions of one update.
+struct vtkMSCheckModel::TimeFrames
+{
+  std::size_t Step = 0;  ///< the execution under way
+  std::size_t Steps = 1; ///< executions in all: the most time steps of model and example
+  int Retries = 0;       ///< executions of this step whose inputs came at another time
+  std::vector<double> ModelTimes, ExampleTimes;
+  msynth::TimeVaryingGrid Model, Example;
+};
+
 vtkMSCheckModel::vtkMSCheckModel()
+  : Frames(new TimeFrames)
 {
   this->SetNumberOfInputPorts(2);
 }
+
+vtkMSCheckModel::~vtkMSCheckModel() = default;
 
 int vtkMSCheckModel::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -47,6 +65,40 @@ int vtkMSCheckModel::FillInputPortInformation(int port, vtkInformation* info)
   return 1;
 }
 
+int vtkMSCheckModel::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  this->Frames->Step = 0; // a new pipeline pass starts with the first time step
+  this->Frames->Retries = 0;
+  if (this->TimeVarying) // one verdict for every time step together
+  {
+    outputVector->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outputVector->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
+  return 1;
+}
+
+namespace
+{
+/// Whether @p data is time step @p time (true when it does not say which it is).
+bool Delivered(vtkDataObject* data, double time)
+{
+  vtkInformation* info = data ? data->GetInformation() : nullptr;
+  return !info || !info->Has(vtkDataObject::DATA_TIME_STEP()) ||
+    info->Get(vtkDataObject::DATA_TIME_STEP()) == time;
+}
+
+/// The time steps @p info announces (none: empty).
+std::vector<double> TimeSteps(vtkInformation* info)
+{
+  const auto key = vtkStreamingDemandDrivenPipeline::TIME_STEPS();
+  if (!info || !info->Has(key))
+    return {};
+  const double* t = info->Get(key);
+  return std::vector<double>(t, t + info->Length(key));
+}
+} // namespace
+
 int vtkMSCheckModel::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
@@ -54,6 +106,20 @@ int vtkMSCheckModel::RequestUpdateExtent(
   for (int port = 0; port < 2; ++port)
     for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
       vtkMSPipeline::RequestWholeExtentOnPieceZero(inputVector[port]->GetInformationObject(i), 0);
+  if (!this->TimeVarying)
+    return 1;
+  // A time-varying check executes once per time step, asking each input for its step.
+  TimeFrames& f = *this->Frames;
+  vtkInformation* example = inputVector[1]->GetInformationObject(0);
+  f.ModelTimes = TimeSteps(inputVector[0]->GetInformationObject(0));
+  f.ExampleTimes = this->ExampleTimeFromZ ? std::vector<double>() : TimeSteps(example);
+  f.Steps = std::max<std::size_t>({ 1, f.ModelTimes.size(), f.ExampleTimes.size() });
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP();
+  if (!f.ModelTimes.empty())
+    inputVector[0]->GetInformationObject(0)->Set(
+      key, f.ModelTimes[std::min(f.Step, f.ModelTimes.size() - 1)]);
+  if (!f.ExampleTimes.empty())
+    example->Set(key, f.ExampleTimes[std::min(f.Step, f.ExampleTimes.size() - 1)]);
   return 1;
 }
 
@@ -73,29 +139,17 @@ double RecordedNumber(vtkFieldData* fd, const char* name, double otherwise)
   return a && a->GetNumberOfTuples() == 1 ? a->GetTuple1(0) : otherwise;
 }
 
-/// The verdict's arrays: Valid, Violations, PairsChecked, Problems.
-void AddVerdict(vtkFieldData* out, bool valid, std::int64_t violations, std::int64_t pairs,
-  const std::vector<std::string>& problems)
-{
-  vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Valid", valid ? 1 : 0);
-  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
-    out, "Violations", static_cast<vtkIdType>(violations));
-  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(out, "PairsChecked", static_cast<vtkIdType>(pairs));
-  vtkNew<vtkStringArray> lines;
-  lines->SetName("Problems");
-  for (const std::string& line : problems)
-    lines->InsertNextValue(line);
-  out->AddArray(lines);
-}
-
-/// The first violations as arrays: ViolationSites, ViolationAxes, ViolationLabels.
-void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report)
+/// The first violations as arrays: ViolationSites, ViolationAxes, ViolationLabels; the verdict
+/// @p valid (the pairs' and the other checks').
+void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report, bool valid)
 {
   vtkNew<vtkIdTypeArray> sites;
   sites->SetName("ViolationSites");
   sites->SetNumberOfComponents(3);
   vtkNew<vtkIntArray> axes;
   axes->SetName("ViolationAxes");
+  vtkNew<vtkIdTypeArray> times;
+  times->SetName("ViolationTimes");
   vtkNew<vtkIntArray> labels;
   labels->SetName("ViolationLabels");
   labels->SetNumberOfComponents(2);
@@ -105,14 +159,17 @@ void AddViolations(vtkFieldData* out, const msynth::ConsistencyReport& report)
     const vtkIdType site[3] = { v.Site[0], v.Site[1], v.Site[2] };
     sites->InsertNextTypedTuple(site);
     axes->InsertNextValue(v.Axis);
+    times->InsertNextValue(static_cast<vtkIdType>(v.Time));
     const int pair[2] = { v.From, v.To };
     labels->InsertNextTypedTuple(pair);
     lines.push_back(v.Describe());
   }
-  AddVerdict(out, report.Consistent, report.Violations, report.PairsChecked, lines);
+  vtkMSCheckKinds::AddVerdict(out, valid, report.Violations, report.PairsChecked, lines);
   out->AddArray(sites);
   out->AddArray(axes);
   out->AddArray(labels);
+  if (!report.First.empty() && report.First.front().Time >= 0)
+    out->AddArray(times);
 }
 
 /// KL_<shape> per shape of @p shapes and PatternLogProbability (PatternQuality.h).
@@ -175,9 +232,22 @@ bool vtkMSCheckModel::CheckLabels(
                 .Pairs;
     report =
       msynth::CheckConsistency(grids, pairs, grid, static_cast<std::size_t>(this->MaximumReported));
-    AddViolations(out, report);
-    if (!this->Shapes.empty())
-      AddQuality(out, grids, grid, this->Shapes, this->Epsilon);
+    // Counts and network: names of ConnectedTilesetFile, else of the tileset checked against.
+    const bool own = !this->ConnectedTilesetFile.empty();
+    vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
+      own ? this->ConnectedTilesetFile : tileset,
+      own || !recorded ? this->TilesetSubset : Recorded(fd, "TilesetSubset"),
+      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {} };
+    request.Source = !request.Tileset.empty() ? request.Tileset
+      : examples->GetNumberOfInformationObjects() > 0
+      ? vtkMSFieldData::ExampleName(vtkImageData::GetData(examples, 0))
+      : std::string("the model");
+    const bool kept = vtkMSCheckKinds::CheckNetwork(grid, request, out);
+    AddViolations(out, report, report.Consistent && kept);
+    // Shapes, else the soft shapes a pattern synthesis recorded.
+    const std::string shapes = this->Shapes.empty() ? Recorded(fd, "SoftShapes") : this->Shapes;
+    if (!shapes.empty())
+      AddQuality(out, grids, grid, shapes, this->Epsilon);
   }
   catch (const std::exception& e)
   {
@@ -221,7 +291,7 @@ bool vtkMSCheckModel::CheckContinuous(
       return false;
     }
     const auto report = msynth::CheckContinuousModel(analysis, mesh, ex.TypeNames, spacing);
-    AddVerdict(out, report.Valid, report.Valid ? 0 : 1, 0,
+    vtkMSCheckKinds::AddVerdict(out, report.Valid, report.Valid ? 0 : 1, 0,
       report.Valid ? std::vector<std::string>() : std::vector<std::string>{ report.Problem });
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Objects", report.Objects);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "DistinctLabels", report.DistinctLabels);
@@ -237,8 +307,104 @@ bool vtkMSCheckModel::CheckContinuous(
   return true;
 }
 
+bool vtkMSCheckModel::CheckOther(vtkImageData* model, vtkFieldData* out)
+{
+  try
+  {
+    const auto limit = static_cast<std::size_t>(this->MaximumReported);
+    if (!this->SampleFile.empty())
+    {
+      vtkMSCheckKinds::PictureCheck check{ this->SampleFile, this->PatternSize,
+        this->PatternSymmetry, this->PeriodicInput, this->Ground,
+        { this->PeriodicOutput[0] != 0, this->PeriodicOutput[1] != 0 } };
+      vtkMSCheckKinds::CheckPicture(model, check, limit, out);
+    }
+    else if (this->TilesetFile.empty())
+      throw msynth::Error("A voxel model is checked against a voxel tileset: set TilesetFile.");
+    else
+      vtkMSCheckKinds::CheckVoxels(model, this->TilesetFile, this->TilesFolder, limit, out);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return false;
+  }
+  return true;
+}
+
+int vtkMSCheckModel::CheckTimeStep(
+  vtkImageData* model, vtkInformationVector* examples, vtkInformation* request, vtkFieldData* out)
+{
+  TimeFrames& f = *this->Frames;
+  try
+  {
+    const bool series = !this->ExampleTimeFromZ && !f.ExampleTimes.empty();
+    if ((f.Step < f.ModelTimes.size() && !Delivered(model, f.ModelTimes[f.Step])) ||
+      (series && f.Step < f.ExampleTimes.size() &&
+        !Delivered(vtkDataObject::GetData(examples, 0), f.ExampleTimes[f.Step])))
+    {
+      // An input shared with another consumer (the synthesis reading the same series) was left
+      // at that consumer's time step: ask again (nothing else moves it then).
+      if (++f.Retries > 3)
+        throw msynth::Error("Time step " + std::to_string(f.Step) +
+          " of the model or the example did not arrive; give the check its own reader.");
+      request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+      return 2;
+    }
+    f.Retries = 0;
+    if (f.Step == 0)
+      f.Model.Frames.clear(), f.Example.Frames.clear();
+    std::string problem;
+    msynth::LabelGrid grid;
+    if (f.Step < std::max<std::size_t>(1, f.ModelTimes.size()) &&
+      !vtkMSLabelArrays::ReadLabels(model, nullptr, grid, problem))
+      throw msynth::Error("Frame " + std::to_string(f.Step) + " of the model: " + problem);
+    if (!grid.Data().empty())
+      f.Model.Frames.push_back(std::move(grid));
+    const int connected = examples->GetNumberOfInformationObjects();
+    for (int i = 0; i < connected && (f.Step == 0 || (series && f.Step < f.ExampleTimes.size()));
+         ++i)
+    {
+      msynth::LabelGrid frame;
+      vtkImageData* example = vtkImageData::GetData(examples, i);
+      if (!example || !vtkMSLabelArrays::ReadLabels(example, nullptr, frame, problem))
+        throw msynth::Error("Example " + std::to_string(i + 1) + ": " +
+          (example ? problem : "a time-varying model needs label examples"));
+      if (this->ExampleTimeFromZ)
+        f.Example = msynth::TimeVaryingGrid::FromSlices(frame);
+      else
+        f.Example.Frames.push_back(std::move(frame));
+    }
+    if (++f.Step < f.Steps)
+    {
+      request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+      return 2;
+    }
+    request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+    f.Step = 0;
+    if (f.Example.Frames.empty())
+      throw msynth::Error("Nothing to check the time-varying model against: connect its example.");
+    const msynth::ConsistencyReport report =
+      msynth::CheckTimeVarying(f.Example, f.Model, this->Loop);
+    AddViolations(out, report, report.Consistent);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      out, "Frames", static_cast<int>(f.Model.Frames.size()));
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      out, "ExampleFrames", static_cast<int>(f.Example.Frames.size()));
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    f.Step = 0;
+    f.Retries = 0;
+    request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+}
+
 int vtkMSCheckModel::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
@@ -247,9 +413,17 @@ int vtkMSCheckModel::RequestData(
   fields->DeepCopy(input->GetFieldData());
   output->SetFieldData(fields);
   auto* image = vtkImageData::SafeDownCast(input);
-  const bool checked = image
-    ? this->CheckLabels(image, inputVector[1], fields)
-    : this->CheckContinuous(vtkPolyData::SafeDownCast(input), inputVector[1], fields);
+  if (this->TimeVarying && image)
+  {
+    const int step = this->CheckTimeStep(image, inputVector[1], request, fields);
+    if (step == 0)
+      output->Initialize();
+    return step == 0 ? 0 : 1;
+  }
+  const bool other = image && (!this->SampleFile.empty() || this->VoxelModel);
+  const bool checked = other ? this->CheckOther(image, fields)
+    : image                  ? this->CheckLabels(image, inputVector[1], fields)
+            : this->CheckContinuous(vtkPolyData::SafeDownCast(input), inputVector[1], fields);
   if (!checked)
     output->Initialize(); // no verdict: no output
   return checked ? 1 : 0;
@@ -261,6 +435,21 @@ void vtkMSCheckModel::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TilesetFile: " << this->TilesetFile << "\n";
   os << indent << "TilesetSubset: " << this->TilesetSubset << "\n";
   os << indent << "TilesFolder: " << this->TilesFolder << "\n";
+  os << indent << "SampleFile: " << this->SampleFile << "\n";
+  os << indent << "PatternSize: " << this->PatternSize << "\n";
+  os << indent << "PatternSymmetry: " << this->PatternSymmetry << "\n";
+  os << indent << "PeriodicInput: " << this->PeriodicInput << "\n";
+  os << indent << "Ground: " << this->Ground << "\n";
+  os << indent << "PeriodicOutput: " << this->PeriodicOutput[0] << " " << this->PeriodicOutput[1]
+     << "\n";
+  os << indent << "VoxelModel: " << this->VoxelModel << "\n";
+  os << indent << "Counts: " << this->Counts << "\n";
+  os << indent << "Connected: " << this->Connected << "\n";
+  os << indent << "Path: " << this->Path << "\n";
+  os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
+  os << indent << "TimeVarying: " << this->TimeVarying << "\n";
+  os << indent << "Loop: " << this->Loop << "\n";
+  os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";
   os << indent << "Shapes: " << this->Shapes << "\n";
   os << indent << "Epsilon: " << this->Epsilon << "\n";
   os << indent << "MaximumReported: " << this->MaximumReported << "\n";

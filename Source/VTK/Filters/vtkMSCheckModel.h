@@ -26,6 +26,27 @@
  * soft factors worth 1 + Epsilon); for continuous models `Objects`, `DistinctLabels` and the
  * narrowest face, edge or gap `SmallestFeature` and `SmallestFeatureFraction` (of the model's
  * recorded `SmallestSpacing`; under MinimumFeatureFraction of it the model is invalid).
+ *
+ * Other models (each chosen by its property): with SampleFile, the model is a picture (colour
+ * scalars, from a PNG reader or vtkMSPatternImage) and every window of it must be one of the
+ * sample's (`Violations`: the windows found wrong, at most MaximumReported); with VoxelModel, a
+ * voxel model (palette indices and field data `PaletteRGBA`, as vtkMSLabelGridReader reads a
+ * .vox with VoxScene) whose every tile cell must be a tile of the voxel tileset TilesetFile and
+ * every adjacent pair allowed (`Cells`, `PairsChecked`).
+ *
+ * A label model's Counts, Connected network and Path are checked too (counted by a union-find of
+ * the check's own, Discrete/LabelChecks.h; tile names of ConnectedTilesetFile, else of the
+ * tileset): `CountNames`, `CountAchieved`, ..., `CountsKept`, `ConnectedComponents`,
+ * `ConnectedKept`, `PathJoined`, and `Findings` (a line each). `Valid` is 0 when one is missed.
+ *
+ * With TimeVarying, every time step of the model is a frame, checked in space and in time
+ * (D§3.5.4, Discrete/TimeVarying.h: CheckTimeVarying) against the examples' frames: the z slices
+ * of one example (ExampleTimeFromZ), else the time steps of the example (or one frame per
+ * example connected); `ViolationTimes` gives each violation's frame (axis 3 is time), `Frames`
+ * and `ExampleFrames` the counts. The output then has no time steps. The filter executes once
+ * per time step (CONTINUE_EXECUTING); a step that comes at another time than asked (an input
+ * shared with the synthesis, which moved it) is asked for again.
+ *
  * Bad input (no example and no tileset, a model without labels) is an error naming it.
  *
  * @sa msynth check, msynth quality
@@ -36,6 +57,7 @@
 #include "ModelSynthFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
 #include <string> // for ivars
 
 class vtkFieldData;
@@ -70,8 +92,65 @@ public:
   ///@}
 
   ///@{
+  /// An image sample (.png, .bmp): the model is a picture whose every PatternSize x PatternSize
+  /// window (wrapping along the axes of PeriodicOutput) must be a window of the sample or one of
+  /// its first PatternSymmetry dihedral images (windows of the sample wrap with PeriodicInput;
+  /// with Ground the bottom row holds the ground windows). "" (the default): no picture check.
+  vtkSetStdStringFromCharMacro(SampleFile);
+  vtkGetCharFromStdStringMacro(SampleFile);
+  vtkSetClampMacro(PatternSize, int, 1, 8);
+  vtkGetMacro(PatternSize, int);
+  vtkSetClampMacro(PatternSymmetry, int, 1, 8);
+  vtkGetMacro(PatternSymmetry, int);
+  vtkSetMacro(PeriodicInput, bool);
+  vtkGetMacro(PeriodicInput, bool);
+  vtkSetMacro(Ground, bool);
+  vtkGetMacro(Ground, bool);
+  vtkSetVector2Macro(PeriodicOutput, int);
+  vtkGetVector2Macro(PeriodicOutput, int);
+  ///@}
+
+  ///@{
+  /// Whether the model is a voxel model (palette indices, field data PaletteRGBA) checked cell
+  /// by cell against the voxel tileset TilesetFile. Default off.
+  vtkSetMacro(VoxelModel, bool);
+  vtkGetMacro(VoxelModel, bool);
+  vtkBooleanMacro(VoxelModel, bool);
+  ///@}
+
+  ///@{
+  /// Label counts "L:MIN:MAX,..." the model must hold, a network "LABELS[:N]" whose sites form at
+  /// most N components (through a tileset's connecting sides), and a Path "A;B;..." (sites
+  /// x,y[,z] or labels) whose sites lie in one of them. L and LABELS are values or tile and
+  /// label names of ConnectedTilesetFile ("" the default: the tileset checked against, if any).
+  vtkSetStdStringFromCharMacro(Counts);
+  vtkGetCharFromStdStringMacro(Counts);
+  vtkSetStdStringFromCharMacro(Connected);
+  vtkGetCharFromStdStringMacro(Connected);
+  vtkSetStdStringFromCharMacro(Path);
+  vtkGetCharFromStdStringMacro(Path);
+  vtkSetStdStringFromCharMacro(ConnectedTilesetFile);
+  vtkGetCharFromStdStringMacro(ConnectedTilesetFile);
+  ///@}
+
+  ///@{
+  /// A time-varying model (see above); with Loop, the last frame is followed by the first;
+  /// ExampleTimeFromZ: the example's z slices are its frames. Default off.
+  vtkSetMacro(TimeVarying, bool);
+  vtkGetMacro(TimeVarying, bool);
+  vtkBooleanMacro(TimeVarying, bool);
+  vtkSetMacro(Loop, bool);
+  vtkGetMacro(Loop, bool);
+  vtkBooleanMacro(Loop, bool);
+  vtkSetMacro(ExampleTimeFromZ, bool);
+  vtkGetMacro(ExampleTimeFromZ, bool);
+  vtkBooleanMacro(ExampleTimeFromZ, bool);
+  ///@}
+
+  ///@{
   /// Factor shapes whose KL divergence to the examples is measured ("4H,4V", "3x3", as
-  /// vtkMSPatternSynthesis's SoftFactors); "" (the default): none.
+  /// vtkMSPatternSynthesis's SoftFactors); "" (the default): the soft shapes the model's field
+  /// data records (`SoftShapes`, as vtkMSPatternSynthesis publishes them), else none.
   vtkSetStdStringFromCharMacro(Shapes);
   vtkGetCharFromStdStringMacro(Shapes);
   ///@}
@@ -90,9 +169,10 @@ public:
 
 protected:
   vtkMSCheckModel();
-  ~vtkMSCheckModel() override = default;
+  ~vtkMSCheckModel() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -102,10 +182,30 @@ private:
 
   bool CheckLabels(vtkImageData* model, vtkInformationVector* examples, vtkFieldData* out);
   bool CheckContinuous(vtkPolyData* model, vtkInformationVector* examples, vtkFieldData* out);
+  bool CheckOther(vtkImageData* model, vtkFieldData* out);
+  int CheckTimeStep(vtkImageData* model, vtkInformationVector* examples, vtkInformation* request,
+    vtkFieldData* out);
+
+  struct TimeFrames; ///< the frames a time-varying check collects, step by step
+  std::unique_ptr<TimeFrames> Frames;
 
   std::string TilesetFile;
   std::string TilesetSubset;
   std::string TilesFolder;
+  std::string SampleFile;
+  int PatternSize = 3;
+  int PatternSymmetry = 8;
+  bool PeriodicInput = true;
+  bool Ground = false;
+  int PeriodicOutput[2] = { 0, 0 };
+  bool VoxelModel = false;
+  bool TimeVarying = false;
+  bool Loop = false;
+  bool ExampleTimeFromZ = false;
+  std::string Counts;
+  std::string Connected;
+  std::string Path;
+  std::string ConnectedTilesetFile;
   std::string Shapes;
   double Epsilon = 0.1;
   int MaximumReported = 10;

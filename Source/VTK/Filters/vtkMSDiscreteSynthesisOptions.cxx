@@ -206,42 +206,6 @@ bool BuildOptions(
 
 namespace
 {
-/// The RGB(A) bytes of a picture on the Fixed input (a vtkPNGReader's output: unsigned char
-/// scalars of 3 or 4 components and no label array), else nullptr.
-vtkUnsignedCharArray* PictureOf(vtkImageData* fixed)
-{
-  if (fixed->GetPointData()->GetArray("Label"))
-    return nullptr;
-  auto* rgba = vtkUnsignedCharArray::SafeDownCast(fixed->GetPointData()->GetScalars());
-  const int nc = rgba ? rgba->GetNumberOfComponents() : 0;
-  return nc == 3 || nc == 4 ? rgba : nullptr;
-}
-
-/// The picture's RGBA rows, from the top (VTK holds them from the bottom).
-msynth::RgbaImage PictureRows(vtkImageData* fixed, vtkUnsignedCharArray* bytes)
-{
-  int dims[3];
-  fixed->GetDimensions(dims);
-  if (dims[2] != 1)
-    throw msynth::Error(
-      "a picture of pinned tiles must be flat (it is " + std::to_string(dims[2]) + " pixels deep)");
-  msynth::RgbaImage picture;
-  picture.Width = dims[0];
-  picture.Height = dims[1];
-  picture.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
-  const int nc = bytes->GetNumberOfComponents();
-  std::uint8_t* out = picture.Pixels.data();
-  for (int y = 0; y < dims[1]; ++y)
-    for (int x = 0; x < dims[0]; ++x, out += 4)
-    {
-      const unsigned char* in =
-        bytes->GetPointer(nc * (x + static_cast<vtkIdType>(dims[0]) * (dims[1] - 1 - y)));
-      for (int c = 0; c < 4; ++c)
-        out[c] = c < nc ? in[c] : 255;
-    }
-  return picture;
-}
-
 /// A map drawn with the tileset's tiles (msynth::PinsFromPicture), or a picture drawn in the
 /// colours of an image sample (msynth::PatternSet::PinsFromPicture); @p name names it in errors.
 msynth::LabelGrid PinsOfPicture(
@@ -307,8 +271,10 @@ msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& pa
 msynth::LabelGrid PinsOfInput(vtkMSDiscreteSynthesis* self, vtkImageData* fixed,
   std::optional<std::array<std::int64_t, 3>>& origin)
 {
-  if (vtkUnsignedCharArray* picture = PictureOf(fixed))
-    return PinsOfPicture(self, PictureRows(fixed, picture), "the picture of pinned tiles");
+  if (vtkUnsignedCharArray* picture = vtkMSLabelArrays::PictureBytes(fixed))
+    return PinsOfPicture(self,
+      vtkMSLabelArrays::PictureRows(fixed, picture, "a picture of pinned tiles"),
+      "the picture of pinned tiles");
   msynth::LabelGrid pins;
   std::string problem;
   if (!vtkMSLabelArrays::ReadLabels(fixed, nullptr, pins, problem))

@@ -133,16 +133,7 @@ int vtkMSPatternImage::RequestData(
                   << " " << periodic[1] << "; set PatternSize and PeriodicOutput to the same.");
     return 0;
   }
-  output->SetExtent(0, picture.Width - 1, 0, picture.Height - 1, 0, 0);
-  vtkNew<vtkUnsignedCharArray> rgba;
-  rgba->SetName("RGBA");
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(static_cast<vtkIdType>(picture.Width) * picture.Height);
-  for (int y = 0; y < picture.Height; ++y) // VTK's rows are bottom first, the picture's top first
-    std::copy(picture.At(0, picture.Height - 1 - y),
-      picture.At(0, picture.Height - 1 - y) + 4 * picture.Width,
-      rgba->GetPointer(4 * static_cast<vtkIdType>(y) * picture.Width));
-  output->GetPointData()->SetScalars(rgba);
+  vtkMSLabelArrays::SetPicture(output, picture);
   return 1;
 }
 

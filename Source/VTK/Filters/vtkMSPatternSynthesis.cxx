@@ -317,9 +317,17 @@ void vtkMSPatternSynthesis::AddFields(
   vtkMSFieldData::AddFieldValue<vtkIntArray>(
     fd, "Samples", static_cast<int>(result.Samples.size()));
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fd, "LogProbability", sample.LogProbability);
+  vtkNew<vtkStringArray> shapes; // the soft shapes, for vtkMSCheckModel and statistics.json
+  shapes->SetName("SoftShapes");
+  std::string names;
   for (const msynth::Stencil& s : cache.SoftShapes)
+  {
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       fd, ("KL_" + s.Name).c_str(), msynth::PatternKL(cache.Exemplars, sample.Labels, s));
+    names += (names.empty() ? "" : ",") + s.Name;
+  }
+  shapes->InsertNextValue(names);
+  fd->AddArray(shapes);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fd, "SampleMoves", sample.Moves);
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fd, "SampleSeconds", sample.Seconds);
   const std::pair<const char*, std::int64_t> counts[] = { { "Moves", result.Moves },

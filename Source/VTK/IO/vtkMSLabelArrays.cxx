@@ -36,6 +36,7 @@
 
 #include "Core/Error.h"
 #include "Discrete/VoxelSurface.h"
+#include "Formats/Image.h"
 #include "Formats/VoxelTileset.h"
 
 #include <algorithm>
@@ -360,4 +361,53 @@ std::array<double, 3> vtkMSLabelArrays::FirstSitePosition(vtkImageData* image)
   image->GetExtent(extent);
   return { { origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
     origin[2] + extent[4] * spacing[2] } };
+}
+
+vtkUnsignedCharArray* vtkMSLabelArrays::PictureBytes(vtkImageData* image)
+{
+  if (!image || image->GetPointData()->GetArray("Label"))
+    return nullptr;
+  auto* bytes = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const int nc = bytes ? bytes->GetNumberOfComponents() : 0;
+  return nc >= 1 && nc <= 4 ? bytes : nullptr;
+}
+
+msynth::RgbaImage vtkMSLabelArrays::PictureRows(
+  vtkImageData* image, vtkUnsignedCharArray* bytes, const std::string& what)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  if (dims[2] != 1)
+    throw msynth::Error(what + " must be flat (it is " + std::to_string(dims[2]) + " pixels deep)");
+  msynth::RgbaImage picture;
+  picture.Width = dims[0];
+  picture.Height = dims[1];
+  picture.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+  const int nc = bytes->GetNumberOfComponents();
+  std::uint8_t* out = picture.Pixels.data();
+  for (int y = 0; y < dims[1]; ++y)
+    for (int x = 0; x < dims[0]; ++x, out += 4)
+    {
+      const unsigned char* in =
+        bytes->GetPointer(nc * (x + static_cast<vtkIdType>(dims[0]) * (dims[1] - 1 - y)));
+      const bool grey = nc <= 2;
+      for (int c = 0; c < 3; ++c)
+        out[c] = in[grey ? 0 : c];
+      out[3] = nc == 2 || nc == 4 ? in[nc - 1] : 255;
+    }
+  return picture;
+}
+
+void vtkMSLabelArrays::SetPicture(vtkImageData* output, const msynth::RgbaImage& picture)
+{
+  output->SetExtent(0, picture.Width - 1, 0, picture.Height - 1, 0, 0);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("RGBA");
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(static_cast<vtkIdType>(picture.Width) * picture.Height);
+  for (int y = 0; y < picture.Height; ++y) // VTK's rows are bottom first, the picture's top first
+    std::copy(picture.At(0, picture.Height - 1 - y),
+      picture.At(0, picture.Height - 1 - y) + 4 * picture.Width,
+      rgba->GetPointer(4 * static_cast<vtkIdType>(y) * picture.Width));
+  output->GetPointData()->SetScalars(rgba);
 }

@@ -24,8 +24,10 @@ class vtkImageData;
 class vtkInformation;
 class vtkIntArray;
 class vtkPolyData;
+class vtkUnsignedCharArray;
 namespace msynth
 {
+struct RgbaImage;
 struct Tileset;
 struct VoxelSurface;
 }
@@ -123,6 +125,18 @@ public:
 
   /// The world position of @p image's first site (its origin moved to the extent's start).
   static std::array<double, 3> FirstSitePosition(vtkImageData* image);
+
+  /// The colours of a picture (unsigned char scalars of 1 to 4 components: grey, grey and alpha,
+  /// RGB, RGBA, as vtkPNGReader gives them, and no `Label` array), else nullptr.
+  static vtkUnsignedCharArray* PictureBytes(vtkImageData* image);
+  /**
+   * The picture @p image (of the colours @p bytes) as RGBA rows from the top (VTK holds them
+   * from the bottom). @throw msynth::Error "@p what must be flat" for an image deeper than 1.
+   */
+  static msynth::RgbaImage PictureRows(
+    vtkImageData* image, vtkUnsignedCharArray* bytes, const std::string& what);
+  /// @p picture into @p output: its extent and an `RGBA` array as scalars, rows from the bottom.
+  static void SetPicture(vtkImageData* output, const msynth::RgbaImage& picture);
 };
 
 #endif

@@ -2,6 +2,7 @@
 #include "vtkMSLabelGridReader.h"
 
 #include "vtkMSEngineBridge.h"
+#include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 
 #include "vtkCellData.h"
@@ -36,6 +37,7 @@ struct vtkMSLabelGridReader::Internals
   std::string Key;        ///< file name, size and time of the cached model
   msynth::TextModel Text; ///< .txt and .vox files (Grid; Pieces for .txt)
   std::vector<std::array<std::uint8_t, 4>> Palette; ///< .vox files
+  int VoxModels = 0;      ///< how many models the .vox file holds (0 for other files)
   std::string CheckedKey; ///< file name, size and time of the last .vti that passed the check
 };
 
@@ -98,7 +100,8 @@ bool vtkMSLabelGridReader::ReadText()
   struct stat info;
   ::stat(this->FileName.c_str(), &info);
   const std::string key = this->FileName + '\n' + std::to_string(info.st_size) + '\n' +
-    std::to_string(info.st_mtime) + '\n' + std::to_string(this->MaximumNumberOfSites);
+    std::to_string(info.st_mtime) + '\n' + std::to_string(this->MaximumNumberOfSites) +
+    (this->VoxScene ? "\nscene" : "");
   if (key == this->Internal->Key)
   {
     return true;
@@ -107,10 +110,13 @@ bool vtkMSLabelGridReader::ReadText()
   try
   {
     this->Internal->Palette.clear();
+    this->Internal->VoxModels = 0;
     if (EndsWith(this->FileName, ".vox"))
     {
-      msynth::VoxModel vox = msynth::ReadVoxModelFile(this->FileName, this->MaximumNumberOfSites);
-      if (vox.NumberOfModels > 1)
+      msynth::VoxModel vox = this->VoxScene
+        ? msynth::ReadVoxSceneFile(this->FileName, this->MaximumNumberOfSites)
+        : msynth::ReadVoxModelFile(this->FileName, this->MaximumNumberOfSites);
+      if (vox.NumberOfModels > 1 && !this->VoxScene)
       {
         vtkWarningMacro(<< "'" << this->FileName << "': holds " << vox.NumberOfModels
                         << " models; only the first is read.");
@@ -118,6 +124,7 @@ bool vtkMSLabelGridReader::ReadText()
       this->Internal->Text = msynth::TextModel();
       this->Internal->Text.Grid = std::move(vox.Grid);
       this->Internal->Palette = std::move(vox.Palette);
+      this->Internal->VoxModels = vox.NumberOfModels;
     }
     else
     {
@@ -402,6 +409,9 @@ bool vtkMSLabelGridReader::ReadGrid(vtkImageData* output)
   if (this->IsText)
   {
     FillFromTextModel(output, this->Internal->Text, this->Internal->Palette);
+    if (this->VoxScene && this->Internal->VoxModels > 0) // the models the scene placed
+      vtkMSFieldData::AddFieldValue<vtkIntArray>(
+        output->GetFieldData(), "VoxModels", this->Internal->VoxModels);
     output->GetFieldData()->AddArray(source);
     return true;
   }
@@ -451,4 +461,5 @@ void vtkMSLabelGridReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "LabelArrayName: " << this->LabelArrayName << "\n";
   os << indent << "MaximumNumberOfSites: " << this->MaximumNumberOfSites << "\n";
+  os << indent << "VoxScene: " << this->VoxScene << "\n";
 }

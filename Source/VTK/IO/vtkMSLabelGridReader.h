@@ -68,6 +68,14 @@ public:
   ///@}
 
   ///@{
+  /// Whether a .vox file is read whole: every model placed where its scene puts it (a voxel
+  /// tileset's model.vox), rather than its first model. Default off.
+  vtkSetMacro(VoxScene, bool);
+  vtkGetMacro(VoxScene, bool);
+  vtkBooleanMacro(VoxScene, bool);
+  ///@}
+
+  ///@{
   /// Whether output port 1 holds the example's voxel surface. Default on.
   vtkSetMacro(GenerateGeometry, bool);
   vtkGetMacro(GenerateGeometry, bool);
@@ -106,6 +114,7 @@ private:
   std::string FileName;
   std::string LabelArrayName = "Label";
   vtkIdType MaximumNumberOfSites = vtkIdType(1) << 27;
+  bool VoxScene = false;
   bool GenerateGeometry = true;
   int EmptyLabel = 0;
 

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMSCheckKinds.h"
+
+#include "vtkMSFieldData.h"
+#include "vtkMSLabelArrays.h"
+#include "vtkMSLabelCounts.h"
+
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "Core/Error.h"
+#include "Core/TextLists.h"
+#include "Discrete/LabelChecks.h"
+#include "Discrete/OverlappingModel.h"
+#include "Formats/Image.h"
+#include "Formats/Tileset.h"
+#include "Formats/VoxelTileset.h"
+
+#include <algorithm>
+
+namespace vtkMSCheckKinds
+{
+void AddVerdict(vtkFieldData* out, bool valid, std::int64_t violations, std::int64_t pairs,
+  const std::vector<std::string>& problems)
+{
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "Valid", valid ? 1 : 0);
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    out, "Violations", static_cast<vtkIdType>(violations));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(out, "PairsChecked", static_cast<vtkIdType>(pairs));
+  vtkNew<vtkStringArray> lines;
+  lines->SetName("Problems");
+  for (const std::string& line : problems)
+    lines->InsertNextValue(line);
+  out->AddArray(lines);
+}
+
+void CheckPicture(
+  vtkImageData* model, const PictureCheck& check, std::size_t limit, vtkFieldData* out)
+{
+  vtkUnsignedCharArray* bytes = vtkMSLabelArrays::PictureBytes(model);
+  if (!bytes)
+    throw msynth::Error("The model of an image sample is a picture (unsigned char colours, as "
+                        "a PNG reader gives them), not labels.");
+  const msynth::RgbaImage picture = vtkMSLabelArrays::PictureRows(model, bytes, "the picture");
+  msynth::OverlappingOptions options;
+  options.N = check.PatternSize;
+  options.Symmetry = check.PatternSymmetry;
+  options.PeriodicInput = check.PeriodicInput;
+  options.Ground = check.Ground;
+  const msynth::Periodic periodic{ { check.PeriodicOutput[0], check.PeriodicOutput[1] } };
+  const std::vector<std::string> problems =
+    msynth::CheckPicture(msynth::ReadImage(check.SampleFile), options, picture, periodic,
+      std::max<std::size_t>(limit, 1));
+  AddVerdict(out, problems.empty(), static_cast<std::int64_t>(problems.size()), 0,
+    std::vector<std::string>(
+      problems.begin(), problems.begin() + static_cast<long>(std::min(limit, problems.size()))));
+}
+
+void CheckVoxels(vtkImageData* model, const std::string& tileset, const std::string& tiles,
+  std::size_t limit, vtkFieldData* out)
+{
+  msynth::LabelGrid grid;
+  std::string problem;
+  if (!vtkMSLabelArrays::ReadLabels(model, nullptr, grid, problem))
+    throw msynth::Error("The voxel model: " + problem);
+  auto* colours =
+    vtkUnsignedCharArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("PaletteRGBA"));
+  if (!colours || colours->GetNumberOfComponents() != 4)
+    throw msynth::Error("The voxel model has no palette (field data PaletteRGBA, as the label "
+                        "grid reader gives a .vox file).");
+  std::vector<std::array<std::uint8_t, 4>> palette(
+    static_cast<std::size_t>(colours->GetNumberOfTuples()));
+  for (std::size_t i = 0; i < palette.size(); ++i)
+    std::copy_n(colours->GetPointer(4 * static_cast<vtkIdType>(i)), 4, palette[i].data());
+  const msynth::VoxelCheckReport report = msynth::CheckVoxelModel(tileset, tiles, grid, palette);
+  AddVerdict(out, report.Valid, report.Problems, report.PairsChecked,
+    std::vector<std::string>(report.First.begin(),
+      report.First.begin() + static_cast<long>(std::min(limit, report.First.size()))));
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(out, "Cells", static_cast<vtkIdType>(report.Cells));
+}
+
+bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request, vtkFieldData* out)
+{
+  if (request.Counts.empty() && request.Connected.empty())
+  {
+    if (!request.Path.empty())
+      throw msynth::Error("A Path needs Connected: the labels that carry the path.");
+    return true;
+  }
+  const msynth::Tileset names = request.Tileset.empty()
+    ? msynth::Tileset()
+    : msynth::ReadTilesetFile(request.Tileset, request.Subset, request.Tiles);
+  vtkNew<vtkStringArray> findings;
+  findings->SetName("Findings");
+  bool kept = true;
+  if (!request.Counts.empty())
+  {
+    std::vector<msynth::LabelCountResult> counted;
+    bool counts = true;
+    for (const msynth::CountCheck& c :
+      msynth::CheckLabelCounts(model, request.Counts, names, request.Source))
+    {
+      counted.push_back({ { {}, c.Name, c.Minimum, c.Maximum }, c.Achieved });
+      counts = counts && c.Kept();
+      findings->InsertNextValue(c.Describe());
+    }
+    vtkMSLabelCounts::AddFields(out, counted);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "CountsKept", counts ? 1 : 0);
+    kept = counts;
+  }
+  if (!request.Connected.empty())
+  {
+    const msynth::NetworkCheck n = msynth::CheckLabelNetwork(model, request.Connected,
+      request.Path.empty() ? std::vector<std::string>() : msynth::SplitText(request.Path, ';'),
+      names, request.Source);
+    msynth::ConnectedResult result;
+    result.Requested = true;
+    result.Maximum = n.Maximum;
+    result.Name = n.Labels;
+    result.Before = result.Components = n.Components;
+    result.PathSites = n.PathSites;
+    vtkMSLabelCounts::AddConnectedFields(out, result);
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(
+      out, "ConnectedKept", n.Components <= n.Maximum ? 1 : 0);
+    findings->InsertNextValue(n.Describe());
+    if (n.HasPath)
+    {
+      vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "PathJoined", n.PathJoined ? 1 : 0);
+      vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+        out, "PathComponents", static_cast<vtkIdType>(n.PathComponents));
+      findings->InsertNextValue(n.PathLine);
+    }
+    kept = kept && n.Kept();
+  }
+  out->AddArray(findings);
+  return kept;
+}
+} // namespace vtkMSCheckKinds
