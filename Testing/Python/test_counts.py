@@ -144,6 +144,17 @@ class CountsTest(unittest.TestCase):
                 c = run_msynth("check", LINES, path, *args)
                 self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
                 self.assertIn("count kept: corner in guide region 1", c.stdout)
+        # The same through the check filter, without the command (GUI, Python): its CountGuideFile.
+        reader = modelsynth.vtkMSLabelGridReader()
+        reader.SetFileName(path)
+        check, error = run_algorithm(modelsynth.vtkMSCheckModel(), port=reader.GetOutputPort(),
+                                     TilesetFile=LINES, CountGuideFile=guide,
+                                     Counts="region=1:corner:0:24,region=1:corner:50:60")
+        self.assertEqual(error, "")
+        fields = check.GetFieldData()
+        achieved = [fields.GetArray("CountAchieved").GetValue(i) for i in range(2)]
+        self.assertEqual(achieved, [int(np.isin(labels[:, 12:], LINES_TILES["corner"]).sum())] * 2)
+        self.assertEqual(fields.GetArray("CountsKept").GetValue(0), 0)  # 50 to 60 is missed
         # The checker finds a region count the model does not keep.
         c = run_msynth("check", LINES, path, "--guide", guide, "--count", "region=1:corner:50:60")
         self.assertEqual(c.returncode, 1, c.stdout + c.stderr)

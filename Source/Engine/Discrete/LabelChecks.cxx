@@ -152,7 +152,8 @@ std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::stri
         !ParseInteger(e.Name.substr(7, colon - 7), 0, (1LL << 31) - 1, region))
         throw Error("--count: '" + e.Name + "' is not region=R:L (R from 0)");
       if (!regions || regions->size() != model.Data().size())
-        throw Error("--count region=R:...: give the guide with --guide GUIDE.vti");
+        throw Error("--count region=R:...: give the guide with --guide GUIDE.vti (the check's "
+                    "CountGuideFile)");
       e.Name = e.Name.substr(colon + 1);
     }
     std::set<long long> values;

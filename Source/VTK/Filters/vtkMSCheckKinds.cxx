@@ -1,17 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSCheckKinds.h"
 
+#include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSLabelCounts.h"
 
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataReader.h"
 
 #include "Core/Error.h"
 #include "Core/TextLists.h"
@@ -84,6 +88,44 @@ void CheckVoxels(vtkImageData* model, const std::string& tileset, const std::str
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(out, "Cells", static_cast<vtkIdType>(report.Cells));
 }
 
+namespace
+{
+/// The region of every site of @p model (x fastest) from the `Region` point array of the guide
+/// @p path stretched over it: a site at p of n reads the guide point floor((p + 1/2) D / n) per
+/// axis, as a synthesis guide is read (arithmetic of the check's own).
+std::vector<long long> GuideRegions(const std::string& path, const msynth::LabelGrid& model)
+{
+  vtkNew<vtkXMLImageDataReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+    throw msynth::Error("'" + path + "': not a readable guide volume (.vti)");
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw msynth::Error("'" + path + "': not a readable guide volume: " + messages);
+  vtkImageData* guide = reader->GetOutput();
+  vtkDataArray* region = guide->GetPointData()->GetArray("Region");
+  if (!region || !vtkMSLabelArrays::IsIntegerArray(region))
+    throw msynth::Error("'" + path + "': the guide has no integer point array Region");
+  int d[3];
+  guide->GetDimensions(d);
+  const auto& n = model.Dimensions();
+  std::vector<long long> out;
+  out.reserve(model.Data().size());
+  for (std::int64_t z = 0; z < n[2]; ++z)
+    for (std::int64_t y = 0; y < n[1]; ++y)
+      for (std::int64_t x = 0; x < n[0]; ++x)
+      {
+        const std::int64_t p[3] = { x, y, z };
+        std::int64_t cell[3];
+        for (int a = 0; a < 3; ++a)
+          cell[a] = std::min<std::int64_t>(d[a] - 1, (p[a] * 2 * d[a] + d[a]) / (2 * n[a]));
+        out.push_back(static_cast<long long>(
+          region->GetTuple1(static_cast<vtkIdType>(cell[0] + d[0] * (cell[1] + d[1] * cell[2])))));
+      }
+  return out;
+}
+} // namespace
+
 bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request, vtkFieldData* out)
 {
   if (request.Counts.empty() && request.Connected.empty())
@@ -102,8 +144,10 @@ bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request,
   {
     std::vector<msynth::LabelCountResult> counted;
     bool counts = true;
-    for (const msynth::CountCheck& c :
-      msynth::CheckLabelCounts(model, request.Counts, names, request.Source))
+    const std::vector<long long> regions =
+      request.Guide.empty() ? std::vector<long long>() : GuideRegions(request.Guide, model);
+    for (const msynth::CountCheck& c : msynth::CheckLabelCounts(model, request.Counts, names,
+           request.Source, request.Guide.empty() ? nullptr : &regions))
     {
       counted.push_back({ { {}, c.Name, c.Minimum, c.Maximum }, c.Achieved });
       counts = counts && c.Kept();

@@ -54,6 +54,7 @@ struct NetworkRequest
   std::string Subset;
   std::string Tiles;
   std::string Source; ///< the names' source in messages
+  std::string Guide;  ///< the guide (.vti) whose `Region` array counts "region=R:..." read
 };
 
 /**

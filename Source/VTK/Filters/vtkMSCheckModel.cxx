@@ -237,7 +237,8 @@ bool vtkMSCheckModel::CheckLabels(
     vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
       own ? this->ConnectedTilesetFile : tileset,
       own || !recorded ? this->TilesetSubset : Recorded(fd, "TilesetSubset"),
-      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {} };
+      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {},
+      this->CountGuideFile };
     request.Source = !request.Tileset.empty() ? request.Tileset
       : examples->GetNumberOfInformationObjects() > 0
       ? vtkMSFieldData::ExampleName(vtkImageData::GetData(examples, 0))
@@ -447,6 +448,7 @@ void vtkMSCheckModel::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Connected: " << this->Connected << "\n";
   os << indent << "Path: " << this->Path << "\n";
   os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
+  os << indent << "CountGuideFile: " << this->CountGuideFile << "\n";
   os << indent << "TimeVarying: " << this->TimeVarying << "\n";
   os << indent << "Loop: " << this->Loop << "\n";
   os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";

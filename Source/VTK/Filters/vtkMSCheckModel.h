@@ -123,6 +123,9 @@ public:
   /// most N components (through a tileset's connecting sides), and a Path "A;B;..." (sites
   /// x,y[,z] or labels) whose sites lie in one of them. L and LABELS are values or tile and
   /// label names of ConnectedTilesetFile ("" the default: the tileset checked against, if any).
+  /// A count "region=R:L:MIN:MAX" counts only the sites of region R of CountGuideFile: a guide
+  /// volume (.vti) whose integer point array `Region` is stretched over the model as a
+  /// synthesis guide is ("" the default: no region counts).
   vtkSetStdStringFromCharMacro(Counts);
   vtkGetCharFromStdStringMacro(Counts);
   vtkSetStdStringFromCharMacro(Connected);
@@ -131,6 +134,8 @@ public:
   vtkGetCharFromStdStringMacro(Path);
   vtkSetStdStringFromCharMacro(ConnectedTilesetFile);
   vtkGetCharFromStdStringMacro(ConnectedTilesetFile);
+  vtkSetStdStringFromCharMacro(CountGuideFile);
+  vtkGetCharFromStdStringMacro(CountGuideFile);
   ///@}
 
   ///@{
@@ -206,6 +211,7 @@ private:
   std::string Connected;
   std::string Path;
   std::string ConnectedTilesetFile;
+  std::string CountGuideFile;
   std::string Shapes;
   double Epsilon = 0.1;
   int MaximumReported = 10;
