@@ -22,16 +22,13 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
-#include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
 #include "Core/Memory.h"
-#include "Discrete/LabelChecks.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
-#include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 
 #include <algorithm>
