@@ -164,8 +164,6 @@ private:
   void CheckPinnedPairs() const;
   /// Arc consistency from the fixed labels over the pins' box [@p lo, @p hi], grown by 16 sites.
   void CheckPinsPropagate(const Coord& lo, const Coord& hi);
-  /// The bounding box [@p lo, @p hi] of the pins face-connected to site @p first.
-  void PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const;
 
   /// Label counts (BlockCounts.cxx): the block's own sites and their decided counts after the
   /// block is constrained.

@@ -137,6 +137,43 @@ void PlacementBlock(const Coord& lo, const Coord& hi, const Coord& m, const Coor
     origin[a] = std::clamp<std::int64_t>((lo[a] + hi[a] + 1 - dims[a]) / 2, 0, world[a] - dims[a]);
   }
 }
+
+/// The bounding box [@p lo, @p hi] of the face-connected group of pinned sites of @p pins that
+/// holds @p first, each of them marked in @p seen (a flag per site of @p pins).
+void PinGroupBounds(
+  const LabelGrid& pins, std::int64_t first, std::vector<char>& seen, Coord& lo, Coord& hi)
+{
+  const Coord& d = pins.Dimensions();
+  const auto at = [&d](std::int64_t s) -> Coord {
+    return { { s % d[0], (s / d[0]) % d[1], s / (d[0] * d[1]) } };
+  };
+  lo = hi = at(first);
+  std::vector<std::int64_t> stack{ first };
+  seen[static_cast<std::size_t>(first)] = 1;
+  while (!stack.empty())
+  {
+    const Coord p = at(stack.back());
+    stack.pop_back();
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+    for (int e = 0; e < 6; ++e)
+    {
+      Coord q = p;
+      q[e / 2] += (e & 1) ? -1 : 1;
+      if (q[e / 2] < 0 || q[e / 2] >= d[e / 2])
+        continue;
+      const auto t = static_cast<std::size_t>(q[0] + d[0] * (q[1] + d[1] * q[2]));
+      if (!seen[t] && pins.Data()[t] != FreeSite)
+      {
+        seen[t] = 1;
+        stack.push_back(static_cast<std::int64_t>(t));
+      }
+    }
+  }
+}
 } // namespace
 
 void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& assignments,
@@ -156,7 +193,8 @@ void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& as
     if (pins.Data()[s] == FreeSite || this->Model[s] == b)
       continue;
     Coord lo, hi;
-    this->PinGroupBox(static_cast<std::int64_t>(s), lo, hi);
+    std::vector<char> seen(pins.Data().size(), 0);
+    PinGroupBounds(pins, static_cast<std::int64_t>(s), seen, lo, hi);
     const Coord site = this->Coordinates(static_cast<std::int64_t>(s));
     const auto key = static_cast<std::uint64_t>(
       (site[0] + off[0]) + world[0] * ((site[1] + off[1]) + world[1] * (site[2] + off[2])));
@@ -235,41 +273,14 @@ void GrowWindowForPins(
   // The groups of touching pins of the pin grid, each's first placement block with its ring.
   const LabelGrid& pins = *world.Pins;
   const Coord o = world.PinsOrigin.value_or(Coord{ { 0, 0, 0 } });
-  const Coord& d = pins.Dimensions();
   std::vector<std::array<Coord, 2>> reach; // [low, high) per group
-  std::vector<bool> seen(pins.Data().size(), false);
-  std::vector<std::int64_t> stack;
+  std::vector<char> seen(pins.Data().size(), 0);
   for (std::size_t first = 0; first < seen.size(); ++first)
   {
     if (seen[first] || pins.Data()[first] == FreeSite)
       continue;
-    Coord lo{ { d[0], d[1], d[2] } }, hi{ { -1, -1, -1 } };
-    stack.assign(1, static_cast<std::int64_t>(first));
-    seen[first] = true;
-    while (!stack.empty())
-    {
-      const std::int64_t s = stack.back();
-      stack.pop_back();
-      const Coord p{ { s % d[0], (s / d[0]) % d[1], s / (d[0] * d[1]) } };
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a]);
-      }
-      for (int e = 0; e < 6; ++e)
-      {
-        Coord q = p;
-        q[e / 2] += (e & 1) ? -1 : 1;
-        if (q[e / 2] < 0 || q[e / 2] >= d[e / 2])
-          continue;
-        const auto t = static_cast<std::size_t>(q[0] + d[0] * (q[1] + d[1] * q[2]));
-        if (!seen[t] && pins.Data()[t] != FreeSite)
-        {
-          seen[t] = true;
-          stack.push_back(static_cast<std::int64_t>(t));
-        }
-      }
-    }
+    Coord lo, hi;
+    PinGroupBounds(pins, static_cast<std::int64_t>(first), seen, lo, hi);
     for (int a = 0; a < 3; ++a)
     {
       lo[a] += o[a];
@@ -307,38 +318,6 @@ void GrowWindowForPins(
         cone.WindowHigh[a] = std::max(cone.WindowHigh[a], box[1][a]);
       }
       grown = true;
-    }
-  }
-}
-
-void BlockSolver::PinGroupBox(std::int64_t first, Coord& lo, Coord& hi) const
-{
-  const LabelGrid& pins = *this->Options.Pins;
-  lo = hi = this->Coordinates(first);
-  std::vector<std::int64_t> stack{ first };
-  std::vector<char> seen(this->Model.size(), 0);
-  seen[static_cast<std::size_t>(first)] = 1;
-  while (!stack.empty())
-  {
-    const Coord p = this->Coordinates(stack.back());
-    stack.pop_back();
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a]);
-    }
-    for (int d = 0; d < 6; ++d)
-    {
-      Coord q = p;
-      q[d / 2] += (d & 1) ? -1 : 1;
-      if (q[d / 2] < 0 || q[d / 2] >= this->N[d / 2])
-        continue;
-      const auto t = static_cast<std::size_t>(this->Index(q));
-      if (!seen[t] && pins.Data()[t] != FreeSite)
-      {
-        seen[t] = 1;
-        stack.push_back(static_cast<std::int64_t>(t));
-      }
     }
   }
 }
