@@ -159,6 +159,16 @@ class CountsTest(unittest.TestCase):
         c = run_msynth("check", LINES, path, "--guide", guide, "--count", "region=1:corner:50:60")
         self.assertEqual(c.returncode, 1, c.stdout + c.stderr)
         self.assertIn("count missed: corner in guide region 1 holds", c.stdout)
+        # A guide that is not a volume, and a region count without a guide: one line each.
+        bad = os.path.join(fresh_folder("counts-bad-guide"), "guide.vti")
+        with open(bad, "w") as f:
+            f.write("garbage")
+        for extra, message in [(["--guide", bad], "not a readable guide volume"),
+                               ([], "give the guide with --guide")]:
+            c = run_msynth("check", LINES, path, *extra, "--count", "region=1:corner:0:60")
+            self.assertNotEqual(c.returncode, 0)
+            self.assertIn(message, c.stderr)
+            self.assertEqual(len(c.stderr.strip().splitlines()), 1, c.stderr)
         # Infeasible region counts are one line before any work.
         for extra, message in [
                 (["--count", "region=0:corner:300:400"],
