@@ -20,6 +20,7 @@
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include "Core/Index.h"
 #include "Discrete/InfallibleRefinement.h"
 
 #include <iostream>
@@ -89,7 +90,7 @@ int InfallibleSearch(const AnalyzeOptions& o)
   for (const auto& [from, to] : r.Map)
     if (from != to)
       std::cout << " " << from << "->" << to;
-  std::cout << (r.Map.size() == static_cast<std::size_t>(r.Steps.front().Labels)
+  std::cout << (r.Map.size() == msynth::ToIndex(r.Steps.front().Labels)
       ? " (identity)\n"
       : " (other labels map to themselves)\n");
   if (!o.WriteInfallible.empty())

@@ -26,6 +26,7 @@
 
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
@@ -167,7 +168,7 @@ bool IsVoxelTileset(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   std::string head(4096, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
+  head.resize(msynth::ToIndex(in.gcount()));
   std::size_t at = 0;
   while ((at = head.find('<', at)) != std::string::npos)
   {

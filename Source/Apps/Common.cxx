@@ -18,6 +18,7 @@
 #include "vtkVariant.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/OutputFolder.h"
 #include "Formats/Image.h"
 
@@ -374,8 +375,8 @@ void ProgressBar::OnProgress(double f)
     return;
   }
   const int width = 40, filled = static_cast<int>(f * width + 0.5);
-  std::cerr << "\r" << this->Stage << " [" << std::string(static_cast<std::size_t>(filled), '#')
-            << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+  std::cerr << "\r" << this->Stage << " [" << std::string(msynth::ToIndex(filled), '#')
+            << std::string(msynth::ToIndex(width - filled), ' ') << "] "
             << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
   this->Shown = true;
 }

@@ -16,6 +16,7 @@
 #include "vtkTable.h"
 #include "vtkVariant.h"
 
+#include "Core/Index.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
@@ -56,8 +57,8 @@ int VoxelTilesetInfo(const std::string& path, const msynth::Tileset& t)
   std::cout << "labels: " << t.NumberOfLabels() << " (tile, symmetry)\n";
   for (int b = 0; b < t.NumberOfLabels(); ++b)
     std::cout << "  label " << b << ": "
-              << t.Tiles[static_cast<std::size_t>(t.LabelTile[static_cast<std::size_t>(b)])].Name
-              << ", symmetry " << t.LabelOrientation[static_cast<std::size_t>(b)] << "\n";
+              << t.Tiles[msynth::ToIndex(t.LabelTile[msynth::ToIndex(b)])].Name << ", symmetry "
+              << t.LabelOrientation[msynth::ToIndex(b)] << "\n";
   const char* names[3] = { "+x", "+y", "+z" };
   for (std::size_t axis = 0; axis < 3; ++axis)
   {
@@ -78,7 +79,7 @@ int TilesetInfo(const std::string& path, const std::string& subset, const std::s
             << "labels: " << t.NumberOfLabels() << "\n";
   for (int b = 0; b < t.NumberOfLabels(); ++b)
   {
-    const auto& tile = t.Tiles[static_cast<std::size_t>(t.LabelTile[static_cast<std::size_t>(b)])];
+    const auto& tile = t.Tiles[msynth::ToIndex(t.LabelTile[msynth::ToIndex(b)])];
     std::cout << "  label " << b << ": " << t.LabelName(b) << " (symmetry " << tile.Symmetry
               << ", weight " << tile.Weight << ")\n";
   }

@@ -23,6 +23,7 @@
 #include "Core/AtomicFile.h"
 #include "Core/FileBytes.h"
 #include "Core/Fnv.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -57,7 +58,7 @@ std::string FileStamp(const std::string& path)
   char buffer[1 << 16];
   while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
   {
-    hash = msynth::Fnv1a(buffer, static_cast<std::size_t>(in.gcount()), hash);
+    hash = msynth::Fnv1a(buffer, msynth::ToIndex(in.gcount()), hash);
     size += static_cast<std::uint64_t>(in.gcount());
   }
   char text[48];
@@ -213,7 +214,7 @@ void WriteOverview(const std::vector<std::string>& pictures,
       }
       out[0] = static_cast<int>(std::ceil(w / scale));
       out[1] = static_cast<int>(std::ceil(h / scale));
-      sums.assign(static_cast<std::size_t>(out[0]) * out[1] * 5, 0);
+      sums.assign(msynth::ToIndex(out[0]) * out[1] * 5, 0);
     }
     const int components = slab->GetNumberOfScalarComponents();
     if (components != 3 && components != 4)
@@ -226,9 +227,8 @@ void WriteOverview(const std::vector<std::string>& pictures,
         const int u = (x0 + x) / scale, v = (y0 + y) / scale;
         if (u >= out[0] || v >= out[1])
           continue;
-        std::uint32_t* sum = sums.data() + (static_cast<std::size_t>(v) * out[0] + u) * 5;
-        const unsigned char* pixel =
-          from + (static_cast<std::size_t>(y) * dims[0] + x) * components;
+        std::uint32_t* sum = sums.data() + (msynth::ToIndex(v) * out[0] + u) * 5;
+        const unsigned char* pixel = from + (msynth::ToIndex(y) * dims[0] + x) * components;
         for (int c = 0; c < 4; ++c)
           sum[c] += c < components ? pixel[c] : 255;
         ++sum[4];
@@ -240,7 +240,7 @@ void WriteOverview(const std::vector<std::string>& pictures,
   overview->SetDimensions(out[0], out[1], 1);
   overview->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
   auto* to = static_cast<unsigned char*>(overview->GetScalarPointer());
-  for (std::size_t p = 0; p < static_cast<std::size_t>(out[0]) * out[1]; ++p)
+  for (std::size_t p = 0; p < msynth::ToIndex(out[0]) * out[1]; ++p)
   {
     const std::uint32_t n = std::max<std::uint32_t>(1, sums[p * 5 + 4]);
     for (std::size_t c = 0; c < 4; ++c)

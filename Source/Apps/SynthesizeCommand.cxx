@@ -28,6 +28,7 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Image.h"
@@ -485,8 +486,7 @@ void WritePicture(vtkImageData* model, const SynthesizeOptions& o, const std::st
     int dims[3];
     model->GetDimensions(dims);
     vtkDataArray* labels = vtkMSLabelArrays::FindLabelArray(model, nullptr);
-    std::vector<std::int32_t> values(
-      static_cast<std::size_t>(labels ? labels->GetNumberOfTuples() : 0));
+    std::vector<std::int32_t> values(msynth::ToIndex(labels ? labels->GetNumberOfTuples() : 0));
     for (std::size_t i = 0; i < values.size(); ++i)
       values[i] = static_cast<std::int32_t>(labels->GetTuple1(static_cast<vtkIdType>(i)));
     msynth::WriteTilePicture(

@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include "Core/Index.h"
 #include "Formats/Image.h"
 #include "Formats/VoxModel.h"
 #include "Formats/VoxelTileset.h"
@@ -72,11 +73,11 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
     msynth::RgbaImage picture;
     picture.Width = static_cast<int>(d[0]);
     picture.Height = static_cast<int>(d[1]);
-    picture.Pixels.assign(static_cast<std::size_t>(d[0] * d[1]) * 4, 0);
+    picture.Pixels.assign(msynth::ToIndex(d[0] * d[1]) * 4, 0);
     for (std::int64_t y = 0; y < d[1]; ++y) // rows from the top: y up
       for (std::int64_t x = 0; x < d[0]; ++x)
       {
-        const auto& c = vox.Palette[static_cast<std::size_t>(vox.Grid.At(x, y, 0))];
+        const auto& c = vox.Palette[msynth::ToIndex(vox.Grid.At(x, y, 0))];
         std::copy(c.begin(), c.end(), picture.Pixels.begin() + 4 * ((d[1] - 1 - y) * d[0] + x));
       }
     msynth::WritePng(dir + "/picture.png", picture);

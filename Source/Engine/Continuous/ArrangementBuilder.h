@@ -9,6 +9,7 @@
  */
 #include "Continuous/ExactArithmetic.h"
 #include "Continuous/PlaneArrangement.h"
+#include "Core/Index.h"
 
 #include <array>
 #include <cstdint>
@@ -49,14 +50,8 @@ private:
   std::int32_t NextAlong(const Exact& x, const IntVec3& d) const;
 
   const IntVec3& Normal(int f) const { return this->Set.Normal(f); }
-  Wide Offset(int f) const
-  {
-    return static_cast<Wide>(this->Params.Offsets[static_cast<std::size_t>(f)]);
-  }
-  Wide SpacingOf(int f) const
-  {
-    return static_cast<Wide>(this->Params.Spacings[static_cast<std::size_t>(f)]);
-  }
+  Wide Offset(int f) const { return static_cast<Wide>(this->Params.Offsets[ToIndex(f)]); }
+  Wide SpacingOf(int f) const { return static_cast<Wide>(this->Params.Spacings[ToIndex(f)]); }
   Wide Determinant(const int* t) const;
   /// The intersection point of the tuple's planes of values @p value.
   Exact Solve(const Tuple& tu, const std::array<Wide, 3>& value) const;

@@ -6,6 +6,7 @@
 
 #include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <array>
@@ -43,18 +44,18 @@ ArrangementRules::ArrangementRules(
   this->KeepCornersApart(analysis);
   std::map<NeighbourhoodLabel, int> ids;
   const int emptyId = ids.emplace(NeighbourhoodLabel::Constant(0), 0).first->second;
-  this->Evaluations.resize(static_cast<std::size_t>(directions) * k);
+  this->Evaluations.resize(ToIndex(directions) * k);
   for (int d = 0; d < directions; ++d)
   {
     for (int a = 0; a < k; ++a)
     {
       const NeighbourhoodLabel e = analysis.Label(a).Label.Evaluate(set, arrangement.Direction(d));
       const int id = ids.emplace(e, static_cast<int>(ids.size())).first->second;
-      this->Evaluations[static_cast<std::size_t>(d) * k + a] = id;
+      this->Evaluations[ToIndex(d) * k + a] = id;
     }
   }
   const int w = this->Words();
-  this->EmptyToward.assign(static_cast<std::size_t>(directions) * w, 0);
+  this->EmptyToward.assign(ToIndex(directions) * w, 0);
   std::vector<std::vector<int>> bucket(ids.size());
   for (int d = 0; d < directions; ++d)
   {
@@ -65,19 +66,18 @@ ArrangementRules::ArrangementRules(
     }
     for (int b = 0; b < k; ++b)
     {
-      bucket[static_cast<std::size_t>(this->EvaluationId(d ^ 1, b))].push_back(b);
+      bucket[ToIndex(this->EvaluationId(d ^ 1, b))].push_back(b);
     }
     for (int a = 0; a < k; ++a)
     {
       const int id = this->EvaluationId(d, a);
-      for (int b : bucket[static_cast<std::size_t>(id)])
+      for (int b : bucket[ToIndex(id)])
       {
         this->AllowOne(d, a, b);
       }
       if (id == emptyId)
       {
-        this->EmptyToward[static_cast<std::size_t>(d) * w + (a >> 6)] |= std::uint64_t(1)
-          << (a & 63);
+        this->EmptyToward[ToIndex(d) * w + (a >> 6)] |= std::uint64_t(1) << (a & 63);
       }
     }
   }
@@ -97,11 +97,11 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
   const ArrangementParameters& p = arr.Parameters();
   const int m = set.Size();
   double smallest = 0;
-  std::vector<double> world(static_cast<std::size_t>(m));
+  std::vector<double> world(ToIndex(m));
   for (int f = 0; f < m; ++f)
   {
-    world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
-    smallest = f == 0 ? world[0] : std::min(smallest, world[static_cast<std::size_t>(f)]);
+    world[ToIndex(f)] = p.Spacing(set, f);
+    smallest = f == 0 ? world[0] : std::min(smallest, world[ToIndex(f)]);
   }
   for (int a = 0; a < analysis.NumberOfLabels(); ++a)
   {
@@ -110,7 +110,7 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
       this->SurfaceLabels.push_back(a);
   }
   this->Smallest = smallest;
-  this->Clearance.assign(static_cast<std::size_t>(arr.NumberOfVertices()), 0);
+  this->Clearance.assign(ToIndex(arr.NumberOfVertices()), 0);
   if (!(smallest > 0))
     return;
   for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
@@ -124,14 +124,14 @@ void ArrangementRules::KeepCornersApart(const PolyhedralAnalysis& analysis)
       const IntVec3& n = set.Normal(f);
       double x = 0;
       for (int c = 0; c < 3; ++c)
-        x += static_cast<double>(n[static_cast<std::size_t>(c)]) * (q[c] - p.Origin[c]) / p.Quantum;
-      const double s = (x - static_cast<double>(p.Offsets[static_cast<std::size_t>(f)])) /
-        static_cast<double>(p.Spacings[static_cast<std::size_t>(f)]);
-      nearest = std::min(nearest, std::abs(s - std::round(s)) * world[static_cast<std::size_t>(f)]);
+        x += static_cast<double>(n[ToIndex(c)]) * (q[c] - p.Origin[c]) / p.Quantum;
+      const double s = (x - static_cast<double>(p.Offsets[ToIndex(f)])) /
+        static_cast<double>(p.Spacings[ToIndex(f)]);
+      nearest = std::min(nearest, std::abs(s - std::round(s)) * world[ToIndex(f)]);
     }
-    this->Clearance[static_cast<std::size_t>(v)] = nearest < SurfaceClearance * smallest ? 2
-      : nearest < MinimumFeatureFraction * smallest                                      ? 1
-                                                                                         : 0;
+    this->Clearance[ToIndex(v)] = nearest < SurfaceClearance * smallest ? 2
+      : nearest < MinimumFeatureFraction * smallest                     ? 1
+                                                                        : 0;
   }
 }
 
@@ -152,8 +152,7 @@ std::vector<std::int64_t> ArrangementRules::NarrowCorners(
   for (int f = 0; f < set.Size(); ++f)
     largest = std::max(largest, p.Spacing(set, f));
   const double reach = 3 * largest;
-  const auto kind = [&](std::int64_t v)
-  { return this->LabelKinds[static_cast<std::size_t>(labels[static_cast<std::size_t>(v)])]; };
+  const auto kind = [&](std::int64_t v) { return this->LabelKinds[ToIndex(labels[ToIndex(v)])]; };
   const auto cellOf = [&](const Point3& q)
   {
     return std::array<std::int64_t, 3>{ static_cast<std::int64_t>(std::floor(q[0] / reach)),
@@ -166,7 +165,7 @@ std::vector<std::int64_t> ArrangementRules::NarrowCorners(
       grid[cellOf(arr.Position(v))].push_back(v);
   for (std::int64_t v = 0; v < arr.NumberOfVertices(); ++v)
   {
-    if (this->Clearance[static_cast<std::size_t>(v)] != 1 || kind(v) != FeatureKind::Vertex)
+    if (this->Clearance[ToIndex(v)] != 1 || kind(v) != FeatureKind::Vertex)
       continue;
     const Point3& q = arr.Position(v);
     const auto c = cellOf(q);
@@ -182,8 +181,7 @@ std::vector<std::int64_t> ArrangementRules::NarrowCorners(
           {
             const Point3& r = arr.Position(u);
             const std::uint64_t across =
-              this->LabelFamilies[static_cast<std::size_t>(labels[static_cast<std::size_t>(u)])] &
-              ~arr.FamilyMask(v);
+              this->LabelFamilies[ToIndex(labels[ToIndex(u)])] & ~arr.FamilyMask(v);
             for (int g = 0; g < set.Size() && !narrow && across != 0; ++g)
             {
               if (!((across >> g) & 1u))
@@ -193,7 +191,7 @@ std::vector<std::int64_t> ArrangementRules::NarrowCorners(
                 std::sqrt(static_cast<double>(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
               double d = 0;
               for (int k = 0; k < 3; ++k)
-                d += static_cast<double>(n[static_cast<std::size_t>(k)]) * (q[k] - r[k]);
+                d += static_cast<double>(n[ToIndex(k)]) * (q[k] - r[k]);
               narrow = std::abs(d) / len < apart;
             }
             if (narrow)
@@ -213,12 +211,12 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
   const std::uint64_t mask = this->Arrangement.FamilyMask(v);
   for (int a = 0; a < this->NumberOfLabels(); ++a)
   {
-    if ((this->LabelFamilies[static_cast<std::size_t>(a)] & ~mask) == 0)
+    if ((this->LabelFamilies[ToIndex(a)] & ~mask) == 0)
     {
       out[a >> 6] |= std::uint64_t(1) << (a & 63);
     }
   }
-  if (this->Clearance[static_cast<std::size_t>(v)] == 2)
+  if (this->Clearance[ToIndex(v)] == 2)
     for (int a : this->SurfaceLabels)
       out[a >> 6] &= ~(std::uint64_t(1) << (a & 63));
   for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
@@ -226,12 +224,10 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
     bool acrossSeam = false;
     for (int a = 0; a < 3; ++a)
       acrossSeam = acrossSeam ||
-        (((seamAxes >> a) & 1) &&
-          this->Arrangement.Direction(l->Direction)[static_cast<std::size_t>(a)] > 0);
+        (((seamAxes >> a) & 1) && this->Arrangement.Direction(l->Direction)[ToIndex(a)] > 0);
     if (l->Vertex < 0 && !acrossSeam)
     {
-      const std::uint64_t* e =
-        this->EmptyToward.data() + static_cast<std::size_t>(l->Direction) * w;
+      const std::uint64_t* e = this->EmptyToward.data() + ToIndex(l->Direction) * w;
       for (int i = 0; i < w; ++i)
       {
         out[i] &= e[i];
@@ -242,7 +238,7 @@ void ArrangementRules::InitialDomain(std::int64_t v, std::uint64_t* out, int sea
 
 int ArrangementRules::InitialCount(std::int64_t v) const
 {
-  std::vector<std::uint64_t> bits(static_cast<std::size_t>(this->Words()));
+  std::vector<std::uint64_t> bits(ToIndex(this->Words()));
   this->InitialDomain(v, bits.data());
   int n = 0;
   for (auto b : bits)
@@ -288,7 +284,7 @@ std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
   const NeighbourhoodLabel empty = NeighbourhoodLabel::Constant(0);
   for (std::int64_t v = 0; v < n; ++v)
   {
-    const int a = labels[static_cast<std::size_t>(v)];
+    const int a = labels[ToIndex(v)];
     if (a < 0 || a >= analysis.NumberOfLabels())
     {
       return "vertex " + std::to_string(v) + " has no example label";
@@ -314,8 +310,7 @@ std::string CheckArrangementLabels(const PolyhedralAnalysis& analysis,
         }
         continue;
       }
-      const NeighbourhoodLabel& lb =
-        analysis.Label(labels[static_cast<std::size_t>(l->Vertex)]).Label;
+      const NeighbourhoodLabel& lb = analysis.Label(labels[ToIndex(l->Vertex)]).Label;
       if (here != lb.Evaluate(set, { -d[0], -d[1], -d[2] }))
       {
         return "vertices " + std::to_string(v) + " and " + std::to_string(l->Vertex) +

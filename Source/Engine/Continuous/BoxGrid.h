@@ -3,6 +3,7 @@
 // A uniform grid over axis-aligned boxes (internal header): which boxes may contain a point,
 // in ascending box order, without scanning them all. About one cell per box, at most 128 cells
 // along an axis.
+#include "Core/Index.h"
 #include "Formats/PolyhedralExample.h"
 
 #include <algorithm>
@@ -40,17 +41,17 @@ public:
     this->Low = lo;
     for (int c = 0; c < 3; ++c)
     {
-      this->Dims[static_cast<std::size_t>(c)] = std::clamp<std::int64_t>(
+      this->Dims[ToIndex(c)] = std::clamp<std::int64_t>(
         static_cast<std::int64_t>((hi[c] - lo[c]) / this->Cell) + 1, 1, 129);
     }
-    this->Cells.assign(static_cast<std::size_t>(this->Dims[0] * this->Dims[1] * this->Dims[2]), {});
+    this->Cells.assign(ToIndex(this->Dims[0] * this->Dims[1] * this->Dims[2]), {});
     for (std::size_t i = 0; i < boxes.size(); ++i)
     {
       std::array<std::int64_t, 3> a{}, b{};
       for (int c = 0; c < 3; ++c)
       {
-        a[static_cast<std::size_t>(c)] = this->Clamp(boxes[i][0][c] - pad, c);
-        b[static_cast<std::size_t>(c)] = this->Clamp(boxes[i][1][c] + pad, c);
+        a[ToIndex(c)] = this->Clamp(boxes[i][0][c] - pad, c);
+        b[ToIndex(c)] = this->Clamp(boxes[i][1][c] + pad, c);
       }
       for (std::int64_t z = a[2]; z <= b[2]; ++z)
       {
@@ -77,11 +78,11 @@ public:
     for (int c = 0; c < 3; ++c)
     {
       const double t = std::floor((p[c] - this->Low[c]) / this->Cell);
-      if (!(t >= 0 && t < static_cast<double>(this->Dims[static_cast<std::size_t>(c)])))
+      if (!(t >= 0 && t < static_cast<double>(this->Dims[ToIndex(c)])))
       {
         return none; // outside every (grown) box
       }
-      cell[static_cast<std::size_t>(c)] = static_cast<std::int64_t>(t);
+      cell[ToIndex(c)] = static_cast<std::int64_t>(t);
     }
     return this->Cells[this->Index(cell[0], cell[1], cell[2])];
   }
@@ -97,8 +98,8 @@ public:
     std::array<std::int64_t, 3> a{}, b{};
     for (int c = 0; c < 3; ++c)
     {
-      a[static_cast<std::size_t>(c)] = this->Clamp(lo[c], c);
-      b[static_cast<std::size_t>(c)] = this->Clamp(hi[c], c);
+      a[ToIndex(c)] = this->Clamp(lo[c], c);
+      b[ToIndex(c)] = this->Clamp(hi[c], c);
     }
     for (std::int64_t z = a[2]; z <= b[2]; ++z)
     {
@@ -121,11 +122,11 @@ private:
   {
     return std::clamp<std::int64_t>(
       static_cast<std::int64_t>(std::floor((x - this->Low[c]) / this->Cell)), 0,
-      this->Dims[static_cast<std::size_t>(c)] - 1);
+      this->Dims[ToIndex(c)] - 1);
   }
   std::size_t Index(std::int64_t x, std::int64_t y, std::int64_t z) const
   {
-    return static_cast<std::size_t>(x + this->Dims[0] * (y + this->Dims[1] * z));
+    return ToIndex(x + this->Dims[0] * (y + this->Dims[1] * z));
   }
 
   Point3 Low{};

@@ -4,6 +4,7 @@
 // continuous solver): label masks per vertex, the types each label and each edge evaluation
 // holds, the seeds, and the label weights.
 #include "Continuous/ContinuousConstraints.h"
+#include "Core/Index.h"
 
 #include <cstdint>
 #include <functional>
@@ -37,23 +38,18 @@ public:
 
   /// Object types as bits: bit t for the t-th type in ascending order (bit 0: empty space).
   int NumberOfTypes() const { return static_cast<int>(this->Types.size()); }
-  int TypeAt(int t) const { return this->Types[static_cast<std::size_t>(t)]; }
+  int TypeAt(int t) const { return this->Types[ToIndex(t)]; }
   std::uint64_t SolidMask() const { return this->Solid; }
-  std::uint64_t LabelTypes(int label) const
-  {
-    return this->TypesOfLabel[static_cast<std::size_t>(label)];
-  }
+  std::uint64_t LabelTypes(int label) const { return this->TypesOfLabel[ToIndex(label)]; }
   /// The types of label @p label evaluated along direction class @p d (what the edge touches).
   std::uint64_t EdgeTypes(int d, int label) const
   {
-    return this
-      ->TypesOfEdge[static_cast<std::size_t>(d) * this->K + static_cast<std::size_t>(label)];
+    return this->TypesOfEdge[ToIndex(d) * this->K + ToIndex(label)];
   }
   /// Fraction of label @p label's cones holding type bit @p t.
   double Occupancy(int label, int t) const
   {
-    return this
-      ->Share[static_cast<std::size_t>(label) * this->Types.size() + static_cast<std::size_t>(t)];
+    return this->Share[ToIndex(label) * this->Types.size() + ToIndex(t)];
   }
 
   /// Connectivity: the types that only grow next to their group (0: none).

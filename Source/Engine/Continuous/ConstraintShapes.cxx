@@ -3,6 +3,7 @@
 // networks and overhang limits, each compiled to the labels allowed at a vertex.
 #include "Continuous/ConstraintPlan.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,8 +101,8 @@ void ConstraintPlan::PlanThickness()
     Slabs s;
     s.Family = c.Family;
     s.Spacings = c.Spacings;
-    s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
-    s.InnerAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    s.OuterAllowed.assign(ToIndex(this->Words), 0);
+    s.InnerAllowed.assign(ToIndex(this->Words), 0);
     for (std::size_t a = 0; a < this->K; ++a)
     {
       const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
@@ -142,13 +143,13 @@ void ConstraintPlan::PlanThickness()
       double dot = 0;
       for (std::size_t k = 0; k < 3; ++k)
         dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
-      const auto plane = static_cast<std::int64_t>(std::llround(
-        (dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(c.Family)])) /
-        static_cast<double>(params.Spacings[static_cast<std::size_t>(c.Family)])));
+      const auto plane = static_cast<std::int64_t>(
+        std::llround((dot - static_cast<double>(params.Offsets[ToIndex(c.Family)])) /
+          static_cast<double>(params.Spacings[ToIndex(c.Family)])));
       s.Lowest = std::min(s.Lowest, plane);
       highest = std::max(highest, plane);
     }
-    if (n[static_cast<std::size_t>(this->GroundAxis)] < 0 && highest >= s.Lowest)
+    if (n[ToIndex(this->GroundAxis)] < 0 && highest >= s.Lowest)
       s.Lowest = highest;
     this->Thickness.push_back(std::move(s));
   }
@@ -172,7 +173,7 @@ void ConstraintPlan::PlanWidth(const ThicknessConstraint& c)
     throw Error("thickness: a width across several plane families is one spacing");
   const PlaneFamilySet& set = this->Arrangement.Families();
   const std::vector<int> needs = FamiliesOf(s.Needs);
-  s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+  s.OuterAllowed.assign(ToIndex(this->Words), 0);
   for (std::size_t a = 0; a < this->K; ++a)
   {
     const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;
@@ -203,7 +204,7 @@ void ConstraintPlan::PlanOverhang()
       horizontal |= std::uint64_t(1) << f;
   }
   // Which side of the up family's planes is above (its normal may point down).
-  const bool upIsPositive = set.Normal(up)[static_cast<std::size_t>(this->GroundAxis)] > 0;
+  const bool upIsPositive = set.Normal(up)[ToIndex(this->GroundAxis)] > 0;
   for (int type : this->Constraints.Overhang)
   {
     if (this->BitOf(type) <= 0)
@@ -212,7 +213,7 @@ void ConstraintPlan::PlanOverhang()
     s.Needs = horizontal | (std::uint64_t(1) << up);
     const std::vector<int> needs = FamiliesOf(s.Needs);
     const unsigned vertical = 1u << (std::find(needs.begin(), needs.end(), up) - needs.begin());
-    s.OuterAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    s.OuterAllowed.assign(ToIndex(this->Words), 0);
     for (std::size_t a = 0; a < this->K; ++a)
     {
       const NeighbourhoodLabel& label = this->Analysis.Label(static_cast<int>(a)).Label;

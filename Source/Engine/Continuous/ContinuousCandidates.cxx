@@ -4,6 +4,7 @@
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <chrono>
 #include <cmath>
@@ -22,18 +23,17 @@ double ConstraintPlan::MatchError(const std::vector<std::int32_t>& labels) const
   std::vector<float> highest(nt, 0.0f);
   for (const auto& [t, weights] : this->GuideWeights)
     for (float w : *weights)
-      highest[static_cast<std::size_t>(t)] = std::max(highest[static_cast<std::size_t>(t)], w);
+      highest[ToIndex(t)] = std::max(highest[ToIndex(t)], w);
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
-    const int label = labels[static_cast<std::size_t>(v)];
+    const int label = labels[ToIndex(v)];
     for (std::size_t t = 1; t < nt; ++t)
       tally[t] += this->Occupancy(label, static_cast<int>(t));
     if (this->GuideWeights.empty())
       continue;
-    const auto cell = static_cast<std::size_t>(this->CellOf(v));
+    const auto cell = ToIndex(this->CellOf(v));
     for (const auto& [t, weights] : this->GuideWeights)
-      fit[static_cast<std::size_t>(t)] +=
-        this->Occupancy(label, t) * static_cast<double>((*weights)[cell]);
+      fit[ToIndex(t)] += this->Occupancy(label, t) * static_cast<double>((*weights)[cell]);
   }
   double error = 0, solid = 0;
   for (std::size_t t = 1; t < nt; ++t)
@@ -43,7 +43,7 @@ double ConstraintPlan::MatchError(const std::vector<std::int32_t>& labels) const
       error += std::abs(tally[t] / solid - this->Target[t]);
   for (const auto& [t, weights] : this->GuideWeights)
   {
-    const auto k = static_cast<std::size_t>(t);
+    const auto k = ToIndex(t);
     if (tally[k] > 0 && highest[k] > 0)
       error += 1 - fit[k] / (static_cast<double>(highest[k]) * tally[k]);
   }

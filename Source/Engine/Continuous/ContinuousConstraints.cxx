@@ -3,6 +3,7 @@
 
 #include "Continuous/ConstraintPlan.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Random.h"
 #include "Core/TextLists.h"
 
@@ -20,9 +21,7 @@ int FamilyAlongAxis(const PlaneFamilySet& families, int axis)
   for (int f = 0; f < families.Size(); ++f)
   {
     const IntVec3& n = families.Normal(f);
-    if (n[static_cast<std::size_t>(axis)] != 0 &&
-      n[static_cast<std::size_t>((axis + 1) % 3)] == 0 &&
-      n[static_cast<std::size_t>((axis + 2) % 3)] == 0)
+    if (n[ToIndex(axis)] != 0 && n[ToIndex((axis + 1) % 3)] == 0 && n[ToIndex((axis + 2) % 3)] == 0)
     {
       return f;
     }
@@ -138,27 +137,26 @@ std::int64_t SolidComponents(const PlaneArrangement& arrangement,
   std::vector<std::int64_t>& component)
 {
   const std::int64_t n = arrangement.NumberOfVertices();
-  component.assign(static_cast<std::size_t>(n), -1);
+  component.assign(ToIndex(n), -1);
   std::int64_t parts = 0;
   std::vector<std::int64_t> stack;
   for (std::int64_t s = 0; s < n; ++s)
   {
-    if (component[static_cast<std::size_t>(s)] >= 0 ||
-      !(labelTypes[static_cast<std::size_t>(labels[static_cast<std::size_t>(s)])] & solidMask))
+    if (component[ToIndex(s)] >= 0 || !(labelTypes[ToIndex(labels[ToIndex(s)])] & solidMask))
       continue;
-    component[static_cast<std::size_t>(s)] = parts;
+    component[ToIndex(s)] = parts;
     stack.push_back(s);
     while (!stack.empty())
     {
       const std::int64_t v = stack.back();
       stack.pop_back();
-      const int a = labels[static_cast<std::size_t>(v)];
+      const int a = labels[ToIndex(v)];
       for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
       {
-        if (l->Vertex >= 0 && component[static_cast<std::size_t>(l->Vertex)] < 0 &&
+        if (l->Vertex >= 0 && component[ToIndex(l->Vertex)] < 0 &&
           (edgeTypes(l->Direction, a) & solidMask))
         {
-          component[static_cast<std::size_t>(l->Vertex)] = parts;
+          component[ToIndex(l->Vertex)] = parts;
           stack.push_back(l->Vertex);
         }
       }
@@ -173,7 +171,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
   : Analysis(analysis)
   , Arrangement(arrangement)
   , Constraints(constraints)
-  , K(static_cast<std::size_t>(analysis.NumberOfLabels()))
+  , K(ToIndex(analysis.NumberOfLabels()))
   , Words(static_cast<int>((analysis.NumberOfLabels() + 63) / 64))
 {
   const PlaneFamilySet& set = arrangement.Families();
@@ -189,7 +187,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     this->Solid |= Bit(static_cast<int>(t));
   this->TypesOfLabel.resize(this->K);
   this->Share.assign(this->K * nt, 0.0);
-  this->WithType.assign(nt, std::vector<std::uint64_t>(static_cast<std::size_t>(this->Words), 0));
+  this->WithType.assign(nt, std::vector<std::uint64_t>(ToIndex(this->Words), 0));
   for (std::size_t a = 0; a < this->K; ++a)
   {
     const NeighbourhoodLabel& label = analysis.Label(static_cast<int>(a)).Label;
@@ -201,7 +199,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
       ++cones;
       const int t = this->BitOf(type);
       this->TypesOfLabel[a] |= Bit(t);
-      this->Share[a * nt + static_cast<std::size_t>(t)] += 1;
+      this->Share[a * nt + ToIndex(t)] += 1;
     }
     for (std::size_t t = 0; t < nt; ++t)
     {
@@ -211,7 +209,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
     }
   }
   const int directions = arrangement.NumberOfDirections();
-  this->TypesOfEdge.resize(static_cast<std::size_t>(directions) * this->K);
+  this->TypesOfEdge.resize(ToIndex(directions) * this->K);
   for (int d = 0; d < directions; ++d)
   {
     for (std::size_t a = 0; a < this->K; ++a)
@@ -221,7 +219,7 @@ ConstraintPlan::ConstraintPlan(const PolyhedralAnalysis& analysis,
                         .Label.Evaluate(set, arrangement.Direction(d))
                         .TypesPresent())
         mask |= Bit(this->BitOf(type));
-      this->TypesOfEdge[static_cast<std::size_t>(d) * this->K + a] = mask;
+      this->TypesOfEdge[ToIndex(d) * this->K + a] = mask;
     }
   }
 
@@ -238,7 +236,7 @@ void ConstraintPlan::PlanGround()
   // Grounded: which labels the example has on its ground, and above it.
   const auto& params = this->Arrangement.Parameters();
   this->GroundAxis = this->Arrangement.Planar() ? 1 : 2;
-  const auto g = static_cast<std::size_t>(this->GroundAxis);
+  const auto g = ToIndex(this->GroundAxis);
   this->GroundLevel = params.Origin[g] + params.Quantum * static_cast<double>(params.BoxLow[g]);
   this->GroundTolerance =
     1e-6 * params.Quantum * static_cast<double>(params.BoxHigh[g] - params.BoxLow[g]) +
@@ -252,10 +250,10 @@ void ConstraintPlan::PlanGround()
     {
       const bool ground =
         std::abs(f.A[g] - level) <= tolerance && std::abs(f.B[g] - level) <= tolerance;
-      (ground ? onGround : above)[static_cast<std::size_t>(f.Label)] = 1;
+      (ground ? onGround : above)[ToIndex(f.Label)] = 1;
     }
-    this->GroundAllowed.assign(static_cast<std::size_t>(this->Words), 0);
-    this->AboveAllowed.assign(static_cast<std::size_t>(this->Words), 0);
+    this->GroundAllowed.assign(ToIndex(this->Words), 0);
+    this->AboveAllowed.assign(ToIndex(this->Words), 0);
     for (std::size_t a = 0; a < this->K; ++a)
     {
       const bool volume = this->Analysis.Label(static_cast<int>(a)).Kind == FeatureKind::Volume;
@@ -311,7 +309,7 @@ void ConstraintPlan::PlanTargets()
       throw Error("target: the example has no object type " + std::to_string(type));
     if (!(fraction >= 0 && fraction <= 1))
       throw Error("target: the fraction of type " + std::to_string(type) + " must be in [0, 1]");
-    this->Target[static_cast<std::size_t>(t)] = fraction;
+    this->Target[ToIndex(t)] = fraction;
     given += fraction;
   }
   if (given > 1 + 1e-9)
@@ -326,7 +324,7 @@ void ConstraintPlan::PlanTargets()
   {
     const int t = this->BitOf(type);
     if (t > 0 && !this->Constraints.TargetFractions.count(type) && rest > 0)
-      this->Target[static_cast<std::size_t>(t)] = (1 - given) * std::max(volume, 0.0) / rest;
+      this->Target[ToIndex(t)] = (1 - given) * std::max(volume, 0.0) / rest;
   }
   this->Proportions =
     !this->Constraints.TargetFractions.empty() || (this->Constraints.KeepProportions && nt > 2);
@@ -367,7 +365,7 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
     }
     for (int s = 0; s < c.Seeds && !candidates.empty(); ++s)
     {
-      const auto i = static_cast<std::size_t>(rng.Below(candidates.size()));
+      const auto i = ToIndex(rng.Below(candidates.size()));
       seeds[candidates[i]] |= mask;
       candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(i));
     }
@@ -410,7 +408,7 @@ int ConstraintPlan::BitOf(int type) const
 
 bool ConstraintPlan::OnGround(std::int64_t v) const
 {
-  return this->Arrangement.Position(v)[static_cast<std::size_t>(this->GroundAxis)] <=
+  return this->Arrangement.Position(v)[ToIndex(this->GroundAxis)] <=
     this->GroundLevel + this->GroundTolerance;
 }
 
@@ -418,7 +416,7 @@ std::uint64_t ConstraintPlan::SeedTypes(std::int64_t v) const
 {
   const auto it = std::lower_bound(this->SeedVertices.begin(), this->SeedVertices.end(), v);
   return it != this->SeedVertices.end() && *it == v
-    ? this->SeedMask[static_cast<std::size_t>(it - this->SeedVertices.begin())]
+    ? this->SeedMask[ToIndex(it - this->SeedVertices.begin())]
     : 0;
 }
 
@@ -454,7 +452,7 @@ void ConstraintPlan::Restrict(std::int64_t v, std::uint64_t* domain) const
   auto keep = [&](const std::vector<std::uint64_t>& allowed)
   {
     for (int w = 0; w < this->Words; ++w)
-      domain[w] &= allowed[static_cast<std::size_t>(w)];
+      domain[w] &= allowed[ToIndex(w)];
   };
   if (this->Constraints.Grounded)
     keep(this->OnGround(v) ? this->GroundAllowed : this->AboveAllowed);
@@ -480,20 +478,20 @@ void ConstraintPlan::Restrict(std::int64_t v, std::uint64_t* domain) const
     for (std::size_t k = 0; k < 3; ++k)
       dot += static_cast<double>(n[k]) * (p[k] - params.Origin[k]) / params.Quantum;
     const std::int64_t c =
-      std::llround((dot - static_cast<double>(params.Offsets[static_cast<std::size_t>(s.Family)])) /
-        static_cast<double>(params.Spacings[static_cast<std::size_t>(s.Family)]));
+      std::llround((dot - static_cast<double>(params.Offsets[ToIndex(s.Family)])) /
+        static_cast<double>(params.Spacings[ToIndex(s.Family)]));
     keep((c - s.Lowest) % s.Spacings == 0 ? s.OuterAllowed : s.InnerAllowed);
   }
   if (!this->GuideWeights.empty())
   {
-    const auto cell = static_cast<std::size_t>(this->CellOf(v));
+    const auto cell = ToIndex(this->CellOf(v));
     for (const auto& [t, weights] : this->GuideWeights)
     {
       if ((*weights)[cell] == 0)
       {
-        const auto& with = this->WithType[static_cast<std::size_t>(t)];
+        const auto& with = this->WithType[ToIndex(t)];
         for (int w = 0; w < this->Words; ++w)
-          domain[w] &= ~with[static_cast<std::size_t>(w)];
+          domain[w] &= ~with[ToIndex(w)];
       }
     }
   }
@@ -514,7 +512,7 @@ double ConstraintPlan::Factor(std::int64_t v, int label, const std::vector<doubl
   const std::uint64_t types = this->LabelTypes(label);
   if (this->HasGuideWeights)
   {
-    const auto cell = static_cast<std::size_t>(this->CellOf(v));
+    const auto cell = ToIndex(this->CellOf(v));
     for (const auto& [t, weights] : this->GuideWeights)
       if ((types >> t) & 1u)
         factor *= (*weights)[cell];
@@ -609,16 +607,16 @@ ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
   const std::int64_t parts = SolidComponents(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
     this->TypesOfLabel, component);
-  std::vector<char> keep(static_cast<std::size_t>(parts), this->Constraints.Grounded ? 0 : 1);
-  std::vector<std::int64_t> size(static_cast<std::size_t>(parts), 0);
+  std::vector<char> keep(ToIndex(parts), this->Constraints.Grounded ? 0 : 1);
+  std::vector<std::int64_t> size(ToIndex(parts), 0);
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
-    const std::int64_t c = component[static_cast<std::size_t>(v)];
+    const std::int64_t c = component[ToIndex(v)];
     if (c < 0)
       continue;
-    size[static_cast<std::size_t>(c)] += 1;
+    size[ToIndex(c)] += 1;
     if (this->Constraints.Grounded && this->OnGround(v))
-      keep[static_cast<std::size_t>(c)] = 1;
+      keep[ToIndex(c)] = 1;
   }
   removed.Floating = parts - std::count(keep.begin(), keep.end(), 1);
   if (const std::int64_t seeds = this->SeedsOfAllSolid())
@@ -626,22 +624,21 @@ ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
     // The largest parts kept, as many as the seeds (ties: the part found first).
     std::vector<std::int64_t> order;
     for (std::int64_t c = 0; c < parts; ++c)
-      if (keep[static_cast<std::size_t>(c)])
+      if (keep[ToIndex(c)])
         order.push_back(c);
     std::stable_sort(order.begin(), order.end(),
-      [&size](std::int64_t x, std::int64_t y)
-      { return size[static_cast<std::size_t>(x)] > size[static_cast<std::size_t>(y)]; });
-    for (std::size_t k = static_cast<std::size_t>(seeds); k < order.size(); ++k)
+      [&size](std::int64_t x, std::int64_t y) { return size[ToIndex(x)] > size[ToIndex(y)]; });
+    for (std::size_t k = ToIndex(seeds); k < order.size(); ++k)
     {
-      keep[static_cast<std::size_t>(order[k])] = 0;
+      keep[ToIndex(order[k])] = 0;
       ++removed.BeyondSeeds;
     }
   }
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
-    const std::int64_t c = component[static_cast<std::size_t>(v)];
-    if (c >= 0 && !keep[static_cast<std::size_t>(c)])
-      labels[static_cast<std::size_t>(v)] = emptyLabel;
+    const std::int64_t c = component[ToIndex(v)];
+    if (c >= 0 && !keep[ToIndex(c)])
+      labels[ToIndex(v)] = emptyLabel;
   }
   return removed;
 }
@@ -655,15 +652,15 @@ std::int64_t ConstraintPlan::EmptyPartsAt(std::vector<std::int32_t>& labels, int
   const std::int64_t parts = SolidComponents(
     this->Arrangement, labels, [this](int d, int a) { return this->EdgeTypes(d, a); }, this->Solid,
     this->TypesOfLabel, component);
-  std::vector<char> empty(static_cast<std::size_t>(parts), 0);
+  std::vector<char> empty(ToIndex(parts), 0);
   for (const std::int64_t v : vertices)
-    if (component[static_cast<std::size_t>(v)] >= 0)
-      empty[static_cast<std::size_t>(component[static_cast<std::size_t>(v)])] = 1;
+    if (component[ToIndex(v)] >= 0)
+      empty[ToIndex(component[ToIndex(v)])] = 1;
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
   {
-    const std::int64_t c = component[static_cast<std::size_t>(v)];
-    if (c >= 0 && empty[static_cast<std::size_t>(c)])
-      labels[static_cast<std::size_t>(v)] = emptyLabel;
+    const std::int64_t c = component[ToIndex(v)];
+    if (c >= 0 && empty[ToIndex(c)])
+      labels[ToIndex(v)] = emptyLabel;
   }
   return std::count(empty.begin(), empty.end(), 1);
 }
@@ -678,30 +675,30 @@ ArrangementMeasures MeasureArrangement(const PolyhedralAnalysis& analysis,
   const detail::ConstraintPlan plan(analysis, arrangement, none, 0);
   ArrangementMeasures m;
   std::vector<std::int64_t> component;
-  std::vector<std::uint64_t> types(static_cast<std::size_t>(analysis.NumberOfLabels()));
+  std::vector<std::uint64_t> types(ToIndex(analysis.NumberOfLabels()));
   for (int a = 0; a < analysis.NumberOfLabels(); ++a)
-    types[static_cast<std::size_t>(a)] = plan.LabelTypes(a);
+    types[ToIndex(a)] = plan.LabelTypes(a);
   m.Components = detail::SolidComponents(
     arrangement, labels, [&plan](int d, int a) { return plan.EdgeTypes(d, a); }, plan.SolidMask(),
     types, component);
   std::set<std::int64_t> grounded;
-  std::vector<double> tally(static_cast<std::size_t>(plan.NumberOfTypes()), 0.0);
+  std::vector<double> tally(ToIndex(plan.NumberOfTypes()), 0.0);
   double solid = 0;
   for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
   {
-    const auto c = component[static_cast<std::size_t>(v)];
+    const auto c = component[ToIndex(v)];
     if (c >= 0 && plan.OnGround(v))
       grounded.insert(c);
     for (int t = 1; t < plan.NumberOfTypes(); ++t)
     {
-      const double o = plan.Occupancy(labels[static_cast<std::size_t>(v)], t);
-      tally[static_cast<std::size_t>(t)] += o;
+      const double o = plan.Occupancy(labels[ToIndex(v)], t);
+      tally[ToIndex(t)] += o;
       solid += o;
     }
   }
   m.GroundedComponents = static_cast<std::int64_t>(grounded.size());
   for (int t = 1; t < plan.NumberOfTypes(); ++t)
-    m.TypeShares[plan.TypeAt(t)] = solid > 0 ? tally[static_cast<std::size_t>(t)] / solid : 0.0;
+    m.TypeShares[plan.TypeAt(t)] = solid > 0 ? tally[ToIndex(t)] / solid : 0.0;
   return m;
 }
 

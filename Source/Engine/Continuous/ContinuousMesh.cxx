@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 
 #include "Continuous/Point3Math.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -114,25 +115,24 @@ namespace
 /// enclosed volume (area in 2D) is not positive, as a problem; empty when all face outward.
 std::string OrientationProblem(const PolyhedralExample& model, bool planar)
 {
-  std::vector<double> volume(static_cast<std::size_t>(model.NumberOfObjects()), 0.0);
+  std::vector<double> volume(ToIndex(model.NumberOfObjects()), 0.0);
   for (std::size_t f = 0; f < model.Faces.size(); ++f)
   {
     const auto& face = model.Faces[f];
-    const Point3& a = model.Points[static_cast<std::size_t>(face[0])];
+    const Point3& a = model.Points[ToIndex(face[0])];
     for (std::size_t i = 1; i + 1 < face.size(); ++i)
     {
-      const Point3& b = model.Points[static_cast<std::size_t>(face[i])];
-      const Point3& c = model.Points[static_cast<std::size_t>(face[i + 1])];
+      const Point3& b = model.Points[ToIndex(face[i])];
+      const Point3& c = model.Points[ToIndex(face[i + 1])];
       const Point3 cr = point3::Cross(point3::Sub(b, a), point3::Sub(c, a));
-      volume[static_cast<std::size_t>(model.FaceObject[f])] += planar ? cr[2] : point3::Dot(a, cr);
+      volume[ToIndex(model.FaceObject[f])] += planar ? cr[2] : point3::Dot(a, cr);
     }
   }
   for (int o = 0; o < model.NumberOfObjects(); ++o)
   {
-    if (!(volume[static_cast<std::size_t>(o)] > 0))
+    if (!(volume[ToIndex(o)] > 0))
     {
-      return "object " + model.ObjectNames[static_cast<std::size_t>(o)] +
-        " of the output is not oriented outward";
+      return "object " + model.ObjectNames[ToIndex(o)] + " of the output is not oriented outward";
     }
   }
   return {};
@@ -191,7 +191,7 @@ NeighbourhoodLabel MapLabel(
   std::vector<std::pair<int, int>> order; // (example family, position in l)
   for (std::size_t j = 0; j < l.Families.size(); ++j)
   {
-    order.emplace_back(familyMap[static_cast<std::size_t>(l.Families[j])], static_cast<int>(j));
+    order.emplace_back(familyMap[ToIndex(l.Families[j])], static_cast<int>(j));
   }
   std::sort(order.begin(), order.end());
   NeighbourhoodLabel mapped;
@@ -205,9 +205,9 @@ NeighbourhoodLabel MapLabel(
     unsigned target = 0;
     for (std::size_t k = 0; k < order.size(); ++k)
     {
-      const auto j = static_cast<std::size_t>(order[k].second);
+      const auto j = ToIndex(order[k].second);
       const bool positive = ((m >> j) & 1u) != 0;
-      if (positive != flipped[static_cast<std::size_t>(l.Families[j])])
+      if (positive != flipped[ToIndex(l.Families[j])])
       {
         target |= 1u << k;
       }
@@ -304,8 +304,8 @@ double LevelSetVoxel(
     Point3 n{ 0, 0, 0 };
     for (std::size_t i = 0; i < poly.size(); ++i)
     {
-      const Point3& a = mesh.Points[static_cast<std::size_t>(poly[i])];
-      const Point3& b = mesh.Points[static_cast<std::size_t>(poly[(i + 1) % poly.size()])];
+      const Point3& a = mesh.Points[ToIndex(poly[i])];
+      const Point3& b = mesh.Points[ToIndex(poly[(i + 1) % poly.size()])];
       n[0] += a[1] * b[2] - a[2] * b[1];
       n[1] += a[2] * b[0] - a[0] * b[2];
       n[2] += a[0] * b[1] - a[1] * b[0];
@@ -349,7 +349,7 @@ LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double
         const int object = classifier.ObjectAt(p);
         if (object >= 0)
         {
-          grid.Set(x, y, z, model.ObjectTypes[static_cast<std::size_t>(object)]);
+          grid.Set(x, y, z, model.ObjectTypes[ToIndex(object)]);
         }
       }
     }
@@ -375,7 +375,7 @@ ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
     }
     for (auto i : poly)
     {
-      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+      if (i < 0 || ToIndex(i) >= points.size())
       {
         throw Error("a model mesh polygon refers to a point that does not exist");
       }

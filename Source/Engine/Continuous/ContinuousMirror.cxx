@@ -3,6 +3,7 @@
 
 #include "Continuous/ConstraintPlan.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <array>
@@ -32,7 +33,7 @@ ArrangementMirror PlanArrangementMirror(
   const PlaneFamilySet& set = analysis.Families();
   ArrangementMirror plan;
   plan.Axis = axis;
-  const auto a = static_cast<std::size_t>(axis);
+  const auto a = ToIndex(axis);
   // The seam: the last plane of the family normal to the axis at or before the middle.
   int across = -1;
   for (int f = 0; f < set.Size(); ++f)
@@ -66,15 +67,14 @@ ArrangementMirror PlanArrangementMirror(
           flipped = set.Normal(g) == minus;
         }
       }
-      const auto fs = static_cast<std::size_t>(f);
-      bool planes = image >= 0 &&
-        parameters.Spacings[fs] == parameters.Spacings[static_cast<std::size_t>(image)];
+      const auto fs = ToIndex(f);
+      bool planes = image >= 0 && parameters.Spacings[fs] == parameters.Spacings[ToIndex(image)];
       if (planes)
       {
         // X' = R(X): n·X = r·X' + 2M·n_a, so X' lies on r·X' ∈ o_f − 2M·n_a + s·Z.
         const std::int64_t s = parameters.Spacings[fs];
         const std::int64_t shifted = parameters.Offsets[fs] - Mod(2 * seam * set.Normal(f)[a], s);
-        const std::int64_t target = parameters.Offsets[static_cast<std::size_t>(image)];
+        const std::int64_t target = parameters.Offsets[ToIndex(image)];
         planes = flipped ? Mod(target + shifted, s) == 0 : Mod(target - shifted, s) == 0;
       }
       if (!planes)
@@ -87,8 +87,8 @@ ArrangementMirror PlanArrangementMirror(
   // The seam: the last plane of the family across the axis, at or before the middle of the box,
   // about which every family reflects onto planes.
   const std::int64_t k = set.Normal(across)[a]; // its planes: k·X_a = o + c·s
-  const std::int64_t o = parameters.Offsets[static_cast<std::size_t>(across)];
-  const std::int64_t s = parameters.Spacings[static_cast<std::size_t>(across)];
+  const std::int64_t o = parameters.Offsets[ToIndex(across)];
+  const std::int64_t s = parameters.Spacings[ToIndex(across)];
   const std::int64_t middle = (parameters.BoxLow[a] + parameters.BoxHigh[a]) / 2;
   int failing = -2;
   std::int64_t x = middle;
@@ -110,7 +110,7 @@ ArrangementMirror PlanArrangementMirror(
   if (failing == -2)
     throw Error(std::string("mirror: no plane across ") + AxisName(axis) +
       " lies in the first half of the box");
-  if (plan.FamilyImage.size() != static_cast<std::size_t>(set.Size()))
+  if (plan.FamilyImage.size() != ToIndex(set.Size()))
     throw Error("mirror: the planes of family h" + std::to_string(failing + 1) +
       " do not reflect onto planes of the arrangement across any plane of " + AxisName(axis) +
       " in the box (the example's faces are not mirror-symmetric on its plane spacing)");
@@ -124,7 +124,7 @@ NeighbourhoodLabel MirrorLabel(
 {
   std::vector<int> images;
   for (int f : label.Families)
-    images.push_back(plan.FamilyImage[static_cast<std::size_t>(f)]);
+    images.push_back(plan.FamilyImage[ToIndex(f)]);
   std::vector<int> sorted = images;
   std::sort(sorted.begin(), sorted.end());
   return NeighbourhoodLabel::FromFunction(families, sorted,
@@ -135,10 +135,10 @@ NeighbourhoodLabel MirrorLabel(
       unsigned original = 0;
       for (std::size_t j = 0; j < images.size(); ++j)
       {
-        const auto position = static_cast<std::size_t>(
-          std::find(sorted.begin(), sorted.end(), images[j]) - sorted.begin());
+        const auto position =
+          ToIndex(std::find(sorted.begin(), sorted.end(), images[j]) - sorted.begin());
         bool plus = (cone.Mask >> position) & 1u;
-        if (plan.Flipped[static_cast<std::size_t>(label.Families[j])])
+        if (plan.Flipped[ToIndex(label.Families[j])])
           plus = !plus;
         if (plus)
           original |= 1u << j;
@@ -153,7 +153,7 @@ void RestrictToMirrorImages(const std::vector<const ArrangementMirror*>& plans,
   if (plans.empty())
     return;
   const int k = static_cast<int>(plans[0]->LabelImage.size());
-  const auto words = static_cast<std::size_t>((k + 63) / 64);
+  const auto words = ToIndex((k + 63) / 64);
   // Labels whose image under every product of the reflections exists (the reflections commute).
   std::vector<std::uint64_t> imaged(words, 0);
   for (int a = 0; a < k; ++a)
@@ -164,20 +164,20 @@ void RestrictToMirrorImages(const std::vector<const ArrangementMirror*>& plans,
       int image = a;
       for (std::size_t j = 0; j < plans.size() && image >= 0; ++j)
         if ((subset >> j) & 1u)
-          image = plans[j]->LabelImage[static_cast<std::size_t>(image)];
+          image = plans[j]->LabelImage[ToIndex(image)];
       all = image >= 0;
     }
     if (all)
-      imaged[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
+      imaged[ToIndex(a >> 6)] |= std::uint64_t(1) << (a & 63);
   }
   const auto& p = part.Parameters();
   for (const ArrangementMirror* plan : plans)
   {
     std::vector<std::uint64_t> symmetric(words, 0);
     for (int a = 0; a < k; ++a)
-      if (plan->LabelImage[static_cast<std::size_t>(a)] == a)
-        symmetric[static_cast<std::size_t>(a >> 6)] |= std::uint64_t(1) << (a & 63);
-    const auto axis = static_cast<std::size_t>(plan->Axis);
+      if (plan->LabelImage[ToIndex(a)] == a)
+        symmetric[ToIndex(a >> 6)] |= std::uint64_t(1) << (a & 63);
+    const auto axis = ToIndex(plan->Axis);
     const double seam = p.Origin[axis] + p.Quantum * static_cast<double>(plan->Seam);
     const double near = 0.25 * p.Spacing(part.Families(), plan->Family);
     for (std::int64_t v = 0; v < part.NumberOfVertices(); ++v)
@@ -185,7 +185,7 @@ void RestrictToMirrorImages(const std::vector<const ArrangementMirror*>& plans,
       // On the seam: on a plane of the family across the axis, and nearer than its spacing.
       const bool onSeam = ((part.FamilyMask(v) >> plan->Family) & 1u) &&
         std::abs(part.Position(v)[axis] - seam) < near;
-      std::uint64_t* d = catalogs.data() + static_cast<std::size_t>(v) * words;
+      std::uint64_t* d = catalogs.data() + ToIndex(v) * words;
       for (std::size_t w = 0; w < words; ++w)
         d[w] &= onSeam ? symmetric[w] : imaged[w];
     }
@@ -252,7 +252,7 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
     ++first;
   const ArrangementMirror plan = PlanArrangementMirror(analysis, arrangement.Parameters(), first);
   ArrangementParameters half = arrangement.Parameters();
-  const auto axis = static_cast<std::size_t>(plan.Axis);
+  const auto axis = ToIndex(plan.Axis);
   half.BoxHigh[axis] = plan.Seam;
   const PlaneArrangement halfArrangement(arrangement.Families(), half);
   ContinuousSynthesisOptions o = options;
@@ -261,7 +261,7 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
   ContinuousSynthesisResult result = SynthesizeContinuous(analysis, halfArrangement, o);
   const std::vector<std::int32_t> halfLabels = std::move(result.Labels);
   const int empty = analysis.Find(NeighbourhoodLabel::Constant(0));
-  result.Labels.assign(static_cast<std::size_t>(arrangement.NumberOfVertices()), empty);
+  result.Labels.assign(ToIndex(arrangement.NumberOfVertices()), empty);
   if (!result.Succeeded())
     return result;
   double smallest = 0;
@@ -286,9 +286,8 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
     const std::int64_t u = finder.Find(q);
     if (u < 0)
       throw Error("mirror: vertex " + std::to_string(v) + " has no mirror image in the half box");
-    const int label = halfLabels[static_cast<std::size_t>(u)];
-    result.Labels[static_cast<std::size_t>(v)] =
-      reflected ? plan.LabelImage[static_cast<std::size_t>(label)] : label;
+    const int label = halfLabels[ToIndex(u)];
+    result.Labels[ToIndex(v)] = reflected ? plan.LabelImage[ToIndex(label)] : label;
   }
   // A corner near the seam and its image may come closer than a tenth of a spacing: parts with
   // such corners are emptied on the whole arrangement, as the half's run did within the half.

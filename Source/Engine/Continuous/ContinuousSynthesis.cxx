@@ -8,6 +8,7 @@
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMirror.h"
 #include "Continuous/SolverParts.h"
+#include "Core/Index.h"
 #include "Core/Random.h"
 
 #include <algorithm>
@@ -63,7 +64,7 @@ struct RunParts
     this->Layout = std::make_unique<detail::BlockLayout>(arrangement,
       this->Whole ? 0.0 : options.BlockSize * reference,
       this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
-    this->Initial.resize(static_cast<std::size_t>(n) * words);
+    this->Initial.resize(ToIndex(n) * words);
     int seams = 0;
     for (const ArrangementMirror* plan : options.PartOf)
       seams |= 1 << plan->Axis;
@@ -71,13 +72,13 @@ struct RunParts
     const auto eachVertex = [&](const auto& work)
     {
       constexpr std::int64_t chunk = 8192;
-      RunChunks(static_cast<std::size_t>((n + chunk - 1) / chunk),
+      RunChunks(ToIndex((n + chunk - 1) / chunk),
         static_cast<unsigned>(std::max(0, options.Threads)),
         [&](std::size_t c)
         {
           const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
           for (std::int64_t v = first; v < std::min(n, first + chunk); ++v)
-            work(v, this->Initial.data() + static_cast<std::size_t>(v) * words);
+            work(v, this->Initial.data() + ToIndex(v) * words);
         });
     };
     eachVertex(
@@ -107,7 +108,7 @@ struct RunParts
     }
     for (std::size_t i = 0; i < this->Order.size(); ++i)
     {
-      const auto& block = this->Layout->Grid[static_cast<std::size_t>(this->Order[i])];
+      const auto& block = this->Layout->Grid[ToIndex(this->Order[i])];
       this->Schedule.Phases.push_back(this->Parallel ? block.Phase : static_cast<int>(i));
       this->Schedule.Keys.push_back(static_cast<std::uint64_t>(block.Index));
     }
@@ -152,10 +153,10 @@ public:
     , Order(parts.Order)
   {
     if (worker == 0)
-      result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
-    this->LocalOf.assign(static_cast<std::size_t>(this->N), -1);
+      result.Labels.assign(ToIndex(this->N), this->Rules.EmptyLabel());
+    this->LocalOf.assign(ToIndex(this->N), -1);
     this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
-    this->Tally.assign(static_cast<std::size_t>(this->Plan->NumberOfTypes()), 0.0);
+    this->Tally.assign(ToIndex(this->Plan->NumberOfTypes()), 0.0);
   }
 
   /// The shares of the model as every block of the next phase sees them.
@@ -171,7 +172,7 @@ public:
   {
     if (!this->Whole)
       return this->Layout->Vertices(this->BlockAt(position));
-    std::vector<std::int64_t> all(static_cast<std::size_t>(this->N));
+    std::vector<std::int64_t> all(ToIndex(this->N));
     std::iota(all.begin(), all.end(), std::int64_t(0));
     return all;
   }
@@ -198,23 +199,17 @@ public:
   bool Snapshots() const { return this->Options.Snapshots > 0 && this->Options.OnSnapshot; }
   const std::string& LastFailure() const { return this->Failure; }
   /// The arrangement vertex of the current block's local vertex @p local.
-  std::int64_t Vertex(std::int64_t local) const
-  {
-    return this->Verts[static_cast<std::size_t>(local)];
-  }
-  void EmptyModel()
-  {
-    this->Result.Labels.assign(static_cast<std::size_t>(this->N), this->Rules.EmptyLabel());
-  }
+  std::int64_t Vertex(std::int64_t local) const { return this->Verts[ToIndex(local)]; }
+  void EmptyModel() { this->Result.Labels.assign(ToIndex(this->N), this->Rules.EmptyLabel()); }
 
   /// Makes block @p b the current one: its vertices and their local numbers.
   void Enter(std::int64_t b)
   {
     for (std::int64_t v : this->Verts) // the worker's previous block
-      this->LocalOf[static_cast<std::size_t>(v)] = -1;
+      this->LocalOf[ToIndex(v)] = -1;
     if (this->Whole)
     {
-      this->Verts.resize(static_cast<std::size_t>(this->N));
+      this->Verts.resize(ToIndex(this->N));
       std::iota(this->Verts.begin(), this->Verts.end(), std::int64_t(0));
     }
     else
@@ -222,11 +217,11 @@ public:
       this->Verts = this->Layout->Vertices(b);
     }
     for (std::size_t i = 0; i < this->Verts.size(); ++i)
-      this->LocalOf[static_cast<std::size_t>(this->Verts[i])] = static_cast<std::int32_t>(i);
+      this->LocalOf[ToIndex(this->Verts[i])] = static_cast<std::int32_t>(i);
     this->BlockStart = CatalogSnapshot();
     this->BlockTally = this->Tally; // the shares without the block's current labels
     for (std::int64_t v : this->Verts)
-      this->AddShares(this->BlockTally, this->Result.Labels[static_cast<std::size_t>(v)], -1);
+      this->AddShares(this->BlockTally, this->Result.Labels[ToIndex(v)], -1);
   }
 
   /// One attempt at the current block @p b: -1 when solved (its labels are written to the
@@ -289,17 +284,17 @@ private:
     if (!this->Plan->Weighted())
       return; // the shares only steer weighted draws (Factor, Mismatch)
     for (int t = 0; t < this->Plan->NumberOfTypes(); ++t)
-      tally[static_cast<std::size_t>(t)] += sign * this->Plan->Occupancy(label, t);
+      tally[ToIndex(t)] += sign * this->Plan->Occupancy(label, t);
   }
   template <typename Visit>
   void ForEachNeighbour(std::int64_t local, Visit&& visit) const
   {
-    const std::int64_t v = this->Verts[static_cast<std::size_t>(local)];
+    const std::int64_t v = this->Verts[ToIndex(local)];
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
       if (l->Vertex >= 0)
       {
-        const std::int32_t u = this->LocalOf[static_cast<std::size_t>(l->Vertex)];
+        const std::int32_t u = this->LocalOf[ToIndex(l->Vertex)];
         if (u >= 0 && !visit(u, l->Direction))
           return;
       }
@@ -342,7 +337,7 @@ CatalogSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
   CatalogSnapshot s;
   s.Block = block;
   s.Assignments = this->AssignmentsSoFar;
-  s.CatalogSize.assign(static_cast<std::size_t>(this->N), 1);
+  s.CatalogSize.assign(ToIndex(this->N), 1);
   s.Labels = this->Result.Labels;
   if (block < 0) // the catalog before anything is chosen
   {
@@ -350,16 +345,16 @@ CatalogSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
     {
       int c = 0;
       for (int i = 0; i < this->Words; ++i)
-        c += __builtin_popcountll(this->Initial[static_cast<std::size_t>(v) * this->Words + i]);
-      s.CatalogSize[static_cast<std::size_t>(v)] = c;
-      s.Labels[static_cast<std::size_t>(v)] = CatalogSnapshot::Undecided;
+        c += __builtin_popcountll(this->Initial[ToIndex(v) * this->Words + i]);
+      s.CatalogSize[ToIndex(v)] = c;
+      s.Labels[ToIndex(v)] = CatalogSnapshot::Undecided;
     }
   }
   if (active)
   {
     for (std::size_t i = 0; i < this->Verts.size(); ++i)
     {
-      const auto v = static_cast<std::size_t>(this->Verts[i]);
+      const auto v = ToIndex(this->Verts[i]);
       const int c = this->Domains.Count(static_cast<std::int64_t>(i));
       s.CatalogSize[v] = c;
       s.Labels[v] =
@@ -375,24 +370,22 @@ CatalogSnapshot ContinuousRun::Capture(std::int64_t block, bool active) const
 std::int64_t ContinuousRun::ConstrainFromOutside()
 {
   const auto m = static_cast<std::int64_t>(this->Verts.size());
-  std::vector<std::uint64_t> startSets(static_cast<std::size_t>(m) * this->Words);
+  std::vector<std::uint64_t> startSets(ToIndex(m) * this->Words);
   for (std::int64_t i = 0; i < m; ++i)
-    std::copy_n(this->Initial.data() +
-        static_cast<std::size_t>(this->Verts[static_cast<std::size_t>(i)]) * this->Words,
-      this->Words, startSets.data() + static_cast<std::size_t>(i) * this->Words);
+    std::copy_n(this->Initial.data() + ToIndex(this->Verts[ToIndex(i)]) * this->Words, this->Words,
+      startSets.data() + ToIndex(i) * this->Words);
   this->Domains.Reset(m, this->K, std::move(startSets));
   bool ok = true;
   for (std::int64_t i = 0; i < m; ++i)
   {
-    const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+    const std::int64_t v = this->Verts[ToIndex(i)];
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
-      if (l->Vertex >= 0 && this->LocalOf[static_cast<std::size_t>(l->Vertex)] < 0)
+      if (l->Vertex >= 0 && this->LocalOf[ToIndex(l->Vertex)] < 0)
       {
         // A fixed neighbour w: u is reached from w along the opposite direction.
         ok = this->Domains.Keep(i,
-               this->Rules.Compatible(
-                 l->Direction ^ 1, this->Result.Labels[static_cast<std::size_t>(l->Vertex)])) &&
+               this->Rules.Compatible(l->Direction ^ 1, this->Result.Labels[ToIndex(l->Vertex)])) &&
           ok;
       }
     }
@@ -409,7 +402,7 @@ std::int64_t ContinuousRun::AssignAll(
   auto neighbours = [this](std::int64_t local, auto&& visit)
   { this->ForEachNeighbour(local, visit); };
   int taken = 0;
-  std::vector<std::uint64_t> exclude(static_cast<std::size_t>(this->Words));
+  std::vector<std::uint64_t> exclude(ToIndex(this->Words));
   detail::SiteQueue queue(this->Options.Order, m, rng);
   for (std::int64_t i = 0; i < m; ++i)
     queue.Update(i, this->Domains.Count(i));
@@ -419,14 +412,13 @@ std::int64_t ContinuousRun::AssignAll(
     // The growth front: seeds, the ground, and vertices the labels around them reach.
     for (std::int64_t i = 0; i < m; ++i)
     {
-      const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+      const std::int64_t v = this->Verts[ToIndex(i)];
       bool front = (this->Plan->StartTypes(v) & this->Plan->GrowMask()) != 0;
       for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
       {
-        if (l->Vertex >= 0 && this->LocalOf[static_cast<std::size_t>(l->Vertex)] < 0)
+        if (l->Vertex >= 0 && this->LocalOf[ToIndex(l->Vertex)] < 0)
           front = front ||
-            (this->Plan->EdgeTypes(
-               l->Direction ^ 1, this->Result.Labels[static_cast<std::size_t>(l->Vertex)]) &
+            (this->Plan->EdgeTypes(l->Direction ^ 1, this->Result.Labels[ToIndex(l->Vertex)]) &
               this->Plan->GrowMask()) != 0;
       }
       if (front)
@@ -460,7 +452,7 @@ std::int64_t ContinuousRun::AssignAll(
       this->Domains.Undo(0);
       ++this->Withdrawn;
       std::fill(exclude.begin(), exclude.end(), ~std::uint64_t(0));
-      exclude[static_cast<std::size_t>(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
+      exclude[ToIndex(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
       this->Domains.Keep(i, exclude.data());
       empty = this->Domains.Propagate(this->Rules, neighbours);
       if (empty >= 0 || this->Domains.Count(i) == 1)
@@ -506,7 +498,7 @@ void ContinuousRun::Spread(std::int64_t i, detail::SiteQueue& queue) const
 
 int ContinuousRun::Choose(std::int64_t i, Random& rng)
 {
-  const std::int64_t v = this->Verts[static_cast<std::size_t>(i)];
+  const std::int64_t v = this->Verts[ToIndex(i)];
   std::uint64_t forbidden = 0, seeded = 0;
   if (this->Plan->GrowMask())
   {
@@ -517,11 +509,10 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
     {
       if (l->Vertex < 0)
         continue;
-      const std::int32_t u = this->LocalOf[static_cast<std::size_t>(l->Vertex)];
+      const std::int32_t u = this->LocalOf[ToIndex(l->Vertex)];
       if (u >= 0 && this->Domains.Count(u) != 1)
         continue;
-      const int label =
-        u >= 0 ? this->Domains.Single(u) : this->Result.Labels[static_cast<std::size_t>(l->Vertex)];
+      const int label = u >= 0 ? this->Domains.Single(u) : this->Result.Labels[ToIndex(l->Vertex)];
       reach |= this->Plan->EdgeTypes(l->Direction ^ 1, label);
     }
     forbidden = this->Plan->Unreached(reach);
@@ -550,22 +541,22 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
       break;
   }
   if (!this->Plan->Weighted() && this->Weights.empty())
-    return c[static_cast<std::size_t>(rng.Below(c.size()))];
+    return c[ToIndex(rng.Below(c.size()))];
   auto& weight = this->CandidateWeights;
   weight.resize(c.size());
   double total = 0;
   for (std::size_t k = 0; k < c.size(); ++k)
   {
-    weight[k] = (this->Weights.empty() ? 1.0 : this->Weights[static_cast<std::size_t>(c[k])]) *
+    weight[k] = (this->Weights.empty() ? 1.0 : this->Weights[ToIndex(c[k])]) *
       this->Plan->Factor(v, c[k], this->AttemptTally);
     total += weight[k];
   }
   if (!(total > 0))
-    return c[static_cast<std::size_t>(rng.Below(c.size()))];
+    return c[ToIndex(rng.Below(c.size()))];
   const int k =
     DrawWeighted([&c](auto&& visit) { ForEachIndex(static_cast<int>(c.size()), visit); },
-      [&weight](int j) { return weight[static_cast<std::size_t>(j)]; }, rng.Uniform());
-  return c[static_cast<std::size_t>(k)];
+      [&weight](int j) { return weight[ToIndex(j)]; }, rng.Uniform());
+  return c[ToIndex(k)];
 }
 
 std::int64_t ContinuousRun::Attempt(std::int64_t b, Random& rng, BlockDriver& driver,
@@ -582,7 +573,7 @@ std::int64_t ContinuousRun::Attempt(std::int64_t b, Random& rng, BlockDriver& dr
   this->AssignmentsSoFar += assigned;
   if (empty >= 0)
   {
-    const std::int64_t v = this->Verts[static_cast<std::size_t>(empty)];
+    const std::int64_t v = this->Verts[ToIndex(empty)];
     const Point3& p = this->Arrangement.Position(v);
     this->Failure = "no label fits at vertex " + std::to_string(v) + " (" + std::to_string(p[0]) +
       ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
@@ -613,7 +604,7 @@ std::int64_t ContinuousRun::Attempt(std::int64_t b, Random& rng, BlockDriver& dr
     }
   }
   for (std::size_t i = 0; i < this->Verts.size(); ++i)
-    this->Result.Labels[static_cast<std::size_t>(this->Verts[i])] = best[i];
+    this->Result.Labels[ToIndex(this->Verts[i])] = best[i];
   tally = this->Tallied(best);
   while (this->Whole && this->Snapshots() &&
     static_cast<int>(this->Pending.size()) < this->Options.Snapshots)
@@ -653,7 +644,7 @@ SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
   client.Pack = [&](std::size_t i, BlockRunner::Bytes& out)
   {
     for (std::int64_t v : run.VerticesOf(i))
-      out.Put(result.Labels[static_cast<std::size_t>(v)]);
+      out.Put(result.Labels[ToIndex(v)]);
     out.Put(static_cast<std::int64_t>(tallies[i].size()));
     for (double share : tallies[i])
       out.Put(BitsOf(share));
@@ -664,12 +655,12 @@ SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
     {
       const auto label = static_cast<std::int32_t>(in.Get());
       if (remote)
-        result.Labels[static_cast<std::size_t>(v)] = label;
+        result.Labels[ToIndex(v)] = label;
     }
     const std::int64_t shares = in.Get();
     if (shares < 0 || shares > 64)
       throw Error("block exchange: a block's shares are damaged");
-    std::vector<double> tally(static_cast<std::size_t>(shares));
+    std::vector<double> tally(ToIndex(shares));
     for (double& share : tally)
       share = DoubleOf(in.Get());
     if (remote)

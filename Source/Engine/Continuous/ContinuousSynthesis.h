@@ -15,6 +15,7 @@
 #include "Continuous/PlaneArrangement.h"
 #include "Continuous/PolyhedralAnalysis.h"
 #include "Core/BlockSynthesis.h"
+#include "Core/Index.h"
 #include "Core/Propagation.h"
 #include "Core/SynthesisChoices.h"
 
@@ -43,7 +44,7 @@ public:
   /// Id of eval(label, direction class d) among all evaluated neighbourhoods.
   int EvaluationId(int d, int label) const
   {
-    return this->Evaluations[static_cast<std::size_t>(d) * this->NumberOfLabels() + label];
+    return this->Evaluations[ToIndex(d) * this->NumberOfLabels() + label];
   }
 
   /// Within this fraction of the smallest spacing of a plane not through it, a vertex takes
@@ -54,7 +55,7 @@ public:
    * the smallest spacing; 1: one does (a corner at @p v may be narrow: NarrowCorners); 2: one
    * comes within SurfaceClearance, and @p v takes only volume labels.
    */
-  int ClearanceAt(std::int64_t v) const { return this->Clearance[static_cast<std::size_t>(v)]; }
+  int ClearanceAt(std::int64_t v) const { return this->Clearance[ToIndex(v)]; }
   /**
    * The corners of a labelling (vertices with a vertex label) closer than MinimumFeatureFraction
    * of the smallest spacing to a face, edge or corner on a plane that does not pass through them.

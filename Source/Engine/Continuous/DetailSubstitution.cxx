@@ -2,6 +2,7 @@
 #include "Continuous/DetailSubstitution.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +15,10 @@ namespace
 {
 std::int64_t Root(std::vector<std::int64_t>& parent, std::int64_t i)
 {
-  while (parent[static_cast<std::size_t>(i)] != i)
+  while (parent[ToIndex(i)] != i)
   {
-    parent[static_cast<std::size_t>(i)] =
-      parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    i = parent[static_cast<std::size_t>(i)];
+    parent[ToIndex(i)] = parent[ToIndex(parent[ToIndex(i)])];
+    i = parent[ToIndex(i)];
   }
   return i;
 }
@@ -88,8 +88,7 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int
     if (!ofType(f))
       continue;
     for (std::size_t k = 1; k < model.Polygons[f].size(); ++k)
-      parent[static_cast<std::size_t>(Root(parent, model.Polygons[f][k]))] =
-        Root(parent, model.Polygons[f][0]);
+      parent[ToIndex(Root(parent, model.Polygons[f][k]))] = Root(parent, model.Polygons[f][0]);
   }
   std::vector<std::int64_t> partOf(model.Points.size(), -1);
   for (std::size_t f = 0; f < model.Polygons.size(); ++f)
@@ -102,22 +101,21 @@ DetailResult SubstituteDetail(const ContinuousMesh& model, const std::vector<int
       out.OutsideType.push_back(model.OutsideType[f]);
       continue;
     }
-    const auto root = static_cast<std::size_t>(Root(parent, poly[0]));
+    const auto root = ToIndex(Root(parent, poly[0]));
     if (partOf[root] < 0)
     {
       partOf[root] = static_cast<std::int64_t>(result.Placements.size());
       DetailPlacement p;
-      p.Low = model.Points[static_cast<std::size_t>(poly[0])];
+      p.Low = model.Points[ToIndex(poly[0])];
       p.High = p.Low;
       result.Placements.push_back(p);
     }
-    auto& placement = result.Placements[static_cast<std::size_t>(partOf[root])];
+    auto& placement = result.Placements[ToIndex(partOf[root])];
     for (auto i : poly)
       for (std::size_t c = 0; c < 3; ++c)
       {
-        placement.Low[c] = std::min(placement.Low[c], model.Points[static_cast<std::size_t>(i)][c]);
-        placement.High[c] =
-          std::max(placement.High[c], model.Points[static_cast<std::size_t>(i)][c]);
+        placement.Low[c] = std::min(placement.Low[c], model.Points[ToIndex(i)][c]);
+        placement.High[c] = std::max(placement.High[c], model.Points[ToIndex(i)][c]);
       }
     // A face shared with another object stays as that object's face toward empty space.
     const bool inside = inSet(model.InsideType[f]);

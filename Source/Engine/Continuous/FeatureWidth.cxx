@@ -2,6 +2,7 @@
 #include "Continuous/FeatureWidth.h"
 
 #include "Continuous/Point3Math.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <array>
@@ -99,8 +100,7 @@ void CollectParts(const ContinuousMesh& mesh, double areaTolerance, std::vector<
   const auto add = [&](Part part, const std::vector<std::int32_t>& ids)
   {
     for (auto i : ids)
-      partsAt[static_cast<std::size_t>(same[static_cast<std::size_t>(i)])].push_back(
-        static_cast<std::int32_t>(parts.size()));
+      partsAt[ToIndex(same[ToIndex(i)])].push_back(static_cast<std::int32_t>(parts.size()));
     parts.push_back(std::move(part));
   };
   if (mesh.Planar)
@@ -108,8 +108,8 @@ void CollectParts(const ContinuousMesh& mesh, double areaTolerance, std::vector<
     for (const auto& e : PlanarBoundary(mesh))
     {
       Part part;
-      const Point3& a = mesh.Points[static_cast<std::size_t>(e[0])];
-      const Point3& b = mesh.Points[static_cast<std::size_t>(e[1])];
+      const Point3& a = mesh.Points[ToIndex(e[0])];
+      const Point3& b = mesh.Points[ToIndex(e[1])];
       const Point3 d = Sub(b, a);
       const double len = Norm(d);
       if (!(len > 0))
@@ -127,8 +127,8 @@ void CollectParts(const ContinuousMesh& mesh, double areaTolerance, std::vector<
     Point3 newell{};
     for (std::size_t i = 0; i < poly.size(); ++i)
     {
-      const Point3& a = mesh.Points[static_cast<std::size_t>(poly[i])];
-      const Point3& b = mesh.Points[static_cast<std::size_t>(poly[(i + 1) % poly.size()])];
+      const Point3& a = mesh.Points[ToIndex(poly[i])];
+      const Point3& b = mesh.Points[ToIndex(poly[(i + 1) % poly.size()])];
       newell = Add(newell, Cross(a, b), 1.0);
       part.Corners.push_back(a);
     }
@@ -148,14 +148,13 @@ bool IsCorner(const std::vector<Part>& parts, const std::vector<std::int32_t>& i
   for (std::size_t i = 0; i < ids.size(); ++i)
     for (std::size_t j = i + 1; j < ids.size(); ++j)
     {
-      const Point3 c = Cross(parts[static_cast<std::size_t>(ids[i])].Normal,
-        parts[static_cast<std::size_t>(ids[j])].Normal);
+      const Point3 c = Cross(parts[ToIndex(ids[i])].Normal, parts[ToIndex(ids[j])].Normal);
       if (Norm(c) <= independent)
         continue;
       if (planar)
         return true;
       for (std::size_t k = j + 1; k < ids.size(); ++k)
-        if (std::abs(Dot(c, parts[static_cast<std::size_t>(ids[k])].Normal)) > independent)
+        if (std::abs(Dot(c, parts[ToIndex(ids[k])].Normal)) > independent)
           return true;
     }
   return false;
@@ -166,8 +165,7 @@ struct CellHash
 {
   std::size_t operator()(const CellKey& k) const
   {
-    return static_cast<std::size_t>(k[0] * 73856093) ^ static_cast<std::size_t>(k[1] * 19349663) ^
-      static_cast<std::size_t>(k[2] * 83492791);
+    return ToIndex(k[0] * 73856093) ^ ToIndex(k[1] * 19349663) ^ ToIndex(k[2] * 83492791);
   }
 };
 } // namespace
@@ -197,8 +195,7 @@ FeatureWidth SmallestFeature(const ContinuousMesh& mesh, double radius)
   {
     CellKey k{};
     for (int c = 0; c < 3; ++c)
-      k[static_cast<std::size_t>(c)] =
-        static_cast<std::int64_t>(std::floor((p[c] + shift - lo[c]) / cell));
+      k[ToIndex(c)] = static_cast<std::int64_t>(std::floor((p[c] + shift - lo[c]) / cell));
     return k;
   };
   std::unordered_map<CellKey, std::vector<std::int32_t>, CellHash> grid;
@@ -236,10 +233,10 @@ FeatureWidth SmallestFeature(const ContinuousMesh& mesh, double radius)
             continue;
           for (auto i : it->second)
           {
-            if (seen[static_cast<std::size_t>(i)] == stamp)
+            if (seen[ToIndex(i)] == stamp)
               continue;
-            seen[static_cast<std::size_t>(i)] = stamp;
-            const Part& part = parts[static_cast<std::size_t>(i)];
+            seen[ToIndex(i)] = stamp;
+            const Part& part = parts[ToIndex(i)];
             if (std::abs(Dot(part.Normal, q) - part.Offset) <= touching)
               continue; // a plane through the corner
             const double d = PartDistance(q, part);

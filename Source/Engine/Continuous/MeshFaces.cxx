@@ -4,6 +4,7 @@
 #include "Continuous/ContinuousMesh.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/ParallelChunks.h"
 
 #include <algorithm>
@@ -70,10 +71,10 @@ public:
     const int d = arrangement.NumberOfDirections();
     if (d <= 256)
     {
-      this->Sides.resize(static_cast<std::size_t>(d) * static_cast<std::size_t>(d));
+      this->Sides.resize(ToIndex(d) * ToIndex(d));
       for (int a = 0; a < d; ++a)
         for (int b = 0; b < d; ++b)
-          this->Sides[static_cast<std::size_t>(a * d + b)] = this->ComputeSides(a, b);
+          this->Sides[ToIndex(a * d + b)] = this->ComputeSides(a, b);
     }
   }
 
@@ -83,23 +84,23 @@ public:
   {
     if (this->Sides.empty())
       return this->ComputeSides(a, b);
-    return this->Sides[static_cast<std::size_t>(a * this->Arrangement.NumberOfDirections() + b)];
+    return this->Sides[ToIndex(a * this->Arrangement.NumberOfDirections() + b)];
   }
 
   /// The plane index of family @p p's normal; Families().Size() is the plane z = 0 (2D).
-  const IntVec3& Normal(int p) const { return this->Normals[static_cast<std::size_t>(p)]; }
+  const IntVec3& Normal(int p) const { return this->Normals[ToIndex(p)]; }
 
   /// Links of @p v within plane @p p, counter-clockwise around its normal, from the first link
   /// in the arrangement's order.
   void Around(std::int64_t v, int p, std::vector<PlaneArrangement::Link>& out) const
   {
-    const std::vector<int>& rank = this->Ranks[static_cast<std::size_t>(p)];
-    const int count = this->Counts[static_cast<std::size_t>(p)];
+    const std::vector<int>& rank = this->Ranks[ToIndex(p)];
+    const int count = this->Counts[ToIndex(p)];
     out.clear();
     int first = 0;
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
-      const int r = rank[static_cast<std::size_t>(l->Direction)];
+      const int r = rank[ToIndex(l->Direction)];
       if (r < 0)
         continue;
       if (out.empty())
@@ -108,9 +109,7 @@ public:
       const int key = (r - first + count) % count;
       std::size_t i = out.size();
       out.push_back(*l);
-      for (; i > 0 &&
-           (rank[static_cast<std::size_t>(out[i - 1].Direction)] - first + count) % count > key;
-           --i)
+      for (; i > 0 && (rank[ToIndex(out[i - 1].Direction)] - first + count) % count > key; --i)
         out[i] = out[i - 1];
       out[i] = *l;
     }
@@ -146,15 +145,15 @@ public:
   /// The link of @p v in plane @p p just before direction @p back counter-clockwise.
   PlaneArrangement::Link Before(std::int64_t v, int p, int back) const
   {
-    const std::vector<int>& rank = this->Ranks[static_cast<std::size_t>(p)];
-    const int count = this->Counts[static_cast<std::size_t>(p)];
-    const int from = rank[static_cast<std::size_t>(back)];
+    const std::vector<int>& rank = this->Ranks[ToIndex(p)];
+    const int count = this->Counts[ToIndex(p)];
+    const int from = rank[ToIndex(back)];
     const PlaneArrangement::Link* best = nullptr;
     int bestKey = -1;
     bool found = false;
     for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
     {
-      const int r = rank[static_cast<std::size_t>(l->Direction)];
+      const int r = rank[ToIndex(l->Direction)];
       if (r < 0)
         continue;
       found = found || l->Direction == back;
@@ -172,7 +171,7 @@ public:
 
   const NeighbourhoodLabel& LabelOf(std::int64_t v) const
   {
-    return this->Analysis.Label(this->Labels[static_cast<std::size_t>(v)]).Label;
+    return this->Analysis.Label(this->Labels[ToIndex(v)]).Label;
   }
 
   const PolyhedralAnalysis& Analysis;
@@ -201,7 +200,7 @@ private:
     for (int d = 0; d < this->Arrangement.NumberOfDirections(); ++d)
       if (DotW(n, this->Arrangement.Direction(d)) == 0)
         in.push_back(d);
-    std::vector<int> rank(static_cast<std::size_t>(this->Arrangement.NumberOfDirections()), -1);
+    std::vector<int> rank(ToIndex(this->Arrangement.NumberOfDirections()), -1);
     if (!in.empty())
     {
       const IntVec3 r = this->Arrangement.Direction(in[0]);
@@ -221,7 +220,7 @@ private:
           return TripleW(da, db, n) > 0;
         });
       for (std::size_t i = 0; i < in.size(); ++i)
-        rank[static_cast<std::size_t>(in[i])] = static_cast<int>(i);
+        rank[ToIndex(in[i])] = static_cast<int>(i);
     }
     this->Normals.push_back(n);
     this->Ranks.push_back(std::move(rank));
@@ -331,7 +330,7 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
   // Faces found in chunks of vertices on threads, then added in the vertices' order: the same
   // mesh for any thread count. A vertex becomes a mesh point the first time a face uses it.
   constexpr std::int64_t chunk = 4096;
-  std::vector<FoundFaces> found(static_cast<std::size_t>((n + chunk - 1) / chunk));
+  std::vector<FoundFaces> found(ToIndex((n + chunk - 1) / chunk));
   RunChunks(found.size(), threads,
     [&](std::size_t c)
     {
@@ -341,7 +340,7 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
       for (std::int64_t u = first; u < std::min(n, first + chunk); ++u)
         FacesFrom(tracer, u, mesh.Planar, found[c], loop, around);
     });
-  std::vector<std::int32_t> pointOf(static_cast<std::size_t>(n), -1);
+  std::vector<std::int32_t> pointOf(ToIndex(n), -1);
   for (FoundFaces& faces : found)
   {
     std::size_t begin = 0;
@@ -352,7 +351,7 @@ ContinuousMesh ExtractMesh(const PolyhedralAnalysis& analysis, const PlaneArrang
       for (std::size_t i = begin; i < faces.Ends[f]; ++i)
       {
         const std::int64_t v = faces.Vertices[i];
-        auto& point = pointOf[static_cast<std::size_t>(v)];
+        auto& point = pointOf[ToIndex(v)];
         if (point < 0)
         {
           point = static_cast<std::int32_t>(mesh.Points.size());
@@ -381,7 +380,7 @@ std::vector<MeshFace> FaceMeasures(const PolyhedralAnalysis& analysis,
   const bool planar = arrangement.Planar();
   const Point3 origin = arrangement.Position(0);
   constexpr std::int64_t chunk = 4096;
-  std::vector<std::vector<MeshFace>> found(static_cast<std::size_t>((n + chunk - 1) / chunk));
+  std::vector<std::vector<MeshFace>> found(ToIndex((n + chunk - 1) / chunk));
   RunChunks(found.size(), threads,
     [&](std::size_t c)
     {

@@ -7,6 +7,7 @@
 #include "Core/Error.h"
 
 #include "Continuous/Point3Math.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,8 +76,7 @@ double ArrangementParameters::Spacing(const PlaneFamilySet& families, int family
 {
   const IntVec3& n = families.Normal(family);
   const double len = std::sqrt(static_cast<double>(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
-  return static_cast<double>(this->Spacings.at(static_cast<std::size_t>(family))) * this->Quantum /
-    len;
+  return static_cast<double>(this->Spacings.at(ToIndex(family))) * this->Quantum / len;
 }
 
 namespace
@@ -87,7 +87,7 @@ std::vector<double> CornerAnchors(const PolyhedralExample& example,
   const PolyhedralAnalysis& analysis, double quantum, const Point3& lo)
 {
   const PlaneFamilySet& set = analysis.Families();
-  std::vector<double> anchors(static_cast<std::size_t>(set.Size()), std::nan(""));
+  std::vector<double> anchors(ToIndex(set.Size()), std::nan(""));
   const auto& elements = analysis.Boundary();
   std::map<std::int32_t, std::set<int>> familiesAt; // example point → families of its faces
   for (std::size_t e = 0; e < elements.size(); ++e)
@@ -97,13 +97,13 @@ std::vector<double> CornerAnchors(const PolyhedralExample& example,
   {
     if (families.size() < 4)
       continue;
-    const Point3& q = example.Points[static_cast<std::size_t>(point)];
+    const Point3& q = example.Points[ToIndex(point)];
     double x[3];
     for (std::size_t c = 0; c < 3; ++c)
       x[c] = std::round((q[c] - lo[c]) / quantum);
     for (int f : families)
     {
-      auto& a = anchors[static_cast<std::size_t>(f)];
+      auto& a = anchors[ToIndex(f)];
       if (!std::isnan(a))
         continue; // a family through two such corners keeps the first
       const IntVec3& n = set.Normal(f);
@@ -214,8 +214,8 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
     throw Error(where + ": " + std::to_string(spacings.size()) + " plane spacings given for " +
       std::to_string(m) + " plane families");
   }
-  std::vector<std::vector<double>> values(static_cast<std::size_t>(m));
-  std::vector<double> first(static_cast<std::size_t>(m), 0.0);
+  std::vector<std::vector<double>> values(ToIndex(m));
+  std::vector<double> first(ToIndex(m), 0.0);
   const auto& elements = analysis.Boundary();
   const auto valueOf = [&](int f, const Point3& q)
   {
@@ -228,30 +228,30 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
   // A face's position along its family's exact normal: the mean over its corners. When the
   // normal was snapped (a direction of large integers), the corners spread a little around it;
   // the spread widens the tolerance of the spacing so it does not split the face's plane.
-  std::vector<double> spread(static_cast<std::size_t>(m), 0.0);
+  std::vector<double> spread(ToIndex(m), 0.0);
   for (std::size_t e = 0; e < elements.size(); ++e)
   {
     const int f = analysis.ElementFamily()[e];
     double v = 0, low = 0, high = 0;
     for (std::size_t k = 0; k < elements[e].Points.size(); ++k)
     {
-      const double x = valueOf(f, example.Points[static_cast<std::size_t>(elements[e].Points[k])]);
+      const double x = valueOf(f, example.Points[ToIndex(elements[e].Points[k])]);
       v += x;
       low = k == 0 ? x : std::min(low, x);
       high = k == 0 ? x : std::max(high, x);
     }
     v /= static_cast<double>(std::max<std::size_t>(elements[e].Points.size(), 1));
-    spread[static_cast<std::size_t>(f)] = std::max(spread[static_cast<std::size_t>(f)], high - low);
-    if (values[static_cast<std::size_t>(f)].empty())
+    spread[ToIndex(f)] = std::max(spread[ToIndex(f)], high - low);
+    if (values[ToIndex(f)].empty())
     {
-      first[static_cast<std::size_t>(f)] = v;
+      first[ToIndex(f)] = v;
     }
-    values[static_cast<std::size_t>(f)].push_back(v);
+    values[ToIndex(f)].push_back(v);
   }
-  std::vector<double> world(static_cast<std::size_t>(m));
+  std::vector<double> world(ToIndex(m));
   for (int f = 0; f < m; ++f)
   {
-    auto& vs = values[static_cast<std::size_t>(f)];
+    auto& vs = values[ToIndex(f)];
     double vmin = vs.empty() ? 0 : vs[0], vmax = vmin;
     for (const auto& q : example.Points)
     {
@@ -259,9 +259,9 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
       vmin = std::min(vmin, v);
       vmax = std::max(vmax, v);
     }
-    const double g = FamilySpacing(vs, vmin, vmax, spread[static_cast<std::size_t>(f)]);
+    const double g = FamilySpacing(vs, vmin, vmax, spread[ToIndex(f)]);
     p.Spacings.push_back(std::max<std::int64_t>(1, std::llround(g)));
-    world[static_cast<std::size_t>(f)] = p.Spacing(set, f);
+    world[ToIndex(f)] = p.Spacing(set, f);
   }
   if (spacings.empty() && spacing > 0 && m > 0)
   {
@@ -281,10 +281,9 @@ ArrangementParameters DefaultArrangementParameters(const PolyhedralExample& exam
   const std::vector<double> anchors = CornerAnchors(example, analysis, p.Quantum, lo);
   for (int f = 0; f < m; ++f)
   {
-    const std::int64_t s = p.Spacings[static_cast<std::size_t>(f)];
-    const double anchor = anchors[static_cast<std::size_t>(f)];
-    const std::int64_t v =
-      std::llround(std::isnan(anchor) ? first[static_cast<std::size_t>(f)] : anchor);
+    const std::int64_t s = p.Spacings[ToIndex(f)];
+    const double anchor = anchors[ToIndex(f)];
+    const std::int64_t v = std::llround(std::isnan(anchor) ? first[ToIndex(f)] : anchor);
     p.Offsets.push_back(((v % s) + s) % s);
   }
   return p;

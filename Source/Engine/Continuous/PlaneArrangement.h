@@ -17,6 +17,7 @@
  * where two lines meet.
  */
 #include "Continuous/Neighbourhood.h"
+#include "Core/Index.h"
 #include "Formats/PolyhedralExample.h"
 
 #include <cstdint>
@@ -82,28 +83,22 @@ public:
     return static_cast<std::int64_t>(this->Positions.size());
   }
   /// World position (rounded from the exact rational point).
-  const Point3& Position(std::int64_t v) const
-  {
-    return this->Positions[static_cast<std::size_t>(v)];
-  }
+  const Point3& Position(std::int64_t v) const { return this->Positions[ToIndex(v)]; }
   /// Bit i set when a plane of family i passes through vertex @p v.
-  std::uint64_t FamilyMask(std::int64_t v) const
-  {
-    return this->Masks[static_cast<std::size_t>(v)];
-  }
+  std::uint64_t FamilyMask(std::int64_t v) const { return this->Masks[ToIndex(v)]; }
   std::vector<int> FamiliesThrough(std::int64_t v) const;
 
   /// Direction classes: every line direction (primitive integer vector) both ways.
   int NumberOfDirections() const { return static_cast<int>(this->Directions.size()); }
-  const IntVec3& Direction(int d) const { return this->Directions[static_cast<std::size_t>(d)]; }
+  const IntVec3& Direction(int d) const { return this->Directions[ToIndex(d)]; }
 
   const Link* LinksBegin(std::int64_t v) const
   {
-    return this->Links.data() + this->LinkStart[static_cast<std::size_t>(v)];
+    return this->Links.data() + this->LinkStart[ToIndex(v)];
   }
   const Link* LinksEnd(std::int64_t v) const
   {
-    return this->Links.data() + this->LinkStart[static_cast<std::size_t>(v) + 1];
+    return this->Links.data() + this->LinkStart[ToIndex(v) + 1];
   }
 
   /// Edges between two vertices (each once), and edges leaving the box.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Small vector helpers on msynth::Point3 shared by the polyhedral sources (internal header).
+#include "Core/Index.h"
 #include "Formats/PolyhedralExample.h"
 
 #include <cmath>
@@ -54,9 +55,9 @@ double FanMeasure(const std::vector<Point3>& points, const std::vector<Index>& p
   double sum = 0;
   for (std::size_t k = 1; k + 1 < poly.size(); ++k)
   {
-    const Point3& a = points[static_cast<std::size_t>(poly[0])];
-    const Point3& b = points[static_cast<std::size_t>(poly[k])];
-    const Point3& c = points[static_cast<std::size_t>(poly[k + 1])];
+    const Point3& a = points[ToIndex(poly[0])];
+    const Point3& b = points[ToIndex(poly[k])];
+    const Point3& c = points[ToIndex(poly[k + 1])];
     sum += planar ? ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2
                   : Dot(a, Cross(b, c)) / 6;
   }

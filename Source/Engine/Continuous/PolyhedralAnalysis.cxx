@@ -4,6 +4,7 @@
 #include "Continuous/BoxGrid.h"
 #include "Continuous/Point3Math.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -420,7 +421,7 @@ private:
       this->LabelList.push_back(label);
       this->CountList.push_back(0);
     }
-    this->CountList[static_cast<std::size_t>(it->second)] += count;
+    this->CountList[ToIndex(it->second)] += count;
     return it->second;
   }
 
@@ -442,7 +443,7 @@ private:
     {
       // Every face through the sample has this label there (coplanar faces of other objects
       // included), so a face partly covered by another object is known to have several.
-      this->LabelsOfElement[static_cast<std::size_t>(element)].insert(feature.Label);
+      this->LabelsOfElement[ToIndex(element)].insert(feature.Label);
       for (std::size_t e : through)
       {
         this->LabelsOfElement[e].insert(feature.Label);
@@ -619,7 +620,7 @@ void MeasureTypes(
   }
   for (std::size_t f = 0; f < example.Faces.size(); ++f)
   {
-    const int type = example.ObjectTypes.at(static_cast<std::size_t>(example.FaceObject[f]));
+    const int type = example.ObjectTypes.at(ToIndex(example.FaceObject[f]));
     volumes[type] += point3::FanMeasure(example.Points, example.Faces[f], example.Planar);
   }
 }

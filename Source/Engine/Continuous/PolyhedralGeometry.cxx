@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 
 #include "Continuous/BoxGrid.h"
+#include "Core/Index.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -94,7 +95,7 @@ SolidClassifier::SolidClassifier(const PolyhedralExample& example)
   this->Impl->Planar = example.Planar;
   this->Impl->Source = example.Source;
   this->Impl->ObjectNames = example.ObjectNames;
-  this->Impl->ObjectNames.resize(static_cast<std::size_t>(example.NumberOfObjects()));
+  this->Impl->ObjectNames.resize(ToIndex(example.NumberOfObjects()));
   for (std::size_t o = 0; o < this->Impl->ObjectNames.size(); ++o)
   {
     if (this->Impl->ObjectNames[o].empty())
@@ -158,9 +159,9 @@ int SolidClassifier::ObjectAt(const Point3& p) const
     {
       const auto& names = this->Impl->ObjectNames;
       throw Error::InFile(this->Impl->Source,
-        "objects '" + names[static_cast<std::size_t>(found)] + "' and '" +
-          names[static_cast<std::size_t>(object)] + "' overlap near (" + std::to_string(p[0]) +
-          ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")");
+        "objects '" + names[ToIndex(found)] + "' and '" + names[ToIndex(object)] +
+          "' overlap near (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
+          std::to_string(p[2]) + ")");
     }
     found = object;
   };

@@ -4,6 +4,7 @@
 // consistent (its vertices then see only empty space), so the model stays valid.
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMesh.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,20 +63,20 @@ std::vector<double> PartVolumes(const PolyhedralAnalysis& analysis,
   const std::vector<std::int64_t>& component, std::int64_t parts, std::size_t nt, unsigned threads,
   BitOf bitOf)
 {
-  std::vector<double> volumes(static_cast<std::size_t>(parts) * nt, 0.0);
+  std::vector<double> volumes(ToIndex(parts) * nt, 0.0);
   if (parts == 0)
     return volumes;
   for (const MeshFace& face : FaceMeasures(analysis, arrangement, labels, threads))
   {
-    const std::int64_t c = component[static_cast<std::size_t>(face.Corner)];
+    const std::int64_t c = component[ToIndex(face.Corner)];
     if (c < 0)
       continue;
     const int inside = bitOf(face.Inside);
     const int outside = bitOf(face.Outside);
     if (inside > 0)
-      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(inside)] += face.Measure;
+      volumes[ToIndex(c) * nt + ToIndex(inside)] += face.Measure;
     if (outside > 0)
-      volumes[static_cast<std::size_t>(c) * nt + static_cast<std::size_t>(outside)] -= face.Measure;
+      volumes[ToIndex(c) * nt + ToIndex(outside)] -= face.Measure;
   }
   return volumes;
 }
@@ -98,14 +99,14 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   std::vector<double> total(nt, 0.0);
   for (std::int64_t c = 0; c < parts; ++c)
     for (std::size_t t = 1; t < nt; ++t)
-      total[t] += occupancy[static_cast<std::size_t>(c) * nt + t];
+      total[t] += occupancy[ToIndex(c) * nt + t];
   double before = 0;
   for (std::size_t t = 1; t < nt; ++t)
     before += total[t];
   // Greedy: empty the part whose removal brings the shares nearest the targets, while that is
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
-  std::vector<char> removed(static_cast<std::size_t>(parts), 0);
+  std::vector<char> removed(ToIndex(parts), 0);
   Deviation now = DeviationOf(total, this->Target);
   std::vector<double> trial(nt);
   while (now.Worst > ProportionMargin)
@@ -114,10 +115,10 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
     Deviation bestDeviation = now;
     for (std::int64_t c = 0; c < parts; ++c)
     {
-      if (removed[static_cast<std::size_t>(c)])
+      if (removed[ToIndex(c)])
         continue;
       for (std::size_t t = 1; t < nt; ++t)
-        trial[t] = total[t] - occupancy[static_cast<std::size_t>(c) * nt + t];
+        trial[t] = total[t] - occupancy[ToIndex(c) * nt + t];
       const Deviation d = DeviationOf(trial, this->Target);
       if (d < bestDeviation)
       {
@@ -127,9 +128,9 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
     }
     if (best < 0)
       break;
-    removed[static_cast<std::size_t>(best)] = 1;
+    removed[ToIndex(best)] = 1;
     for (std::size_t t = 1; t < nt; ++t)
-      total[t] -= occupancy[static_cast<std::size_t>(best) * nt + t];
+      total[t] -= occupancy[ToIndex(best) * nt + t];
     now = bestDeviation;
     ++out.Removed;
   }
@@ -137,9 +138,9 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   {
     for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
-      const std::int64_t c = component[static_cast<std::size_t>(v)];
-      if (c >= 0 && removed[static_cast<std::size_t>(c)])
-        labels[static_cast<std::size_t>(v)] = emptyLabel;
+      const std::int64_t c = component[ToIndex(v)];
+      if (c >= 0 && removed[ToIndex(c)])
+        labels[ToIndex(v)] = emptyLabel;
     }
   }
   // What still falls outside the tolerance, and why emptying parts could not help.

@@ -3,6 +3,7 @@
 // Parts of the continuous label solver (internal header of ContinuousSynthesis.cxx): the block
 // layout, the label draw and the order of the undecided vertices.
 #include "Continuous/PlaneArrangement.h"
+#include "Core/Index.h"
 #include "Core/LabelDraw.h"
 #include "Core/Random.h"
 #include "Core/SynthesisChoices.h"
@@ -52,22 +53,19 @@ struct BlockLayout
           std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent / half - 1e-9)));
       }
     }
-    this->CellVertices.resize(
-      static_cast<std::size_t>(this->Cells[0] * this->Cells[1] * this->Cells[2]));
+    this->CellVertices.resize(ToIndex(this->Cells[0] * this->Cells[1] * this->Cells[2]));
     std::vector<std::array<std::int64_t, 3>> cellOf(
-      static_cast<std::size_t>(arrangement.NumberOfVertices()), { { 0, 0, 0 } });
+      ToIndex(arrangement.NumberOfVertices()), { { 0, 0, 0 } });
     for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
     {
-      auto& cell = cellOf[static_cast<std::size_t>(v)];
+      auto& cell = cellOf[ToIndex(v)];
       for (std::size_t c = 0; static_cast<int>(c) < dims && edge > 0; ++c)
       {
         const double t = (arrangement.Position(v)[c] - lo[c]) / half;
         cell[c] =
           std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(t)), 0, this->Cells[c] - 1);
       }
-      this
-        ->CellVertices[static_cast<std::size_t>(
-          cell[0] + this->Cells[0] * (cell[1] + this->Cells[1] * cell[2]))]
+      this->CellVertices[ToIndex(cell[0] + this->Cells[0] * (cell[1] + this->Cells[1] * cell[2]))]
         .push_back(v);
     }
     // The longest edge in cells: how far apart the blocks of a phase must be.
@@ -75,9 +73,7 @@ struct BlockLayout
     for (std::int64_t v = 0; v < arrangement.NumberOfVertices(); ++v)
       for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
         for (std::size_t c = 0; l->Vertex >= 0 && c < 3; ++c)
-          reach = std::max(reach,
-            std::abs(cellOf[static_cast<std::size_t>(v)][c] -
-              cellOf[static_cast<std::size_t>(l->Vertex)][c]));
+          reach = std::max(reach, std::abs(cellOf[ToIndex(v)][c] - cellOf[ToIndex(l->Vertex)][c]));
     this->Grid =
       PlanBoxBlocks<3>(this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, policy, this->Phases, reach);
   }
@@ -122,15 +118,14 @@ struct BlockLayout
       distance[b] = best;
     }
     std::stable_sort(order.begin(), order.end(),
-      [&](std::int64_t a, std::int64_t b)
-      { return distance[static_cast<std::size_t>(a)] < distance[static_cast<std::size_t>(b)]; });
+      [&](std::int64_t a, std::int64_t b) { return distance[ToIndex(a)] < distance[ToIndex(b)]; });
     return order;
   }
 
   /// Vertices of block @p b in ascending (scan) order.
   std::vector<std::int64_t> Vertices(std::int64_t b) const
   {
-    const BoxBlock<3>& block = this->Grid[static_cast<std::size_t>(b)];
+    const BoxBlock<3>& block = this->Grid[ToIndex(b)];
     std::vector<std::int64_t> out;
     std::array<std::int64_t, 3> c;
     const auto& o = block.Origin;
@@ -138,8 +133,8 @@ struct BlockLayout
       for (c[1] = o[1]; c[1] < o[1] + block.Dims[1]; ++c[1])
         for (c[0] = o[0]; c[0] < o[0] + block.Dims[0]; ++c[0])
         {
-          const auto& cell = this->CellVertices[static_cast<std::size_t>(
-            c[0] + this->Cells[0] * (c[1] + this->Cells[1] * c[2]))];
+          const auto& cell =
+            this->CellVertices[ToIndex(c[0] + this->Cells[0] * (c[1] + this->Cells[1] * c[2]))];
           out.insert(out.end(), cell.begin(), cell.end());
         }
     std::sort(out.begin(), out.end());
@@ -155,7 +150,7 @@ inline int PickLabel(const std::uint64_t* domain, int words, int count,
   if (weights.empty())
     return NthLabel(domain, words, rng.Below(static_cast<std::uint64_t>(count)));
   return DrawLabel(
-    domain, words, [&](int b) { return weights[static_cast<std::size_t>(b)]; }, rng.Uniform());
+    domain, words, [&](int b) { return weights[ToIndex(b)]; }, rng.Uniform());
 }
 
 /// The undecided vertices of a block in the order they are labelled: vertices on the front of
@@ -165,20 +160,20 @@ class SiteQueue
 public:
   SiteQueue(SiteOrder order, std::int64_t n, Random& rng)
     : Order(order)
-    , Counts(static_cast<std::size_t>(n), 0)
-    , Front(static_cast<std::size_t>(n), 0)
-    , Key(static_cast<std::size_t>(n))
+    , Counts(ToIndex(n), 0)
+    , Front(ToIndex(n), 0)
+    , Key(ToIndex(n))
   {
     for (std::int64_t i = 0; i < n; ++i)
     {
-      this->Key[static_cast<std::size_t>(i)] =
+      this->Key[ToIndex(i)] =
         order == SiteOrder::ScanLine ? static_cast<std::uint64_t>(i) : rng.Next();
     }
   }
 
   void Update(std::int64_t i, int count)
   {
-    auto& old = this->Counts[static_cast<std::size_t>(i)];
+    auto& old = this->Counts[ToIndex(i)];
     this->Undecided += (count > 1 ? 1 : 0) - (old > 1 ? 1 : 0);
     const bool same = old > 1 && count > 1 && this->Entry(i, old) == this->Entry(i, count);
     old = count;
@@ -189,14 +184,14 @@ public:
   /// Puts vertex @p i on the growth front (labelled before the vertices off it).
   void SetFront(std::int64_t i)
   {
-    if (this->Front[static_cast<std::size_t>(i)])
+    if (this->Front[ToIndex(i)])
       return;
-    const int count = this->Counts[static_cast<std::size_t>(i)];
+    const int count = this->Counts[ToIndex(i)];
     this->Update(i, 0);
-    this->Front[static_cast<std::size_t>(i)] = 1;
+    this->Front[ToIndex(i)] = 1;
     this->Update(i, count);
   }
-  bool OnFront(std::int64_t i) const { return this->Front[static_cast<std::size_t>(i)] != 0; }
+  bool OnFront(std::int64_t i) const { return this->Front[ToIndex(i)] != 0; }
 
   /// The next undecided vertex, or -1.
   std::int64_t Next()
@@ -205,7 +200,7 @@ public:
     {
       const auto& top = this->Pending.top();
       const std::int64_t i = std::get<2>(top);
-      const int count = this->Counts[static_cast<std::size_t>(i)];
+      const int count = this->Counts[ToIndex(i)];
       if (count > 1 && this->Entry(i, count) == top)
         return i;
       this->Pending.pop(); // stale: the vertex was decided or its entry changed since
@@ -217,9 +212,9 @@ public:
 private:
   std::tuple<int, std::uint64_t, std::int64_t> Entry(std::int64_t i, int count) const
   {
-    const int rank = (this->Front[static_cast<std::size_t>(i)] ? 0 : 1 << 28) +
+    const int rank = (this->Front[ToIndex(i)] ? 0 : 1 << 28) +
       (this->Order == SiteOrder::MinimumEntropy ? count : 0);
-    return { rank, this->Key[static_cast<std::size_t>(i)], i };
+    return { rank, this->Key[ToIndex(i)], i };
   }
 
   SiteOrder Order;

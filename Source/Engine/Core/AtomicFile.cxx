@@ -2,6 +2,7 @@
 #include "Core/AtomicFile.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <atomic>
 #include <cerrno>
@@ -55,7 +56,7 @@ public:
     const char* p = this->pbase();
     while (p < this->pptr() && !this->Failed)
     {
-      const ssize_t n = ::write(this->Fd, p, static_cast<std::size_t>(this->pptr() - p));
+      const ssize_t n = ::write(this->Fd, p, ToIndex(this->pptr() - p));
       if (n < 0 && errno == EINTR)
         continue;
       if (n <= 0)
@@ -84,7 +85,7 @@ protected:
     const std::streamsize room = this->epptr() - this->pptr();
     if (n <= room)
     {
-      std::memcpy(this->pptr(), data, static_cast<std::size_t>(n));
+      std::memcpy(this->pptr(), data, ToIndex(n));
       this->pbump(static_cast<int>(n));
       return n;
     }
@@ -94,15 +95,15 @@ protected:
       return this->xsputn(data, n);
     // Large pieces go straight to the file.
     std::size_t done = 0;
-    while (done < static_cast<std::size_t>(n) && !this->Failed)
+    while (done < ToIndex(n) && !this->Failed)
     {
-      const ssize_t k = ::write(this->Fd, data + done, static_cast<std::size_t>(n) - done);
+      const ssize_t k = ::write(this->Fd, data + done, ToIndex(n) - done);
       if (k < 0 && errno == EINTR)
         continue;
       if (k <= 0)
         this->Failed = k < 0 ? errno : EIO;
       else
-        done += static_cast<std::size_t>(k);
+        done += ToIndex(k);
     }
     return this->Failed ? 0 : n;
   }

@@ -2,6 +2,7 @@
 #include "Core/BlockSynthesis.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/ProgressPoll.h"
 
 #include <algorithm>
@@ -92,7 +93,7 @@ std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
       rest /= starts[a].size();
       b.Origin[a] = starts[a][i];
       b.Dims[a] = std::min(m[a], n[a] - b.Origin[a]);
-      phase += radix * static_cast<int>(i % static_cast<std::size_t>(period[a]));
+      phase += radix * static_cast<int>(i % ToIndex(period[a]));
       radix *= period[a];
     }
     b.Phase = policy == PhasePolicy::NonTouching ? phase : static_cast<int>(index);
@@ -198,7 +199,7 @@ struct BlockRunner::Internal
       anyCancelled = in.Get() != 0 || anyCancelled;
       while (in.At < in.Data.size())
       {
-        const auto i = static_cast<std::size_t>(in.Get());
+        const auto i = ToIndex(in.Get());
         if (i < first || i >= last)
           throw Error(
             "block exchange: process " + std::to_string(p) + " sent a block of another phase");
@@ -309,8 +310,8 @@ BlockRunner::BlockRunner(Policy policy, std::size_t blocks)
     (policy.Exchange.Rank < 0 || policy.Exchange.Rank >= policy.Exchange.Processes))
     throw Error("block exchange: rank " + std::to_string(policy.Exchange.Rank) + " of " +
       std::to_string(policy.Exchange.Processes) + " processes");
-  s.Processes = distributed ? static_cast<std::size_t>(policy.Exchange.Processes) : 1;
-  s.Rank = distributed ? static_cast<std::size_t>(policy.Exchange.Rank) : 0;
+  s.Processes = distributed ? ToIndex(policy.Exchange.Processes) : 1;
+  s.Rank = distributed ? ToIndex(policy.Exchange.Rank) : 0;
   s.Options = std::move(policy);
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 namespace msynth
 {
@@ -17,17 +18,17 @@ std::string Printable(const std::string& text)
       : c >= 0xe0 && c <= 0xef ? 2
       : c >= 0xf0 && c <= 0xf4 ? 3
                                : -1;
-    bool valid = more >= 0 && i + static_cast<std::size_t>(more) < text.size() + (more == 0);
+    bool valid = more >= 0 && i + ToIndex(more) < text.size() + (more == 0);
     for (int k = 1; valid && k <= more; ++k)
-      valid = (static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) & 0xc0) == 0x80;
+      valid = (static_cast<unsigned char>(text[i + ToIndex(k)]) & 0xc0) == 0x80;
     if (!valid || c < 0x20 || c == 0x7f)
     {
       out += '?'; // a control character, or a byte that is no UTF-8 (from a damaged file)
       ++i;
       continue;
     }
-    out.append(text, i, static_cast<std::size_t>(more) + 1);
-    i += static_cast<std::size_t>(more) + 1;
+    out.append(text, i, ToIndex(more) + 1);
+    i += ToIndex(more) + 1;
   }
   return out;
 }

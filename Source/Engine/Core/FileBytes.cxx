@@ -2,6 +2,7 @@
 #include "Core/FileBytes.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <fstream>
 
@@ -19,7 +20,7 @@ std::string ReadFileBytes(
   if (size < 0 || static_cast<std::uint64_t>(size) > maxBytes)
     throw Error::InFile(path, tooLarge);
   in.seekg(0);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
+  std::string bytes(ToIndex(size), '\0');
   in.read(&bytes[0], size);
   if (!in)
     throw Error::InFile(path, "could not be read");

@@ -2,6 +2,7 @@
 #include "Core/LabelGrid.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <string>
 #include <utility>
@@ -28,7 +29,7 @@ LabelGrid::LabelGrid(std::int64_t nx, std::int64_t ny, std::int64_t nz, Label fi
 {
   CheckDimensions(nx, ny, nz);
   this->Dims = { { nx, ny, nz } };
-  this->Labels.assign(static_cast<std::size_t>(nx * ny * nz), fill);
+  this->Labels.assign(ToIndex(nx * ny * nz), fill);
 }
 
 LabelGrid::LabelGrid(std::array<std::int64_t, 3> dims, std::vector<Label> labels)

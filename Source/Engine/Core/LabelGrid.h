@@ -7,6 +7,7 @@
  * Sites are indexed (x, y, z) with x fastest, the same order as vtkImageData points, so a grid
  * converts to and from image data without reordering. A 2D model has nz = 1.
  */
+#include "Core/Index.h"
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -61,11 +62,11 @@ public:
   }
   Label At(std::int64_t x, std::int64_t y, std::int64_t z) const
   {
-    return this->Labels[static_cast<std::size_t>(this->Index(x, y, z))];
+    return this->Labels[ToIndex(this->Index(x, y, z))];
   }
   void Set(std::int64_t x, std::int64_t y, std::int64_t z, Label b)
   {
-    this->Labels[static_cast<std::size_t>(this->Index(x, y, z))] = b;
+    this->Labels[ToIndex(this->Index(x, y, z))] = b;
   }
 
   const std::vector<Label>& Data() const { return this->Labels; }

@@ -2,6 +2,7 @@
 #include "Core/Propagation.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 
@@ -29,19 +30,19 @@ void CompatibilityRelation::Allocate(int k, int directions)
   this->K = k;
   this->W = (k + 63) / 64;
   this->D = directions;
-  this->Bits.assign(static_cast<std::size_t>(directions) * k * this->W, 0);
+  this->Bits.assign(ToIndex(directions) * k * this->W, 0);
 }
 
 void CompatibilityRelation::Finish()
 {
-  this->AnyBits.assign(static_cast<std::size_t>(this->D) * this->W, 0);
+  this->AnyBits.assign(ToIndex(this->D) * this->W, 0);
   for (int d = 0; d < this->D; ++d)
   {
     for (int b = 0; b < this->K; ++b)
     {
       for (int w = 0; w < this->W; ++w)
       {
-        this->AnyBits[static_cast<std::size_t>(d) * this->W + w] |= this->Compatible(d, b)[w];
+        this->AnyBits[ToIndex(d) * this->W + w] |= this->Compatible(d, b)[w];
       }
     }
   }
@@ -51,20 +52,19 @@ void CompatibilityRelation::Finish()
     return;
   }
   const int chunks = (this->K + 7) / 8;
-  this->ChunkUnions.assign(static_cast<std::size_t>(this->D) * chunks * 256 * this->W, 0);
+  this->ChunkUnions.assign(ToIndex(this->D) * chunks * 256 * this->W, 0);
   for (int d = 0; d < this->D; ++d)
   {
     for (int j = 0; j < chunks; ++j)
     {
-      std::uint64_t* table =
-        this->ChunkUnions.data() + (static_cast<std::size_t>(d) * chunks + j) * 256 * this->W;
+      std::uint64_t* table = this->ChunkUnions.data() + (ToIndex(d) * chunks + j) * 256 * this->W;
       // Entry v = entry (v without its lowest bit) | Compatible(label of that bit).
       for (int v = 1; v < 256; ++v)
       {
         const int low = __builtin_ctz(static_cast<unsigned>(v));
         const int b = 8 * j + low;
-        const std::uint64_t* rest = table + static_cast<std::size_t>(v & (v - 1)) * this->W;
-        std::uint64_t* entry = table + static_cast<std::size_t>(v) * this->W;
+        const std::uint64_t* rest = table + ToIndex(v & (v - 1)) * this->W;
+        std::uint64_t* entry = table + ToIndex(v) * this->W;
         for (int w = 0; w < this->W; ++w)
         {
           entry[w] = rest[w] | (b < this->K ? this->Compatible(d, b)[w] : 0);
@@ -80,14 +80,13 @@ void CompatibilityRelation::UnionOf(int d, const std::uint64_t* domain, std::uin
   if (!this->ChunkUnions.empty())
   {
     const int chunks = (this->K + 7) / 8;
-    const std::uint64_t* tables =
-      this->ChunkUnions.data() + static_cast<std::size_t>(d) * chunks * 256 * this->W;
+    const std::uint64_t* tables = this->ChunkUnions.data() + ToIndex(d) * chunks * 256 * this->W;
     for (int j = 0; j < chunks; ++j)
     {
       const auto byte = static_cast<unsigned>((domain[j >> 3] >> (8 * (j & 7))) & 0xffu);
       if (byte)
       {
-        const std::uint64_t* entry = tables + (static_cast<std::size_t>(j) * 256 + byte) * this->W;
+        const std::uint64_t* entry = tables + (ToIndex(j) * 256 + byte) * this->W;
         for (int w = 0; w < this->W; ++w)
         {
           out[w] |= entry[w];
@@ -114,8 +113,8 @@ void LabelDomains::Reset(std::int64_t n, int k)
   // Every label possible: all bits below k set, written in place (blocks reset often).
   this->K = k;
   this->W = (k + 63) / 64;
-  this->Bits.resize(static_cast<std::size_t>(n) * this->W);
-  for (std::size_t s = 0; s < static_cast<std::size_t>(n); ++s)
+  this->Bits.resize(ToIndex(n) * this->W);
+  for (std::size_t s = 0; s < ToIndex(n); ++s)
   {
     for (int w = 0; w < this->W; ++w)
     {
@@ -130,7 +129,7 @@ void LabelDomains::Reset(std::int64_t n, int k, std::vector<std::uint64_t> initi
 {
   this->K = k;
   this->W = (k + 63) / 64;
-  if (initial.size() != static_cast<std::size_t>(n) * this->W)
+  if (initial.size() != ToIndex(n) * this->W)
   {
     throw Error("label domains: initial sets have the wrong size");
   }
@@ -140,7 +139,7 @@ void LabelDomains::Reset(std::int64_t n, int k, std::vector<std::uint64_t> initi
 
 void LabelDomains::Start(std::int64_t n)
 {
-  this->Counts.resize(static_cast<std::size_t>(n));
+  this->Counts.resize(ToIndex(n));
   this->DecidedSites = 0;
   this->EmptySite = -1;
   for (std::size_t s = 0; s < this->Counts.size(); ++s)
@@ -152,13 +151,13 @@ void LabelDomains::Start(std::int64_t n)
       this->EmptySite = static_cast<std::int64_t>(s);
     }
   }
-  this->Queued.assign(static_cast<std::size_t>(n), 0);
+  this->Queued.assign(ToIndex(n), 0);
   this->Queue.clear();
   this->FromScratch = true;
   this->ChangedSites.clear();
   this->Trail.clear();
   this->TrailBase = 0;
-  this->Scratch.assign(static_cast<std::size_t>(this->W), 0);
+  this->Scratch.assign(ToIndex(this->W), 0);
 }
 
 int LabelDomains::Single(std::int64_t site) const
@@ -181,7 +180,7 @@ bool LabelDomains::Keep(std::int64_t site, const std::uint64_t* mask)
 
 bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
 {
-  std::uint64_t* d = this->Bits.data() + static_cast<std::size_t>(site) * this->W;
+  std::uint64_t* d = this->Bits.data() + ToIndex(site) * this->W;
   bool changed = false;
   for (int w = 0; w < this->W && !changed; ++w)
   {
@@ -192,8 +191,7 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
     if (this->Recording)
     {
       this->Trail.push_back(static_cast<std::uint64_t>(site));
-      this->Trail.push_back(
-        static_cast<std::uint64_t>(this->Counts[static_cast<std::size_t>(site)]));
+      this->Trail.push_back(static_cast<std::uint64_t>(this->Counts[ToIndex(site)]));
       this->Trail.insert(this->Trail.end(), d, d + this->W);
     }
     for (int w = 0; w < this->W; ++w)
@@ -201,9 +199,9 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
       d[w] &= mask[w];
     }
     const int count = PopCount(d, this->W);
-    const int before = this->Counts[static_cast<std::size_t>(site)];
+    const int before = this->Counts[ToIndex(site)];
     this->DecidedSites += (count == 1) - (before == 1);
-    this->Counts[static_cast<std::size_t>(site)] = count;
+    this->Counts[ToIndex(site)] = count;
     this->ChangedSites.push_back(site);
     this->Push(site);
     if (count == 0 && this->EmptySite < 0)
@@ -211,7 +209,7 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
       this->EmptySite = site;
     }
   }
-  return this->Counts[static_cast<std::size_t>(site)] > 0;
+  return this->Counts[ToIndex(site)] > 0;
 }
 
 void LabelDomains::Forget(std::size_t mark)
@@ -236,23 +234,22 @@ void LabelDomains::Undo(std::size_t mark)
     throw Error("label domains: undo past the forgotten part of the trail");
   }
   mark -= this->TrailBase;
-  const std::size_t entry = static_cast<std::size_t>(this->W) + 2;
+  const std::size_t entry = ToIndex(this->W) + 2;
   while (this->Trail.size() > mark)
   {
     const std::size_t at = this->Trail.size() - entry;
     const auto site = static_cast<std::int64_t>(this->Trail[at]);
     const int count = static_cast<int>(this->Trail[at + 1]);
-    std::copy_n(this->Trail.data() + at + 2, this->W,
-      this->Bits.data() + static_cast<std::size_t>(site) * this->W);
-    const int now = this->Counts[static_cast<std::size_t>(site)];
+    std::copy_n(this->Trail.data() + at + 2, this->W, this->Bits.data() + ToIndex(site) * this->W);
+    const int now = this->Counts[ToIndex(site)];
     this->DecidedSites += (count == 1) - (now == 1);
-    this->Counts[static_cast<std::size_t>(site)] = count;
+    this->Counts[ToIndex(site)] = count;
     this->ChangedSites.push_back(site);
     this->Trail.resize(at);
   }
   for (std::int64_t q : this->Queue)
   {
-    this->Queued[static_cast<std::size_t>(q)] = 0;
+    this->Queued[ToIndex(q)] = 0;
   }
   this->Queue.clear();
   this->EmptySite = -1;
@@ -265,7 +262,7 @@ bool LabelDomains::Assign(std::int64_t site, int b)
     return false;
   }
   std::fill(this->Scratch.begin(), this->Scratch.end(), 0);
-  this->Scratch[static_cast<std::size_t>(b >> 6)] = std::uint64_t(1) << (b & 63);
+  this->Scratch[ToIndex(b >> 6)] = std::uint64_t(1) << (b & 63);
   return this->Restrict(site, this->Scratch.data());
 }
 

@@ -15,6 +15,7 @@
  *
  * Memory is k bits plus a few bytes per site; there are no per-label support counters.
  */
+#include "Core/Index.h"
 #include <cstdint>
 #include <vector>
 
@@ -33,12 +34,12 @@ public:
   /// Labels allowed at the neighbour along direction @p d of a site holding @p b (Words() words).
   const std::uint64_t* Compatible(int d, int b) const
   {
-    return this->Bits.data() + (static_cast<std::size_t>(d) * this->K + b) * this->W;
+    return this->Bits.data() + (ToIndex(d) * this->K + b) * this->W;
   }
   /// Union over b of Compatible(d, b).
   const std::uint64_t* CompatibleWithAny(int d) const
   {
-    return this->AnyBits.data() + static_cast<std::size_t>(d) * this->W;
+    return this->AnyBits.data() + ToIndex(d) * this->W;
   }
   /**
    * Writes to @p out (Words() words) the union of Compatible(d, b) over b in @p domain. With
@@ -50,8 +51,7 @@ public:
   std::uint64_t UnionOfWord(int d, std::uint64_t domain) const
   {
     const int chunks = (this->K + 7) / 8;
-    const std::uint64_t* table = this->ChunkUnions.data() +
-      static_cast<std::size_t>(d) * static_cast<std::size_t>(chunks) * 256;
+    const std::uint64_t* table = this->ChunkUnions.data() + ToIndex(d) * ToIndex(chunks) * 256;
     std::uint64_t out = 0;
     for (int j = 0; j < chunks && domain; ++j, domain >>= 8, table += 256)
     {
@@ -70,8 +70,7 @@ protected:
   /// Label @p c may be the neighbour along @p d of a site holding @p b (one direction only).
   void AllowOne(int d, int b, int c)
   {
-    this->Bits[(static_cast<std::size_t>(d) * this->K + b) * this->W + (c >> 6)] |= std::uint64_t(1)
-      << (c & 63);
+    this->Bits[(ToIndex(d) * this->K + b) * this->W + (c >> 6)] |= std::uint64_t(1) << (c & 63);
   }
   /// Builds the unions; call once after the last AllowOne().
   void Finish();
@@ -98,10 +97,10 @@ public:
   int NumberOfLabels() const { return this->K; }
   int Words() const { return this->W; }
   /// Number of labels possible at @p site.
-  int Count(std::int64_t site) const { return this->Counts[static_cast<std::size_t>(site)]; }
+  int Count(std::int64_t site) const { return this->Counts[ToIndex(site)]; }
   const std::uint64_t* Domain(std::int64_t site) const
   {
-    return this->Bits.data() + static_cast<std::size_t>(site) * this->W;
+    return this->Bits.data() + ToIndex(site) * this->W;
   }
   bool Contains(std::int64_t site, int b) const
   {
@@ -165,7 +164,7 @@ public:
     {
       for (std::size_t i = head; i < this->Queue.size(); ++i)
       {
-        this->Queued[static_cast<std::size_t>(this->Queue[i])] = 0;
+        this->Queued[ToIndex(this->Queue[i])] = 0;
       }
     }
     this->Queue.clear();
@@ -189,16 +188,16 @@ private:
           this->Queue.begin(), this->Queue.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
-      this->Queued[static_cast<std::size_t>(v)] = 0;
+      this->Queued[ToIndex(v)] = 0;
       const std::uint64_t* dv = this->Domain(v);
       forEachNeighbour(v,
         [&](std::int64_t u, int d) -> bool
         {
-          if (this->Counts[static_cast<std::size_t>(u)] == 0)
+          if (this->Counts[ToIndex(u)] == 0)
           {
             return true;
           }
-          const bool any = this->Counts[static_cast<std::size_t>(v)] == this->K;
+          const bool any = this->Counts[ToIndex(v)] == this->K;
           if constexpr (OneWord)
           {
             // v unconstrained: the precomputed union
@@ -226,8 +225,8 @@ private:
   /// Restrict for one-word sets.
   bool RestrictWord(std::int64_t site, std::uint64_t mask)
   {
-    std::uint64_t& d = this->Bits[static_cast<std::size_t>(site)];
-    int& count = this->Counts[static_cast<std::size_t>(site)];
+    std::uint64_t& d = this->Bits[ToIndex(site)];
+    int& count = this->Counts[ToIndex(site)];
     if ((d & mask) != d)
     {
       if (this->Recording)
@@ -266,9 +265,9 @@ private:
   bool Restrict(std::int64_t site, const std::uint64_t* mask);
   void Push(std::int64_t site)
   {
-    if (!this->Queued[static_cast<std::size_t>(site)])
+    if (!this->Queued[ToIndex(site)])
     {
-      this->Queued[static_cast<std::size_t>(site)] = 1;
+      this->Queued[ToIndex(site)] = 1;
       this->Queue.push_back(site);
     }
   }

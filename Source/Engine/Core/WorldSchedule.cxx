@@ -2,6 +2,7 @@
 #include "Core/WorldSchedule.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 
@@ -76,11 +77,11 @@ RegionCone PlanRegion(
   cone.WindowLow = lo;
   cone.WindowHigh = hi;
   const int total = lattice.Phases() * std::max(passes, 1);
-  std::vector<std::vector<BoxBlock<3>>> phases(static_cast<std::size_t>(total));
+  std::vector<std::vector<BoxBlock<3>>> phases(ToIndex(total));
   for (int q = total - 1; q >= 0; --q)
   {
     const int p = q % lattice.Phases();
-    auto& blocks = phases[static_cast<std::size_t>(q)];
+    auto& blocks = phases[ToIndex(q)];
     lattice.Meeting(p, cone.WindowLow, cone.WindowHigh, blocks);
     // What these blocks read after phase p - 1: their footprints and the ring around them.
     for (const auto& b : blocks)
@@ -91,11 +92,11 @@ RegionCone PlanRegion(
           std::max(cone.WindowHigh[a], std::min(n[a], b.Origin[a] + b.Dims[a] + 1));
       }
   }
-  cone.Passes.resize(static_cast<std::size_t>(std::max(passes, 1)));
+  cone.Passes.resize(ToIndex(std::max(passes, 1)));
   for (int q = 0; q < total; ++q)
   {
-    auto& pass = cone.Passes[static_cast<std::size_t>(q / lattice.Phases())];
-    const auto& blocks = phases[static_cast<std::size_t>(q)];
+    auto& pass = cone.Passes[ToIndex(q / lattice.Phases())];
+    const auto& blocks = phases[ToIndex(q)];
     pass.insert(pass.end(), blocks.begin(), blocks.end());
   }
   cone.Blocks = cone.Passes[0];

@@ -15,6 +15,7 @@
  * the same sites of a whole run: the cone. Its box (the window) is all such a run holds.
  */
 #include "Core/BlockSynthesis.h"
+#include "Core/Index.h"
 
 #include <array>
 #include <cstdint>
@@ -35,16 +36,16 @@ public:
 
   int Phases() const { return this->NumberOfPhases; }
   /// Block origins along axis @p a.
-  std::int64_t Count(int a) const { return this->Counts[static_cast<std::size_t>(a)]; }
+  std::int64_t Count(int a) const { return this->Counts[ToIndex(a)]; }
   std::int64_t NumberOfBlocks() const
   {
     return this->Counts[0] * this->Counts[1] * this->Counts[2];
   }
   const WorldBox& World() const { return this->N; }
   /// Lattice positions apart along axis @p a that blocks of one phase are.
-  std::int64_t Period(int a) const { return this->Periods[static_cast<std::size_t>(a)]; }
+  std::int64_t Period(int a) const { return this->Periods[ToIndex(a)]; }
   /// The block step along axis @p a.
-  std::int64_t StepAlong(int a) const { return this->Step[static_cast<std::size_t>(a)]; }
+  std::int64_t StepAlong(int a) const { return this->Step[ToIndex(a)]; }
 
   /// The block at lattice position @p g (its index: g0 + C0 · (g1 + C1 · g2)).
   BoxBlock<3> At(const WorldBox& g) const;

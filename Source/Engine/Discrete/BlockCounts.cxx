@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/BlockSolver.h"
 
+#include "Core/Index.h"
 #include "Core/LabelDraw.h"
 #include "Discrete/LabelCounts.h"
 
@@ -22,16 +23,15 @@ void BlockSolver::StartCounts(const Block& block)
   this->OwnBlock = block.Index;
   this->Have.assign(this->Budget->Labels().size(), 0);
   this->Left = 0;
-  this->Own.assign(static_cast<std::size_t>(cat.NumberOfSites()), 0);
-  this->Tally.assign(static_cast<std::size_t>(cat.NumberOfSites()), -2);
+  this->Own.assign(ToIndex(cat.NumberOfSites()), 0);
+  this->Tally.assign(ToIndex(cat.NumberOfSites()), -2);
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
     const Coord c = cat.Coordinates(local);
-    const auto s =
-      static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
+    const auto s = ToIndex(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
     if (this->Budget->Owner(s) != block.Index)
       continue;
-    this->Own[static_cast<std::size_t>(local)] = 1 + this->Budget->Slot(s);
+    this->Own[ToIndex(local)] = 1 + this->Budget->Slot(s);
     ++this->Left; // undecided until tallied
   }
   this->ChangedSeen = 0;
@@ -43,7 +43,7 @@ void BlockSolver::StartCounts(const Block& block)
 
 void BlockSolver::TallySite(std::int64_t local)
 {
-  const auto i = static_cast<std::size_t>(local);
+  const auto i = ToIndex(local);
   if (!this->Own[i])
     return;
   const int now = this->Cat.Count(local) == 1
@@ -53,11 +53,11 @@ void BlockSolver::TallySite(std::int64_t local)
   if (now == was)
     return;
   if (was >= 0)
-    --this->Have[static_cast<std::size_t>(was)];
+    --this->Have[ToIndex(was)];
   if (was == -2)
     --this->Left;
   if (now >= 0)
-    ++this->Have[static_cast<std::size_t>(now)];
+    ++this->Have[ToIndex(now)];
   if (now == -2)
     ++this->Left;
   was = now;
@@ -79,10 +79,10 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
   const int words = this->Rules.Words();
   const std::uint64_t* domain = this->Cat.Domain(local);
   const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
-  const std::int32_t slot = this->Own[static_cast<std::size_t>(local)] - 1;
+  const std::int32_t slot = this->Own[ToIndex(local)] - 1;
   this->SyncCounts();
   std::vector<double>& weight = this->Steer;
-  weight.assign(static_cast<std::size_t>(k), 0.0);
+  weight.assign(ToIndex(k), 0.0);
   double sum = 0.0;
   if (this->Options.Choice == LabelChoice::Resemblance)
   {
@@ -90,7 +90,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     ForEachLabel(domain, words,
       [&](int b)
       {
-        const auto i = static_cast<std::size_t>(b);
+        const auto i = ToIndex(b);
         weight[i] = this->ChoiceWeights[i] * (this->HasGuide() ? this->GuideWeight(cell, b) : 1.0);
         sum += weight[i];
         return true;
@@ -100,7 +100,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     ForEachLabel(domain, words,
       [&](int b)
       {
-        weight[static_cast<std::size_t>(b)] = this->SiteWeight(cell, b);
+        weight[ToIndex(b)] = this->SiteWeight(cell, b);
         return true;
       });
   // Each counted label's probability is moved into [need, room] / (own sites left where it may
@@ -118,7 +118,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     ForEachLabel(domain, words,
       [&](int a)
       {
-        const double w = weight[static_cast<std::size_t>(a)];
+        const double w = weight[ToIndex(a)];
         total += w;
         if (this->Budget->Position(a, slot) == static_cast<int>(c))
           mine += w;
@@ -147,7 +147,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
       ForEachLabel(domain, words,
         [&](int a)
         {
-          double& w = weight[static_cast<std::size_t>(a)];
+          double& w = weight[ToIndex(a)];
           w = this->Budget->Position(a, slot) == static_cast<int>(c)
             ? (mine > 0.0 ? w * factor : factor)
             : w * otherwise;
@@ -171,7 +171,7 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     }
   }
   return DrawLabel(
-    domain, words, [&](int b) { return weight[static_cast<std::size_t>(b)]; }, rng.Uniform());
+    domain, words, [&](int b) { return weight[ToIndex(b)]; }, rng.Uniform());
 }
 
 bool BlockSolver::CountsKept(const Block& block)
@@ -184,15 +184,14 @@ bool BlockSolver::CountsKept(const Block& block)
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
     const Coord c = cat.Coordinates(local);
-    const auto s =
-      static_cast<std::size_t>(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
+    const auto s = ToIndex(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
     const std::int32_t slot = this->Budget->Slot(s);
     const int now = this->Budget->Position(cat.Single(local), slot);
     const std::int32_t owner = this->Budget->Owner(s);
     if (owner == block.Index)
     {
       if (now >= 0)
-        ++own[static_cast<std::size_t>(now)];
+        ++own[ToIndex(now)];
       continue;
     }
     if (!this->Repairing)
@@ -203,9 +202,9 @@ bool BlockSolver::CountsKept(const Block& block)
     auto& change = others[owner];
     change.resize(counted, 0);
     if (now >= 0)
-      ++change[static_cast<std::size_t>(now)];
+      ++change[ToIndex(now)];
     if (was >= 0)
-      --change[static_cast<std::size_t>(was)];
+      --change[ToIndex(was)];
   }
   bool kept = true;
   for (std::size_t c = 0; c < counted; ++c)

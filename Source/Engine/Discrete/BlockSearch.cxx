@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "Core/Index.h"
 #include "Discrete/BlockSolver.h"
 
 // One block attempt's assignments with bounded chronological backtracking (BlockSolver.h).
@@ -14,7 +15,7 @@ BlockSearch::BlockSearch(
   , Current(block)
   , Rng(rng)
   , Assignments(assignments)
-  , Others(static_cast<std::size_t>(solver.Rules.Words()))
+  , Others(ToIndex(solver.Rules.Words()))
   , Budget(solver.Options.BacktracksPerAttempt)
   , Searching(solver.Options.BacktracksPerAttempt > 0)
 {
@@ -64,7 +65,7 @@ std::int64_t BlockSearch::Assign(std::int64_t local)
     ++this->Solver.Backtracked;
     cat.Undo(mark);
     std::fill(this->Others.begin(), this->Others.end(), ~std::uint64_t(0));
-    this->Others[static_cast<std::size_t>(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
+    this->Others[ToIndex(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
     cat.Keep(local, this->Others.data());
     empty = cat.Propagate();
     if (empty < 0)
@@ -87,7 +88,7 @@ void BlockSearch::Trim()
 {
   // Each undo spends one unit of the budget, so no undo reaches further back than the last
   // Budget choices: older choices and their trail can go (amortized: when twice as many).
-  const std::size_t keep = static_cast<std::size_t>(this->Budget) + 1;
+  const std::size_t keep = ToIndex(this->Budget) + 1;
   if (this->Stack.size() < 2 * keep + 1024)
     return;
   this->Stack.erase(this->Stack.begin(), this->Stack.end() - static_cast<std::ptrdiff_t>(keep));

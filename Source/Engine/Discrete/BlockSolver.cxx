@@ -4,6 +4,7 @@
 #include "Core/LabelDraw.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/Connectivity.h"
 
 #include <algorithm>
@@ -31,7 +32,7 @@ BlockSolver::BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& op
   LabelGrid::CheckDimensions(this->N[0], this->N[1], this->N[2]);
   if (seams)
     this->Cat.SetArcs(seams->Relation.get(), &seams->Arcs);
-  const auto sites = static_cast<std::size_t>(this->N[0] * this->N[1] * this->N[2]);
+  const auto sites = ToIndex(this->N[0] * this->N[1] * this->N[2]);
   if (this->Model.empty())
   {
     this->Model.assign(sites, -1);
@@ -39,17 +40,17 @@ BlockSolver::BlockSolver(const AdjacencyRules& rules, const SynthesisOptions& op
     this->LastBlock.assign(sites, -1);
   }
   const int k = rules.NumberOfLabels();
-  this->WLogW.resize(static_cast<std::size_t>(k));
+  this->WLogW.resize(ToIndex(k));
   for (int b = 0; b < k; ++b)
   {
     const double w = this->Weight(b);
-    this->WLogW[static_cast<std::size_t>(b)] = w * std::log(w);
+    this->WLogW[ToIndex(b)] = w * std::log(w);
   }
   double sum = 0.0, sumWLogW = 0.0;
   for (int b = 0; b < k; ++b)
   {
     sum += this->Weight(b);
-    sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+    sumWLogW += this->WLogW[ToIndex(b)];
   }
   this->FullEntropy = std::log(sum) - sumWLogW / sum;
   if (options.Guide)
@@ -80,7 +81,7 @@ void BlockSolver::ApplyBoundary()
   for (int f = 5; f >= 0; --f) // lowest precedence first, so higher ones overwrite
   {
     const int face = precedence[f];
-    const auto& value = this->Options.Boundary[static_cast<std::size_t>(face)];
+    const auto& value = this->Options.Boundary[ToIndex(face)];
     const int axis = face / 2;
     if (!value || this->N[axis] == 1)
     {
@@ -95,7 +96,7 @@ void BlockSolver::ApplyBoundary()
         {
           if (p[axis] == layer)
           {
-            this->Fixed[static_cast<std::size_t>(this->Index(p))] = b;
+            this->Fixed[ToIndex(this->Index(p))] = b;
           }
         }
   }
@@ -113,11 +114,11 @@ void BlockSolver::ApplyBoundary()
       for (p[1] = 0; p[1] < this->N[1]; ++p[1])
         for (p[0] = 0; p[0] < this->N[0]; ++p[0])
         {
-          const int b = this->Fixed[static_cast<std::size_t>(this->Index(p))];
+          const int b = this->Fixed[ToIndex(this->Index(p))];
           if (b >= 0 && this->GuideWeight(this->GuideCell(p), b) == 0.0f)
             throw Error("the boundary label " +
-              std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]) +
-              " has guide weight 0 at " + Format(p));
+              std::to_string(this->Rules.LabelValues()[ToIndex(b)]) + " has guide weight 0 at " +
+              Format(p));
         }
   }
 }
@@ -128,12 +129,12 @@ std::int64_t BlockSolver::ConstrainBlock(const Block& block, std::vector<std::in
   const Coord& o = block.Origin;
   const Coord& m = block.Dims;
   free.clear();
-  free.reserve(static_cast<std::size_t>(cat.NumberOfSites()));
+  free.reserve(ToIndex(cat.NumberOfSites()));
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
     const Coord c = cat.Coordinates(local);
     const Coord p{ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } };
-    const int fixed = this->Fixed[static_cast<std::size_t>(this->Index(p))];
+    const int fixed = this->Fixed[ToIndex(this->Index(p))];
     if (fixed >= 0)
     {
       if (!cat.Assign(local, fixed))
@@ -153,7 +154,7 @@ std::int64_t BlockSolver::ConstrainBlock(const Block& block, std::vector<std::in
       if (q[axis] < 0 || q[axis] >= this->N[axis] ||
         (q[axis] >= o[axis] && q[axis] < o[axis] + m[axis]))
         continue; // outside the model, or inside the block
-      const int label = this->Model[static_cast<std::size_t>(this->Index(q))];
+      const int label = this->Model[ToIndex(this->Index(q))];
       if (label >= 0 && !cat.Constrain(local, Opposite(d), label))
         return local;
     }
@@ -169,17 +170,15 @@ bool BlockSolver::ConstrainAcrossSeams(const Block& block, std::int64_t local, c
   const Coord& m = block.Dims;
   const SiteArcs& arcs = this->Seams->Arcs;
   const std::int64_t g = this->Index(p);
-  for (std::int64_t i = arcs.Start[static_cast<std::size_t>(g)];
-       i < arcs.Start[static_cast<std::size_t>(g + 1)]; ++i)
+  for (std::int64_t i = arcs.Start[ToIndex(g)]; i < arcs.Start[ToIndex(g + 1)]; ++i)
   {
-    const std::int64_t t = arcs.Target[static_cast<std::size_t>(i)];
+    const std::int64_t t = arcs.Target[ToIndex(i)];
     const Coord q = this->Coordinates(t);
     if (q[0] >= o[0] && q[1] >= o[1] && q[2] >= o[2] && q[0] < o[0] + m[0] && q[1] < o[1] + m[1] &&
       q[2] < o[2] + m[2])
       continue; // inside the block: propagated by the catalog
-    const int label = this->Model[static_cast<std::size_t>(t)];
-    if (label >= 0 &&
-      !this->Cat.Constrain(local, arcs.Class[static_cast<std::size_t>(i)] ^ 1, label))
+    const int label = this->Model[ToIndex(t)];
+    if (label >= 0 && !this->Cat.Constrain(local, arcs.Class[ToIndex(i)] ^ 1, label))
       return false;
   }
   return true;
@@ -187,7 +186,7 @@ bool BlockSolver::ConstrainAcrossSeams(const Block& block, std::int64_t local, c
 
 int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
 {
-  if (this->Budget && this->Own[static_cast<std::size_t>(local)])
+  if (this->Budget && this->Own[ToIndex(local)])
     return this->ChooseCounted(local, rng);
   // The guide's weights of this site's region multiply the choice's (D§3.5.3).
   const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
@@ -205,7 +204,7 @@ int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
     {
       return DrawWeighted([this](auto&& visit)
         { ForEachIndex(this->Rules.NumberOfLabels(), visit); },
-        [this](int b) { return this->ChoiceWeights[static_cast<std::size_t>(b)]; }, rng.Uniform());
+        [this](int b) { return this->ChoiceWeights[ToIndex(b)]; }, rng.Uniform());
     }
     // No example site matches any possible label (labels only reachable through
     // propagation): fall back to the weighted choice below.
@@ -213,8 +212,7 @@ int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
   if (this->Scale)
     return DrawLabel(
       this->Cat.Domain(local), this->Rules.Words(),
-      [this, cell](int b)
-      { return this->SiteWeight(cell, b) * (*this->Scale)[static_cast<std::size_t>(b)]; },
+      [this, cell](int b) { return this->SiteWeight(cell, b) * (*this->Scale)[ToIndex(b)]; },
       rng.Uniform());
   return DrawLabel(
     this->Cat.Domain(local), this->Rules.Words(),
@@ -254,15 +252,15 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
     if (this->SiteOrderNow == SiteOrder::Random)
     {
       for (std::size_t i = free.size(); i > 1; --i)
-        std::swap(free[i - 1], free[static_cast<std::size_t>(rng.Below(i))]);
+        std::swap(free[i - 1], free[ToIndex(rng.Below(i))]);
     }
     // Where to resume after a backtrack (none without backtracking).
     std::vector<std::int64_t>& position = this->Position;
     if (this->Options.BacktracksPerAttempt > 0)
     {
-      position.assign(static_cast<std::size_t>(cat.NumberOfSites()), -1);
+      position.assign(ToIndex(cat.NumberOfSites()), -1);
       for (std::size_t i = 0; i < free.size(); ++i)
-        position[static_cast<std::size_t>(free[i])] = static_cast<std::int64_t>(i);
+        position[ToIndex(free[i])] = static_cast<std::int64_t>(i);
     }
     for (std::size_t i = 0; i < free.size();)
     {
@@ -273,9 +271,7 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
         cat.ClearChanged(); // nobody reads them here: a whole model would keep every change
       // After a backtrack, go on from the site whose choice was ruled out: every later site is
       // as it was before that choice.
-      i = search.Resume() >= 0
-        ? static_cast<std::size_t>(position[static_cast<std::size_t>(search.Resume())])
-        : i + 1;
+      i = search.Resume() >= 0 ? ToIndex(position[ToIndex(search.Resume())]) : i + 1;
     }
   }
   if (empty >= 0)
@@ -289,7 +285,7 @@ std::int64_t BlockSolver::RunBlock(const Block& block, Random& rng, std::int64_t
   // Success: commit the block.
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
-    const auto s = static_cast<std::size_t>(global(local));
+    const auto s = ToIndex(global(local));
     const int b = cat.Single(local);
     if (this->Model[s] != b)
     {
@@ -314,20 +310,19 @@ std::int64_t BlockSolver::AssignByEntropy(
     int Count;
     bool operator<(const Entry& o) const { return this->Priority > o.Priority; } // min-heap
   };
-  std::vector<double> noise(static_cast<std::size_t>(cat.NumberOfSites()), 0.0);
-  std::vector<std::uint8_t> isFree(static_cast<std::size_t>(cat.NumberOfSites()), 0);
+  std::vector<double> noise(ToIndex(cat.NumberOfSites()), 0.0);
+  std::vector<std::uint8_t> isFree(ToIndex(cat.NumberOfSites()), 0);
   for (std::int64_t local : free)
   {
-    noise[static_cast<std::size_t>(local)] = 1e-6 * rng.Uniform();
-    isFree[static_cast<std::size_t>(local)] = 1;
+    noise[ToIndex(local)] = 1e-6 * rng.Uniform();
+    isFree[ToIndex(local)] = 1;
   }
   auto entropy = [&](std::int64_t local) { return this->Entropy(cat, local); };
   std::priority_queue<Entry> heap;
   for (std::int64_t local : free)
   {
     if (cat.Count(local) > 1)
-      heap.push(
-        { entropy(local) + noise[static_cast<std::size_t>(local)], local, cat.Count(local) });
+      heap.push({ entropy(local) + noise[ToIndex(local)], local, cat.Count(local) });
   }
   cat.ClearChanged();
   while (!heap.empty())
@@ -341,9 +336,8 @@ std::int64_t BlockSolver::AssignByEntropy(
       return empty;
     for (std::int64_t local : cat.Changed())
     {
-      if (isFree[static_cast<std::size_t>(local)] && cat.Count(local) > 1)
-        heap.push(
-          { entropy(local) + noise[static_cast<std::size_t>(local)], local, cat.Count(local) });
+      if (isFree[ToIndex(local)] && cat.Count(local) > 1)
+        heap.push({ entropy(local) + noise[ToIndex(local)], local, cat.Count(local) });
     }
     if (this->Budget)
       this->SyncCounts(); // before the changes are dropped
@@ -379,7 +373,7 @@ double BlockSolver::Entropy(const Catalog& cat, std::int64_t local) const
       else
       {
         sum += this->Weight(b);
-        sumWLogW += this->WLogW[static_cast<std::size_t>(b)];
+        sumWLogW += this->WLogW[ToIndex(b)];
       }
     }
   return sum > 0.0 ? std::log(sum) - sumWLogW / sum : 0.0;
@@ -400,7 +394,7 @@ CatalogSnapshot BlockSolver::Capture(const Block* active, std::int64_t assignmen
   for (std::size_t s = 0; s < n; ++s)
   {
     const int b = this->Model[s];
-    snap.Labels[s] = b >= 0 ? values[static_cast<std::size_t>(b)] : CatalogSnapshot::Undecided;
+    snap.Labels[s] = b >= 0 ? values[ToIndex(b)] : CatalogSnapshot::Undecided;
     if (b < 0)
     {
       snap.CatalogSize[s] = k; // never constrained yet (whole-model start)
@@ -413,13 +407,12 @@ CatalogSnapshot BlockSolver::Capture(const Block* active, std::int64_t assignmen
     for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
     {
       const Coord c = cat.Coordinates(local);
-      const auto s = static_cast<std::size_t>(this->Index(
+      const auto s = ToIndex(this->Index(
         { { active->Origin[0] + c[0], active->Origin[1] + c[1], active->Origin[2] + c[2] } }));
       const int count = cat.Count(local);
       snap.CatalogSize[s] = count;
       snap.Entropy[s] = static_cast<float>(this->Entropy(cat, local));
-      snap.Labels[s] = count == 1 ? values[static_cast<std::size_t>(cat.Single(local))]
-                                  : CatalogSnapshot::Undecided;
+      snap.Labels[s] = count == 1 ? values[ToIndex(cat.Single(local))] : CatalogSnapshot::Undecided;
     }
   }
   return snap;

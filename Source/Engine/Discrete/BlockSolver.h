@@ -13,6 +13,7 @@
  * BlockSolverWeights.cxx the label weights (guide, resemblance) and the site constraints.
  */
 #include "Core/BlockDriver.h"
+#include "Core/Index.h"
 #include "Core/Random.h"
 #include "Discrete/Catalog.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -65,7 +66,7 @@ void ForEachSite(const Block& block, const Coord& n, Visit&& visit)
   for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
     for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
       for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
-        visit(static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2])));
+        visit(ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2])));
 }
 
 /// The model being synthesized, shared by the solvers of all threads. Blocks of one phase
@@ -274,7 +275,7 @@ private:
 
   float GuideWeight(std::int64_t cell, int b) const
   {
-    return this->GuideWeights[static_cast<std::size_t>(cell * this->Rules.NumberOfLabels() + b)];
+    return this->GuideWeights[ToIndex(cell * this->Rules.NumberOfLabels() + b)];
   }
 
   /// The weight of label @p b at a site of guide cell @p cell (the base weight without a guide).
@@ -293,9 +294,7 @@ private:
 
   double Weight(int b) const
   {
-    return this->Options.Choice == LabelChoice::Frequency
-      ? this->Rules.Weights()[static_cast<std::size_t>(b)]
-      : 1.0;
+    return this->Options.Choice == LabelChoice::Frequency ? this->Rules.Weights()[ToIndex(b)] : 1.0;
   }
 
   std::int64_t Index(const Coord& p) const

@@ -5,6 +5,7 @@
 // D§3.5.3, and the unary site constraints (guide, mirror planes, symmetry seams).
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +53,7 @@ int BlockSolver::DecidedLabel(const Coord& q) const
     const std::int64_t local = this->Cat.Local(q[0] - o[0], q[1] - o[1], q[2] - o[2]);
     return this->Cat.Count(local) == 1 ? this->Cat.Single(local) : -1;
   }
-  return this->Model[static_cast<std::size_t>(this->Index(q))];
+  return this->Model[ToIndex(this->Index(q))];
 }
 
 /// L(k) of Eqs. 4-5 for every label of the catalog at @p local (written to @p weights):
@@ -81,12 +82,12 @@ void BlockSolver::ResemblanceWeights(std::int64_t local, std::vector<double>& we
   const int k = this->Rules.NumberOfLabels();
   std::int64_t d0 = std::numeric_limits<std::int64_t>::max();
   std::vector<std::int64_t>& count = this->ResemblanceCounts;
-  count.assign(static_cast<std::size_t>(k), 0);
+  count.assign(ToIndex(k), 0);
   for (std::int64_t z = 0; z < ed[2]; ++z)
     for (std::int64_t y = 0; y < ed[1]; ++y)
       for (std::int64_t x = 0; x < ed[0]; ++x)
       {
-        const int centre = this->ExampleIndex[static_cast<std::size_t>(e.Index(x, y, z))];
+        const int centre = this->ExampleIndex[ToIndex(e.Index(x, y, z))];
         if (!this->Cat.Contains(local, centre))
           continue; // (v, k) not in the catalog: L(k) = 0 (Eq. 5)
         // Perceptual distance over the positions both windows define (inside E, decided in
@@ -99,7 +100,7 @@ void BlockSolver::ResemblanceWeights(std::int64_t local, std::vector<double>& we
           const auto& q = this->WindowOffsets[a.first];
           const std::int64_t ex = x + q[0], ey = y + q[1], ez = z + q[2];
           if (e.Contains(ex, ey, ez) &&
-            this->ExampleIndex[static_cast<std::size_t>(e.Index(ex, ey, ez))] != a.second)
+            this->ExampleIndex[ToIndex(e.Index(ex, ey, ez))] != a.second)
             ++d;
         }
         if (d < d0)
@@ -108,11 +109,11 @@ void BlockSolver::ResemblanceWeights(std::int64_t local, std::vector<double>& we
           std::fill(count.begin(), count.end(), 0);
         }
         if (d == d0)
-          ++count[static_cast<std::size_t>(centre)];
+          ++count[ToIndex(centre)];
       }
-  weights.assign(static_cast<std::size_t>(k), 0.0);
+  weights.assign(ToIndex(k), 0.0);
   for (int b = 0; b < k; ++b)
-    weights[static_cast<std::size_t>(b)] = static_cast<double>(count[static_cast<std::size_t>(b)]);
+    weights[ToIndex(b)] = static_cast<double>(count[ToIndex(b)]);
 }
 
 /// Dense guide weights [cell][label index] and, per cell, the mask of labels allowed there.
@@ -125,7 +126,7 @@ void BlockSolver::SetUpGuide(const GuideVolume& guide)
   const int k = this->Rules.NumberOfLabels();
   if (cells > (std::int64_t(1) << 28) / k)
     throw Error("the guide volume is too large (cells × labels above 2^28)");
-  this->GuideWeights.assign(static_cast<std::size_t>(cells * k), 1.0f);
+  this->GuideWeights.assign(ToIndex(cells * k), 1.0f);
   for (const auto& kv : guide.Weights)
   {
     const int b = this->Rules.IndexOf(kv.first);
@@ -137,20 +138,19 @@ void BlockSolver::SetUpGuide(const GuideVolume& guide)
         std::to_string(kv.second.size()) + " values for " + std::to_string(cells) + " cells");
     for (std::int64_t c = 0; c < cells; ++c)
     {
-      const float w = kv.second[static_cast<std::size_t>(c)];
+      const float w = kv.second[ToIndex(c)];
       if (!(w >= 0.0f) || !std::isfinite(w))
         throw Error("the guide weight of label " + std::to_string(kv.first) + " in cell " +
           std::to_string(c) + " is negative or not finite");
-      this->GuideWeights[static_cast<std::size_t>(c * k + b)] = w;
+      this->GuideWeights[ToIndex(c * k + b)] = w;
     }
   }
   const int words = this->Rules.Words();
-  this->GuideMasks.assign(static_cast<std::size_t>(cells * words), 0);
+  this->GuideMasks.assign(ToIndex(cells * words), 0);
   for (std::int64_t c = 0; c < cells; ++c)
     for (int b = 0; b < k; ++b)
-      if (this->GuideWeights[static_cast<std::size_t>(c * k + b)] > 0.0f)
-        this->GuideMasks[static_cast<std::size_t>(c * words + b / 64)] |= std::uint64_t(1)
-          << (b % 64);
+      if (this->GuideWeights[ToIndex(c * k + b)] > 0.0f)
+        this->GuideMasks[ToIndex(c * words + b / 64)] |= std::uint64_t(1) << (b % 64);
 }
 
 /// Unary constraints of a free site @p p: the guide (at the site and, with symmetry, at each
@@ -160,23 +160,21 @@ bool BlockSolver::KeepSiteConstraints(Catalog& cat, std::int64_t local, const Co
   const int words = this->Rules.Words();
   if (this->Seams) // its masks hold the seams' unary constraints and the guide at every image
     return !this->Seams->HasMasks() ||
-      cat.Keep(
-        local, this->Seams->SiteMasks.data() + static_cast<std::size_t>(this->Index(p)) * words);
+      cat.Keep(local, this->Seams->SiteMasks.data() + ToIndex(this->Index(p)) * words);
   if (this->Plan)
   {
     for (int a = 0; a < 3; ++a)
-      if (this->Plan->Axes[static_cast<std::size_t>(a)] && p[a] == this->N[a] - 1 &&
-        !cat.Keep(local, this->Plan->ColumnMask[static_cast<std::size_t>(a)].data()))
+      if (this->Plan->Axes[ToIndex(a)] && p[a] == this->N[a] - 1 &&
+        !cat.Keep(local, this->Plan->ColumnMask[ToIndex(a)].data()))
         return false;
   }
   if (!this->HasGuide())
     return true;
   if (!this->Plan)
-    return cat.Keep(
-      local, this->GuideMasks.data() + static_cast<std::size_t>(this->GuideCell(p)) * words);
+    return cat.Keep(local, this->GuideMasks.data() + ToIndex(this->GuideCell(p)) * words);
   // Label b is allowed when each image of the site allows the image of b.
   std::vector<std::uint64_t>& mask = this->MaskScratch;
-  mask.assign(static_cast<std::size_t>(words), 0);
+  mask.assign(ToIndex(words), 0);
   const int axes = this->Plan->AxisMask();
   for (int b = 0; b < this->Rules.NumberOfLabels(); ++b)
   {
@@ -189,7 +187,7 @@ bool BlockSolver::KeepSiteConstraints(Catalog& cat, std::int64_t local, const Co
       ok = this->GuideWeight(cell, this->Plan->Image(b, subset)) > 0.0f;
     }
     if (ok)
-      mask[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+      mask[ToIndex(b / 64)] |= std::uint64_t(1) << (b % 64);
   }
   return cat.Keep(local, mask.data());
 }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/Catalog.h"
+#include "Core/Index.h"
 
 namespace msynth
 {
@@ -15,7 +16,7 @@ void Catalog::Reset(
   {
     ((d & 1) ? lower : upper)[AxisOf(d)] |= 1u << d;
   }
-  this->Inside.resize(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]));
+  this->Inside.resize(ToIndex(dims[0] * dims[1] * dims[2]));
   std::size_t s = 0;
   for (std::int64_t z = 0; z < dims[2]; ++z)
   {
@@ -46,7 +47,7 @@ std::int64_t Catalog::Propagate()
   return this->LabelDomains::Propagate(*this->Relation,
     [&](std::int64_t v, auto&& visit)
     {
-      const unsigned inside = this->Inside[static_cast<std::size_t>(v)];
+      const unsigned inside = this->Inside[ToIndex(v)];
       for (int d = 0; d < NumberOfDirections; ++d)
       {
         if (!((inside >> d) & 1u))
@@ -68,10 +69,9 @@ std::int64_t Catalog::Propagate()
       const auto& o = this->RegionOrigin;
       const auto& n = arcs->Dims;
       const std::int64_t g = (o[0] + p[0]) + n[0] * ((o[1] + p[1]) + n[1] * (o[2] + p[2]));
-      for (std::int64_t i = arcs->Start[static_cast<std::size_t>(g)];
-           i < arcs->Start[static_cast<std::size_t>(g + 1)]; ++i)
+      for (std::int64_t i = arcs->Start[ToIndex(g)]; i < arcs->Start[ToIndex(g + 1)]; ++i)
       {
-        const std::int64_t t = arcs->Target[static_cast<std::size_t>(i)];
+        const std::int64_t t = arcs->Target[ToIndex(i)];
         const std::int64_t q[3] = { t % n[0] - o[0], (t / n[0]) % n[1] - o[1],
           t / (n[0] * n[1]) - o[2] };
         if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= dims[0] || q[1] >= dims[1] ||
@@ -79,8 +79,7 @@ std::int64_t Catalog::Propagate()
         {
           continue;
         }
-        if (!visit(
-              q[0] + stride[1] * q[1] + stride[2] * q[2], arcs->Class[static_cast<std::size_t>(i)]))
+        if (!visit(q[0] + stride[1] * q[1] + stride[2] * q[2], arcs->Class[ToIndex(i)]))
         {
           return;
         }

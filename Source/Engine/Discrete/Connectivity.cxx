@@ -2,6 +2,7 @@
 #include "Discrete/Connectivity.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
 
@@ -36,16 +37,16 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
 {
   const std::int64_t total = n[0] * n[1] * n[2];
   const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
-  seen.assign(static_cast<std::size_t>(total), 0);
+  seen.assign(ToIndex(total), 0);
   std::int32_t number = 0; // seen: the component's number + 1
   for (std::int64_t first = 0; first < total; ++first)
   {
-    if (seen[static_cast<std::size_t>(first)] || rule.Sides(label(first)) < 0)
+    if (seen[ToIndex(first)] || rule.Sides(label(first)) < 0)
       continue;
     Component c;
     c.Low = { { first % n[0], (first / n[0]) % n[1], first / (n[0] * n[1]) } };
     c.High = c.Low;
-    seen[static_cast<std::size_t>(first)] = ++number;
+    seen[ToIndex(first)] = ++number;
     stack.assign(1, first);
     while (!stack.empty())
     {
@@ -62,7 +63,7 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
       const int sides = rule.Sides(label(s));
       for (int d = 0; d < 6; ++d)
       {
-        const std::size_t a = static_cast<std::size_t>(d / 2);
+        const std::size_t a = ToIndex(d / 2);
         const bool up = d % 2 == 0;
         if (!((sides >> d) & 1) || (up ? p[a] + 1 >= n[a] : p[a] == 0))
           continue;
@@ -70,9 +71,9 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
         if (open(q))
           c.Open = true; // the side faces a site still to be written
         const int other = rule.Sides(label(q));
-        if (other < 0 || !((other >> (d ^ 1)) & 1) || seen[static_cast<std::size_t>(q)])
+        if (other < 0 || !((other >> (d ^ 1)) & 1) || seen[ToIndex(q)])
           continue;
-        seen[static_cast<std::size_t>(q)] = number;
+        seen[ToIndex(q)] = number;
         stack.push_back(q);
       }
     }
@@ -90,8 +91,8 @@ std::vector<Component> FindComponents(const NetworkRule& rule,
   std::vector<std::int32_t>& seen = ids ? *ids : scratch;
   std::vector<std::int64_t> stack;
   Flood(
-    rule, n, [&](std::int64_t s) { return model[static_cast<std::size_t>(s)]; },
-    [](std::int64_t) { return false; }, [&](const Component& c) { out.push_back(c); }, seen, stack);
+    rule, n, [&](std::int64_t s) { return model[ToIndex(s)]; }, [](std::int64_t) { return false; },
+    [&](const Component& c) { out.push_back(c); }, seen, stack);
   return out;
 }
 
@@ -115,8 +116,7 @@ void CheckPath(
           " sites)");
     if (options.Pins)
     {
-      const Label pin =
-        options.Pins->Data()[static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2]))];
+      const Label pin = options.Pins->Data()[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))];
       if (pin != FreeSite &&
         std::find(network.Values.begin(), network.Values.end(), pin) == network.Values.end())
         throw Error("the path's site " + Format(p) + " is pinned to label " + std::to_string(pin) +
@@ -132,21 +132,21 @@ void CheckPath(
 
 NetworkRule::NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network)
 {
-  this->Mask.assign(static_cast<std::size_t>(rules.NumberOfLabels()), -1);
+  this->Mask.assign(ToIndex(rules.NumberOfLabels()), -1);
   for (Label v : network.Values)
   {
     const int b = rules.IndexOf(v);
     if (b < 0)
       continue;
     const auto side = network.Sides.find(v);
-    this->Mask[static_cast<std::size_t>(b)] = side == network.Sides.end() ? 63 : side->second;
+    this->Mask[ToIndex(b)] = side == network.Sides.end() ? 63 : side->second;
   }
   this->Path.assign(this->Mask.size(), 0);
   for (Label v : network.PathLabels)
   {
     const int b = rules.IndexOf(v);
     if (b >= 0)
-      this->Path[static_cast<std::size_t>(b)] = 1;
+      this->Path[ToIndex(b)] = 1;
   }
 }
 
@@ -200,12 +200,12 @@ NetworkGuard::NetworkGuard(
   std::int64_t indices = 0;
   for (const Block& b : blocks)
     indices = std::max(indices, b.Index + 1);
-  this->Position.assign(static_cast<std::size_t>(indices), -1);
-  this->OwnerPosition.assign(static_cast<std::size_t>(n[0] * n[1] * n[2]), -1);
+  this->Position.assign(ToIndex(indices), -1);
+  this->OwnerPosition.assign(ToIndex(n[0] * n[1] * n[2]), -1);
   for (std::size_t i = 0; i < blocks.size(); ++i) // in run order: the last to cover a site owns it
   {
     const Block& b = blocks[i];
-    this->Position[static_cast<std::size_t>(b.Index)] = static_cast<std::int32_t>(i);
+    this->Position[ToIndex(b.Index)] = static_cast<std::int32_t>(i);
     ForEachSite(
       b, n, [&](std::size_t s) { this->OwnerPosition[s] = static_cast<std::int32_t>(i); });
   }
@@ -214,7 +214,7 @@ NetworkGuard::NetworkGuard(
 bool NetworkGuard::Keeps(
   const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model)
 {
-  const std::int32_t now = this->Position[static_cast<std::size_t>(block.Index)];
+  const std::int32_t now = this->Position[ToIndex(block.Index)];
   const Coord& n = this->N;
   const Coord& o = block.Origin;
   auto inBlock = [&](std::int64_t s, std::int64_t& local)
@@ -234,11 +234,11 @@ bool NetworkGuard::Keeps(
     {
       std::int64_t local = 0;
       return after && inBlock(s, local) ? static_cast<std::int32_t>(cat.Single(local))
-                                        : model[static_cast<std::size_t>(s)];
+                                        : model[ToIndex(s)];
     };
     auto isOpen = [&](std::int64_t s)
     {
-      const std::int32_t owner = this->OwnerPosition[static_cast<std::size_t>(s)];
+      const std::int32_t owner = this->OwnerPosition[ToIndex(s)];
       return (after ? owner > now : owner >= now) || label(s) < 0;
     };
     closed = open = 0;
@@ -292,16 +292,16 @@ struct Repair
     , Stats(stats)
   {
     this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
-    this->Sparse.assign(static_cast<std::size_t>(rule.Labels()), 1.0);
+    this->Sparse.assign(ToIndex(rule.Labels()), 1.0);
     for (std::size_t b = 0; b < this->Sparse.size(); ++b)
       if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
         this->Sparse[b] = 1.0 / 64;
     const Coord n = solver.Size();
     for (const Coord& p : options.Connected.PathSites)
       this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
-    this->PathLabel.assign(static_cast<std::size_t>(rule.Labels()), 0);
+    this->PathLabel.assign(ToIndex(rule.Labels()), 0);
     for (int b = 0; b < rule.Labels(); ++b)
-      this->PathLabel[static_cast<std::size_t>(b)] = rule.OnPath(b) ? 1 : 0;
+      this->PathLabel[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
     this->PathLabelSites = this->CountPathLabelSites(shared.Model);
     this->Now = this->Measure(this->Parts, this->Ids, this->PathPart);
   }
@@ -310,7 +310,7 @@ struct Repair
   {
     std::int64_t count = 0;
     for (std::int32_t b : model)
-      count += b >= 0 && this->PathLabel[static_cast<std::size_t>(b)] ? 1 : 0;
+      count += b >= 0 && this->PathLabel[ToIndex(b)] ? 1 : 0;
     return count;
   }
 
@@ -323,18 +323,18 @@ struct Repair
     Shortfall f{ { 0, 0, static_cast<std::int64_t>(parts.size()) } };
     for (std::int64_t s : this->PathSites)
     {
-      const std::int32_t id = ids[static_cast<std::size_t>(s)];
+      const std::int32_t id = ids[ToIndex(s)];
       if (id == 0)
         ++f[0];
       else
-        pathPart[static_cast<std::size_t>(id - 1)] = 1;
+        pathPart[ToIndex(id - 1)] = 1;
     }
     if (!this->Options.Connected.PathLabels.empty())
       for (std::size_t s = 0; s < ids.size(); ++s)
       {
         const std::int32_t b = this->Shared.Model[s];
-        if (b >= 0 && this->PathLabel[static_cast<std::size_t>(b)] && ids[s] != 0)
-          pathPart[static_cast<std::size_t>(ids[s] - 1)] = 1;
+        if (b >= 0 && this->PathLabel[ToIndex(b)] && ids[s] != 0)
+          pathPart[ToIndex(ids[s] - 1)] = 1;
       }
     for (char c : pathPart)
       f[1] += c;
@@ -428,19 +428,18 @@ struct Repair
       for (std::int64_t s : front)
         for (int d = 0; d < 6; ++d)
         {
-          const auto a = static_cast<std::size_t>(d / 2);
+          const auto a = ToIndex(d / 2);
           const std::int64_t along = (s / stride[a]) % n[a];
           if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
             continue;
           const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
-          if (origin[static_cast<std::size_t>(q)] >= 0)
+          if (origin[ToIndex(q)] >= 0)
             continue;
-          origin[static_cast<std::size_t>(q)] = origin[static_cast<std::size_t>(s)];
-          const std::int32_t id = this->Ids[static_cast<std::size_t>(q)];
-          if (id != 0 && id != c + 1 &&
-            (!toPath || this->PathPart[static_cast<std::size_t>(id - 1)]))
+          origin[ToIndex(q)] = origin[ToIndex(s)];
+          const std::int32_t id = this->Ids[ToIndex(q)];
+          if (id != 0 && id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
           {
-            from = origin[static_cast<std::size_t>(q)];
+            from = origin[ToIndex(q)];
             to = q;
             return true;
           }
@@ -488,7 +487,7 @@ struct Repair
   bool Step()
   {
     for (std::int64_t s : this->PathSites)
-      if (this->Ids[static_cast<std::size_t>(s)] == 0)
+      if (this->Ids[ToIndex(s)] == 0)
       {
         const Coord p = this->At(s);
         for (std::int64_t grow = 1; grow <= 8; grow *= 2)

@@ -21,6 +21,7 @@
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in
  * the order listed sites outside the network, components holding path sites, components.
  */
+#include "Core/Index.h"
 #include "Discrete/BlockSolver.h"
 
 #include <cstdint>
@@ -39,12 +40,12 @@ public:
   NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network);
   /// The sides label index @p b connects through (bit 2a: toward +a, 2a+1: toward -a), or -1
   /// when it is not a network label (or @p b < 0, undecided).
-  int Sides(std::int32_t b) const { return b < 0 ? -1 : this->Mask[static_cast<std::size_t>(b)]; }
+  int Sides(std::int32_t b) const { return b < 0 ? -1 : this->Mask[ToIndex(b)]; }
 
   /// The number of label indices.
   int Labels() const { return static_cast<int>(this->Mask.size()); }
   /// Whether label index @p b is one of the path's labels (ConnectedNetwork::PathLabels).
-  bool OnPath(int b) const { return this->Path[static_cast<std::size_t>(b)] != 0; }
+  bool OnPath(int b) const { return this->Path[ToIndex(b)] != 0; }
 
 private:
   std::vector<int> Mask;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/ConsistencyCheck.h"
+#include "Core/Index.h"
 
 #include <set>
 #include <tuple>
@@ -41,7 +42,7 @@ ConsistencyReport CheckConsistency(const std::vector<LabelGrid>& examples,
 {
   std::set<std::tuple<int, Label, Label>> allowed;
   for (int axis = 0; axis < 3; ++axis)
-    for (const auto& p : pairs[static_cast<std::size_t>(axis)])
+    for (const auto& p : pairs[ToIndex(axis)])
       allowed.emplace(axis, p.first, p.second);
   // Eq. 3.1 directly: the set of (axis, E(x'), E(x' + d)) over each example.
   for (const LabelGrid& example : examples)

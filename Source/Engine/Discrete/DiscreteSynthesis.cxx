@@ -7,6 +7,7 @@
 
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Core/MirrorFold.h"
 #include "Core/Random.h"
@@ -52,8 +53,8 @@ public:
     if (!this->Options.Active())
       return;
     const int k = rules.NumberOfLabels();
-    this->Target.assign(static_cast<std::size_t>(k), -1.0);
-    this->Counts.assign(static_cast<std::size_t>(k), 0);
+    this->Target.assign(ToIndex(k), -1.0);
+    this->Counts.assign(ToIndex(k), 0);
     this->Saved.resize(blocks);
     for (const auto& kv : this->Options.TargetFractions)
     {
@@ -64,12 +65,12 @@ public:
       if (!(kv.second >= 0.0 && kv.second <= 1.0))
         throw Error(
           "the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
-      this->Target[static_cast<std::size_t>(b)] = kv.second;
+      this->Target[ToIndex(b)] = kv.second;
     }
     if (!(this->Options.Temperature > 0.0) || !std::isfinite(this->Options.Temperature))
       throw Error("the soft constraints' temperature must be positive");
     for (std::int32_t b : shared.Model)
-      ++this->Counts[static_cast<std::size_t>(b)];
+      ++this->Counts[ToIndex(b)];
     if (this->Options.Fitness)
       this->Fitness = this->Options.Fitness(this->ModelGrid());
   }
@@ -95,21 +96,21 @@ public:
     if (!this->Options.Active())
       return true;
     const int k = this->Rules.NumberOfLabels();
-    std::vector<std::int64_t> delta(static_cast<std::size_t>(k), 0);
+    std::vector<std::int64_t> delta(ToIndex(k), 0);
     const std::vector<std::int32_t>& saved = this->Saved[i];
     std::size_t at = 0;
     ForEachSite(block, this->N,
       [&](std::size_t s)
       {
-        --delta[static_cast<std::size_t>(saved[at])];
-        ++delta[static_cast<std::size_t>(this->Shared.Model[s])];
+        --delta[ToIndex(saved[at])];
+        ++delta[ToIndex(this->Shared.Model[s])];
         at += 2;
       });
     double dE = 0.0;
     for (int b = 0; b < k; ++b)
     {
-      const auto c = this->Counts[static_cast<std::size_t>(b)];
-      const auto d = delta[static_cast<std::size_t>(b)];
+      const auto c = this->Counts[ToIndex(b)];
+      const auto d = delta[ToIndex(b)];
       if (d != 0)
         dE += this->Energy(b, c + d) - this->Energy(b, c);
     }
@@ -127,7 +128,7 @@ public:
     if (ratio >= 1.0 || rng.Uniform() < ratio)
     {
       for (int b = 0; b < k; ++b)
-        this->Counts[static_cast<std::size_t>(b)] += delta[static_cast<std::size_t>(b)];
+        this->Counts[ToIndex(b)] += delta[ToIndex(b)];
       this->Fitness = fitness;
       return true;
     }
@@ -146,7 +147,7 @@ private:
   /// N · (fraction − target)² of label @p b at @p count sites (0 without a target).
   double Energy(int b, std::int64_t count) const
   {
-    const double t = this->Target[static_cast<std::size_t>(b)];
+    const double t = this->Target[ToIndex(b)];
     const auto sites = static_cast<double>(this->Shared.Model.size());
     return t < 0.0 ? 0.0 : sites * (double(count) / sites - t) * (double(count) / sites - t);
   }
@@ -155,7 +156,7 @@ private:
   {
     std::vector<Label> values(this->Shared.Model.size());
     for (std::size_t i = 0; i < values.size(); ++i)
-      values[i] = this->Rules.LabelValues()[static_cast<std::size_t>(this->Shared.Model[i])];
+      values[i] = this->Rules.LabelValues()[ToIndex(this->Shared.Model[i])];
     return LabelGrid(this->N, std::move(values));
   }
 
@@ -207,7 +208,7 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
     BlockSolver& worker = workers[w];
     worker.SetFinalAttempt(attempt + 1 >= attempts);
     if (!orders.empty())
-      worker.SetOrder(orders[static_cast<std::size_t>(attempt) % orders.size()]);
+      worker.SetOrder(orders[ToIndex(attempt) % orders.size()]);
     return worker.RunBlock(blocks[i], rng, assignments);
   };
   client.After = [&blocks, &soft, &solver, &stats](std::size_t i, const BlockOutcome& out)
@@ -323,7 +324,7 @@ void CheckStartInWindow(
     for (std::size_t s = 0; s < start.size(); ++s)
     {
       const auto along = (static_cast<std::int64_t>(s) / stride) % n[a];
-      if (along + 1 < n[a] && start[s] != start[s + static_cast<std::size_t>(stride)])
+      if (along + 1 < n[a] && start[s] != start[s + ToIndex(stride)])
         throw Error(std::string("a region of this world cannot be computed alone: its start is "
                                 "layered along ") +
           "xyz"[a] + " (no label tiles space), so it depends on where the region lies; compute " +
@@ -347,7 +348,7 @@ std::vector<Block> WindowBlocks(const RegionCone& cone, std::size_t pass = 0)
 const std::vector<Block>& RepairCandidates(
   const RegionCone& cone, int round, std::vector<Block>& scratch)
 {
-  scratch = WindowBlocks(cone, static_cast<std::size_t>(round + 1));
+  scratch = WindowBlocks(cone, ToIndex(round + 1));
   return scratch;
 }
 
@@ -379,7 +380,7 @@ bool StartBlocks(const AdjacencyRules& rules, const SynthesisOptions& options, B
   if (!wholeModel)
     stats.StartFrom = undecided ? "undecided" : "trivial";
   if (!wholeModel && !undecided)
-    stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(solver.TrivialStart())];
+    stats.TrivialLabel = rules.LabelValues()[ToIndex(solver.TrivialStart())];
   if (cone && !undecided)
     CheckStartInWindow(*cone, shared.Model, solver.Size());
   solver.ApplyPins(); // after the start's own checks: the pins are placed into it later
@@ -406,7 +407,7 @@ void ModelFromShared(
 {
   std::vector<Label> values(shared.Model.size());
   for (std::size_t s = 0; s < values.size(); ++s)
-    values[s] = rules.LabelValues()[static_cast<std::size_t>(shared.Model[s])];
+    values[s] = rules.LabelValues()[ToIndex(shared.Model[s])];
   r.Model = LabelGrid(n, std::move(values));
   r.LastBlock = std::move(shared.LastBlock);
 }
@@ -545,7 +546,7 @@ struct Unfolding
     out.Step = part.Step;
     out.Block = part.Block;
     out.Assignments = part.Assignments;
-    const auto n = static_cast<std::size_t>(this->Full[0] * this->Full[1] * this->Full[2]);
+    const auto n = ToIndex(this->Full[0] * this->Full[1] * this->Full[2]);
     out.CatalogSize.resize(n);
     out.Entropy.resize(n);
     out.Labels.resize(n);
@@ -564,7 +565,7 @@ struct Unfolding
   void Apply(SynthesisResult& r) const
   {
     LabelGrid model(this->Full[0], this->Full[1], this->Full[2]);
-    std::vector<std::int32_t> lastBlock(static_cast<std::size_t>(model.NumberOfSites()));
+    std::vector<std::int32_t> lastBlock(ToIndex(model.NumberOfSites()));
     this->ForEach(
       [&](std::size_t i, const Coord& q, std::size_t j)
       {
@@ -599,9 +600,9 @@ SynthesisResult SynthesizeSeamSymmetric(
   const auto& values = rules.LabelValues();
   Unfolding unfolding;
   unfolding.Full = plan->Full;
-  unfolding.Source = [&plan](const Coord& q) { return static_cast<std::size_t>(plan->Source(q)); };
+  unfolding.Source = [&plan](const Coord& q) { return ToIndex(plan->Source(q)); };
   unfolding.Image = [&](const Coord& q, Label v)
-  { return values[static_cast<std::size_t>(plan->Image(q, rules.IndexOf(v)))]; };
+  { return values[ToIndex(plan->Image(q, rules.IndexOf(v)))]; };
   SynthesisResult r =
     SynthesizePart(rules, options, plan->DomainOptions, nullptr, plan.get(), unfolding);
   if (r.Succeeded())
@@ -639,9 +640,9 @@ std::int64_t CountBlocks(const SynthesisOptions& requested)
   SynthesisOptions options = requested;
   for (int a = 0; a < 3; ++a)
   {
-    if (requested.Symmetry[static_cast<std::size_t>(a)].Enabled)
+    if (requested.Symmetry[ToIndex(a)].Enabled)
       options.Size[a] = (requested.Size[a] + 1) / 2; // the synthesized half
-    const Translation& t = requested.Translate[static_cast<std::size_t>(a)];
+    const Translation& t = requested.Translate[ToIndex(a)];
     if (t.Enabled && t.Period > 0 && t.Period < requested.Size[a])
       options.Size[a] = t.Period; // one period
   }
@@ -754,12 +755,12 @@ SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const Synthesis
   {
     Coord p;
     fold(q, p);
-    return static_cast<std::size_t>(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
+    return ToIndex(p[0] + plan.Half[0] * (p[1] + plan.Half[1] * p[2]));
   };
   unfolding.Image = [&](const Coord& q, Label v)
   {
     Coord p;
-    return values[static_cast<std::size_t>(plan.Image(rules.IndexOf(v), fold(q, p)))];
+    return values[ToIndex(plan.Image(rules.IndexOf(v), fold(q, p)))];
   };
   SynthesisResult r = SynthesizePart(rules, options, plan.HalfOptions, &plan, nullptr, unfolding);
   if (!r.Succeeded())

@@ -16,6 +16,7 @@
  * seed, and blocks of one phase can later run concurrently with the same result.
  */
 #include "Core/BlockSynthesis.h"
+#include "Core/Index.h"
 #include "Core/LabelGrid.h"
 #include "Core/SynthesisChoices.h"
 #include "Discrete/AdjacencyRules.h"
@@ -396,8 +397,7 @@ struct StreamLayout
   /// Sites in one layer across Axis.
   std::int64_t Cross() const
   {
-    return this->World[0] * this->World[1] * this->World[2] /
-      this->World[static_cast<std::size_t>(this->Axis)];
+    return this->World[0] * this->World[1] * this->World[2] / this->World[ToIndex(this->Axis)];
   }
   /// Layers across Axis that make about @p sites sites (at least 1).
   std::int64_t LayersOf(std::int64_t sites) const

@@ -2,6 +2,7 @@
 #include "Discrete/ExampleAnalysis.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <unordered_map>
@@ -35,7 +36,7 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
   for (std::size_t i = 0; i < site.size(); ++i)
   {
     site[i] = indexOf.at(example.Data()[i]);
-    ++result.Counts[static_cast<std::size_t>(site[i])];
+    ++result.Counts[ToIndex(site[i])];
   }
 
   // Eq. 3.2: count every (E(x'), E(x' + d)) pair with both sites inside E.
@@ -56,9 +57,8 @@ ExampleAnalysis ExampleAnalysis::FromExample(const LabelGrid& example)
             continue;
           }
           const std::int64_t i = example.Index(x, y, z);
-          const auto from = static_cast<std::uint32_t>(site[static_cast<std::size_t>(i)]);
-          const auto to =
-            static_cast<std::uint32_t>(site[static_cast<std::size_t>(i + stride[axis])]);
+          const auto from = static_cast<std::uint32_t>(site[ToIndex(i)]);
+          const auto to = static_cast<std::uint32_t>(site[ToIndex(i + stride[axis])]);
           ++counts[(std::uint64_t(from) << 32) | to];
         }
       }

@@ -2,6 +2,7 @@
 #include "Discrete/Infallibility.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <functional>
@@ -41,10 +42,10 @@ InfallibilityReport AnalyzeCorners(const AdjacencyRules& rules,
     std::vector<int> active;
     for (int i = 0; i < m; ++i)
       if (subset & (1 << i))
-        active.push_back(axes[static_cast<std::size_t>(i)]);
+        active.push_back(axes[ToIndex(i)]);
     const int n = static_cast<int>(active.size());
     // Corner c (bits over `active`: bit i set = offset -1 along active[i]); c = 0 is p itself.
-    std::vector<int> label(static_cast<std::size_t>(1 << n), -1);
+    std::vector<int> label(ToIndex(1 << n), -1);
     bool failed = false;
     // Corners are filled in decreasing bit order so each one's lower neighbours come first.
     std::function<void(int)> place = [&](int corner)
@@ -64,8 +65,7 @@ InfallibilityReport AnalyzeCorners(const AdjacencyRules& rules,
         {
           bool ok = true;
           for (int i = 0; i < n && ok; ++i)
-            ok = rules.Allowed(
-              2 * active[static_cast<std::size_t>(i)], label[static_cast<std::size_t>(1 << i)], d);
+            ok = rules.Allowed(2 * active[ToIndex(i)], label[ToIndex(1 << i)], d);
           if (ok)
             return;
         }
@@ -76,10 +76,9 @@ InfallibilityReport AnalyzeCorners(const AdjacencyRules& rules,
           where += where.empty() ? "" : ", ";
           std::string offset = "(";
           for (int i = 0; i < n; ++i)
-            offset += std::string(i ? " " : "") + ((c >> i) & 1 ? "-" : "0") +
-              axisName[active[static_cast<std::size_t>(i)]];
-          where += offset + ")=" +
-            std::to_string(values[static_cast<std::size_t>(label[static_cast<std::size_t>(c)])]);
+            offset +=
+              std::string(i ? " " : "") + ((c >> i) & 1 ? "-" : "0") + axisName[active[ToIndex(i)]];
+          where += offset + ")=" + std::to_string(values[ToIndex(label[ToIndex(c)])]);
         }
         report.Explanation = "no label fits a site whose placed neighbours are " + where;
         return;
@@ -93,15 +92,14 @@ InfallibilityReport AnalyzeCorners(const AdjacencyRules& rules,
           if (corner & (1 << i))
             continue;
           const int further = corner | (1 << i);
-          if (further < (1 << n) && label[static_cast<std::size_t>(further)] >= 0)
-            ok = rules.Allowed(
-              2 * active[static_cast<std::size_t>(i)], label[static_cast<std::size_t>(further)], b);
+          if (further < (1 << n) && label[ToIndex(further)] >= 0)
+            ok = rules.Allowed(2 * active[ToIndex(i)], label[ToIndex(further)], b);
         }
         if (!ok)
           continue;
-        label[static_cast<std::size_t>(corner)] = b;
+        label[ToIndex(corner)] = b;
         place(corner - 1);
-        label[static_cast<std::size_t>(corner)] = -1;
+        label[ToIndex(corner)] = -1;
       }
     };
     place((1 << n) - 1);
@@ -138,9 +136,9 @@ public:
   {
     InfallibilityReport report;
     report.Region = { { 2, 2, 2 } };
-    report.Region[static_cast<std::size_t>(this->Axes[0])] = this->Rx;
-    report.Region[static_cast<std::size_t>(this->Axes[1])] = this->Ry;
-    const std::string none(static_cast<std::size_t>(this->Rx), Nothing);
+    report.Region[ToIndex(this->Axes[0])] = this->Rx;
+    report.Region[ToIndex(this->Axes[1])] = this->Ry;
+    const std::string none(ToIndex(this->Rx), Nothing);
     for (int r = 0; r <= this->Rx - 1; ++r)
       for (int u = 0; u <= this->Ry - 1; ++u)
         this->Add(none, none, r, u);
@@ -195,7 +193,7 @@ private:
     // A row below shows where its row ends, which is where this row ends too.
     if (below[1] != Nothing)
       for (int j = 1; j <= this->Rx - 2; ++j)
-        if ((j <= right) != (below[static_cast<std::size_t>(j + 1)] != Nothing))
+        if ((j <= right) != (below[ToIndex(j + 1)] != Nothing))
           return;
     std::string key = below + recent;
     key.push_back(static_cast<char>(right));
@@ -207,24 +205,24 @@ private:
   void AddWindow(const std::string& w)
   {
     if (this->Windows.insert(w).second)
-      this->Prefixes.insert(w.substr(0, static_cast<std::size_t>(this->Rx)));
+      this->Prefixes.insert(w.substr(0, ToIndex(this->Rx)));
   }
 
   /// Labels still possible at p after propagation inside the window (0: Algorithm 3.6 fails).
   std::uint64_t Catalog(const State& s) const
   {
     const int w = this->Rx, h = this->Ry; // columns dx = -1..Rx-2, rows dy = -1..Ry-2
-    std::vector<std::uint64_t> dom(static_cast<std::size_t>(w * h), 0);
-    std::vector<char> exists(static_cast<std::size_t>(w * h), 0), fixed(dom.size(), 0);
+    std::vector<std::uint64_t> dom(ToIndex(w * h), 0);
+    std::vector<char> exists(ToIndex(w * h), 0), fixed(dom.size(), 0);
     const bool left = s.Recent.back() != Nothing;
     for (int row = 0; row < h; ++row)
       for (int col = 0; col < w; ++col)
       {
-        const auto i = static_cast<std::size_t>(col + w * row);
+        const auto i = ToIndex(col + w * row);
         const int dx = col - 1, dy = row - 1;
         if (dy == -1)
         {
-          const char b = s.Below[static_cast<std::size_t>(col)];
+          const char b = s.Below[ToIndex(col)];
           exists[i] = b != Nothing;
           fixed[i] = 1;
           dom[i] = exists[i] ? std::uint64_t(1) << b : 0;
@@ -247,7 +245,7 @@ private:
       for (int row = 0; row < h; ++row)
         for (int col = 0; col < w; ++col)
         {
-          const auto i = static_cast<std::size_t>(col + w * row);
+          const auto i = ToIndex(col + w * row);
           if (!exists[i] || fixed[i])
             continue;
           const int step[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
@@ -256,7 +254,7 @@ private:
             const int c = col + st[0], r = row + st[1];
             if (c < 0 || r < 0 || c >= w || r >= h)
               continue;
-            const auto j = static_cast<std::size_t>(c + w * r);
+            const auto j = ToIndex(c + w * r);
             if (!exists[j])
               continue;
             // Direction from the neighbour j to i.
@@ -275,7 +273,7 @@ private:
           }
         }
     }
-    return dom[static_cast<std::size_t>(1 + w * 1)];
+    return dom[ToIndex(1 + w * 1)];
   }
 
   void Expand(const State s)
@@ -289,7 +287,7 @@ private:
       return;
     }
     const bool firstRow = s.Below[1] == Nothing;
-    const std::string none(static_cast<std::size_t>(this->Rx), Nothing);
+    const std::string none(ToIndex(this->Rx), Nothing);
     for (std::uint64_t bits = choices; bits; bits &= bits - 1)
     {
       const char e = static_cast<char>(__builtin_ctzll(bits));
@@ -317,7 +315,7 @@ private:
       for (int j = 1; j <= this->Rx; ++j)
       {
         window.push_back(Nothing);
-        this->AddWindow(window.substr(window.size() - static_cast<std::size_t>(this->Rx + 1)));
+        this->AddWindow(window.substr(window.size() - ToIndex(this->Rx + 1)));
       }
       if (s.Above == 0)
         continue; // the last row
@@ -328,7 +326,7 @@ private:
         if (w[0] == Nothing && w[1] != Nothing)
           for (int u : above)
             for (int r = 0; r <= this->Rx - 1; ++r)
-              this->Add(w.substr(0, static_cast<std::size_t>(this->Rx)), none, r, u);
+              this->Add(w.substr(0, ToIndex(this->Rx)), none, r, u);
     }
   }
 
@@ -337,8 +335,7 @@ private:
     std::string out;
     for (char b : labels)
       out += (out.empty() ? "" : " ") +
-        (b == Nothing ? std::string("-")
-                      : std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]));
+        (b == Nothing ? std::string("-") : std::to_string(this->Rules.LabelValues()[ToIndex(b)]));
     return out;
   }
 
@@ -372,7 +369,7 @@ InfallibilityReport AnalyzeInfallibility(const AdjacencyRules& rules,
     if (outputSize[a] > 1)
     {
       if (m < 2)
-        axes[static_cast<std::size_t>(m)] = a;
+        axes[ToIndex(m)] = a;
       ++m;
     }
   if (report.Proved || m != 2 || rules.NumberOfLabels() > 64)

@@ -2,6 +2,7 @@
 #include "Discrete/InfallibleRefinement.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/AdjacencyRules.h"
 #include "Discrete/ExampleAnalysis.h"
 
@@ -34,9 +35,9 @@ std::string OffsetName(const Offset3& o)
 {
   std::string s;
   for (int a = 0; a < 3; ++a)
-    if (o[static_cast<std::size_t>(a)] != 0)
+    if (o[ToIndex(a)] != 0)
     {
-      const int v = o[static_cast<std::size_t>(a)];
+      const int v = o[ToIndex(a)];
       s += (v < 0 ? "-" : "+") + (std::abs(v) > 1 ? std::to_string(std::abs(v)) : "") +
         std::string(1, static_cast<char>('x' + a));
     }
@@ -63,7 +64,7 @@ std::vector<Context> Contexts(const LabelGrid& example)
     for (int s : { -1, 1 })
     {
       Offset3 o{ { 0, 0, 0 } };
-      o[static_cast<std::size_t>(a)] = s;
+      o[ToIndex(a)] = s;
       dirs.push_back(o);
     }
   std::vector<Context> list;
@@ -95,7 +96,7 @@ std::vector<Context> Contexts(const LabelGrid& example)
       int c = code;
       for (int a : axes)
       {
-        o[static_cast<std::size_t>(a)] = c % 3 - 1;
+        o[ToIndex(a)] = c % 3 - 1;
         c /= 3;
       }
       if (o != Offset3{ { 0, 0, 0 } })
@@ -114,7 +115,7 @@ std::vector<std::vector<Label>> Keys(
   const LabelGrid& e, const Context& context, const std::vector<Label>& only, Label edge)
 {
   const auto& dims = e.Dimensions();
-  std::vector<std::vector<Label>> keys(static_cast<std::size_t>(e.NumberOfSites()));
+  std::vector<std::vector<Label>> keys(ToIndex(e.NumberOfSites()));
   std::size_t i = 0;
   for (std::int64_t z = 0; z < dims[2]; ++z)
     for (std::int64_t y = 0; y < dims[1]; ++y)
@@ -198,7 +199,7 @@ LabelGrid Split(
   std::sort(f.begin(), f.end());
   LabelGrid refined(e.Size(0), e.Size(1), e.Size(2));
   for (std::size_t i = 0; i < keys.size(); ++i)
-    refined.Data()[i] = value[labels[i]][static_cast<std::size_t>(std::max(find(i), 0))];
+    refined.Data()[i] = value[labels[i]][ToIndex(std::max(find(i), 0))];
   return refined;
 }
 
@@ -212,20 +213,18 @@ public:
   {
     for (int axis = 0; axis < 3; ++axis)
     {
-      this->Next[static_cast<std::size_t>(axis)].assign(
-        static_cast<std::size_t>(this->K * this->Words), 0);
+      this->Next[ToIndex(axis)].assign(ToIndex(this->K * this->Words), 0);
       for (const auto& t : a.Transitions(axis))
-        this->Next[static_cast<std::size_t>(axis)][static_cast<std::size_t>(
-          t.From * this->Words + t.To / 64)] |= std::uint64_t(1) << (t.To % 64);
+        this->Next[ToIndex(axis)][ToIndex(t.From * this->Words + t.To / 64)] |= std::uint64_t(1)
+          << (t.To % 64);
     }
   }
   /// Labels that may follow @p from along +@p axis, ANDed into @p set.
   void Restrict(int axis, int from, std::vector<std::uint64_t>& set) const
   {
-    const auto* row =
-      &this->Next[static_cast<std::size_t>(axis)][static_cast<std::size_t>(from * this->Words)];
+    const auto* row = &this->Next[ToIndex(axis)][ToIndex(from * this->Words)];
     for (int w = 0; w < this->Words; ++w)
-      set[static_cast<std::size_t>(w)] &= row[w];
+      set[ToIndex(w)] &= row[w];
   }
   int K, Words;
 
@@ -246,7 +245,7 @@ public:
     , Nodes(nodes)
     , MaxNodes(maxNodes)
   {
-    this->Model.assign(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]), -1);
+    this->Model.assign(ToIndex(dims[0] * dims[1] * dims[2]), -1);
   }
   bool OverBudget() const { return this->Nodes > this->MaxNodes; }
 
@@ -274,9 +273,9 @@ private:
     const std::int64_t at[3] = { x, y, z };
     for (int a = 0; a < 3; ++a)
       if (at[a] > 0)
-        this->Rules.Restrict(a, this->Model[i - static_cast<std::size_t>(stride[a])], set);
+        this->Rules.Restrict(a, this->Model[i - ToIndex(stride[a])], set);
     for (int w = 0; w < this->Rules.Words; ++w)
-      for (std::uint64_t bits = set[static_cast<std::size_t>(w)]; bits; bits &= bits - 1)
+      for (std::uint64_t bits = set[ToIndex(w)]; bits; bits &= bits - 1)
       {
         this->Model[i] = 64 * w + __builtin_ctzll(bits);
         if (!this->Place(i + 1, domain, found))
@@ -352,8 +351,7 @@ std::vector<Candidate> Candidates(
       Candidate c;
       c.Grid = Split(example, context, scope, c.Map);
       c.Labels = c.Map.size();
-      if (c.Labels == static_cast<std::size_t>(analysis.NumberOfLabels()) ||
-        !seen.insert(c.Grid.Data()).second)
+      if (c.Labels == ToIndex(analysis.NumberOfLabels()) || !seen.insert(c.Grid.Data()).second)
         continue;
       c.Split = (scope.empty() ? std::string("every label") : "label " + std::to_string(scope[0])) +
         " by " + context.Name;
@@ -389,20 +387,19 @@ Equation313Check CheckEquation313(const LabelGrid& example, const LabelGrid& ref
   const ExampleAnalysis ia = ExampleAnalysis::FromExample(refined);
   const Successors er(ea), ir(ia);
   // f on indices: the E_I indices whose image is each E index, as bit sets.
-  std::vector<std::vector<std::uint64_t>> preimage(static_cast<std::size_t>(er.K),
-    std::vector<std::uint64_t>(static_cast<std::size_t>(ir.Words), 0));
+  std::vector<std::vector<std::uint64_t>> preimage(
+    ToIndex(er.K), std::vector<std::uint64_t>(ToIndex(ir.Words), 0));
   for (const auto& [from, to] : f)
   {
     const int i = ia.IndexOf(from), e = ea.IndexOf(to);
     if (i >= 0 && e >= 0)
-      preimage[static_cast<std::size_t>(e)][static_cast<std::size_t>(i / 64)] |= std::uint64_t(1)
-        << (i % 64);
+      preimage[ToIndex(e)][ToIndex(i / 64)] |= std::uint64_t(1) << (i % 64);
   }
   Equation313Check check;
   std::int64_t nodes = 0;
-  std::vector<std::uint64_t> all(static_cast<std::size_t>(er.Words), 0);
+  std::vector<std::uint64_t> all(ToIndex(er.Words), 0);
   for (int b = 0; b < er.K; ++b)
-    all[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+    all[ToIndex(b / 64)] |= std::uint64_t(1) << (b % 64);
   const auto sizes = CheckSizes(outputSize, options.CheckEdge - 2 * frame);
   for (const auto& inner : sizes)
   {
@@ -421,14 +418,14 @@ Equation313Check CheckEquation313(const LabelGrid& example, const LabelGrid& ref
         for (std::int64_t z = 0; z < inner[2]; ++z)
           for (std::int64_t y = 0; y < inner[1]; ++y)
             for (std::int64_t x = 0; x < inner[0]; ++x)
-              part.push_back(m[static_cast<std::size_t>(
-                x + low[0] + outer[0] * (y + low[1] + outer[1] * (z + low[2])))]);
+              part.push_back(
+                m[ToIndex(x + low[0] + outer[0] * (y + low[1] + outer[1] * (z + low[2])))]);
         if (lifted.count(part))
           return true;
         ++check.Models;
         Enumeration lift(ir, inner, nodes, options.CheckNodes);
         bool any = false;
-        lift.Run([&](std::size_t i) { return preimage[static_cast<std::size_t>(part[i])]; },
+        lift.Run([&](std::size_t i) { return preimage[ToIndex(part[i])]; },
           [&](const std::vector<int>&)
           {
             any = true;

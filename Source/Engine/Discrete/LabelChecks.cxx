@@ -2,6 +2,7 @@
 #include "Discrete/LabelChecks.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 #include "Formats/Tileset.h"
 
@@ -22,8 +23,7 @@ std::vector<long long> NamedValues(const std::string& name, const Tileset& set)
   if (ParseInteger(name, -(1LL << 31), (1LL << 31) - 1, v))
     values.push_back(v);
   for (int b = 0; b < set.NumberOfLabels(); ++b)
-    if (set.LabelName(b) == name ||
-      set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name == name)
+    if (set.LabelName(b) == name || set.Tiles[ToIndex(set.LabelTile[ToIndex(b)])].Name == name)
       values.push_back(b);
   return values;
 }
@@ -40,9 +40,8 @@ struct Network
   std::vector<std::int64_t> Parent;
   std::int64_t Root(std::int64_t i)
   {
-    while (this->Parent[static_cast<std::size_t>(i)] != i)
-      i = this->Parent[static_cast<std::size_t>(i)] =
-        this->Parent[static_cast<std::size_t>(this->Parent[static_cast<std::size_t>(i)])];
+    while (this->Parent[ToIndex(i)] != i)
+      i = this->Parent[ToIndex(i)] = this->Parent[ToIndex(this->Parent[ToIndex(i)])];
     return i;
   }
 };
@@ -54,15 +53,15 @@ void JoinNeighbours(const LabelGrid& model, Network& net)
   const std::int64_t stride[3] = { 1, dims[0], dims[0] * dims[1] };
   for (std::int64_t i = 0; i < model.NumberOfSites(); ++i)
   {
-    const int here = net.Mask[static_cast<std::size_t>(i)];
+    const int here = net.Mask[ToIndex(i)];
     const std::int64_t at[3] = { i % dims[0], (i / dims[0]) % dims[1], i / stride[2] };
     for (int a = 0; a < 3 && here >= 0; ++a)
     {
       if (at[a] + 1 >= dims[a] || !((here >> (2 * a)) & 1))
         continue;
-      const int there = net.Mask[static_cast<std::size_t>(i + stride[a])];
+      const int there = net.Mask[ToIndex(i + stride[a])];
       if (there >= 0 && ((there >> (2 * a + 1)) & 1))
-        net.Parent[static_cast<std::size_t>(net.Root(i))] = net.Root(i + stride[a]);
+        net.Parent[ToIndex(net.Root(i))] = net.Root(i + stride[a]);
     }
   }
 }
@@ -94,7 +93,7 @@ std::vector<std::int64_t> PathSites(
       throw Error("--path: '" + item + "' is neither a site x,y[,z] nor a label value or name");
     for (std::int64_t i = 0; i < model.NumberOfSites(); ++i)
       if (std::find(values.begin(), values.end(),
-            static_cast<long long>(model.Data()[static_cast<std::size_t>(i)])) != values.end())
+            static_cast<long long>(model.Data()[ToIndex(i)])) != values.end())
         sites.push_back(i);
   }
   return sites;
@@ -110,14 +109,13 @@ void CheckPath(const LabelGrid& model, const std::vector<std::string>& path, con
   std::set<std::int64_t> roots;
   for (std::int64_t s : sites)
   {
-    if (net.Mask[static_cast<std::size_t>(s)] < 0)
+    if (net.Mask[ToIndex(s)] < 0)
     {
       check.PathJoined = false;
       check.PathSites = static_cast<long long>(sites.size());
       check.PathLine = "path not joined: site (" + std::to_string(s % dims[0]) + ", " +
         std::to_string((s / dims[0]) % dims[1]) + ", " + std::to_string(s / (dims[0] * dims[1])) +
-        ") holds label " + std::to_string(model.Data()[static_cast<std::size_t>(s)]) +
-        ", not one of the network's";
+        ") holds label " + std::to_string(model.Data()[ToIndex(s)]) + ", not one of the network's";
       return;
     }
     roots.insert(net.Root(s));
@@ -164,8 +162,7 @@ std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::stri
       if (set.LabelName(b) == e.Name)
         values.insert(b);
     for (int b = 0; b < set.NumberOfLabels(); ++b)
-      if (set.Tiles[static_cast<std::size_t>(set.LabelTile[static_cast<std::size_t>(b)])].Name ==
-        e.Name)
+      if (set.Tiles[ToIndex(set.LabelTile[ToIndex(b)])].Name == e.Name)
         values.insert(b);
     if (values.empty())
       throw Error("--count: '" + e.Name + "' is neither a label value nor a name of " + source);
@@ -214,9 +211,9 @@ NetworkCheck CheckLabelNetwork(const LabelGrid& model, const std::string& spec,
   }
   for (auto& [label, mask] : sides)
     if (label >= 0 && label < static_cast<long long>(set.LabelSides.size()) &&
-      set.LabelSides[static_cast<std::size_t>(label)] >= 0)
-      mask = set.LabelSides[static_cast<std::size_t>(label)];
-  const std::size_t total = static_cast<std::size_t>(model.NumberOfSites());
+      set.LabelSides[ToIndex(label)] >= 0)
+      mask = set.LabelSides[ToIndex(label)];
+  const std::size_t total = ToIndex(model.NumberOfSites());
   Network net{ std::vector<int>(total, -1), std::vector<std::int64_t>(total) };
   for (std::size_t i = 0; i < total; ++i)
   {

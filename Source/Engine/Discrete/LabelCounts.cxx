@@ -2,6 +2,7 @@
 #include "Discrete/LabelCounts.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <array>
@@ -36,7 +37,7 @@ std::string NameOf(const LabelCount& c)
 /// The guide cell along axis @p a of coordinate @p p in an output of @p n sites (GuideVolume).
 std::int64_t CellAlong(const GuideVolume& guide, int a, std::int64_t p, std::int64_t n)
 {
-  const std::int64_t d = guide.Dims[static_cast<std::size_t>(a)];
+  const std::int64_t d = guide.Dims[ToIndex(a)];
   return std::min(d - 1, ((2 * p + 1) * d) / (2 * n));
 }
 
@@ -46,31 +47,30 @@ std::map<std::int32_t, std::int64_t> RegionSites(const GuideVolume& guide, const
   std::array<std::vector<std::int64_t>, 3> along;
   for (int a = 0; a < 3; ++a)
   {
-    along[static_cast<std::size_t>(a)].assign(static_cast<std::size_t>(guide.Dims[a]), 0);
-    for (std::int64_t p = 0; p < size[static_cast<std::size_t>(a)]; ++p)
-      ++along[static_cast<std::size_t>(a)]
-             [static_cast<std::size_t>(CellAlong(guide, a, p, size[static_cast<std::size_t>(a)]))];
+    along[ToIndex(a)].assign(ToIndex(guide.Dims[a]), 0);
+    for (std::int64_t p = 0; p < size[ToIndex(a)]; ++p)
+      ++along[ToIndex(a)][ToIndex(CellAlong(guide, a, p, size[ToIndex(a)]))];
   }
   std::map<std::int32_t, std::int64_t> sites;
   std::size_t cell = 0;
   for (std::int64_t z = 0; z < guide.Dims[2]; ++z)
     for (std::int64_t y = 0; y < guide.Dims[1]; ++y)
       for (std::int64_t x = 0; x < guide.Dims[0]; ++x, ++cell)
-        sites[guide.Regions[cell]] += along[0][static_cast<std::size_t>(x)] *
-          along[1][static_cast<std::size_t>(y)] * along[2][static_cast<std::size_t>(z)];
+        sites[guide.Regions[cell]] +=
+          along[0][ToIndex(x)] * along[1][ToIndex(y)] * along[2][ToIndex(z)];
   return sites;
 }
 
 /// The guide region of every site of an output of @p n sites (x fastest).
 std::vector<std::int32_t> SiteRegions(const GuideVolume& guide, const Coord& n)
 {
-  std::vector<std::int32_t> regions(static_cast<std::size_t>(n[0] * n[1] * n[2]));
+  std::vector<std::int32_t> regions(ToIndex(n[0] * n[1] * n[2]));
   std::size_t s = 0;
   Coord p;
   for (p[2] = 0; p[2] < n[2]; ++p[2])
     for (p[1] = 0; p[1] < n[1]; ++p[1])
       for (p[0] = 0; p[0] < n[0]; ++p[0], ++s)
-        regions[s] = guide.Regions[static_cast<std::size_t>(guide.CellOf(p, n))];
+        regions[s] = guide.Regions[ToIndex(guide.CellOf(p, n))];
   return regions;
 }
 
@@ -116,15 +116,15 @@ std::map<std::int32_t, std::int64_t> CountedRegions(const SynthesisOptions& opti
 std::vector<char> Possible(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   const int k = rules.NumberOfLabels();
-  std::vector<char> alive(static_cast<std::size_t>(k), 1);
+  std::vector<char> alive(ToIndex(k), 1);
   for (const LabelCount& c : options.Counts)
     if (c.Maximum == 0 && c.Region < 0) // a region's maximum 0 bans the label there only
       for (Label v : c.Values)
-        alive[static_cast<std::size_t>(rules.IndexOf(v))] = 0;
+        alive[ToIndex(rules.IndexOf(v))] = 0;
   auto meets = [&](const std::uint64_t* set)
   {
     for (int b = 0; b < k; ++b)
-      if (alive[static_cast<std::size_t>(b)] && ((set[b >> 6] >> (b & 63)) & 1))
+      if (alive[ToIndex(b)] && ((set[b >> 6] >> (b & 63)) & 1))
         return true;
     return false;
   };
@@ -133,13 +133,13 @@ std::vector<char> Possible(const AdjacencyRules& rules, const SynthesisOptions& 
     changed = false;
     for (int b = 0; b < k; ++b)
     {
-      if (!alive[static_cast<std::size_t>(b)])
+      if (!alive[ToIndex(b)])
         continue;
       for (int axis = 0; axis < 3; ++axis)
-        if (options.Size[static_cast<std::size_t>(axis)] > 1 &&
-          !meets(rules.Compatible(2 * axis, b)) && !meets(rules.Compatible(2 * axis + 1, b)))
+        if (options.Size[ToIndex(axis)] > 1 && !meets(rules.Compatible(2 * axis, b)) &&
+          !meets(rules.Compatible(2 * axis + 1, b)))
         {
-          alive[static_cast<std::size_t>(b)] = 0;
+          alive[ToIndex(b)] = 0;
           changed = true;
           break;
         }
@@ -217,7 +217,7 @@ void CheckCountRequest(const AdjacencyRules& rules, const SynthesisOptions& opti
   {
     bool possible = false;
     for (Label v : c.Values)
-      possible |= alive[static_cast<std::size_t>(rules.IndexOf(v))] != 0;
+      possible |= alive[ToIndex(rules.IndexOf(v))] != 0;
     if (c.Minimum > 0 && !possible)
       throw Error("the count of " + NameOf(c) + " asks for at least " + std::to_string(c.Minimum) +
         " sites, but the rules never place it without a label whose maximum is 0");
@@ -305,7 +305,7 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
   const std::size_t counted = options.Counts.size();
   std::vector<std::int32_t> regions; // of slots 1, 2, ...
   this->Slots = SlotsOf(options, n, regions);
-  this->K = static_cast<std::size_t>(rules.NumberOfLabels());
+  this->K = ToIndex(rules.NumberOfLabels());
   this->PositionOf.assign((regions.size() + 1) * this->K, -1);
   for (std::size_t c = 0; c < counted; ++c)
   {
@@ -313,8 +313,7 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
     for (std::size_t slot = 0; slot <= regions.size(); ++slot)
       if (want.Region < 0 || (slot > 0 && regions[slot - 1] == want.Region))
         for (Label v : want.Values)
-          this->PositionOf[slot * this->K + static_cast<std::size_t>(rules.IndexOf(v))] =
-            static_cast<int>(c);
+          this->PositionOf[slot * this->K + ToIndex(rules.IndexOf(v))] = static_cast<int>(c);
     this->Counted.push_back(static_cast<int>(c));
   }
   std::int64_t indices = 0;
@@ -327,23 +326,23 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
     for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
       for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
         for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
-          this->Owners[static_cast<std::size_t>(p[0] + n[0] * (p[1] + n[1] * p[2]))] =
+          this->Owners[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))] =
             static_cast<std::int32_t>(block.Index);
   }
   // Per block and count: its own free sites where the count applies, and its pinned ones.
-  const auto per = static_cast<std::size_t>(indices);
+  const auto per = ToIndex(indices);
   std::vector<std::int64_t> free(per * counted, 0), pinned(per * counted, 0), total(counted, 0);
   std::vector<std::int64_t> freeSites(counted, 0);
   for (std::size_t s = 0; s < fixed.size(); ++s)
   {
-    const auto owner = static_cast<std::size_t>(this->Owners[s]);
+    const auto owner = ToIndex(this->Owners[s]);
     const std::int32_t slot = this->Slot(s);
     if (fixed[s] < 0)
     {
       for (std::size_t c = 0; c < counted; ++c)
       {
         const std::int32_t r = options.Counts[c].Region;
-        if (r < 0 || (slot > 0 && regions[static_cast<std::size_t>(slot - 1)] == r))
+        if (r < 0 || (slot > 0 && regions[ToIndex(slot - 1)] == r))
         {
           ++free[owner * counted + c];
           ++freeSites[c];
@@ -354,8 +353,8 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
     const int c = this->Position(fixed[s], slot);
     if (c >= 0)
     {
-      ++pinned[owner * counted + static_cast<std::size_t>(c)];
-      ++total[static_cast<std::size_t>(c)];
+      ++pinned[owner * counted + ToIndex(c)];
+      ++total[ToIndex(c)];
     }
   }
   this->Min.assign(per * counted, 0);

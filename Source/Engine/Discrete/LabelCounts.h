@@ -18,6 +18,7 @@
  * region. Each site has a *slot*: 0 when its region is counted by no count, else 1 + the
  * counted region's place; a label and a slot name at most one count.
  */
+#include "Core/Index.h"
 #include "Discrete/BlockSolver.h"
 
 #include <cstdint>
@@ -66,7 +67,7 @@ public:
   /// @p slot (see the file comment), or -1.
   int Position(int b, std::int32_t slot) const
   {
-    return this->PositionOf[static_cast<std::size_t>(slot) * this->K + static_cast<std::size_t>(b)];
+    return this->PositionOf[ToIndex(slot) * this->K + ToIndex(b)];
   }
   /// The slot of model site @p s.
   std::int32_t Slot(std::size_t s) const { return this->Slots.empty() ? 0 : this->Slots[s]; }
@@ -74,11 +75,11 @@ public:
   std::int32_t Owner(std::size_t s) const { return this->Owners[s]; }
   std::int64_t Minimum(std::int64_t block, std::size_t c) const
   {
-    return this->Min[static_cast<std::size_t>(block) * this->Counted.size() + c];
+    return this->Min[ToIndex(block) * this->Counted.size() + c];
   }
   std::int64_t Maximum(std::int64_t block, std::size_t c) const
   {
-    return this->Max[static_cast<std::size_t>(block) * this->Counted.size() + c];
+    return this->Max[ToIndex(block) * this->Counted.size() + c];
   }
 
 private:

@@ -2,6 +2,7 @@
 #include "Discrete/MirrorPlan.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <string>
 
@@ -25,16 +26,16 @@ MirrorPlan PlanMirror(const AdjacencyRules& rules, const SynthesisOptions& optio
   static const char* const axisName = "xyz";
   for (int a = 0; a < 3; ++a)
   {
-    const Mirror& mirror = options.Symmetry[static_cast<std::size_t>(a)];
-    plan.HalfOptions.Symmetry[static_cast<std::size_t>(a)].Enabled = false;
+    const Mirror& mirror = options.Symmetry[ToIndex(a)];
+    plan.HalfOptions.Symmetry[ToIndex(a)].Enabled = false;
     if (!mirror.Enabled)
       continue;
     const std::string axis(1, axisName[a]);
-    plan.Axes[static_cast<std::size_t>(a)] = true;
-    auto& f = plan.F[static_cast<std::size_t>(a)];
-    f.resize(static_cast<std::size_t>(k));
+    plan.Axes[ToIndex(a)] = true;
+    auto& f = plan.F[ToIndex(a)];
+    f.resize(ToIndex(k));
     for (int b = 0; b < k; ++b)
-      f[static_cast<std::size_t>(b)] = b;
+      f[ToIndex(b)] = b;
     for (const auto& kv : mirror.Map)
     {
       const int from = rules.IndexOf(kv.first), to = rules.IndexOf(kv.second);
@@ -42,42 +43,40 @@ MirrorPlan PlanMirror(const AdjacencyRules& rules, const SynthesisOptions& optio
         throw Error("the mirror map along " + axis + " names label " +
           std::to_string(from < 0 ? kv.first : kv.second) +
           ", which does not occur in the example");
-      f[static_cast<std::size_t>(from)] = to;
+      f[ToIndex(from)] = to;
     }
     for (int b = 0; b < k; ++b)
-      if (f[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])] != b)
+      if (f[ToIndex(f[ToIndex(b)])] != b)
         throw Error("the mirror map along " + axis + " is not its own inverse: label " +
-          std::to_string(values[static_cast<std::size_t>(b)]) + " maps to " +
-          std::to_string(values[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])]) +
-          ", which does not map back");
+          std::to_string(values[ToIndex(b)]) + " maps to " +
+          std::to_string(values[ToIndex(f[ToIndex(b)])]) + ", which does not map back");
     // The rules must be symmetric under f (else a mirrored model breaks them).
     for (int axis2 = 0; axis2 < 3; ++axis2)
       for (int b = 0; b < k; ++b)
         for (int c = 0; c < k; ++c)
         {
-          const int fb = f[static_cast<std::size_t>(b)], fc = f[static_cast<std::size_t>(c)];
+          const int fb = f[ToIndex(b)], fc = f[ToIndex(c)];
           const bool mirrored =
             axis2 == a ? rules.Allowed(2 * axis2, fc, fb) : rules.Allowed(2 * axis2, fb, fc);
           if (rules.Allowed(2 * axis2, b, c) != mirrored)
             throw Error("the example is not symmetric under the mirror map along " + axis +
-              ": label " + std::to_string(values[static_cast<std::size_t>(b)]) + " before " +
-              std::to_string(values[static_cast<std::size_t>(c)]) + " along " + axisName[axis2] +
+              ": label " + std::to_string(values[ToIndex(b)]) + " before " +
+              std::to_string(values[ToIndex(c)]) + " along " + axisName[axis2] +
               (rules.Allowed(2 * axis2, b, c) ? " occurs" : " does not occur") +
               " but its mirror image " + (mirrored ? "does" : "does not"));
         }
     // The half, and the labels allowed on its last layer next to their own mirror image.
     const std::int64_t n = options.Size[a];
     plan.Half[a] = (n + 1) / 2;
-    auto& mask = plan.ColumnMask[static_cast<std::size_t>(a)];
-    mask.assign(static_cast<std::size_t>(rules.Words()), 0);
+    auto& mask = plan.ColumnMask[ToIndex(a)];
+    mask.assign(ToIndex(rules.Words()), 0);
     bool any = false;
     for (int b = 0; b < k; ++b)
     {
-      const bool ok = (n % 2 == 1) ? f[static_cast<std::size_t>(b)] == b
-                                   : rules.Allowed(2 * a, b, f[static_cast<std::size_t>(b)]);
+      const bool ok = (n % 2 == 1) ? f[ToIndex(b)] == b : rules.Allowed(2 * a, b, f[ToIndex(b)]);
       if (ok || n == 1)
       {
-        mask[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+        mask[ToIndex(b / 64)] |= std::uint64_t(1) << (b % 64);
         any = true;
       }
     }
@@ -86,30 +85,28 @@ MirrorPlan PlanMirror(const AdjacencyRules& rules, const SynthesisOptions& optio
         (n % 2 == 1 ? " (an odd size puts sites on the plane, and no label is its own mirror image)"
                     : " (no label may be followed by its mirror image)"));
     // Boundary faces: the far face is the mirror image of the near one.
-    auto& near = plan.HalfOptions.Boundary[static_cast<std::size_t>(2 * a)];
-    auto& far = plan.HalfOptions.Boundary[static_cast<std::size_t>(2 * a + 1)];
+    auto& near = plan.HalfOptions.Boundary[ToIndex(2 * a)];
+    auto& far = plan.HalfOptions.Boundary[ToIndex(2 * a + 1)];
     if (near && far && rules.IndexOf(*near) >= 0 && rules.IndexOf(*far) >= 0 &&
-      f[static_cast<std::size_t>(rules.IndexOf(*near))] != rules.IndexOf(*far))
+      f[ToIndex(rules.IndexOf(*near))] != rules.IndexOf(*far))
       throw Error("with symmetry along " + axis +
         ", the boundary label of the far face must be "
         "the mirror image of the near face's");
     if (!near && far)
-      near = values[static_cast<std::size_t>(
-        f[static_cast<std::size_t>(rules.IndexOf(*far) < 0 ? 0 : rules.IndexOf(*far))])];
+      near = values[ToIndex(f[ToIndex(rules.IndexOf(*far) < 0 ? 0 : rules.IndexOf(*far))])];
     far.reset();
   }
   for (int a = 0; a < 3; ++a)
-    if (!plan.Axes[static_cast<std::size_t>(a)])
+    if (!plan.Axes[ToIndex(a)])
       plan.Half[a] = options.Size[a];
   for (int a = 0; a < 3; ++a)
     for (int c = a + 1; c < 3; ++c)
-      if (plan.Axes[static_cast<std::size_t>(a)] && plan.Axes[static_cast<std::size_t>(c)])
+      if (plan.Axes[ToIndex(a)] && plan.Axes[ToIndex(c)])
         for (int b = 0; b < k; ++b)
           if (plan.Image(plan.Image(b, 1 << a), 1 << c) !=
             plan.Image(plan.Image(b, 1 << c), 1 << a))
             throw Error(std::string("the mirror maps along ") + axisName[a] + " and " +
-              axisName[c] + " do not commute (label " +
-              std::to_string(values[static_cast<std::size_t>(b)]) + ")");
+              axisName[c] + " do not commute (label " + std::to_string(values[ToIndex(b)]) + ")");
   plan.HalfOptions.Size = plan.Half;
   return plan;
 }

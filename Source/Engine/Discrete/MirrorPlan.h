@@ -5,6 +5,7 @@
  * @brief Reflection symmetry (D§3.5.2), internal: the half of the output to synthesize and how
  * it maps onto the whole, checked against the example's rules.
  */
+#include "Core/Index.h"
 #include "Discrete/AdjacencyRules.h"
 #include "Discrete/DiscreteSynthesis.h"
 
@@ -34,7 +35,7 @@ struct MirrorPlan
   {
     for (int a = 0; a < 3; ++a)
       if (axes & (1 << a))
-        b = this->F[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
+        b = this->F[ToIndex(a)][ToIndex(b)];
     return b;
   }
   /// The site of the full model that mirrors half-model site @p p over the axes of @p axes.

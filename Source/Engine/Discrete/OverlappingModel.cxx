@@ -2,6 +2,7 @@
 #include "Discrete/OverlappingModel.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 
 #include <algorithm>
@@ -19,10 +20,10 @@ using WindowCells = std::vector<std::uint16_t>;
 WindowCells Window(const PatternSet& set, int x, int y)
 {
   const int n = set.Options.N;
-  WindowCells w(static_cast<std::size_t>(n * n));
+  WindowCells w(ToIndex(n * n));
   for (int dy = 0; dy < n; ++dy)
     for (int dx = 0; dx < n; ++dx)
-      w[static_cast<std::size_t>(dy * n + dx)] = set.Sample[static_cast<std::size_t>(
+      w[ToIndex(dy * n + dx)] = set.Sample[ToIndex(
         ((y + dy) % set.SampleHeight) * set.SampleWidth + (x + dx) % set.SampleWidth)];
   return w;
 }
@@ -33,7 +34,7 @@ WindowCells Turned(const WindowCells& p, int n)
   WindowCells r(p.size());
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x)
-      r[static_cast<std::size_t>(y * n + x)] = p[static_cast<std::size_t>(x * n + n - 1 - y)];
+      r[ToIndex(y * n + x)] = p[ToIndex(x * n + n - 1 - y)];
   return r;
 }
 
@@ -43,7 +44,7 @@ WindowCells Mirrored(const WindowCells& p, int n)
   WindowCells r(p.size());
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x)
-      r[static_cast<std::size_t>(y * n + x)] = p[static_cast<std::size_t>(y * n + n - 1 - x)];
+      r[ToIndex(y * n + x)] = p[ToIndex(y * n + n - 1 - x)];
   return r;
 }
 
@@ -83,8 +84,7 @@ void CheckOptions(const RgbaImage& sample, const OverlappingOptions& o, const st
 void IndexColours(const RgbaImage& sample, PatternSet& set, const std::string& name)
 {
   std::unordered_map<std::uint32_t, std::uint16_t> index;
-  set.Sample.resize(
-    static_cast<std::size_t>(sample.Width) * static_cast<std::size_t>(sample.Height));
+  set.Sample.resize(ToIndex(sample.Width) * ToIndex(sample.Height));
   for (std::size_t i = 0; i < set.Sample.size(); ++i)
   {
     const std::uint8_t* p = sample.Pixels.data() + 4 * i;
@@ -113,12 +113,12 @@ void FindPairs(PatternSet& set, const std::string& name)
     std::unordered_map<std::string, std::vector<int>> byLeading;
     for (int c = 0; c < k; ++c)
     {
-      const std::uint16_t* cells = set.Cells.data() + static_cast<std::size_t>(c * n * n);
+      const std::uint16_t* cells = set.Cells.data() + ToIndex(c * n * n);
       byLeading[axis == 0 ? Key(cells, 0, n - 1, 0, n, n) : Key(cells, 0, n, 1, n, n)].push_back(c);
     }
     for (int b = 0; b < k; ++b)
     {
-      const std::uint16_t* cells = set.Cells.data() + static_cast<std::size_t>(b * n * n);
+      const std::uint16_t* cells = set.Cells.data() + ToIndex(b * n * n);
       const auto it =
         byLeading.find(axis == 0 ? Key(cells, 1, n, 0, n, n) : Key(cells, 0, n, 0, n - 1, n));
       if (it == byLeading.end())
@@ -128,7 +128,7 @@ void FindPairs(PatternSet& set, const std::string& name)
         throw Error("'" + name + "': the sample's " + std::to_string(k) +
           " patterns have more than 2^26 neighbour pairs; use a larger pattern size");
       for (const int c : it->second)
-        set.Pairs[static_cast<std::size_t>(axis)].emplace_back(b, c);
+        set.Pairs[ToIndex(axis)].emplace_back(b, c);
     }
   }
 }
@@ -154,22 +154,20 @@ PatternSet ExtractPatterns(
       std::array<WindowCells, 8> images;
       images[0] = Window(set, x, y);
       for (int j = 1; j < 4; ++j)
-        images[static_cast<std::size_t>(2 * j)] =
-          Turned(images[static_cast<std::size_t>(2 * j - 2)], n);
+        images[ToIndex(2 * j)] = Turned(images[ToIndex(2 * j - 2)], n);
       for (int j = 0; j < 4; ++j)
-        images[static_cast<std::size_t>(2 * j + 1)] =
-          Mirrored(images[static_cast<std::size_t>(2 * j)], n);
+        images[ToIndex(2 * j + 1)] = Mirrored(images[ToIndex(2 * j)], n);
       for (int s = 0; s < options.Symmetry; ++s)
       {
-        const WindowCells& p = images[static_cast<std::size_t>(s)];
+        const WindowCells& p = images[ToIndex(s)];
         const std::string key = Key(p.data(), 0, n, 0, n, n);
         const auto it = index.find(key);
         if (s == 0)
-          set.WindowPatterns[static_cast<std::size_t>(y * sample.Width + x)] =
+          set.WindowPatterns[ToIndex(y * sample.Width + x)] =
             it != index.end() ? it->second : set.NumberOfPatterns();
         if (it != index.end())
         {
-          set.Counts[static_cast<std::size_t>(it->second)] += 1.0;
+          set.Counts[ToIndex(it->second)] += 1.0;
           continue;
         }
         if (set.NumberOfPatterns() >= MaximumPatterns)
@@ -188,7 +186,7 @@ PatternSet ExtractPatterns(
 
 AdjacencyRules PatternSet::Rules() const
 {
-  std::vector<Label> values(static_cast<std::size_t>(this->NumberOfPatterns()));
+  std::vector<Label> values(ToIndex(this->NumberOfPatterns()));
   for (std::size_t t = 0; t < values.size(); ++t)
     values[t] = static_cast<Label>(t);
   return AdjacencyRules::FromPairs(std::move(values), this->Counts, this->Pairs);
@@ -219,7 +217,7 @@ std::vector<int> PatternSet::GroundPatterns(bool periodicY) const
   std::vector<int> ground;
   for (int x = first; x < last; ++x)
   {
-    const int t = this->WindowPatterns[static_cast<std::size_t>(y * this->SampleWidth + x)];
+    const int t = this->WindowPatterns[ToIndex(y * this->SampleWidth + x)];
     if (std::find(ground.begin(), ground.end(), t) == ground.end())
       ground.push_back(t);
   }
@@ -239,7 +237,7 @@ GuideVolume PatternSet::GroundGuide(const std::array<std::int64_t, 3>& sites, bo
   for (int t = 0; t < this->NumberOfPatterns(); ++t)
   {
     const bool isGround = std::find(ground.begin(), ground.end(), t) != ground.end();
-    std::vector<float> w(static_cast<std::size_t>(rows), isGround ? 0.0f : 1.0f);
+    std::vector<float> w(ToIndex(rows), isGround ? 0.0f : 1.0f);
     w[0] = isGround ? 1.0f : 0.0f;
     guide.Weights.emplace(static_cast<Label>(t), std::move(w));
   }
@@ -256,8 +254,7 @@ std::optional<LabelGrid> PatternSet::TiledStart(
   LabelGrid start(sites[0], sites[1], 1);
   for (std::int64_t y = 0; y < sites[1]; ++y)
     for (std::int64_t x = 0; x < sites[0]; ++x)
-      start.Set(x, y, 0,
-        this->WindowPatterns[static_cast<std::size_t>(((sites[1] - 1 - y) % sh) * sw + x % sw)]);
+      start.Set(x, y, 0, this->WindowPatterns[ToIndex(((sites[1] - 1 - y) % sh) * sw + x % sw)]);
   return start;
 }
 
@@ -290,7 +287,7 @@ RgbaImage PatternSet::Compose(const LabelGrid& model, const Periodic& periodic) 
       std::to_string(model.Size(2)) + " pixels cannot be made (2D, at most 2^26 pixels)");
   picture.Width = static_cast<int>(w);
   picture.Height = static_cast<int>(h);
-  picture.Pixels.resize(static_cast<std::size_t>(w * h * 4));
+  picture.Pixels.resize(ToIndex(w * h * 4));
   for (std::int64_t py = 0; py < h; ++py)
     for (std::int64_t px = 0; px < w; ++px)
     {
@@ -323,15 +320,13 @@ LabelGrid PatternSet::PinsFromPicture(
   std::map<std::array<std::uint8_t, 4>, int> index;
   for (std::size_t c = 0; c < this->Colours.size(); ++c)
     index[this->Colours[c]] = static_cast<int>(c);
-  std::vector<int> colour(
-    static_cast<std::size_t>(picture.Width) * static_cast<std::size_t>(picture.Height));
+  std::vector<int> colour(ToIndex(picture.Width) * ToIndex(picture.Height));
   for (int y = 0; y < picture.Height; ++y)
     for (int x = 0; x < picture.Width; ++x)
     {
       const std::uint8_t* p = picture.At(x, y);
       const auto found = index.find({ { p[0], p[1], p[2], p[3] } });
-      int& c = colour[static_cast<std::size_t>(y) * static_cast<std::size_t>(picture.Width) +
-        static_cast<std::size_t>(x)];
+      int& c = colour[ToIndex(y) * ToIndex(picture.Width) + ToIndex(x)];
       c = found != index.end() ? found->second : -1;
       if (c < 0 && p[3] != 0)
         throw Error::InFile(path,
@@ -343,7 +338,7 @@ LabelGrid PatternSet::PinsFromPicture(
     byCells[std::vector<std::uint16_t>(this->Cells.begin() + static_cast<std::ptrdiff_t>(t) * n * n,
       this->Cells.begin() + static_cast<std::ptrdiff_t>(t + 1) * n * n)] = t;
   LabelGrid pins(sites[0], sites[1], 1, Label(-1));
-  std::vector<std::uint16_t> window(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+  std::vector<std::uint16_t> window(ToIndex(n) * ToIndex(n));
   for (std::int64_t row = 0; row < sites[1]; ++row)
     for (std::int64_t x = 0; x < sites[0]; ++x)
     {
@@ -352,9 +347,9 @@ LabelGrid PatternSet::PinsFromPicture(
         for (int i = 0; i < n && drawn; ++i)
         {
           const std::int64_t px = (x + i) % picture.Width, py = (row + j) % picture.Height;
-          const int c = colour[static_cast<std::size_t>(py * picture.Width + px)];
+          const int c = colour[ToIndex(py * picture.Width + px)];
           drawn = c >= 0;
-          window[static_cast<std::size_t>(j * n + i)] = static_cast<std::uint16_t>(drawn ? c : 0);
+          window[ToIndex(j * n + i)] = static_cast<std::uint16_t>(drawn ? c : 0);
         }
       if (!drawn)
         continue;
@@ -391,7 +386,7 @@ std::pair<int, int> SourceOf(int k, int x, int y, int n)
 std::string WindowBytes(const RgbaImage& image, int x0, int y0, int k, int n)
 {
   std::string bytes;
-  bytes.reserve(static_cast<std::size_t>(4 * n * n));
+  bytes.reserve(ToIndex(4 * n * n));
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x)
     {

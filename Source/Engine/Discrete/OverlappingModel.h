@@ -23,6 +23,7 @@
  * (wrapping to its top), as WaveFunctionCollapse; otherwise the windows of the sample's last N
  * rows, so the picture ends in the sample's bottom rows.
  */
+#include "Core/Index.h"
 #include "Core/LabelGrid.h"
 #include "Discrete/AdjacencyRules.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -77,7 +78,7 @@ public:
   std::uint16_t At(int t, int x, int y) const
   {
     const int n = this->Options.N;
-    return this->Cells[static_cast<std::size_t>((t * n + y) * n + x)];
+    return this->Cells[ToIndex((t * n + y) * n + x)];
   }
   /// Rules for the pattern grid: label values 0..k−1, weights the counts.
   AdjacencyRules Rules() const;

@@ -2,6 +2,7 @@
 // Pinned sites (completing a partial model): the pins checked against the rules and each other
 // before any work, then kept as fixed labels; with blocks, placed into the trivial start first.
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Random.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/BlockSolver.h"
@@ -55,8 +56,7 @@ std::int64_t BlockSolver::ApplyPins()
         ", which does not occur in the example");
     if (this->Fixed[s] >= 0 && this->Fixed[s] != b)
       throw Error("site " + Format(p) + " is pinned to label " + std::to_string(value) +
-        ", but the boundary there is label " +
-        std::to_string(values[static_cast<std::size_t>(this->Fixed[s])]));
+        ", but the boundary there is label " + std::to_string(values[ToIndex(this->Fixed[s])]));
     this->Fixed[s] = b;
     ++count;
   }
@@ -74,16 +74,15 @@ void BlockSolver::CheckPinnedPairs() const
   this->ForEachAdjacentPair(
     [&](const Coord& p, const Coord& q, int axis)
     {
-      const auto s = static_cast<std::size_t>(this->Index(p));
-      const auto t = static_cast<std::size_t>(this->Index(q));
+      const auto s = ToIndex(this->Index(p));
+      const auto t = ToIndex(this->Index(q));
       const int a = this->Fixed[s], b = this->Fixed[t];
       const bool pinned = pins.Data()[s] != FreeSite || pins.Data()[t] != FreeSite;
       if (!pinned || a < 0 || b < 0 || this->Rules.Allowed(2 * axis, a, b))
         return;
-      throw Error("the labels " + std::to_string(values[static_cast<std::size_t>(a)]) + " at " +
-        Format(p) + " and " + std::to_string(values[static_cast<std::size_t>(b)]) + " at " +
-        Format(q) + " cannot meet: the example never puts them next to each other along " +
-        AxisNames[axis]);
+      throw Error("the labels " + std::to_string(values[ToIndex(a)]) + " at " + Format(p) +
+        " and " + std::to_string(values[ToIndex(b)]) + " at " + Format(q) +
+        " cannot meet: the example never puts them next to each other along " + AxisNames[axis]);
     });
 }
 
@@ -108,8 +107,9 @@ void BlockSolver::CheckPinsPropagate(const Coord& lo, const Coord& hi)
   for (std::int64_t local = 0; local < sites && empty < 0; ++local)
   {
     const Coord c = cat.Coordinates(local);
-    const int b = this->Fixed[static_cast<std::size_t>(
-      this->Index({ { origin[0] + c[0], origin[1] + c[1], origin[2] + c[2] } }))];
+    const int b =
+      this
+        ->Fixed[ToIndex(this->Index({ { origin[0] + c[0], origin[1] + c[1], origin[2] + c[2] } }))];
     if (b >= 0 && !cat.Assign(local, b))
       empty = local;
   }
@@ -149,7 +149,7 @@ void PinGroupBounds(
   };
   lo = hi = at(first);
   std::vector<std::int64_t> stack{ first };
-  seen[static_cast<std::size_t>(first)] = 1;
+  seen[ToIndex(first)] = 1;
   while (!stack.empty())
   {
     const Coord p = at(stack.back());
@@ -165,7 +165,7 @@ void PinGroupBounds(
       q[e / 2] += (e & 1) ? -1 : 1;
       if (q[e / 2] < 0 || q[e / 2] >= d[e / 2])
         continue;
-      const auto t = static_cast<std::size_t>(q[0] + d[0] * (q[1] + d[1] * q[2]));
+      const auto t = ToIndex(q[0] + d[0] * (q[1] + d[1] * q[2]));
       if (!seen[t] && pins.Data()[t] != FreeSite)
       {
         seen[t] = 1;
@@ -232,7 +232,7 @@ void BlockSolver::PlacePins(const Coord& m, std::uint64_t seed, std::int64_t& as
         throw PinScaleNeeded{ group, 2 * scale };
     }
     if (empty >= 0)
-      throw Error("the pin " + std::to_string(values[static_cast<std::size_t>(b)]) + " at " +
+      throw Error("the pin " + std::to_string(values[ToIndex(b)]) + " at " +
         Format(this->Coordinates(static_cast<std::int64_t>(s))) +
         " cannot be placed: no labelling of the whole model around it fits the start (the "
         "catalog empties at " +
@@ -250,7 +250,7 @@ LabelGrid PinsOfBox(const SynthesisOptions& world, const Coord& low, const Coord
       throw Error("the pinned sites cover " + Format(d) + " sites from " + Format(o) +
         ", which is not inside the output " + Format(world.Size));
   const Coord n{ { high[0] - low[0], high[1] - low[1], high[2] - low[2] } };
-  LabelGrid out(n, std::vector<Label>(static_cast<std::size_t>(n[0] * n[1] * n[2]), FreeSite));
+  LabelGrid out(n, std::vector<Label>(ToIndex(n[0] * n[1] * n[2]), FreeSite));
   Coord from, to;
   for (int a = 0; a < 3; ++a)
   {
@@ -262,8 +262,8 @@ LabelGrid PinsOfBox(const SynthesisOptions& world, const Coord& low, const Coord
   for (std::int64_t z = from[2]; z < to[2]; ++z)
     for (std::int64_t y = from[1]; y < to[1]; ++y)
       for (std::int64_t x = from[0]; x < to[0]; ++x)
-        out.Data()[static_cast<std::size_t>((x - low[0]) +
-          n[0] * ((y - low[1]) + n[1] * (z - low[2])))] = pins.At(x - o[0], y - o[1], z - o[2]);
+        out.Data()[ToIndex((x - low[0]) + n[0] * ((y - low[1]) + n[1] * (z - low[2])))] =
+          pins.At(x - o[0], y - o[1], z - o[2]);
   return out;
 }
 

@@ -9,6 +9,7 @@
  */
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
@@ -55,7 +56,7 @@ bool LooksBlank(const AdjacencyRules& rules, const SynthesisResult& trivial)
   const auto& weights = rules.Weights();
   const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
   const int b = rules.IndexOf(t);
-  const double example = b >= 0 && total > 0.0 ? weights[static_cast<std::size_t>(b)] / total : 1.0;
+  const double example = b >= 0 && total > 0.0 ? weights[ToIndex(b)] / total : 1.0;
   return share > 0.9 || share > 1.25 * example;
 }
 } // namespace

@@ -2,6 +2,7 @@
 #include "Discrete/SymmetryPlan.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <map>
@@ -50,11 +51,10 @@ LabelMap::LabelMap(std::vector<int> f)
     if (this->Cycle[b] >= 0)
       continue;
     std::vector<int> cycle;
-    for (int c = static_cast<int>(b); this->Cycle[static_cast<std::size_t>(c)] < 0;
-         c = this->F[static_cast<std::size_t>(c)])
+    for (int c = static_cast<int>(b); this->Cycle[ToIndex(c)] < 0; c = this->F[ToIndex(c)])
     {
-      this->Cycle[static_cast<std::size_t>(c)] = static_cast<int>(this->Cycles.size());
-      this->Position[static_cast<std::size_t>(c)] = static_cast<int>(cycle.size());
+      this->Cycle[ToIndex(c)] = static_cast<int>(this->Cycles.size());
+      this->Position[ToIndex(c)] = static_cast<int>(cycle.size());
       cycle.push_back(c);
     }
     this->Cycles.push_back(std::move(cycle));
@@ -63,11 +63,9 @@ LabelMap::LabelMap(std::vector<int> f)
 
 int LabelMap::Power(int b, std::int64_t j) const
 {
-  const auto& cycle =
-    this->Cycles[static_cast<std::size_t>(this->Cycle[static_cast<std::size_t>(b)])];
+  const auto& cycle = this->Cycles[ToIndex(this->Cycle[ToIndex(b)])];
   const auto len = static_cast<std::int64_t>(cycle.size());
-  return cycle[static_cast<std::size_t>(
-    (this->Position[static_cast<std::size_t>(b)] + j % len) % len)];
+  return cycle[ToIndex((this->Position[ToIndex(b)] + j % len) % len)];
 }
 
 std::int64_t SymmetryPlan::Source(const std::array<std::int64_t, 3>& q) const
@@ -78,7 +76,7 @@ std::int64_t SymmetryPlan::Source(const std::array<std::int64_t, 3>& q) const
       r[a] = q[a] % this->Period[a];
   if (this->Rotate)
   {
-    const std::int64_t xy = this->TurnSource[static_cast<std::size_t>(q[0] + this->Full[0] * q[1])];
+    const std::int64_t xy = this->TurnSource[ToIndex(q[0] + this->Full[0] * q[1])];
     r[0] = xy % this->Domain[0];
     r[1] = xy / this->Domain[0];
   }
@@ -91,7 +89,7 @@ int SymmetryPlan::Image(const std::array<std::int64_t, 3>& q, int b) const
     if (this->Period[a] > 0)
       b = this->Shift[a].Power(b, q[a] / this->Period[a]);
   if (this->Rotate)
-    b = this->Turn.Power(b, this->TurnPower[static_cast<std::size_t>(q[0] + this->Full[0] * q[1])]);
+    b = this->Turn.Power(b, this->TurnPower[ToIndex(q[0] + this->Full[0] * q[1])]);
   return b;
 }
 
@@ -153,15 +151,12 @@ public:
   }
 
 private:
-  std::string Name(int b) const
-  {
-    return std::to_string(this->Rules.LabelValues()[static_cast<std::size_t>(b)]);
-  }
+  std::string Name(int b) const { return std::to_string(this->Rules.LabelValues()[ToIndex(b)]); }
 
   /// A label map given by values, checked to be one-to-one on the example's labels.
   LabelMap ReadMap(const std::map<Label, Label>& m, const std::string& what) const
   {
-    std::vector<int> f(static_cast<std::size_t>(this->K));
+    std::vector<int> f(ToIndex(this->K));
     std::iota(f.begin(), f.end(), 0);
     for (const auto& kv : m)
     {
@@ -170,13 +165,13 @@ private:
         throw Error("the " + what + " names label " +
           std::to_string(from < 0 ? kv.first : kv.second) +
           ", which does not occur in the example");
-      f[static_cast<std::size_t>(from)] = to;
+      f[ToIndex(from)] = to;
     }
-    std::vector<char> hit(static_cast<std::size_t>(this->K), 0);
+    std::vector<char> hit(ToIndex(this->K), 0);
     for (int b = 0; b < this->K; ++b)
-      if (hit[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])]++)
+      if (hit[ToIndex(f[ToIndex(b)])]++)
         throw Error("the " + what + " is not one-to-one: two labels map to label " +
-          this->Name(f[static_cast<std::size_t>(b)]));
+          this->Name(f[ToIndex(b)]));
     return LabelMap(std::move(f));
   }
 
@@ -197,7 +192,7 @@ private:
     bool any = false;
     for (int a = 0; a < 3; ++a)
     {
-      const Translation& t = this->Options.Translate[static_cast<std::size_t>(a)];
+      const Translation& t = this->Options.Translate[ToIndex(a)];
       if (t.Enabled)
       {
         this->PlanTranslation(a, t);
@@ -227,7 +222,7 @@ private:
     if (period > n)
       throw Error("the period along " + axis + " (" + std::to_string(period) +
         ") is longer than the output (" + std::to_string(n) + ")");
-    LabelMap& f = this->Plan->Shift[static_cast<std::size_t>(a)];
+    LabelMap& f = this->Plan->Shift[ToIndex(a)];
     f = this->ReadMap(t.Map, "translation map along " + axis);
     const AdjacencyRules& rules = this->Rules;
     for (int a2 = 0; a2 < 3; ++a2)
@@ -240,8 +235,7 @@ private:
               (rules.Allowed(2 * a2, b, c) ? " occurs" : " does not occur") + ", but " +
               this->Name(f.Apply(b)) + " before " + this->Name(f.Apply(c)) +
               (rules.Allowed(2 * a2, b, c) ? " does not" : " does"));
-    if (this->Options.Boundary[static_cast<std::size_t>(2 * a)] ||
-      this->Options.Boundary[static_cast<std::size_t>(2 * a + 1)])
+    if (this->Options.Boundary[ToIndex(2 * a)] || this->Options.Boundary[ToIndex(2 * a + 1)])
       throw Error("the model repeats along " + axis + ", so its " + axis +
         " faces cannot have boundary labels");
     this->Plan->Period[a] = period;
@@ -296,7 +290,7 @@ private:
     std::optional<Label> side;
     for (int face = 0; face < 4; ++face)
     {
-      const auto& v = this->Options.Boundary[static_cast<std::size_t>(face)];
+      const auto& v = this->Options.Boundary[ToIndex(face)];
       if (!v)
         continue;
       if (side && *side != *v)
@@ -314,8 +308,8 @@ private:
     this->Maps.push_back(&plan.Turn);
     this->MapNames.push_back("rotation map");
     // Where each output xy site comes from: the domain site of its orbit with the lowest index.
-    plan.TurnSource.assign(static_cast<std::size_t>(n * n), -1);
-    plan.TurnPower.assign(static_cast<std::size_t>(n * n), 0);
+    plan.TurnSource.assign(ToIndex(n * n), -1);
+    plan.TurnPower.assign(ToIndex(n * n), 0);
     for (std::int64_t y = 0; y < n; ++y)
       for (std::int64_t x = 0; x < n; ++x)
       {
@@ -333,8 +327,8 @@ private:
           rx = tx;
           ry = ty;
         }
-        plan.TurnSource[static_cast<std::size_t>(x + n * y)] = best;
-        plan.TurnPower[static_cast<std::size_t>(x + n * y)] = static_cast<std::uint8_t>(power);
+        plan.TurnSource[ToIndex(x + n * y)] = best;
+        plan.TurnPower[ToIndex(x + n * y)] = static_cast<std::uint8_t>(power);
       }
   }
 
@@ -345,7 +339,7 @@ private:
     for (std::size_t i = 0; i < this->Maps.size(); ++i)
       for (int face = 0; face < 6; ++face)
       {
-        const auto& v = domain.Boundary[static_cast<std::size_t>(face)];
+        const auto& v = domain.Boundary[ToIndex(face)];
         if (!v || this->Options.Size[face / 2] == 1)
           continue;
         const int b = this->Rules.IndexOf(*v);
@@ -371,14 +365,14 @@ private:
     auto& masks = this->Plan->SiteMasks;
     if (masks.empty())
     {
-      masks.assign(static_cast<std::size_t>(sites * words), 0);
+      masks.assign(ToIndex(sites * words), 0);
       for (std::int64_t s = 0; s < sites; ++s)
         for (int b = 0; b < this->K; ++b)
-          masks[static_cast<std::size_t>(s * words + b / 64)] |= std::uint64_t(1) << (b % 64);
+          masks[ToIndex(s * words + b / 64)] |= std::uint64_t(1) << (b % 64);
     }
     for (int b = 0; b < this->K; ++b)
       if (!allowed(b))
-        masks[static_cast<std::size_t>(site * words + b / 64)] &= ~(std::uint64_t(1) << (b % 64));
+        masks[ToIndex(site * words + b / 64)] &= ~(std::uint64_t(1) << (b % 64));
   }
 
   /// A seam from @p s to @p t under relation @p rel (a unary mask when they are one site).
@@ -386,7 +380,7 @@ private:
   {
     if (s == t)
     {
-      const auto& pred = this->Relations[static_cast<std::size_t>(rel)];
+      const auto& pred = this->Relations[ToIndex(rel)];
       this->KeepOnly(s, [&](int b) { return pred(b, b); });
       return;
     }
@@ -404,7 +398,7 @@ private:
     {
       if (this->Plan->Period[a] == 0)
         continue;
-      const LabelMap f = this->Plan->Shift[static_cast<std::size_t>(a)];
+      const LabelMap f = this->Plan->Shift[ToIndex(a)];
       const int rel = this->Relation(
         0, a, 1, [&rules, a, f](int b, int c) { return rules.Allowed(2 * a, b, f.Apply(c)); });
       for (p[2] = 0; p[2] < dd[2]; ++p[2])
@@ -435,7 +429,7 @@ private:
         for (p[0] = 0; p[0] < h; ++p[0])
         {
           const std::int64_t s = this->Index(p);
-          const auto at = static_cast<std::size_t>(p[0] + n * p[1]);
+          const auto at = ToIndex(p[0] + n * p[1]);
           // A duplicate of a lower-index domain site (odd sizes: the left arm of the centre row).
           const std::int64_t src = plan.TurnSource[at];
           const int j = plan.TurnPower[at];
@@ -451,7 +445,7 @@ private:
             ++q[AxisOf(d)];
             if (q[AxisOf(d)] < h || q[AxisOf(d)] >= n)
               continue; // inside the domain, or outside the output
-            const auto qa = static_cast<std::size_t>(q[0] + n * q[1]);
+            const auto qa = ToIndex(q[0] + n * q[1]);
             const int jq = plan.TurnPower[qa];
             const int rel = this->Relation(1, d, jq,
               [&rules, f, d, jq](int b, int c) { return rules.Allowed(d, b, f.Power(c, jq)); });
@@ -466,13 +460,13 @@ private:
     const SymmetryPlan& plan = *this->Plan;
     const std::int64_t cells = g.Dims[0] * g.Dims[1] * g.Dims[2];
     bool valid = g.Dims[0] >= 1 && g.Dims[1] >= 1 && g.Dims[2] >= 1;
-    std::vector<const std::vector<float>*> weights(static_cast<std::size_t>(this->K), nullptr);
+    std::vector<const std::vector<float>*> weights(ToIndex(this->K), nullptr);
     for (const auto& kv : g.Weights)
     {
       const int b = this->Rules.IndexOf(kv.first);
       valid = valid && b >= 0 && static_cast<std::int64_t>(kv.second.size()) == cells;
       if (b >= 0)
-        weights[static_cast<std::size_t>(b)] = &kv.second;
+        weights[ToIndex(b)] = &kv.second;
     }
     if (!valid)
       return; // the solver reports what is wrong with the guide
@@ -485,8 +479,8 @@ private:
           this->KeepOnly(plan.Source(q),
             [&](int b)
             {
-              const auto* w = weights[static_cast<std::size_t>(plan.Image(q, b))];
-              return !w || (*w)[static_cast<std::size_t>(cell)] > 0.0f;
+              const auto* w = weights[ToIndex(plan.Image(q, b))];
+              return !w || (*w)[ToIndex(cell)] > 0.0f;
             });
         }
   }
@@ -498,17 +492,17 @@ private:
     const std::int64_t sites = dd[0] * dd[1] * dd[2];
     SiteArcs& out = this->Plan->Arcs;
     out.Dims = dd;
-    out.Start.assign(static_cast<std::size_t>(sites + 1), 0);
+    out.Start.assign(ToIndex(sites + 1), 0);
     for (const auto& arc : this->Arcs)
-      ++out.Start[static_cast<std::size_t>(std::get<0>(arc) + 1)];
+      ++out.Start[ToIndex(std::get<0>(arc) + 1)];
     for (std::int64_t s = 0; s < sites; ++s)
-      out.Start[static_cast<std::size_t>(s + 1)] += out.Start[static_cast<std::size_t>(s)];
+      out.Start[ToIndex(s + 1)] += out.Start[ToIndex(s)];
     out.Target.resize(this->Arcs.size());
     out.Class.resize(this->Arcs.size());
     std::vector<std::int64_t> fill(out.Start.begin(), out.Start.end() - 1);
     for (const auto& arc : this->Arcs)
     {
-      const auto i = static_cast<std::size_t>(fill[static_cast<std::size_t>(std::get<0>(arc))]++);
+      const auto i = ToIndex(fill[ToIndex(std::get<0>(arc))]++);
       out.Target[i] = std::get<1>(arc);
       out.Class[i] = std::get<2>(arc);
     }

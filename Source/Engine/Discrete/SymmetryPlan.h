@@ -11,6 +11,7 @@
  * f). A site linked to itself becomes a unary constraint. The output is the domain repeated
  * (turned) with the labels mapped by powers of f.
  */
+#include "Core/Index.h"
 #include "Discrete/AdjacencyRules.h"
 #include "Discrete/Catalog.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -41,7 +42,7 @@ class LabelMap
 public:
   LabelMap() = default;
   explicit LabelMap(std::vector<int> f);
-  int Apply(int b) const { return this->F[static_cast<std::size_t>(b)]; }
+  int Apply(int b) const { return this->F[ToIndex(b)]; }
   /// f^j(b) for any j ≥ 0.
   int Power(int b, std::int64_t j) const;
   const std::vector<int>& Values() const { return this->F; }

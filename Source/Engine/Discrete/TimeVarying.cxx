@@ -6,6 +6,7 @@
 #include "Core/LabelDraw.h"
 #include "Core/Memory.h"
 
+#include "Core/Index.h"
 #include "Core/Random.h"
 
 #include <algorithm>
@@ -83,7 +84,7 @@ TimeVaryingRules TimeVaryingRules::FromExample(const TimeVaryingGrid& example)
   };
   for (std::int64_t t = 0; t < n[3]; ++t)
   {
-    const LabelGrid& f = example.Frames[static_cast<std::size_t>(t)];
+    const LabelGrid& f = example.Frames[ToIndex(t)];
     for (std::int64_t z = 0; z < n[2]; ++z)
       for (std::int64_t y = 0; y < n[1]; ++y)
         for (std::int64_t x = 0; x < n[0]; ++x)
@@ -96,7 +97,7 @@ TimeVaryingRules TimeVaryingRules::FromExample(const TimeVaryingGrid& example)
           if (z + 1 < n[2])
             allow(2, v, f.At(x, y, z + 1));
           if (t + 1 < n[3])
-            allow(3, v, example.Frames[static_cast<std::size_t>(t + 1)].At(x, y, z));
+            allow(3, v, example.Frames[ToIndex(t + 1)].At(x, y, z));
         }
   }
   rules.Finish();
@@ -200,12 +201,12 @@ public:
     , N(options.Size)
     , Model(model)
     , Driver(driver)
-    , SelfInTime(static_cast<std::size_t>(rules.Words()), 0)
+    , SelfInTime(ToIndex(rules.Words()), 0)
   {
     // Labels that may follow themselves in time (the seam of a one-frame loop).
     for (int b = 0; b < rules.NumberOfLabels(); ++b)
       if (rules.Allowed(PlusT, b, b))
-        this->SelfInTime[static_cast<std::size_t>(b / 64)] |= std::uint64_t(1) << (b % 64);
+        this->SelfInTime[ToIndex(b / 64)] |= std::uint64_t(1) << (b % 64);
     this->LoopSelf = options.Loop && this->N[3] == 1;
     this->LoopSeam = options.Loop && this->N[3] > 1;
   }
@@ -244,7 +245,7 @@ public:
     if (empty >= 0)
       return this->Index(this->Coordinates(block, empty));
     for (std::int64_t local = 0; local < sites; ++local)
-      this->Model[static_cast<std::size_t>(this->Index(this->Coordinates(block, local)))] =
+      this->Model[ToIndex(this->Index(this->Coordinates(block, local)))] =
         this->Domains.Single(local);
     return -1;
   }
@@ -312,7 +313,7 @@ private:
       Coord4 q;
       if (!this->Neighbour(p, dir, q) || this->LocalOf(q) >= 0)
         continue;
-      const int label = this->Model[static_cast<std::size_t>(this->Index(q))];
+      const int label = this->Model[ToIndex(this->Index(q))];
       if (label >= 0 && !this->Domains.Keep(local, this->Rules.Compatible(dir ^ 1, label)))
         return false;
     }
@@ -322,11 +323,11 @@ private:
   std::int64_t AssignAll(std::int64_t sites, Random& rng, std::int64_t& assignments)
   {
     auto forEach = [this](std::int64_t v, auto&& visit) { this->ForEachNeighbour(v, visit); };
-    this->Order.resize(static_cast<std::size_t>(sites));
+    this->Order.resize(ToIndex(sites));
     std::iota(this->Order.begin(), this->Order.end(), 0);
     if (this->Options.Order == SiteOrder::Random)
       for (std::size_t i = this->Order.size(); i > 1; --i)
-        std::swap(this->Order[i - 1], this->Order[static_cast<std::size_t>(rng.Below(i))]);
+        std::swap(this->Order[i - 1], this->Order[ToIndex(rng.Below(i))]);
     for (std::int64_t local : this->Order)
     {
       if (this->Domains.Count(local) == 0)
@@ -339,9 +340,8 @@ private:
         this->Domains.Domain(local), this->Rules.Words(),
         [&](int b)
         {
-          return this->Options.Choice == LabelChoice::Frequency
-            ? this->Rules.Weights()[static_cast<std::size_t>(b)]
-            : 1.0;
+          return this->Options.Choice == LabelChoice::Frequency ? this->Rules.Weights()[ToIndex(b)]
+                                                                : 1.0;
         },
         rng.Uniform());
       ++assignments;
@@ -377,9 +377,7 @@ TimeVaryingGrid Frames(const TimeVaryingRules& rules, const TimeVaryingSolver& s
     for (std::int64_t z = 0; z < n[2]; ++z)
       for (std::int64_t y = 0; y < n[1]; ++y)
         for (std::int64_t x = 0; x < n[0]; ++x)
-          frame.Set(x, y, z,
-            values[static_cast<std::size_t>(
-              model[static_cast<std::size_t>(solver.Index({ { x, y, z, t } }))])]);
+          frame.Set(x, y, z, values[ToIndex(model[ToIndex(solver.Index({ { x, y, z, t } }))])]);
     out.Frames.push_back(std::move(frame));
   }
   return out;
@@ -397,12 +395,12 @@ TimeVaryingResult SynthesizeTimeVarying(
   CheckTimeVaryingMemory(rules, n, m);
   TimeVaryingResult result;
   SynthesisStatistics& stats = result.Statistics;
-  std::vector<std::int32_t> model(static_cast<std::size_t>(total), -1);
+  std::vector<std::int32_t> model(ToIndex(total), -1);
   if (!whole)
   {
     const int t = TrivialStart(rules, options);
     std::fill(model.begin(), model.end(), t);
-    stats.TrivialLabel = rules.LabelValues()[static_cast<std::size_t>(t)];
+    stats.TrivialLabel = rules.LabelValues()[ToIndex(t)];
   }
   // Blocks one after the other in scan order of the block grid (x fastest, time last).
   const std::vector<Block4> blocks =
@@ -449,7 +447,7 @@ ConsistencyReport CheckTimeVarying(
       for (std::int64_t y = 0; y < e[1]; ++y)
         for (std::int64_t x = 0; x < e[0]; ++x)
         {
-          const LabelGrid& f = example.Frames[static_cast<std::size_t>(t)];
+          const LabelGrid& f = example.Frames[ToIndex(t)];
           const Label v = f.At(x, y, z);
           if (x + 1 < e[0])
             allowed.emplace(0, v, f.At(x + 1, y, z));
@@ -458,7 +456,7 @@ ConsistencyReport CheckTimeVarying(
           if (z + 1 < e[2])
             allowed.emplace(2, v, f.At(x, y, z + 1));
           if (t + 1 < e[3])
-            allowed.emplace(3, v, example.Frames[static_cast<std::size_t>(t + 1)].At(x, y, z));
+            allowed.emplace(3, v, example.Frames[ToIndex(t + 1)].At(x, y, z));
         }
   ConsistencyReport report;
   for (std::int64_t t = 0; t < n[3]; ++t)
@@ -466,7 +464,7 @@ ConsistencyReport CheckTimeVarying(
       for (std::int64_t y = 0; y < n[1]; ++y)
         for (std::int64_t x = 0; x < n[0]; ++x)
         {
-          const LabelGrid& f = model.Frames[static_cast<std::size_t>(t)];
+          const LabelGrid& f = model.Frames[ToIndex(t)];
           const Label v = f.At(x, y, z);
           auto check = [&](int axis, Label to)
           {
@@ -492,7 +490,7 @@ ConsistencyReport CheckTimeVarying(
           if (z + 1 < n[2])
             check(2, f.At(x, y, z + 1));
           if (t + 1 < n[3] || loop)
-            check(3, model.Frames[static_cast<std::size_t>((t + 1) % n[3])].At(x, y, z));
+            check(3, model.Frames[ToIndex((t + 1) % n[3])].At(x, y, z));
         }
   return report;
 }

@@ -9,6 +9,7 @@
 // in order (and the last before the first where the output repeats along that axis).
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <map>
@@ -42,14 +43,13 @@ void BlockSolver::SiteMask(std::size_t s, std::uint64_t* out) const
   if (this->HasGuide())
   {
     const std::uint64_t* g = this->GuideMasks.data() +
-      static_cast<std::size_t>(this->GuideCell(this->Coordinates(static_cast<std::int64_t>(s)))) *
-        static_cast<std::size_t>(words);
+      ToIndex(this->GuideCell(this->Coordinates(static_cast<std::int64_t>(s)))) * ToIndex(words);
     for (int w = 0; w < words; ++w)
       out[w] &= g[w];
   }
   if (this->Seams && this->Seams->HasMasks())
   {
-    const std::uint64_t* m = this->Seams->SiteMasks.data() + s * static_cast<std::size_t>(words);
+    const std::uint64_t* m = this->Seams->SiteMasks.data() + s * ToIndex(words);
     for (int w = 0; w < words; ++w)
       out[w] &= m[w];
   }
@@ -61,15 +61,15 @@ std::vector<std::uint64_t> BlockSolver::LayerMasks(int axis) const
 {
   const int words = this->Rules.Words();
   const int k = this->Rules.NumberOfLabels();
-  std::vector<std::uint64_t> layers(static_cast<std::size_t>(this->N[axis] * words), ~0ull);
-  std::vector<std::uint64_t> site(static_cast<std::size_t>(words));
+  std::vector<std::uint64_t> layers(ToIndex(this->N[axis] * words), ~0ull);
+  std::vector<std::uint64_t> site(ToIndex(words));
   for (std::size_t s = 0; s < this->Model.size(); ++s)
   {
     this->SiteMask(s, site.data());
     const Coord p = this->Coordinates(static_cast<std::int64_t>(s));
     std::uint64_t* layer = layers.data() + p[axis] * words;
     for (int w = 0; w < words; ++w)
-      layer[w] &= site[static_cast<std::size_t>(w)];
+      layer[w] &= site[ToIndex(w)];
   }
   for (int b = 0; b < k; ++b)
   {
@@ -79,7 +79,7 @@ std::vector<std::uint64_t> BlockSolver::LayerMasks(int axis) const
         selfAdjacent = false;
     if (!selfAdjacent)
       for (std::int64_t i = 0; i < this->N[axis]; ++i)
-        layers[static_cast<std::size_t>(i * words + b / 64)] &= ~(std::uint64_t(1) << (b % 64));
+        layers[ToIndex(i * words + b / 64)] &= ~(std::uint64_t(1) << (b % 64));
   }
   return layers;
 }
@@ -92,9 +92,9 @@ std::vector<int> BlockSolver::LayeredStart(int axis) const
   const int words = this->Rules.Words();
   const std::int64_t n = this->N[axis];
   const std::vector<std::uint64_t> allowed = this->LayerMasks(axis);
-  const bool wrap = this->Seams && this->Seams->Period[static_cast<std::size_t>(axis)] > 0;
+  const bool wrap = this->Seams && this->Seams->Period[ToIndex(axis)] > 0;
   const int forward = 2 * axis;
-  std::vector<std::uint64_t> reach(allowed.size(), 0), next(static_cast<std::size_t>(words));
+  std::vector<std::uint64_t> reach(allowed.size(), 0), next(ToIndex(words));
   // Candidate labels of the first layer: all of them, or one at a time when the last layer
   // must come back to it.
   std::vector<int> firsts;
@@ -109,7 +109,7 @@ std::vector<int> BlockSolver::LayeredStart(int axis) const
     if (first < 0)
       std::copy(allowed.begin(), allowed.begin() + words, reach.begin());
     else
-      reach[static_cast<std::size_t>(first / 64)] = std::uint64_t(1) << (first % 64);
+      reach[ToIndex(first / 64)] = std::uint64_t(1) << (first % 64);
     bool empty = false;
     for (std::int64_t i = 1; i < n && !empty; ++i)
     {
@@ -117,8 +117,8 @@ std::vector<int> BlockSolver::LayeredStart(int axis) const
       empty = true;
       for (int w = 0; w < words; ++w)
       {
-        const auto j = static_cast<std::size_t>(i * words + w);
-        reach[j] = next[static_cast<std::size_t>(w)] & allowed[j];
+        const auto j = ToIndex(i * words + w);
+        reach[j] = next[ToIndex(w)] & allowed[j];
         empty = empty && reach[j] == 0;
       }
     }
@@ -126,7 +126,7 @@ std::vector<int> BlockSolver::LayeredStart(int axis) const
       continue;
     // Back from the last layer: a label reached there (that leads back to the first), then in
     // each earlier layer one allowed before the next, the same label where possible.
-    std::vector<int> layers(static_cast<std::size_t>(n), -1);
+    std::vector<int> layers(ToIndex(n), -1);
     const std::uint64_t* last = reach.data() + (n - 1) * words;
     for (int b = 0; b < this->Rules.NumberOfLabels() && layers.back() < 0; ++b)
       if (Has(last, b) && (first < 0 || this->Rules.Allowed(forward, b, first)))
@@ -135,13 +135,13 @@ std::vector<int> BlockSolver::LayeredStart(int axis) const
       continue;
     for (std::int64_t i = n - 2; i >= 0; --i)
     {
-      const int above = layers[static_cast<std::size_t>(i + 1)];
+      const int above = layers[ToIndex(i + 1)];
       const std::uint64_t* here = reach.data() + i * words;
       int pick = Has(here, above) && this->Rules.Allowed(forward, above, above) ? above : -1;
       for (int b = 0; b < this->Rules.NumberOfLabels() && pick < 0; ++b)
         if (Has(here, b) && this->Rules.Allowed(forward, b, above))
           pick = b;
-      layers[static_cast<std::size_t>(i)] = pick;
+      layers[ToIndex(i)] = pick;
     }
     return layers;
   }
@@ -171,7 +171,7 @@ int BlockSolver::TrivialStart()
   {
     // A label every free site may hold, else layers (not for mirrored halves, whose mirror
     // planes constrain single labels).
-    std::vector<std::uint64_t> everywhere(static_cast<std::size_t>(this->Rules.Words()), ~0ull);
+    std::vector<std::uint64_t> everywhere(ToIndex(this->Rules.Words()), ~0ull);
     std::vector<std::uint64_t> site(everywhere.size());
     for (std::size_t s = 0; s < this->Model.size(); ++s)
       if (this->Fixed[s] < 0)
@@ -206,8 +206,7 @@ int BlockSolver::TrivialStart()
       continue;
     this->Model[s] = layers.empty()
       ? t
-      : layers[static_cast<std::size_t>(
-          this->Coordinates(static_cast<std::int64_t>(s))[static_cast<std::size_t>(layerAxis)])];
+      : layers[ToIndex(this->Coordinates(static_cast<std::int64_t>(s))[ToIndex(layerAxis)])];
     ++counts[this->Model[s]];
   }
   if (!layers.empty())
@@ -217,8 +216,7 @@ int BlockSolver::TrivialStart()
       })->first;
   this->CheckStart(t,
     layers.empty() ? std::string("a model of label ")
-                   : "a model layered along " +
-        std::string("xyz").substr(static_cast<std::size_t>(layerAxis), 1) +
+                   : "a model layered along " + std::string("xyz").substr(ToIndex(layerAxis), 1) +
         " starting with label ");
   return t;
 }
@@ -251,15 +249,14 @@ int BlockSolver::GivenStart(const LabelGrid& start)
 void BlockSolver::CheckStart(int t, const std::string& what) const
 {
   const auto& v = this->Rules.LabelValues();
-  const std::string start = what + std::to_string(v[static_cast<std::size_t>(t)]);
+  const std::string start = what + std::to_string(v[ToIndex(t)]);
   // With symmetry, the trivial label must be allowed on the mirror planes.
   if (this->Plan)
     for (int a = 0; a < 3; ++a)
-      if (this->Plan->Axes[static_cast<std::size_t>(a)] &&
-        !Has(this->Plan->ColumnMask[static_cast<std::size_t>(a)].data(), t))
-        throw Error("the trivial label " + std::to_string(v[static_cast<std::size_t>(t)]) +
+      if (this->Plan->Axes[ToIndex(a)] && !Has(this->Plan->ColumnMask[ToIndex(a)].data(), t))
+        throw Error("the trivial label " + std::to_string(v[ToIndex(t)]) +
           " cannot lie next to its own mirror image along " +
-          std::string("xyz").substr(static_cast<std::size_t>(a), 1));
+          std::string("xyz").substr(ToIndex(a), 1));
   // A failed block keeps the start's labels, so the guide may not forbid them.
   if (this->HasGuide())
     for (std::size_t s = 0; s < this->Model.size(); ++s)
@@ -267,8 +264,8 @@ void BlockSolver::CheckStart(int t, const std::string& what) const
       const Coord p = this->Coordinates(static_cast<std::int64_t>(s));
       const int b = this->Model[s];
       if (this->Fixed[s] < 0 && this->GuideWeight(this->GuideCell(p), b) == 0.0f)
-        throw Error("the guide gives the trivial label " +
-          std::to_string(v[static_cast<std::size_t>(b)]) + " weight 0 at " + Format(p) +
+        throw Error("the guide gives the trivial label " + std::to_string(v[ToIndex(b)]) +
+          " weight 0 at " + Format(p) +
           ", but block synthesis falls back to it where a "
           "block fails. Allow that label everywhere, or use whole-model synthesis");
     }
@@ -276,13 +273,12 @@ void BlockSolver::CheckStart(int t, const std::string& what) const
   this->ForEachAdjacentPair(
     [&](const Coord& p, const Coord& q, int axis)
     {
-      const int b = this->Model[static_cast<std::size_t>(this->Index(p))];
-      const int c = this->Model[static_cast<std::size_t>(this->Index(q))];
+      const int b = this->Model[ToIndex(this->Index(p))];
+      const int c = this->Model[ToIndex(this->Index(q))];
       if (!this->Rules.Allowed(2 * axis, b, c))
         throw Error("no usable trivial start: " + start + " with the boundary labels puts label " +
-          std::to_string(v[static_cast<std::size_t>(b)]) + " before " +
-          std::to_string(v[static_cast<std::size_t>(c)]) + " along " +
-          std::string("xyz").substr(static_cast<std::size_t>(axis), 1) + " at " + Format(p) +
+          std::to_string(v[ToIndex(b)]) + " before " + std::to_string(v[ToIndex(c)]) + " along " +
+          std::string("xyz").substr(ToIndex(axis), 1) + " at " + Format(p) +
           ", which the example never does");
     });
   if (this->Seams)
@@ -297,13 +293,12 @@ void BlockSolver::CheckStartAgainstSeams(const std::string& start) const
   for (std::size_t s = 0; s < this->Model.size(); ++s)
   {
     const int b = this->Model[s];
-    const std::uint64_t* mask = this->Seams->HasMasks()
-      ? this->Seams->SiteMasks.data() + s * static_cast<std::size_t>(words)
-      : nullptr;
+    const std::uint64_t* mask =
+      this->Seams->HasMasks() ? this->Seams->SiteMasks.data() + s * ToIndex(words) : nullptr;
     bool ok = !mask || Has(mask, b);
     for (std::int64_t i = arcs.Start[s]; ok && i < arcs.Start[s + 1]; ++i)
-      ok = this->Seams->Relation->Allowed(arcs.Class[static_cast<std::size_t>(i)], b,
-        this->Model[static_cast<std::size_t>(arcs.Target[static_cast<std::size_t>(i)])]);
+      ok = this->Seams->Relation->Allowed(
+        arcs.Class[ToIndex(i)], b, this->Model[ToIndex(arcs.Target[ToIndex(i)])]);
     if (!ok)
       throw Error("no usable trivial start: " + start +
         " (with the boundary labels) does not meet its own symmetric copies at " +

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/VoxelSurface.h"
 
+#include "Core/Index.h"
 #include "Core/ParallelChunks.h"
 
 #include <algorithm>
@@ -37,27 +38,27 @@ VoxelSurface MergedFacesToward(int d, const LabelGrid& grid, Label empty,
   // Slices across axis a; in a slice, u and v are the other two axes in increasing order.
   // Points are shared by the rectangles of one plane (a flat-shaded surface needs no more).
   const int a = d / 2, u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;
-  const std::int64_t toward = Steps[d][a] * stride[static_cast<std::size_t>(a)];
-  mask.assign(static_cast<std::size_t>(n[u] * n[v]), empty);
-  plane.assign(static_cast<std::size_t>((n[u] + 1) * (n[v] + 1)), -1);
+  const std::int64_t toward = Steps[d][a] * stride[ToIndex(a)];
+  mask.assign(ToIndex(n[u] * n[v]), empty);
+  plane.assign(ToIndex((n[u] + 1) * (n[v] + 1)), -1);
   for (std::int64_t s = 0; s < n[a]; ++s)
   {
     const bool inside = s + Steps[d][a] >= 0 && s + Steps[d][a] < n[a];
     for (std::int64_t j = 0; j < n[v]; ++j)
       for (std::int64_t i = 0; i < n[u]; ++i)
       {
-        const std::int64_t at = s * stride[static_cast<std::size_t>(a)] +
-          i * stride[static_cast<std::size_t>(u)] + j * stride[static_cast<std::size_t>(v)];
+        const std::int64_t at =
+          s * stride[ToIndex(a)] + i * stride[ToIndex(u)] + j * stride[ToIndex(v)];
         const Label b = data[at];
         const bool exposed = b != empty && (!inside || data[at + toward] != b);
-        mask[static_cast<std::size_t>(i + n[u] * j)] = exposed ? b : empty;
+        mask[ToIndex(i + n[u] * j)] = exposed ? b : empty;
       }
     for (std::size_t c : used)
       plane[c] = -1;
     used.clear();
     auto corner = [&](std::int64_t i, std::int64_t j, std::int64_t k)
     {
-      const auto key = static_cast<std::size_t>(i + (n[u] + 1) * j);
+      const auto key = ToIndex(i + (n[u] + 1) * j);
       if (plane[key] < 0)
       {
         plane[key] = static_cast<std::int64_t>(surface.Points.size());
@@ -73,7 +74,7 @@ VoxelSurface MergedFacesToward(int d, const LabelGrid& grid, Label empty,
     };
     // Greedy rectangles: as wide as the row allows, then as high as whole rows allow.
     auto cell = [&](std::int64_t i, std::int64_t j) -> Label&
-    { return mask[static_cast<std::size_t>(i + n[u] * j)]; };
+    { return mask[ToIndex(i + n[u] * j)]; };
     for (std::int64_t v0 = 0; v0 < n[v]; ++v0)
       for (std::int64_t u0 = 0; u0 < n[u];)
       {
@@ -96,7 +97,7 @@ VoxelSurface MergedFacesToward(int d, const LabelGrid& grid, Label empty,
           std::fill(&cell(u0, j), &cell(u0, j) + (u1 - u0), empty);
         std::array<std::int64_t, 4> quad;
         for (int k = 0; k < 4; ++k) // the unit face's corner, stretched over the rectangle
-          quad[static_cast<std::size_t>(k)] =
+          quad[ToIndex(k)] =
             corner(Faces[d][k][u] ? u1 : u0, Faces[d][k][v] ? v1 : v0, s + Faces[d][k][a]);
         surface.Quads.push_back(quad);
         surface.QuadLabels.push_back(b);
@@ -171,12 +172,12 @@ VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
   // origin + (i - 1/2, j - 1/2, k - 1/2) * spacing. Points are numbered as first met; the faces
   // of the voxels of layer z use corner layers k = z and z + 1 only, so two layers of numbers
   // (-1: not met yet) are all the lookup needs.
-  const auto across = static_cast<std::size_t>((n[0] + 1) * (n[1] + 1));
+  const auto across = ToIndex((n[0] + 1) * (n[1] + 1));
   std::vector<std::int64_t> layers[2] = { std::vector<std::int64_t>(across, -1),
     std::vector<std::int64_t>(across, -1) };
   auto corner = [&](std::int64_t i, std::int64_t j, std::int64_t k)
   {
-    std::int64_t& id = layers[k & 1][static_cast<std::size_t>(i + (n[0] + 1) * j)];
+    std::int64_t& id = layers[k & 1][ToIndex(i + (n[0] + 1) * j)];
     if (id < 0)
     {
       id = static_cast<std::int64_t>(surface.Points.size());
@@ -206,8 +207,7 @@ VoxelSurface ExtractVoxelSurface(const LabelGrid& grid, Label empty,
             continue;
           std::array<std::int64_t, 4> quad;
           for (int v = 0; v < 4; ++v)
-            quad[static_cast<std::size_t>(v)] =
-              corner(x + Faces[d][v][0], y + Faces[d][v][1], z + Faces[d][v][2]);
+            quad[ToIndex(v)] = corner(x + Faces[d][v][0], y + Faces[d][v][1], z + Faces[d][v][2]);
           surface.Quads.push_back(quad);
           surface.QuadLabels.push_back(b);
         }

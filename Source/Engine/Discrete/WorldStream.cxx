@@ -6,6 +6,7 @@
  * slab by slab as a wavefront of its blocks in bounded memory (SynthesizeStreamed).
  */
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/WindowRun.h"
@@ -136,22 +137,21 @@ SynthesisResult RegionOfCone(const AdjacencyRules& rules, const SynthesisOptions
     return r;
   const Coord& w = window.Size;
   std::vector<Label> labels;
-  labels.reserve(
-    static_cast<std::size_t>((high[0] - low[0]) * (high[1] - low[1]) * (high[2] - low[2])));
+  labels.reserve(ToIndex((high[0] - low[0]) * (high[1] - low[1]) * (high[2] - low[2])));
   std::vector<std::int32_t> last;
   last.reserve(labels.capacity());
   for (std::int64_t z = low[2]; z < high[2]; ++z)
     for (std::int64_t y = low[1]; y < high[1]; ++y)
       for (std::int64_t x = low[0]; x < high[0]; ++x)
       {
-        const auto s = static_cast<std::size_t>((x - cone.WindowLow[0]) +
+        const auto s = ToIndex((x - cone.WindowLow[0]) +
           w[0] * ((y - cone.WindowLow[1]) + w[1] * (z - cone.WindowLow[2])));
         if (keep.Model[s] < 0)
         {
           LeftUndecided({ { x, y, z } }, r);
           return r;
         }
-        labels.push_back(rules.LabelValues()[static_cast<std::size_t>(keep.Model[s])]);
+        labels.push_back(rules.LabelValues()[ToIndex(keep.Model[s])]);
         last.push_back(keep.LastBlock[s]);
       }
   r.Model =
@@ -240,13 +240,13 @@ struct Wavefront
     , Rows(lattice.Count(axis))
   {
     // Delay: the longest path through Need, in phase order.
-    this->Delay.assign(static_cast<std::size_t>(this->T), 0);
+    this->Delay.assign(ToIndex(this->T), 0);
     for (int t2 = 1; t2 < this->T; ++t2)
     {
-      auto& d = this->Delay[static_cast<std::size_t>(t2)];
-      d = this->Delay[static_cast<std::size_t>(t2 - 1)];
+      auto& d = this->Delay[ToIndex(t2)];
+      d = this->Delay[ToIndex(t2 - 1)];
       for (int t1 = 0; t1 < t2; ++t1)
-        d = std::max(d, this->Delay[static_cast<std::size_t>(t1)] + this->Need(t1, t2));
+        d = std::max(d, this->Delay[ToIndex(t1)] + this->Need(t1, t2));
     }
   }
 
@@ -272,9 +272,9 @@ struct Wavefront
   /// (Core/WorldSchedule.h's walk, along one axis): MinRow[t], the first row phase t runs.
   void From(std::int64_t low)
   {
-    const auto a = static_cast<std::size_t>(this->Axis);
+    const auto a = ToIndex(this->Axis);
     const std::int64_t period = this->Lattice.Period(this->Axis);
-    this->MinRow.assign(static_cast<std::size_t>(this->T), this->Rows);
+    this->MinRow.assign(ToIndex(this->T), this->Rows);
     for (int t = this->T - 1; t >= 0; --t)
     {
       const std::int64_t digit = this->Digit(t);
@@ -286,7 +286,7 @@ struct Wavefront
         const BoxBlock<3> b = this->Lattice.At(at);
         if (b.Origin[a] + b.Dims[a] > low)
         {
-          this->MinRow[static_cast<std::size_t>(t)] = g;
+          this->MinRow[ToIndex(t)] = g;
           low = std::min(low, std::max<std::int64_t>(0, b.Origin[a] - 1));
           break;
         }
@@ -294,9 +294,9 @@ struct Wavefront
     }
     this->FirstStep = this->LastStep();
     for (int t = 0; t < this->T; ++t)
-      if (this->MinRow[static_cast<std::size_t>(t)] < this->Rows)
-        this->FirstStep = std::min(this->FirstStep,
-          this->MinRow[static_cast<std::size_t>(t)] + this->Delay[static_cast<std::size_t>(t)]);
+      if (this->MinRow[ToIndex(t)] < this->Rows)
+        this->FirstStep =
+          std::min(this->FirstStep, this->MinRow[ToIndex(t)] + this->Delay[ToIndex(t)]);
   }
 
   std::int64_t LastStep() const { return this->Rows - 1 + this->Delay.back(); }
@@ -304,18 +304,14 @@ struct Wavefront
   /// Appends the blocks of step @p s and global phase @p t.
   void Blocks(std::int64_t s, int t, std::vector<BoxBlock<3>>& out) const
   {
-    const std::int64_t g = s - this->Delay[static_cast<std::size_t>(t)];
-    if (g < this->MinRow[static_cast<std::size_t>(t)] || g >= this->Rows)
+    const std::int64_t g = s - this->Delay[ToIndex(t)];
+    if (g < this->MinRow[ToIndex(t)] || g >= this->Rows)
       return;
     const int o1 = this->Axis == 0 ? 1 : 0, o2 = this->Axis == 2 ? 1 : 2;
     WorldBox at{};
-    at[static_cast<std::size_t>(this->Axis)] = g;
-    for (at[static_cast<std::size_t>(o2)] = 0;
-         at[static_cast<std::size_t>(o2)] < this->Lattice.Count(o2);
-         ++at[static_cast<std::size_t>(o2)])
-      for (at[static_cast<std::size_t>(o1)] = 0;
-           at[static_cast<std::size_t>(o1)] < this->Lattice.Count(o1);
-           ++at[static_cast<std::size_t>(o1)])
+    at[ToIndex(this->Axis)] = g;
+    for (at[ToIndex(o2)] = 0; at[ToIndex(o2)] < this->Lattice.Count(o2); ++at[ToIndex(o2)])
+      for (at[ToIndex(o1)] = 0; at[ToIndex(o1)] < this->Lattice.Count(o1); ++at[ToIndex(o1)])
       {
         const BoxBlock<3> b = this->Lattice.At(at);
         if (b.Phase == t % this->P)
@@ -326,7 +322,7 @@ struct Wavefront
   /// Rows [0, Final(s)) along the axis are final once the steps before @p s have run.
   std::int64_t Final(std::int64_t s) const
   {
-    const std::int64_t n = this->Lattice.World()[static_cast<std::size_t>(this->Axis)];
+    const std::int64_t n = this->Lattice.World()[ToIndex(this->Axis)];
     if (s > this->LastStep())
       return n;
     const std::int64_t g = s - this->Delay.back();
@@ -358,7 +354,7 @@ public:
     , World(world)
     , Layout(layout)
     , OnChunk(onChunk)
-    , Axis(static_cast<std::size_t>(layout.Axis))
+    , Axis(ToIndex(layout.Axis))
   {
   }
 
@@ -517,7 +513,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
     if (c.High[a] > final || c.High[a] > held.High || c.Low[a] < held.Low)
       break;
     const std::int64_t rows = c.High[a] - c.Low[a];
-    std::vector<std::int32_t> model(static_cast<std::size_t>(inner * outer * rows));
+    std::vector<std::int32_t> model(ToIndex(inner * outer * rows));
     c.LastBlock.resize(model.size());
     CopyRows(held.Model, held.Low, held.High - held.Low, model, c.Low[a], rows, c.Low[a], c.High[a],
       inner, outer);
@@ -535,7 +531,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
         LeftUndecided(p, r);
         return false;
       }
-      labels[s] = values[static_cast<std::size_t>(model[s])];
+      labels[s] = values[ToIndex(model[s])];
     }
     c.Model = LabelGrid(dims, std::move(labels));
     ++this->NextChunk;
@@ -557,7 +553,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
     Slab rest;
     rest.Low = std::min(keep, held.High);
     rest.High = held.High;
-    rest.Model.resize(static_cast<std::size_t>(inner * outer * (rest.High - rest.Low)));
+    rest.Model.resize(ToIndex(inner * outer * (rest.High - rest.Low)));
     rest.LastBlock.resize(rest.Model.size());
     CopyRows(held.Model, held.Low, held.High - held.Low, rest.Model, rest.Low, rest.High - rest.Low,
       rest.Low, rest.High, inner, outer);
@@ -584,7 +580,7 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   Wavefront wave(lattice, layout.Axis, Passes(world));
   WorldBox low, high;
   layout.Box(firstChunk, low, high);
-  wave.From(low[static_cast<std::size_t>(layout.Axis)]);
+  wave.From(low[ToIndex(layout.Axis)]);
   Stream stream(rules, resolved, layout, onChunk);
   stream.NextChunk = firstChunk;
   stream.Phases = lattice.Phases();
@@ -600,12 +596,12 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   for (std::int64_t s0 = wave.FirstStep; s0 <= wave.LastStep(); s0 += g)
   {
     const std::int64_t s1 = std::min(s0 + g, wave.LastStep() + 1);
-    std::vector<std::vector<BoxBlock<3>>> passes(static_cast<std::size_t>(Passes(world)));
+    std::vector<std::vector<BoxBlock<3>>> passes(ToIndex(Passes(world)));
     bool any = false;
     for (std::int64_t s = s0; s < s1; ++s)
       for (int t = 0; t < wave.T; ++t)
       {
-        auto& pass = passes[static_cast<std::size_t>(t / wave.P)];
+        auto& pass = passes[ToIndex(t / wave.P)];
         wave.Blocks(s, t, pass);
         any = any || !pass.empty();
       }
@@ -640,7 +636,7 @@ void StreamLayout::Box(
 {
   low = { { 0, 0, 0 } };
   high = this->World;
-  const auto a = static_cast<std::size_t>(this->Axis);
+  const auto a = ToIndex(this->Axis);
   low[a] = static_cast<std::int64_t>(j) * this->Thickness;
   high[a] = std::min(this->World[a], low[a] + this->Thickness);
 }
@@ -658,7 +654,7 @@ StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness)
       layout.Axis = a;
   if (lattice.Count(layout.Axis) == 1)
     layout.Axis = 0;
-  const auto a = static_cast<std::size_t>(layout.Axis);
+  const auto a = ToIndex(layout.Axis);
   if (thickness < 0)
     throw Error("a stream's slabs must be at least one site thick");
   layout.Thickness = thickness > 0

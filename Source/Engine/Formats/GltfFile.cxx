@@ -3,6 +3,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <tiny_gltf.h> // Debian's libtinygltf holds the implementation
 
@@ -64,9 +65,9 @@ void AddPart(tinygltf::Model& model, const GltfPart& part)
     const float q[3] = { p[0], p[2], -p[1] }; // z up -> y up
     for (int a = 0; a < 3; ++a)
     {
-      turned[3 * v + static_cast<std::size_t>(a)] = q[a];
-      low[static_cast<std::size_t>(a)] = std::min(low[static_cast<std::size_t>(a)], double(q[a]));
-      high[static_cast<std::size_t>(a)] = std::max(high[static_cast<std::size_t>(a)], double(q[a]));
+      turned[3 * v + ToIndex(a)] = q[a];
+      low[ToIndex(a)] = std::min(low[ToIndex(a)], double(q[a]));
+      high[ToIndex(a)] = std::max(high[ToIndex(a)], double(q[a]));
     }
   }
   tinygltf::Accessor positions;

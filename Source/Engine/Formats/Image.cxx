@@ -3,6 +3,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Core/ParallelChunks.h"
 
@@ -37,7 +38,7 @@ std::uint32_t Little(const std::vector<std::uint8_t>& b, std::size_t at, int byt
 {
   std::uint32_t v = 0;
   for (int i = bytes - 1; i >= 0; --i)
-    v = (v << 8) | b[at + static_cast<std::size_t>(i)];
+    v = (v << 8) | b[at + ToIndex(i)];
   return v;
 }
 
@@ -99,7 +100,7 @@ RgbaImage ReadBmp(const std::string& path)
   if (size < 54 || size > (std::streamoff(1) << 30))
     throw Error::InFile(path, "is not a readable BMP image (" + std::to_string(size) + " bytes)");
   in.seekg(0);
-  std::vector<std::uint8_t> b(static_cast<std::size_t>(size));
+  std::vector<std::uint8_t> b(ToIndex(size));
   in.read(reinterpret_cast<char*>(b.data()), size);
   if (!in || b[0] != 'B' || b[1] != 'M')
     throw Error::InFile(path, "is not a readable BMP image (no 'BM' signature)");
@@ -134,13 +135,13 @@ RgbaImage ReadBmp(const std::string& path)
   RgbaImage image;
   image.Width = width;
   image.Height = static_cast<int>(height);
-  image.Pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  image.Pixels.resize(ToIndex(width) * ToIndex(height) * 4);
   for (std::int64_t row = 0; row < height; ++row)
   {
     const std::uint8_t* src = b.data() + offset + stride * static_cast<std::uint64_t>(row);
     const std::int64_t y =
       topDown ? row : height - 1 - row; // bottom-up unless the height is negative
-    std::uint8_t* dst = image.Pixels.data() + static_cast<std::size_t>(y * width * 4);
+    std::uint8_t* dst = image.Pixels.data() + ToIndex(y * width * 4);
     for (std::int32_t x = 0; x < width; ++x)
     {
       const std::uint8_t* p = src;
@@ -151,11 +152,11 @@ RgbaImage ReadBmp(const std::string& path)
           throw Error::InFile(path,
             "uses colour " + std::to_string(src[x]) + ", beyond its table of " +
               std::to_string(colours));
-        p = b.data() + 14 + header + 4 * static_cast<std::size_t>(src[x]);
+        p = b.data() + 14 + header + 4 * ToIndex(src[x]);
       }
       else
       {
-        p = src + static_cast<std::size_t>(x) * (bits / 8); // blue, green, red (, unused)
+        p = src + ToIndex(x) * (bits / 8); // blue, green, red (, unused)
       }
       dst[4 * x + 0] = p[2];
       dst[4 * x + 1] = p[1];
@@ -187,8 +188,7 @@ void FilterRow(
   for (std::size_t i = 0; i < bytes; ++i)
   {
     const auto none = static_cast<std::int8_t>(row[i]);
-    const auto sub =
-      static_cast<std::int8_t>(row[i] - (i >= static_cast<std::size_t>(bpp) ? row[i - bpp] : 0));
+    const auto sub = static_cast<std::int8_t>(row[i] - (i >= ToIndex(bpp) ? row[i - bpp] : 0));
     const auto up = static_cast<std::int8_t>(row[i] - (above ? above[i] : 0));
     cost[0] += static_cast<std::uint64_t>(none < 0 ? -none : none);
     cost[1] += static_cast<std::uint64_t>(sub < 0 ? -sub : sub);
@@ -198,7 +198,7 @@ void FilterRow(
   out[0] = static_cast<std::uint8_t>(type);
   for (std::size_t i = 0; i < bytes; ++i)
   {
-    const std::uint8_t left = i >= static_cast<std::size_t>(bpp) ? row[i - bpp] : 0;
+    const std::uint8_t left = i >= ToIndex(bpp) ? row[i - bpp] : 0;
     const std::uint8_t prior = type == 1 ? left : (type == 2 && above ? above[i] : 0);
     out[1 + i] = static_cast<std::uint8_t>(row[i] - prior);
   }
@@ -304,7 +304,7 @@ void DeflateStrip(int first, int last, bool final, int width, const PngLayout& l
 {
   const int bpp = layout.BytesPerPixel();
   const bool opaque = layout.Opaque;
-  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(bpp);
+  const std::size_t bytes = ToIndex(width) * ToIndex(bpp);
   std::vector<std::uint8_t> packed(bytes), above(bytes), filtered(1 + bytes);
   z_stream z{};
   if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
@@ -324,7 +324,7 @@ void DeflateStrip(int first, int last, bool final, int width, const PngLayout& l
         const std::uint32_t c = PixelAt(src + 4 * x);
         if (c != previous)
           index = layout.Indexed->IndexOf(previous = c);
-        to[static_cast<std::size_t>(x)] = index;
+        to[ToIndex(x)] = index;
       }
     }
     else if (!opaque)
@@ -398,7 +398,7 @@ void WritePng(const std::string& path, int width, int height,
   const PngLayout layout = ScanPixels(width, height, row, *palette);
   // Strips of a fixed height, so the file is the same whatever the number of threads.
   const int rowsPerStrip = std::max(1, (1 << 20) / (4 * width));
-  std::vector<Strip> strips(static_cast<std::size_t>((height + rowsPerStrip - 1) / rowsPerStrip));
+  std::vector<Strip> strips(ToIndex((height + rowsPerStrip - 1) / rowsPerStrip));
   // On all cores; an exception in a strip (the rows' callback, memory) reaches the caller.
   RunChunks(strips.size(), 0,
     [&](std::size_t s)

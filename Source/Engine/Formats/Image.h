@@ -8,6 +8,7 @@
  * corrupted file is an error naming the file, never a crash; BMP (the older published tilesets)
  * is read here with every size checked against the file. Sizes are checked before allocating.
  */
+#include "Core/Index.h"
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -24,7 +25,7 @@ struct RgbaImage
 
   const std::uint8_t* At(int x, int y) const
   {
-    return this->Pixels.data() + 4 * (static_cast<std::size_t>(y) * this->Width + x);
+    return this->Pixels.data() + 4 * (ToIndex(y) * this->Width + x);
   }
 };
 

@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
+#include "Core/Index.h"
 
 #include <cctype>
 #include <cmath>
@@ -94,12 +95,12 @@ public:
     if (this->Format == 0)
       return this->ReadAscii();
     const int size = ScalarSize(type);
-    if (this->Pos + static_cast<std::size_t>(size) > this->Bytes.size())
+    if (this->Pos + ToIndex(size) > this->Bytes.size())
       throw Error::InFile(
         this->Path, "ends inside its data (byte " + std::to_string(this->Pos) + ")");
     unsigned char b[8];
-    std::memcpy(b, this->Bytes.data() + this->Pos, static_cast<std::size_t>(size));
-    this->Pos += static_cast<std::size_t>(size);
+    std::memcpy(b, this->Bytes.data() + this->Pos, ToIndex(size));
+    this->Pos += ToIndex(size);
     if (this->Format == 2) // big endian
       for (int i = 0; i < size / 2; ++i)
         std::swap(b[i], b[size - 1 - i]);
@@ -277,7 +278,7 @@ PolyhedralExample ReadPLYExample(const std::string& path)
     if (vertex)
     {
       sawVertices = true;
-      pointOf.reserve(static_cast<std::size_t>(e.Count));
+      pointOf.reserve(ToIndex(e.Count));
     }
     for (std::uint64_t i = 0; i < e.Count; ++i)
     {
@@ -293,7 +294,7 @@ PolyhedralExample ReadPLYExample(const std::string& path)
             if (!std::isfinite(v))
               throw Error::InFile(
                 path, "vertex " + std::to_string(i) + " has a coordinate that is not finite");
-            p[static_cast<std::size_t>(prop.Name[0] - 'x')] = v;
+            p[ToIndex(prop.Name[0] - 'x')] = v;
           }
           continue;
         }
@@ -361,10 +362,7 @@ PolyhedralExample ReadSTLExample(const std::string& path)
       for (int v = 0; v < 3; ++v)
       {
         float xyz[3];
-        std::memcpy(xyz,
-          bytes.data() + 84 + 50 * static_cast<std::size_t>(t) + 12 +
-            12 * static_cast<std::size_t>(v),
-          12);
+        std::memcpy(xyz, bytes.data() + 84 + 50 * ToIndex(t) + 12 + 12 * ToIndex(v), 12);
         if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
           throw Error::InFile(
             path, "triangle " + std::to_string(t) + " has a coordinate that is not finite");

@@ -2,6 +2,7 @@
 #include "Formats/TextModel.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -194,7 +195,7 @@ void SetTextModelTrailer(TextModel& model, const std::string& trailer, std::int6
       entry.Pieces.push_back(name);
     }
     ++i; // past '#' (or the end: a last entry may end with the file)
-    if (label > static_cast<std::size_t>(std::numeric_limits<Label>::max()))
+    if (label > ToIndex(std::numeric_limits<Label>::max()))
     {
       problem(i, "more entries than labels");
       return;

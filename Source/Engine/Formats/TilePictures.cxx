@@ -2,6 +2,7 @@
 #include "Formats/TilePictures.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cstring>
@@ -18,11 +19,7 @@ TilePicture Oriented(const TilePicture& p, int orientation)
 {
   TilePicture out = p;
   const int t = p.Size;
-  const auto at = [t](int i, int j)
-  {
-    return 4 *
-      (static_cast<std::size_t>(j) * static_cast<std::size_t>(t) + static_cast<std::size_t>(i));
-  };
+  const auto at = [t](int i, int j) { return 4 * (ToIndex(j) * ToIndex(t) + ToIndex(i)); };
   for (int r = 0; r < orientation % 4; ++r)
   {
     TilePicture turned = out;
@@ -62,13 +59,12 @@ std::string SizeProblem(const RgbaImage& image, const Tileset& tiles, int size)
 
 std::vector<TilePicture> LoadTilePictures(const std::string& xmlPath, const Tileset& tiles)
 {
-  std::vector<TilePicture> pictures(static_cast<std::size_t>(tiles.NumberOfLabels()));
+  std::vector<TilePicture> pictures(ToIndex(tiles.NumberOfLabels()));
   int size = 0;
   for (int b = 0; b < tiles.NumberOfLabels(); ++b)
   {
-    const auto& tile =
-      tiles.Tiles[static_cast<std::size_t>(tiles.LabelTile[static_cast<std::size_t>(b)])];
-    const int k = tiles.LabelOrientation[static_cast<std::size_t>(b)];
+    const auto& tile = tiles.Tiles[ToIndex(tiles.LabelTile[ToIndex(b)])];
+    const int k = tiles.LabelOrientation[ToIndex(b)];
     const std::string path = TileImageFile(xmlPath, tiles, tile, k);
     RgbaImage image;
     try
@@ -85,12 +81,11 @@ std::vector<TilePicture> LoadTilePictures(const std::string& xmlPath, const Tile
     size = image.Width;
     TilePicture p;
     p.Size = size;
-    p.RGBA.resize(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 4);
-    const std::size_t row = 4 * static_cast<std::size_t>(size);
+    p.RGBA.resize(ToIndex(size) * ToIndex(size) * 4);
+    const std::size_t row = 4 * ToIndex(size);
     for (int j = 0; j < size; ++j) // rows bottom first, as VTK stores them
-      std::memcpy(
-        p.RGBA.data() + row * static_cast<std::size_t>(j), image.At(0, size - 1 - j), row);
-    pictures[static_cast<std::size_t>(b)] = tiles.Unique ? p : Oriented(p, k);
+      std::memcpy(p.RGBA.data() + row * ToIndex(j), image.At(0, size - 1 - j), row);
+    pictures[ToIndex(b)] = tiles.Unique ? p : Oriented(p, k);
   }
   return pictures;
 }
@@ -101,16 +96,16 @@ void ComposeTileRow(const std::int32_t* labels, int nx, const std::vector<TilePi
   if (tiles.empty())
     return;
   const int t = tiles.front().Size;
-  const std::size_t row = 4 * static_cast<std::size_t>(t);
+  const std::size_t row = 4 * ToIndex(t);
   if (t == 8)
   {
     // The common tile size, copied inline: a library call per tile row costs more than it.
     for (int x = 0; x < nx; ++x, out += 32)
-      std::memcpy(out, tiles[static_cast<std::size_t>(labels[x])].At(0, j), 32);
+      std::memcpy(out, tiles[ToIndex(labels[x])].At(0, j), 32);
     return;
   }
   for (int x = 0; x < nx; ++x, out += row)
-    std::memcpy(out, tiles[static_cast<std::size_t>(labels[x])].At(0, j), row);
+    std::memcpy(out, tiles[ToIndex(labels[x])].At(0, j), row);
 }
 
 void WriteTilePicture(const std::string& path, const std::vector<std::int32_t>& labels, int nx,
@@ -120,11 +115,11 @@ void WriteTilePicture(const std::string& path, const std::vector<std::int32_t>& 
   if (static_cast<std::int64_t>(labels.size()) != static_cast<std::int64_t>(nx) * ny || t < 1)
     throw Error::InFile(path, "not written: the model and the tiles do not fit");
   for (std::size_t i = 0; i < labels.size(); ++i)
-    if (labels[i] < 0 || static_cast<std::size_t>(labels[i]) >= tiles.size())
+    if (labels[i] < 0 || ToIndex(labels[i]) >= tiles.size())
       throw Error::InFile(path,
         "not written: label " + std::to_string(labels[i]) + " at (" +
-          std::to_string(i % static_cast<std::size_t>(nx)) + ", " +
-          std::to_string(i / static_cast<std::size_t>(nx)) + ") is not a label of the tileset");
+          std::to_string(i % ToIndex(nx)) + ", " + std::to_string(i / ToIndex(nx)) +
+          ") is not a label of the tileset");
   const std::int64_t height = static_cast<std::int64_t>(ny) * t;
   const std::int64_t width = static_cast<std::int64_t>(nx) * t;
   if (width > (std::int64_t(1) << 30) / 4 || height > (std::int64_t(1) << 30))
@@ -137,11 +132,10 @@ void WriteTilePicture(const std::string& path, const std::vector<std::int32_t>& 
       // Each thread of the writer composes its rows in a buffer of its own (the pointer is
       // used before that thread asks for another row).
       thread_local std::vector<std::uint8_t> buffer;
-      buffer.resize(static_cast<std::size_t>(width) * 4);
+      buffer.resize(ToIndex(width) * 4);
       const std::int64_t fromBottom = height - 1 - y;
-      ComposeTileRow(
-        labels.data() + static_cast<std::size_t>(fromBottom / t) * static_cast<std::size_t>(nx), nx,
-        tiles, static_cast<int>(fromBottom % t), buffer.data());
+      ComposeTileRow(labels.data() + ToIndex(fromBottom / t) * ToIndex(nx), nx, tiles,
+        static_cast<int>(fromBottom % t), buffer.data());
       return static_cast<const std::uint8_t*>(buffer.data());
     });
 }
@@ -158,14 +152,14 @@ LabelGrid PinsFromPicture(
       "is " + std::to_string(picture.Width) + " x " + std::to_string(picture.Height) +
         " pixels, not a whole number of " + std::to_string(t) + " x " + std::to_string(t) +
         " tiles");
-  const std::size_t row = 4 * static_cast<std::size_t>(t);
+  const std::size_t row = 4 * ToIndex(t);
   // Labels by their picture's bytes (rows bottom first); the lowest label of equal pictures.
   std::unordered_map<std::string, Label> byPicture;
   for (std::size_t b = tiles.size(); b-- > 0;)
     byPicture[std::string(tiles[b].RGBA.begin(), tiles[b].RGBA.end())] = static_cast<Label>(b);
   const int nx = picture.Width / t, ny = picture.Height / t;
   LabelGrid pins(nx, ny, 1, Label(-1));
-  std::string cell(row * static_cast<std::size_t>(t), '\0');
+  std::string cell(row * ToIndex(t), '\0');
   for (int y = 0; y < ny; ++y)
     for (int x = 0; x < nx; ++x)
     {
@@ -173,7 +167,7 @@ LabelGrid PinsFromPicture(
       for (int j = 0; j < t; ++j) // cell row j from the bottom: picture row H - 1 - (yT + j)
       {
         const std::uint8_t* src = picture.At(x * t, picture.Height - 1 - (y * t + j));
-        std::memcpy(&cell[row * static_cast<std::size_t>(j)], src, row);
+        std::memcpy(&cell[row * ToIndex(j)], src, row);
         for (std::size_t i = 3; i < row && transparent; i += 4)
           transparent = src[i] == 0;
       }

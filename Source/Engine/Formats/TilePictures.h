@@ -9,6 +9,7 @@
  * in a `unique` set. vtkMSTileImage composes model pictures from them; PinsFromPicture reads a
  * picture drawn with the same tiles (a partial map, `--fixed map.png`) back into pinned sites.
  */
+#include "Core/Index.h"
 #include "Core/LabelGrid.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
@@ -27,10 +28,7 @@ struct TilePicture
   std::vector<unsigned char> RGBA; ///< Size × Size × 4
   const unsigned char* At(int i, int j) const
   {
-    return this->RGBA.data() +
-      4 *
-      (static_cast<std::size_t>(j) * static_cast<std::size_t>(this->Size) +
-        static_cast<std::size_t>(i));
+    return this->RGBA.data() + 4 * (ToIndex(j) * ToIndex(this->Size) + ToIndex(i));
   }
 };
 

@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 
+#include "Core/Index.h"
 #include "Formats/VoxelTileset.h"
 #include "Formats/Xml.h"
 
@@ -123,11 +124,10 @@ std::string TileImageFile(
 
 std::string Tileset::LabelName(int label) const
 {
-  const TilesetTile& t =
-    this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+  const TilesetTile& t = this->Tiles[ToIndex(this->LabelTile[ToIndex(label)])];
   return t.Orientations == 1
     ? t.Name
-    : t.Name + " " + std::to_string(this->LabelOrientation[static_cast<std::size_t>(label)]);
+    : t.Name + " " + std::to_string(this->LabelOrientation[ToIndex(label)]);
 }
 
 std::map<Label, Label> Tileset::TurnMap() const
@@ -140,22 +140,18 @@ std::map<Label, Label> Tileset::TurnMap() const
     const auto& group = SymmetryGroup(this->FullSymmetry);
     for (int label = 0; label < this->NumberOfLabels(); ++label)
     {
-      const TilesetTile& t =
-        this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
-      const auto& g =
-        group[static_cast<std::size_t>(this->LabelOrientation[static_cast<std::size_t>(label)])];
-      map[label] = t.SymmetryLabels[static_cast<std::size_t>(
-        SymmetryIndex(this->FullSymmetry, CubeSymmetry::Then(g, turn)))];
+      const TilesetTile& t = this->Tiles[ToIndex(this->LabelTile[ToIndex(label)])];
+      const auto& g = group[ToIndex(this->LabelOrientation[ToIndex(label)])];
+      map[label] =
+        t.SymmetryLabels[ToIndex(SymmetryIndex(this->FullSymmetry, CubeSymmetry::Then(g, turn)))];
     }
     return map;
   }
   for (int label = 0; label < this->NumberOfLabels(); ++label)
   {
-    const TilesetTile& t =
-      this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(label)])];
+    const TilesetTile& t = this->Tiles[ToIndex(this->LabelTile[ToIndex(label)])];
     map[label] = t.FirstLabel +
-      TransformOrientation(
-        t.Symmetry, this->LabelOrientation[static_cast<std::size_t>(label)], false);
+      TransformOrientation(t.Symmetry, this->LabelOrientation[ToIndex(label)], false);
   }
   return map;
 }
@@ -170,14 +166,14 @@ std::map<Label, Label> Tileset::MirrorMap(int axis) const
   const auto& group = SymmetryGroup(this->FullSymmetry);
   for (int label = 0; label < this->NumberOfLabels(); ++label)
   {
-    const auto i = static_cast<std::size_t>(label);
-    const TilesetTile& t = this->Tiles[static_cast<std::size_t>(this->LabelTile[i])];
+    const auto i = ToIndex(label);
+    const TilesetTile& t = this->Tiles[ToIndex(this->LabelTile[i])];
     const CubeSymmetry image =
-      CubeSymmetry::Then(group[static_cast<std::size_t>(this->LabelOrientation[i])], mirror);
+      CubeSymmetry::Then(group[ToIndex(this->LabelOrientation[i])], mirror);
     const int g = SymmetryIndex(this->FullSymmetry, image);
     if (g >= 0)
     {
-      map[label] = t.SymmetryLabels[static_cast<std::size_t>(g)];
+      map[label] = t.SymmetryLabels[ToIndex(g)];
       continue;
     }
     // A mirror in z of a set without fullSymmetry: only images that are their own mirror image.
@@ -198,8 +194,7 @@ AdjacencyRules Tileset::Rules() const
   for (int b = 0; b < this->NumberOfLabels(); ++b)
   {
     values.push_back(b);
-    weights.push_back(
-      this->Tiles[static_cast<std::size_t>(this->LabelTile[static_cast<std::size_t>(b)])].Weight);
+    weights.push_back(this->Tiles[ToIndex(this->LabelTile[ToIndex(b)])].Weight);
   }
   return AdjacencyRules::FromPairs(values, weights, this->Pairs);
 }
@@ -331,7 +326,7 @@ private:
     {
       this->Set.LabelTile.push_back(static_cast<int>(this->Set.Tiles.size()));
       this->Set.LabelOrientation.push_back(k);
-      this->Set.LabelSides.push_back(sides[static_cast<std::size_t>(k)]);
+      this->Set.LabelSides.push_back(sides[ToIndex(k)]);
     }
     this->Set.Tiles.push_back(tile);
   }
@@ -340,7 +335,7 @@ private:
   /// without the attribute), orientation 0's as written, the others turned and mirrored.
   std::vector<int> ReadConnects(const XmlElement& t, const TilesetTile& tile) const
   {
-    std::vector<int> sides(static_cast<std::size_t>(tile.Orientations), -1);
+    std::vector<int> sides(ToIndex(tile.Orientations), -1);
     const std::string* text = t.Attribute("connects");
     if (!text)
       return sides;
@@ -366,7 +361,7 @@ private:
     {
       const int o = DihedralAction(tile.Symmetry, 0, element);
       const int turned = TransformSides(first, element);
-      int& at = sides[static_cast<std::size_t>(o)];
+      int& at = sides[ToIndex(o)];
       if (at >= 0 && at != turned)
         this->Xml.Fail("tile '" + tile.Name + "': the sides it connects through (\"" + *text +
             "\") do not have its symmetry " + std::string(1, tile.Symmetry),
@@ -413,8 +408,7 @@ private:
     }
     // As WaveFunctionCollapse reads it (action[first][k]): element k of the dihedral group
     // (identity, three quarter turns, then the four mirrored) applied to orientation 0.
-    orientation =
-      DihedralAction(this->Set.Tiles[static_cast<std::size_t>(tileIndex)].Symmetry, 0, orientation);
+    orientation = DihedralAction(this->Set.Tiles[ToIndex(tileIndex)].Symmetry, 0, orientation);
     return true;
   }
 
@@ -428,7 +422,7 @@ private:
         int px[2] = { 0, 1 }, py[2] = { 0, 0 }, label[2];
         for (int s = 0; s < 2; ++s)
         {
-          const TilesetTile& t = this->Set.Tiles[static_cast<std::size_t>(tiles[s])];
+          const TilesetTile& t = this->Set.Tiles[ToIndex(tiles[s])];
           int o = orient[s];
           for (int r = 0; r < turns; ++r)
           {

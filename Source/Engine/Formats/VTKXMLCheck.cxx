@@ -4,6 +4,7 @@
 #include "Core/Error.h"
 #include "Core/FileBytes.h"
 
+#include "Core/Index.h"
 #include "Formats/Xml.h"
 
 #include <lz4.h>
@@ -63,7 +64,7 @@ std::string Base64(const std::string& text, std::size_t from, std::size_t n)
     int valid = 4;
     for (int k = 0; k < 4; ++k)
     {
-      v[k] = Base64Value(text[i + static_cast<std::size_t>(k)]);
+      v[k] = Base64Value(text[i + ToIndex(k)]);
       if (v[k] < 0)
       {
         valid = std::min(valid, k);
@@ -238,7 +239,7 @@ private:
     for (int i = 0; i < this->HeaderSize; ++i)
     {
       const int k = this->Swap ? i : this->HeaderSize - 1 - i;
-      v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
+      v = (v << 8) | static_cast<unsigned char>(bytes[at + ToIndex(k)]);
     }
     return v;
   }
@@ -252,15 +253,15 @@ private:
     {
       if (src.Start + offset > t.size() || n > t.size() - src.Start - offset)
         this->Fail(what + " needs " + std::to_string(n) + " bytes, more than the file holds");
-      return t.substr(src.Start + offset, static_cast<std::size_t>(n));
+      return t.substr(src.Start + offset, ToIndex(n));
     }
     const std::uint64_t chars = (n + 2) / 3 * 4;
     if (src.Start + offset > t.size() || chars > t.size() - src.Start - offset)
       this->Fail(what + " needs " + std::to_string(n) + " bytes, more than the file holds");
-    std::string out = Base64(t, src.Start + offset, static_cast<std::size_t>(chars));
+    std::string out = Base64(t, src.Start + offset, ToIndex(chars));
     if (out.size() < n)
       this->Fail(what + " is not valid base64");
-    out.resize(static_cast<std::size_t>(n));
+    out.resize(ToIndex(n));
     return out;
   }
 
@@ -269,7 +270,7 @@ private:
   std::uint64_t Binary(
     const Source& src, const std::string& what, bool decode, std::string& data) const
   {
-    const std::size_t hs = static_cast<std::size_t>(this->HeaderSize);
+    const std::size_t hs = ToIndex(this->HeaderSize);
     if (!this->Compressor)
     {
       const std::uint64_t n = this->Word(this->Take(src, 0, hs, what + " (header)"), 0);
@@ -293,13 +294,13 @@ private:
         std::to_string(blockSize) + " bytes (the last " + std::to_string(lastSize) + ")");
     const std::uint64_t headerBytes = (3 + blocks) * hs;
     const std::string full = this->Take(src, 0, headerBytes, what + " (compression header)");
-    const std::size_t dataStart = src.Encoded ? static_cast<std::size_t>((headerBytes + 2) / 3 * 4)
-                                              : static_cast<std::size_t>(headerBytes);
+    const std::size_t dataStart =
+      src.Encoded ? ToIndex((headerBytes + 2) / 3 * 4) : ToIndex(headerBytes);
     std::uint64_t total = 0;
     std::vector<std::uint64_t> sizes;
     for (std::uint64_t b = 0; b < blocks; ++b)
     {
-      sizes.push_back(this->Word(full, static_cast<std::size_t>((3 + b) * hs)));
+      sizes.push_back(this->Word(full, ToIndex((3 + b) * hs)));
       total += sizes.back();
       if (sizes.back() > MaximumBytes || total > MaximumBytes)
         this->Fail(what + " declares compressed blocks larger than the file");
@@ -315,8 +316,8 @@ private:
       for (std::uint64_t b = 0; b < blocks; ++b)
       {
         const std::uint64_t want = b + 1 == blocks && lastSize ? lastSize : blockSize;
-        std::string out(static_cast<std::size_t>(want), '\0');
-        const std::size_t in = static_cast<std::size_t>(sizes[static_cast<std::size_t>(b)]);
+        std::string out(ToIndex(want), '\0');
+        const std::size_t in = ToIndex(sizes[ToIndex(b)]);
         bool ok = false;
         if (this->Compressor == 1)
         {
@@ -328,7 +329,7 @@ private:
         }
         else if (this->Compressor == 2)
         {
-          ok = in <= static_cast<std::size_t>(std::numeric_limits<int>::max()) &&
+          ok = in <= ToIndex(std::numeric_limits<int>::max()) &&
             LZ4_decompress_safe(compressed.data() + at, &out[0], static_cast<int>(in),
               static_cast<int>(want)) == static_cast<int>(want);
         }
@@ -386,7 +387,7 @@ private:
         char* end = nullptr;
         for (long v = std::strtol(p, &end, 10); end != p; p = end, v = std::strtol(p, &end, 10))
           count += v == 0;
-        data.assign(static_cast<std::size_t>(count), '\0');
+        data.assign(ToIndex(count), '\0');
       }
       else
         return; // numbers as text: VTK's reader checks their count
@@ -408,7 +409,7 @@ private:
         static_cast<std::uint64_t>(at) >= this->Appended.size() + (this->Appended.empty() ? 1 : 0))
         this->Fail(what + " has offset '" + (offset ? *offset : std::string()) +
           "', outside the appended data");
-      const Source src{ &this->Appended, static_cast<std::size_t>(at), this->AppendedEncoded };
+      const Source src{ &this->Appended, ToIndex(at), this->AppendedEncoded };
       bytes = this->Binary(src, what, strings, data);
     }
     else

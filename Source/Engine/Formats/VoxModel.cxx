@@ -3,6 +3,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <climits>
@@ -173,8 +174,7 @@ void ReadPaletteChunk(
   const std::uint8_t* p = c.Take(1024);
   palette[0] = { { 0, 0, 0, 0 } };
   for (int i = 0; i < 255; ++i)
-    palette[static_cast<std::size_t>(i + 1)] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2],
-      p[4 * i + 3] } };
+    palette[ToIndex(i + 1)] = { { p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3] } };
 }
 } // namespace
 
@@ -240,7 +240,7 @@ std::vector<std::uint8_t> ReadFileBytes(const std::string& path)
   const std::streamoff size = in.tellg();
   if (size < 0 || size > (std::streamoff(1) << 28))
     throw Error::InFile(path, "is larger than 256 MiB, too large for a MagicaVoxel model");
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  std::vector<std::uint8_t> bytes(ToIndex(size));
   in.seekg(0);
   in.read(reinterpret_cast<char*>(bytes.data()), size);
   if (!in)
@@ -425,7 +425,7 @@ void Place(Cursor& c, const std::map<int, SceneNode>& nodes, const std::vector<S
   const SceneNode& node = it->second;
   if (node.Type == 'T')
     for (int a = 0; a < 3; ++a)
-      t[static_cast<std::size_t>(a)] += node.Translation[static_cast<std::size_t>(a)];
+      t[ToIndex(a)] += node.Translation[ToIndex(a)];
   for (const int child : node.Children)
   {
     if (node.Type != 'S')
@@ -433,12 +433,11 @@ void Place(Cursor& c, const std::map<int, SceneNode>& nodes, const std::vector<S
       Place(c, nodes, models, child, t, depth + 1, out, budget);
       continue;
     }
-    if (child < 0 || static_cast<std::size_t>(child) >= models.size())
+    if (child < 0 || ToIndex(child) >= models.size())
       c.Fail("a shape node names model " + std::to_string(child) + ", which is not there");
     Placement p{ child, t };
     for (int a = 0; a < 3; ++a) // the translation is the model's centre, rounded down
-      p.Corner[static_cast<std::size_t>(a)] -=
-        models[static_cast<std::size_t>(child)].Size[static_cast<std::size_t>(a)] / 2;
+      p.Corner[ToIndex(a)] -= models[ToIndex(child)].Size[ToIndex(a)] / 2;
     out.push_back(p);
   }
 }
@@ -523,7 +522,7 @@ VoxModel ReadVoxScene(
     for (const auto& p : placed)
     {
       low[a] = std::min(low[a], p.Corner[a]);
-      high[a] = std::max(high[a], p.Corner[a] + models[static_cast<std::size_t>(p.Model)].Size[a]);
+      high[a] = std::max(high[a], p.Corner[a] + models[ToIndex(p.Model)].Size[a]);
     }
   }
   const std::int64_t n[3] = { high[0] - low[0], high[1] - low[1], high[2] - low[2] };
@@ -534,7 +533,7 @@ VoxModel ReadVoxScene(
   result.Grid = LabelGrid(n[0], n[1], n[2], 0);
   for (const auto& p : placed)
   {
-    const ScenePiece& m = models[static_cast<std::size_t>(p.Model)];
+    const ScenePiece& m = models[ToIndex(p.Model)];
     for (std::size_t i = 0; i + 3 < m.Voxels.size(); i += 4)
     {
       const std::int64_t v[3] = { m.Voxels[i], m.Voxels[i + 1], m.Voxels[i + 2] };

@@ -2,6 +2,7 @@
 #include "Formats/VoxelTileset.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Formats/VoxModel.h"
 #include "Formats/Xml.h"
@@ -124,7 +125,7 @@ VoxelBlock TransformVoxels(const VoxelBlock& tile, const CubeSymmetry& s)
       {
         axis[j] = i;
         sign[j] = s.M[j][i];
-        out.Size[static_cast<std::size_t>(i)] = tile.Size[static_cast<std::size_t>(j)];
+        out.Size[ToIndex(i)] = tile.Size[ToIndex(j)];
       }
   out.Voxels.resize(tile.Voxels.size());
   const int nx = out.Size[0], ny = out.Size[1], nz = out.Size[2];
@@ -138,10 +139,10 @@ VoxelBlock TransformVoxels(const VoxelBlock& tile, const CubeSymmetry& s)
         for (int j = 0; j < 3; ++j)
         {
           const int v = d[axis[j]];
-          src[j] = sign[j] > 0 ? v : tile.Size[static_cast<std::size_t>(j)] - 1 - v;
+          src[j] = sign[j] > 0 ? v : tile.Size[ToIndex(j)] - 1 - v;
         }
-        out.Voxels[n] = tile.Voxels[static_cast<std::size_t>(
-          src[0] + tile.Size[0] * (src[1] + tile.Size[1] * src[2]))];
+        out.Voxels[n] =
+          tile.Voxels[ToIndex(src[0] + tile.Size[0] * (src[1] + tile.Size[1] * src[2]))];
       }
   return out;
 }
@@ -158,8 +159,8 @@ VoxelBlock ReadVoxelBlock(const std::string& path)
   VoxelBlock block;
   const auto& d = vox.Grid.Dimensions();
   for (int a = 0; a < 3; ++a)
-    block.Size[static_cast<std::size_t>(a)] = static_cast<int>(d[static_cast<std::size_t>(a)]);
-  block.Voxels.resize(static_cast<std::size_t>(d[0] * d[1] * d[2]));
+    block.Size[ToIndex(a)] = static_cast<int>(d[ToIndex(a)]);
+  block.Voxels.resize(ToIndex(d[0] * d[1] * d[2]));
   std::size_t n = 0;
   for (std::int64_t z = 0; z < d[2]; ++z)
     for (std::int64_t y = 0; y < d[1]; ++y)
@@ -168,7 +169,7 @@ VoxelBlock ReadVoxelBlock(const std::string& path)
         const Label index = vox.Grid.At(x, y, z);
         if (index == 0)
           continue;
-        const auto& c = vox.Palette[static_cast<std::size_t>(index)];
+        const auto& c = vox.Palette[ToIndex(index)];
         block.Voxels[n] = std::uint32_t(c[0]) | (std::uint32_t(c[1]) << 8) |
           (std::uint32_t(c[2]) << 16) | (std::uint32_t(255) << 24);
       }
@@ -237,7 +238,7 @@ LabelGrid ComposeVoxels(const Tileset& set, const LabelGrid& labels,
           throw Error("site (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
             std::to_string(z) + ") has label " + std::to_string(b) + ", not one of the " +
             std::to_string(set.NumberOfLabels()) + " tile images");
-        const auto& v = indexed[static_cast<std::size_t>(b)];
+        const auto& v = indexed[ToIndex(b)];
         std::size_t n = 0;
         for (std::int64_t k = 0; k < s[2]; ++k)
           for (std::int64_t j = 0; j < s[1]; ++j)
@@ -370,7 +371,7 @@ private:
       const VoxelBlock image = TransformVoxels(block, group[g]);
       int label = -1;
       for (int b = tile.FirstLabel; b < this->Set.NumberOfLabels(); ++b)
-        if (this->Set.LabelVoxels[static_cast<std::size_t>(b)] == image.Voxels)
+        if (this->Set.LabelVoxels[ToIndex(b)] == image.Voxels)
           label = b;
       if (label < 0)
       {
@@ -413,15 +414,13 @@ private:
       return;
     // A turn about x or y of a set without fullSymmetry: the image must still be one of the
     // tile's (a tile symmetric enough); then its symmetry stands for it.
-    const VoxelBlock& block = this->Blocks[static_cast<std::size_t>(tileIndex)];
+    const VoxelBlock& block = this->Blocks[ToIndex(tileIndex)];
     const VoxelBlock image = TransformVoxels(block, turns);
-    const TilesetTile& tile = this->Set.Tiles[static_cast<std::size_t>(tileIndex)];
+    const TilesetTile& tile = this->Set.Tiles[ToIndex(tileIndex)];
     for (int b = tile.FirstLabel; b < tile.FirstLabel + tile.Orientations; ++b)
-      if (image.Size == block.Size &&
-        this->Set.LabelVoxels[static_cast<std::size_t>(b)] == image.Voxels)
+      if (image.Size == block.Size && this->Set.LabelVoxels[ToIndex(b)] == image.Voxels)
       {
-        h = SymmetryGroup(
-          false)[static_cast<std::size_t>(this->Set.LabelOrientation[static_cast<std::size_t>(b)])];
+        h = SymmetryGroup(false)[ToIndex(this->Set.LabelOrientation[ToIndex(b)])];
         return;
       }
     this->Xml.Fail("'" + *ref + "' is not an image of tile '" + tileName +
@@ -446,14 +445,13 @@ private:
     {
       int label[2];
       for (int s = 0; s < 2; ++s)
-        label[s] = this->Set.Tiles[static_cast<std::size_t>(tiles[s])]
-                     .SymmetryLabels[static_cast<std::size_t>(
-                       SymmetryIndex(full, CubeSymmetry::Then(h[s], g)))];
+        label[s] = this->Set.Tiles[ToIndex(tiles[s])]
+                     .SymmetryLabels[ToIndex(SymmetryIndex(full, CubeSymmetry::Then(h[s], g)))];
       const int to = g.MapsAxis(axis);
       if (to > 0)
-        pairs[static_cast<std::size_t>(to - 1)].insert({ label[0], label[1] });
+        pairs[ToIndex(to - 1)].insert({ label[0], label[1] });
       else
-        pairs[static_cast<std::size_t>(-to - 1)].insert({ label[1], label[0] });
+        pairs[ToIndex(-to - 1)].insert({ label[1], label[0] });
     }
   }
 

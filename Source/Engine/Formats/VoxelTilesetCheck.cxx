@@ -6,6 +6,7 @@
 #include "Formats/VoxelTileset.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Formats/VoxModel.h"
 #include "Formats/Xml.h"
 
@@ -62,8 +63,7 @@ Voxels Apply(const Voxels& v, int s, int sz, char op)
         }
         else
           a = s - 1 - x;
-        out[static_cast<std::size_t>(x + s * (y + s * z))] =
-          v[static_cast<std::size_t>(a + s * (b + s * c))];
+        out[ToIndex(x + s * (y + s * z))] = v[ToIndex(a + s * (b + s * c))];
       }
   return out;
 }
@@ -154,7 +154,7 @@ private:
         for (std::int64_t x = 0; x < d[0]; ++x)
         {
           const Label i = vox.Grid.At(x, y, z);
-          v.push_back(i == 0 ? 0u : Pack(vox.Palette[static_cast<std::size_t>(i)]));
+          v.push_back(i == 0 ? 0u : Pack(vox.Palette[ToIndex(i)]));
         }
     this->Tiles[name] = v;
     std::vector<Voxels> queue{ v };
@@ -219,7 +219,7 @@ private:
       const State s = queue[i];
       const int axis = s.D[0] != 0 ? 0 : (s.D[1] != 0 ? 1 : 2);
       const int a = this->Index(KeyOf(s.First)), b = this->Index(KeyOf(s.Second));
-      if (s.D[static_cast<std::size_t>(axis)] > 0)
+      if (s.D[ToIndex(axis)] > 0)
         this->Allowed.emplace(axis, a, b);
       else
         this->Allowed.emplace(axis, b, a);
@@ -279,9 +279,7 @@ VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& 
             for (std::int64_t i = 0; i < s[0]; ++i)
             {
               const Label p = model.At(x * s[0] + i, y * s[1] + j, z * s[2] + k);
-              v.push_back(p <= 0 || static_cast<std::size_t>(p) >= palette.size()
-                  ? 0u
-                  : Pack(palette[static_cast<std::size_t>(p)]));
+              v.push_back(p <= 0 || ToIndex(p) >= palette.size() ? 0u : Pack(palette[ToIndex(p)]));
             }
         const Key key = KeyOf(v);
         const auto image = rules.Images.find(key);
@@ -301,8 +299,8 @@ VoxelCheckReport CheckVoxelModel(const std::string& xmlPath, const std::string& 
           const std::int64_t c[3] = { x + (a == 0), y + (a == 1), z + (a == 2) };
           if (c[a] >= n[a])
             continue;
-          const int first = cells[static_cast<std::size_t>(x + n[0] * (y + n[1] * z))];
-          const int second = cells[static_cast<std::size_t>(c[0] + n[0] * (c[1] + n[1] * c[2]))];
+          const int first = cells[ToIndex(x + n[0] * (y + n[1] * z))];
+          const int second = cells[ToIndex(c[0] + n[0] * (c[1] + n[1] * c[2]))];
           ++report.PairsChecked;
           if (first < 0 || second < 0)
             continue; // reported above

@@ -7,6 +7,7 @@
 #include "Patterns/BlockSampler.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/ProgressPoll.h"
 #include "Core/Random.h"
 
@@ -42,7 +43,7 @@ public:
   std::int64_t At(std::size_t i) const { return this->Items[i]; }
   void Insert(std::int64_t f)
   {
-    auto& pos = this->Position[static_cast<std::size_t>(f)];
+    auto& pos = this->Position[ToIndex(f)];
     if (pos >= 0)
       return;
     pos = static_cast<std::int64_t>(this->Items.size());
@@ -50,19 +51,19 @@ public:
   }
   void Erase(std::int64_t f)
   {
-    auto& pos = this->Position[static_cast<std::size_t>(f)];
+    auto& pos = this->Position[ToIndex(f)];
     if (pos < 0)
       return;
     const std::int64_t last = this->Items.back();
-    this->Items[static_cast<std::size_t>(pos)] = last;
-    this->Position[static_cast<std::size_t>(last)] = pos;
+    this->Items[ToIndex(pos)] = last;
+    this->Position[ToIndex(last)] = pos;
     this->Items.pop_back();
     pos = -1;
   }
   void Clear()
   {
     for (std::int64_t f : this->Items)
-      this->Position[static_cast<std::size_t>(f)] = -1;
+      this->Position[ToIndex(f)] = -1;
     this->Items.clear();
   }
 
@@ -80,11 +81,11 @@ public:
     , O(options)
     , R(result)
     , Rng(Random::Derived(options.Seed, 0x5a3b1e55))
-    , Unsat(static_cast<std::size_t>(problem.Shapes * problem.N))
+    , Unsat(ToIndex(problem.Shapes * problem.N))
     , Poll(options.Progress)
   {
-    const auto n = static_cast<std::size_t>(problem.N);
-    const auto factors = static_cast<std::size_t>(problem.Shapes * problem.N);
+    const auto n = ToIndex(problem.N);
+    const auto factors = ToIndex(problem.Shapes * problem.N);
     this->InSlice.assign(factors, 0);
     this->Sat.assign(factors, 0);
     this->Stamp.assign(factors, 0);
@@ -94,11 +95,8 @@ public:
       this->Tiles.resize(n);
     for (std::int64_t p = 0; start.size() != n && p < problem.N; ++p)
     {
-      const auto& allowed =
-        problem
-          .ClassTiles[static_cast<std::size_t>(problem.SiteClass[static_cast<std::size_t>(p)])];
-      this->Tiles[static_cast<std::size_t>(p)] =
-        allowed[static_cast<std::size_t>(this->Rng.Below(allowed.size()))];
+      const auto& allowed = problem.ClassTiles[ToIndex(problem.SiteClass[ToIndex(p)])];
+      this->Tiles[ToIndex(p)] = allowed[ToIndex(this->Rng.Below(allowed.size()))];
     }
     const std::int64_t moves = options.MovesPerSample >= 0 ? options.MovesPerSample : problem.N;
     this->MovesPerSample = std::max<std::int64_t>(1, moves);
@@ -186,7 +184,7 @@ private:
     const std::int64_t all = this->P.Shapes * this->P.N;
     for (std::int64_t f = 0; f < all; ++f)
     {
-      const auto i = static_cast<std::size_t>(f);
+      const auto i = ToIndex(f);
       if (!this->P.Valid[i])
         continue;
       const bool sat = this->P.Satisfied(f, this->Tiles);
@@ -249,11 +247,11 @@ private:
       {
         scope.push_back({ { 0, 0, 0 } });
         std::array<int, 3> e{ { 0, 0, 0 } };
-        e[static_cast<std::size_t>(s)] = 1;
+        e[ToIndex(s)] = 1;
         scope.push_back(e);
       }
       else
-        scope = m.SoftShapes[static_cast<std::size_t>(s - 3)].Offsets;
+        scope = m.SoftShapes[ToIndex(s - 3)].Offsets;
       std::vector<std::vector<std::array<int, 3>>> perBlock(m.BlockShapes.size());
       for (std::size_t b = 0; b < m.BlockShapes.size(); ++b)
       {
@@ -286,12 +284,11 @@ private:
     const FactorModel& m = this->P.Model;
     Placement pl;
     pl.Shape = static_cast<int>(this->Rng.Below(m.BlockShapes.size()));
-    const auto& offsets = m.BlockShapes[static_cast<std::size_t>(pl.Shape)].Offsets;
-    const auto& o = offsets[static_cast<std::size_t>(this->Rng.Below(offsets.size()))];
+    const auto& offsets = m.BlockShapes[ToIndex(pl.Shape)].Offsets;
+    const auto& o = offsets[ToIndex(this->Rng.Below(offsets.size()))];
     const auto c = this->P.Coordinates(p);
     for (int a = 0; a < 3; ++a)
-      pl.Origin[static_cast<std::size_t>(a)] =
-        c[static_cast<std::size_t>(a)] - o[static_cast<std::size_t>(a)];
+      pl.Origin[ToIndex(a)] = c[ToIndex(a)] - o[ToIndex(a)];
     return pl;
   }
 
@@ -300,13 +297,13 @@ private:
   {
     const std::int64_t s = f / this->P.N;
     const std::int64_t p = f - s * this->P.N;
-    const auto& perBlock = this->Covering[static_cast<std::size_t>(s)];
+    const auto& perBlock = this->Covering[ToIndex(s)];
     std::size_t choices = 0;
     for (const auto& d : perBlock)
       choices += d.empty() ? 0 : 1;
     if (choices == 0)
       return this->RandomPlacement(p);
-    std::size_t pick = static_cast<std::size_t>(this->Rng.Below(choices));
+    std::size_t pick = ToIndex(this->Rng.Below(choices));
     Placement pl;
     for (std::size_t b = 0; b < perBlock.size(); ++b)
     {
@@ -315,11 +312,10 @@ private:
       if (pick-- == 0)
       {
         pl.Shape = static_cast<int>(b);
-        const auto& d = perBlock[b][static_cast<std::size_t>(this->Rng.Below(perBlock[b].size()))];
+        const auto& d = perBlock[b][ToIndex(this->Rng.Below(perBlock[b].size()))];
         const auto c = this->P.Coordinates(p);
         for (int a = 0; a < 3; ++a)
-          pl.Origin[static_cast<std::size_t>(a)] =
-            c[static_cast<std::size_t>(a)] + d[static_cast<std::size_t>(a)];
+          pl.Origin[ToIndex(a)] = c[ToIndex(a)] + d[ToIndex(a)];
         break;
       }
     }
@@ -332,16 +328,15 @@ private:
   {
     const std::int64_t k = f / this->P.N - 3;
     const std::int64_t anchor = f % this->P.N;
-    const auto& steps = this->P.SoftSteps[static_cast<std::size_t>(k)];
-    return this->RandomPlacement(
-      anchor + steps[static_cast<std::size_t>(this->Rng.Below(steps.size()))]);
+    const auto& steps = this->P.SoftSteps[ToIndex(k)];
+    return this->RandomPlacement(anchor + steps[ToIndex(this->Rng.Below(steps.size()))]);
   }
 
   /// Collects the sites of @p pl inside the grid (with their cell in the block), the slice
   /// factors touching them and, with @p free (for BestBlock's ties), the other soft factors.
   void Collect(const Placement& pl, bool free = false)
   {
-    const auto& offsets = this->P.Model.BlockShapes[static_cast<std::size_t>(pl.Shape)].Offsets;
+    const auto& offsets = this->P.Model.BlockShapes[ToIndex(pl.Shape)].Offsets;
     this->Sites.clear();
     this->Cells.clear();
     this->Affected.clear();
@@ -357,8 +352,8 @@ private:
       bool inside = true;
       for (int a = 0; a < 3; ++a)
       {
-        q[a] = pl.Origin[static_cast<std::size_t>(a)] + offsets[k][static_cast<std::size_t>(a)];
-        inside = inside && q[a] >= 0 && q[a] < this->P.Size[static_cast<std::size_t>(a)];
+        q[a] = pl.Origin[ToIndex(a)] + offsets[k][ToIndex(a)];
+        inside = inside && q[a] >= 0 && q[a] < this->P.Size[ToIndex(a)];
       }
       if (!inside)
         continue;
@@ -368,11 +363,11 @@ private:
       this->P.ForTouching(site,
         [this, free](std::int64_t f)
         {
-          auto& stamp = this->Stamp[static_cast<std::size_t>(f)];
+          auto& stamp = this->Stamp[ToIndex(f)];
           if (stamp == this->CurrentStamp)
             return;
           stamp = this->CurrentStamp;
-          if (this->InSlice[static_cast<std::size_t>(f)])
+          if (this->InSlice[ToIndex(f)])
             this->Affected.push_back(f);
           else if (free && !this->P.IsHard(f))
             this->Free.push_back(f);
@@ -380,7 +375,7 @@ private:
     }
     this->Saved.resize(this->Sites.size());
     for (std::size_t i = 0; i < this->Sites.size(); ++i)
-      this->Saved[i] = this->Tiles[static_cast<std::size_t>(this->Sites[i])];
+      this->Saved[i] = this->Tiles[ToIndex(this->Sites[i])];
   }
 
   /// Writes block configuration @p config of the collected placement (sites whose class forbids
@@ -391,7 +386,7 @@ private:
     {
       const std::int32_t t = config[this->Cells[i]];
       const std::int64_t site = this->Sites[i];
-      this->Tiles[static_cast<std::size_t>(site)] = this->P.AllowedAt(site, t) ? t : this->Saved[i];
+      this->Tiles[ToIndex(site)] = this->P.AllowedAt(site, t) ? t : this->Saved[i];
     }
     std::int64_t c = 0;
     for (std::int64_t f : this->Affected)
@@ -402,14 +397,14 @@ private:
   void Restore()
   {
     for (std::size_t i = 0; i < this->Sites.size(); ++i)
-      this->Tiles[static_cast<std::size_t>(this->Sites[i])] = this->Saved[i];
+      this->Tiles[ToIndex(this->Sites[i])] = this->Saved[i];
   }
 
   std::int64_t SatisfiedBefore() const
   {
     std::int64_t c = 0;
     for (std::int64_t f : this->Affected)
-      c += this->Sat[static_cast<std::size_t>(f)];
+      c += this->Sat[ToIndex(f)];
     return c;
   }
 
@@ -417,12 +412,12 @@ private:
   void Commit()
   {
     for (std::size_t i = 0; i < this->Sites.size(); ++i)
-      if (this->Tiles[static_cast<std::size_t>(this->Sites[i])] != this->Saved[i])
-        this->LastChange[static_cast<std::size_t>(this->Sites[i])] = this->R.Moves + 1;
+      if (this->Tiles[ToIndex(this->Sites[i])] != this->Saved[i])
+        this->LastChange[ToIndex(this->Sites[i])] = this->R.Moves + 1;
     for (std::int64_t f : this->Affected)
     {
       const bool sat = this->P.Satisfied(f, this->Tiles);
-      this->Sat[static_cast<std::size_t>(f)] = sat ? 1 : 0;
+      this->Sat[ToIndex(f)] = sat ? 1 : 0;
       if (sat)
         this->Unsat.Erase(f);
       else
@@ -432,13 +427,13 @@ private:
 
   const std::int32_t* BlockConfig(int shape, std::size_t k) const
   {
-    const auto& b = this->P.Model.BlockShapes[static_cast<std::size_t>(shape)];
-    return this->P.Model.BlockTiles[static_cast<std::size_t>(shape)].data() + k * b.Offsets.size();
+    const auto& b = this->P.Model.BlockShapes[ToIndex(shape)];
+    return this->P.Model.BlockTiles[ToIndex(shape)].data() + k * b.Offsets.size();
   }
   std::size_t BlockCount(int shape) const
   {
-    const auto& b = this->P.Model.BlockShapes[static_cast<std::size_t>(shape)];
-    return this->P.Model.BlockTiles[static_cast<std::size_t>(shape)].size() / b.Offsets.size();
+    const auto& b = this->P.Model.BlockShapes[ToIndex(shape)];
+    return this->P.Model.BlockTiles[ToIndex(shape)].size() / b.Offsets.size();
   }
 
   /// A random replacement block at @p pl, kept unconditionally (the p_flip move).
@@ -454,16 +449,15 @@ private:
   {
     this->Collect(pl, true);
     const std::size_t count = this->BlockCount(pl.Shape);
-    const std::size_t tries = this->O.CandidatesPerMove > 0
-      ? std::min(count, static_cast<std::size_t>(this->O.CandidatesPerMove))
-      : count;
+    const std::size_t tries =
+      this->O.CandidatesPerMove > 0 ? std::min(count, ToIndex(this->O.CandidatesPerMove)) : count;
     std::int64_t best = -1;
     std::size_t bestK = 0;
     std::uint64_t ties = 0;
     const std::int64_t weight = static_cast<std::int64_t>(this->Free.size()) + 1;
     for (std::size_t i = 0; i < tries; ++i)
     {
-      const std::size_t k = tries == count ? i : static_cast<std::size_t>(this->Rng.Below(count));
+      const std::size_t k = tries == count ? i : ToIndex(this->Rng.Below(count));
       // The slice's factors first; among ties, the soft factors outside it (see the header),
       // counted only for candidates that can still be best.
       std::int64_t c = this->Write(this->BlockConfig(pl.Shape, k)) * weight;
@@ -494,7 +488,7 @@ private:
     for (int tries = 0; tries < 16; ++tries)
     {
       const std::int64_t f = 3 * this->P.N + static_cast<std::int64_t>(this->Rng.Below(soft));
-      if (this->P.Valid[static_cast<std::size_t>(f)] && !this->P.Satisfied(f, this->Tiles))
+      if (this->P.Valid[ToIndex(f)] && !this->P.Satisfied(f, this->Tiles))
         return f;
     }
     return -1;
@@ -544,8 +538,7 @@ private:
       if (!this->Unsat.Empty() && this->Rng.Uniform() < this->O.WalkProbability)
       {
         ++this->R.WalkMoves;
-        const std::int64_t f =
-          this->Unsat.At(static_cast<std::size_t>(this->Rng.Below(this->Unsat.Size())));
+        const std::int64_t f = this->Unsat.At(ToIndex(this->Rng.Below(this->Unsat.Size())));
         if (this->Rng.Uniform() < this->O.FlipProbability)
           this->RandomBlock(this->RandomPlacement(f % this->P.N));
         else
@@ -581,16 +574,14 @@ private:
         return false;
       const auto q =
         static_cast<std::int64_t>(this->Rng.Below(static_cast<std::uint64_t>(this->P.N)));
-      const auto& allowed =
-        this->P
-          .ClassTiles[static_cast<std::size_t>(this->P.SiteClass[static_cast<std::size_t>(q)])];
+      const auto& allowed = this->P.ClassTiles[ToIndex(this->P.SiteClass[ToIndex(q)])];
       if (allowed.size() < 2)
         continue;
-      auto& tile = this->Tiles[static_cast<std::size_t>(q)];
+      auto& tile = this->Tiles[ToIndex(q)];
       const std::int32_t old = tile;
       std::int32_t proposal = old;
       while (proposal == old)
-        proposal = allowed[static_cast<std::size_t>(this->Rng.Below(allowed.size()))];
+        proposal = allowed[ToIndex(this->Rng.Below(allowed.size()))];
       double before = 0, after = 0;
       std::int64_t hardBefore = 0, hardAfter = 0;
       this->P.ForTouching(q,
@@ -612,7 +603,7 @@ private:
       if (delta >= 0 || this->Rng.Uniform() < std::exp(delta))
       {
         this->Violated += hardAfter - hardBefore;
-        this->LastChange[static_cast<std::size_t>(q)] = this->R.Moves + 1;
+        this->LastChange[ToIndex(q)] = this->R.Moves + 1;
       }
       else
         tile = old;

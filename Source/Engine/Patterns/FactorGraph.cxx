@@ -2,6 +2,7 @@
 #include "Patterns/FactorGraph.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 
 #include <algorithm>
@@ -236,10 +237,9 @@ FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
   for (int a = 0; a < 3; ++a)
   {
     m.Pairs[a].assign(t * t, 0);
-    for (const auto& [b, c] : extra[static_cast<std::size_t>(a)])
+    for (const auto& [b, c] : extra[ToIndex(a)])
     {
-      m.Pairs[a][static_cast<std::size_t>(m.TileIndex(b)) * t +
-        static_cast<std::size_t>(m.TileIndex(c))] = 1;
+      m.Pairs[a][ToIndex(m.TileIndex(b)) * t + ToIndex(m.TileIndex(c))] = 1;
       m.AxisSeen[a] = true;
     }
     for (const LabelGrid& g : exemplars)
@@ -256,8 +256,8 @@ FactorModel LearnFactors(const std::vector<LabelGrid>& exemplars,
             ++q[a];
             if (!g.Contains(q[0], q[1], q[2]))
               continue;
-            const auto b = static_cast<std::size_t>(m.TileIndex(g.At(x, y, z)));
-            const auto c = static_cast<std::size_t>(m.TileIndex(g.At(q[0], q[1], q[2])));
+            const auto b = ToIndex(m.TileIndex(g.At(x, y, z)));
+            const auto c = ToIndex(m.TileIndex(g.At(q[0], q[1], q[2])));
             m.Pairs[a][b * t + c] = 1;
           }
     }

@@ -15,6 +15,7 @@
  * Shapes are stencils: offsets from the anchor, normalised so the smallest offset along each
  * axis is 0 (the anchor is the scope's lowest corner).
  */
+#include "Core/Index.h"
 #include "Core/LabelGrid.h"
 
 #include <array>
@@ -82,8 +83,7 @@ struct FactorModel
 
   bool Allowed(int axis, int b, int c) const
   {
-    return this->Pairs[axis][static_cast<std::size_t>(b) * this->Tiles.size() +
-             static_cast<std::size_t>(c)] != 0;
+    return this->Pairs[axis][ToIndex(b) * this->Tiles.size() + ToIndex(c)] != 0;
   }
 };
 

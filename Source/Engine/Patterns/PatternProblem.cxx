@@ -2,6 +2,7 @@
 #include "Patterns/PatternProblem.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <climits>
@@ -18,7 +19,7 @@ namespace
 
 std::int32_t MirrorTile(const FactorModel& m, const PatternOptions& o, std::int32_t t)
 {
-  const auto it = o.MirrorMap.find(m.Tiles[static_cast<std::size_t>(t)]);
+  const auto it = o.MirrorMap.find(m.Tiles[ToIndex(t)]);
   return it == o.MirrorMap.end() ? t : m.TileIndex(it->second);
 }
 
@@ -30,14 +31,14 @@ std::map<std::int32_t, std::vector<std::uint8_t>> ZoneMasks(
   std::map<std::int32_t, std::vector<std::uint8_t>> zoneMask;
   for (const auto& [zone, values] : options.ZoneTiles)
   {
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(model.NumberOfTiles()), 0);
+    std::vector<std::uint8_t> mask(ToIndex(model.NumberOfTiles()), 0);
     for (Label v : values)
     {
       const int t = model.TileIndex(v);
       if (t < 0)
         throw Error("zone " + std::to_string(zone) + " allows label " + std::to_string(v) +
           ", which no exemplar holds");
-      mask[static_cast<std::size_t>(t)] = 1;
+      mask[ToIndex(t)] = 1;
     }
     zoneMask[zone] = std::move(mask);
   }
@@ -57,7 +58,7 @@ std::vector<std::int32_t> ClassTilesOf(const FactorModel& model, const PatternOp
   std::vector<std::uint8_t>& mask)
 {
   const std::int32_t T = model.NumberOfTiles();
-  mask.assign(static_cast<std::size_t>(T), 1);
+  mask.assign(ToIndex(T), 1);
   bool fixedAndZoned = false;
   for (std::size_t i = 1; i < key.size(); i += 3)
   {
@@ -66,9 +67,9 @@ std::vector<std::int32_t> ClassTilesOf(const FactorModel& model, const PatternOp
     for (std::int32_t t = 0; t < T; ++t)
     {
       const std::int32_t image = key[i + 2] ? MirrorTile(model, options, t) : t;
-      if ((zone != INT32_MIN && !zoneMask.at(zone)[static_cast<std::size_t>(image)]) ||
+      if ((zone != INT32_MIN && !zoneMask.at(zone)[ToIndex(image)]) ||
         (fixed >= 0 && image != fixed))
-        mask[static_cast<std::size_t>(t)] = 0;
+        mask[ToIndex(t)] = 0;
     }
   }
   for (std::int32_t t = 0; t < T; ++t)
@@ -76,13 +77,13 @@ std::vector<std::int32_t> ClassTilesOf(const FactorModel& model, const PatternOp
     {
       const std::int32_t f = MirrorTile(model, options, t);
       if ((seam & (1 << a)) && !model.Allowed(a, t, f))
-        mask[static_cast<std::size_t>(t)] = 0;
+        mask[ToIndex(t)] = 0;
       if ((seam & (8 << a)) && f != t)
-        mask[static_cast<std::size_t>(t)] = 0;
+        mask[ToIndex(t)] = 0;
     }
   std::vector<std::int32_t> tiles;
   for (std::int32_t t = 0; t < T; ++t)
-    if (mask[static_cast<std::size_t>(t)])
+    if (mask[ToIndex(t)])
       tiles.push_back(t);
   if (tiles.empty())
   {
@@ -126,8 +127,8 @@ PatternProblem::PatternProblem(const FactorModel& model, const PatternOptions& o
     std::vector<std::unordered_set<std::uint64_t>> perShape(model.SoftShapes.size());
     for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
       for (int e : group)
-        perShape[k].insert(model.Observed[k][static_cast<std::size_t>(e)].begin(),
-          model.Observed[k][static_cast<std::size_t>(e)].end());
+        perShape[k].insert(
+          model.Observed[k][ToIndex(e)].begin(), model.Observed[k][ToIndex(e)].end());
     this->GroupObserved.push_back(std::move(perShape));
   }
 }
@@ -136,14 +137,14 @@ void PatternProblem::MarkFactors()
 {
   const FactorModel& model = this->Model;
   const auto& size = this->Size;
-  this->Valid.assign(static_cast<std::size_t>(this->Shapes * this->N), 0);
+  this->Valid.assign(ToIndex(this->Shapes * this->N), 0);
   for (std::int64_t p = 0; p < this->N; ++p)
   {
     const auto c = this->Coordinates(p);
     for (int a = 0; a < 3; ++a)
-      if (c[static_cast<std::size_t>(a)] + 1 < size[static_cast<std::size_t>(a)])
+      if (c[ToIndex(a)] + 1 < size[ToIndex(a)])
       {
-        this->Valid[static_cast<std::size_t>(a * this->N + p)] = 1;
+        this->Valid[ToIndex(a * this->N + p)] = 1;
         ++this->HardCount;
       }
     for (std::size_t k = 0; k < model.SoftShapes.size(); ++k)
@@ -151,7 +152,7 @@ void PatternProblem::MarkFactors()
       const auto& e = model.SoftShapes[k].Extent;
       if (c[0] + e[0] <= size[0] && c[1] + e[1] <= size[1] && c[2] + e[2] <= size[2])
       {
-        this->Valid[static_cast<std::size_t>(static_cast<std::int64_t>(3 + k) * this->N + p)] = 1;
+        this->Valid[ToIndex(static_cast<std::int64_t>(3 + k) * this->N + p)] = 1;
         ++this->SoftCount;
       }
     }
@@ -199,15 +200,15 @@ std::vector<std::vector<int>> PatternProblem::BuildSoftGroups(const PatternOptio
     zoneGroup[zone] = groupOf(sorted);
   }
   const auto& full = options.Size;
-  this->SiteGroup.assign(static_cast<std::size_t>(this->N), allGroup);
+  this->SiteGroup.assign(ToIndex(this->N), allGroup);
   if (!options.SiteZone.empty() && !zoneGroup.empty())
     for (std::int64_t p = 0; p < this->N; ++p)
     {
       const auto c = this->Coordinates(p);
       const std::int64_t fp = c[0] + full[0] * (c[1] + full[1] * c[2]);
-      const auto zg = zoneGroup.find(options.SiteZone[static_cast<std::size_t>(fp)]);
+      const auto zg = zoneGroup.find(options.SiteZone[ToIndex(fp)]);
       if (zg != zoneGroup.end())
-        this->SiteGroup[static_cast<std::size_t>(p)] = zg->second;
+        this->SiteGroup[ToIndex(p)] = zg->second;
     }
   return groupMembers;
 }
@@ -221,7 +222,7 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
   // A site's class: its seam, and the zone and fixed label of each of its images in the full
   // output (itself, and with mirroring its mirror images, whose tiles are its tiles mapped).
   std::map<std::vector<std::int32_t>, std::int32_t> classes;
-  this->SiteClass.resize(static_cast<std::size_t>(this->N));
+  this->SiteClass.resize(ToIndex(this->N));
   std::vector<std::int32_t> key;
   for (std::int64_t p = 0; p < this->N; ++p)
   {
@@ -230,11 +231,11 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
     int mirrored = 0; // bit a: axis a is mirrored
     if (seams)
       for (int a = 0; a < 3; ++a)
-        if (options.Mirror[static_cast<std::size_t>(a)])
+        if (options.Mirror[ToIndex(a)])
         {
           mirrored |= 1 << a;
-          if (c[static_cast<std::size_t>(a)] == size[static_cast<std::size_t>(a)] - 1)
-            seam |= (full[static_cast<std::size_t>(a)] % 2 == 0 ? 1 : 8) << a;
+          if (c[ToIndex(a)] == size[ToIndex(a)] - 1)
+            seam |= (full[ToIndex(a)] % 2 == 0 ? 1 : 8) << a;
         }
     key.assign(1, seam);
     for (int flips = 0; flips < 8; ++flips)
@@ -246,15 +247,13 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
       for (int a = 0; a < 3; ++a)
         if (flips & (1 << a))
         {
-          q[a] = full[static_cast<std::size_t>(a)] - 1 - q[a];
+          q[a] = full[ToIndex(a)] - 1 - q[a];
           parity ^= 1;
         }
       const std::int64_t fq = q[0] + full[0] * (q[1] + full[1] * q[2]);
-      const std::int32_t zone =
-        options.SiteZone.empty() ? 0 : options.SiteZone[static_cast<std::size_t>(fq)];
+      const std::int32_t zone = options.SiteZone.empty() ? 0 : options.SiteZone[ToIndex(fq)];
       key.push_back(zoneMask.count(zone) ? zone : INT32_MIN);
-      key.push_back(
-        options.Fixed.empty() ? -1 : model.TileIndex(options.Fixed[static_cast<std::size_t>(fq)]));
+      key.push_back(options.Fixed.empty() ? -1 : model.TileIndex(options.Fixed[ToIndex(fq)]));
       key.push_back(parity);
     }
     auto it = classes.find(key);
@@ -266,7 +265,7 @@ void PatternProblem::BuildSiteClasses(const PatternOptions& options, bool seams)
       this->ClassAllowed.push_back(std::move(mask));
       this->ClassTiles.push_back(std::move(tiles));
     }
-    this->SiteClass[static_cast<std::size_t>(p)] = it->second;
+    this->SiteClass[ToIndex(p)] = it->second;
   }
 }
 
@@ -274,14 +273,14 @@ std::int64_t PatternProblem::CountSoft(
   const std::vector<std::int32_t>& tiles, std::vector<std::int32_t>* perSite) const
 {
   if (perSite)
-    perSite->assign(static_cast<std::size_t>(this->N), 0);
+    perSite->assign(ToIndex(this->N), 0);
   std::int64_t total = 0;
   for (std::int64_t f = 3 * this->N; f < this->Shapes * this->N; ++f)
-    if (this->Valid[static_cast<std::size_t>(f)] && this->Satisfied(f, tiles))
+    if (this->Valid[ToIndex(f)] && this->Satisfied(f, tiles))
     {
       ++total;
       if (perSite)
-        ++(*perSite)[static_cast<std::size_t>(f % this->N)];
+        ++(*perSite)[ToIndex(f % this->N)];
     }
   return total;
 }
@@ -290,7 +289,7 @@ std::int64_t PatternProblem::CountViolatedHard(const std::vector<std::int32_t>& 
 {
   std::int64_t violated = 0;
   for (std::int64_t f = 0; f < 3 * this->N; ++f)
-    if (this->Valid[static_cast<std::size_t>(f)] && !this->Satisfied(f, tiles))
+    if (this->Valid[ToIndex(f)] && !this->Satisfied(f, tiles))
       ++violated;
   return violated;
 }

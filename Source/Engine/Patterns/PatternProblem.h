@@ -9,6 +9,7 @@
  * Factor f = s · N + p for shape s and anchor site p (N sites): s = 0, 1, 2 are the hard pairs
  * along x, y, z, s = 3 + k the soft shape k. A factor exists when its scope fits in the grid.
  */
+#include "Core/Index.h"
 #include "Patterns/FactorGraph.h"
 #include "Patterns/PatternSynthesis.h"
 
@@ -61,8 +62,7 @@ public:
   }
   bool AllowedAt(std::int64_t p, std::int32_t tile) const
   {
-    return this->ClassAllowed[static_cast<std::size_t>(
-             this->SiteClass[static_cast<std::size_t>(p)])][static_cast<std::size_t>(tile)] != 0;
+    return this->ClassAllowed[ToIndex(this->SiteClass[ToIndex(p)])][ToIndex(tile)] != 0;
   }
 
   bool IsHard(std::int64_t f) const { return f < 3 * this->N; }
@@ -73,14 +73,14 @@ public:
     const std::int64_t s = f / this->N;
     const std::int64_t p = f - s * this->N;
     if (s < 3)
-      return this->Model.Allowed(static_cast<int>(s), tiles[static_cast<std::size_t>(p)],
-        tiles[static_cast<std::size_t>(p + this->Stride[static_cast<std::size_t>(s)])]);
-    const auto& steps = this->SoftSteps[static_cast<std::size_t>(s - 3)];
+      return this->Model.Allowed(
+        static_cast<int>(s), tiles[ToIndex(p)], tiles[ToIndex(p + this->Stride[ToIndex(s)])]);
+    const auto& steps = this->SoftSteps[ToIndex(s - 3)];
     std::int32_t config[64];
     for (std::size_t k = 0; k < steps.size(); ++k)
-      config[k] = tiles[static_cast<std::size_t>(p + steps[k])];
-    const auto& observed = this->GroupObserved[static_cast<std::size_t>(
-      this->SiteGroup[static_cast<std::size_t>(p)])][static_cast<std::size_t>(s - 3)];
+      config[k] = tiles[ToIndex(p + steps[k])];
+    const auto& observed =
+      this->GroupObserved[ToIndex(this->SiteGroup[ToIndex(p)])][ToIndex(s - 3)];
     return observed.count(ConfigurationKey(config, steps.size())) != 0;
   }
 
@@ -92,11 +92,10 @@ public:
     for (int a = 0; a < 3; ++a)
     {
       const std::int64_t base = a * this->N;
-      if (this->Valid[static_cast<std::size_t>(base + q)])
+      if (this->Valid[ToIndex(base + q)])
         f(base + q);
-      if (c[static_cast<std::size_t>(a)] > 0 &&
-        this->Valid[static_cast<std::size_t>(base + q - this->Stride[static_cast<std::size_t>(a)])])
-        f(base + q - this->Stride[static_cast<std::size_t>(a)]);
+      if (c[ToIndex(a)] > 0 && this->Valid[ToIndex(base + q - this->Stride[ToIndex(a)])])
+        f(base + q - this->Stride[ToIndex(a)]);
     }
     for (std::size_t k = 0; k < this->SoftSteps.size(); ++k)
     {
@@ -108,7 +107,7 @@ public:
         if (c[0] < off[0] || c[1] < off[1] || c[2] < off[2])
           continue;
         const std::int64_t anchor = q - this->SoftSteps[k][o];
-        if (this->Valid[static_cast<std::size_t>(base + anchor)])
+        if (this->Valid[ToIndex(base + anchor)])
           f(base + anchor);
       }
     }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Patterns/PatternQuality.h"
+#include "Core/Index.h"
 
 #include <cmath>
 #include <limits>
@@ -84,8 +85,7 @@ std::vector<std::string> CheckPatternPairs(const std::vector<LabelGrid>& exempla
 {
   std::set<std::pair<Label, Label>> seen[3];
   for (int a = 0; a < 3; ++a)
-    seen[a].insert(
-      extra[static_cast<std::size_t>(a)].begin(), extra[static_cast<std::size_t>(a)].end());
+    seen[a].insert(extra[ToIndex(a)].begin(), extra[ToIndex(a)].end());
   for (const LabelGrid& g : exemplars)
     for (std::int64_t z = 0; z < g.Size(2); ++z)
       for (std::int64_t y = 0; y < g.Size(1); ++y)

@@ -2,6 +2,7 @@
 #include "Patterns/PatternSynthesis.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "Core/MirrorFold.h"
 #include "Core/Random.h"
@@ -29,9 +30,9 @@ void CheckOptions(const FactorModel& m, const PatternOptions& o)
 {
   for (int a = 0; a < 3; ++a)
   {
-    if (o.Size[static_cast<std::size_t>(a)] < 1)
+    if (o.Size[ToIndex(a)] < 1)
       throw Error("the output size must be at least 1 along every axis");
-    if (o.Size[static_cast<std::size_t>(a)] > 1 && !m.AxisSeen[static_cast<std::size_t>(a)])
+    if (o.Size[ToIndex(a)] > 1 && !m.AxisSeen[ToIndex(a)])
       throw Error(std::string("the output extends along ") + "xyz"[a] +
         " but no exemplar does, so no pair along it is known" +
         (a == 2 ? " (a 3D output needs 3D exemplars)" : ""));
@@ -48,10 +49,10 @@ void CheckOptions(const FactorModel& m, const PatternOptions& o)
     throw Error("at least one sample is needed, and the burn-in cannot be negative");
   bool mirrored = false;
   for (int a = 0; a < 3; ++a)
-    if (o.Mirror[static_cast<std::size_t>(a)])
+    if (o.Mirror[ToIndex(a)])
     {
       mirrored = true;
-      if (o.Size[static_cast<std::size_t>(a)] < 2)
+      if (o.Size[ToIndex(a)] < 2)
         throw Error(std::string("mirroring along ") + "xyz"[a] + " needs at least 2 sites");
     }
   if (!mirrored)
@@ -60,29 +61,29 @@ void CheckOptions(const FactorModel& m, const PatternOptions& o)
     throw Error("a connected network cannot be combined with mirroring (only half the output is "
                 "synthesized)");
   const int t = m.NumberOfTiles();
-  std::vector<std::int32_t> f(static_cast<std::size_t>(t));
+  std::vector<std::int32_t> f(ToIndex(t));
   for (int b = 0; b < t; ++b)
   {
-    const auto it = o.MirrorMap.find(m.Tiles[static_cast<std::size_t>(b)]);
-    f[static_cast<std::size_t>(b)] = it == o.MirrorMap.end() ? b : m.TileIndex(it->second);
-    if (f[static_cast<std::size_t>(b)] < 0)
+    const auto it = o.MirrorMap.find(m.Tiles[ToIndex(b)]);
+    f[ToIndex(b)] = it == o.MirrorMap.end() ? b : m.TileIndex(it->second);
+    if (f[ToIndex(b)] < 0)
       throw Error("the mirror map sends label " + std::to_string(it->first) + " to " +
         std::to_string(it->second) + ", which no exemplar holds");
   }
   for (int b = 0; b < t; ++b)
-    if (f[static_cast<std::size_t>(f[static_cast<std::size_t>(b)])] != b)
-      throw Error("the mirror map is not its own inverse at label " +
-        std::to_string(m.Tiles[static_cast<std::size_t>(b)]));
+    if (f[ToIndex(f[ToIndex(b)])] != b)
+      throw Error(
+        "the mirror map is not its own inverse at label " + std::to_string(m.Tiles[ToIndex(b)]));
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < t; ++b)
       for (int c = 0; c < t; ++c)
       {
-        const bool along = o.Mirror[static_cast<std::size_t>(a)];
-        const int fb = f[static_cast<std::size_t>(b)], fc = f[static_cast<std::size_t>(c)];
+        const bool along = o.Mirror[ToIndex(a)];
+        const int fb = f[ToIndex(b)], fc = f[ToIndex(c)];
         if (m.Allowed(a, b, c) != (along ? m.Allowed(a, fc, fb) : m.Allowed(a, fb, fc)))
           throw Error(std::string("the mirror map does not keep the exemplars' pairs along ") +
-            "xyz"[a] + " (labels " + std::to_string(m.Tiles[static_cast<std::size_t>(b)]) + ", " +
-            std::to_string(m.Tiles[static_cast<std::size_t>(c)]) + ")");
+            "xyz"[a] + " (labels " + std::to_string(m.Tiles[ToIndex(b)]) + ", " +
+            std::to_string(m.Tiles[ToIndex(c)]) + ")");
       }
 }
 
@@ -103,7 +104,7 @@ std::vector<T> Unfold(const std::vector<T>& part, const std::array<std::int64_t,
 {
   const auto& full = o.Size;
   const int axes = (o.Mirror[0] ? 1 : 0) | (o.Mirror[1] ? 2 : 0) | (o.Mirror[2] ? 4 : 0);
-  std::vector<T> out(static_cast<std::size_t>(full[0] * full[1] * full[2]));
+  std::vector<T> out(ToIndex(full[0] * full[1] * full[2]));
   std::array<std::int64_t, 3> q, p;
   std::size_t i = 0;
   for (q[2] = 0; q[2] < full[2]; ++q[2])
@@ -112,7 +113,7 @@ std::vector<T> Unfold(const std::vector<T>& part, const std::array<std::int64_t,
       {
         const int flips =
           __builtin_popcount(static_cast<unsigned>(FoldMirror(q, full, partSize, axes, p)));
-        T v = part[static_cast<std::size_t>(p[0] + partSize[0] * (p[1] + partSize[1] * p[2]))];
+        T v = part[ToIndex(p[0] + partSize[0] * (p[1] + partSize[1] * p[2]))];
         for (int k = 0; k < flips; ++k)
           v = map(v);
         out[i] = v;
@@ -128,7 +129,7 @@ PatternSample MakeSample(const PatternProblem& scorer, const FactorModel& m,
   s.LogProbability = static_cast<double>(soft) * std::log1p(o.Epsilon);
   std::vector<Label> values(tiles.size());
   for (std::size_t i = 0; i < tiles.size(); ++i)
-    values[i] = m.Tiles[static_cast<std::size_t>(tiles[i])];
+    values[i] = m.Tiles[ToIndex(tiles[i])];
   s.Labels = LabelGrid(o.Size, std::move(values));
   s.LastChange = std::move(last);
   return s;
@@ -157,9 +158,8 @@ AdjacencyRules PairRules(const FactorModel& m)
     for (int b = 0; b < t; ++b)
       for (int c = 0; c < t; ++c)
         if (m.Allowed(a, b, c))
-          pairs[static_cast<std::size_t>(a)].emplace_back(b, c);
-  return AdjacencyRules::FromPairs(
-    m.Tiles, std::vector<double>(static_cast<std::size_t>(t), 1.0), pairs);
+          pairs[ToIndex(a)].emplace_back(b, c);
+  return AdjacencyRules::FromPairs(m.Tiles, std::vector<double>(ToIndex(t), 1.0), pairs);
 }
 
 /// Discrete synthesis options for @p problem's sites: zones, fixed sites and seams as a guide of
@@ -173,17 +173,17 @@ SynthesisOptions SolverOptions(
   so.AttemptsPerBlock = 20;
   so.Threads = 1;
   const int t = m.NumberOfTiles();
-  if (problem.ClassTiles.size() > 1 || problem.ClassTiles[0].size() != static_cast<std::size_t>(t))
+  if (problem.ClassTiles.size() > 1 || problem.ClassTiles[0].size() != ToIndex(t))
   {
     GuideVolume guide;
     guide.Dims = problem.Size;
     for (int b = 0; b < t; ++b)
     {
-      std::vector<float> w(static_cast<std::size_t>(problem.N), 1.0f);
+      std::vector<float> w(ToIndex(problem.N), 1.0f);
       for (std::int64_t p = 0; p < problem.N; ++p)
         if (!problem.AllowedAt(p, b))
-          w[static_cast<std::size_t>(p)] = 0.0f;
-      guide.Weights[m.Tiles[static_cast<std::size_t>(b)]] = std::move(w);
+          w[ToIndex(p)] = 0.0f;
+      guide.Weights[m.Tiles[ToIndex(b)]] = std::move(w);
     }
     so.Guide = std::move(guide);
   }
@@ -375,12 +375,11 @@ PatternResult SynthesizePattern(
     if (mirrored)
       half.emplace(model, options, part, true);
     const PatternProblem& problem = mirrored ? *half : scorer;
-    std::vector<std::int32_t> mirror(static_cast<std::size_t>(model.NumberOfTiles()));
+    std::vector<std::int32_t> mirror(ToIndex(model.NumberOfTiles()));
     for (int b = 0; b < model.NumberOfTiles(); ++b)
     {
-      const auto it = options.MirrorMap.find(model.Tiles[static_cast<std::size_t>(b)]);
-      mirror[static_cast<std::size_t>(b)] =
-        it == options.MirrorMap.end() ? b : model.TileIndex(it->second);
+      const auto it = options.MirrorMap.find(model.Tiles[ToIndex(b)]);
+      mirror[ToIndex(b)] = it == options.MirrorMap.end() ? b : model.TileIndex(it->second);
     }
     std::vector<std::int32_t> initial;
     if (options.Start == PatternStart::Solver && options.Method == PatternMethod::BlockSS)
@@ -407,8 +406,7 @@ PatternResult SynthesizePattern(
         double seconds)
       {
         std::vector<std::int32_t> fullTiles = mirrored
-          ? Unfold(tiles, part, options,
-              [&](std::int32_t b) { return mirror[static_cast<std::size_t>(b)]; })
+          ? Unfold(tiles, part, options, [&](std::int32_t b) { return mirror[ToIndex(b)]; })
           : tiles;
         std::vector<std::int64_t> fullLast =
           mirrored ? Unfold(last, part, options, [](std::int64_t v) { return v; }) : last;

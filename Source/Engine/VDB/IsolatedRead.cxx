@@ -3,6 +3,7 @@
 #include "VDB/VDBBackend.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "VDB/VDBLayout.h"
 
@@ -33,11 +34,10 @@ void PackHeader(Packer& p, const GridHeader& h)
   p.U64(static_cast<std::uint64_t>(h.Type));
   for (int a = 0; a < 3; ++a)
   {
-    p.U64(static_cast<std::uint64_t>(
-      static_cast<std::int64_t>(h.IndexMin[static_cast<std::size_t>(a)])));
-    p.U64(static_cast<std::uint64_t>(h.Dims[static_cast<std::size_t>(a)]));
-    p.F64(h.Origin[static_cast<std::size_t>(a)]);
-    p.F64(h.Spacing[static_cast<std::size_t>(a)]);
+    p.U64(static_cast<std::uint64_t>(static_cast<std::int64_t>(h.IndexMin[ToIndex(a)])));
+    p.U64(static_cast<std::uint64_t>(h.Dims[ToIndex(a)]));
+    p.F64(h.Origin[ToIndex(a)]);
+    p.F64(h.Spacing[ToIndex(a)]);
   }
   p.F64(h.Background);
   p.Str(h.GridClass);
@@ -51,12 +51,10 @@ GridHeader UnpackHeader(Unpacker& u, std::int64_t maxVoxels)
   h.Type = static_cast<ValueType>(u.U64(2));
   for (int a = 0; a < 3; ++a)
   {
-    h.IndexMin[static_cast<std::size_t>(a)] =
-      static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
-    h.Dims[static_cast<std::size_t>(a)] =
-      static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
-    h.Origin[static_cast<std::size_t>(a)] = u.F64();
-    h.Spacing[static_cast<std::size_t>(a)] = u.F64();
+    h.IndexMin[ToIndex(a)] = static_cast<std::int32_t>(static_cast<std::int64_t>(u.U64()));
+    h.Dims[ToIndex(a)] = static_cast<std::int64_t>(u.U64(static_cast<std::uint64_t>(maxVoxels)));
+    h.Origin[ToIndex(a)] = u.F64();
+    h.Spacing[ToIndex(a)] = u.F64();
   }
   h.Background = u.F64();
   h.GridClass = u.Str();
@@ -77,7 +75,7 @@ void WriteAll(int fd, const void* data, std::size_t n)
     if (k <= 0)
       ::_exit(1); // the parent stopped listening
     p += k;
-    n -= static_cast<std::size_t>(k);
+    n -= ToIndex(k);
   }
 }
 
@@ -329,8 +327,8 @@ FileContents ReadFile(const std::string& path, const ReadOptions& options)
           throw Error::InFile(path, "is corrupt: the OpenVDB library failed reading it");
         CheckMemory((ints + floats) * 4, "reading grid '" + g.Header.Name + "' of '" + path + "'");
         contents.Grids.push_back(std::move(g));
-        ResizeOnHugePages(contents.Grids.back().Ints, static_cast<std::size_t>(ints));
-        ResizeOnHugePages(contents.Grids.back().Floats, static_cast<std::size_t>(floats));
+        ResizeOnHugePages(contents.Grids.back().Ints, ToIndex(ints));
+        ResizeOnHugePages(contents.Grids.back().Floats, ToIndex(floats));
       }
       for (auto& g : contents.Grids)
       {

@@ -9,6 +9,7 @@
  * ListGrids (VDBFile.h) are defined in IsolatedRead.cxx, the child's reads in VDBFile.cxx.
  */
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "VDB/VDBFile.h"
 
 #include <cstdint>
@@ -77,7 +78,7 @@ struct Unpacker
   }
   std::string Str()
   {
-    std::string v(static_cast<std::size_t>(this->U64(this->Bytes.size() - this->Pos)), '\0');
+    std::string v(ToIndex(this->U64(this->Bytes.size() - this->Pos)), '\0');
     this->Raw(&v[0], v.size());
     return v;
   }
@@ -114,7 +115,7 @@ public:
         continue;
       if (k <= 0)
         break;
-      done += static_cast<std::size_t>(k);
+      done += ToIndex(k);
     }
     return done;
   }
@@ -135,7 +136,7 @@ public:
     const std::uint64_t n = this->U64();
     if (n > (std::uint64_t(64) << 20))
       throw Error::InFile(this->Path, "is corrupt: the OpenVDB library failed reading it");
-    std::string bytes(static_cast<std::size_t>(n), '\0');
+    std::string bytes(ToIndex(n), '\0');
     this->Exact(&bytes[0], bytes.size());
     return bytes;
   }

@@ -7,6 +7,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "VDB/IsolatedRead.h"
 
@@ -347,7 +348,7 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
   }
   h.IndexMin = { { box.min().x(), box.min().y(), box.min().z() } };
   for (int k = 0; k < 3; ++k)
-    h.Dims[static_cast<std::size_t>(k)] = std::int64_t(box.max()[k]) - box.min()[k] + 1;
+    h.Dims[ToIndex(k)] = std::int64_t(box.max()[k]) - box.min()[k] + 1;
   const std::int64_t limit = options.MaxVoxels;
   if (h.Dims[0] > limit || h.Dims[1] > limit / h.Dims[0] ||
     h.Dims[2] > limit / (h.Dims[0] * h.Dims[1]))
@@ -356,7 +357,7 @@ DenseGrid ReadGrid(const openvdb::GridBase::Ptr& base, const ReadOptions& option
       std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) +
       " voxels, more than the limit of " + std::to_string(limit) + " voxels");
   }
-  const auto n = static_cast<std::size_t>(h.NumberOfVoxels());
+  const auto n = ToIndex(h.NumberOfVoxels());
   CheckMemory(n * (h.Type == ValueType::Vec3Float ? 12 : 4),
     "reading grid '" + h.Name + "' (" + std::to_string(h.Dims[0]) + " x " +
       std::to_string(h.Dims[1]) + " x " + std::to_string(h.Dims[2]) + " voxels)");

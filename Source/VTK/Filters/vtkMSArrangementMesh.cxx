@@ -29,6 +29,7 @@
 #include "Continuous/DetailSubstitution.h"
 #include "Continuous/FeatureWidth.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 vtkStandardNewMacro(vtkMSArrangementMesh);
 
@@ -148,13 +149,13 @@ msynth::DetailResult Substitute(const msynth::ContinuousMesh& mesh,
   bool any = false;
   for (std::size_t f = 0; f < ex.Faces.size(); ++f)
   {
-    const int type = ex.ObjectTypes[static_cast<std::size_t>(ex.FaceObject[f])];
+    const int type = ex.ObjectTypes[msynth::ToIndex(ex.FaceObject[f])];
     if (std::find(types.begin(), types.end(), type) == types.end())
       continue;
     for (int i : ex.Faces[f])
       for (std::size_t c = 0; c < 3; ++c)
       {
-        const double x = ex.Points[static_cast<std::size_t>(i)][c];
+        const double x = ex.Points[msynth::ToIndex(i)][c];
         low[c] = any ? std::min(low[c], x) : x;
         high[c] = any ? std::max(high[c], x) : x;
       }
@@ -253,10 +254,10 @@ int vtkMSArrangementMesh::RequestData(
     {
       throw msynth::Error(ex.Source + ": the labelled arrangement does not match its parameters");
     }
-    std::vector<std::int32_t> labels(static_cast<std::size_t>(labelled->GetNumberOfPoints()));
+    std::vector<std::int32_t> labels(msynth::ToIndex(labelled->GetNumberOfPoints()));
     for (vtkIdType v = 0; v < labelled->GetNumberOfPoints(); ++v)
     {
-      labels[static_cast<std::size_t>(v)] = static_cast<std::int32_t>(labelArray->GetTuple1(v));
+      labels[msynth::ToIndex(v)] = static_cast<std::int32_t>(labelArray->GetTuple1(v));
     }
     msynth::ContinuousMesh mesh = msynth::ExtractMesh(analysis, arrangement, labels);
     vtkPolyData* detail = vtkPolyData::GetData(inputVector[2], 0);

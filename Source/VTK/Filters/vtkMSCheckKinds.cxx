@@ -18,6 +18,7 @@
 #include "vtkXMLImageDataReader.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 #include "Discrete/LabelChecks.h"
 #include "Discrete/OverlappingModel.h"
@@ -77,8 +78,7 @@ void CheckVoxels(vtkImageData* model, const std::string& tileset, const std::str
   if (!colours || colours->GetNumberOfComponents() != 4)
     throw msynth::Error("The voxel model has no palette (field data PaletteRGBA, as the label "
                         "grid reader gives a .vox file).");
-  std::vector<std::array<std::uint8_t, 4>> palette(
-    static_cast<std::size_t>(colours->GetNumberOfTuples()));
+  std::vector<std::array<std::uint8_t, 4>> palette(msynth::ToIndex(colours->GetNumberOfTuples()));
   for (std::size_t i = 0; i < palette.size(); ++i)
     std::copy_n(colours->GetPointer(4 * static_cast<vtkIdType>(i)), 4, palette[i].data());
   const msynth::VoxelCheckReport report = msynth::CheckVoxelModel(tileset, tiles, grid, palette);

@@ -23,6 +23,7 @@
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/TimeVarying.h"
 #include "Formats/Tileset.h"
@@ -230,8 +231,7 @@ bool vtkMSCheckModel::CheckLabels(
         recorded ? Recorded(fd, "TilesetSubset") : this->TilesetSubset,
         recorded ? Recorded(fd, "TilesFolder") : this->TilesFolder)
                 .Pairs;
-    report =
-      msynth::CheckConsistency(grids, pairs, grid, static_cast<std::size_t>(this->MaximumReported));
+    report = msynth::CheckConsistency(grids, pairs, grid, msynth::ToIndex(this->MaximumReported));
     // Counts and network: names of ConnectedTilesetFile, else of the tileset checked against.
     const bool own = !this->ConnectedTilesetFile.empty();
     vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
@@ -312,7 +312,7 @@ bool vtkMSCheckModel::CheckOther(vtkImageData* model, vtkFieldData* out)
 {
   try
   {
-    const auto limit = static_cast<std::size_t>(this->MaximumReported);
+    const auto limit = msynth::ToIndex(this->MaximumReported);
     if (!this->SampleFile.empty())
     {
       vtkMSCheckKinds::PictureCheck check{ this->SampleFile, this->PatternSize,

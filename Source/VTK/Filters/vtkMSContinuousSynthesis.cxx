@@ -29,6 +29,7 @@
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
 #include "Core/Fnv.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -87,7 +88,7 @@ int vtkMSContinuousSynthesis::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkMSPipeline::SetTimeSteps(outputVector->GetInformationObject(0),
-    this->NumberOfSnapshots > 0 ? static_cast<std::size_t>(this->NumberOfSnapshots) + 1 : 0);
+    this->NumberOfSnapshots > 0 ? msynth::ToIndex(this->NumberOfSnapshots) + 1 : 0);
   return 1;
 }
 
@@ -326,13 +327,13 @@ void vtkMSContinuousSynthesis::FillOutput(
   label->SetNumberOfValues(n);
   for (vtkIdType v = 0; v < n; ++v)
   {
-    label->SetValue(v, result.Labels[static_cast<std::size_t>(v)]);
+    label->SetValue(v, result.Labels[msynth::ToIndex(v)]);
   }
   if (cache.Snapshots.empty())
   {
     // The finished model: one label possible everywhere.
-    vtkMSSynthesisRun::AddCatalog(output, std::vector<std::int32_t>(static_cast<std::size_t>(n), 1),
-      std::vector<float>(static_cast<std::size_t>(n), 0.0f));
+    vtkMSSynthesisRun::AddCatalog(output, std::vector<std::int32_t>(msynth::ToIndex(n), 1),
+      std::vector<float>(msynth::ToIndex(n), 0.0f));
   }
   else
   {
@@ -340,7 +341,7 @@ void vtkMSContinuousSynthesis::FillOutput(
     const auto& snap = cache.Snapshots[step];
     for (vtkIdType v = 0; v < n; ++v)
     {
-      const msynth::Label l = snap.Labels[static_cast<std::size_t>(v)];
+      const msynth::Label l = snap.Labels[msynth::ToIndex(v)];
       label->SetValue(v, l == msynth::CatalogSnapshot::Undecided ? vtkMSLabelArrays::Undecided : l);
     }
     vtkMSSynthesisRun::AddCatalog(output, snap.CatalogSize, snap.Entropy);
@@ -353,7 +354,7 @@ void vtkMSContinuousSynthesis::FillOutput(
     model->SetNumberOfValues(n);
     for (vtkIdType v = 0; v < n; ++v)
     {
-      model->SetValue(v, result.Labels[static_cast<std::size_t>(v)]);
+      model->SetValue(v, result.Labels[msynth::ToIndex(v)]);
     }
     output->GetPointData()->AddArray(model);
   }

@@ -39,6 +39,7 @@
 #include "Formats/Tileset.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <array>
@@ -247,8 +248,8 @@ int vtkMSDiscreteSynthesis::RequestInformation(
       vtkErrorMacro(<< e.what() << " (MaximumSnapshotMemory).");
       return 0;
     }
-    vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(steps));
-    vtkMSPipeline::SetTimeSteps(geometryInfo, static_cast<std::size_t>(steps));
+    vtkMSPipeline::SetTimeSteps(outInfo, msynth::ToIndex(steps));
+    vtkMSPipeline::SetTimeSteps(geometryInfo, msynth::ToIndex(steps));
   }
   return 1;
 }
@@ -344,8 +345,8 @@ void AddExampleFields(
       symmetry->SetName("LabelSymmetry");
       for (int b = 0; b < tiles->NumberOfLabels(); ++b)
       {
-        const auto i = static_cast<std::size_t>(b);
-        tile->InsertNextValue(tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[i])].Name);
+        const auto i = msynth::ToIndex(b);
+        tile->InsertNextValue(tiles->Tiles[msynth::ToIndex(tiles->LabelTile[i])].Name);
         symmetry->InsertNextValue(tiles->LabelOrientation[i]);
       }
       fd->AddArray(tile);
@@ -405,7 +406,7 @@ bool vtkMSDiscreteSynthesis::Solve(
         options.Rotate.Map = run.Tiles.TurnMap(); // each tile turns to its next orientation
       for (int a = 0; a < 3; ++a) // a voxel tileset's images pair with their mirror images
       {
-        auto& mirror = options.Symmetry[static_cast<std::size_t>(a)];
+        auto& mirror = options.Symmetry[msynth::ToIndex(a)];
         if (run.Tiles.Voxel && mirror.Enabled && mirror.Map.empty())
           mirror.Map = run.Tiles.MirrorMap(a);
       }

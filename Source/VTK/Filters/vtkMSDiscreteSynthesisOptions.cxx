@@ -15,6 +15,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/TilePictures.h"
@@ -102,7 +103,7 @@ bool ReadGuideRegions(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth:
     vtkErrorWithObjectMacro(self, << "The guide's array 'Region' must have one component.");
     return false;
   }
-  v.Regions.resize(static_cast<std::size_t>(regions->GetNumberOfTuples()));
+  v.Regions.resize(msynth::ToIndex(regions->GetNumberOfTuples()));
   for (vtkIdType t = 0; t < regions->GetNumberOfTuples(); ++t)
   {
     const double r = regions->GetTuple1(t);
@@ -112,7 +113,7 @@ bool ReadGuideRegions(vtkMSDiscreteSynthesis* self, vtkImageData* guide, msynth:
                                     << "; regions are whole numbers from 0.");
       return false;
     }
-    v.Regions[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(r);
+    v.Regions[msynth::ToIndex(t)] = static_cast<std::int32_t>(r);
   }
   return true;
 }
@@ -168,9 +169,9 @@ msynth::SynthesisOptions SizeOptions(vtkMSDiscreteSynthesis* self)
   msynth::SynthesisOptions options;
   for (int a = 0; a < 3; ++a)
   {
-    options.Symmetry[static_cast<std::size_t>(a)].Enabled = self->GetMirror()[a] != 0;
-    options.Translate[static_cast<std::size_t>(a)].Enabled = self->GetTranslate()[a] != 0;
-    options.Translate[static_cast<std::size_t>(a)].Period = self->GetTranslationPeriod()[a];
+    options.Symmetry[msynth::ToIndex(a)].Enabled = self->GetMirror()[a] != 0;
+    options.Translate[msynth::ToIndex(a)].Enabled = self->GetTranslate()[a] != 0;
+    options.Translate[msynth::ToIndex(a)].Period = self->GetTranslationPeriod()[a];
     options.Size[a] = self->GridSize(a);
     options.BlockSize[a] = self->GetBlockSize()[a];
     options.Overlap[a] = self->GetBlockOverlap()[a];
@@ -196,7 +197,7 @@ bool BuildOptions(
   options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
   for (int f = 0; f < 6; ++f)
     if (self->GetUseBoundary()[f] || self->GetBoundaryFace(f))
-      options.Boundary[static_cast<std::size_t>(f)] = self->GetBoundaryLabels()[f];
+      options.Boundary[msynth::ToIndex(f)] = self->GetBoundaryLabels()[f];
   if (self->GetUseTrivialLabel())
     options.TrivialLabel = self->GetTrivialLabel();
   options.ResemblanceWindow = self->GetResemblanceWindow();

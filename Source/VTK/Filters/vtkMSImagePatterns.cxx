@@ -15,6 +15,7 @@
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "Core/Index.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 
@@ -104,7 +105,7 @@ void FillTables(vtkTable* pairs, vtkTable* labels, const msynth::PatternSet& set
   from->SetName("From");
   to->SetName("To");
   for (int a = 0; a < 2; ++a)
-    for (const auto& p : set.Pairs[static_cast<std::size_t>(a)])
+    for (const auto& p : set.Pairs[msynth::ToIndex(a)])
     {
       axis->InsertNextValue(a);
       direction->InsertNextValue(a == 0 ? "+x" : "+y");
@@ -126,8 +127,8 @@ void FillTables(vtkTable* pairs, vtkTable* labels, const msynth::PatternSet& set
   for (int t = 0; t < set.NumberOfPatterns(); ++t)
   {
     label->InsertNextValue(t);
-    count->InsertNextValue(static_cast<vtkIdType>(set.Counts[static_cast<std::size_t>(t)]));
-    frequency->InsertNextValue(set.Counts[static_cast<std::size_t>(t)] / total);
+    count->InsertNextValue(static_cast<vtkIdType>(set.Counts[msynth::ToIndex(t)]));
+    frequency->InsertNextValue(set.Counts[msynth::ToIndex(t)] / total);
   }
   labels->AddColumn(label);
   labels->AddColumn(count);

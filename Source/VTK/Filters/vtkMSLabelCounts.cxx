@@ -7,6 +7,7 @@
 #include "vtkStringArray.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Core/TextLists.h"
 #include "Formats/Tileset.h"
 
@@ -45,8 +46,7 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
     {
       for (int b = 0; b < tiles->NumberOfLabels(); ++b)
       {
-        const auto& tile =
-          tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
+        const auto& tile = tiles->Tiles[msynth::ToIndex(tiles->LabelTile[msynth::ToIndex(b)])];
         if (tile.Name == c.Name || tiles->LabelName(b) == c.Name)
           c.Values.push_back(b);
       }
@@ -75,8 +75,7 @@ std::vector<msynth::Label> NamedLabels(const std::string& item, const msynth::Ti
   else if (tiles)
     for (int b = 0; b < tiles->NumberOfLabels(); ++b)
     {
-      const auto& tile =
-        tiles->Tiles[static_cast<std::size_t>(tiles->LabelTile[static_cast<std::size_t>(b)])];
+      const auto& tile = tiles->Tiles[msynth::ToIndex(tiles->LabelTile[msynth::ToIndex(b)])];
       if (tile.Name == item || tiles->LabelName(b) == item)
         values.push_back(b);
     }
@@ -160,7 +159,7 @@ msynth::ConnectedNetwork ReadConnected(
   if (!network.Values.empty() && tiles)
     for (msynth::Label v : network.Values)
     {
-      const auto b = static_cast<std::size_t>(v);
+      const auto b = msynth::ToIndex(v);
       if (b < tiles->LabelSides.size() && tiles->LabelSides[b] >= 0)
         network.Sides[v] = static_cast<std::uint8_t>(tiles->LabelSides[b]);
     }

@@ -24,6 +24,7 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/VoxelSurface.h"
 #include "Formats/MeshFormats.h"
 #include "Formats/Tileset.h"
@@ -69,7 +70,7 @@ PieceTurn TurnOf(int orientation, bool voxel, bool full)
   PieceTurn t{ { { { 1, 0, 0 } }, { { 0, 1, 0 } }, { { 0, 0, 1 } } } };
   if (voxel)
   {
-    const auto& m = msynth::SymmetryGroup(full)[static_cast<std::size_t>(orientation)].M;
+    const auto& m = msynth::SymmetryGroup(full)[msynth::ToIndex(orientation)].M;
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t j = 0; j < 3; ++j)
         t[i][j] = m[j][i];
@@ -385,9 +386,8 @@ bool LoadPieces(const msynth::LabelGrid& grid, const std::string& folder, const 
           naming.TilesetFile + "' (" + std::to_string(tileset->NumberOfLabels()) + " labels)";
         return false;
       }
-      const auto& tile =
-        tileset->Tiles[static_cast<std::size_t>(tileset->LabelTile[static_cast<std::size_t>(b)])];
-      const int k = tileset->LabelOrientation[static_cast<std::size_t>(b)];
+      const auto& tile = tileset->Tiles[msynth::ToIndex(tileset->LabelTile[msynth::ToIndex(b)])];
+      const int k = tileset->LabelOrientation[msynth::ToIndex(b)];
       groups.push_back({ { tile.Name + " " + std::to_string(k), 0 } });
       groups.push_back({ { tile.Name, k } });
       voxel = tileset->Voxel;

@@ -13,6 +13,7 @@
 #include "Patterns/PatternQuality.h"
 #include "Patterns/PatternSynthesis.h"
 
+#include "Core/Index.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -64,7 +65,7 @@ int vtkMSPatternSynthesis::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkMSPipeline::SetOutputLabelGrid(
     inputVector[0]->GetInformationObject(0), outInfo, this->OutputSize);
-  vtkMSPipeline::SetTimeSteps(outInfo, static_cast<std::size_t>(this->Samples));
+  vtkMSPipeline::SetTimeSteps(outInfo, msynth::ToIndex(this->Samples));
   outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
@@ -158,7 +159,7 @@ int vtkMSPatternSynthesis::RequestData(
   if (!this->ReadZonesAndFixed(inputVector, options, inputs))
     return 0;
   for (int a = 0; a < 3; ++a)
-    options.Mirror[static_cast<std::size_t>(a)] = this->Mirror[a] != 0;
+    options.Mirror[msynth::ToIndex(a)] = this->Mirror[a] != 0;
   options.Epsilon = this->Epsilon;
   options.Method = this->Method == METROPOLIS_HASTINGS ? msynth::PatternMethod::MetropolisHastings
     : this->Method == CONSTRAINT_SOLVER                ? msynth::PatternMethod::ConstraintSolver
@@ -275,15 +276,14 @@ bool vtkMSPatternSynthesis::ReadZonesAndFixed(vtkInformationVector** inputVector
       vtkErrorMacro(<< "Zones (" << vtkMSFieldData::ExampleName(zones) << "): " << problem);
       return false;
     }
-    options.SiteZone.resize(static_cast<std::size_t>(sites));
+    options.SiteZone.resize(msynth::ToIndex(sites));
     msynth::GuideVolume stretch; // zones are stretched over the output as guides are
     stretch.Dims = grid.Dimensions();
     for (std::int64_t z = 0; z < options.Size[2]; ++z)
       for (std::int64_t y = 0; y < options.Size[1]; ++y)
         for (std::int64_t x = 0; x < options.Size[0]; ++x)
-          options
-            .SiteZone[static_cast<std::size_t>(x + options.Size[0] * (y + options.Size[1] * z))] =
-            grid.Data()[static_cast<std::size_t>(stretch.CellOf({ { x, y, z } }, options.Size))];
+          options.SiteZone[msynth::ToIndex(x + options.Size[0] * (y + options.Size[1] * z))] =
+            grid.Data()[msynth::ToIndex(stretch.CellOf({ { x, y, z } }, options.Size))];
     inputs.push_back(zones);
   }
   if (vtkImageData* fixed = vtkImageData::GetData(inputVector[2], 0))
@@ -312,7 +312,7 @@ void vtkMSPatternSynthesis::AddFields(
   vtkFieldData* fd, const msynth::PatternResult& result, const msynth::PatternSample& sample)
 {
   const Cache& cache = *this->Cached;
-  const std::size_t step = static_cast<std::size_t>(&sample - result.Samples.data());
+  const std::size_t step = msynth::ToIndex(&sample - result.Samples.data());
   vtkMSFieldData::AddFieldValue<vtkIntArray>(fd, "Sample", static_cast<int>(step));
   vtkMSFieldData::AddFieldValue<vtkIntArray>(
     fd, "Samples", static_cast<int>(result.Samples.size()));

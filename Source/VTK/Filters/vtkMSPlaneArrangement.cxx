@@ -25,6 +25,7 @@
 
 #include "Continuous/ContinuousSynthesis.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,7 +117,7 @@ vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(
   input->GetBounds(bounds);
   for (int c = 0; c < 3; ++c)
   {
-    size[static_cast<std::size_t>(c)] =
+    size[msynth::ToIndex(c)] =
       this->OutputSize[c] > 0 ? this->OutputSize[c] : 4 * (bounds[2 * c + 1] - bounds[2 * c]);
   }
   vtkMSArrangementStorage::ArrangementRecord record;

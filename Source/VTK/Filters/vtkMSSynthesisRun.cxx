@@ -14,6 +14,7 @@
 #include "vtkPointData.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <new>
@@ -32,9 +33,9 @@ std::vector<std::pair<std::string, std::vector<float>>> GuideWeights(vtkDataSet*
       continue;
     if (array->GetNumberOfComponents() != 1)
       throw msynth::Error("guide array '" + name + "' must have one component");
-    std::vector<float> weights(static_cast<std::size_t>(array->GetNumberOfTuples()));
+    std::vector<float> weights(msynth::ToIndex(array->GetNumberOfTuples()));
     for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
-      weights[static_cast<std::size_t>(t)] = static_cast<float>(array->GetTuple1(t));
+      weights[msynth::ToIndex(t)] = static_cast<float>(array->GetTuple1(t));
     out.emplace_back(name.substr(7), std::move(weights));
   }
   return out;
@@ -96,7 +97,7 @@ msynth::BlockExchange ProcessExchange(std::int64_t fingerprint)
     // The lengths first, then the bytes of every rank.
     const int ranks = controller->GetNumberOfProcesses();
     vtkIdType length = static_cast<vtkIdType>(bytes.size());
-    std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)), offsets(lengths.size());
+    std::vector<vtkIdType> lengths(msynth::ToIndex(ranks)), offsets(lengths.size());
     controller->AllGather(&length, lengths.data(), 1);
     vtkIdType total = 0;
     for (std::size_t r = 0; r < lengths.size(); ++r)
@@ -104,7 +105,7 @@ msynth::BlockExchange ProcessExchange(std::int64_t fingerprint)
       offsets[r] = total;
       total += lengths[r];
     }
-    std::vector<char> all(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+    std::vector<char> all(msynth::ToIndex(std::max<vtkIdType>(total, 1)));
     controller->AllGatherV(bytes.data(), all.data(), length, lengths.data(), offsets.data());
     std::vector<std::vector<char>> parts(lengths.size());
     for (std::size_t r = 0; r < lengths.size(); ++r)

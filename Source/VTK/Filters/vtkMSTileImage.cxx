@@ -17,6 +17,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "Core/Index.h"
 #include "Formats/Image.h"
 #include "Formats/TilePictures.h"
 #include "Formats/Tileset.h"
@@ -169,7 +170,7 @@ int vtkMSTileImage::RequestData(
   rgba->SetNumberOfComponents(4);
   const vtkIdType width = static_cast<vtkIdType>(dims[0]) * size;
   rgba->SetNumberOfTuples(width * dims[1] * size);
-  std::vector<std::int32_t> row(static_cast<std::size_t>(dims[0]));
+  std::vector<std::int32_t> row(msynth::ToIndex(dims[0]));
   for (int y = 0; y < dims[1]; ++y)
   {
     for (int x = 0; x < dims[0]; ++x)
@@ -181,7 +182,7 @@ int vtkMSTileImage::RequestData(
                       << file << "'.");
         return 0;
       }
-      row[static_cast<std::size_t>(x)] = static_cast<std::int32_t>(b);
+      row[msynth::ToIndex(x)] = static_cast<std::int32_t>(b);
     }
     for (int j = 0; j < size; ++j) // one row of pixels at a time
       msynth::ComposeTileRow(row.data(), dims[0], pictures, j,

@@ -11,6 +11,7 @@
 
 #include "Discrete/TimeVarying.h"
 
+#include "Core/Index.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -76,7 +77,7 @@ int vtkMSTimeVaryingSynthesis::RequestInformation(
   for (int port = 0; port < 2; ++port)
   {
     vtkInformation* info = outputVector->GetInformationObject(port);
-    vtkMSPipeline::SetTimeSteps(info, static_cast<std::size_t>(this->NumberOfFrames));
+    vtkMSPipeline::SetTimeSteps(info, msynth::ToIndex(this->NumberOfFrames));
     info->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   }
   return 1;

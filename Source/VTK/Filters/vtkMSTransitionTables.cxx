@@ -18,6 +18,7 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
+#include "Core/Index.h"
 #include "Discrete/AdjacencyRules.h"
 #include "Discrete/ExampleAnalysis.h"
 #include "Discrete/Infallibility.h"
@@ -77,8 +78,8 @@ void FillTransitions(vtkTable* transitions, const msynth::ExampleAnalysis& analy
   {
     for (const auto& t : analysis.Transitions(a))
     {
-      const int b = values[static_cast<std::size_t>(t.From)];
-      const int c = values[static_cast<std::size_t>(t.To)];
+      const int b = values[msynth::ToIndex(t.From)];
+      const int c = values[msynth::ToIndex(t.To)];
       axis->InsertNextValue(a);
       direction->InsertNextValue(directions[a]);
       from->InsertNextValue(b);
@@ -105,12 +106,11 @@ void FillLabels(vtkTable* labels, const msynth::ExampleAnalysis& analysis, doubl
   auto frequency = NewColumn<vtkDoubleArray>("Frequency");
   for (int b = 0; b < analysis.NumberOfLabels(); ++b)
   {
-    label->InsertNextValue(values[static_cast<std::size_t>(b)]);
+    label->InsertNextValue(values[msynth::ToIndex(b)]);
     index->InsertNextValue(b);
-    labelCount->InsertNextValue(
-      static_cast<vtkIdType>(analysis.LabelCounts()[static_cast<std::size_t>(b)]));
+    labelCount->InsertNextValue(static_cast<vtkIdType>(analysis.LabelCounts()[msynth::ToIndex(b)]));
     frequency->InsertNextValue(
-      static_cast<double>(analysis.LabelCounts()[static_cast<std::size_t>(b)]) / sites);
+      static_cast<double>(analysis.LabelCounts()[msynth::ToIndex(b)]) / sites);
   }
   labels->AddColumn(label);
   labels->AddColumn(index);

@@ -31,6 +31,7 @@
 #include "vtkTypeInt64Array.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,7 +105,7 @@ vtkMSArrangementStorage::ArrangementRecord vtkMSArrangementStorage::LoadArrangem
   vtkDataArray* origin = array("ArrangementOrigin", 3);
   for (int c = 0; c < 3; ++c)
   {
-    p.Origin[static_cast<std::size_t>(c)] = origin->GetComponent(c, 0);
+    p.Origin[msynth::ToIndex(c)] = origin->GetComponent(c, 0);
   }
   p.Quantum = array("ArrangementQuantum", 1)->GetTuple1(0);
   r.AngleToleranceDegrees = array("AngleTolerance", 1)->GetTuple1(0);

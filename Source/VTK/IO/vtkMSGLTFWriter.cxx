@@ -13,6 +13,7 @@
 #include "vtkPolyData.h"
 #include "vtkTriangleFilter.h"
 
+#include "Core/Index.h"
 #include "Core/LabelColor.h"
 #include "Formats/GltfFile.h"
 
@@ -79,7 +80,7 @@ std::vector<msynth::GltfPart> GroupTriangles(
       key.first = std::llround(labels->GetComponent(cell, 0));
     if (colors)
       for (int c = 0; c < 4; ++c)
-        key.second[static_cast<std::size_t>(c)] = c < colors->GetNumberOfComponents()
+        key.second[msynth::ToIndex(c)] = c < colors->GetNumberOfComponents()
           ? static_cast<int>(colors->GetComponent(cell, c))
           : 255;
     Group& group = groups[key];

@@ -35,6 +35,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "Discrete/VoxelSurface.h"
 #include "Formats/Image.h"
 #include "Formats/VoxelTileset.h"
@@ -217,10 +218,10 @@ msynth::LabelGrid vtkMSLabelArrays::ToLabelGrid(vtkImageData* image, vtkDataArra
 {
   int dims[3];
   image->GetDimensions(dims);
-  std::vector<msynth::Label> values(static_cast<std::size_t>(labels->GetNumberOfTuples()));
+  std::vector<msynth::Label> values(msynth::ToIndex(labels->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
   {
-    values[static_cast<std::size_t>(i)] = static_cast<msynth::Label>(labels->GetTuple1(i));
+    values[msynth::ToIndex(i)] = static_cast<msynth::Label>(labels->GetTuple1(i));
   }
   return msynth::LabelGrid({ { dims[0], dims[1], dims[2] } }, std::move(values));
 }
@@ -382,7 +383,7 @@ msynth::RgbaImage vtkMSLabelArrays::PictureRows(
   msynth::RgbaImage picture;
   picture.Width = dims[0];
   picture.Height = dims[1];
-  picture.Pixels.resize(static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * 4);
+  picture.Pixels.resize(msynth::ToIndex(dims[0]) * msynth::ToIndex(dims[1]) * 4);
   const int nc = bytes->GetNumberOfComponents();
   std::uint8_t* out = picture.Pixels.data();
   for (int y = 0; y < dims[1]; ++y)

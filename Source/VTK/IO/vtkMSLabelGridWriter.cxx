@@ -13,6 +13,7 @@
 #include "vtkStringArray.h"
 
 #include "Core/AtomicFile.h"
+#include "Core/Index.h"
 #include "Formats/TextModel.h"
 #include "Formats/VoxModel.h"
 
@@ -87,7 +88,7 @@ void vtkMSLabelGridWriter::WriteData()
         model.Palette.resize(256);
         for (vtkIdType i = 0; i < 256; ++i)
           for (int c = 0; c < 4; ++c)
-            model.Palette[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
+            model.Palette[msynth::ToIndex(i)][msynth::ToIndex(c)] =
               static_cast<std::uint8_t>(palette->GetComponent(i, c));
       }
       msynth::WriteVoxModelFile(path, model);

@@ -13,6 +13,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "Core/Index.h"
 #include "Core/Memory.h"
 #include "VDB/VDBFile.h"
 
@@ -194,17 +195,17 @@ int vtkMSOpenVDBReader::RequestData(
     array->SetName(h.Name.c_str());
     array->SetNumberOfComponents(nc);
     array->SetNumberOfTuples(n);
-    msynth::AdviseHugePages(array->GetVoidPointer(0), static_cast<std::size_t>(n * nc) * 4);
+    msynth::AdviseHugePages(array->GetVoidPointer(0), msynth::ToIndex(n * nc) * 4);
     array->Fill(h.Background);
     // Copy the grid's box into the union box, row by row (x fastest in both; a row of values
     // of the array's own type at a time: a virtual call per value took 8 s for 2^28 voxels).
     const bool ints = h.Type == msynth::vdb::ValueType::Int32;
-    const std::size_t rowBytes = static_cast<std::size_t>(h.Dims[0] * nc) * 4;
+    const std::size_t rowBytes = msynth::ToIndex(h.Dims[0] * nc) * 4;
     for (std::int64_t k = 0; k < h.Dims[2]; ++k)
     {
       for (std::int64_t j = 0; j < h.Dims[1]; ++j)
       {
-        const auto src = static_cast<std::size_t>(h.Dims[0] * (j + h.Dims[1] * k) * nc);
+        const auto src = msynth::ToIndex(h.Dims[0] * (j + h.Dims[1] * k) * nc);
         const vtkIdType dst = (h.IndexMin[0] - ext[0]) +
           nx * ((h.IndexMin[1] - ext[2] + j) + ny * (h.IndexMin[2] - ext[4] + k));
         std::memcpy(array->GetVoidPointer(dst * nc),

@@ -32,6 +32,7 @@
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 #include "VDB/VDBFile.h"
 
 #include <algorithm>
@@ -155,23 +156,22 @@ bool AddArray(vtkDataArray* array, const std::string& name, const msynth::vdb::G
     {
       throw msynth::Error("array '" + name + "' has values outside the 32-bit integer range");
     }
-    auto& values = buffers.Ints.emplace_back(static_cast<std::size_t>(n));
+    auto& values = buffers.Ints.emplace_back(msynth::ToIndex(n));
     for (vtkIdType i = 0; i < n; ++i)
     {
-      values[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(array->GetTuple1(i));
+      values[msynth::ToIndex(i)] = static_cast<std::int32_t>(array->GetTuple1(i));
     }
     view.Header.Type = msynth::vdb::ValueType::Int32;
     view.Values = values.data();
   }
   else if (nc == 1 || nc == 3)
   {
-    auto& values = buffers.Floats.emplace_back(static_cast<std::size_t>(n * nc));
+    auto& values = buffers.Floats.emplace_back(msynth::ToIndex(n * nc));
     for (vtkIdType i = 0; i < n; ++i)
     {
       for (int c = 0; c < nc; ++c)
       {
-        values[static_cast<std::size_t>(i * nc + c)] =
-          static_cast<float>(array->GetComponent(i, c));
+        values[msynth::ToIndex(i * nc + c)] = static_cast<float>(array->GetComponent(i, c));
       }
     }
     view.Header.Type = nc == 1 ? msynth::vdb::ValueType::Float : msynth::vdb::ValueType::Vec3Float;
@@ -533,10 +533,10 @@ void vtkMSOpenVDBWriter::WriteMesh(vtkPolyData* input)
     }
     else
     {
-      points.resize(static_cast<std::size_t>(input->GetNumberOfPoints()));
+      points.resize(msynth::ToIndex(input->GetNumberOfPoints()));
       for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
       {
-        input->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+        input->GetPoint(i, points[msynth::ToIndex(i)].data());
       }
       auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
       for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
@@ -609,7 +609,7 @@ std::array<std::int64_t, 3> vtkMSOpenVDBWriter::GridDimensions(
   {
     const double n = std::max(1.0, std::ceil((bounds[2 * c + 1] - bounds[2 * c]) / voxel));
     total *= n;
-    dims[static_cast<std::size_t>(c)] = static_cast<std::int64_t>(std::min(n, 1e18));
+    dims[msynth::ToIndex(c)] = static_cast<std::int64_t>(std::min(n, 1e18));
   }
   if (total > this->MaximumVoxels)
     throw msynth::Error("voxels of " + std::to_string(voxel) + " give more than " +
@@ -678,7 +678,7 @@ int vtkMSOpenVDBWriter::Write()
   for (int i = 0; i < steps && ok; ++i)
   {
     this->CurrentFileName = this->SequenceFileName(i);
-    this->CurrentTime = copy[static_cast<std::size_t>(i)];
+    this->CurrentTime = copy[msynth::ToIndex(i)];
     ok = this->Superclass::Write(); // asks the input for CurrentTime (ProcessRequest)
   }
   this->WritingSequence = false;

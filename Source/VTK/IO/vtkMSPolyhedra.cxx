@@ -31,6 +31,7 @@
 #include "vtkTypeInt64Array.h"
 
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <cmath>
 #include <cstdint>
@@ -59,7 +60,7 @@ msynth::PolyhedralExample vtkMSPolyhedra::ToPolyhedralExample(
     }
   }
   const vtkIdType numberOfPoints = polygons->GetNumberOfPoints();
-  example.Points.resize(static_cast<std::size_t>(numberOfPoints));
+  example.Points.resize(msynth::ToIndex(numberOfPoints));
   for (vtkIdType i = 0; i < numberOfPoints; ++i)
   {
     double p[3];
@@ -195,10 +196,10 @@ msynth::ContinuousMesh vtkMSPolyhedra::ToContinuousMesh(vtkPolyData* model, cons
       "not a continuous model: it needs cell arrays InsideType "
       "and OutsideType (3D) or ObjectType (2D)");
   }
-  std::vector<msynth::Point3> points(static_cast<std::size_t>(model->GetNumberOfPoints()));
+  std::vector<msynth::Point3> points(msynth::ToIndex(model->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < model->GetNumberOfPoints(); ++i)
   {
-    model->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+    model->GetPoint(i, points[msynth::ToIndex(i)].data());
   }
   std::vector<std::vector<std::int32_t>> polygons;
   std::vector<std::int32_t> in, out;
