@@ -165,7 +165,9 @@ struct CellHash
 {
   std::size_t operator()(const CellKey& k) const
   {
-    return ToIndex(k[0] * 73856093) ^ ToIndex(k[1] * 19349663) ^ ToIndex(k[2] * 83492791);
+    // A hash, not an index: negative cells wrap on purpose.
+    return static_cast<std::uint64_t>(k[0] * 73856093) ^
+      static_cast<std::uint64_t>(k[1] * 19349663) ^ static_cast<std::uint64_t>(k[2] * 83492791);
   }
 };
 } // namespace
