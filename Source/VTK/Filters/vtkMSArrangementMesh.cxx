@@ -249,7 +249,8 @@ int vtkMSArrangementMesh::RequestData(
     {
       throw msynth::Error(ex.Source + ": the arrangement was built from another example");
     }
-    const auto built = vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
+    const auto built =
+      vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
     const msynth::PlaneArrangement& arrangement = *built;
     if (arrangement.NumberOfVertices() != labelled->GetNumberOfPoints())
     {

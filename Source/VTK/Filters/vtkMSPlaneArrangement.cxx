@@ -127,7 +127,8 @@ vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(
   record.Normals = analysis.Families().AllNormals();
   record.AngleToleranceDegrees = angleTolerance;
   record.MaximumSmallInteger = maximumSmallInteger;
-  const auto built = vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
+  const auto built =
+    vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
   const msynth::PlaneArrangement& arrangement = *built;
   const msynth::ArrangementRules rules(analysis, arrangement);
 
