@@ -21,7 +21,7 @@ PANELS = [
     ("houses-constrained", "synthesize %s/house.obj --size 24 24 10 --seed 3 --grounded "
      "--thickness wall:z --overhang roof %s --mirror x" % (D, WALLS), False),
     ("cottages", "synthesize %s/cottage.obj --size 24 24 8 --seed 5 --grounded "
-     "--thickness wall:z:2 --overhang roof %s" % (D, WALLS), False),
+     "--thickness wall:z:2 --overhang roof %s --blocks 8" % (D, WALLS), False),
     ("domes", "synthesize %s/domed-building.obj --size 24 24 10 --seed 2 --grounded "
      "--detail dome=%s/dome.obj" % (D, D), False),
     ("pyramids", "synthesize %s/pyramid.obj --size 20 20 6 --seed 1 --grounded" % D, False),

@@ -73,9 +73,10 @@ ENTRIES = [
      "read with --up y", "synthesize %s/house-blender.obj --up y --size 24 24 10 --seed 3 "
      "--grounded --thickness Wall:z --overhang Roof" % D, "model"),
     ("cottages", "Polyhedral (.obj)", "Four object types (a chimney against the gable, a porch), "
-     "grounded, walls 2 spacings high and in whole 2-spacing slabs across x and y, eaves one spacing",
+     "grounded, walls 2 spacings high and in whole 2-spacing slabs across x and y, eaves one spacing, "
+     "blocks of 8 spacings (a cottage does not fit the default 4)",
      "synthesize %s/cottage.obj --size 24 24 8 --seed 5 --grounded --thickness wall:z:2 "
-     "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+" % D, "model"),
+     "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+ --blocks 8" % D, "model"),
     ("oil", "Polyhedral (.obj)", "Decks one unit thick on beams, grown from three seeds",
      "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "
      "--thickness platform:z --thickness beam:x --thickness beam:y --connected solid:3" % D,

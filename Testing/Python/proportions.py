@@ -28,8 +28,11 @@ EXAMPLES = {
                             "--thickness", "wall:y:2+"], (16, 16, 8), (24, 24, 10)),
     "box-building": ("box-building.obj", ["--thickness", "building:z:6", "--thickness", "roof:z"],
                      (24, 24, 10), (48, 48, 10)),
+    # Blocks of 8 spacings: the default 4 (4.2 units) holds no whole cottage (5.5 deep with its
+    # porch), and with these constraints porches then stay one spacing deep.
     "cottage": ("cottage.obj", ["--thickness", "wall:z:2", "--overhang", "roof", "--thickness",
-                                "wall:x:2+", "--thickness", "wall:y:2+"], (12, 12, 8), (16, 16, 8)),
+                                "wall:x:2+", "--thickness", "wall:y:2+", "--blocks", "8"],
+                (12, 12, 8), (16, 16, 8)),
     "domed-building": ("domed-building.obj", ["--thickness", "wall:z:3"], (24, 24, 10),
                        (48, 48, 10)),
     "town": ("town.obj", ["--thickness", "wall:z:4", "--thickness", "shop:z:6", "--thickness",

@@ -249,7 +249,9 @@ int vtkMSArrangementMesh::RequestData(
     {
       throw msynth::Error(ex.Source + ": the arrangement was built from another example");
     }
-    const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
+    const auto built =
+      vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
+    const msynth::PlaneArrangement& arrangement = *built;
     if (arrangement.NumberOfVertices() != labelled->GetNumberOfPoints())
     {
       throw msynth::Error(ex.Source + ": the labelled arrangement does not match its parameters");

@@ -127,7 +127,9 @@ vtkMSPlaneArrangement::Corners vtkMSPlaneArrangement::Build(
   record.Normals = analysis.Families().AllNormals();
   record.AngleToleranceDegrees = angleTolerance;
   record.MaximumSmallInteger = maximumSmallInteger;
-  const msynth::PlaneArrangement arrangement(analysis.Families(), record.Parameters);
+  const auto built =
+    vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
+  const msynth::PlaneArrangement& arrangement = *built;
   const msynth::ArrangementRules rules(analysis, arrangement);
 
   output->Initialize();

@@ -38,6 +38,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <vector>
 
 void vtkMSArrangementStorage::StoreArrangement(
@@ -154,4 +155,29 @@ double vtkMSArrangementStorage::SmallestSpacing(vtkFieldData* fields)
     smallest = f == 0 ? world : std::min(smallest, world);
   }
   return smallest;
+}
+
+namespace
+{
+bool SameParameters(const msynth::ArrangementParameters& a, const msynth::ArrangementParameters& b)
+{
+  return a.Origin == b.Origin && a.Quantum == b.Quantum && a.BoxLow == b.BoxLow &&
+    a.BoxHigh == b.BoxHigh && a.Offsets == b.Offsets && a.Spacings == b.Spacings &&
+    a.Planar == b.Planar && a.MaxVertices == b.MaxVertices;
+}
+} // namespace
+
+std::shared_ptr<const msynth::PlaneArrangement> vtkMSArrangementStorage::SharedArrangement(
+  const msynth::PlaneFamilySet& families, const msynth::ArrangementParameters& parameters)
+{
+  static std::mutex lock;
+  static std::shared_ptr<const msynth::PlaneArrangement> last;
+  const std::lock_guard<std::mutex> hold(lock);
+  if (!last || last->Families().AllNormals() != families.AllNormals() ||
+    !SameParameters(last->Parameters(), parameters))
+  {
+    last.reset(); // the old one's memory first
+    last = std::make_shared<const msynth::PlaneArrangement>(families, parameters);
+  }
+  return last;
 }

@@ -12,6 +12,7 @@
 #include "Continuous/PlaneArrangement.h" // for msynth::ArrangementParameters
 #include "ModelSynthIOModule.h"          // for export macro
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,15 @@ public:
   /// The smallest distance between parallel planes of the arrangement @p fields carries (world
   /// units); 0 when @p fields carry none.
   static double SmallestSpacing(vtkFieldData* fields);
+
+  /**
+   * The arrangement of @p families with @p parameters, built once for the stages of a pipeline
+   * that each rebuild the same one from the field data (the arrangement, the solver, the mesh:
+   * three builds of a third of a large run each before). The last one built is kept (one, under a
+   * lock) until another is asked for. @throw msynth::Error as PlaneArrangement's constructor.
+   */
+  static std::shared_ptr<const msynth::PlaneArrangement> SharedArrangement(
+    const msynth::PlaneFamilySet& families, const msynth::ArrangementParameters& parameters);
 };
 
 #endif
