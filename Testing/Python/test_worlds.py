@@ -192,12 +192,33 @@ class WorldsTest(unittest.TestCase):
                       "labels", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
         np.testing.assert_array_equal(labels_zyx(read(os.path.join(out, "labels.vti")))[0], full[4:20, 4:16])
-        # Streams do not take pins yet: one line.
-        done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--out",
-                      fresh_folder("worlds-pins-stream"))
-        self.assertNotEqual(done.returncode, 0)
-        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
-
+        drawn_whole = full
+        # A stream with the same pins equals the whole run, slab by slab, and `msynth check` passes
+        # piece by piece; --resume keeps slabs made with the same pins only.
+        from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
+        whole = fresh_folder("worlds-pins-whole")
+        self.assertEqual(msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels",
+                                "--out", whole).returncode, 0)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        out = fresh_folder("worlds-pins-stream")
+        done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--slab", "20",
+                      "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        reader = vtkXMLPImageDataReader()
+        reader.SetFileName(os.path.join(out, "labels.pvti"))
+        reader.Update()
+        streamed = labels_zyx(reader.GetOutput())[0]
+        np.testing.assert_array_equal(streamed, full)
+        np.testing.assert_array_equal(streamed[20:32, 30:46][kept], pins[kept])
+        check = msynth("check", lines, os.path.join(out, "labels.pvti"))
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        # The drawn map streamed: the window grows with the placement there too.
+        out = fresh_folder("worlds-pins-drawn-stream")
+        done = msynth("synthesize", lines, *small, "--stream", "--slab", "5", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        reader.SetFileName(os.path.join(out, "labels.pvti"))
+        reader.Update()
+        np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], drawn_whole)
 
 if __name__ == "__main__":
     unittest.main()
