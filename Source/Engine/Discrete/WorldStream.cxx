@@ -356,7 +356,11 @@ public:
   /// holds undecided sites (@p r failed) or the receiver cancels.
   bool Emit(std::int64_t final, SynthesisResult& r);
 
+  /// Adds the counted labels of @p c's own layers (not the one it shares) to Counts.
+  void Tally(const StreamChunk& c);
+
   int NextChunk = 0;
+  std::vector<LabelCountResult> Counts; ///< the world's counts, slab by slab
   std::vector<BlockFailure> Failures;
   SynthesisStatistics Totals;
   std::function<bool(double)> Progress;
@@ -420,6 +424,26 @@ void Stream::Add(const SynthesisStatistics& s)
   {
     t.TrivialLabel = s.TrivialLabel;
     t.StartFrom = s.StartFrom;
+  }
+}
+
+void Stream::Tally(const StreamChunk& c)
+{
+  if (this->Counts.empty())
+    for (const LabelCount& want : this->World.Counts)
+      this->Counts.push_back({ want, 0 });
+  const Coord& d = c.Model.Dimensions();
+  const std::vector<Label>& data = c.Model.Data();
+  for (std::size_t s = 0; s < data.size(); ++s)
+  {
+    const auto i = static_cast<std::int64_t>(s);
+    const std::int64_t along[3] = { i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]) };
+    if (along[this->Axis] < c.Shared)
+      continue;
+    for (LabelCountResult& r : this->Counts)
+      if (std::find(r.Requested.Values.begin(), r.Requested.Values.end(), data[s]) !=
+        r.Requested.Values.end())
+        ++r.Achieved;
   }
 }
 
@@ -557,6 +581,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
       labels[s] = values[ToIndex(model[s])];
     }
     c.Model = LabelGrid(dims, std::move(labels));
+    this->Tally(c);
     ++this->NextChunk;
     if (!this->OnChunk(std::move(c)))
     {
@@ -648,6 +673,16 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   r.Statistics.Phases = lattice.Phases();
   r.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.Counts = stream.Counts;
+  const std::string miss = status == SynthesisStatus::Succeeded && firstChunk == 0
+    ? CountMiss(r.Counts)
+    : std::string();
+  if (!miss.empty()) // cannot be, when every block kept its share: say so if it happens
+  {
+    r.Status = SynthesisStatus::Failed;
+    r.Message = "the label counts were not kept: " + miss;
+    return r;
+  }
   r.Message = status == SynthesisStatus::Succeeded
     ? Summary(r.Statistics, false) + " (streamed in " + std::to_string(layout.Chunks - firstChunk) +
       " slabs along " + "xyz"[layout.Axis] + ")"
