@@ -169,8 +169,9 @@ TEST(LabelCounts, RegionsAndStreamsOfAWorldKeepTheWholeRunsCounts)
     EXPECT_LE(Sites(whole.Model, 2), 360);
     EXPECT_GE(Sites(whole.Model, 3), 160);
     EXPECT_LE(Sites(whole.Model, 3), 240);
-    for (const auto& [lo, hi] : { std::pair<WorldBox, WorldBox>{ { { 0, 0, 0 } }, { { 20, 14, 5 } } },
-           { { { 17, 9, 0 } }, { { 41, 30, 5 } } }, { { { 30, 20, 0 } }, { { 48, 36, 5 } } } })
+    for (const auto& [lo, hi] :
+      { std::pair<WorldBox, WorldBox>{ { { 0, 0, 0 } }, { { 20, 14, 5 } } },
+        { { { 17, 9, 0 } }, { { 41, 30, 5 } } }, { { { 30, 20, 0 } }, { { 48, 36, 5 } } } })
     {
       const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
       ASSERT_TRUE(region.Succeeded()) << region.Message;

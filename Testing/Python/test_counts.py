@@ -127,6 +127,12 @@ class CountsTest(unittest.TestCase):
         self.assertTrue(WORLD_CORNERS[0] <= counted(reader.GetOutput(), "corner") <= WORLD_CORNERS[1])
         stats = json.load(open(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["Counts"][0]["achieved"], counted(reader.GetOutput(), "corner"))
+        # The filter's Region with Counts: the same window.
+        part, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=LINES,
+                                     OutputSize=(96, 80, 1), BlockSize=(16, 16, 1), Seed=3,
+                                     Counts="corner:%d:%d" % WORLD_CORNERS, Region=(28, 18, 0, 52, 40, 1))
+        self.assertEqual(errors, "")
+        np.testing.assert_array_equal(labels_zyx(part)[0], labels[18:40, 28:52])
 
     def test_the_filter_reports_the_counts(self):
         synthesis = modelsynth.vtkMSDiscreteSynthesis()

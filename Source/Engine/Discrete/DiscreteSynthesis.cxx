@@ -464,8 +464,8 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   }
   const auto budget = options.Counts.empty()
     ? nullptr
-    : std::make_unique<CountBudget>(rules, options, cone ? CountedBlocks(*cone) : blocks, n,
-        shared.Fixed, cone);
+    : std::make_unique<CountBudget>(
+        rules, options, cone ? CountedBlocks(*cone) : blocks, n, shared.Fixed, cone);
   for (unsigned w = 0; budget && w < driver.Workers(); ++w)
     workers[w].UseCounts(budget.get());
   const auto network = options.Connected.Active() && !(run && run->Keep)

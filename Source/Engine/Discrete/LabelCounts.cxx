@@ -528,8 +528,8 @@ void CountBudget::WorldShares(const LabelCount& want, std::size_t c,
         " it may take in the block at " +
         Format({ { blocks[i].Origin[0] + off[0], blocks[i].Origin[1] + off[1],
           blocks[i].Origin[2] + off[2] } }) +
-        ", outside its share " +
-        std::to_string(this->Min[at]) + " to " + std::to_string(this->Max[at]) +
+        ", outside its share " + std::to_string(this->Min[at]) + " to " +
+        std::to_string(this->Max[at]) +
         " of the count (shares go by position: see the command-line guide)");
   }
 }

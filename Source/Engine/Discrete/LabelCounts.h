@@ -22,8 +22,9 @@
  *
  * A count of a guide region (LabelCount::Region) counts the sites whose guide cell belongs to
  * the region: its range is split over the run's blocks in proportion to their own free sites in
- * the region (cumulative rounding in block order; guides are refused in regions of a world). Each site has a *slot*: 0 when its region is counted by no count, else 1 + the
- * counted region's place; a label and a slot name at most one count.
+ * the region (cumulative rounding in block order; guides are refused in regions of a world). Each
+ * site has a *slot*: 0 when its region is counted by no count, else 1 + the counted region's place;
+ * a label and a slot name at most one count.
  */
 #include "Core/Index.h"
 #include "Core/WorldSchedule.h"

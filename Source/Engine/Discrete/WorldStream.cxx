@@ -384,7 +384,7 @@ private:
   const StreamLayout& Layout;
   const std::function<bool(StreamChunk&&)>& OnChunk;
   std::size_t Axis;
-  Slab Held; ///< what the last window left that is still needed or not yet handed out
+  Slab Held;        ///< what the last window left that is still needed or not yet handed out
   PinScales Scales; ///< the placement scales of pin groups that had to grow (RegionOfCone's)
   bool First = true;
 };
@@ -539,7 +539,8 @@ bool Stream::RunWindow(std::vector<std::vector<BoxBlock<3>>>& passes, SynthesisR
   next.Model.resize(ToIndex(inner * outer * (high - low)));
   next.LastBlock.resize(next.Model.size());
   CopyRows(keep.Model, from, to - from, next.Model, low, high - low, low, high, inner, outer);
-  CopyRows(keep.LastBlock, from, to - from, next.LastBlock, low, high - low, low, high, inner, outer);
+  CopyRows(
+    keep.LastBlock, from, to - from, next.LastBlock, low, high - low, low, high, inner, outer);
   this->Held = std::move(next);
   return true;
 }
@@ -674,9 +675,8 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   r.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.Counts = stream.Counts;
-  const std::string miss = status == SynthesisStatus::Succeeded && firstChunk == 0
-    ? CountMiss(r.Counts)
-    : std::string();
+  const std::string miss =
+    status == SynthesisStatus::Succeeded && firstChunk == 0 ? CountMiss(r.Counts) : std::string();
   if (!miss.empty()) // cannot be, when every block kept its share: say so if it happens
   {
     r.Status = SynthesisStatus::Failed;
