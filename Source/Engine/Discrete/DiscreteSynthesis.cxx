@@ -468,8 +468,8 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
         rules, options, cone ? CountedBlocks(*cone) : blocks, n, shared.Fixed, cone);
   for (unsigned w = 0; budget && w < driver.Workers(); ++w)
     workers[w].UseCounts(budget.get());
-  const auto network = options.Connected.Active() && !(run && run->Keep)
-    ? std::make_unique<NetworkRun>(rules, options, blocks, solver) // one thread (PolicyOf)
+  const auto network = options.Connected.Active() && (options.Connected.Open || !(run && run->Keep))
+    ? std::make_unique<NetworkRun>(rules, options, blocks, solver, cone) // one thread (PolicyOf)
     : nullptr;
   solver.StartSnapshots();
   if (run && run->Carry)

@@ -9,6 +9,7 @@
 #include "Core/Index.h"
 #include "Core/WorldSchedule.h"
 #include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/Connectivity.h"
 #include "Discrete/LabelCounts.h"
 #include "Discrete/WindowRun.h"
 
@@ -31,10 +32,10 @@ void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
     world.Translate[1].Enabled || world.Translate[2].Enabled;
   if (mirror || seams || world.Soft.Active() || world.Guide || world.Start ||
     world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance ||
-    world.Connected.Active())
+    (world.Connected.Active() && (!world.Connected.Open || world.Connected.HasPath())))
     throw Error(std::string(what) +
       " takes no symmetry, soft constraints, guide, given start, snapshots, resemblance "
-      "choice or connected network (each needs the whole world)");
+      "choice, or connected network but an open one, LABELS:open (each needs the whole world)");
 }
 
 SynthesisOptions detail::WindowOptions(
@@ -191,6 +192,7 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
 {
   CheckWorldOptions(world, "a region of a world");
   CheckCountRequest(rules, world); // shares by position (LabelCounts.h): as in the whole run
+  CheckConnectedRequest(rules, world);
   const WorldLattice lattice = LatticeOf(world);
   SynthesisOptions resolved = world;
   resolved.StartFrom = WorldStart(rules, world); // the world's, wherever the region lies
@@ -620,6 +622,7 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   const auto start = std::chrono::steady_clock::now();
   CheckWorldOptions(world, "a streamed world");
   CheckCountRequest(rules, world);
+  CheckConnectedRequest(rules, world);
   if (firstChunk < 0 || firstChunk >= layout.Chunks || layout.World != world.Size)
     throw Error("a streamed run resumes at one of its own slabs");
   const WorldLattice lattice = LatticeOf(world);
