@@ -179,3 +179,35 @@ TEST(WorldStream, PinsStreamAsInTheWholeRun)
     }
   }
 }
+
+// An open network (LABELS:open) is kept by each block on what it reads: regions and streams of a
+// world with one equal the whole run, and it closes fewer components off than a run without it.
+TEST(WorldStream, OpenNetworksStreamAndRegionAsInTheWholeRun)
+{
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 96, 80, 1 } };
+  o.BlockSize = { { 16, 16, 1 } };
+  o.Seed = 1;
+  for (const Label v : { 1, 2, 3, 4, 5, 6 }) // the tiles line and corner, every orientation
+  {
+    o.Connected.Values.push_back(v);
+    if (lines.LabelSides[static_cast<std::size_t>(v)] >= 0)
+      o.Connected.Sides[v] =
+        static_cast<std::uint8_t>(lines.LabelSides[static_cast<std::size_t>(v)]);
+  }
+  o.Connected.Open = true;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_GT(whole.Connected.Redone, 0);
+  EXPECT_EQ(Stream(rules, o, 20).Data(), whole.Model.Data());
+  const WorldBox lo{ { 30, 20, 0 } }, hi{ { 70, 60, 1 } };
+  const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+  ASSERT_TRUE(region.Succeeded()) << region.Message;
+  for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+    for (std::int64_t x = lo[0]; x < hi[0]; ++x)
+      ASSERT_EQ(region.Model.At(x - lo[0], y - lo[1], 0), whole.Model.At(x, y, 0));
+  o.Connected.Open = false; // a bounded network needs the whole world
+  EXPECT_THROW(SynthesizeRegion(rules, o, lo, hi), Error);
+}

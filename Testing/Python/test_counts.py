@@ -125,8 +125,8 @@ class CountsTest(unittest.TestCase):
         reader.Update()
         np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], labels)
         self.assertTrue(WORLD_CORNERS[0] <= counted(reader.GetOutput(), "corner") <= WORLD_CORNERS[1])
-        stats = json.load(open(os.path.join(out, "statistics.json")))
-        self.assertEqual(stats["Counts"][0]["achieved"], counted(reader.GetOutput(), "corner"))
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["Counts"][0]["achieved"], counted(reader.GetOutput(), "corner"))
         # The filter's Region with Counts: the same window.
         part, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=LINES,
                                      OutputSize=(96, 80, 1), BlockSize=(16, 16, 1), Seed=3,

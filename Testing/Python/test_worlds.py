@@ -219,6 +219,55 @@ class WorldsTest(unittest.TestCase):
         reader.SetFileName(os.path.join(out, "labels.pvti"))
         reader.Update()
         np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], drawn_whole)
+    def test_open_networks_in_regions_and_streams(self):
+        """`--connected LABELS:open` (what connected means in a world without bounds: no component
+        closed off) is kept block by block on what each block reads, so a region and a stream equal
+        the whole run; `msynth check --connected LABELS:open` counts the components that reach no
+        border of the file (a region's border counts as reaching out)."""
+        from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "1",
+                  "--connected", "line,corner:open", "--outputs", "labels"]
+        whole = fresh_folder("worlds-open-whole")
+        done = msynth("synthesize", lines, *common, "--out", whole)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        with open(os.path.join(whole, "statistics.json")) as f:
+            self.assertGreater(json.load(f)["Connected"]["redone"], 0)
+        region = fresh_folder("worlds-open-region")
+        done = msynth("synthesize", lines, *common, "--region", "30", "20", "0", "70", "60", "1", "--out", region)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(labels_zyx(read(os.path.join(region, "labels.vti")))[0], full[20:60, 30:70])
+        stream = fresh_folder("worlds-open-stream")
+        done = msynth("synthesize", lines, *common, "--stream", "--slab", "20", "--out", stream)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        reader = vtkXMLPImageDataReader()
+        reader.SetFileName(os.path.join(stream, "labels.pvti"))
+        reader.Update()
+        np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], full)
+        done = msynth("check", lines, os.path.join(region, "labels.vti"), "--connected", "line,corner:open")
+        self.assertIn("closed off", done.stdout)
+        # The check's meaning on grids made here: a lone wall site inside a field of air is closed
+        # off; one on the border reaches out.
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+        for where, closed in (((3, 3), 1), ((0, 3), 0)):
+            grid = np.zeros((6, 6), dtype=np.int32)
+            grid[where[1], where[0]] = 2
+            image = vtkImageData()
+            image.SetDimensions(6, 6, 1)
+            array = numpy_to_vtk(grid.ravel(), deep=True)
+            array.SetName("Label")
+            image.GetPointData().SetScalars(array)
+            path = os.path.join(fresh_folder("worlds-open-grid"), "grid.vti")
+            writer = vtkXMLImageDataWriter()
+            writer.SetInputData(image)
+            writer.SetFileName(path)
+            self.assertEqual(writer.Write(), 1)
+            done = msynth("check", data("Examples/Village.vti"), path, "--connected", "2:open")
+            self.assertIn("%d of them closed off" % closed, done.stdout, done.stdout + done.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

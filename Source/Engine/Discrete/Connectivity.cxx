@@ -267,7 +267,8 @@ bool NetworkGuard::KeepsOpen(
       if (this->World[a] > 1 && (w == 0 || w == this->World[a] - 1))
         return true;
     }
-    return this->Pins && this->Pins->Data()[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))] != FreeSite;
+    return this->Pins &&
+      this->Pins->Data()[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))] != FreeSite;
   };
   const std::int64_t total = d[0] * d[1] * d[2];
   std::vector<char> seen(ToIndex(total), 0);

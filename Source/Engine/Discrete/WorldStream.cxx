@@ -8,8 +8,8 @@
 #include "Core/Error.h"
 #include "Core/Index.h"
 #include "Core/WorldSchedule.h"
-#include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/Connectivity.h"
+#include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/LabelCounts.h"
 #include "Discrete/WindowRun.h"
 
