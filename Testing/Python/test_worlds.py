@@ -11,7 +11,8 @@ import unittest
 import numpy as np
 
 import modelsynth
-from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, violations
+from msynth_testing import (data, fresh_folder, labels_zyx, read_pieces, run_algorithm, violations,
+                            write_label_image)
 from msynth_testing import read_label_grid as read
 from msynth_testing import run_msynth as msynth
 
@@ -129,9 +130,6 @@ class WorldsTest(unittest.TestCase):
         """A pin grid placed by its extent (a 16 x 12 grid from site 30, 20 of the world): regions
         equal the whole run's window with the same pins, keep every pin inside them, and pass
         `msynth check`; the filter's Region agrees."""
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonDataModel import vtkImageData
-        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
         lines = data("Tilesets/Lines.xml")
         common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "3"]
         source = fresh_folder("worlds-pins-source")
@@ -142,16 +140,7 @@ class WorldsTest(unittest.TestCase):
         pins = np.full((12, 16), -1, dtype=np.int32)  # [y, x]
         pins[2:8, 3:9] = drawn[10:16, 10:16]  # a drawn patch
         pins[11, 15] = drawn[4, 4]  # a lone tile
-        image = vtkImageData()
-        image.SetExtent(30, 45, 20, 31, 0, 0)
-        array = numpy_to_vtk(pins.ravel(), deep=True)
-        array.SetName("Label")
-        image.GetPointData().SetScalars(array)
-        placed = os.path.join(fresh_folder("worlds-pins-grid"), "placed.vti")
-        writer = vtkXMLImageDataWriter()
-        writer.SetInputData(image)
-        writer.SetFileName(placed)
-        self.assertEqual(writer.Write(), 1)
+        placed = write_label_image(pins, os.path.join(fresh_folder("worlds-pins-grid"), "placed.vti"), (30, 20))
 
         whole = fresh_folder("worlds-pins-whole")
         done = msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels", "--out", whole)
@@ -195,7 +184,6 @@ class WorldsTest(unittest.TestCase):
         drawn_whole = full
         # A stream with the same pins equals the whole run, slab by slab, and `msynth check` passes
         # piece by piece; --resume keeps slabs made with the same pins only.
-        from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
         whole = fresh_folder("worlds-pins-whole")
         self.assertEqual(msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels",
                                 "--out", whole).returncode, 0)
@@ -204,10 +192,7 @@ class WorldsTest(unittest.TestCase):
         done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--slab", "20",
                       "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
-        reader = vtkXMLPImageDataReader()
-        reader.SetFileName(os.path.join(out, "labels.pvti"))
-        reader.Update()
-        streamed = labels_zyx(reader.GetOutput())[0]
+        streamed = labels_zyx(read_pieces(os.path.join(out, "labels.pvti")))[0]
         np.testing.assert_array_equal(streamed, full)
         np.testing.assert_array_equal(streamed[20:32, 30:46][kept], pins[kept])
         check = msynth("check", lines, os.path.join(out, "labels.pvti"))
@@ -216,15 +201,12 @@ class WorldsTest(unittest.TestCase):
         out = fresh_folder("worlds-pins-drawn-stream")
         done = msynth("synthesize", lines, *small, "--stream", "--slab", "5", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
-        reader.SetFileName(os.path.join(out, "labels.pvti"))
-        reader.Update()
-        np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], drawn_whole)
+        np.testing.assert_array_equal(labels_zyx(read_pieces(os.path.join(out, "labels.pvti")))[0], drawn_whole)
     def test_open_networks_in_regions_and_streams(self):
         """`--connected LABELS:open` (what connected means in a world without bounds: no component
         closed off) is kept block by block on what each block reads, so a region and a stream equal
         the whole run; `msynth check --connected LABELS:open` counts the components that reach no
         border of the file (a region's border counts as reaching out)."""
-        from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
         lines = data("Tilesets/Lines.xml")
         common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "1",
                   "--connected", "line,corner:open", "--outputs", "labels"]
@@ -241,30 +223,15 @@ class WorldsTest(unittest.TestCase):
         stream = fresh_folder("worlds-open-stream")
         done = msynth("synthesize", lines, *common, "--stream", "--slab", "20", "--out", stream)
         self.assertEqual(done.returncode, 0, done.stderr)
-        reader = vtkXMLPImageDataReader()
-        reader.SetFileName(os.path.join(stream, "labels.pvti"))
-        reader.Update()
-        np.testing.assert_array_equal(labels_zyx(reader.GetOutput())[0], full)
+        np.testing.assert_array_equal(labels_zyx(read_pieces(os.path.join(stream, "labels.pvti")))[0], full)
         done = msynth("check", lines, os.path.join(region, "labels.vti"), "--connected", "line,corner:open")
         self.assertIn("closed off", done.stdout)
         # The check's meaning on grids made here: a lone wall site inside a field of air is closed
         # off; one on the border reaches out.
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonDataModel import vtkImageData
-        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
         for where, closed in (((3, 3), 1), ((0, 3), 0)):
             grid = np.zeros((6, 6), dtype=np.int32)
             grid[where[1], where[0]] = 2
-            image = vtkImageData()
-            image.SetDimensions(6, 6, 1)
-            array = numpy_to_vtk(grid.ravel(), deep=True)
-            array.SetName("Label")
-            image.GetPointData().SetScalars(array)
-            path = os.path.join(fresh_folder("worlds-open-grid"), "grid.vti")
-            writer = vtkXMLImageDataWriter()
-            writer.SetInputData(image)
-            writer.SetFileName(path)
-            self.assertEqual(writer.Write(), 1)
+            path = write_label_image(grid, os.path.join(fresh_folder("worlds-open-grid"), "grid.vti"))
             done = msynth("check", data("Examples/Village.vti"), path, "--connected", "2:open")
             self.assertIn("%d of them closed off" % closed, done.stdout, done.stdout + done.stderr)
 
