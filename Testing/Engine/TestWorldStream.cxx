@@ -201,6 +201,9 @@ TEST(WorldStream, OpenNetworksStreamAndRegionAsInTheWholeRun)
   const SynthesisResult whole = Synthesize(rules, o);
   ASSERT_TRUE(whole.Succeeded()) << whole.Message;
   EXPECT_GT(whole.Connected.Redone, 0);
+  o.Threads = 1; // the same model on one thread (networks run their blocks on one anyway)
+  EXPECT_EQ(Synthesize(rules, o).Model.Data(), whole.Model.Data());
+  o.Threads = 0;
   EXPECT_EQ(Stream(rules, o, 20).Data(), whole.Model.Data());
   const WorldBox lo{ { 30, 20, 0 } }, hi{ { 70, 60, 1 } };
   const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);

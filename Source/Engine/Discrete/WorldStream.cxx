@@ -677,9 +677,10 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   r.Statistics.Phases = lattice.Phases();
   r.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.Counts = stream.Counts;
+  if (firstChunk == 0) // a resumed stream did not see the slabs it kept
+    r.Counts = stream.Counts;
   const std::string miss =
-    status == SynthesisStatus::Succeeded && firstChunk == 0 ? CountMiss(r.Counts) : std::string();
+    status == SynthesisStatus::Succeeded ? CountMiss(r.Counts) : std::string();
   if (!miss.empty()) // cannot be, when every block kept its share: say so if it happens
   {
     r.Status = SynthesisStatus::Failed;
