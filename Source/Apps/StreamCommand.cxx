@@ -90,6 +90,8 @@ std::string WorldDefinition(const SynthesizeOptions& o)
     << "\n";
   list("ground", o.Ground);
   list("empty", o.Empty);
+  if (!o.Fixed.empty()) // the pins: a resumed stream keeps slabs made with the same ones
+    d << "fixed " << o.Fixed << " " << FileStamp(o.Fixed) << " " << o.FixedEmptyFree << "\n";
   return d.str();
 }
 
@@ -441,7 +443,7 @@ bool StreamsForMemory(const SynthesizeOptions& o)
     sites *= o.Size3[a];
     blocks = blocks || (o.Block[a] > 0 && o.Block[a] < o.Size3[a]);
   }
-  const bool whole = !o.Guide.empty() || !o.Fixed.empty() || o.Snapshots > 0 || !o.Mirror.empty() ||
+  const bool whole = !o.Guide.empty() || o.Snapshots > 0 || !o.Mirror.empty() ||
     !o.Translate.empty() || o.Rotate || !o.Targets.empty() || !o.Counts.empty() ||
     !o.Connected.empty() || o.Choice == "resemblance" ||
     std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; });
@@ -461,9 +463,9 @@ bool StreamsForMemory(const SynthesizeOptions& o)
 int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
 {
   const auto start = std::chrono::steady_clock::now();
-  if (!o.Guide.empty() || !o.Fixed.empty() || o.Snapshots > 0)
+  if (!o.Guide.empty() || o.Snapshots > 0)
     throw std::runtime_error("--stream computes the world a slab at a time: it takes no "
-                             "--guide, --fixed or --snapshots (each needs the whole world)");
+                             "--guide or --snapshots (each needs the whole world)");
   if (std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; }))
     throw std::runtime_error("--stream computes the whole world: use --region without it for "
                              "one region");

@@ -659,6 +659,12 @@ void SetUpDiscrete(
     Run(reader);
     synthesis->SetInputConnection(reader->GetOutputPort());
   }
+  if (!o.Fixed.empty()) // streamed runs take the pins too
+  {
+    CheckInputFile(o.Fixed);
+    synthesis->SetFixedFile(o.Fixed.c_str());
+    synthesis->SetFixedEmptyFree(o.FixedEmptyFree);
+  }
   Configure(synthesis, o);
 }
 
@@ -675,12 +681,6 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   if (!o.Guide.empty())
   {
     ConnectGuide(synthesis, 1, guide, o.Guide);
-  }
-  if (!o.Fixed.empty())
-  {
-    CheckInputFile(o.Fixed);
-    synthesis->SetFixedFile(o.Fixed.c_str());
-    synthesis->SetFixedEmptyFree(o.FixedEmptyFree);
   }
   {
     ProgressBar bar(synthesis);

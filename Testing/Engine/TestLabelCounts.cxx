@@ -3,6 +3,7 @@
 // 1 and 2 threads) is verified by counting its labels here and by CheckConsistency (the pairs
 // recomputed from the example); impossible counts are one line before any work.
 #include "Core/Error.h"
+#include "Core/WorldSchedule.h"
 #include "Discrete/ConsistencyCheck.h"
 #include "Discrete/DiscreteSynthesis.h"
 
@@ -149,13 +150,54 @@ TEST(LabelCounts, ImpossibleCountsAreOneLineBeforeAnyWork)
     "label counts cannot be combined with symmetry (only a part of the output is synthesized)");
 }
 
-// A region of a world needs the whole world's state to keep counts.
-TEST(LabelCounts, RegionsOfAWorldAreRefused)
+// Counts of a world are shared over its blocks by position alone (LabelCounts.h): regions equal
+// the same sites of the whole run, a stream equals the whole run, and the whole world's total,
+// counted here, is in range; a guide region's count needs the whole world (a guide), refused.
+TEST(LabelCounts, RegionsAndStreamsOfAWorldKeepTheWholeRunsCounts)
 {
   const LabelGrid example = Village();
   const AdjacencyRules rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(example));
   SynthesisOptions o = Options({ { 12, 12, 5 } }, 1, 1);
-  o.Counts = { Count(3, 0, 10) };
+  o.Size = { { 48, 36, 5 } };
+  o.Counts = { Count(2, 240, 360), Count(3, 160, 240) };
+  for (std::uint64_t seed : { 1u, 2u })
+  {
+    o.Seed = seed;
+    const SynthesisResult whole = Synthesize(rules, o);
+    ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+    EXPECT_GE(Sites(whole.Model, 2), 240);
+    EXPECT_LE(Sites(whole.Model, 2), 360);
+    EXPECT_GE(Sites(whole.Model, 3), 160);
+    EXPECT_LE(Sites(whole.Model, 3), 240);
+    for (const auto& [lo, hi] :
+      { std::pair<WorldBox, WorldBox>{ { { 0, 0, 0 } }, { { 20, 14, 5 } } },
+        { { { 17, 9, 0 } }, { { 41, 30, 5 } } }, { { { 30, 20, 0 } }, { { 48, 36, 5 } } } })
+    {
+      const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+      ASSERT_TRUE(region.Succeeded()) << region.Message;
+      for (std::int64_t z = lo[2]; z < hi[2]; ++z)
+        for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+          for (std::int64_t x = lo[0]; x < hi[0]; ++x)
+            ASSERT_EQ(region.Model.At(x - lo[0], y - lo[1], z - lo[2]), whole.Model.At(x, y, z));
+    }
+    LabelGrid streamed(48, 36, 5, -2);
+    const SynthesisResult r = SynthesizeStreamed(rules, o, PlanStream(o, 7),
+      [&](StreamChunk&& c)
+      {
+        for (std::int64_t z = c.Low[2]; z < c.High[2]; ++z)
+          for (std::int64_t y = c.Low[1]; y < c.High[1]; ++y)
+            for (std::int64_t x = c.Low[0]; x < c.High[0]; ++x)
+              streamed.Set(x, y, z, c.Model.At(x - c.Low[0], y - c.Low[1], z - c.Low[2]));
+        return true;
+      });
+    ASSERT_TRUE(r.Succeeded()) << r.Message;
+    EXPECT_EQ(streamed.Data(), whole.Model.Data());
+  }
+  GuideVolume halves;
+  halves.Dims = { { 2, 1, 1 } };
+  halves.Regions = { 0, 1 };
+  o.Guide = halves;
+  o.Counts[0].Region = 1;
   EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 12, 12, 5 } }), Error);
 }
 

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 using namespace msynth;
 
 namespace
@@ -130,4 +132,85 @@ TEST(WorldStream, LayoutsAndRefusals)
   o.BlockSize = { { 10, 10, 1 } };
   o.Symmetry[0].Enabled = true;
   EXPECT_THROW(PlanStream(o), Error);
+}
+
+// Pins stream as they run in regions (WindowRun.h): each window first grows to hold the pin
+// placements it meets, so the slabs equal the whole run with the same pins, which they keep.
+TEST(WorldStream, PinsStreamAsInTheWholeRun)
+{
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions source;
+  source.Size = { { 32, 32, 1 } };
+  source.Seed = 99;
+  const SynthesisResult drawn = Synthesize(rules, source);
+  ASSERT_TRUE(drawn.Succeeded()) << drawn.Message;
+  // Patches of a model placed in a 50 x 45 pin grid at (20, 15): (source corner, size, target).
+  LabelGrid pins(50, 45, 1, FreeSite);
+  const std::array<std::array<std::int64_t, 6>, 3> patches{ { { { 10, 10, 6, 6, 0, 0 } },
+    { { 3, 20, 3, 8, 20, 25 } }, { { 5, 5, 1, 1, 49, 44 } } } };
+  for (const auto& p : patches)
+    for (std::int64_t y = 0; y < p[3]; ++y)
+      for (std::int64_t x = 0; x < p[2]; ++x)
+        pins.Set(p[4] + x, p[5] + y, 0, drawn.Model.At(p[0] + x, p[1] + y, 0));
+  SynthesisOptions o;
+  o.Size = { { 96, 80, 1 } };
+  o.BlockSize = { { 16, 16, 1 } };
+  o.Pins = pins;
+  o.PinsOrigin = WorldBox{ { 20, 15, 0 } };
+  for (std::uint64_t seed : { 3, 4 })
+  {
+    o.Seed = seed;
+    const SynthesisResult whole = Synthesize(rules, o);
+    ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+    for (std::int64_t thickness : { 7, 30 })
+    {
+      const LabelGrid world = Stream(rules, o, thickness);
+      EXPECT_EQ(world.Data(), whole.Model.Data()) << "seed " << seed << ", slabs of " << thickness;
+      EXPECT_TRUE(CheckConsistency(lines.Pairs, world).Consistent);
+      for (std::int64_t y = 0; y < 45; ++y) // every pin kept, counted here
+        for (std::int64_t x = 0; x < 50; ++x)
+        {
+          if (pins.At(x, y, 0) != FreeSite)
+          {
+            ASSERT_EQ(world.At(x + 20, y + 15, 0), pins.At(x, y, 0)) << x << " " << y;
+          }
+        }
+    }
+  }
+}
+
+// An open network (LABELS:open) is kept by each block on what it reads: regions and streams of a
+// world with one equal the whole run, and it closes fewer components off than a run without it.
+TEST(WorldStream, OpenNetworksStreamAndRegionAsInTheWholeRun)
+{
+  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const AdjacencyRules rules = lines.Rules();
+  SynthesisOptions o;
+  o.Size = { { 96, 80, 1 } };
+  o.BlockSize = { { 16, 16, 1 } };
+  o.Seed = 1;
+  for (const Label v : { 1, 2, 3, 4, 5, 6 }) // the tiles line and corner, every orientation
+  {
+    o.Connected.Values.push_back(v);
+    if (lines.LabelSides[static_cast<std::size_t>(v)] >= 0)
+      o.Connected.Sides[v] =
+        static_cast<std::uint8_t>(lines.LabelSides[static_cast<std::size_t>(v)]);
+  }
+  o.Connected.Open = true;
+  const SynthesisResult whole = Synthesize(rules, o);
+  ASSERT_TRUE(whole.Succeeded()) << whole.Message;
+  EXPECT_GT(whole.Connected.Redone, 0);
+  o.Threads = 1; // the same model on one thread (networks run their blocks on one anyway)
+  EXPECT_EQ(Synthesize(rules, o).Model.Data(), whole.Model.Data());
+  o.Threads = 0;
+  EXPECT_EQ(Stream(rules, o, 20).Data(), whole.Model.Data());
+  const WorldBox lo{ { 30, 20, 0 } }, hi{ { 70, 60, 1 } };
+  const SynthesisResult region = SynthesizeRegion(rules, o, lo, hi);
+  ASSERT_TRUE(region.Succeeded()) << region.Message;
+  for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+    for (std::int64_t x = lo[0]; x < hi[0]; ++x)
+      ASSERT_EQ(region.Model.At(x - lo[0], y - lo[1], 0), whole.Model.At(x, y, 0));
+  o.Connected.Open = false; // a bounded network needs the whole world
+  EXPECT_THROW(SynthesizeRegion(rules, o, lo, hi), Error);
 }

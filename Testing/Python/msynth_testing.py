@@ -75,6 +75,34 @@ def read_label_grid(path):
     return reader.GetOutput()
 
 
+def read_pieces(path):
+    """The image data of a streamed world's labels.pvti, through VTK's own pieces reader."""
+    from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
+    reader = vtkXMLPImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def write_label_image(labels_yx, path, origin=(0, 0)):
+    """Writes a 2D label array ([y, x]) as a .vti whose extent starts at `origin` (x, y)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    ny, nx = labels_yx.shape
+    image = vtkImageData()
+    image.SetExtent(origin[0], origin[0] + nx - 1, origin[1], origin[1] + ny - 1, 0, 0)
+    array = numpy_to_vtk(np.ascontiguousarray(labels_yx, dtype=np.int32).ravel(), deep=True)
+    array.SetName("Label")
+    image.GetPointData().SetScalars(array)
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    if writer.Write() != 1:
+        raise RuntimeError("could not write " + path)
+    return path
+
+
 def read_png(path):
     """A PNG's pixels as [row from the top, column, channel] (3 or 4 channels)."""
     from vtkmodules.vtkIOImage import vtkPNGReader

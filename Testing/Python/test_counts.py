@@ -13,8 +13,8 @@ import modelsynth
 from vtkmodules.vtkCommonCore import vtkIntArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
-from msynth_testing import (data, expect_refused, fresh_folder, labels_zyx, read_label_grid, run_algorithm,
-                            run_msynth)
+from msynth_testing import (data, expect_refused, fresh_folder, labels_zyx, read_label_grid, read_pieces,
+                            run_algorithm, run_msynth)
 
 VILLAGE = data("Examples/Village.vti")
 LINES = data("Tilesets/Lines.xml")
@@ -24,6 +24,8 @@ CASES = [
     (LINES, ["24", "24", "1"], ["12", "12", "1"], {"corner": (100, 150), "empty": (200, 400)}),
 ]
 
+# A count of corners in a 96 x 80 Lines world (about 2300 unsteered): (min, max).
+WORLD_CORNERS = (1200, 1800)
 
 # Lines.xml's labels by tile, in the format's order: empty (X, one orientation), line (I, two),
 # corner (L, four).
@@ -84,9 +86,7 @@ class CountsTest(unittest.TestCase):
                 (["--count", "9:1:2"], "label 9 does not occur in the example"),
                 (["--count", "2:1:2", "--mirror", "x"], "cannot be combined with symmetry"),
                 (["--count", "2:5:3"], "is not 'label:min:max'"),
-                (["--count", "roof:1:2"], "is not a label value"),
-                (["--count", "3:1:5", "--block", "12", "12", "5", "--region", "0", "0", "0", "12", "12", "5"],
-                 "label counts")]:
+                (["--count", "roof:1:2"], "is not a label value")]:
             out = os.path.join(fresh_folder("counts-bad"), "out")
             r = run_msynth("synthesize", VILLAGE, "--size", "24", "24", "5", *args, "--out", out)
             self.assertNotEqual(r.returncode, 0, args)
@@ -97,6 +97,39 @@ class CountsTest(unittest.TestCase):
         r = run_msynth("synthesize", LINES, "--size", "8", "8", "1", "--count", "bridge:1:2")
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("no tile or label named 'bridge'", r.stderr)
+    def test_counts_in_regions_and_streams_of_a_world(self):
+        """A count of a world is shared over its blocks by position alone (LabelCounts.h): regions
+        equal the whole run's window and a stream equals the whole run; the whole world's total,
+        counted here from the written labels (whole and streamed), is in range."""
+        common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "3", "--count",
+                  "corner:%d:%d" % WORLD_CORNERS, "--outputs", "labels"]
+        whole = fresh_folder("counts-world-whole")
+        r = run_msynth("synthesize", LINES, *common, "--out", whole)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        full = read_label_grid(os.path.join(whole, "labels.vti"))
+        self.assertTrue(WORLD_CORNERS[0] <= counted(full, "corner") <= WORLD_CORNERS[1])
+        labels = labels_zyx(full)[0]
+        for x0, y0, x1, y1 in ((0, 0, 30, 24), (38, 36, 58, 52), (60, 50, 96, 80)):
+            out = fresh_folder("counts-world-region")
+            r = run_msynth("synthesize", LINES, *common, "--region", str(x0), str(y0), "0", str(x1),
+                           str(y1), "1", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            part = labels_zyx(read_label_grid(os.path.join(out, "labels.vti")))[0]
+            np.testing.assert_array_equal(part, labels[y0:y1, x0:x1])
+        out = fresh_folder("counts-world-stream")
+        r = run_msynth("synthesize", LINES, *common, "--stream", "--slab", "20", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        streamed = read_pieces(os.path.join(out, "labels.pvti"))
+        np.testing.assert_array_equal(labels_zyx(streamed)[0], labels)
+        self.assertTrue(WORLD_CORNERS[0] <= counted(streamed, "corner") <= WORLD_CORNERS[1])
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["Counts"][0]["achieved"], counted(streamed, "corner"))
+        # The filter's Region with Counts: the same window.
+        part, errors = run_algorithm(modelsynth.vtkMSDiscreteSynthesis(), TilesetFile=LINES,
+                                     OutputSize=(96, 80, 1), BlockSize=(16, 16, 1), Seed=3,
+                                     Counts="corner:%d:%d" % WORLD_CORNERS, Region=(28, 18, 0, 52, 40, 1))
+        self.assertEqual(errors, "")
+        np.testing.assert_array_equal(labels_zyx(part)[0], labels[18:40, 28:52])
 
     def test_the_filter_reports_the_counts(self):
         synthesis = modelsynth.vtkMSDiscreteSynthesis()

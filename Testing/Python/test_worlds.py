@@ -11,7 +11,8 @@ import unittest
 import numpy as np
 
 import modelsynth
-from msynth_testing import data, fresh_folder, labels_zyx, run_algorithm, violations
+from msynth_testing import (data, fresh_folder, labels_zyx, read_pieces, run_algorithm, violations,
+                            write_label_image)
 from msynth_testing import read_label_grid as read
 from msynth_testing import run_msynth as msynth
 
@@ -129,9 +130,6 @@ class WorldsTest(unittest.TestCase):
         """A pin grid placed by its extent (a 16 x 12 grid from site 30, 20 of the world): regions
         equal the whole run's window with the same pins, keep every pin inside them, and pass
         `msynth check`; the filter's Region agrees."""
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonDataModel import vtkImageData
-        from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
         lines = data("Tilesets/Lines.xml")
         common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "3"]
         source = fresh_folder("worlds-pins-source")
@@ -142,16 +140,7 @@ class WorldsTest(unittest.TestCase):
         pins = np.full((12, 16), -1, dtype=np.int32)  # [y, x]
         pins[2:8, 3:9] = drawn[10:16, 10:16]  # a drawn patch
         pins[11, 15] = drawn[4, 4]  # a lone tile
-        image = vtkImageData()
-        image.SetExtent(30, 45, 20, 31, 0, 0)
-        array = numpy_to_vtk(pins.ravel(), deep=True)
-        array.SetName("Label")
-        image.GetPointData().SetScalars(array)
-        placed = os.path.join(fresh_folder("worlds-pins-grid"), "placed.vti")
-        writer = vtkXMLImageDataWriter()
-        writer.SetInputData(image)
-        writer.SetFileName(placed)
-        self.assertEqual(writer.Write(), 1)
+        placed = write_label_image(pins, os.path.join(fresh_folder("worlds-pins-grid"), "placed.vti"), (30, 20))
 
         whole = fresh_folder("worlds-pins-whole")
         done = msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels", "--out", whole)
@@ -192,11 +181,59 @@ class WorldsTest(unittest.TestCase):
                       "labels", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
         np.testing.assert_array_equal(labels_zyx(read(os.path.join(out, "labels.vti")))[0], full[4:20, 4:16])
-        # Streams do not take pins yet: one line.
-        done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--out",
-                      fresh_folder("worlds-pins-stream"))
-        self.assertNotEqual(done.returncode, 0)
-        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        drawn_whole = full
+        # A stream with the same pins equals the whole run, slab by slab, and `msynth check` passes
+        # piece by piece; --resume keeps slabs made with the same pins only.
+        whole = fresh_folder("worlds-pins-whole")
+        self.assertEqual(msynth("synthesize", lines, *common, "--fixed", placed, "--outputs", "labels",
+                                "--out", whole).returncode, 0)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        out = fresh_folder("worlds-pins-stream")
+        done = msynth("synthesize", lines, *common, "--fixed", placed, "--stream", "--slab", "20",
+                      "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        streamed = labels_zyx(read_pieces(os.path.join(out, "labels.pvti")))[0]
+        np.testing.assert_array_equal(streamed, full)
+        np.testing.assert_array_equal(streamed[20:32, 30:46][kept], pins[kept])
+        check = msynth("check", lines, os.path.join(out, "labels.pvti"))
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+        # The drawn map streamed: the window grows with the placement there too.
+        out = fresh_folder("worlds-pins-drawn-stream")
+        done = msynth("synthesize", lines, *small, "--stream", "--slab", "5", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(labels_zyx(read_pieces(os.path.join(out, "labels.pvti")))[0], drawn_whole)
+    def test_open_networks_in_regions_and_streams(self):
+        """`--connected LABELS:open` (what connected means in a world without bounds: no component
+        closed off) is kept block by block on what each block reads, so a region and a stream equal
+        the whole run; `msynth check --connected LABELS:open` counts the components that reach no
+        border of the file (a region's border counts as reaching out)."""
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "96", "80", "1", "--block", "16", "16", "1", "--seed", "1",
+                  "--connected", "line,corner:open", "--outputs", "labels"]
+        whole = fresh_folder("worlds-open-whole")
+        done = msynth("synthesize", lines, *common, "--out", whole)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        full = labels_zyx(read(os.path.join(whole, "labels.vti")))[0]
+        with open(os.path.join(whole, "statistics.json")) as f:
+            self.assertGreater(json.load(f)["Connected"]["redone"], 0)
+        region = fresh_folder("worlds-open-region")
+        done = msynth("synthesize", lines, *common, "--region", "30", "20", "0", "70", "60", "1", "--out", region)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(labels_zyx(read(os.path.join(region, "labels.vti")))[0], full[20:60, 30:70])
+        stream = fresh_folder("worlds-open-stream")
+        done = msynth("synthesize", lines, *common, "--stream", "--slab", "20", "--out", stream)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(labels_zyx(read_pieces(os.path.join(stream, "labels.pvti")))[0], full)
+        done = msynth("check", lines, os.path.join(region, "labels.vti"), "--connected", "line,corner:open")
+        self.assertIn("closed off", done.stdout)
+        # The check's meaning on grids made here: a lone wall site inside a field of air is closed
+        # off; one on the border reaches out.
+        for where, closed in (((3, 3), 1), ((0, 3), 0)):
+            grid = np.zeros((6, 6), dtype=np.int32)
+            grid[where[1], where[0]] = 2
+            path = write_label_image(grid, os.path.join(fresh_folder("worlds-open-grid"), "grid.vti"))
+            done = msynth("check", data("Examples/Village.vti"), path, "--connected", "2:open")
+            self.assertIn("%d of them closed off" % closed, done.stdout, done.stdout + done.stderr)
 
 
 if __name__ == "__main__":

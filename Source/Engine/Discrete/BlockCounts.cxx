@@ -180,14 +180,14 @@ bool BlockSolver::CountsKept(const Block& block)
   const Coord& o = block.Origin;
   const std::size_t counted = this->Budget->Labels().size();
   std::vector<std::int64_t> own(counted, 0);
-  std::map<std::int32_t, std::vector<std::int64_t>> others; // repairing: change per owner
+  std::map<std::int64_t, std::vector<std::int64_t>> others; // repairing: change per owner
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
   {
     const Coord c = cat.Coordinates(local);
     const auto s = ToIndex(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
     const std::int32_t slot = this->Budget->Slot(s);
     const int now = this->Budget->Position(cat.Single(local), slot);
-    const std::int32_t owner = this->Budget->Owner(s);
+    const std::int64_t owner = this->Budget->Owner(s);
     if (owner == block.Index)
     {
       if (now >= 0)

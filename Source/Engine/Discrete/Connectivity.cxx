@@ -3,6 +3,7 @@
 
 #include "Core/Error.h"
 #include "Core/Index.h"
+#include "Core/WorldSchedule.h"
 #include "Discrete/MirrorPlan.h"
 #include "Discrete/SymmetryPlan.h"
 
@@ -168,6 +169,8 @@ void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& 
     throw Error(name + " cannot be combined with soft constraints (which roll blocks back)");
   if (!options.Counts.empty())
     throw Error(name + " cannot be combined with label counts (a repair would move them)");
+  if (network.Open && network.HasPath())
+    throw Error(name + ":open takes no path (a path is joined by repairs of the whole model)");
   if (network.Maximum < 1)
     throw Error(name + " asks for at most " + std::to_string(network.Maximum) +
       " components (need at least 1)");
@@ -211,9 +214,107 @@ NetworkGuard::NetworkGuard(
   }
 }
 
+NetworkGuard::NetworkGuard(const NetworkRule& rule, const Coord& n, const Coord& off,
+  const Coord& world, const LabelGrid* pins)
+  : Rule(rule)
+  , Maximum(0)
+  , N(n)
+  , Open(true)
+  , Off(off)
+  , World(world)
+  , Pins(pins)
+{
+}
+
+bool NetworkGuard::KeepsOpen(
+  const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model)
+{
+  // The footprint F and its ring R (clipped to the model): a flood over the network's sites of
+  // F ∪ R; a component with a site in F must reach R, the world's border or a pin.
+  const Coord& n = this->N;
+  const Coord& o = block.Origin;
+  Coord lo, hi, d;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    lo[a] = std::max<std::int64_t>(0, o[a] - 1);
+    hi[a] = std::min(n[a], o[a] + block.Dims[a] + 1);
+    d[a] = hi[a] - lo[a];
+  }
+  const auto at = [&](std::int64_t b) -> Coord {
+    return { { lo[0] + b % d[0], lo[1] + (b / d[0]) % d[1], lo[2] + b / (d[0] * d[1]) } };
+  };
+  const auto inside = [&](const Coord& p)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] < o[a] || p[a] >= o[a] + block.Dims[a])
+        return false;
+    return true;
+  };
+  const auto label = [&](const Coord& p) -> std::int32_t
+  {
+    if (inside(p))
+      return static_cast<std::int32_t>(cat.Single(
+        (p[0] - o[0]) + block.Dims[0] * ((p[1] - o[1]) + block.Dims[1] * (p[2] - o[2]))));
+    return model[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))];
+  };
+  const auto reaches = [&](const Coord& p)
+  {
+    if (!inside(p))
+      return true; // the ring: the block does not decide what lies beyond
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const std::int64_t w = p[a] + this->Off[a];
+      if (this->World[a] > 1 && (w == 0 || w == this->World[a] - 1))
+        return true;
+    }
+    return this->Pins &&
+      this->Pins->Data()[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))] != FreeSite;
+  };
+  const std::int64_t total = d[0] * d[1] * d[2];
+  std::vector<char> seen(ToIndex(total), 0);
+  std::vector<std::int64_t> stack;
+  for (std::int64_t first = 0; first < total; ++first)
+  {
+    if (seen[ToIndex(first)] || !inside(at(first)) || this->Rule.Sides(label(at(first))) < 0)
+      continue;
+    bool open = false;
+    seen[ToIndex(first)] = 1;
+    stack.assign(1, first);
+    while (!stack.empty())
+    {
+      const Coord p = at(stack.back());
+      stack.pop_back();
+      open = open || reaches(p);
+      const int sides = this->Rule.Sides(label(p));
+      for (int e = 0; e < 6; ++e)
+      {
+        const std::size_t a = ToIndex(e / 2);
+        Coord q = p;
+        q[a] += e % 2 == 0 ? 1 : -1;
+        if (!((sides >> e) & 1) || q[a] < lo[a] || q[a] >= hi[a])
+          continue;
+        const int other = this->Rule.Sides(label(q));
+        const std::int64_t t = (q[0] - lo[0]) + d[0] * ((q[1] - lo[1]) + d[1] * (q[2] - lo[2]));
+        if (other < 0 || !((other >> (e ^ 1)) & 1) || seen[ToIndex(t)])
+          continue;
+        seen[ToIndex(t)] = 1;
+        stack.push_back(t);
+      }
+    }
+    if (!open)
+    {
+      ++this->Redone;
+      return false;
+    }
+  }
+  return true;
+}
+
 bool NetworkGuard::Keeps(
   const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model)
 {
+  if (this->Open)
+    return this->KeepsOpen(block, cat, model);
   const std::int32_t now = this->Position[ToIndex(block.Index)];
   const Coord& n = this->N;
   const Coord& o = block.Origin;
@@ -552,10 +653,17 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
 }
 
 NetworkRun::NetworkRun(const AdjacencyRules& rules, const SynthesisOptions& options,
-  const std::vector<Block>& blocks, BlockSolver& solver)
+  const std::vector<Block>& blocks, BlockSolver& solver, const RegionCone* cone)
   : Rule(rules, options.Connected)
 {
-  if (blocks.size() > 1)
+  if (options.Connected.Open) // every block, in a window of a world too
+  {
+    this->Guard = std::make_unique<NetworkGuard>(this->Rule, solver.Size(),
+      cone ? cone->WindowLow : Coord{ { 0, 0, 0 } }, cone ? cone->World : solver.Size(),
+      options.Pins ? &*options.Pins : nullptr);
+    solver.UseNetwork(this->Guard.get());
+  }
+  else if (blocks.size() > 1)
   {
     this->Guard =
       std::make_unique<NetworkGuard>(this->Rule, options.Connected.Maximum, blocks, solver.Size());
@@ -572,6 +680,12 @@ bool NetworkRun::Keep(const SynthesisOptions& options, BlockSolver& solver, Shar
   out.Name = options.Connected.Name;
   out.Redone = this->Guard ? this->Guard->Refused() : 0;
   solver.UseNetwork(nullptr);
+  if (options.Connected.Open) // no repairs: each block kept its part
+  {
+    out.Maximum = 0;
+    out.Before = out.Components = CountComponents(this->Rule, shared.Model, solver.Size());
+    return true;
+  }
   std::int64_t next = 0;
   for (const Block& b : blocks)
     next = std::max(next, b.Index + 1);

@@ -20,6 +20,16 @@
  * site into the network (boxes around it), then join the components holding path sites (boxes
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in
  * the order listed sites outside the network, components holding path sites, components.
+ *
+ * An *open* network (ConnectedNetwork::Open, `LABELS:open`) is what connected means in a world
+ * without bounds: no component is closed off, every one reaches the world's border or a pinned
+ * site. Each block enforces it on what it reads (its footprint and the ring around it): an attempt
+ * is redone when a component of the network's sites of that box with a site in the footprint
+ * reaches neither the ring, nor the world's border, nor a pin (the last attempt is kept, as
+ * Algorithm 3.4 keeps it). This is a function of what the block reads, so regions and streams
+ * equal the whole run. Guaranteed: no component lies closed off inside the footprint of the
+ * block that wrote it last (a component closed off across several blocks can remain: `check
+ * --connected LABELS:open` finds it).
  */
 #include "Core/Index.h"
 #include "Discrete/BlockSolver.h"
@@ -67,15 +77,24 @@ public:
   /// @p blocks in run order over a model of @p n sites.
   NetworkGuard(const NetworkRule& rule, std::int64_t maximum, const std::vector<Block>& blocks,
     const Coord& n);
+  /// An open network's check (see the file comment) over a model of @p n sites lying at @p off
+  /// in a world of @p world sites, with @p pins (model-sized, or nullptr).
+  NetworkGuard(const NetworkRule& rule, const Coord& n, const Coord& off, const Coord& world,
+    const LabelGrid* pins);
   /// Whether the attempt whose labels are in @p cat (over @p block) may be kept in @p model.
   bool Keeps(const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model);
   /// Attempts Keeps refused.
   std::int64_t Refused() const { return this->Redone; }
 
 private:
+  bool KeepsOpen(const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model);
+
   const NetworkRule& Rule;
   std::int64_t Maximum;
   Coord N;
+  bool Open = false;
+  Coord Off{ { 0, 0, 0 } }, World{ { 1, 1, 1 } };
+  const LabelGrid* Pins = nullptr;
   std::vector<std::int32_t> OwnerPosition; ///< per site, the run position of its last block
   std::vector<std::int32_t> Position;      ///< per block index, its run position
   std::int64_t Redone = 0;
@@ -96,7 +115,7 @@ class NetworkRun
 {
 public:
   NetworkRun(const AdjacencyRules& rules, const SynthesisOptions& options,
-    const std::vector<Block>& blocks, BlockSolver& solver);
+    const std::vector<Block>& blocks, BlockSolver& solver, const RegionCone* cone = nullptr);
   /**
    * After the blocks: the surplus components repaired (RepairNetwork, with block indices past
    * those of @p blocks) and @p r's figures filled; false, with @p r failed, when too many remain.

@@ -464,11 +464,12 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   }
   const auto budget = options.Counts.empty()
     ? nullptr
-    : std::make_unique<CountBudget>(rules, options, blocks, n, shared.Fixed);
+    : std::make_unique<CountBudget>(
+        rules, options, cone ? CountedBlocks(*cone) : blocks, n, shared.Fixed, cone);
   for (unsigned w = 0; budget && w < driver.Workers(); ++w)
     workers[w].UseCounts(budget.get());
-  const auto network = options.Connected.Active() && !(run && run->Keep)
-    ? std::make_unique<NetworkRun>(rules, options, blocks, solver) // one thread (PolicyOf)
+  const auto network = options.Connected.Active() && (options.Connected.Open || !(run && run->Keep))
+    ? std::make_unique<NetworkRun>(rules, options, blocks, solver, cone) // one thread (PolicyOf)
     : nullptr;
   solver.StartSnapshots();
   if (run && run->Carry)

@@ -206,6 +206,13 @@ struct ConnectedNetwork
    */
   std::vector<std::array<std::int64_t, 3>> PathSites;
   std::vector<Label> PathLabels;
+  /**
+   * `LABELS:open`, the meaning of a network in a world without bounds (Connectivity.h): no
+   * component is closed off; every block keeps only attempts whose network components inside
+   * its footprint reach its ring, the world's border or a pin. Maximum does not apply, nor do
+   * repairs, so regions and streams take it.
+   */
+  bool Open = false;
   bool Active() const { return !this->Values.empty(); }
   bool HasPath() const { return !this->PathSites.empty() || !this->PathLabels.empty(); }
 };

@@ -182,6 +182,10 @@ std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::stri
 
 std::string NetworkCheck::Describe() const
 {
+  if (this->Open)
+    return std::string(this->Closed == 0 ? "connected: " : "not connected: ") + this->Labels +
+      " form " + Plural(this->Components, "component") + ", " + std::to_string(this->Closed) +
+      " of them closed off (reaching no border of the model; wanted none)";
   return std::string(this->Components <= this->Maximum ? "connected: " : "not connected: ") +
     this->Labels + " form " + Plural(this->Components, "component") + " (wanted at most " +
     std::to_string(this->Maximum) + ")";
@@ -193,7 +197,12 @@ NetworkCheck CheckLabelNetwork(const LabelGrid& model, const std::string& spec,
   NetworkCheck check;
   check.Labels = spec;
   const std::size_t colon = spec.rfind(':');
-  if (colon != std::string::npos)
+  if (colon != std::string::npos && spec.substr(colon + 1) == "open")
+  {
+    check.Open = true;
+    check.Labels.resize(colon);
+  }
+  else if (colon != std::string::npos)
   {
     if (!ParseInteger(spec.substr(colon + 1), 1, 1LL << 40, check.Maximum))
       throw Error(
@@ -223,9 +232,24 @@ NetworkCheck CheckLabelNetwork(const LabelGrid& model, const std::string& spec,
       net.Mask[i] = found->second;
   }
   JoinNeighbours(model, net);
+  std::vector<char> border(check.Open ? total : 0, 0); // per root: reaches the model's border
+  const auto& dims = model.Dimensions();
+  for (std::size_t i = 0; i < border.size(); ++i)
+  {
+    const auto s = static_cast<std::int64_t>(i);
+    const std::int64_t at[3] = { s % dims[0], (s / dims[0]) % dims[1], s / (dims[0] * dims[1]) };
+    bool edge = false;
+    for (int a = 0; a < 3; ++a)
+      edge = edge || (dims[a] > 1 && (at[a] == 0 || at[a] == dims[a] - 1));
+    if (net.Mask[i] >= 0 && edge)
+      border[ToIndex(net.Root(s))] = 1;
+  }
   for (std::size_t i = 0; i < total; ++i)
-    check.Components +=
-      net.Mask[i] >= 0 && net.Root(static_cast<std::int64_t>(i)) == static_cast<std::int64_t>(i);
+    if (net.Mask[i] >= 0 && net.Root(static_cast<std::int64_t>(i)) == static_cast<std::int64_t>(i))
+    {
+      ++check.Components;
+      check.Closed += check.Open && !border[i] ? 1 : 0;
+    }
   if (!path.empty())
     CheckPath(model, path, set, net, check);
   return check;

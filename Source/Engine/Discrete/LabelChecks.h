@@ -46,18 +46,26 @@ struct NetworkCheck
   std::string Labels;    ///< LABELS as written
   long long Maximum = 1; ///< N
   long long Components = 0;
+  /// LABELS:open, a region of a world: every component must reach the model's border (a
+  /// window's border: the world goes on beyond it); Closed counts those that do not.
+  bool Open = false;
+  long long Closed = 0;
   bool HasPath = false;
   bool PathJoined = true;
   long long PathSites = 0;      ///< sites of the path (listed and those of its labels)
   long long PathComponents = 0; ///< components holding them
   std::string PathLine;         ///< "path joined: ..." or "path not joined: ..."
-  bool Kept() const { return this->Components <= this->Maximum && this->PathJoined; }
+  bool Kept() const
+  {
+    return (this->Open ? this->Closed == 0 : this->Components <= this->Maximum) && this->PathJoined;
+  }
   /// "connected: LABELS form C components (wanted at most N)", or "not connected: ...".
   std::string Describe() const;
 };
 
 /**
- * The components of the network @p spec ("LABELS[:N]", N 1 when left out) in @p model: face
+ * The components of the network @p spec ("LABELS[:N]", N 1 when left out, or "LABELS:open")
+ * in @p model: face
  * neighbours joined through the sides @p names' `connects` give (every side for a label without
  * them); with @p path (items "x,y[,z]" or labels), whether those sites and every site of those
  * labels hold network labels and lie in one component.

@@ -161,6 +161,9 @@ void CheckCountRequest(const AdjacencyRules& rules, const SynthesisOptions& opti
                 "synthesized)");
   if (options.Soft.Active())
     throw Error("label counts cannot be combined with soft constraints (which roll blocks back)");
+  if (static_cast<Wide>(options.Size[0]) * options.Size[1] * options.Size[2] >
+    (static_cast<Wide>(1) << 62))
+    throw Error("label counts take a world of at most 2^62 sites");
   const std::int64_t sites = options.Size[0] * options.Size[1] * options.Size[2];
   const std::map<std::int32_t, std::int64_t> regions = CountedRegions(options);
   std::set<std::pair<std::int32_t, Label>> seen;
@@ -299,8 +302,145 @@ std::vector<std::int32_t> SlotsOf(
 }
 } // namespace
 
+namespace
+{
+/// Refuses a count its @p total fixed sites and @p open free ones make impossible.
+void CheckFixedTotals(const LabelCount& want, std::int64_t total, std::int64_t open)
+{
+  if (total > want.Maximum)
+    throw Error("the boundary labels and pins already place " + std::to_string(total) +
+      " sites of " + NameOf(want) + ", more than its maximum " + std::to_string(want.Maximum));
+  if (total + open < want.Minimum)
+    throw Error(NameOf(want) + " can hold at most " + std::to_string(total + open) +
+      " sites (the others are boundary labels or pins), fewer than its minimum " +
+      std::to_string(want.Minimum));
+}
+
+} // namespace
+
+/**
+ * The sites of the world before block b's own ones in index order (its owners' prefix), and its
+ * own sites. Along each axis the owner of a coordinate is the covering block of the highest phase
+ * digit (phases compare by their z, then y, then x digit, and blocks of a digit never touch), so
+ * a block owns a box, the product of its intervals along the axes, and owners grow with the
+ * coordinate: the prefix is a sum of boxes (LabelCounts.h).
+ */
+struct OwnPrefix
+{
+  OwnPrefix(const SynthesisOptions& options, const Coord& world)
+    : World(world)
+  {
+    Coord m, step;
+    BlockGeometry<3>(world, options.BlockSize, options.Overlap, m, step);
+    const WorldLattice lattice(world, m, step);
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      this->M[a] = m[a];
+      this->Step[a] = step[a];
+      this->Count[a] = lattice.Count(static_cast<int>(a));
+      this->Period[a] = lattice.Period(static_cast<int>(a));
+    }
+  }
+
+  /// The block along axis @p a that owns coordinate @p x.
+  std::int64_t OwnerAlong(std::size_t a, std::int64_t x) const
+  {
+    const std::int64_t last = std::min(this->Count[a] - 1, x / this->Step[a]);
+    std::int64_t best = last;
+    for (std::int64_t k = last; k >= 0 && k * this->Step[a] + this->M[a] > x; --k)
+      if (k % this->Period[a] > best % this->Period[a])
+        best = k;
+    return best;
+  }
+
+  /// The first coordinate along axis @p a owned by block @p k or a later one.
+  std::int64_t Before(std::size_t a, std::int64_t k) const
+  {
+    if (k >= this->Count[a])
+      return this->World[a];
+    std::int64_t x = k * this->Step[a];
+    const std::int64_t end = std::min(this->World[a], x + this->M[a]);
+    while (x < end && this->OwnerAlong(a, x) < k)
+      ++x;
+    return x;
+  }
+
+  /// The prefix and the own sites of block @p index.
+  void Of(std::int64_t index, Wide& prefix, Wide& own) const
+  {
+    const std::int64_t k[3] = { index % this->Count[0], (index / this->Count[0]) % this->Count[1],
+      index / (this->Count[0] * this->Count[1]) };
+    Wide pre[3], size[3];
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      pre[a] = this->Before(a, k[a]);
+      size[a] = this->Before(a, k[a] + 1) - pre[a];
+    }
+    const Wide n0 = this->World[0], n1 = this->World[1];
+    prefix = pre[2] * n1 * n0 + size[2] * (pre[1] * n0 + size[1] * pre[0]);
+    own = size[0] * size[1] * size[2];
+  }
+
+  Coord World, M, Step, Count, Period;
+};
+
+namespace
+{
+/// Every block of @p cone's world (or of the world of @p n sites) meeting the model, in run order
+/// (phase, then index), writes its key over its sites of @p owners: the world's owner of each.
+void WorldOwners(const SynthesisOptions& options, const Coord& n, const RegionCone* cone,
+  std::vector<std::int64_t>& owners)
+{
+  const Coord world = cone ? cone->World : n;
+  const Coord off = cone ? cone->WindowLow : Coord{ { 0, 0, 0 } };
+  Coord m, step;
+  BlockGeometry<3>(world, options.BlockSize, options.Overlap, m, step);
+  const WorldLattice lattice(world, m, step);
+  const WorldBox high{ { off[0] + n[0], off[1] + n[1], off[2] + n[2] } };
+  owners.assign(ToIndex(n[0] * n[1] * n[2]), -1);
+  std::vector<BoxBlock<3>> met;
+  for (int phase = 0; phase < lattice.Phases(); ++phase)
+  {
+    met.clear();
+    lattice.Meeting(phase, off, high, met);
+    for (const BoxBlock<3>& b : met)
+    {
+      Coord lo, hi;
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        lo[a] = std::max(b.Origin[a], off[a]) - off[a];
+        hi[a] = std::min(b.Origin[a] + b.Dims[a], high[a]) - off[a];
+      }
+      for (std::int64_t z = lo[2]; z < hi[2]; ++z)
+        for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+        {
+          const auto row = ToIndex(n[0] * (y + n[1] * z));
+          std::fill(owners.begin() + static_cast<std::ptrdiff_t>(row + ToIndex(lo[0])),
+            owners.begin() + static_cast<std::ptrdiff_t>(row + ToIndex(hi[0])), b.Index);
+        }
+    }
+  }
+}
+} // namespace
+
+std::vector<Block> CountedBlocks(const RegionCone& cone)
+{
+  std::vector<Block> all;
+  std::set<std::int64_t> seen;
+  for (const auto& pass : cone.Passes)
+    for (Block b : pass)
+      if (seen.insert(b.Index).second)
+      {
+        for (std::size_t a = 0; a < 3; ++a)
+          b.Origin[a] -= cone.WindowLow[a];
+        all.push_back(b);
+      }
+  return all;
+}
+
 CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& options,
-  const std::vector<Block>& blocks, const Coord& n, const std::vector<std::int32_t>& fixed)
+  const std::vector<Block>& blocks, const Coord& n, const std::vector<std::int32_t>& fixed,
+  const RegionCone* cone)
 {
   const std::size_t counted = options.Counts.size();
   std::vector<std::int32_t> regions; // of slots 1, 2, ...
@@ -316,26 +456,22 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
           this->PositionOf[slot * this->K + ToIndex(rules.IndexOf(v))] = static_cast<int>(c);
     this->Counted.push_back(static_cast<int>(c));
   }
-  std::int64_t indices = 0;
-  for (const Block& block : blocks)
-    indices = std::max(indices, block.Index + 1);
-  this->Owners.assign(fixed.size(), 0);
-  for (const Block& block : blocks) // in run order: the last one to cover a site owns it
-  {
-    Coord p;
-    for (p[2] = block.Origin[2]; p[2] < block.Origin[2] + block.Dims[2]; ++p[2])
-      for (p[1] = block.Origin[1]; p[1] < block.Origin[1] + block.Dims[1]; ++p[1])
-        for (p[0] = block.Origin[0]; p[0] < block.Origin[0] + block.Dims[0]; ++p[0])
-          this->Owners[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))] =
-            static_cast<std::int32_t>(block.Index);
-  }
-  // Per block and count: its own free sites where the count applies, and its pinned ones.
-  const auto per = ToIndex(indices);
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    this->Rows.emplace(blocks[i].Index, i);
+  WorldOwners(options, n, cone, this->Owners);
+  // Per block (its place in the run) and count: its own free sites where the count applies, its
+  // pinned ones, and the world's units of the count's minimum and span its own sites carry.
+  const std::size_t per = blocks.size();
   std::vector<std::int64_t> free(per * counted, 0), pinned(per * counted, 0), total(counted, 0);
   std::vector<std::int64_t> freeSites(counted, 0);
+  const Coord world = cone ? cone->World : n;
+  const Coord off = cone ? cone->WindowLow : Coord{ { 0, 0, 0 } };
   for (std::size_t s = 0; s < fixed.size(); ++s)
   {
-    const auto owner = ToIndex(this->Owners[s]);
+    const auto row = this->Rows.find(this->Owners[s]);
+    if (row == this->Rows.end())
+      continue; // owned by a block this run does not run
+    const std::size_t owner = row->second;
     const std::int32_t slot = this->Slot(s);
     if (fixed[s] < 0)
     {
@@ -348,10 +484,8 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
           ++freeSites[c];
         }
       }
-      continue;
     }
-    const int c = this->Position(fixed[s], slot);
-    if (c >= 0)
+    else if (const int c = this->Position(fixed[s], slot); c >= 0)
     {
       ++pinned[owner * counted + ToIndex(c)];
       ++total[ToIndex(c)];
@@ -362,28 +496,61 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
   for (std::size_t c = 0; c < counted; ++c)
   {
     const LabelCount& want = options.Counts[c];
-    const std::string name = NameOf(want);
-    const std::int64_t open = freeSites[c];
-    if (total[c] > want.Maximum)
-      throw Error("the boundary labels and pins already place " + std::to_string(total[c]) +
-        " sites of " + name + ", more than its maximum " + std::to_string(want.Maximum));
-    if (total[c] + open < want.Minimum)
-      throw Error(name + " can hold at most " + std::to_string(total[c] + open) +
-        " sites (the others are boundary labels or pins), fewer than its minimum " +
-        std::to_string(want.Minimum));
-    const std::int64_t low = std::max<std::int64_t>(0, want.Minimum - total[c]);
-    const std::int64_t span = std::min(want.Maximum - total[c], open) - low;
-    std::int64_t before = 0;
-    for (std::size_t i = 0; i < per; ++i)
-    {
-      const std::size_t at = i * counted + c;
-      const std::int64_t after = before + free[at];
-      this->Min[at] =
-        pinned[at] + (open > 0 ? Share(low, after, open) - Share(low, before, open) : 0);
-      this->Max[at] =
-        this->Min[at] + (open > 0 ? Share(span, after, open) - Share(span, before, open) : 0);
-      before = after;
-    }
+    if (want.Region >= 0 || !cone) // the model is all the count's scope: its fixed sites
+      CheckFixedTotals(want, total[c], freeSites[c]);
+    if (want.Region < 0)
+      this->WorldShares(want, c, blocks, OwnPrefix(options, world), off, free, pinned);
+    else
+      this->RegionShares(want, c, free, pinned, total[c], freeSites[c]);
+  }
+}
+
+void CountBudget::WorldShares(const LabelCount& want, std::size_t c,
+  const std::vector<Block>& blocks, const OwnPrefix& owners, const Coord& off,
+  const std::vector<std::int64_t>& free, const std::vector<std::int64_t>& pinned)
+{
+  const std::size_t counted = this->Counted.size();
+  const Coord& w = owners.World;
+  const Wide sites = static_cast<Wide>(w[0]) * w[1] * w[2];
+  const Wide wide = want.Maximum - want.Minimum;
+  const auto share = [&](Wide total, Wide before, Wide after)
+  { return static_cast<std::int64_t>(total * after / sites - total * before / sites); };
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    const std::size_t at = i * counted + c;
+    Wide before = 0, own = 0;
+    owners.Of(blocks[i].Index, before, own);
+    this->Min[at] = share(want.Minimum, before, before + own);
+    this->Max[at] = this->Min[at] + share(wide, before, before + own);
+    if (pinned[at] > this->Max[at] || pinned[at] + free[at] < this->Min[at])
+      throw Error("the boundary labels and pins place " + std::to_string(pinned[at]) +
+        " sites of " + NameOf(want) + " among the " + std::to_string(pinned[at] + free[at]) +
+        " it may take in the block at " +
+        Format({ { blocks[i].Origin[0] + off[0], blocks[i].Origin[1] + off[1],
+          blocks[i].Origin[2] + off[2] } }) +
+        ", outside its share " + std::to_string(this->Min[at]) + " to " +
+        std::to_string(this->Max[at]) +
+        " of the count (shares go by position: see the command-line guide)");
+  }
+}
+
+void CountBudget::RegionShares(const LabelCount& want, std::size_t c,
+  const std::vector<std::int64_t>& free, const std::vector<std::int64_t>& pinned,
+  std::int64_t total, std::int64_t open)
+{
+  const std::size_t counted = this->Counted.size();
+  const std::int64_t low = std::max<std::int64_t>(0, want.Minimum - total);
+  const std::int64_t span = std::min(want.Maximum - total, open) - low;
+  std::int64_t before = 0;
+  for (std::size_t i = 0; i * counted < free.size(); ++i)
+  {
+    const std::size_t at = i * counted + c;
+    const std::int64_t after = before + free[at];
+    this->Min[at] =
+      pinned[at] + (open > 0 ? Share(low, after, open) - Share(low, before, open) : 0);
+    this->Max[at] =
+      this->Min[at] + (open > 0 ? Share(span, after, open) - Share(span, before, open) : 0);
+    before = after;
   }
 }
 

@@ -8,7 +8,9 @@
 #include "Core/Error.h"
 #include "Core/Index.h"
 #include "Core/WorldSchedule.h"
+#include "Discrete/Connectivity.h"
 #include "Discrete/DiscreteSynthesis.h"
+#include "Discrete/LabelCounts.h"
 #include "Discrete/WindowRun.h"
 
 #include <algorithm>
@@ -30,22 +32,11 @@ void detail::CheckWorldOptions(const SynthesisOptions& world, const char* what)
     world.Translate[1].Enabled || world.Translate[2].Enabled;
   if (mirror || seams || world.Soft.Active() || world.Guide || world.Start ||
     world.SnapshotsPerBlock > 0 || world.Choice == LabelChoice::Resemblance ||
-    !world.Counts.empty() || world.Connected.Active())
+    (world.Connected.Active() && (!world.Connected.Open || world.Connected.HasPath())))
     throw Error(std::string(what) +
       " takes no symmetry, soft constraints, guide, given start, snapshots, resemblance "
-      "choice, label counts or connected network (each needs the whole world)");
+      "choice, or connected network but an open one, LABELS:open (each needs the whole world)");
 }
-
-namespace
-{
-/// Streams do not take pins yet: their placements run before the wavefront (WindowRun.h).
-void CheckStreamOptions(const SynthesisOptions& world)
-{
-  CheckWorldOptions(world, "a streamed world");
-  if (world.Pins)
-    throw Error("a streamed world takes no pins yet (compute the whole world, or regions of it)");
-}
-} // namespace
 
 SynthesisOptions detail::WindowOptions(
   const AdjacencyRules& rules, const SynthesisOptions& world, const RegionCone& cone)
@@ -200,6 +191,8 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {
   CheckWorldOptions(world, "a region of a world");
+  CheckCountRequest(rules, world); // shares by position (LabelCounts.h): as in the whole run
+  CheckConnectedRequest(rules, world);
   const WorldLattice lattice = LatticeOf(world);
   SynthesisOptions resolved = world;
   resolved.StartFrom = WorldStart(rules, world); // the world's, wherever the region lies
@@ -365,7 +358,11 @@ public:
   /// holds undecided sites (@p r failed) or the receiver cancels.
   bool Emit(std::int64_t final, SynthesisResult& r);
 
+  /// Adds the counted labels of @p c's own layers (not the one it shares) to Counts.
+  void Tally(const StreamChunk& c);
+
   int NextChunk = 0;
+  std::vector<LabelCountResult> Counts; ///< the world's counts, slab by slab
   std::vector<BlockFailure> Failures;
   SynthesisStatistics Totals;
   std::function<bool(double)> Progress;
@@ -376,13 +373,21 @@ private:
   std::int64_t Inner() const;
   std::int64_t Outer() const;
   void Add(const SynthesisStatistics& s);
+  /// The world's block size (the placement blocks' first size).
+  Coord BlockEdge() const
+  {
+    Coord m, step;
+    BlockGeometry<3>(this->World.Size, this->World.BlockSize, this->World.Overlap, m, step);
+    return m;
+  }
 
   const AdjacencyRules& Rules;
   const SynthesisOptions& World;
   const StreamLayout& Layout;
   const std::function<bool(StreamChunk&&)>& OnChunk;
   std::size_t Axis;
-  Slab Held; ///< what the last window left that is still needed or not yet handed out
+  Slab Held;        ///< what the last window left that is still needed or not yet handed out
+  PinScales Scales; ///< the placement scales of pin groups that had to grow (RegionOfCone's)
   bool First = true;
 };
 
@@ -421,6 +426,26 @@ void Stream::Add(const SynthesisStatistics& s)
   {
     t.TrivialLabel = s.TrivialLabel;
     t.StartFrom = s.StartFrom;
+  }
+}
+
+void Stream::Tally(const StreamChunk& c)
+{
+  if (this->Counts.empty())
+    for (const LabelCount& want : this->World.Counts)
+      this->Counts.push_back({ want, 0 });
+  const Coord& d = c.Model.Dimensions();
+  const std::vector<Label>& data = c.Model.Data();
+  for (std::size_t s = 0; s < data.size(); ++s)
+  {
+    const auto i = static_cast<std::int64_t>(s);
+    const std::int64_t along[3] = { i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]) };
+    if (along[this->Axis] < c.Shared)
+      continue;
+    for (LabelCountResult& r : this->Counts)
+      if (std::find(r.Requested.Values.begin(), r.Requested.Values.end(), data[s]) !=
+        r.Requested.Values.end())
+        ++r.Achieved;
   }
 }
 
@@ -468,32 +493,57 @@ bool Stream::RunWindow(std::vector<std::vector<BoxBlock<3>>>& passes, SynthesisR
   cone.WindowHigh[a] = high;
   cone.Passes = passes;
   cone.Blocks = passes.front();
-  SynthesisOptions window = WindowOptions(this->Rules, this->World, cone);
-  window.Progress = this->Progress;
   const Slab& held = this->Held;
   const std::int64_t inner = this->Inner(), outer = this->Outer();
-  WindowRun run;
-  run.Cone = &cone;
-  run.Failures = &this->Failures;
   SharedModel keep;
-  run.Keep = &keep;
-  run.Carry = [&](SharedModel& m)
+  std::int64_t from = low, to = high; // the window's rows, grown for pin placements
+  for (bool again = true; again;)
   {
-    const std::int64_t from = std::max(low, held.Low), to = std::min(high, held.High);
-    CopyRows(
-      held.Model, held.Low, held.High - held.Low, m.Model, low, high - low, from, to, inner, outer);
-    CopyRows(held.LastBlock, held.Low, held.High - held.Low, m.LastBlock, low, high - low, from, to,
-      inner, outer);
-  };
-  r = SynthesizeDirect(this->Rules, window, nullptr, nullptr, &run);
+    again = false;
+    RegionCone grown = cone;
+    if (this->World.Pins) // as a region's (RegionOfCone): the placements the window meets
+      GrowWindowForPins(this->World, this->BlockEdge(), grown, this->Scales);
+    from = grown.WindowLow[a];
+    to = grown.WindowHigh[a];
+    SynthesisOptions window = WindowOptions(this->Rules, this->World, grown);
+    window.Progress = this->Progress;
+    WindowRun run;
+    run.Cone = &grown;
+    run.Failures = &this->Failures;
+    run.Keep = &keep;
+    run.Scales = &this->Scales;
+    run.Carry = [&](SharedModel& m)
+    {
+      const std::int64_t c0 = std::max(from, held.Low), c1 = std::min(to, held.High);
+      CopyRows(
+        held.Model, held.Low, held.High - held.Low, m.Model, from, to - from, c0, c1, inner, outer);
+      CopyRows(held.LastBlock, held.Low, held.High - held.Low, m.LastBlock, from, to - from, c0, c1,
+        inner, outer);
+    };
+    try
+    {
+      r = SynthesizeDirect(this->Rules, window, nullptr, nullptr, &run);
+    }
+    catch (const PinScaleNeeded& need) // thrown before any block ran: grow and run again
+    {
+      this->Scales[need.Group] = need.Scale;
+      again = true;
+    }
+  }
   this->Add(r.Statistics);
   this->First = false;
   if (!r.Succeeded())
     return false;
-  this->Held.Low = low;
-  this->Held.High = high;
-  this->Held.Model = std::move(keep.Model);
-  this->Held.LastBlock = std::move(keep.LastBlock);
+  // Keep the window's own rows: rows a placement grew it by hold no block's labels yet.
+  Slab next;
+  next.Low = low;
+  next.High = high;
+  next.Model.resize(ToIndex(inner * outer * (high - low)));
+  next.LastBlock.resize(next.Model.size());
+  CopyRows(keep.Model, from, to - from, next.Model, low, high - low, low, high, inner, outer);
+  CopyRows(
+    keep.LastBlock, from, to - from, next.LastBlock, low, high - low, low, high, inner, outer);
+  this->Held = std::move(next);
   return true;
 }
 
@@ -534,6 +584,7 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
       labels[s] = values[ToIndex(model[s])];
     }
     c.Model = LabelGrid(dims, std::move(labels));
+    this->Tally(c);
     ++this->NextChunk;
     if (!this->OnChunk(std::move(c)))
     {
@@ -569,7 +620,9 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk)
 {
   const auto start = std::chrono::steady_clock::now();
-  CheckStreamOptions(world);
+  CheckWorldOptions(world, "a streamed world");
+  CheckCountRequest(rules, world);
+  CheckConnectedRequest(rules, world);
   if (firstChunk < 0 || firstChunk >= layout.Chunks || layout.World != world.Size)
     throw Error("a streamed run resumes at one of its own slabs");
   const WorldLattice lattice = LatticeOf(world);
@@ -624,6 +677,16 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   r.Statistics.Phases = lattice.Phases();
   r.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (firstChunk == 0) // a resumed stream did not see the slabs it kept
+    r.Counts = stream.Counts;
+  const std::string miss =
+    status == SynthesisStatus::Succeeded ? CountMiss(r.Counts) : std::string();
+  if (!miss.empty()) // cannot be, when every block kept its share: say so if it happens
+  {
+    r.Status = SynthesisStatus::Failed;
+    r.Message = "the label counts were not kept: " + miss;
+    return r;
+  }
   r.Message = status == SynthesisStatus::Succeeded
     ? Summary(r.Statistics, false) + " (streamed in " + std::to_string(layout.Chunks - firstChunk) +
       " slabs along " + "xyz"[layout.Axis] + ")"
@@ -643,7 +706,7 @@ void StreamLayout::Box(
 
 StreamLayout PlanStream(const SynthesisOptions& world, std::int64_t thickness)
 {
-  CheckStreamOptions(world);
+  CheckWorldOptions(world, "a streamed world");
   const WorldLattice lattice = LatticeOf(world);
   if (lattice.NumberOfBlocks() == 1)
     throw Error("a streamed world is computed in blocks: give blocks smaller than the world");

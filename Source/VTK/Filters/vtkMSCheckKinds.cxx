@@ -170,7 +170,10 @@ bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request,
     result.PathSites = n.PathSites;
     vtkMSLabelCounts::AddConnectedFields(out, result);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(
-      out, "ConnectedKept", n.Components <= n.Maximum ? 1 : 0);
+      out, "ConnectedKept", (n.Open ? n.Closed == 0 : n.Components <= n.Maximum) ? 1 : 0);
+    if (n.Open)
+      vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+        out, "ConnectedClosed", static_cast<vtkIdType>(n.Closed));
     findings->InsertNextValue(n.Describe());
     if (n.HasPath)
     {

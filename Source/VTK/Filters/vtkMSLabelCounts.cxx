@@ -133,11 +133,16 @@ msynth::ConnectedNetwork ReadConnected(
   if (colon != std::string::npos && list.find(':') != colon)
     throw msynth::Error("Connected: '" + msynth::Printable(text) +
       "' names more than one network; give one, LABELS[:N] (the labels separated by commas)");
-  if (colon != std::string::npos)
+  if (colon != std::string::npos && list.substr(colon + 1) == "open")
+  {
+    network.Open = true; // a world's meaning: no component closed off (Connectivity.h)
+    list = list.substr(0, colon);
+  }
+  else if (colon != std::string::npos)
   {
     if (!msynth::ParseInteger(list.substr(colon + 1), 1, std::numeric_limits<int>::max(), most))
       throw msynth::Error("Connected: '" + msynth::Printable(list.substr(colon + 1)) +
-        "' is not a number of components (1 or more)");
+        "' is not a number of components (1 or more) nor 'open'");
     list = list.substr(0, colon);
   }
   network.Maximum = most;
