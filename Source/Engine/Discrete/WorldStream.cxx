@@ -431,6 +431,8 @@ void Stream::Add(const SynthesisStatistics& s)
 
 void Stream::Tally(const StreamChunk& c)
 {
+  if (this->World.Counts.empty())
+    return; // nothing counted: no pass over the slab
   if (this->Counts.empty())
     for (const LabelCount& want : this->World.Counts)
       this->Counts.push_back({ want, 0 });
