@@ -192,14 +192,21 @@ void BM_ContinuousCheck(benchmark::State& state)
 BENCHMARK(BM_ContinuousCheck)->Arg(6)->Unit(benchmark::kMillisecond);
 
 /// Building the arrangement alone: the cube's 3 axis families (a grid of (N+1)^3 vertices), or
-/// with range(1) = 1 the house's 5 families (two sloped), whose triples meet off the grid.
+/// with range(1) = 1 the house's 5 families (two sloped), whose triples meet off the grid, or
+/// with range(1) = 2 the town's 7 families (Data/Continuous/town.obj, 474 polygons; N x N x 8 at
+/// its default spacings), on range(2) threads (the arrangement is the same for any count).
 void BM_PlaneArrangement(benchmark::State& state)
 {
-  const bool house = state.range(1) == 1;
-  const Example& e = Load(house ? "house.obj" : "cube.obj");
+  const int model = static_cast<int>(state.range(1));
+  const Example& e = Load(model == 0 ? "cube.obj" : model == 1 ? "house.obj" : "town.obj");
   const double n = static_cast<double>(state.range(0));
-  const auto p = msynth::DefaultArrangementParameters(
-    e.Polyhedra, e.Analysis, { n, n, n }, house ? 0.5 : 1.0, {});
+  auto p =
+    msynth::DefaultArrangementParameters(e.Polyhedra, e.Analysis, { n, n, model == 2 ? 8.0 : n },
+      model == 1     ? 0.5
+        : model == 0 ? 1.0
+                     : 0.0,
+      {});
+  p.Threads = static_cast<unsigned>(state.range(2));
   std::int64_t vertices = 0, edges = 0;
   std::size_t bytes = 0;
   for (auto _ : state)
@@ -218,13 +225,18 @@ void BM_PlaneArrangement(benchmark::State& state)
   state.counters["peak_MB"] = PeakMegabytes();
 }
 BENCHMARK(BM_PlaneArrangement)
-  ->Args({ 21, 0 })
-  ->Args({ 46, 0 })
-  ->Args({ 99, 0 })
-  ->Args({ 8, 1 })
-  ->Args({ 16, 1 })
-  ->Args({ 32, 1 })
-  ->Args({ 70, 1 })
+  ->Args({ 21, 0, 1 })
+  ->Args({ 46, 0, 1 })
+  ->Args({ 99, 0, 1 })
+  ->Args({ 99, 0, 2 })
+  ->Args({ 8, 1, 1 })
+  ->Args({ 16, 1, 1 })
+  ->Args({ 32, 1, 1 })
+  ->Args({ 70, 1, 1 })
+  ->Args({ 70, 1, 2 })
+  ->Args({ 40, 2, 1 })
+  ->Args({ 40, 2, 2 })
+  ->UseRealTime()
   ->Unit(benchmark::kMillisecond);
 
 } // namespace

@@ -108,6 +108,62 @@ TEST(PlaneArrangement, FourPlanesThroughAPointGiveOneVertex)
   EXPECT_EQ(onFour, 125); // every grid point of the 5×5×5 grid is on a diagonal plane
 }
 
+TEST(PlaneArrangement, TheSameOnAnyNumberOfThreads)
+{
+  // The house's sloped families at a size whose vertices and links span many chunks.
+  const Loaded l = Load("house.obj");
+  ArrangementParameters p =
+    DefaultArrangementParameters(l.Example, l.Analysis, { 14, 12, 10 }, 0.25, {});
+  p.Threads = 1;
+  const PlaneArrangement one(l.Analysis.Families(), p);
+  ASSERT_GT(one.NumberOfVertices(), 40000);
+  for (unsigned threads : { 2u, 3u })
+  {
+    p.Threads = threads;
+    const PlaneArrangement many(l.Analysis.Families(), p);
+    ASSERT_EQ(many.NumberOfVertices(), one.NumberOfVertices());
+    EXPECT_EQ(many.NumberOfEdges(), one.NumberOfEdges());
+    EXPECT_EQ(many.NumberOfBoundaryEdges(), one.NumberOfBoundaryEdges());
+    for (std::int64_t v = 0; v < one.NumberOfVertices(); ++v)
+    {
+      ASSERT_EQ(many.Position(v), one.Position(v)) << v;
+      ASSERT_EQ(many.FamilyMask(v), one.FamilyMask(v)) << v;
+      ASSERT_EQ(many.LinksEnd(v) - many.LinksBegin(v), one.LinksEnd(v) - one.LinksBegin(v)) << v;
+      for (auto a = many.LinksBegin(v), b = one.LinksBegin(v); a != many.LinksEnd(v); ++a, ++b)
+      {
+        ASSERT_EQ(a->Vertex, b->Vertex) << v;
+        ASSERT_EQ(a->Direction, b->Direction) << v;
+      }
+    }
+  }
+  // Every link leads forward along its own direction, whatever built it.
+  for (std::int64_t v = 0; v < one.NumberOfVertices(); v += 97)
+  {
+    for (auto k = one.LinksBegin(v); k != one.LinksEnd(v); ++k)
+    {
+      if (k->Vertex < 0)
+        continue;
+      const auto& d = one.Direction(k->Direction);
+      const Point3& a = one.Position(v);
+      const Point3& b = one.Position(k->Vertex);
+      double along = 0, dd = 0;
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        along += (b[c] - a[c]) * static_cast<double>(d[c]);
+        dd += static_cast<double>(d[c] * d[c]);
+      }
+      EXPECT_GT(along, 0) << v;
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(b[c] - a[c], along / dd * static_cast<double>(d[c]), 1e-9) << v;
+      }
+    }
+  }
+  // A refusal is the same on threads.
+  p.MaxVertices = 1000;
+  EXPECT_THROW(PlaneArrangement(l.Analysis.Families(), p), Error);
+}
+
 TEST(PlaneArrangement, RefusesTooManyVertices)
 {
   const Loaded l = Load("cube.obj");

@@ -6,6 +6,8 @@
  * steps: check the parameters, find each family's planes through the box, list the generating
  * tuples of families, (1) generate the vertices exactly, (2) number them in scan-line order,
  * (3) list the line directions, (4) link every vertex to the next one along each line.
+ * Steps (1) and (4) run on threads in chunks joined in order, so the arrangement is the same for
+ * any thread count.
  */
 #include "Continuous/ExactArithmetic.h"
 #include "Continuous/PlaneArrangement.h"
@@ -37,6 +39,8 @@ private:
     std::array<Wide, 3> Lo{};
     std::array<Wide, 3> Count{};
     std::size_t Base = 0;
+    std::array<IntVec3, 3> Cross{}; ///< n1×n2, n2×n0, n0×n1 (3D)
+    Wide Det = 0;
   };
 
   void CheckParameters() const;
@@ -46,14 +50,17 @@ private:
   void NumberInScanLineOrder(PlaneArrangement& out);
   void ListDirections(PlaneArrangement& out);
   void LinkVertices(PlaneArrangement& out);
-  /// The next vertex from @p x along direction class @p dc (-1: the line leaves the box).
-  std::int32_t NextAlong(const Exact& x, const IntVec3& d) const;
+  /// The next vertex from @p x along direction @p d (-1: the line leaves the box); @p scratch
+  /// holds plane indices (one per thread, so no allocation a link).
+  std::int32_t NextAlong(const Exact& x, const IntVec3& d, std::vector<Wide>& scratch) const;
+  /// The direction classes of the lines through a vertex of families @p mask, sorted.
+  void LinesThrough(std::uint64_t mask, std::vector<int>& lines) const;
 
   const IntVec3& Normal(int f) const { return this->Set.Normal(f); }
   Wide Offset(int f) const { return static_cast<Wide>(this->Params.Offsets[ToIndex(f)]); }
   Wide SpacingOf(int f) const { return static_cast<Wide>(this->Params.Spacings[ToIndex(f)]); }
   Wide Determinant(const int* t) const;
-  /// The intersection point of the tuple's planes of values @p value.
+  /// The intersection point of the tuple's planes of values @p value (Den > 0, not reduced).
   Exact Solve(const Tuple& tu, const std::array<Wide, 3>& value) const;
   bool InBox(const Exact& x) const;
   /// Families with a plane through @p x (bits), their plane indices into @p planeIndex.
@@ -61,6 +68,10 @@ private:
   /// The lexicographically first independent tuple among the families of @p mask.
   const Tuple* FirstTuple(std::uint64_t mask) const;
   std::size_t DenseSlot(const Tuple& tu, const std::vector<Wide>& planeIndex) const;
+  std::size_t TripleSlot(int a, int b, int c) const
+  {
+    return (ToIndex(a) * ToIndex(this->M) + ToIndex(b)) * ToIndex(this->M) + ToIndex(c);
+  }
   IntVec3 LineDirection(int a, int b) const;
 
   const PlaneFamilySet& Set;
@@ -69,12 +80,13 @@ private:
   int Dim = 3;                            ///< 2 for a planar arrangement
   std::vector<std::array<Wide, 2>> Range; ///< per family: plane indices meeting the box
   std::vector<Tuple> Tuples;
-  std::map<std::array<int, 3>, std::size_t> TupleIndex;
+  /// Per family triple (a, b, c) at (a·M + b)·M + c (c = 0 in 2D): its tuple, or -1 when the
+  /// normals are dependent.
+  std::vector<std::int32_t> TupleAt;
   std::vector<std::int32_t> Dense; ///< per candidate of every tuple: vertex id or -1
   std::vector<Exact> Vertices;     ///< exact positions, then in scan-line order
   std::vector<std::uint64_t> Masks;
   std::map<IntVec3, int> DirectionIndex;
-  mutable std::vector<Wide> Scratch; ///< plane indices of NextAlong's vertex (no allocation a link)
 };
 
 } // namespace detail

@@ -42,6 +42,8 @@ struct ArrangementParameters
   std::vector<std::int64_t> Spacings; ///< per family, > 0
   bool Planar = false;
   std::int64_t MaxVertices = 20000000; ///< larger arrangements are refused with an Error
+  /// Threads that build it (0: one per core). The arrangement is the same for any count.
+  unsigned Threads = 0;
 
   /// World distance between neighbouring planes of @p family.
   double Spacing(const PlaneFamilySet& families, int family) const;

@@ -210,8 +210,9 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
     throw msynth::Error(
       ex.Source + ": the arrangement was built from another example (its plane families differ)");
   }
-  const auto built =
-    vtkMSArrangementStorage::SharedArrangement(analysis.Families(), record.Parameters);
+  msynth::ArrangementParameters parameters = record.Parameters;
+  parameters.Threads = static_cast<unsigned>(self->GetNumberOfThreads());
+  const auto built = vtkMSArrangementStorage::SharedArrangement(analysis.Families(), parameters);
   const msynth::PlaneArrangement& arrangement = *built;
   if (arrangement.NumberOfVertices() != arrangementData->GetNumberOfPoints() &&
     !(shared && arrangementData->GetNumberOfPoints() == 0)) // ranks > 0: its parameters alone
