@@ -356,22 +356,34 @@ void ArrangementBuilder::NumberInScanLineOrder(PlaneArrangement& out)
   const std::size_t n = this->Vertices.size();
   std::vector<std::int32_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-    [this](std::int32_t a, std::int32_t b)
+  const auto before = [this](std::int32_t a, std::int32_t b)
+  {
+    const Exact& p = this->Vertices[ToIndex(a)];
+    const Exact& q = this->Vertices[ToIndex(b)];
+    for (int c = 2; c >= 0; --c)
     {
-      const Exact& p = this->Vertices[ToIndex(a)];
-      const Exact& q = this->Vertices[ToIndex(b)];
-      for (int c = 2; c >= 0; --c)
+      const Wide l = Mul(p.Num[ToIndex(c)], q.Den);
+      const Wide r = Mul(q.Num[ToIndex(c)], p.Den);
+      if (l != r)
       {
-        const Wide l = Mul(p.Num[ToIndex(c)], q.Den);
-        const Wide r = Mul(q.Num[ToIndex(c)], p.Den);
-        if (l != r)
-        {
-          return l < r;
-        }
+        return l < r;
       }
-      return false;
+    }
+    return false;
+  };
+  // Four quarters sorted on threads, then merged in pairs: vertices are distinct points, so the
+  // order is the one total order whatever the threads.
+  constexpr std::size_t Parts = 4;
+  const auto cut = [n](std::size_t k) { return static_cast<std::ptrdiff_t>(n * k / Parts); };
+  RunChunks(Parts, this->Params.Threads,
+    [&](std::size_t k) { std::sort(order.begin() + cut(k), order.begin() + cut(k + 1), before); });
+  RunChunks(2, this->Params.Threads,
+    [&](std::size_t k)
+    {
+      std::inplace_merge(order.begin() + cut(2 * k), order.begin() + cut(2 * k + 1),
+        order.begin() + cut(2 * k + 2), before);
     });
+  std::inplace_merge(order.begin(), order.begin() + cut(2), order.end(), before);
   std::vector<std::int32_t> rank(n);
   for (std::size_t i = 0; i < n; ++i)
   {
