@@ -250,9 +250,10 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   }
   if (outputs.count("labels"))
   {
-    // Past a million vertices zlib took most of the writing (the town at 100 x 100 x 10, 2.5 M
-    // vertices: 10 s, 92 MB); LZ4 with raw bytes 2.5 s, 174 MB, as for large voxel meshes.
-    const bool large = labelled->GetNumberOfPoints() >= (vtkIdType(1) << 20);
+    // Past a quarter of a million vertices zlib took most of the writing (the town at 100 x 100
+    // x 10, 2.5 M vertices: 10 s, 92 MB); LZ4 with raw bytes 2.5 s, 174 MB, as for large voxel
+    // meshes.
+    const bool large = labelled->GetNumberOfPoints() >= (vtkIdType(1) << 18);
     WriteXML<vtkXMLPolyDataWriter>(dir + "/arrangement.vtp", labelled, false, large);
     written += dir + "/arrangement.vtp, ";
   }
