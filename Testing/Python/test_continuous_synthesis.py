@@ -274,6 +274,33 @@ class ContinuousSynthesisTest(unittest.TestCase):
         self.assertIn("not 'picture'", done.stderr)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
 
+    @unittest.skipIf(os.environ.get("MSYNTH_SANITIZED"), "a 280,000-vertex run: Release only")
+    def test_a_large_arrangement_is_written_with_lz4(self):
+        """An arrangement of 2^18 vertices or more is written with LZ4 and raw bytes (zlib took
+        most of a large run's writing); VTK's reader reads it back: every vertex, labelled."""
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        msynth = os.path.join(os.environ["MSYNTH_BIN"], "msynth")
+        out = tmp("large-arrangement")
+        done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size", "36",
+                               "36", "8", "--spacing", "0.25", "--seed", "1", "--outputs",
+                               "labels,mesh", "--out", out], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        stats = json.load(open(os.path.join(out, "statistics.json")))
+        self.assertGreaterEqual(stats["Vertices"], 2**18)
+        with open(os.path.join(out, "arrangement.vtp"), "rb") as f:
+            head = f.read(400)
+        self.assertIn(b'compressor="vtkLZ4DataCompressor"', head)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(out, "arrangement.vtp"))
+        reader.Update()
+        got = reader.GetOutput()
+        self.assertEqual(got.GetNumberOfPoints(), stats["Vertices"])
+        labels = vtk_to_numpy(got.GetPointData().GetArray("Label"))
+        self.assertTrue((labels >= 0).all())
+        check = subprocess.run([msynth, "check", data("Continuous/house.obj"),
+                                os.path.join(out, "model.vtp")], capture_output=True, text=True)
+        self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+
     def test_catalog_time_steps(self):
         _, _, solver, _, errors = chain("cube.obj", (4, 4, 3), snapshots=3)
         self.assertEqual(errors, "")
