@@ -451,11 +451,12 @@ struct Repair
 
   /**
    * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
-   * (every other one drawing the network's labels rarely, so the box keeps only the paths its
-   * surroundings force), until one leaves a smaller shortfall (and no fewer sites of the path's
-   * labels). Returns whether one did.
+   * (each drawn with @p steer's weights when given, else every other one drawing the network's
+   * labels rarely, so the box keeps only the paths its surroundings force), until one leaves a
+   * smaller shortfall (and no fewer sites of the path's labels). Returns whether one did.
    */
-  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow)
+  bool TryBox(
+    const Coord& lo, const Coord& hi, std::int64_t grow, const BlockSolver::SiteBias* steer = nullptr)
   {
     const Coord n = this->Solver.Size();
     Block box;
@@ -478,9 +479,11 @@ struct Repair
       Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
         static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
       ++this->Stats.Attempts;
-      this->Solver.ScaleWeights(attempt % 2 == 1 ? &this->Sparse : nullptr);
+      this->Solver.ScaleWeights(attempt % 2 == 1 && !steer ? &this->Sparse : nullptr);
+      this->Solver.BiasWeights(steer);
       const std::int64_t empty = this->Solver.RunBlock(box, rng, this->Stats.Assignments);
       this->Solver.ScaleWeights(nullptr);
+      this->Solver.BiasWeights(nullptr);
       if (empty >= 0)
         continue; // a failed attempt leaves the model as it was
       std::vector<std::int32_t> ids;
@@ -508,19 +511,20 @@ struct Repair
 
   /**
    * The nearest site of another component to component @p c (number @p c + 1) by face steps
-   * (at most MaximumGap), with @p toPath one that holds path sites, in @p to, and the site of
-   * @p c it was reached from, in @p from.
+   * (at most MaximumGap), with @p toPath one that holds path sites: the breadth-first search's
+   * steps from a site of @p c to it, both ends included, in @p gap (empty when none is that near).
    */
-  bool Gap(std::int32_t c, bool toPath, std::int64_t& from, std::int64_t& to) const
+  void Gap(std::int32_t c, bool toPath, std::vector<std::int64_t>& gap) const
   {
     constexpr std::int32_t MaximumGap = 16;
     const Coord n = this->Solver.Size();
     const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
-    std::vector<std::int64_t> origin(this->Ids.size(), -1), front, next;
+    std::vector<std::int64_t> parent(this->Ids.size(), -1), front, next;
+    gap.clear();
     for (std::size_t s = 0; s < this->Ids.size(); ++s)
       if (this->Ids[s] == c + 1)
       {
-        origin[s] = static_cast<std::int64_t>(s);
+        parent[s] = static_cast<std::int64_t>(s); // a root of the search
         front.push_back(static_cast<std::int64_t>(s));
       }
     for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
@@ -534,21 +538,72 @@ struct Repair
           if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
             continue;
           const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
-          if (origin[ToIndex(q)] >= 0)
+          if (parent[ToIndex(q)] >= 0)
             continue;
-          origin[ToIndex(q)] = origin[ToIndex(s)];
+          parent[ToIndex(q)] = s;
           const std::int32_t id = this->Ids[ToIndex(q)];
           if (id != 0 && id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
           {
-            from = origin[ToIndex(q)];
-            to = q;
-            return true;
+            for (std::int64_t t = q;; t = parent[ToIndex(t)])
+            {
+              gap.push_back(t);
+              if (parent[ToIndex(t)] == t)
+                break;
+            }
+            std::reverse(gap.begin(), gap.end());
+            return;
           }
           next.push_back(q);
         }
       front.swap(next);
     }
-    return false;
+  }
+
+  /// The side bit (Sides) of site @p s that faces its neighbour @p t.
+  int Facing(std::int64_t s, std::int64_t t) const
+  {
+    const Coord p = this->At(s), q = this->At(t);
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] != q[a])
+        return 1 << (2 * static_cast<int>(a) + (q[a] > p[a] ? 0 : 1));
+    return 0;
+  }
+
+  /**
+   * The weights that steer a box along @p gap (from one component to another): at each site of
+   * the gap a label that connects toward its neighbours on the gap (at the ends, also through
+   * the sides the site's label connects through now) is drawn Prefer times as often, less 8
+   * times for each further side; every other site keeps its label Keep times as often.
+   */
+  BlockSolver::SiteBias Steer(const std::vector<std::int64_t>& gap) const
+  {
+    constexpr double Prefer = 1.0e4, Keep = 1.0e3;
+    std::vector<std::pair<std::int64_t, int>> need; // (site, the sides it must connect through)
+    for (std::size_t i = 0; i < gap.size(); ++i)
+    {
+      const std::int64_t s = gap[i];
+      int sides = i == 0 || i + 1 == gap.size() ? std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0) : 0;
+      if (i > 0)
+        sides |= this->Facing(s, gap[i - 1]);
+      if (i + 1 < gap.size())
+        sides |= this->Facing(s, gap[i + 1]);
+      need.emplace_back(s, sides);
+    }
+    return [this, need](std::int64_t site, int b)
+    {
+      for (const auto& [s, sides] : need)
+        if (s == site)
+        {
+          const int has = this->Rule.Sides(b);
+          if (has < 0 || (has & sides) != sides)
+            return 1.0;
+          double w = Prefer;
+          for (int extra = has & ~sides; extra != 0; extra &= extra - 1)
+            w /= 8.0;
+          return w;
+        }
+      return this->Shared.Model[ToIndex(site)] == b ? Keep : 1.0;
+    };
   }
 
   Coord At(std::int64_t s) const
@@ -558,20 +613,32 @@ struct Repair
   }
 
   /// Joins component @p c to its nearest neighbour (with @p toPath, one holding path sites)
-  /// through boxes over the gap between them, else removes it (or joins it) through boxes
+  /// through boxes over the gap between them, first steered along it (Steer) grown by 1 and 2
+  /// sites, then drawn freely grown by 1, 2, 4; else removes it (or joins it) through boxes
   /// around it grown by 1, 2, ..., 16 sites.
   bool Fix(std::size_t c, bool toPath)
   {
-    std::int64_t from = 0, to = 0;
-    if (this->Gap(static_cast<std::int32_t>(c), toPath, from, to))
+    std::vector<std::int64_t> gap;
+    this->Gap(static_cast<std::int32_t>(c), toPath, gap);
+    if (!gap.empty())
     {
-      const Coord p = this->At(from), q = this->At(to);
+      const Coord p = this->At(gap.front()), q = this->At(gap.back());
       Coord lo, hi;
       for (std::size_t a = 0; a < 3; ++a)
       {
         lo[a] = std::min(p[a], q[a]);
         hi[a] = std::max(p[a], q[a]);
       }
+      for (const std::int64_t s : gap)
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          lo[a] = std::min(lo[a], this->At(s)[a]);
+          hi[a] = std::max(hi[a], this->At(s)[a]);
+        }
+      const BlockSolver::SiteBias steer = this->Steer(gap);
+      for (std::int64_t grow = 1; grow <= 2; grow *= 2)
+        if (this->TryBox(lo, hi, grow, &steer))
+          return true;
       for (std::int64_t grow = 1; grow <= 4; grow *= 2)
         if (this->TryBox(lo, hi, grow))
           return true;
