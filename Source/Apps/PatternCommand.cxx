@@ -387,8 +387,8 @@ CommandRunner AddPattern(CLI::App& app)
     "at most N components (LABELS[:N], N 1 when left out), joined through the tiles' connects "
     "sides: each sample's surplus components are joined or removed by re-solving boxes");
   p->add_option("--path", o->Path,
-     "with --connected: one component joins these sites (x,y[,z]) and every site of these "
-     "labels (values or tile names), in every sample");
+    "with --connected: one component joins these sites (x,y[,z]) and every site of these "
+    "labels (values or tile names), in every sample");
   p->add_option("--samples", o->Samples, "samples to keep after the burn-in")
     ->check(CLI::Range(1, 100000));
   p->add_option("--burn-in", o->BurnIn, "samples discarded first")->check(CLI::Range(0, 100000));
