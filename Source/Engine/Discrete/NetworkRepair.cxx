@@ -25,6 +25,7 @@ using Shortfall = std::array<std::int64_t, 3>;
 /// The repairs' state: the model, the components, the path and scratch space.
 struct Repair
 {
+  static constexpr int SteeredAttempts = 3; ///< attempts of a box steered along a gap
   BlockSolver& Solver;
   SharedModel& Shared;
   const NetworkRule& Rule;
@@ -112,8 +113,8 @@ struct Repair
    * labels rarely, so the box keeps only the paths its surroundings force), until one leaves a
    * smaller shortfall (and no fewer sites of the path's labels). Returns whether one did.
    */
-  bool TryBox(
-    const Coord& lo, const Coord& hi, std::int64_t grow, const BlockSolver::SiteBias* steer = nullptr)
+  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow,
+    const BlockSolver::SiteBias* steer = nullptr)
   {
     const Coord n = this->Solver.Size();
     Block box;
@@ -131,7 +132,10 @@ struct Repair
         this->SavedModel.push_back(this->Shared.Model[s]);
         this->SavedLast.push_back(this->Shared.LastBlock[s]);
       });
-    for (int attempt = 0; attempt < this->Options.AttemptsPerBlock; ++attempt)
+    // A steered box finds a join in its first attempts when the pairs allow one along its gap.
+    const int attempts = steer ? std::min(this->Options.AttemptsPerBlock, SteeredAttempts)
+                               : this->Options.AttemptsPerBlock;
+    for (int attempt = 0; attempt < attempts; ++attempt)
     {
       Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
         static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
@@ -216,6 +220,20 @@ struct Repair
     }
   }
 
+  /// Whether a network label connects through the sides site @p s connects through now and
+  /// @p side too (else no gap can leave it there).
+  bool Joinable(std::int64_t s, int side) const
+  {
+    const int need = std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0) | side;
+    for (int b = 0; b < this->Rule.Labels(); ++b)
+    {
+      const int has = this->Rule.Sides(b);
+      if (has >= 0 && (has & need) == need)
+        return true;
+    }
+    return false;
+  }
+
   /// The side bit (Sides) of site @p s that faces its neighbour @p t.
   int Facing(std::int64_t s, std::int64_t t) const
   {
@@ -239,7 +257,9 @@ struct Repair
     for (std::size_t i = 0; i < gap.size(); ++i)
     {
       const std::int64_t s = gap[i];
-      int sides = i == 0 || i + 1 == gap.size() ? std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0) : 0;
+      int sides = i == 0 || i + 1 == gap.size()
+        ? std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0)
+        : 0;
       if (i > 0)
         sides |= this->Facing(s, gap[i - 1]);
       if (i + 1 < gap.size())
@@ -272,8 +292,9 @@ struct Repair
   /**
    * Straight gaps from component @p c (number @p c + 1) to another (with @p toPath, one holding
    * path sites): from a site of @p c along an axis over sites of no component to a site of the
-   * other, at most MaximumGap steps; the shortest first (ties in site order), at most
-   * MaximumStraight, each as its sites in order.
+   * other, at most MaximumGap steps, where a network label could connect each end toward the
+   * gap (Joinable); the shortest first (ties in site order), at most MaximumStraight, each as
+   * its sites in order.
    */
   std::vector<std::vector<std::int64_t>> StraightGaps(std::int32_t c, bool toPath) const
   {
@@ -303,7 +324,9 @@ struct Repair
               const std::int32_t id = this->Ids[ToIndex(s + step * k * stride[a])];
               if (id == 0)
                 continue;
-              if (id != c + 1 && k > 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
+              const std::int64_t q = s + step * k * stride[a];
+              if (id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]) &&
+                this->Joinable(s, 1 << d) && this->Joinable(q, 1 << (d ^ 1)))
               {
                 std::vector<std::int64_t> gap;
                 for (std::int64_t j = 0; j <= k; ++j)
