@@ -51,6 +51,7 @@ struct PatternCommandOptions
   std::vector<std::string> Swaps;
   std::string Tileset;
   std::string Connected;
+  std::vector<std::string> Path;
   int Samples = 1;
   int BurnIn = 5;
   std::string Method = "blockss";
@@ -103,6 +104,7 @@ void Configure(vtkMSPatternSynthesis* s, const PatternCommandOptions& o)
     o.Mirror.find('z') != std::string::npos);
   s->SetMirrorSwaps(Joined(o.Swaps, ",").c_str());
   s->SetConnected(o.Connected.c_str());
+  s->SetPath(Joined(o.Path, ";").c_str());
   s->SetConnectedTilesetFile(o.Tileset.c_str());
   s->SetSamples(o.Samples);
   s->SetBurnIn(o.BurnIn);
@@ -210,6 +212,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   check->SetMaximumReported(1);
   // The network counted again by the check's own union-find (Discrete/LabelChecks.h).
   check->SetConnected(o.Connected.c_str());
+  check->SetPath(Joined(o.Path, ";").c_str());
   check->SetConnectedTilesetFile((o.Tileset.empty() ? tileset : o.Tileset).c_str());
   {
     ProgressBar bar(synthesis);
@@ -238,7 +241,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
       std::cout << lines->GetValue(0) << "\n"; // the network, as counted by the check
     if (CountOf(verdict, "Valid") != 1)
       throw std::runtime_error("sample " + std::to_string(k + 1) + " has more components of " +
-        o.Connected + " than asked");
+        o.Connected + " than asked" + (o.Path.empty() ? "" : ", or does not join the path"));
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(synthesis->GetOutput());
     vtkFieldData* fd = image->GetFieldData();
@@ -383,6 +386,9 @@ CommandRunner AddPattern(CLI::App& app)
     "the sites holding any of LABELS (values, or tile names of the tileset; commas between) form "
     "at most N components (LABELS[:N], N 1 when left out), joined through the tiles' connects "
     "sides: each sample's surplus components are joined or removed by re-solving boxes");
+  p->add_option("--path", o->Path,
+    "with --connected: one component joins these sites (x,y[,z]) and every site of these "
+    "labels (values or tile names), in every sample");
   p->add_option("--samples", o->Samples, "samples to keep after the burn-in")
     ->check(CLI::Range(1, 100000));
   p->add_option("--burn-in", o->BurnIn, "samples discarded first")->check(CLI::Range(0, 100000));
@@ -415,6 +421,8 @@ CommandRunner AddPattern(CLI::App& app)
     for (const std::string* path : { &o->Zones, &o->Fixed, &o->Tileset })
       if (!path->empty())
         CheckInputFile(*path);
+    if (!o->Path.empty() && o->Connected.empty())
+      throw UsageError{ "--path needs --connected LABELS: the labels that carry the path" };
     try
     {
       msynth::SoftShapes(o->Factors);

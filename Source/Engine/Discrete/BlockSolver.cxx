@@ -209,6 +209,20 @@ int BlockSolver::ChooseLabel(std::int64_t local, Random& rng)
     // No example site matches any possible label (labels only reachable through
     // propagation): fall back to the weighted choice below.
   }
+  if (this->Bias)
+  {
+    const Coord c = this->Cat.Coordinates(local);
+    const Coord& o = this->Cat.Origin();
+    const std::int64_t site = this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } });
+    return DrawLabel(
+      this->Cat.Domain(local), this->Rules.Words(),
+      [this, cell, site](int b)
+      {
+        const double w = this->SiteWeight(cell, b) * (*this->Bias)(site, b);
+        return this->Scale ? w * (*this->Scale)[ToIndex(b)] : w;
+      },
+      rng.Uniform());
+  }
   if (this->Scale)
     return DrawLabel(
       this->Cat.Domain(local), this->Rules.Words(),

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -157,6 +158,11 @@ public:
   /// Multiplies the weight of each label index by @p scale's (not owned; nullptr: none) in the
   /// weighted choice (a network's repairs).
   void ScaleWeights(const std::vector<double>* scale) { this->Scale = scale; }
+  /// Per model site and label index, a multiplier of the weight in the choice there (a network
+  /// repair's box steered along a gap; Connectivity.cxx).
+  using SiteBias = std::function<double(std::int64_t site, int b)>;
+  /// Multiplies the choice's weights by @p bias (not owned; nullptr: none), after ScaleWeights.
+  void BiasWeights(const SiteBias* bias) { this->Bias = bias; }
 
 private:
   friend class BlockSearch;
@@ -344,6 +350,7 @@ private:
   NetworkGuard* Network = nullptr;     ///< a connected network's check, or nullptr
   bool FinalAttempt = false;
   const std::vector<double>* Scale = nullptr; ///< per label index, or nullptr
+  const SiteBias* Bias = nullptr;             ///< per model site and label index, or nullptr
   bool Repairing = false;
   std::int64_t Misses = 0;
   std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)

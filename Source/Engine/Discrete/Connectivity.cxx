@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Discrete/Connectivity.h"
+#include "Discrete/NetworkComponents.h"
 
 #include "Core/Error.h"
 #include "Core/Index.h"
@@ -18,89 +19,6 @@ namespace detail
 {
 namespace
 {
-
-/// A component of the network found by Flood.
-struct Component
-{
-  std::int64_t Sites = 0;
-  bool Open = false;
-  Coord Low{ { 0, 0, 0 } }, High{ { 0, 0, 0 } }; ///< bounding box, inclusive
-};
-
-/**
- * The components of the network over @p n sites whose label index at site s is label(s);
- * open(s) says whether a later block writes s. Calls @p found for each, in the order of their
- * first site.
- */
-template <class LabelFn, class OpenFn, class FoundFn>
-void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& open, FoundFn&& found,
-  std::vector<std::int32_t>& seen, std::vector<std::int64_t>& stack)
-{
-  const std::int64_t total = n[0] * n[1] * n[2];
-  const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
-  seen.assign(ToIndex(total), 0);
-  std::int32_t number = 0; // seen: the component's number + 1
-  for (std::int64_t first = 0; first < total; ++first)
-  {
-    if (seen[ToIndex(first)] || rule.Sides(label(first)) < 0)
-      continue;
-    Component c;
-    c.Low = { { first % n[0], (first / n[0]) % n[1], first / (n[0] * n[1]) } };
-    c.High = c.Low;
-    seen[ToIndex(first)] = ++number;
-    stack.assign(1, first);
-    while (!stack.empty())
-    {
-      const std::int64_t s = stack.back();
-      stack.pop_back();
-      ++c.Sites;
-      const Coord p{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
-      for (std::size_t a = 0; a < 3; ++a)
-      {
-        c.Low[a] = std::min(c.Low[a], p[a]);
-        c.High[a] = std::max(c.High[a], p[a]);
-      }
-      c.Open = c.Open || open(s);
-      const int sides = rule.Sides(label(s));
-      for (int d = 0; d < 6; ++d)
-      {
-        const std::size_t a = ToIndex(d / 2);
-        const bool up = d % 2 == 0;
-        if (!((sides >> d) & 1) || (up ? p[a] + 1 >= n[a] : p[a] == 0))
-          continue;
-        const std::int64_t q = s + (up ? stride[a] : -stride[a]);
-        if (open(q))
-          c.Open = true; // the side faces a site still to be written
-        const int other = rule.Sides(label(q));
-        if (other < 0 || !((other >> (d ^ 1)) & 1) || seen[ToIndex(q)])
-          continue;
-        seen[ToIndex(q)] = number;
-        stack.push_back(q);
-      }
-    }
-    found(c);
-  }
-}
-
-/// The components of @p model; @p ids (when given) receives each site's component number + 1
-/// (0: not in the network).
-std::vector<Component> FindComponents(const NetworkRule& rule,
-  const std::vector<std::int32_t>& model, const Coord& n, std::vector<std::int32_t>* ids = nullptr)
-{
-  std::vector<Component> out;
-  std::vector<std::int32_t> scratch;
-  std::vector<std::int32_t>& seen = ids ? *ids : scratch;
-  std::vector<std::int64_t> stack;
-  Flood(
-    rule, n, [&](std::int64_t s) { return model[ToIndex(s)]; }, [](std::int64_t) { return false; },
-    [&](const Component& c) { out.push_back(c); }, seen, stack);
-  return out;
-}
-
-std::string NetworkName(const ConnectedNetwork& network)
-{
-  return "the network of " + (network.Name.empty() ? std::string("its labels") : network.Name);
-}
 
 /// Refuses path sites outside the model or pinned to a label the network does not hold, and
 /// path labels that are not the network's, with one line.
@@ -130,6 +48,24 @@ void CheckPath(
         " (it is not one of the network's labels)");
 }
 } // namespace
+
+std::vector<Component> FindComponents(const NetworkRule& rule,
+  const std::vector<std::int32_t>& model, const Coord& n, std::vector<std::int32_t>* ids)
+{
+  std::vector<Component> out;
+  std::vector<std::int32_t> scratch;
+  std::vector<std::int32_t>& seen = ids ? *ids : scratch;
+  std::vector<std::int64_t> stack;
+  Flood(
+    rule, n, [&](std::int64_t s) { return model[ToIndex(s)]; }, [](std::int64_t) { return false; },
+    [&](const Component& c) { out.push_back(c); }, seen, stack);
+  return out;
+}
+
+std::string NetworkName(const ConnectedNetwork& network)
+{
+  return "the network of " + (network.Name.empty() ? std::string("its labels") : network.Name);
+}
 
 NetworkRule::NetworkRule(const AdjacencyRules& rules, const ConnectedNetwork& network)
 {
@@ -355,301 +291,6 @@ bool NetworkGuard::Keeps(
   if (!keeps)
     ++this->Redone;
   return keeps;
-}
-
-namespace
-{
-/**
- * How far a model is from what the network asks, compared lexicographically (smaller is nearer):
- * listed path sites outside the network, components holding path sites, all components.
- */
-using Shortfall = std::array<std::int64_t, 3>;
-
-/// The repairs' state: the model, the components, the path and scratch space.
-struct Repair
-{
-  BlockSolver& Solver;
-  SharedModel& Shared;
-  const NetworkRule& Rule;
-  const SynthesisOptions& Options;
-  SynthesisStatistics& Stats;
-  std::int64_t Key = 0;          ///< the next box's block index
-  std::vector<Component> Parts;  ///< the components now
-  std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
-  std::vector<double> Sparse;    ///< the network's labels' weights scaled down
-  std::vector<std::int32_t> SavedModel, SavedLast;
-  std::vector<std::int64_t> PathSites; ///< the listed path sites' model indices
-  std::vector<char> PathLabel;         ///< per label index, whether it is a path label
-  std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
-  std::vector<char> PathPart;          ///< per component, whether it holds a path site
-  Shortfall Now{ { 0, 0, 0 } };
-
-  Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
-    const SynthesisOptions& options, SynthesisStatistics& stats)
-    : Solver(solver)
-    , Shared(shared)
-    , Rule(rule)
-    , Options(options)
-    , Stats(stats)
-  {
-    this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
-    this->Sparse.assign(ToIndex(rule.Labels()), 1.0);
-    for (std::size_t b = 0; b < this->Sparse.size(); ++b)
-      if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
-        this->Sparse[b] = 1.0 / 64;
-    const Coord n = solver.Size();
-    for (const Coord& p : options.Connected.PathSites)
-      this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
-    this->PathLabel.assign(ToIndex(rule.Labels()), 0);
-    for (int b = 0; b < rule.Labels(); ++b)
-      this->PathLabel[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
-    this->PathLabelSites = this->CountPathLabelSites(shared.Model);
-    this->Now = this->Measure(this->Parts, this->Ids, this->PathPart);
-  }
-
-  std::int64_t CountPathLabelSites(const std::vector<std::int32_t>& model) const
-  {
-    std::int64_t count = 0;
-    for (std::int32_t b : model)
-      count += b >= 0 && this->PathLabel[ToIndex(b)] ? 1 : 0;
-    return count;
-  }
-
-  /// The shortfall of @p parts (site numbers @p ids); @p pathPart marks the components holding
-  /// path sites.
-  Shortfall Measure(const std::vector<Component>& parts, const std::vector<std::int32_t>& ids,
-    std::vector<char>& pathPart) const
-  {
-    pathPart.assign(parts.size(), 0);
-    Shortfall f{ { 0, 0, static_cast<std::int64_t>(parts.size()) } };
-    for (std::int64_t s : this->PathSites)
-    {
-      const std::int32_t id = ids[ToIndex(s)];
-      if (id == 0)
-        ++f[0];
-      else
-        pathPart[ToIndex(id - 1)] = 1;
-    }
-    if (!this->Options.Connected.PathLabels.empty())
-      for (std::size_t s = 0; s < ids.size(); ++s)
-      {
-        const std::int32_t b = this->Shared.Model[s];
-        if (b >= 0 && this->PathLabel[ToIndex(b)] && ids[s] != 0)
-          pathPart[ToIndex(ids[s] - 1)] = 1;
-      }
-    for (char c : pathPart)
-      f[1] += c;
-    return f;
-  }
-
-  /// Whether the model has what the network asks.
-  bool Done() const
-  {
-    return this->Now[0] == 0 && this->Now[1] <= 1 &&
-      this->Now[2] <= this->Options.Connected.Maximum;
-  }
-
-  /**
-   * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
-   * (every other one drawing the network's labels rarely, so the box keeps only the paths its
-   * surroundings force), until one leaves a smaller shortfall (and no fewer sites of the path's
-   * labels). Returns whether one did.
-   */
-  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow)
-  {
-    const Coord n = this->Solver.Size();
-    Block box;
-    box.Index = this->Key++;
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      box.Origin[a] = std::max<std::int64_t>(0, lo[a] - grow);
-      box.Dims[a] = std::min(n[a], hi[a] + grow + 1) - box.Origin[a];
-    }
-    this->SavedModel.clear();
-    this->SavedLast.clear();
-    ForEachSite(box, n,
-      [&](std::size_t s)
-      {
-        this->SavedModel.push_back(this->Shared.Model[s]);
-        this->SavedLast.push_back(this->Shared.LastBlock[s]);
-      });
-    for (int attempt = 0; attempt < this->Options.AttemptsPerBlock; ++attempt)
-    {
-      Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
-        static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
-      ++this->Stats.Attempts;
-      this->Solver.ScaleWeights(attempt % 2 == 1 ? &this->Sparse : nullptr);
-      const std::int64_t empty = this->Solver.RunBlock(box, rng, this->Stats.Assignments);
-      this->Solver.ScaleWeights(nullptr);
-      if (empty >= 0)
-        continue; // a failed attempt leaves the model as it was
-      std::vector<std::int32_t> ids;
-      std::vector<char> pathPart;
-      std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
-      const Shortfall f = this->Measure(now, ids, pathPart);
-      if (f < this->Now && this->CountPathLabelSites(this->Shared.Model) >= this->PathLabelSites)
-      {
-        this->Parts = std::move(now);
-        this->Ids = std::move(ids);
-        this->PathPart = std::move(pathPart);
-        this->Now = f;
-        return true;
-      }
-      std::size_t i = 0;
-      ForEachSite(box, n,
-        [&](std::size_t s)
-        {
-          this->Shared.Model[s] = this->SavedModel[i];
-          this->Shared.LastBlock[s] = this->SavedLast[i++];
-        });
-    }
-    return false;
-  }
-
-  /**
-   * The nearest site of another component to component @p c (number @p c + 1) by face steps
-   * (at most MaximumGap), with @p toPath one that holds path sites, in @p to, and the site of
-   * @p c it was reached from, in @p from.
-   */
-  bool Gap(std::int32_t c, bool toPath, std::int64_t& from, std::int64_t& to) const
-  {
-    constexpr std::int32_t MaximumGap = 16;
-    const Coord n = this->Solver.Size();
-    const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
-    std::vector<std::int64_t> origin(this->Ids.size(), -1), front, next;
-    for (std::size_t s = 0; s < this->Ids.size(); ++s)
-      if (this->Ids[s] == c + 1)
-      {
-        origin[s] = static_cast<std::int64_t>(s);
-        front.push_back(static_cast<std::int64_t>(s));
-      }
-    for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
-    {
-      next.clear();
-      for (std::int64_t s : front)
-        for (int d = 0; d < 6; ++d)
-        {
-          const auto a = ToIndex(d / 2);
-          const std::int64_t along = (s / stride[a]) % n[a];
-          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
-            continue;
-          const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
-          if (origin[ToIndex(q)] >= 0)
-            continue;
-          origin[ToIndex(q)] = origin[ToIndex(s)];
-          const std::int32_t id = this->Ids[ToIndex(q)];
-          if (id != 0 && id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
-          {
-            from = origin[ToIndex(q)];
-            to = q;
-            return true;
-          }
-          next.push_back(q);
-        }
-      front.swap(next);
-    }
-    return false;
-  }
-
-  Coord At(std::int64_t s) const
-  {
-    const Coord n = this->Solver.Size();
-    return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
-  }
-
-  /// Joins component @p c to its nearest neighbour (with @p toPath, one holding path sites)
-  /// through boxes over the gap between them, else removes it (or joins it) through boxes
-  /// around it grown by 1, 2, ..., 16 sites.
-  bool Fix(std::size_t c, bool toPath)
-  {
-    std::int64_t from = 0, to = 0;
-    if (this->Gap(static_cast<std::int32_t>(c), toPath, from, to))
-    {
-      const Coord p = this->At(from), q = this->At(to);
-      Coord lo, hi;
-      for (std::size_t a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(p[a], q[a]);
-        hi[a] = std::max(p[a], q[a]);
-      }
-      for (std::int64_t grow = 1; grow <= 4; grow *= 2)
-        if (this->TryBox(lo, hi, grow))
-          return true;
-    }
-    const Component part = this->Parts[c];
-    for (std::int64_t grow = 1; grow <= 16; grow *= 2)
-      if (this->TryBox(part.Low, part.High, grow))
-        return true;
-    return false;
-  }
-
-  /// One step nearer: a listed path site brought into the network, else a component holding
-  /// path sites joined to another such, else any component joined or removed (smallest first).
-  bool Step()
-  {
-    for (std::int64_t s : this->PathSites)
-      if (this->Ids[ToIndex(s)] == 0)
-      {
-        const Coord p = this->At(s);
-        for (std::int64_t grow = 1; grow <= 8; grow *= 2)
-          if (this->TryBox(p, p, grow))
-            return true;
-      }
-    std::vector<std::size_t> order(this->Parts.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-      [&](std::size_t a, std::size_t b) { return this->Parts[a].Sites < this->Parts[b].Sites; });
-    if (this->Now[1] > 1)
-      for (std::size_t c : order)
-        if (this->PathPart[c] && this->Fix(c, true))
-          return true;
-    for (std::size_t c : order)
-      if (this->Fix(c, false))
-        return true;
-    return false;
-  }
-
-  /// Why the network cannot be kept, in one line.
-  std::string Failure() const
-  {
-    const std::string name = NetworkName(this->Options.Connected);
-    if (this->Now[0] > 0 || this->Now[1] > 1)
-      return name + " does not join the path: " +
-        (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
-                          : "its sites lie in " + std::to_string(this->Now[1]) + " components") +
-        ", and no repair brought them nearer. Try another seed, more attempts or nearer sites";
-    std::size_t smallest = 0;
-    for (std::size_t c = 1; c < this->Parts.size(); ++c)
-      if (this->Parts[c].Sites < this->Parts[smallest].Sites)
-        smallest = c;
-    const Component& c = this->Parts[smallest];
-    return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
-      std::to_string(this->Options.Connected.Maximum) +
-      ", and none could be joined to another or removed (the smallest: " + std::to_string(c.Sites) +
-      " sites at " + Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
-  }
-};
-} // namespace
-
-std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
-  const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,
-  ConnectedResult& out)
-{
-  Repair repair(solver, shared, rule, options, stats);
-  repair.Key = firstIndex;
-  out.Before = static_cast<std::int64_t>(repair.Parts.size());
-  out.PathComponentsBefore = repair.Now[1];
-  while (!repair.Done())
-  {
-    if (!repair.Step())
-      return repair.Failure();
-    ++out.Repairs;
-  }
-  out.Components = static_cast<std::int64_t>(repair.Parts.size());
-  out.PathSites =
-    static_cast<std::int64_t>(repair.PathSites.size()) + repair.CountPathLabelSites(shared.Model);
-  return std::string();
 }
 
 NetworkRun::NetworkRun(const AdjacencyRules& rules, const SynthesisOptions& options,

@@ -13,9 +13,11 @@
  * block attempt that leaves more closed-off components than the run may keep (Maximum − 1 while
  * open components remain, Maximum at the end) and more than before it is redone, except its
  * last attempt, which is kept as Algorithm 3.4 keeps it. When the blocks are done (or after a
- * whole model), each surplus component, smallest first, gets a box around it synthesized again
- * (grown by 1, 2, 4, ... sites, AttemptsPerBlock attempts each) until a result has fewer
- * components (it joined another or vanished); a model left with more than Maximum fails.
+ * whole model), each surplus component, smallest first, gets boxes synthesized again
+ * (NetworkRepair.cxx): over gaps to other components, drawn steered along each gap (labels that
+ * connect along it; the other sites keep theirs), then freely, then boxes around it (grown by
+ * 1, 2, 4, ... sites), until a result has fewer components (it joined another or vanished); a
+ * model left with more than Maximum fails.
  * With a path (ConnectedNetwork::PathSites, PathLabels) the repairs first bring each listed
  * site into the network (boxes around it), then join the components holding path sites (boxes
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in
@@ -101,10 +103,10 @@ private:
 };
 
 /**
- * After the blocks (or a whole model) on @p shared: the surplus components re-synthesized in
- * boxes by @p solver (block indices from @p firstIndex, draws from @p options.Seed) until at
- * most Maximum remain. Fills @p out; returns an empty string, or one line saying why the
- * network could not be kept.
+ * After the blocks (or a whole model) on @p shared (NetworkRepair.cxx): the surplus components
+ * re-synthesized in boxes by @p solver (block indices from @p firstIndex, draws from @p
+ * options.Seed) until at most Maximum remain. Fills @p out; returns an empty string, or one line
+ * saying why the network could not be kept.
  */
 std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
   const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,

@@ -11,6 +11,7 @@
 #include "Discrete/DiscreteSynthesis.h"
 #include "Patterns/BlockSampler.h"
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -136,7 +137,8 @@ PatternSample MakeSample(const PatternProblem& scorer, const FactorModel& m,
 }
 
 /// @p network without the labels no exemplar (or tileset rule) holds: a tileset's names may
-/// cover more tiles than the exemplars use. @throw Error when none is left.
+/// cover more tiles than the exemplars use (a path label among them has no site to join).
+/// @throw Error when none is left.
 ConnectedNetwork HeldNetwork(const FactorModel& m, const ConnectedNetwork& network)
 {
   ConnectedNetwork held = network;
@@ -146,7 +148,42 @@ ConnectedNetwork HeldNetwork(const FactorModel& m, const ConnectedNetwork& netwo
       held.Values.push_back(v);
   if (network.Active() && held.Values.empty())
     throw Error("the network of " + network.Name + ": none of its labels occurs in the exemplars");
+  held.PathLabels.clear(); // one that is no network label stays, for the repairs' refusal
+  for (Label v : network.PathLabels)
+    if (m.TileIndex(v) >= 0 ||
+      std::find(network.Values.begin(), network.Values.end(), v) == network.Values.end())
+      held.PathLabels.push_back(v);
   return held;
+}
+
+/**
+ * Refuses, with one line, a path without a network, and a listed path site outside the output
+ * or whose zone, fixed label or seam allows none of the network's tiles (the repairs could
+ * never bring it in).
+ */
+void CheckPatternPath(const FactorModel& m, const PatternProblem& problem, const PatternOptions& o)
+{
+  const ConnectedNetwork& network = o.Connected;
+  if (!network.HasPath())
+    return;
+  if (!network.Active())
+    throw Error("a path (--path) needs a network of labels to carry it (--connected LABELS)");
+  const auto& n = o.Size;
+  for (const auto& p : network.PathSites)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] < 0 || p[a] >= n[a])
+        throw Error("the path's site " + detail::Format(p) + " is outside the output (" +
+          std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) +
+          " sites)");
+    const std::int64_t s = p[0] + n[0] * (p[1] + n[1] * p[2]);
+    bool any = false;
+    for (Label v : network.Values)
+      any = any || (m.TileIndex(v) >= 0 && problem.AllowedAt(s, m.TileIndex(v)));
+    if (!any)
+      throw Error("the path's site " + detail::Format(p) + " cannot hold " + network.Name +
+        " (its zone or fixed label allows none of them)");
+  }
 }
 
 /// The discrete solver's rules from the hard pairs.
@@ -364,6 +401,7 @@ PatternResult SynthesizePattern(
   const PatternProblem scorer(model, options, options.Size, false);
   result.HardFactors = scorer.HardCount;
   result.SoftFactors = scorer.SoftCount;
+  CheckPatternPath(model, scorer, options);
 
   if (options.Method == PatternMethod::ConstraintSolver)
     RunConstraintSolver(model, scorer, options, result);

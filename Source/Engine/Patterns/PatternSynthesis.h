@@ -90,14 +90,16 @@ struct PatternOptions
   std::map<Label, Label> MirrorMap;
   /**
    * A connected network (our addition, as SynthesisOptions::Connected): the sites holding its
-   * labels form at most Maximum components, joined through the labels' Sides. Each kept sample
-   * is repaired before it is taken: the surplus components, smallest first, get boxes over the
-   * gap to their nearest neighbour (else around them) solved again on the hard pairs by the
-   * discrete solver (Discrete/Connectivity.h's repairs; zones and fixed sites hold there), and
-   * the chain goes on from the repaired pattern. A sample the repairs cannot bring to Maximum
+   * labels form at most Maximum components, joined through the labels' Sides, and its path
+   * (PathSites, PathLabels) lies in one of them. Each kept sample is repaired before it is
+   * taken: the surplus components, smallest first, get boxes over gaps to other components
+   * (steered along each gap, then freely; else around them) solved again on the hard pairs by
+   * the discrete solver (Discrete/Connectivity.h's repairs; zones and fixed sites hold there),
+   * and the chain goes on from the repaired pattern. A sample the repairs cannot bring to Maximum
    * moves on by another sample's moves from the partly repaired pattern and is repaired again,
    * ten tries in all before the run fails. The constraint solver runs with the network. Not
-   * with mirroring. Inactive: none.
+   * with mirroring. A path without labels, or a listed site outside the output or whose zone or
+   * fixed label allows none of the network's tiles, is an error. Inactive: none.
    */
   ConnectedNetwork Connected;
 

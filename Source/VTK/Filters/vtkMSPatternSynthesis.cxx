@@ -252,7 +252,8 @@ bool vtkMSPatternSynthesis::ParseLists(msynth::PatternOptions& options)
     if (!this->ConnectedTilesetFile.empty())
       tiles = msynth::ReadTilesetFile(this->ConnectedTilesetFile);
     const bool named = !this->TilesetFile.empty() || !this->ConnectedTilesetFile.empty();
-    options.Connected = vtkMSLabelCounts::ReadConnected(this->Connected, named ? &tiles : nullptr);
+    options.Connected =
+      vtkMSLabelCounts::ReadConnected(this->Connected, named ? &tiles : nullptr, this->Path);
     msynth::LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   }
   catch (const msynth::Error& e)
@@ -372,4 +373,5 @@ void vtkMSPatternSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MirrorSwaps: " << this->MirrorSwaps << "\n";
   os << indent << "Connected: " << this->Connected << "\n";
   os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
+  os << indent << "Path: '" << this->Path << "'\n";
 }

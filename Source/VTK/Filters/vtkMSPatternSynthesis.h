@@ -26,7 +26,8 @@
  * `FirstValidMoves`, `FirstValidSeconds`, `Seconds`, `HardFactors`, `SoftFactors`, `Tiles`,
  * `ReplacementBlocks`), `Method` and `Seed`; with Connected, the sample's `ConnectedLabels`,
  * `ConnectedMaximum`, `ConnectedComponents`, `ConnectedBefore` (before its repairs),
- * `ConnectedRepairs` and `ConnectedRedone`, and the run's `NetworkSeconds`. The samples are
+ * `ConnectedRepairs` and `ConnectedRedone` (with a Path, `ConnectedPathSites`), and the run's
+ * `NetworkSeconds`. The samples are
  * computed once and cached: asking for another time step does not sample again.
  *
  * @sa msynth/PatternSynthesis.h, vtkMSTileImage (pictures of tileset patterns)
@@ -154,6 +155,11 @@ public:
   vtkGetCharFromStdStringMacro(Connected);
   vtkSetStdStringFromCharMacro(ConnectedTilesetFile);
   vtkGetCharFromStdStringMacro(ConnectedTilesetFile);
+  /// A path the Connected network joins, "A;B;...": sites "x,y[,z]" and labels (values or tile
+  /// names: every site holding one) lie in one component of each sample's network, as
+  /// vtkMSDiscreteSynthesis's Path; field data `ConnectedPathSites`. "" for none (default).
+  vtkSetStdStringFromCharMacro(Path);
+  vtkGetCharFromStdStringMacro(Path);
   ///@}
 
 protected:
@@ -205,6 +211,7 @@ private:
   std::string MirrorSwaps;
   std::string Connected;
   std::string ConnectedTilesetFile;
+  std::string Path;
 
   struct Cache;
   std::unique_ptr<Cache> Cached;

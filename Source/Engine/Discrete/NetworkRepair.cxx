@@ -1,0 +1,469 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The repairs of a connected network after the blocks (Connectivity.h: RepairNetwork): boxes
+// over the gaps between components steered along them, free boxes, boxes around a component.
+#include "Discrete/Connectivity.h"
+#include "Discrete/NetworkComponents.h"
+
+#include "Core/Index.h"
+#include "Core/Random.h"
+
+#include <algorithm>
+#include <array>
+
+namespace msynth
+{
+namespace detail
+{
+namespace
+{
+/**
+ * How far a model is from what the network asks, compared lexicographically (smaller is nearer):
+ * listed path sites outside the network, components holding path sites, all components.
+ */
+using Shortfall = std::array<std::int64_t, 3>;
+
+/// The repairs' state: the model, the components, the path and scratch space.
+struct Repair
+{
+  static constexpr int SteeredAttempts = 3; ///< attempts of a box steered along a gap
+  BlockSolver& Solver;
+  SharedModel& Shared;
+  const NetworkRule& Rule;
+  const SynthesisOptions& Options;
+  SynthesisStatistics& Stats;
+  std::int64_t Key = 0;          ///< the next box's block index
+  std::vector<Component> Parts;  ///< the components now
+  std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
+  std::vector<double> Sparse;    ///< the network's labels' weights scaled down
+  std::vector<std::int32_t> SavedModel, SavedLast;
+  std::vector<std::int64_t> PathSites; ///< the listed path sites' model indices
+  std::vector<char> PathLabel;         ///< per label index, whether it is a path label
+  std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
+  std::vector<char> PathPart;          ///< per component, whether it holds a path site
+  Shortfall Now{ { 0, 0, 0 } };
+
+  Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+    const SynthesisOptions& options, SynthesisStatistics& stats)
+    : Solver(solver)
+    , Shared(shared)
+    , Rule(rule)
+    , Options(options)
+    , Stats(stats)
+  {
+    this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
+    this->Sparse.assign(ToIndex(rule.Labels()), 1.0);
+    for (std::size_t b = 0; b < this->Sparse.size(); ++b)
+      if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
+        this->Sparse[b] = 1.0 / 64;
+    const Coord n = solver.Size();
+    for (const Coord& p : options.Connected.PathSites)
+      this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
+    this->PathLabel.assign(ToIndex(rule.Labels()), 0);
+    for (int b = 0; b < rule.Labels(); ++b)
+      this->PathLabel[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
+    this->PathLabelSites = this->CountPathLabelSites(shared.Model);
+    this->Now = this->Measure(this->Parts, this->Ids, this->PathPart);
+  }
+
+  std::int64_t CountPathLabelSites(const std::vector<std::int32_t>& model) const
+  {
+    std::int64_t count = 0;
+    for (std::int32_t b : model)
+      count += b >= 0 && this->PathLabel[ToIndex(b)] ? 1 : 0;
+    return count;
+  }
+
+  /// The shortfall of @p parts (site numbers @p ids); @p pathPart marks the components holding
+  /// path sites.
+  Shortfall Measure(const std::vector<Component>& parts, const std::vector<std::int32_t>& ids,
+    std::vector<char>& pathPart) const
+  {
+    pathPart.assign(parts.size(), 0);
+    Shortfall f{ { 0, 0, static_cast<std::int64_t>(parts.size()) } };
+    for (std::int64_t s : this->PathSites)
+    {
+      const std::int32_t id = ids[ToIndex(s)];
+      if (id == 0)
+        ++f[0];
+      else
+        pathPart[ToIndex(id - 1)] = 1;
+    }
+    if (!this->Options.Connected.PathLabels.empty())
+      for (std::size_t s = 0; s < ids.size(); ++s)
+      {
+        const std::int32_t b = this->Shared.Model[s];
+        if (b >= 0 && this->PathLabel[ToIndex(b)] && ids[s] != 0)
+          pathPart[ToIndex(ids[s] - 1)] = 1;
+      }
+    for (char c : pathPart)
+      f[1] += c;
+    return f;
+  }
+
+  /// Whether the model has what the network asks.
+  bool Done() const
+  {
+    return this->Now[0] == 0 && this->Now[1] <= 1 &&
+      this->Now[2] <= this->Options.Connected.Maximum;
+  }
+
+  /**
+   * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
+   * (each drawn with @p steer's weights when given, else every other one drawing the network's
+   * labels rarely, so the box keeps only the paths its surroundings force), until one leaves a
+   * smaller shortfall (and no fewer sites of the path's labels). Returns whether one did.
+   */
+  bool TryBox(const Coord& lo, const Coord& hi, std::int64_t grow,
+    const BlockSolver::SiteBias* steer = nullptr)
+  {
+    const Coord n = this->Solver.Size();
+    Block box;
+    box.Index = this->Key++;
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      box.Origin[a] = std::max<std::int64_t>(0, lo[a] - grow);
+      box.Dims[a] = std::min(n[a], hi[a] + grow + 1) - box.Origin[a];
+    }
+    this->SavedModel.clear();
+    this->SavedLast.clear();
+    ForEachSite(box, n,
+      [&](std::size_t s)
+      {
+        this->SavedModel.push_back(this->Shared.Model[s]);
+        this->SavedLast.push_back(this->Shared.LastBlock[s]);
+      });
+    // A steered box finds a join in its first attempts when the pairs allow one along its gap.
+    const int attempts = steer ? std::min(this->Options.AttemptsPerBlock, SteeredAttempts)
+                               : this->Options.AttemptsPerBlock;
+    for (int attempt = 0; attempt < attempts; ++attempt)
+    {
+      Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
+        static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
+      ++this->Stats.Attempts;
+      this->Solver.ScaleWeights(attempt % 2 == 1 && !steer ? &this->Sparse : nullptr);
+      this->Solver.BiasWeights(steer);
+      const std::int64_t empty = this->Solver.RunBlock(box, rng, this->Stats.Assignments);
+      this->Solver.ScaleWeights(nullptr);
+      this->Solver.BiasWeights(nullptr);
+      if (empty >= 0)
+        continue; // a failed attempt leaves the model as it was
+      std::vector<std::int32_t> ids;
+      std::vector<char> pathPart;
+      std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
+      const Shortfall f = this->Measure(now, ids, pathPart);
+      if (f < this->Now && this->CountPathLabelSites(this->Shared.Model) >= this->PathLabelSites)
+      {
+        this->Parts = std::move(now);
+        this->Ids = std::move(ids);
+        this->PathPart = std::move(pathPart);
+        this->Now = f;
+        return true;
+      }
+      std::size_t i = 0;
+      ForEachSite(box, n,
+        [&](std::size_t s)
+        {
+          this->Shared.Model[s] = this->SavedModel[i];
+          this->Shared.LastBlock[s] = this->SavedLast[i++];
+        });
+    }
+    return false;
+  }
+
+  /**
+   * The nearest site of another component to component @p c (number @p c + 1) by face steps
+   * (at most MaximumGap), with @p toPath one that holds path sites: the breadth-first search's
+   * steps from a site of @p c to it, both ends included, in @p gap (empty when none is that near).
+   */
+  void Gap(std::int32_t c, bool toPath, std::vector<std::int64_t>& gap) const
+  {
+    constexpr std::int32_t MaximumGap = 16;
+    const Coord n = this->Solver.Size();
+    const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+    std::vector<std::int64_t> parent(this->Ids.size(), -1), front, next;
+    gap.clear();
+    for (std::size_t s = 0; s < this->Ids.size(); ++s)
+      if (this->Ids[s] == c + 1)
+      {
+        parent[s] = static_cast<std::int64_t>(s); // a root of the search
+        front.push_back(static_cast<std::int64_t>(s));
+      }
+    for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
+    {
+      next.clear();
+      for (std::int64_t s : front)
+        for (int d = 0; d < 6; ++d)
+        {
+          const auto a = ToIndex(d / 2);
+          const std::int64_t along = (s / stride[a]) % n[a];
+          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
+            continue;
+          const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
+          if (parent[ToIndex(q)] >= 0)
+            continue;
+          parent[ToIndex(q)] = s;
+          const std::int32_t id = this->Ids[ToIndex(q)];
+          if (id != 0 && id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
+          {
+            for (std::int64_t t = q;; t = parent[ToIndex(t)])
+            {
+              gap.push_back(t);
+              if (parent[ToIndex(t)] == t)
+                break;
+            }
+            std::reverse(gap.begin(), gap.end());
+            return;
+          }
+          next.push_back(q);
+        }
+      front.swap(next);
+    }
+  }
+
+  /// Whether a network label connects through the sides site @p s connects through now and
+  /// @p side too (else no gap can leave it there).
+  bool Joinable(std::int64_t s, int side) const
+  {
+    const int need = std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0) | side;
+    for (int b = 0; b < this->Rule.Labels(); ++b)
+    {
+      const int has = this->Rule.Sides(b);
+      if (has >= 0 && (has & need) == need)
+        return true;
+    }
+    return false;
+  }
+
+  /// The side bit (Sides) of site @p s that faces its neighbour @p t.
+  int Facing(std::int64_t s, std::int64_t t) const
+  {
+    const Coord p = this->At(s), q = this->At(t);
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] != q[a])
+        return 1 << (2 * static_cast<int>(a) + (q[a] > p[a] ? 0 : 1));
+    return 0;
+  }
+
+  /**
+   * The weights that steer a box along @p gap (from one component to another): at each site of
+   * the gap a label that connects toward its neighbours on the gap (at the ends, also through
+   * the sides the site's label connects through now) is drawn Prefer times as often, less 8
+   * times for each further side; every other site keeps its label Keep times as often.
+   */
+  BlockSolver::SiteBias Steer(const std::vector<std::int64_t>& gap) const
+  {
+    constexpr double Prefer = 1.0e4, Keep = 1.0e3;
+    std::vector<std::pair<std::int64_t, int>> need; // (site, the sides it must connect through)
+    for (std::size_t i = 0; i < gap.size(); ++i)
+    {
+      const std::int64_t s = gap[i];
+      int sides = i == 0 || i + 1 == gap.size()
+        ? std::max(this->Rule.Sides(this->Shared.Model[ToIndex(s)]), 0)
+        : 0;
+      if (i > 0)
+        sides |= this->Facing(s, gap[i - 1]);
+      if (i + 1 < gap.size())
+        sides |= this->Facing(s, gap[i + 1]);
+      need.emplace_back(s, sides);
+    }
+    return [this, need](std::int64_t site, int b)
+    {
+      for (const auto& [s, sides] : need)
+        if (s == site)
+        {
+          const int has = this->Rule.Sides(b);
+          if (has < 0 || (has & sides) != sides)
+            return 1.0;
+          double w = Prefer;
+          for (int extra = has & ~sides; extra != 0; extra &= extra - 1)
+            w /= 8.0;
+          return w;
+        }
+      return this->Shared.Model[ToIndex(site)] == b ? Keep : 1.0;
+    };
+  }
+
+  Coord At(std::int64_t s) const
+  {
+    const Coord n = this->Solver.Size();
+    return Coord{ { s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1]) } };
+  }
+
+  /**
+   * Straight gaps from component @p c (number @p c + 1) to another (with @p toPath, one holding
+   * path sites): from a site of @p c along an axis over sites of no component to a site of the
+   * other, at most MaximumGap steps, where a network label could connect each end toward the
+   * gap (Joinable); the shortest first (ties in site order), at most MaximumStraight, each as
+   * its sites in order.
+   */
+  std::vector<std::vector<std::int64_t>> StraightGaps(std::int32_t c, bool toPath) const
+  {
+    constexpr std::int64_t MaximumGap = 16;
+    constexpr std::size_t MaximumStraight = 8;
+    const Coord n = this->Solver.Size();
+    const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+    std::vector<std::vector<std::int64_t>> found;
+    const Component& part = this->Parts[ToIndex(c)];
+    for (std::int64_t z = part.Low[2]; z <= part.High[2]; ++z)
+      for (std::int64_t y = part.Low[1]; y <= part.High[1]; ++y)
+        for (std::int64_t x = part.Low[0]; x <= part.High[0]; ++x)
+        {
+          const std::int64_t s = x + n[0] * (y + n[1] * z);
+          if (this->Ids[ToIndex(s)] != c + 1)
+            continue;
+          const Coord p{ { x, y, z } };
+          for (int d = 0; d < 6; ++d)
+          {
+            const auto a = ToIndex(d / 2);
+            const std::int64_t step = d % 2 == 0 ? 1 : -1;
+            for (std::int64_t k = 1; k <= MaximumGap; ++k)
+            {
+              const std::int64_t along = p[a] + step * k;
+              if (along < 0 || along >= n[a])
+                break;
+              const std::int32_t id = this->Ids[ToIndex(s + step * k * stride[a])];
+              if (id == 0)
+                continue;
+              const std::int64_t q = s + step * k * stride[a];
+              if (id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]) &&
+                this->Joinable(s, 1 << d) && this->Joinable(q, 1 << (d ^ 1)))
+              {
+                std::vector<std::int64_t> gap;
+                for (std::int64_t j = 0; j <= k; ++j)
+                  gap.push_back(s + step * j * stride[a]);
+                found.push_back(std::move(gap));
+              }
+              break;
+            }
+          }
+        }
+    std::stable_sort(found.begin(), found.end(),
+      [](const std::vector<std::int64_t>& a, const std::vector<std::int64_t>& b)
+      { return a.size() < b.size(); });
+    if (found.size() > MaximumStraight)
+      found.resize(MaximumStraight);
+    return found;
+  }
+
+  /// The box [@p lo, @p hi] around the sites of @p gap.
+  void Bounds(const std::vector<std::int64_t>& gap, Coord& lo, Coord& hi) const
+  {
+    lo = hi = this->At(gap.front());
+    for (const std::int64_t s : gap)
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], this->At(s)[a]);
+        hi[a] = std::max(hi[a], this->At(s)[a]);
+      }
+  }
+
+  /**
+   * Joins component @p c to another (with @p toPath, one holding path sites) through boxes over
+   * a gap between them drawn steered along it (Steer), grown by 1 and then 2 sites: the straight
+   * gaps (StraightGaps; the exemplars' pairs may forbid a road at one place and not at the
+   * next), then the gap to the nearest other component (Gap); then boxes over that gap drawn
+   * freely, grown by 1, 2, 4; else removes it (or joins it) through boxes around it grown by
+   * 1, 2, ..., 16 sites.
+   */
+  bool Fix(std::size_t c, bool toPath)
+  {
+    std::vector<std::vector<std::int64_t>> gaps =
+      this->StraightGaps(static_cast<std::int32_t>(c), toPath);
+    std::vector<std::int64_t> nearest;
+    this->Gap(static_cast<std::int32_t>(c), toPath, nearest);
+    if (!nearest.empty())
+      gaps.push_back(nearest);
+    Coord lo, hi;
+    for (std::int64_t grow = 1; grow <= 2; grow *= 2)
+      for (const std::vector<std::int64_t>& gap : gaps)
+      {
+        this->Bounds(gap, lo, hi);
+        const BlockSolver::SiteBias steer = this->Steer(gap);
+        if (this->TryBox(lo, hi, grow, &steer))
+          return true;
+      }
+    if (!nearest.empty())
+    {
+      this->Bounds(nearest, lo, hi);
+      for (std::int64_t grow = 1; grow <= 4; grow *= 2)
+        if (this->TryBox(lo, hi, grow))
+          return true;
+    }
+    const Component part = this->Parts[c];
+    for (std::int64_t grow = 1; grow <= 16; grow *= 2)
+      if (this->TryBox(part.Low, part.High, grow))
+        return true;
+    return false;
+  }
+
+  /// One step nearer: a listed path site brought into the network, else a component holding
+  /// path sites joined to another such, else any component joined or removed (smallest first).
+  bool Step()
+  {
+    for (std::int64_t s : this->PathSites)
+      if (this->Ids[ToIndex(s)] == 0)
+      {
+        const Coord p = this->At(s);
+        for (std::int64_t grow = 1; grow <= 8; grow *= 2)
+          if (this->TryBox(p, p, grow))
+            return true;
+      }
+    std::vector<std::size_t> order(this->Parts.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+      [&](std::size_t a, std::size_t b) { return this->Parts[a].Sites < this->Parts[b].Sites; });
+    if (this->Now[1] > 1)
+      for (std::size_t c : order)
+        if (this->PathPart[c] && this->Fix(c, true))
+          return true;
+    for (std::size_t c : order)
+      if (this->Fix(c, false))
+        return true;
+    return false;
+  }
+
+  /// Why the network cannot be kept, in one line.
+  std::string Failure() const
+  {
+    const std::string name = NetworkName(this->Options.Connected);
+    if (this->Now[0] > 0 || this->Now[1] > 1)
+      return name + " does not join the path: " +
+        (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
+                          : "its sites lie in " + std::to_string(this->Now[1]) + " components") +
+        ", and no repair brought them nearer. Try another seed, more attempts or nearer sites";
+    std::size_t smallest = 0;
+    for (std::size_t c = 1; c < this->Parts.size(); ++c)
+      if (this->Parts[c].Sites < this->Parts[smallest].Sites)
+        smallest = c;
+    const Component& c = this->Parts[smallest];
+    return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
+      std::to_string(this->Options.Connected.Maximum) +
+      ", and none could be joined to another or removed (the smallest: " + std::to_string(c.Sites) +
+      " sites at " + Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
+  }
+};
+} // namespace
+
+std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
+  const SynthesisOptions& options, std::int64_t firstIndex, SynthesisStatistics& stats,
+  ConnectedResult& out)
+{
+  Repair repair(solver, shared, rule, options, stats);
+  repair.Key = firstIndex;
+  out.Before = static_cast<std::int64_t>(repair.Parts.size());
+  out.PathComponentsBefore = repair.Now[1];
+  while (!repair.Done())
+  {
+    if (!repair.Step())
+      return repair.Failure();
+    ++out.Repairs;
+  }
+  out.Components = static_cast<std::int64_t>(repair.Parts.size());
+  out.PathSites =
+    static_cast<std::int64_t>(repair.PathSites.size()) + repair.CountPathLabelSites(shared.Model);
+  return std::string();
+}
+
+} // namespace detail
+} // namespace msynth
