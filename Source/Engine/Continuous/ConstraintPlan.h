@@ -114,10 +114,10 @@ public:
   static constexpr double ProportionMargin = 0.04;
   struct Proportioned
   {
-    std::int64_t Removed = 0; ///< parts emptied
-    double VolumeRemoved = 0; ///< the fraction of the solid volume they held (no cap)
-    std::vector<int> Outside; ///< object types still further than ProportionTolerance
-    std::string Reason;       ///< per such type, its share, the example's, and why
+    std::int64_t Removed = 0;   ///< parts emptied
+    double VolumeRemoved = 0;   ///< the fraction of the solid volume they held (no cap)
+    std::vector<int> Outside;   ///< object types still further than ProportionTolerance
+    std::string Reason;         ///< per such type, its share, the example's, and why
     std::vector<double> Shares; ///< per type bit: its share of the solid volume left
     double Worst = 0;           ///< the largest relative deviation of a share from its target
     double Sum = 0;             ///< the relative deviations added up
@@ -149,8 +149,8 @@ public:
   };
   struct Redrawn
   {
-    std::int64_t Blocks = 0; ///< redrawn blocks kept
-    std::int64_t Tried = 0;  ///< redraws tried
+    std::int64_t Blocks = 0;             ///< redrawn blocks kept
+    std::int64_t Tried = 0;              ///< redraws tried
     std::array<std::int64_t, 3> Parts{}; ///< parts Clean emptied after the kept ones
   };
   /**
@@ -164,8 +164,8 @@ public:
    * tried. Consistent (a block is solved against its fixed surroundings); deterministic (the
    * keys are the round, block and attempt). @p labels is the model the hooks act on.
    */
-  Redrawn RedrawForProportions(std::vector<std::int32_t>& labels, int emptyLabel,
-    unsigned threads, const BlockRedraw& blocks) const;
+  Redrawn RedrawForProportions(std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads,
+    const BlockRedraw& blocks) const;
   /// RedrawForProportions stops once every share left is this near its target.
   static constexpr double RedrawTarget = 0.2;
   /// Redraws tried at most per run, and blocks tried per round (each twice).

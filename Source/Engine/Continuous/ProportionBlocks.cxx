@@ -71,18 +71,16 @@ ConstraintPlan::Redrawn ConstraintPlan::RedrawForProportions(std::vector<std::in
     bool better = false;
     for (std::size_t k = 0; k < rank.size() && k < ToIndex(RedrawBlocks) && !better; ++k)
     {
-      for (std::uint64_t attempt = 0; attempt < 2 && !better && out.Tried < RedrawBudget;
-           ++attempt)
+      for (std::uint64_t attempt = 0; attempt < 2 && !better && out.Tried < RedrawBudget; ++attempt)
       {
         if (blocks.Stopped())
           return out;
         ++out.Tried;
         kept = labels;
         const std::int64_t b = rank[k].second;
-        if (!blocks.Redraw(b, (round * static_cast<std::uint64_t>(blocks.Blocks) +
-                                static_cast<std::uint64_t>(b)) *
-                                2 +
-                              attempt))
+        const std::uint64_t place =
+          round * static_cast<std::uint64_t>(blocks.Blocks) + static_cast<std::uint64_t>(b);
+        if (!blocks.Redraw(b, place * 2 + attempt))
           continue;
         const std::array<std::int64_t, 3> emptied = blocks.Clean();
         const Proportioned trial = assess();
