@@ -121,6 +121,7 @@ public:
     std::vector<double> Shares; ///< per type bit: its share of the solid volume left
     double Worst = 0;           ///< the largest relative deviation of a share from its target
     double Sum = 0;             ///< the relative deviations added up
+    double Kept = 0;            ///< the solid volume left
   };
   /**
    * With proportions steered (and no guide, which asks for types in places, masks included):
@@ -154,20 +155,29 @@ public:
     std::array<std::int64_t, 3> Parts{}; ///< parts Clean emptied after the kept ones
   };
   /**
-   * Where emptying whole parts (KeepProportionateParts) would still leave a type further than
-   * ProportionTolerance from its target (a part that holds every type, one building whose dome
-   * outgrew its walls), blocks of the model are labelled again instead: the blocks holding most
-   * of the type furthest above its target (by vertex occupancy) are redrawn, the rest fixed and
-   * the draw steered by the model's shares, and a redraw is kept when the shares that emptying
-   * would then leave come nearer the targets (the largest relative deviation, then their sum).
-   * Until those are within RedrawTarget, no tried block improves, or RedrawBudget redraws were
-   * tried. Consistent (a block is solved against its fixed surroundings); deterministic (the
-   * keys are the round, block and attempt). @p labels is the model the hooks act on.
+   * Redraws blocks of the model (below the level of a part) where emptying whole parts
+   * (KeepProportionateParts, which follows) cannot do well alone. First, when the emptying would
+   * still leave a type further than ProportionTolerance from its target (a part that holds every
+   * type; one building whose dome outgrew its storey walls): the blocks holding most of the type
+   * furthest above its target (by vertex occupancy) are redrawn, and a redraw is kept when the
+   * shares the emptying would then leave come nearer the targets (the largest relative
+   * deviation, then their sum), until they are within RedrawTarget or no tried block improves.
+   * Then, while the shares are within RedrawTarget but the emptying would remove more than
+   * RefillAbove of the solid: the blocks holding least solid (with a ground vertex, when
+   * grounded) are redrawn, kept when the emptying then keeps more solid volume with every share
+   * still within RedrawTarget. Each round tries the first RedrawBlocks blocks twice and ends at
+   * its first kept redraw; RedrawBudget redraws at most. A redraw is one attempt of the block
+   * solver, the rest fixed, the draw steered by the model's shares: consistent, and
+   * deterministic (keys: the phase, round, block and attempt). @p labels is the model the hooks
+   * act on.
    */
   Redrawn RedrawForProportions(std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads,
     const BlockRedraw& blocks) const;
   /// RedrawForProportions stops once every share left is this near its target.
   static constexpr double RedrawTarget = 0.2;
+  /// RedrawForProportions fills bare ground again while the emptying would remove more than this
+  /// fraction of the solid.
+  static constexpr double RefillAbove = 0.5;
   /// Redraws tried at most per run, and blocks tried per round (each twice).
   static constexpr int RedrawBudget = 96, RedrawBlocks = 8;
   /// Empties every connected solid part holding one of @p vertices; returns how many.

@@ -6,6 +6,7 @@
 #include "Core/Index.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 namespace msynth
@@ -15,93 +16,154 @@ namespace detail
 
 namespace
 {
+using Proportioned = ConstraintPlan::Proportioned;
+
 /// Whether @p a is nearer the targets than @p b: the largest relative deviation, then the sum.
-bool Nearer(const ConstraintPlan::Proportioned& a, const ConstraintPlan::Proportioned& b)
+bool Nearer(const Proportioned& a, const Proportioned& b)
 {
   return a.Worst < b.Worst - 1e-12 || (a.Worst <= b.Worst + 1e-12 && a.Sum < b.Sum - 1e-12);
 }
+
+/// The rounds of redraws of one run: the model, the shares its emptying would leave, the tally.
+struct RedrawRun
+{
+  const ConstraintPlan& Plan;
+  std::vector<std::int32_t>& Labels;
+  const int EmptyLabel;
+  const unsigned Threads;
+  const ConstraintPlan::BlockRedraw& Blocks;
+  ConstraintPlan::Redrawn Out;
+  Proportioned Now;
+  std::vector<std::int32_t> Scratch, Kept;
+  std::vector<std::pair<double, std::int64_t>> Ranked;
+
+  /// The shares the emptying of whole parts would leave (on a copy: the model keeps its parts).
+  Proportioned Assess()
+  {
+    this->Scratch = this->Labels;
+    return this->Plan.KeepProportionateParts(this->Scratch, this->EmptyLabel, this->Threads);
+  }
+
+  /// Redraws block @p b (generator key @p key) and keeps it when @p better(trial, now).
+  template <typename Better>
+  bool Try(std::int64_t b, std::uint64_t key, const Better& better)
+  {
+    ++this->Out.Tried;
+    this->Kept = this->Labels;
+    if (!this->Blocks.Redraw(b, key))
+      return false;
+    const std::array<std::int64_t, 3> emptied = this->Blocks.Clean();
+    const Proportioned trial = this->Assess();
+    if (!better(trial, this->Now))
+    {
+      this->Labels.swap(this->Kept);
+      return false;
+    }
+    this->Now = trial;
+    ++this->Out.Blocks;
+    for (std::size_t i = 0; i < emptied.size(); ++i)
+      this->Out.Parts[i] += emptied[i];
+    return true;
+  }
+
+  /// Rounds over the blocks ranked by @p rank (smaller first, ties: the first block; a block
+  /// ranked at infinity is not tried) while @p go, each round ending at its first kept redraw.
+  template <typename Go, typename Rank, typename Better>
+  void Rounds(std::uint64_t phase, const Go& go, const Rank& rank, const Better& better)
+  {
+    const auto blocks = static_cast<std::uint64_t>(this->Blocks.Blocks);
+    for (std::uint64_t round = 0; go() && this->Out.Tried < ConstraintPlan::RedrawBudget; ++round)
+    {
+      this->Ranked.clear();
+      for (std::int64_t b = 0; b < this->Blocks.Blocks; ++b)
+      {
+        const double r = rank(this->Blocks.Vertices(b));
+        if (r < std::numeric_limits<double>::infinity())
+          this->Ranked.emplace_back(r, b);
+      }
+      std::sort(this->Ranked.begin(), this->Ranked.end());
+      bool done = false;
+      for (std::size_t k = 0;
+           k < this->Ranked.size() && k < ToIndex(ConstraintPlan::RedrawBlocks) && !done; ++k)
+      {
+        for (std::uint64_t attempt = 0;
+             attempt < 2 && !done && this->Out.Tried < ConstraintPlan::RedrawBudget; ++attempt)
+        {
+          if (this->Blocks.Stopped())
+            return;
+          const std::int64_t b = this->Ranked[k].second;
+          const std::uint64_t place = round * blocks + static_cast<std::uint64_t>(b);
+          done = this->Try(b, (phase << 63) | (place * 2 + attempt), better);
+        }
+      }
+      if (!done)
+        return;
+    }
+  }
+};
 } // namespace
 
 ConstraintPlan::Redrawn ConstraintPlan::RedrawForProportions(std::vector<std::int32_t>& labels,
   int emptyLabel, unsigned threads, const BlockRedraw& blocks) const
 {
-  Redrawn out;
   if (!this->Proportions || !this->GuideWeights.empty() || blocks.Blocks < 2)
-    return out;
-  // The shares the emptying of whole parts would leave (on a copy: the model keeps its parts).
-  std::vector<std::int32_t> scratch;
-  const auto assess = [&]()
-  {
-    scratch = labels;
-    return this->KeepProportionateParts(scratch, emptyLabel, threads);
-  };
-  Proportioned now = assess();
-  if (now.Worst <= ProportionTolerance)
-    return out; // emptying parts suffices: the model is left as it is
+    return Redrawn();
+  RedrawRun run{ *this, labels, emptyLabel, threads, blocks, {}, {}, {}, {}, {} };
+  run.Now = run.Assess();
   const std::size_t nt = this->Types.size();
-  std::vector<std::int32_t> kept;
-  std::vector<std::pair<double, std::int64_t>> rank;
-  for (std::uint64_t round = 0; now.Worst > RedrawTarget && out.Tried < RedrawBudget; ++round)
+  if (run.Now.Worst > ProportionTolerance)
   {
-    // The type furthest above its target, and the blocks holding most of it (ties: the first).
+    // Shares out of reach of the emptying: the blocks holding most of the type furthest above
+    // its target are redrawn, kept when the shares left come nearer the targets.
     int excess = -1;
-    double most = 0;
-    for (std::size_t t = 1; t < nt && t < now.Shares.size(); ++t)
+    const auto go = [&]()
     {
-      const double target = this->Target[t];
-      const double above = target > 0 ? now.Shares[t] / target - 1 : now.Shares[t];
-      if (above > most)
+      excess = -1;
+      double most = 0;
+      for (std::size_t t = 1; t < nt && t < run.Now.Shares.size(); ++t)
       {
-        most = above;
-        excess = static_cast<int>(t);
+        const double target = this->Target[t];
+        const double above = target > 0 ? run.Now.Shares[t] / target - 1 : run.Now.Shares[t];
+        if (above > most)
+        {
+          most = above;
+          excess = static_cast<int>(t);
+        }
       }
-    }
-    if (excess < 0)
-      break;
-    rank.clear();
-    for (std::int64_t b = 0; b < blocks.Blocks; ++b)
+      return run.Now.Worst > RedrawTarget && excess >= 0;
+    };
+    const auto holding = [&](const std::vector<std::int64_t>& vertices)
     {
       double held = 0;
-      for (const std::int64_t v : blocks.Vertices(b))
+      for (const std::int64_t v : vertices)
         held += this->Occupancy(labels[ToIndex(v)], excess);
-      if (held > 0)
-        rank.emplace_back(-held, b);
-    }
-    std::sort(rank.begin(), rank.end());
-    bool better = false;
-    for (std::size_t k = 0; k < rank.size() && k < ToIndex(RedrawBlocks) && !better; ++k)
-    {
-      for (std::uint64_t attempt = 0; attempt < 2 && !better && out.Tried < RedrawBudget; ++attempt)
-      {
-        if (blocks.Stopped())
-          return out;
-        ++out.Tried;
-        kept = labels;
-        const std::int64_t b = rank[k].second;
-        const std::uint64_t place =
-          round * static_cast<std::uint64_t>(blocks.Blocks) + static_cast<std::uint64_t>(b);
-        if (!blocks.Redraw(b, place * 2 + attempt))
-          continue;
-        const std::array<std::int64_t, 3> emptied = blocks.Clean();
-        const Proportioned trial = assess();
-        if (Nearer(trial, now))
-        {
-          now = trial;
-          better = true;
-          ++out.Blocks;
-          for (std::size_t i = 0; i < emptied.size(); ++i)
-            out.Parts[i] += emptied[i];
-        }
-        else
-        {
-          labels.swap(kept);
-        }
-      }
-    }
-    if (!better)
-      break;
+      return held > 0 ? -held : std::numeric_limits<double>::infinity();
+    };
+    run.Rounds(0, go, holding, Nearer);
   }
-  return out;
+  if (run.Now.Worst <= RedrawTarget)
+  {
+    // Shares within reach, but the emptying would leave much of the box bare: the blocks holding
+    // least solid (on the ground, when grounded) are redrawn, kept when the emptying then keeps
+    // more solid with every share still within RedrawTarget.
+    const auto bare = [&](const std::vector<std::int64_t>& vertices)
+    {
+      double held = 0;
+      bool ground = !this->Constraints.Grounded;
+      for (const std::int64_t v : vertices)
+      {
+        ground = ground || this->OnGround(v);
+        for (std::size_t t = 1; t < nt; ++t)
+          held += this->Occupancy(labels[ToIndex(v)], static_cast<int>(t));
+      }
+      return ground ? held : std::numeric_limits<double>::infinity();
+    };
+    run.Rounds(
+      1, [&]() { return run.Now.VolumeRemoved > RefillAbove; }, bare,
+      [](const Proportioned& trial, const Proportioned& now)
+      { return trial.Worst <= RedrawTarget && trial.Kept > now.Kept * (1 + 1e-9); });
+  }
+  return run.Out;
 }
 
 } // namespace detail
