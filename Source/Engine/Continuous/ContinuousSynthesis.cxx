@@ -194,7 +194,7 @@ public:
     return this->Plan->EmptyPartsAt(this->Result.Labels, this->Rules.EmptyLabel(),
       this->Rules.NarrowCorners(this->Result.Labels));
   }
-  /// Redraws blocks where emptying parts cannot keep the proportions (RedrawForProportions).
+  /// Redraws blocks before the emptying of parts for the proportions (RedrawForProportions).
   detail::ConstraintPlan::Redrawn RedrawForProportions(BlockDriver& driver)
   {
     detail::ConstraintPlan::BlockRedraw hooks;

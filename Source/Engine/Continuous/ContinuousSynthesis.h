@@ -132,7 +132,8 @@ struct ContinuousSynthesisResult
   double ProportionVolumeRemoved = 0;
   std::string ProportionsOutside;
   /// Proportions steered: blocks synthesized again and kept where emptying whole parts could
-  /// not bring the shares within the tolerance (ConstraintPlan::RedrawForProportions).
+  /// not bring the shares within the tolerance, or would empty more than half of the solid
+  /// (ConstraintPlan::RedrawForProportions).
   std::int64_t ProportionBlocksRedrawn = 0;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).

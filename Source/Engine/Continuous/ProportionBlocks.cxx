@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Proportions that hold below the level of a part (issue 29): where emptying whole parts cannot
-// bring the object types' shares within the tolerance, blocks of the model are synthesized again
-// (the rest fixed) and a redraw is kept when it brings the shares nearer the targets.
+// bring the object types' shares within the tolerance, or would leave most of the box bare,
+// blocks of the model are synthesized again (the rest fixed) and a redraw is kept when it brings
+// the shares nearer the targets, or keeps more solid in proportion.
 #include "Continuous/ConstraintPlan.h"
 #include "Core/Index.h"
 
