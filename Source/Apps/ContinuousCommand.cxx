@@ -107,6 +107,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     // Proportions: parts emptied to keep the types' shares, and the types still outside 25 %.
     .Count("ProportionPartsRemoved", CountOf(fd, "ProportionPartsRemoved"))
     .Number("ProportionVolumeRemoved", NumberOf(fd, "ProportionVolumeRemoved"))
+    .Count("ProportionBlocksRedrawn", CountOf(fd, "ProportionBlocksRedrawn"))
     .Text("ProportionsOutside", MessageOf(fd, "ProportionsOutside"))
     .Count("ModelCandidates", o.Models)
     .Count("ModelChosen", CountOf(fd, "ModelChosen"))

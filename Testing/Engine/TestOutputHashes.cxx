@@ -252,7 +252,7 @@ TEST(OutputHashes, TimeVaryingAndContinuous)
       Hash(SynthesizeContinuous(a, larger, phased).Labels);
   }
   const std::map<std::string, std::string> expected = {
-    { "continuous house, blocks", "0f25bc784b163e3c" },
+    { "continuous house, blocks", "563513aa0e02963b" },
     { "continuous house, blocks, uniform", "9a403552fe60dd2b" },
     { "continuous house, grounded, walls one spacing high", "85ae7bd83af329ac" },
     { "continuous house, grounded, blocks in phases", "e3cc41e42fda359c" },

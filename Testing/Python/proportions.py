@@ -161,7 +161,8 @@ def main(argv):
     parser.add_argument("--json", help="also write the rows as JSON here")
     args = parser.parse_args(argv)
     rows, bad = [], 0
-    print("%-15s %-11s %4s %6s  %s" % ("example", "constraints", "seed", "sec", "shares (example)"))
+    print("%-15s %-11s %4s %6s %7s %7s  %s" % ("example", "constraints", "seed", "sec", "emptied",
+                                                "redrawn", "shares (example)"))
     for name in args.examples.split(","):
         _, _, small, full = EXAMPLES[name]
         size = small if args.size == ["small"] else full if args.size == ["full"] else \
@@ -178,15 +179,31 @@ def main(argv):
                 cells = ["%s %.2f (%.2f)%s" % (names.get(t, t), got.get(t, 0.0), want,
                                                " FAIL" if t in wrong else "")
                          for t, want in sorted(target.items())]
-                print("%-15s %-11s %4d %6.2f  %s" % (name, "documented" if constrained else "grounded",
-                                                     seed, seconds, ", ".join(cells)))
+                emptied = stats.get("ProportionVolumeRemoved", 0.0)
+                redrawn = stats.get("ProportionBlocksRedrawn", 0)
+                print("%-15s %-11s %4d %6.2f %7.2f %7d  %s" % (
+                    name, "documented" if constrained else "grounded", seed, seconds, emptied,
+                    redrawn, ", ".join(cells)))
                 rows.append({"example": name, "constrained": constrained, "seed": seed,
                              "size": list(size), "seconds": seconds,
                              "shares": {names.get(t, str(t)): got.get(t, 0.0) for t in target},
                              "targets": {names.get(t, str(t)): w for t, w in target.items()},
                              "failed": [names.get(t, str(t)) for t in wrong],
+                             "emptied": emptied, "redrawn": redrawn,
                              "unsteered": stats.get("UnsteeredTypes", "")})
                 sys.stdout.flush()
+    print("%-15s %-11s %6s %8s %8s %8s" % ("example", "constraints", "within", "emptied",
+                                           "redrawn", "sec/run"))
+    for name in args.examples.split(","):
+        for constrained in (False, True):
+            cell = [r for r in rows if r["example"] == name and r["constrained"] == constrained]
+            if cell:
+                print("%-15s %-11s %3d/%-2d %8.2f %8.1f %8.2f" % (
+                    name, "documented" if constrained else "grounded",
+                    sum(1 for r in cell if not r["failed"]), len(cell),
+                    sum(r["emptied"] for r in cell) / len(cell),
+                    sum(r["redrawn"] for r in cell) / len(cell),
+                    sum(r["seconds"] for r in cell) / len(cell)))
     print("%d of %d runs within %d %% on every type" %
           (sum(1 for r in rows if not r["failed"]), len(rows), round(TOLERANCE * 100)))
     if args.json:

@@ -10,6 +10,7 @@ the solver.
 The full sizes are the benchmark (Testing/Benchmarks/proportions.sh)."""
 import os
 import re
+import subprocess
 import unittest
 
 import proportions as p
@@ -19,16 +20,20 @@ from msynth_testing import tmp
 # seeds 1-2, which keeps the test within its time there.
 SEEDS = range(1, 3) if os.environ.get("MSYNTH_SANITIZED") else range(1, 6)
 # (example, with its documented constraints) whose every run keeps every share within 25 %.
+# Every cell: where emptying whole parts cannot keep the shares (one building whose dome
+# outgrew its storey walls; a town whose roads join every building into one part) or would
+# leave most of the box bare, blocks are synthesized again (statistics.json's
+# ProportionBlocksRedrawn; each such model checked against Eq. 4.1 by `msynth check`).
 HOLDS = {("house", False), ("house", True), ("box-building", False), ("box-building", True),
-         ("domed-building", False), ("cottage", False), ("cottage", True), ("town", True)}
-# The rest is measured and reported, not yet held (Documentation/continuous-synthesis.md,
-# "Limits"): the domed building with storeys (one building whose dome outgrows its walls), the
-# grounded town (3 of 5).
+         ("domed-building", False), ("domed-building", True), ("cottage", False),
+         ("cottage", True), ("town", False), ("town", True)}
 
 
 class ProportionsMatrix(unittest.TestCase):
     def check(self, name, constrained, seeds=SEEDS):
+        """Returns how many runs redrew blocks."""
         size = p.EXAMPLES[name][2]
+        redrawn = 0
         for seed in seeds:
             out = tmp("proportions-%s-%d-%d" % (name, int(constrained), seed))
             target, got, stats, _, names = p.run(name, size, seed, constrained, out, threads=1)
@@ -46,6 +51,16 @@ class ProportionsMatrix(unittest.TestCase):
             inside = {t for t in target if abs(got.get(t, 0) / target[t] - 1) < p.TOLERANCE - 0.02}
             self.assertFalse(inside & reported, where + "; reported: " + stats["ProportionsOutside"])
             self.assertGreaterEqual(stats["ProportionPartsRemoved"], 0)
+            self.assertGreaterEqual(stats["ProportionBlocksRedrawn"], 0)
+            if stats["ProportionBlocksRedrawn"] > 0:
+                # Redrawn blocks keep the model consistent: Eq. 4.1 checked on the mesh alone.
+                done = subprocess.run(
+                    [os.path.join(os.environ["MSYNTH_BIN"], "msynth"), "check",
+                     os.path.join(os.environ["MSYNTH_DATA"], "Continuous", p.EXAMPLES[name][0]),
+                     os.path.join(out, "model.vtp")], capture_output=True, text=True)
+                self.assertEqual(done.returncode, 0, where + ": " + done.stdout + done.stderr)
+                redrawn += 1
+        return redrawn
 
     def test_house(self):
         self.check("house", False)
@@ -57,7 +72,8 @@ class ProportionsMatrix(unittest.TestCase):
 
     def test_domed_building(self):
         self.check("domed-building", False)
-        self.check("domed-building", True)
+        # Seed 3 holds one building whose dome outgrew its storey walls: no part can be emptied.
+        self.assertGreaterEqual(self.check("domed-building", True), int(3 in SEEDS))
 
     def test_cottage(self):
         """Both hold in every seed. The documented run has blocks of 8 spacings: in the default
@@ -66,17 +82,17 @@ class ProportionsMatrix(unittest.TestCase):
         self.check("cottage", False)
         self.check("cottage", True)
 
-    def test_town_reports_what_falls_short(self):
-        """Seeds 1-5 (about 5 s a run): the documented runs hold; grounded, the report is true
-        (3 of 5 hold)."""
-        self.check("town", False)
+    def test_town(self):
+        """Seeds 1-5 (about 5 s a run): both hold; grounded, seeds 2 and 4 carried too much shop,
+        or road and shop roof, until blocks were redrawn (a part holds several types: roads join
+        the buildings)."""
+        self.assertGreaterEqual(self.check("town", False), int(4 in SEEDS))  # seeds 2 and 4
         self.check("town", True)
 
     def test_a_guide_keeps_every_part(self):
         """A guide that spells letters with 0/1 masks asks for houses in places: no part is
         emptied for the proportions (they emptied 72 of 74 parts once, a blank picture)."""
         import json
-        import subprocess
         out = tmp("proportions-guide")
         done = subprocess.run([os.path.join(os.environ["MSYNTH_BIN"], "msynth"), "synthesize",
                                os.path.join(os.environ["MSYNTH_DATA"], "Continuous", "house.obj"),

@@ -6,6 +6,7 @@
 #include "Continuous/ContinuousConstraints.h"
 #include "Core/Index.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -113,10 +114,14 @@ public:
   static constexpr double ProportionMargin = 0.04;
   struct Proportioned
   {
-    std::int64_t Removed = 0; ///< parts emptied
-    double VolumeRemoved = 0; ///< the fraction of the solid volume they held (no cap)
-    std::vector<int> Outside; ///< object types still further than ProportionTolerance
-    std::string Reason;       ///< per such type, its share, the example's, and why
+    std::int64_t Removed = 0;   ///< parts emptied
+    double VolumeRemoved = 0;   ///< the fraction of the solid volume they held (no cap)
+    std::vector<int> Outside;   ///< object types still further than ProportionTolerance
+    std::string Reason;         ///< per such type, its share, the example's, and why
+    std::vector<double> Shares; ///< per type bit: its share of the solid volume left
+    double Worst = 0;           ///< the largest relative deviation of a share from its target
+    double Sum = 0;             ///< the relative deviations added up
+    double Kept = 0;            ///< the solid volume left
   };
   /**
    * With proportions steered (and no guide, which asks for types in places, masks included):
@@ -129,6 +134,52 @@ public:
    */
   Proportioned KeepProportionateParts(
     std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads) const;
+  /// What RedrawForProportions needs of the solver.
+  struct BlockRedraw
+  {
+    std::int64_t Blocks = 0; ///< the blocks of the layout
+    /// The vertices of a block, ascending.
+    std::function<std::vector<std::int64_t>(std::int64_t)> Vertices;
+    /// Labels a block of the model again (the rest fixed), drawing from a generator keyed by
+    /// the second argument; false when every attempt failed (the model then unchanged).
+    std::function<bool(std::int64_t, std::uint64_t)> Redraw;
+    /// Empties the stray and narrow parts of the model, as after the blocks; returns how many:
+    /// floating, beyond the seeds, narrow.
+    std::function<std::array<std::int64_t, 3>()> Clean;
+    std::function<bool()> Stopped; ///< the run is being cancelled
+  };
+  struct Redrawn
+  {
+    std::int64_t Blocks = 0;             ///< redrawn blocks kept
+    std::int64_t Tried = 0;              ///< redraws tried
+    std::array<std::int64_t, 3> Parts{}; ///< parts Clean emptied after the kept ones
+  };
+  /**
+   * Redraws blocks of the model (below the level of a part) where emptying whole parts
+   * (KeepProportionateParts, which follows) cannot do well alone. First, when the emptying would
+   * still leave a type further than ProportionTolerance from its target (a part that holds every
+   * type; one building whose dome outgrew its storey walls): the blocks holding most of the type
+   * furthest above its target (by vertex occupancy) are redrawn, and a redraw is kept when the
+   * shares the emptying would then leave come nearer the targets (the largest relative
+   * deviation, then their sum), until they are within RedrawTarget or no tried block improves.
+   * Then, while the shares are within RedrawTarget but the emptying would remove more than
+   * RefillAbove of the solid: the blocks holding least solid (with a ground vertex, when
+   * grounded) are redrawn, kept when the emptying then keeps more solid volume with every share
+   * still within RedrawTarget. Each round tries the first RedrawBlocks blocks twice and ends at
+   * its first kept redraw; RedrawBudget redraws at most. A redraw is one attempt of the block
+   * solver, the rest fixed, the draw steered by the model's shares: consistent, and
+   * deterministic (keys: the phase, round, block and attempt). @p labels is the model the hooks
+   * act on.
+   */
+  Redrawn RedrawForProportions(std::vector<std::int32_t>& labels, int emptyLabel, unsigned threads,
+    const BlockRedraw& blocks) const;
+  /// RedrawForProportions stops once every share left is this near its target.
+  static constexpr double RedrawTarget = 0.2;
+  /// RedrawForProportions fills bare ground again while the emptying would remove more than this
+  /// fraction of the solid.
+  static constexpr double RefillAbove = 0.5;
+  /// Redraws tried at most per run, and blocks tried per round (each twice).
+  static constexpr int RedrawBudget = 96, RedrawBlocks = 8;
   /// Empties every connected solid part holding one of @p vertices; returns how many.
   std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
     const std::vector<std::int64_t>& vertices) const;

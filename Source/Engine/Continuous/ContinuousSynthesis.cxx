@@ -12,6 +12,7 @@
 #include "Core/Random.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -192,6 +193,33 @@ public:
   {
     return this->Plan->EmptyPartsAt(this->Result.Labels, this->Rules.EmptyLabel(),
       this->Rules.NarrowCorners(this->Result.Labels));
+  }
+  /// Redraws blocks before the emptying of parts for the proportions (RedrawForProportions).
+  detail::ConstraintPlan::Redrawn RedrawForProportions(BlockDriver& driver)
+  {
+    detail::ConstraintPlan::BlockRedraw hooks;
+    hooks.Blocks = this->Whole ? 1 : this->Layout->NumberOfBlocks();
+    hooks.Vertices = [this](std::int64_t b) { return this->Layout->Vertices(b); };
+    hooks.Redraw = [this, &driver](std::int64_t b, std::uint64_t key)
+    {
+      std::fill(this->Tally.begin(), this->Tally.end(), 0.0); // the model's shares steer
+      for (const std::int32_t label : this->Result.Labels)
+        this->AddShares(this->Tally, label, 1);
+      this->Enter(b);
+      Random rng = Random::Derived(this->Options.Seed, key, 0x70726f70); // "prop"
+      std::int64_t assignments = 0;
+      std::vector<double> tally;
+      return this->Attempt(b, rng, driver, assignments, tally) < 0;
+    };
+    hooks.Clean = [this]()
+    {
+      const auto stray = this->RemoveStrayParts();
+      return std::array<std::int64_t, 3>{ { stray.Floating, stray.BeyondSeeds,
+        this->RemoveNarrowParts() } };
+    };
+    hooks.Stopped = [&driver]() { return driver.Stopped(0); };
+    return this->Plan->RedrawForProportions(this->Result.Labels, this->Rules.EmptyLabel(),
+      static_cast<unsigned>(std::max(0, this->Options.Threads)), hooks);
   }
 
   bool WholeModel() const { return this->Whole; }
@@ -734,6 +762,14 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.PartsBeyondSeedsRemoved = removed.BeyondSeeds;
   result.NarrowPartsRemoved = run.RemoveNarrowParts();
   // Not on the half of a mirrored model (its seam edges are free until it is reflected).
+  if (options.PartOf.empty())
+  {
+    const auto redrawn = run.RedrawForProportions(driver);
+    result.ProportionBlocksRedrawn = redrawn.Blocks;
+    result.FloatingPartsRemoved += redrawn.Parts[0];
+    result.PartsBeyondSeedsRemoved += redrawn.Parts[1];
+    result.NarrowPartsRemoved += redrawn.Parts[2];
+  }
   const auto proportioned =
     options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
   result.ProportionPartsRemoved = proportioned.Removed;
@@ -747,6 +783,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (result.NarrowPartsRemoved > 0)
     result.Message += ", " + std::to_string(result.NarrowPartsRemoved) +
       " parts emptied for features under a tenth of a spacing";
+  if (result.ProportionBlocksRedrawn > 0)
+    result.Message += ", " + std::to_string(result.ProportionBlocksRedrawn) +
+      " blocks redrawn for the types' proportions";
   if (proportioned.Removed > 0)
     result.Message +=
       ", " + std::to_string(proportioned.Removed) + " parts emptied for the types' proportions";

@@ -131,6 +131,10 @@ struct ContinuousSynthesisResult
   /// The fraction of the solid volume those parts held (uncapped; see continuous-synthesis.md).
   double ProportionVolumeRemoved = 0;
   std::string ProportionsOutside;
+  /// Proportions steered: blocks synthesized again and kept where emptying whole parts could
+  /// not bring the shares within the tolerance, or would empty more than half of the solid
+  /// (ConstraintPlan::RedrawForProportions).
+  std::int64_t ProportionBlocksRedrawn = 0;
   /// Connectivity of every solid type from seeds: smaller parts beyond the seeds' count, emptied
   /// (with blocks, a later block can split a grown part).
   std::int64_t PartsBeyondSeedsRemoved = 0;

@@ -165,6 +165,12 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
                  "adjacency constraint, and emptying parts cannot add it");
   }
   out.Reason = why.str();
+  out.Worst = now.Worst;
+  out.Sum = now.Sum;
+  out.Kept = solid;
+  out.Shares.assign(nt, 0.0);
+  for (std::size_t t = 1; t < nt && solid > 0; ++t)
+    out.Shares[t] = total[t] / solid;
   return out;
 }
 

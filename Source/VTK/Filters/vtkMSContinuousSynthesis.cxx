@@ -382,6 +382,8 @@ void vtkMSContinuousSynthesis::FillOutput(
     fields, "ProportionPartsRemoved", static_cast<vtkIdType>(result.ProportionPartsRemoved));
   vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
     fields, "ProportionVolumeRemoved", result.ProportionVolumeRemoved);
+  vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+    fields, "ProportionBlocksRedrawn", static_cast<vtkIdType>(result.ProportionBlocksRedrawn));
   vtkMSFieldData::AddFieldValue<vtkStringArray>(
     fields, "ProportionsOutside", result.ProportionsOutside);
   for (const auto& [type, share] : m.TypeShares)

@@ -27,8 +27,10 @@
  * parts emptied because a corner came within a tenth of the smallest spacing of another plane's
  * face, edge or corner (no slivers), and with proportions steered `ProportionPartsRemoved`
  * (solid parts emptied to bring the types' shares within 25 % of the example's),
- * `ProportionVolumeRemoved` (the fraction of the solid volume they held) and
- * `ProportionsOutside` (the types still outside, their shares and why; empty when none).
+ * `ProportionVolumeRemoved` (the fraction of the solid volume they held),
+ * `ProportionBlocksRedrawn` (blocks synthesized again where emptying parts could not keep the
+ * shares or would empty more than half of the solid) and `ProportionsOutside` (the types still
+ * outside, their shares and why; empty when none).
  *
  * Whole-model synthesis (BlockSize 0) that fails in every attempt is an error; with blocks, the
  * model starts empty and a block that fails in every attempt is left as it was.
