@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Continuous/ContinuousSynthesis.h"
 
-#include "Core/BlockDriver.h"
-#include "Core/Error.h"
-#include "Core/ParallelChunks.h"
-
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMirror.h"
 #include "Continuous/SolverParts.h"
+#include "Core/BlockDriver.h"
+#include "Core/Error.h"
 #include "Core/Index.h"
+#include "Core/ParallelChunks.h"
 #include "Core/Random.h"
 
 #include <algorithm>
@@ -16,15 +15,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <memory>
 #include <numeric>
-#include <set>
-#include <tuple>
 
 namespace msynth
 {
-
 namespace
 {
 /// A double's bits as an integer for the block exchange, and back.
@@ -720,11 +715,9 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     return SynthesizeMirrored(analysis, arrangement, options);
   const auto start = std::chrono::steady_clock::now();
   if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))
-  {
     throw Error("continuous synthesis: the block size is measured in plane spacings and must be "
                 "0 (the whole model at once) or at least 1, not " +
       std::to_string(options.BlockSize));
-  }
   if (options.Attempts < 1)
     throw Error("continuous synthesis: at least one attempt is needed");
   ContinuousSynthesisResult result;
@@ -769,6 +762,13 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     result.FloatingPartsRemoved += redrawn.Parts[0];
     result.PartsBeyondSeedsRemoved += redrawn.Parts[1];
     result.NarrowPartsRemoved += redrawn.Parts[2];
+    if (driver.Stopped(0)) // cancelled among the redraws: no model, as within the blocks
+    {
+      result.Status = SynthesisStatus::Cancelled;
+      result.Message = "cancelled";
+      run.EmptyModel();
+      return result;
+    }
   }
   const auto proportioned =
     options.PartOf.empty() ? run.KeepProportions() : detail::ConstraintPlan::Proportioned();
