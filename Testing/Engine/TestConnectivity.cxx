@@ -335,4 +335,19 @@ TEST(Connectivity, AnImpossibleNetworkFailsWithOneLine)
       << r.Message;
     EXPECT_EQ(r.Message.find('\n'), std::string::npos);
   }
+  {
+    // With every attempt a box may take, the repairs run out of work first (at most 64 box
+    // attempts per component at the start): one line, not hours of boxes.
+    SynthesisOptions o;
+    o.Size = { { 16, 16, 1 } };
+    o.BlocksWhenWholeFails = false;
+    o.Connected.Values = { 0 };
+    o.Connected.Name = "0";
+    SynthesisResult r = Synthesize(rules, o);
+    EXPECT_FALSE(r.Succeeded());
+    EXPECT_NE(r.Message.find("the repairs stopped after"), std::string::npos) << r.Message;
+    const std::size_t at = r.Message.find("after ") + 6;
+    EXPECT_LE(std::stoll(r.Message.substr(at)), 64 * (1 + 128)) << r.Message;
+    EXPECT_EQ(r.Message.find('\n'), std::string::npos);
+  }
 }

@@ -26,6 +26,9 @@ using Shortfall = std::array<std::int64_t, 3>;
 struct Repair
 {
   static constexpr int SteeredAttempts = 3; ///< attempts of a box steered along a gap
+  /// The repairs' work is bounded (a network the rules cannot make ends in one line, not hours
+  /// later): at most this many box attempts per component and listed path site at the start.
+  static constexpr std::int64_t AttemptsPerPart = 64;
   BlockSolver& Solver;
   SharedModel& Shared;
   const NetworkRule& Rule;
@@ -41,6 +44,8 @@ struct Repair
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
   std::vector<char> PathPart;          ///< per component, whether it holds a path site
   Shortfall Now{ { 0, 0, 0 } };
+  std::int64_t Tried = 0;  ///< box attempts so far
+  std::int64_t MayTry = 0; ///< box attempts allowed (AttemptsPerPart)
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
     const SynthesisOptions& options, SynthesisStatistics& stats)
@@ -58,6 +63,8 @@ struct Repair
     const Coord n = solver.Size();
     for (const Coord& p : options.Connected.PathSites)
       this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
+    this->MayTry =
+      AttemptsPerPart * static_cast<std::int64_t>(1 + this->Parts.size() + this->PathSites.size());
     this->PathLabel.assign(ToIndex(rule.Labels()), 0);
     for (int b = 0; b < rule.Labels(); ++b)
       this->PathLabel[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
@@ -107,6 +114,9 @@ struct Repair
       this->Now[2] <= this->Options.Connected.Maximum;
   }
 
+  /// Whether the repairs have made all the box attempts they may (AttemptsPerPart).
+  bool OutOfWork() const { return this->Tried >= this->MayTry; }
+
   /**
    * The box [@p lo - @p grow, @p hi + @p grow] synthesized again, AttemptsPerBlock attempts
    * (each drawn with @p steer's weights when given, else every other one drawing the network's
@@ -137,6 +147,9 @@ struct Repair
                                : this->Options.AttemptsPerBlock;
     for (int attempt = 0; attempt < attempts; ++attempt)
     {
+      if (this->OutOfWork())
+        return false;
+      ++this->Tried;
       Random rng = Random::Derived(this->Options.Seed, static_cast<std::uint64_t>(box.Index),
         static_cast<std::uint64_t>(attempt) + (std::uint64_t(1) << 40));
       ++this->Stats.Attempts;
@@ -367,6 +380,8 @@ struct Repair
    */
   bool Fix(std::size_t c, bool toPath)
   {
+    if (this->OutOfWork())
+      return false;
     std::vector<std::vector<std::int64_t>> gaps =
       this->StraightGaps(static_cast<std::int32_t>(c), toPath);
     std::vector<std::int64_t> nearest;
@@ -400,6 +415,8 @@ struct Repair
   /// path sites joined to another such, else any component joined or removed (smallest first).
   bool Step()
   {
+    if (this->OutOfWork())
+      return false;
     for (std::int64_t s : this->PathSites)
       if (this->Ids[ToIndex(s)] == 0)
       {
@@ -427,11 +444,15 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
+    const std::string tried = this->OutOfWork()
+      ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
+        std::to_string(AttemptsPerPart) + " per component and path site at the start)"
+      : "no repair brought them nearer";
     if (this->Now[0] > 0 || this->Now[1] > 1)
       return name + " does not join the path: " +
         (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
                           : "its sites lie in " + std::to_string(this->Now[1]) + " components") +
-        ", and no repair brought them nearer. Try another seed, more attempts or nearer sites";
+        ", and " + tried + ". Try another seed, more attempts or nearer sites";
     std::size_t smallest = 0;
     for (std::size_t c = 1; c < this->Parts.size(); ++c)
       if (this->Parts[c].Sites < this->Parts[smallest].Sites)
@@ -439,8 +460,9 @@ struct Repair
     const Component& c = this->Parts[smallest];
     return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
-      ", and none could be joined to another or removed (the smallest: " + std::to_string(c.Sites) +
-      " sites at " + Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
+      (this->OutOfWork() ? ", and " + tried : ", and none could be joined to another or removed") +
+      " (the smallest: " + std::to_string(c.Sites) + " sites at " + Format(c.Low) +
+      "). Try another seed, more attempts or a larger maximum";
   }
 };
 } // namespace
