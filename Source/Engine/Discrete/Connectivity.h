@@ -17,7 +17,8 @@
  * (NetworkRepair.cxx): over gaps to other components, drawn steered along each gap (labels that
  * connect along it; the other sites keep theirs), then freely, then boxes around it (grown by
  * 1, 2, 4, ... sites), until a result has fewer components (it joined another or vanished); a
- * model left with more than Maximum fails.
+ * model left with more than Maximum fails, as does one whose repairs made 64 box attempts per
+ * component and path site they started with (the work is bounded).
  * With a path (ConnectedNetwork::PathSites, PathLabels) the repairs first bring each listed
  * site into the network (boxes around it), then join the components holding path sites (boxes
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in
