@@ -165,8 +165,9 @@ public:
    * Then, while the shares are within RedrawTarget but the emptying would remove more than
    * RefillAbove of the solid: the blocks holding least solid (with a ground vertex, when
    * grounded) are redrawn, kept when the emptying then keeps more solid volume with every share
-   * still within RedrawTarget. Each round tries the first RedrawBlocks blocks twice and ends at
-   * its first kept redraw; RedrawBudget redraws at most. A redraw is one attempt of the block
+   * still within RedrawTarget. Each round tries the first RedrawBlocks blocks (groups of blocks
+   * in a large model, RedrawGroup) twice and ends at its first kept redraw; RedrawBudget redraws
+   * at most. A redraw is one attempt of the block
    * solver, the rest fixed, the draw steered by the model's shares: consistent, and
    * deterministic (keys: the phase, round, block and attempt). @p labels is the model the hooks
    * act on.
@@ -180,6 +181,9 @@ public:
   static constexpr double RefillAbove = 0.5;
   /// Redraws tried at most per run, and blocks tried per round (each twice).
   static constexpr int RedrawBudget = 96, RedrawBlocks = 8;
+  /// A model of n ≥ RedrawGroupsFrom blocks redraws groups of n / RedrawGroup blocks at a time
+  /// (one block moves a large model's shares too little), a smaller one a block at a time.
+  static constexpr std::int64_t RedrawGroup = 100, RedrawGroupsFrom = 1000;
   /// Empties every connected solid part holding one of @p vertices; returns how many.
   std::int64_t EmptyPartsAt(std::vector<std::int32_t>& labels, int emptyLabel,
     const std::vector<std::int64_t>& vertices) const;

@@ -45,13 +45,17 @@ struct RedrawRun
     return this->Plan.KeepProportionateParts(this->Scratch, this->EmptyLabel, this->Threads);
   }
 
-  /// Redraws block @p b (generator key @p key) and keeps it when @p better(trial, now).
-  template <typename Better>
-  bool Try(std::int64_t b, std::uint64_t key, const Better& better)
+  /// Redraws the blocks @p group (generator keys @p key(b)) and keeps them when
+  /// @p better(trial, now), else restores the model.
+  template <typename Key, typename Better>
+  bool Try(const std::vector<std::int64_t>& group, const Key& key, const Better& better)
   {
     ++this->Out.Tried;
     this->Kept = this->Labels;
-    if (!this->Blocks.Redraw(b, key))
+    std::int64_t redrawn = 0;
+    for (const std::int64_t b : group)
+      redrawn += this->Blocks.Redraw(b, key(b)) ? 1 : 0;
+    if (redrawn == 0)
       return false;
     const std::array<std::int64_t, 3> emptied = this->Blocks.Clean();
     const Proportioned trial = this->Assess();
@@ -61,7 +65,7 @@ struct RedrawRun
       return false;
     }
     this->Now = trial;
-    ++this->Out.Blocks;
+    this->Out.Blocks += redrawn;
     for (std::size_t i = 0; i < emptied.size(); ++i)
       this->Out.Parts[i] += emptied[i];
     return true;
@@ -69,10 +73,16 @@ struct RedrawRun
 
   /// Rounds over the blocks ranked by @p rank (smaller first, ties: the first block; a block
   /// ranked at infinity is not tried) while @p go, each round ending at its first kept redraw.
+  /// A redraw is of one block, or in a model of many blocks of a group of the next ranked ones
+  /// (ConstraintPlan::RedrawGroup): one block moves a large model's shares too little.
   template <typename Go, typename Rank, typename Better>
   void Rounds(std::uint64_t phase, const Go& go, const Rank& rank, const Better& better)
   {
     const auto blocks = static_cast<std::uint64_t>(this->Blocks.Blocks);
+    const std::size_t size = this->Blocks.Blocks < ConstraintPlan::RedrawGroupsFrom
+      ? 1
+      : ToIndex(this->Blocks.Blocks / ConstraintPlan::RedrawGroup);
+    std::vector<std::int64_t> group;
     for (std::uint64_t round = 0; go() && this->Out.Tried < ConstraintPlan::RedrawBudget; ++round)
     {
       this->Ranked.clear();
@@ -85,16 +95,23 @@ struct RedrawRun
       std::sort(this->Ranked.begin(), this->Ranked.end());
       bool done = false;
       for (std::size_t k = 0;
-           k < this->Ranked.size() && k < ToIndex(ConstraintPlan::RedrawBlocks) && !done; ++k)
+           k * size < this->Ranked.size() && k < ToIndex(ConstraintPlan::RedrawBlocks) && !done;
+           ++k)
       {
+        group.clear();
+        for (std::size_t i = k * size; i < std::min(this->Ranked.size(), (k + 1) * size); ++i)
+          group.push_back(this->Ranked[i].second);
         for (std::uint64_t attempt = 0;
              attempt < 2 && !done && this->Out.Tried < ConstraintPlan::RedrawBudget; ++attempt)
         {
           if (this->Blocks.Stopped())
             return;
-          const std::int64_t b = this->Ranked[k].second;
-          const std::uint64_t place = round * blocks + static_cast<std::uint64_t>(b);
-          done = this->Try(b, (phase << 63) | (place * 2 + attempt), better);
+          const auto key = [&](std::int64_t b)
+          {
+            const std::uint64_t place = round * blocks + static_cast<std::uint64_t>(b);
+            return (phase << 63) | (place * 2 + attempt);
+          };
+          done = this->Try(group, key, better);
         }
       }
       if (!done)
