@@ -461,8 +461,8 @@ struct Repair
     return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
       (this->OutOfWork() ? ", and " + tried : ", and none could be joined to another or removed") +
-      " (the smallest: " + std::to_string(c.Sites) + " sites at " + Format(c.Low) +
-      "). Try another seed, more attempts or a larger maximum";
+      " (the smallest: " + std::to_string(c.Sites) + (c.Sites == 1 ? " site at " : " sites at ") +
+      Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
   }
 };
 } // namespace
