@@ -141,10 +141,13 @@ NetworkGuard::NetworkGuard(
     indices = std::max(indices, b.Index + 1);
   this->Position.assign(ToIndex(indices), -1);
   this->OwnerPosition.assign(ToIndex(n[0] * n[1] * n[2]), -1);
+  this->VisitCall.assign(ToIndex(n[0] * n[1] * n[2]), 0);
+  this->VisitFlood.assign(ToIndex(n[0] * n[1] * n[2]), 0);
   for (std::size_t i = 0; i < blocks.size(); ++i) // in run order: the last to cover a site owns it
   {
     const Block& b = blocks[i];
     this->Position[ToIndex(b.Index)] = static_cast<std::int32_t>(i);
+    this->Blocks.push_back(b);
     ForEachSite(
       b, n, [&](std::size_t s) { this->OwnerPosition[s] = static_cast<std::int32_t>(i); });
   }
@@ -246,11 +249,144 @@ bool NetworkGuard::KeepsOpen(
   return true;
 }
 
+template <class LabelFn, class OpenFn>
+std::int64_t NetworkGuard::ClosedAround(const Block& block, LabelFn&& label, OpenFn&& isOpen)
+{
+  // Floods from the network's sites in the block and from those facing it through a connecting
+  // side; a flood ends as soon as it meets an open site (or a site an open flood saw): only the
+  // closed-off components are walked whole.
+  const Coord& n = this->N;
+  const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+  if (++this->Call == 0) // wrapped: forget every mark
+  {
+    std::fill(this->VisitCall.begin(), this->VisitCall.end(), 0);
+    this->Call = 1;
+  }
+  const std::uint32_t call = this->Call;
+  std::vector<char> floodOpen;
+  std::vector<std::int64_t> stack;
+  std::int64_t closed = 0;
+  auto flood = [&](std::int64_t first)
+  {
+    if (this->VisitCall[ToIndex(first)] == call)
+      return;
+    const auto id = static_cast<std::int32_t>(floodOpen.size());
+    floodOpen.push_back(0);
+    this->VisitCall[ToIndex(first)] = call;
+    this->VisitFlood[ToIndex(first)] = id;
+    stack.assign(1, first);
+    bool open = false;
+    while (!stack.empty() && !open)
+    {
+      const std::int64_t s = stack.back();
+      stack.pop_back();
+      open = isOpen(s);
+      const int sides = this->Rule.Sides(label(s));
+      for (int d = 0; d < 6 && !open; ++d)
+      {
+        const std::size_t a = ToIndex(d / 2);
+        const std::int64_t along = (s / stride[a]) % n[a];
+        if (!((sides >> d) & 1) || (d % 2 == 0 ? along + 1 >= n[a] : along == 0))
+          continue;
+        const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
+        if (isOpen(q))
+        {
+          open = true; // the side faces a site still to be written
+          break;
+        }
+        const int other = this->Rule.Sides(label(q));
+        if (other < 0 || !((other >> (d ^ 1)) & 1))
+          continue;
+        if (this->VisitCall[ToIndex(q)] == call)
+        {
+          open = open || floodOpen[ToIndex(this->VisitFlood[ToIndex(q)])] != 0;
+          continue; // its own flood's site, or an open flood's (a closed flood is whole)
+        }
+        this->VisitCall[ToIndex(q)] = call;
+        this->VisitFlood[ToIndex(q)] = id;
+        stack.push_back(q);
+      }
+    }
+    floodOpen[ToIndex(id)] = open ? 1 : 0;
+    closed += open ? 0 : 1;
+  };
+  const Coord& o = block.Origin;
+  for (std::int64_t z = std::max<std::int64_t>(0, o[2] - 1);
+       z < std::min(n[2], o[2] + block.Dims[2] + 1); ++z)
+    for (std::int64_t y = std::max<std::int64_t>(0, o[1] - 1);
+         y < std::min(n[1], o[1] + block.Dims[1] + 1); ++y)
+      for (std::int64_t x = std::max<std::int64_t>(0, o[0] - 1);
+           x < std::min(n[0], o[0] + block.Dims[0] + 1); ++x)
+      {
+        const std::int64_t s = x + n[0] * (y + n[1] * z);
+        const int sides = this->Rule.Sides(label(s));
+        if (sides < 0)
+          continue;
+        const Coord p{ { x, y, z } };
+        bool touches = true;
+        for (std::size_t a = 0; a < 3; ++a)
+          touches = touches && p[a] >= o[a] && p[a] < o[a] + block.Dims[a];
+        for (int d = 0; d < 6 && !touches; ++d) // a ring site: does a connecting side face in?
+        {
+          const std::size_t a = ToIndex(d / 2);
+          Coord q = p;
+          q[a] += d % 2 == 0 ? 1 : -1;
+          bool in = (sides >> d) & 1;
+          for (std::size_t e = 0; e < 3; ++e)
+            in = in && q[e] >= o[e] && q[e] < o[e] + block.Dims[e];
+          touches = in;
+        }
+        if (touches)
+          flood(s);
+      }
+  return closed;
+}
+
+template <class LabelFn>
+bool NetworkGuard::AnyOpenAfter(std::int32_t now, LabelFn&& label) const
+{
+  const Coord& n = this->N;
+  const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+  for (std::size_t i = ToIndex(now) + 1; i < this->Blocks.size(); ++i)
+  {
+    bool open = false;
+    ForEachSite(this->Blocks[i], n,
+      [&](std::size_t site)
+      {
+        const auto s = static_cast<std::int64_t>(site);
+        if (open)
+          return;
+        if (this->Rule.Sides(label(s)) >= 0)
+        {
+          open = true; // a network site still to be written
+          return;
+        }
+        for (int d = 0; d < 6 && !open; ++d)
+        {
+          const std::size_t a = ToIndex(d / 2);
+          const std::int64_t along = (s / stride[a]) % n[a];
+          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
+            continue;
+          const int other = this->Rule.Sides(label(s + (d % 2 == 0 ? stride[a] : -stride[a])));
+          open = other >= 0 && ((other >> (d ^ 1)) & 1); // a connecting side faces it
+        }
+      });
+    if (open)
+      return true;
+  }
+  return false;
+}
+
 bool NetworkGuard::Keeps(
   const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model)
 {
   if (this->Open)
     return this->KeepsOpen(block, cat, model);
+  // Closed-off components stay as they are (no later block writes their sites or the sites
+  // their sides face), and every component the attempt's sites touch was open before it (they
+  // were still to be written). So the attempt adds exactly the closed-off components among
+  // those it touches after it (ClosedAround), and only when it adds some are the closed-off
+  // components before it counted (once per block) and is the rest of the model looked at.
   const std::int32_t now = this->Position[ToIndex(block.Index)];
   const Coord& n = this->N;
   const Coord& o = block.Origin;
@@ -263,31 +399,33 @@ bool NetworkGuard::Keeps(
     local = (p[0] - o[0]) + block.Dims[0] * ((p[1] - o[1]) + block.Dims[1] * (p[2] - o[2]));
     return true;
   };
-  std::vector<std::int32_t> seen;
-  std::vector<std::int64_t> stack;
-  auto tally = [&](bool after, std::int64_t& closed, std::int64_t& open)
+  auto labelAfter = [&](std::int64_t s)
   {
-    auto label = [&](std::int64_t s)
-    {
-      std::int64_t local = 0;
-      return after && inBlock(s, local) ? static_cast<std::int32_t>(cat.Single(local))
-                                        : model[ToIndex(s)];
-    };
-    auto isOpen = [&](std::int64_t s)
-    {
-      const std::int32_t owner = this->OwnerPosition[ToIndex(s)];
-      return (after ? owner > now : owner >= now) || label(s) < 0;
-    };
-    closed = open = 0;
-    Flood(
-      this->Rule, n, label, isOpen, [&](const Component& c) { ++(c.Open ? open : closed); }, seen,
-      stack);
+    std::int64_t local = 0;
+    return inBlock(s, local) ? static_cast<std::int32_t>(cat.Single(local)) : model[ToIndex(s)];
   };
-  std::int64_t closedBefore = 0, openBefore = 0, closed = 0, open = 0;
-  tally(false, closedBefore, openBefore);
-  tally(true, closed, open);
-  const std::int64_t limit = open > 0 ? this->Maximum - 1 : this->Maximum;
-  const bool keeps = closed <= std::max(limit, closedBefore);
+  auto openAfter = [&](std::int64_t s)
+  { return this->OwnerPosition[ToIndex(s)] > now || labelAfter(s) < 0; };
+  const std::int64_t added = this->ClosedAround(block, labelAfter, openAfter);
+  if (added == 0)
+    return true;
+  const std::int64_t limit =
+    this->AnyOpenAfter(now, labelAfter) ? this->Maximum - 1 : this->Maximum;
+  bool keeps = added <= limit; // at least: no closed-off component before
+  if (keeps && this->ClosedFor != block.Index)
+  {
+    std::int64_t closed = 0;
+    std::vector<std::int32_t> seen;
+    std::vector<std::int64_t> stack;
+    Flood(
+      this->Rule, n, [&](std::int64_t s) { return model[ToIndex(s)]; },
+      [&](std::int64_t s)
+      { return this->OwnerPosition[ToIndex(s)] >= now || model[ToIndex(s)] < 0; },
+      [&](const Component& c) { closed += c.Open ? 0 : 1; }, seen, stack);
+    this->ClosedFor = block.Index;
+    this->ClosedBefore = closed;
+  }
+  keeps = keeps && this->ClosedBefore + added <= limit;
   if (!keeps)
     ++this->Redone;
   return keeps;

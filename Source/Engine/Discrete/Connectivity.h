@@ -92,9 +92,23 @@ public:
 private:
   bool KeepsOpen(const Block& block, const Catalog& cat, const std::vector<std::int32_t>& model);
 
+  /// The closed-off components among those the attempt's sites touch (see Keeps).
+  template <class LabelFn, class OpenFn>
+  std::int64_t ClosedAround(const Block& block, LabelFn&& label, OpenFn&& isOpen);
+  /// Whether any component is open after the attempt (a network site, or a connecting side,
+  /// at a site a later block writes), looked for from the later blocks' sites.
+  template <class LabelFn>
+  bool AnyOpenAfter(std::int32_t now, LabelFn&& label) const;
+
   const NetworkRule& Rule;
   std::int64_t Maximum;
   Coord N;
+  std::vector<Block> Blocks;            ///< in run order
+  std::vector<std::uint32_t> VisitCall; ///< per site, the local flood call that saw it last
+  std::vector<std::int32_t> VisitFlood; ///< per site, which of that call's floods saw it
+  std::uint32_t Call = 0;
+  std::int64_t ClosedFor = -1; ///< the block index ClosedBefore was counted for
+  std::int64_t ClosedBefore = 0;
   bool Open = false;
   Coord Off{ { 0, 0, 0 } }, World{ { 1, 1, 1 } };
   const LabelGrid* Pins = nullptr;

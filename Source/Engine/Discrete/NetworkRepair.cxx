@@ -3,6 +3,7 @@
 // over the gaps between components steered along them, free boxes, boxes around a component.
 #include "Discrete/Connectivity.h"
 #include "Discrete/NetworkComponents.h"
+#include "Discrete/NetworkParts.h"
 
 #include "Core/Index.h"
 #include "Core/Random.h"
@@ -34,15 +35,13 @@ struct Repair
   const NetworkRule& Rule;
   const SynthesisOptions& Options;
   SynthesisStatistics& Stats;
-  std::int64_t Key = 0;          ///< the next box's block index
-  std::vector<Component> Parts;  ///< the components now
-  std::vector<std::int32_t> Ids; ///< per site, its component's number + 1 (0: none)
-  std::vector<double> Sparse;    ///< the network's labels' weights scaled down
+  std::int64_t Key = 0;       ///< the next box's block index
+  std::vector<double> Sparse; ///< the network's labels' weights scaled down
   std::vector<std::int32_t> SavedModel, SavedLast;
   std::vector<std::int64_t> PathSites; ///< the listed path sites' model indices
   std::vector<char> PathLabel;         ///< per label index, whether it is a path label
+  NetworkParts Net;                    ///< the components now
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
-  std::vector<char> PathPart;          ///< per component, whether it holds a path site
   Shortfall Now{ { 0, 0, 0 } };
   std::int64_t Tried = 0;  ///< box attempts so far
   std::int64_t MayTry = 0; ///< box attempts allowed (AttemptsPerPart)
@@ -54,57 +53,34 @@ struct Repair
     , Rule(rule)
     , Options(options)
     , Stats(stats)
+    , PathSites(Listed(options, solver.Size()))
+    , PathLabel(PathLabels(rule))
+    , Net(rule, shared.Model, solver.Size(), this->PathSites, this->PathLabel)
   {
-    this->Parts = FindComponents(rule, shared.Model, solver.Size(), &this->Ids);
     this->Sparse.assign(ToIndex(rule.Labels()), 1.0);
     for (std::size_t b = 0; b < this->Sparse.size(); ++b)
       if (rule.Sides(static_cast<std::int32_t>(b)) >= 0)
         this->Sparse[b] = 1.0 / 64;
-    const Coord n = solver.Size();
-    for (const Coord& p : options.Connected.PathSites)
-      this->PathSites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
     this->MayTry =
-      AttemptsPerPart * static_cast<std::int64_t>(1 + this->Parts.size() + this->PathSites.size());
-    this->PathLabel.assign(ToIndex(rule.Labels()), 0);
+      AttemptsPerPart * (1 + this->Net.Count() + static_cast<std::int64_t>(this->PathSites.size()));
+    this->PathLabelSites = this->Net.PathLabelSites();
+    this->Now = { { this->Net.PathSitesOutside(), this->Net.PathParts(), this->Net.Count() } };
+  }
+
+  static std::vector<std::int64_t> Listed(const SynthesisOptions& options, const Coord& n)
+  {
+    std::vector<std::int64_t> sites;
+    for (const Coord& p : options.Connected.PathSites)
+      sites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
+    return sites;
+  }
+
+  static std::vector<char> PathLabels(const NetworkRule& rule)
+  {
+    std::vector<char> path(ToIndex(rule.Labels()), 0);
     for (int b = 0; b < rule.Labels(); ++b)
-      this->PathLabel[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
-    this->PathLabelSites = this->CountPathLabelSites(shared.Model);
-    this->Now = this->Measure(this->Parts, this->Ids, this->PathPart);
-  }
-
-  std::int64_t CountPathLabelSites(const std::vector<std::int32_t>& model) const
-  {
-    std::int64_t count = 0;
-    for (std::int32_t b : model)
-      count += b >= 0 && this->PathLabel[ToIndex(b)] ? 1 : 0;
-    return count;
-  }
-
-  /// The shortfall of @p parts (site numbers @p ids); @p pathPart marks the components holding
-  /// path sites.
-  Shortfall Measure(const std::vector<Component>& parts, const std::vector<std::int32_t>& ids,
-    std::vector<char>& pathPart) const
-  {
-    pathPart.assign(parts.size(), 0);
-    Shortfall f{ { 0, 0, static_cast<std::int64_t>(parts.size()) } };
-    for (std::int64_t s : this->PathSites)
-    {
-      const std::int32_t id = ids[ToIndex(s)];
-      if (id == 0)
-        ++f[0];
-      else
-        pathPart[ToIndex(id - 1)] = 1;
-    }
-    if (!this->Options.Connected.PathLabels.empty())
-      for (std::size_t s = 0; s < ids.size(); ++s)
-      {
-        const std::int32_t b = this->Shared.Model[s];
-        if (b >= 0 && this->PathLabel[ToIndex(b)] && ids[s] != 0)
-          pathPart[ToIndex(ids[s] - 1)] = 1;
-      }
-    for (char c : pathPart)
-      f[1] += c;
-    return f;
+      path[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
+    return path;
   }
 
   /// Whether the model has what the network asks.
@@ -160,15 +136,11 @@ struct Repair
       this->Solver.BiasWeights(nullptr);
       if (empty >= 0)
         continue; // a failed attempt leaves the model as it was
-      std::vector<std::int32_t> ids;
-      std::vector<char> pathPart;
-      std::vector<Component> now = FindComponents(this->Rule, this->Shared.Model, n, &ids);
-      const Shortfall f = this->Measure(now, ids, pathPart);
-      if (f < this->Now && this->CountPathLabelSites(this->Shared.Model) >= this->PathLabelSites)
+      const NetworkParts::Outcome o = this->Net.Propose(box, this->SavedModel);
+      const Shortfall f{ { o.PathSitesOutside, o.PathParts, o.Components } };
+      if (f < this->Now && o.PathLabelSites >= this->PathLabelSites)
       {
-        this->Parts = std::move(now);
-        this->Ids = std::move(ids);
-        this->PathPart = std::move(pathPart);
+        this->Net.Apply();
         this->Now = f;
         return true;
       }
@@ -190,38 +162,57 @@ struct Repair
    */
   void Gap(std::int32_t c, bool toPath, std::vector<std::int64_t>& gap) const
   {
-    constexpr std::int32_t MaximumGap = 16;
+    constexpr std::int64_t MaximumGap = 16;
     const Coord n = this->Solver.Size();
     const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
-    std::vector<std::int64_t> parent(this->Ids.size(), -1), front, next;
+    const std::vector<std::int32_t>& ids = this->Net.Ids();
+    const Component& part = this->Net.Parts()[ToIndex(c)];
+    // The search stays within MaximumGap steps of the component's box.
+    Coord lo, d;
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      lo[a] = std::max<std::int64_t>(0, part.Low[a] - MaximumGap);
+      d[a] = std::min(n[a], part.High[a] + MaximumGap + 1) - lo[a];
+    }
+    const auto local = [&](std::int64_t s)
+    {
+      const Coord p = this->At(s);
+      return ToIndex((p[0] - lo[0]) + d[0] * ((p[1] - lo[1]) + d[1] * (p[2] - lo[2])));
+    };
+    std::vector<std::int64_t> parent(ToIndex(d[0] * d[1] * d[2]), -1), front, next;
     gap.clear();
-    for (std::size_t s = 0; s < this->Ids.size(); ++s)
-      if (this->Ids[s] == c + 1)
-      {
-        parent[s] = static_cast<std::int64_t>(s); // a root of the search
-        front.push_back(static_cast<std::int64_t>(s));
-      }
-    for (std::int32_t step = 0; step < MaximumGap && !front.empty(); ++step)
+    for (std::int64_t z = part.Low[2]; z <= part.High[2]; ++z)
+      for (std::int64_t y = part.Low[1]; y <= part.High[1]; ++y)
+        for (std::int64_t x = part.Low[0]; x <= part.High[0]; ++x)
+        {
+          const std::int64_t s = x + n[0] * (y + n[1] * z);
+          if (ids[ToIndex(s)] == c + 1)
+          {
+            parent[local(s)] = s; // a root of the search
+            front.push_back(s);
+          }
+        }
+    for (std::int64_t step = 0; step < MaximumGap && !front.empty(); ++step)
     {
       next.clear();
       for (std::int64_t s : front)
-        for (int d = 0; d < 6; ++d)
+        for (int e = 0; e < 6; ++e)
         {
-          const auto a = ToIndex(d / 2);
+          const auto a = ToIndex(e / 2);
           const std::int64_t along = (s / stride[a]) % n[a];
-          if (d % 2 == 0 ? along + 1 >= n[a] : along == 0)
+          if (e % 2 == 0 ? along + 1 >= n[a] : along == 0)
             continue;
-          const std::int64_t q = s + (d % 2 == 0 ? stride[a] : -stride[a]);
-          if (parent[ToIndex(q)] >= 0)
+          const std::int64_t q = s + (e % 2 == 0 ? stride[a] : -stride[a]);
+          if (parent[local(q)] >= 0)
             continue;
-          parent[ToIndex(q)] = s;
-          const std::int32_t id = this->Ids[ToIndex(q)];
-          if (id != 0 && id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]))
+          parent[local(q)] = s;
+          const std::int32_t id = ids[ToIndex(q)];
+          if (id != 0 && id != c + 1 && (!toPath || this->Net.HoldsPath(id - 1)))
           {
-            for (std::int64_t t = q;; t = parent[ToIndex(t)])
+            for (std::int64_t t = q;; t = parent[local(t)])
             {
               gap.push_back(t);
-              if (parent[ToIndex(t)] == t)
+              if (parent[local(t)] == t)
                 break;
             }
             std::reverse(gap.begin(), gap.end());
@@ -316,13 +307,14 @@ struct Repair
     const Coord n = this->Solver.Size();
     const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
     std::vector<std::vector<std::int64_t>> found;
-    const Component& part = this->Parts[ToIndex(c)];
+    const std::vector<std::int32_t>& ids = this->Net.Ids();
+    const Component& part = this->Net.Parts()[ToIndex(c)];
     for (std::int64_t z = part.Low[2]; z <= part.High[2]; ++z)
       for (std::int64_t y = part.Low[1]; y <= part.High[1]; ++y)
         for (std::int64_t x = part.Low[0]; x <= part.High[0]; ++x)
         {
           const std::int64_t s = x + n[0] * (y + n[1] * z);
-          if (this->Ids[ToIndex(s)] != c + 1)
+          if (ids[ToIndex(s)] != c + 1)
             continue;
           const Coord p{ { x, y, z } };
           for (int d = 0; d < 6; ++d)
@@ -334,11 +326,11 @@ struct Repair
               const std::int64_t along = p[a] + step * k;
               if (along < 0 || along >= n[a])
                 break;
-              const std::int32_t id = this->Ids[ToIndex(s + step * k * stride[a])];
+              const std::int32_t id = ids[ToIndex(s + step * k * stride[a])];
               if (id == 0)
                 continue;
               const std::int64_t q = s + step * k * stride[a];
-              if (id != c + 1 && (!toPath || this->PathPart[ToIndex(id - 1)]) &&
+              if (id != c + 1 && (!toPath || this->Net.HoldsPath(id - 1)) &&
                 this->Joinable(s, 1 << d) && this->Joinable(q, 1 << (d ^ 1)))
               {
                 std::vector<std::int64_t> gap;
@@ -404,7 +396,7 @@ struct Repair
         if (this->TryBox(lo, hi, grow))
           return true;
     }
-    const Component part = this->Parts[c];
+    const Component part = this->Net.Parts()[c];
     for (std::int64_t grow = 1; grow <= 16; grow *= 2)
       if (this->TryBox(part.Low, part.High, grow))
         return true;
@@ -418,24 +410,20 @@ struct Repair
     if (this->OutOfWork())
       return false;
     for (std::int64_t s : this->PathSites)
-      if (this->Ids[ToIndex(s)] == 0)
+      if (this->Net.Ids()[ToIndex(s)] == 0)
       {
         const Coord p = this->At(s);
         for (std::int64_t grow = 1; grow <= 8; grow *= 2)
           if (this->TryBox(p, p, grow))
             return true;
       }
-    std::vector<std::size_t> order(this->Parts.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-      [&](std::size_t a, std::size_t b) { return this->Parts[a].Sites < this->Parts[b].Sites; });
+    // Smallest first; a repair that succeeds changes the components, so the walk stops there.
     if (this->Now[1] > 1)
-      for (std::size_t c : order)
-        if (this->PathPart[c] && this->Fix(c, true))
+      for (const auto& [sites, c] : this->Net.BySize())
+        if (this->Net.HoldsPath(c) && this->Fix(ToIndex(c), true))
           return true;
-    for (std::size_t c : order)
-      if (this->Fix(c, false))
+    for (const auto& [sites, c] : this->Net.BySize())
+      if (this->Fix(ToIndex(c), false))
         return true;
     return false;
   }
@@ -453,12 +441,8 @@ struct Repair
         (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
                           : "its sites lie in " + std::to_string(this->Now[1]) + " components") +
         ", and " + tried + ". Try another seed, more attempts or nearer sites";
-    std::size_t smallest = 0;
-    for (std::size_t c = 1; c < this->Parts.size(); ++c)
-      if (this->Parts[c].Sites < this->Parts[smallest].Sites)
-        smallest = c;
-    const Component& c = this->Parts[smallest];
-    return name + " has " + std::to_string(this->Parts.size()) + " components, more than " +
+    const Component& c = this->Net.Parts()[ToIndex(this->Net.BySize().begin()->second)];
+    return name + " has " + std::to_string(this->Net.Count()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
       (this->OutOfWork() ? ", and " + tried : ", and none could be joined to another or removed") +
       " (the smallest: " + std::to_string(c.Sites) + (c.Sites == 1 ? " site at " : " sites at ") +
@@ -473,7 +457,7 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
 {
   Repair repair(solver, shared, rule, options, stats);
   repair.Key = firstIndex;
-  out.Before = static_cast<std::int64_t>(repair.Parts.size());
+  out.Before = repair.Net.Count();
   out.PathComponentsBefore = repair.Now[1];
   while (!repair.Done())
   {
@@ -481,9 +465,8 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
       return repair.Failure();
     ++out.Repairs;
   }
-  out.Components = static_cast<std::int64_t>(repair.Parts.size());
-  out.PathSites =
-    static_cast<std::int64_t>(repair.PathSites.size()) + repair.CountPathLabelSites(shared.Model);
+  out.Components = repair.Net.Count();
+  out.PathSites = static_cast<std::int64_t>(repair.PathSites.size()) + repair.Net.PathLabelSites();
   return std::string();
 }
 
