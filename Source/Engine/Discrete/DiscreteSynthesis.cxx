@@ -510,13 +510,9 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   }
   if (undecided && !AllDecided(shared.Model, n, result))
     return result;
-  if (network)
-  {
-    const bool kept = network->Keep(options, solver, shared, blocks, result);
-    stats.Seconds = driver.Seconds(); // the network's repairs are part of the synthesis
-    if (!kept)
-      return result;
-  }
+  const bool kept = !network || network->Keep(options, solver, shared, blocks, result);
+  if (stats.Seconds = driver.Seconds(); !kept) // the network's repairs are synthesis too
+    return result;
   ModelFromShared(rules, shared, n, result);
   return budget ? CountsKept(options, std::move(result), misses, true) : result;
 }
