@@ -510,7 +510,8 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   }
   if (undecided && !AllDecided(shared.Model, n, result))
     return result;
-  if (network && !network->Keep(options, solver, shared, blocks, result))
+  const bool kept = !network || network->Keep(options, solver, shared, blocks, result);
+  if (stats.Seconds = driver.Seconds(); !kept) // the network's repairs are synthesis too
     return result;
   ModelFromShared(rules, shared, n, result);
   return budget ? CountsKept(options, std::move(result), misses, true) : result;
