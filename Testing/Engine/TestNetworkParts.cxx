@@ -91,8 +91,11 @@ void RunBoxes(const Coord& n, std::uint32_t seed)
     box.Index = round;
     for (std::size_t a = 0; a < 3; ++a)
     {
-      box.Dims[a] = 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint32_t>(std::min<std::int64_t>(n[a], 8)));
-      box.Origin[a] = static_cast<std::int64_t>(rng() % static_cast<std::uint32_t>(n[a] - box.Dims[a] + 1));
+      box.Dims[a] = 1 +
+        static_cast<std::int64_t>(
+          rng() % static_cast<std::uint32_t>(std::min<std::int64_t>(n[a], 8)));
+      box.Origin[a] =
+        static_cast<std::int64_t>(rng() % static_cast<std::uint32_t>(n[a] - box.Dims[a] + 1));
     }
     std::vector<std::int32_t> before;
     detail::ForEachSite(box, n,

@@ -153,6 +153,14 @@ void NetworkParts::Split(Near& near)
   // flood is still running: the finished ones are whole pieces, the last one is the rest of the
   // component (counted by difference, not walked). When the box joins them all, nothing is walked.
   const auto first = static_cast<std::int32_t>(this->Floods.size());
+  std::int64_t active = this->StartFloods(near);
+  const auto end = static_cast<std::int32_t>(this->Floods.size());
+  if (this->RunFloods(first, end, active))
+    this->TakePieces(near, first, end);
+}
+
+std::int64_t NetworkParts::StartFloods(const Near& near)
+{
   std::int64_t active = 0;
   std::vector<std::pair<std::int64_t, std::int32_t>> byGroup; // (box group, flood)
   for (const auto& [r, inside] : near.Ring)
@@ -188,7 +196,11 @@ void NetworkParts::Split(Near& near)
     this->Seen[ToIndex(r)] = this->Call;
     this->SeenFlood[ToIndex(r)] = f;
   }
-  const auto end = static_cast<std::int32_t>(this->Floods.size());
+  return active;
+}
+
+bool NetworkParts::RunFloods(std::int32_t first, std::int32_t end, std::int64_t active)
+{
   while (active > 1)
     for (std::int32_t f = first; f < end && active > 1; ++f)
     {
@@ -202,7 +214,7 @@ void NetworkParts::Split(Near& near)
         continue;
       }
       if (--this->Budget < 0)
-        return; // too far to tell: Propose reports no gain
+        return false; // too far to tell: Propose reports no gain
       const std::int64_t s = flood.Pending.back();
       flood.Pending.pop_back();
       for (int d = 0; d < 6; ++d)
@@ -238,6 +250,11 @@ void NetworkParts::Split(Near& near)
         this->FloodParent[ToIndex(g)] = f;
       }
     }
+  return true;
+}
+
+void NetworkParts::TakePieces(Near& near, std::int32_t first, std::int32_t end)
+{
   std::int64_t sites = 0, path = 0;
   std::int32_t rest = -1;
   for (std::int32_t f = first; f < end; ++f)
@@ -280,28 +297,10 @@ void NetworkParts::Split(Near& near)
   }
 }
 
-NetworkParts::Outcome NetworkParts::Propose(
-  const Block& box, const std::vector<std::int32_t>& before)
+void NetworkParts::Touch(const Block& box, const std::vector<std::int32_t>& before, Outcome& next)
 {
-  if (++this->Call == 0) // wrapped: forget every stamp
-  {
-    std::fill(this->Seen.begin(), this->Seen.end(), 0);
-    std::fill(this->Relabeled.begin(), this->Relabeled.end(), 0);
-    this->Call = 1;
-  }
-  const Coord& n = this->N;
-  this->Box = box;
-  for (std::size_t a = 0; a < 3; ++a)
-    this->BoxHigh[a] = box.Origin[a] + box.Dims[a];
-  this->Nears.clear();
-  this->Pieces.clear();
-  this->Floods.clear();
-  this->FloodParent.clear();
-  this->BoxSites.clear();
-  this->Budget = VisitsPerBoxSite * box.Dims[0] * box.Dims[1] * box.Dims[2] + Visits;
-  Outcome next{ this->Outside, this->PathComps, this->Live, this->PathLabels };
-
   // The components with a site in the box or next to it, and the box's labels before and after.
+  const Coord& n = this->N;
   struct Touch
   {
     std::int32_t Slot;
@@ -323,7 +322,8 @@ NetworkParts::Outcome NetworkParts::Propose(
       next.PathLabelSites -= was >= 0 && this->PathLabel[ToIndex(was)] ? 1 : 0;
       next.PathLabelSites += now >= 0 && this->PathLabel[ToIndex(now)] ? 1 : 0;
       if (this->Listed[site])
-        next.PathSitesOutside += (this->Rule.Sides(now) < 0 ? 1 : 0) - (this->Id[site] == 0 ? 1 : 0);
+        next.PathSitesOutside +=
+          (this->Rule.Sides(now) < 0 ? 1 : 0) - (this->Id[site] == 0 ? 1 : 0);
       if (this->Id[site] != 0)
         touched.push_back({ this->Id[site] - 1, -1, -1, this->HoldsPathAt(s, was) });
     });
@@ -371,6 +371,29 @@ NetworkParts::Outcome NetworkParts::Propose(
     else if (near.Any < 0)
       near.Any = touch.Site;
   }
+}
+
+NetworkParts::Outcome NetworkParts::Propose(
+  const Block& box, const std::vector<std::int32_t>& before)
+{
+  if (++this->Call == 0) // wrapped: forget every stamp
+  {
+    std::fill(this->Seen.begin(), this->Seen.end(), 0);
+    std::fill(this->Relabeled.begin(), this->Relabeled.end(), 0);
+    this->Call = 1;
+  }
+  this->Box = box;
+  for (std::size_t a = 0; a < 3; ++a)
+    this->BoxHigh[a] = box.Origin[a] + box.Dims[a];
+  this->Nears.clear();
+  this->Pieces.clear();
+  this->Floods.clear();
+  this->FloodParent.clear();
+  this->BoxSites.clear();
+  this->Budget = VisitsPerBoxSite * box.Dims[0] * box.Dims[1] * box.Dims[2] + Visits;
+  Outcome next{ this->Outside, this->PathComps, this->Live, this->PathLabels };
+
+  this->Touch(box, before, next);
 
   // The box's new network, joined within the box.
   this->BoxJoin.resize(this->BoxSites.size());
@@ -414,6 +437,13 @@ NetworkParts::Outcome NetworkParts::Propose(
     }
   }
 
+  this->Join(next);
+  this->Next = next;
+  return next;
+}
+
+void NetworkParts::Join(Outcome& next)
+{
   // Joined through the box's network sites.
   const auto pieces = static_cast<std::int64_t>(this->Pieces.size());
   this->Joined.resize(ToIndex(pieces) + this->BoxSites.size());
@@ -454,8 +484,6 @@ NetworkParts::Outcome NetworkParts::Propose(
     next.PathParts -= this->Path[ToIndex(near.Slot)] > 0 ? 1 : 0;
   next.PathParts += pathSets;
   next.Components += sets - static_cast<std::int64_t>(this->Nears.size());
-  this->Next = next;
-  return next;
 }
 
 void NetworkParts::Members(Piece& piece)
@@ -479,15 +507,41 @@ void NetworkParts::Members(Piece& piece)
   piece.Listed = true;
 }
 
+std::vector<std::int32_t> NetworkParts::Keepers(
+  const std::vector<Set>& sets, std::vector<std::int32_t>& claimed) const
+{
+  const auto pieces = static_cast<std::int64_t>(this->Pieces.size());
+  // Each new component keeps the number of one of its pieces, the largest pieces first (so the
+  // rest of a large component keeps its number), and its other sites are listed (relabelled after
+  // all are listed: listing reads the old numbers).
+  std::vector<std::int64_t> bySize(ToIndex(pieces)), setOfPiece(ToIndex(pieces));
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    for (std::int64_t piece : sets[k].Pieces)
+      setOfPiece[ToIndex(piece)] = static_cast<std::int64_t>(k);
+  for (std::int64_t k = 0; k < pieces; ++k)
+    bySize[ToIndex(k)] = k;
+  std::stable_sort(bySize.begin(), bySize.end(),
+    [&](std::int64_t a, std::int64_t b)
+    { return this->Pieces[ToIndex(a)].Sites > this->Pieces[ToIndex(b)].Sites; });
+  std::vector<std::int32_t> keeps(sets.size(), -1);
+  for (std::int64_t k : bySize)
+  {
+    const std::int32_t slot = this->Pieces[ToIndex(k)].Slot;
+    std::int32_t& keep = keeps[ToIndex(setOfPiece[ToIndex(k)])];
+    if (keep < 0 && std::find(claimed.begin(), claimed.end(), slot) == claimed.end())
+    {
+      keep = slot;
+      claimed.push_back(slot);
+    }
+  }
+  return keeps;
+}
+
 void NetworkParts::Apply()
 {
   const Coord& n = this->N;
   const auto pieces = static_cast<std::int64_t>(this->Pieces.size());
   // The new components: pieces and box sites by their root.
-  struct Set
-  {
-    std::vector<std::int64_t> Pieces, Sites;
-  };
   std::vector<std::int64_t> setOf(this->Joined.size(), -1);
   std::vector<Set> sets;
   auto setFor = [&](std::int64_t node) -> Set&
@@ -513,29 +567,8 @@ void NetworkParts::Apply()
     this->PathComps -= this->Path[ToIndex(near.Slot)] > 0 ? 1 : 0;
     --this->Live;
   }
-  // Each new component keeps the number of one of its pieces, the largest pieces first (so the
-  // rest of a large component keeps its number), and its other sites are listed (relabelled after
-  // all are listed: listing reads the old numbers).
-  std::vector<std::int64_t> bySize(ToIndex(pieces)), setOfPiece(ToIndex(pieces));
-  for (std::size_t k = 0; k < sets.size(); ++k)
-    for (std::int64_t piece : sets[k].Pieces)
-      setOfPiece[ToIndex(piece)] = static_cast<std::int64_t>(k);
-  for (std::int64_t k = 0; k < pieces; ++k)
-    bySize[ToIndex(k)] = k;
-  std::stable_sort(bySize.begin(), bySize.end(),
-    [&](std::int64_t a, std::int64_t b)
-    { return this->Pieces[ToIndex(a)].Sites > this->Pieces[ToIndex(b)].Sites; });
-  std::vector<std::int32_t> claimed, keeps(sets.size(), -1);
-  for (std::int64_t k : bySize)
-  {
-    const std::int32_t slot = this->Pieces[ToIndex(k)].Slot;
-    std::int32_t& keep = keeps[ToIndex(setOfPiece[ToIndex(k)])];
-    if (keep < 0 && std::find(claimed.begin(), claimed.end(), slot) == claimed.end())
-    {
-      keep = slot;
-      claimed.push_back(slot);
-    }
-  }
+  std::vector<std::int32_t> claimed;
+  const std::vector<std::int32_t> keeps = this->Keepers(sets, claimed);
   std::vector<std::pair<std::int64_t, std::int32_t>> relabel;
   std::vector<std::pair<std::int32_t, Component>> made;
   std::vector<std::int64_t> madePath;
@@ -551,19 +584,14 @@ void NetworkParts::Apply()
     }
     Component c;
     c.Sites = static_cast<std::int64_t>(set.Sites.size());
+    c.Low.fill(std::numeric_limits<std::int64_t>::max());
+    c.High.fill(-1);
     std::int64_t path = 0;
-    bool first = true;
     for (std::int64_t k : set.Pieces)
     {
       Piece& piece = this->Pieces[ToIndex(k)];
       c.Sites += piece.Sites;
       path += piece.PathSites;
-      if (first)
-      {
-        c.Low = piece.Low;
-        c.High = piece.High;
-        first = false;
-      }
       Include(c.Low, c.High, piece.Low);
       Include(c.Low, c.High, piece.High);
       if (piece.Slot == keep)
@@ -574,11 +602,6 @@ void NetworkParts::Apply()
     }
     for (std::int64_t s : set.Sites)
     {
-      if (first)
-      {
-        c.Low = c.High = At(s, n);
-        first = false;
-      }
       Include(c.Low, c.High, At(s, n));
       path += this->HoldsPathAt(s, this->Model[ToIndex(s)]) ? 1 : 0;
     }

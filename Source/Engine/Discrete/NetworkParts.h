@@ -97,6 +97,23 @@ private:
     bool Finished = false;
   };
 
+  /// A new component: its pieces and its box sites.
+  struct Set
+  {
+    std::vector<std::int64_t> Pieces, Sites;
+  };
+
+  /// Propose's first step: the components near the box (Nears) and the box's path figures.
+  void Touch(const Block& box, const std::vector<std::int32_t>& before, Outcome& next);
+  /// Propose's last step: the pieces and the box's sites joined, the figures counted.
+  void Join(Outcome& next);
+  /// Split's floods: started (returns how many), run (false past the budget), taken as pieces.
+  std::int64_t StartFloods(const Near& near);
+  bool RunFloods(std::int32_t first, std::int32_t end, std::int64_t active);
+  void TakePieces(Near& near, std::int32_t first, std::int32_t end);
+  /// Apply's numbers for @p sets (-1: a new one), the old numbers they keep in @p claimed.
+  std::vector<std::int32_t> Keepers(
+    const std::vector<Set>& sets, std::vector<std::int32_t>& claimed) const;
   bool InBox(std::int64_t s) const;
   /// The index of box site @p s in the box (ForEachSite order).
   std::int64_t LocalOf(std::int64_t s) const;
