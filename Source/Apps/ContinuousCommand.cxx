@@ -18,6 +18,7 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -278,11 +279,24 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
     lap("catalog sequence");
   WriteStatistics(labelled, model, o, dir, stages, voxel);
   vtkFieldData* fd = labelled->GetFieldData();
+  const auto count = [&](const char* name, const char* one, const char* many)
+  {
+    const long long n = CountOf(fd, name);
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
-            << CountOf(fd, "Blocks") << " blocks left unchanged, " << CountOf(fd, "Components")
-            << " solid parts (" << CountOf(fd, "GroundedComponents") << " on the ground)\n"
-            << "wrote " << written << dir << "/statistics.json" << sequence << "\n";
+            << count("Blocks", "block", "blocks") << " left unchanged, "
+            << count("Components", "solid part", "solid parts") << " ("
+            << CountOf(fd, "GroundedComponents") << " on the ground)\n";
+  // Proportion steering can empty most of the first model: say so where the user looks.
+  vtkDataArray* emptied = fd->GetArray("ProportionVolumeRemoved");
+  if (emptied && emptied->GetTuple1(0) > 0.5)
+    std::cout << "note: " << count("ProportionPartsRemoved", "part", "parts") << " ("
+              << static_cast<int>(std::lround(100 * emptied->GetTuple1(0)))
+              << " % of the solid) were emptied to keep the example's proportions; more "
+                 "constraints (--thickness, --overhang) or --no-proportions keep more\n";
+  std::cout << "wrote " << written << dir << "/statistics.json" << sequence << "\n";
   return 0;
 }
 

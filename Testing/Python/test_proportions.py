@@ -105,6 +105,29 @@ class ProportionsMatrix(unittest.TestCase):
         self.assertEqual(stats["ProportionPartsRemoved"], 0)
         self.assertGreater(stats["Components"], 40)
 
+    def test_an_emptied_model_is_said_on_the_console(self):
+        """The house grounded with storey walls alone keeps one house of 34 parts (the rest are
+        out of proportion): the command says so in a note; with the guide's constraints it keeps
+        seven and says nothing."""
+        import json
+        for extra, noted in (([], True), (["--overhang", "roof", "--thickness", "wall:x:2+",
+                                           "--thickness", "wall:y:2+", "--mirror", "x"], False)):
+            out = tmp("proportions-note-%d" % len(extra))
+            done = subprocess.run(
+                [os.path.join(os.environ["MSYNTH_BIN"], "msynth"), "synthesize",
+                 os.path.join(os.environ["MSYNTH_DATA"], "Continuous", "house.obj"),
+                 "--size", "24", "24", "10", "--seed", "3", "--grounded", "--thickness", "wall:z",
+                 *extra, "--outputs", "mesh", "--out", out], capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            stats = json.load(open(os.path.join(out, "statistics.json")))
+            self.assertEqual(stats["ProportionVolumeRemoved"] > 0.5, noted)
+            note = re.search(r"note: (\d+) parts? \((\d+) % of the solid\) were emptied",
+                             done.stdout)
+            self.assertEqual(note is not None, noted, done.stdout)
+            if note:
+                self.assertEqual(int(note.group(1)), stats["ProportionPartsRemoved"])
+                self.assertEqual(int(note.group(2)), round(100 * stats["ProportionVolumeRemoved"]))
+
     def test_measure_is_independent(self):
         """The example's shares from the OBJ text: the house's walls 4 x 3 x 2 = 24 against a
         roof prism 5 x 4 x 2 / 2 = 20."""
