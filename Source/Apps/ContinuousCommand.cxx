@@ -187,6 +187,29 @@ void NoteArrangementCompromises(vtkMSPlaneArrangement* arrangement)
                  "directions were snapped to small integers; faces turn by up to "
               << change->GetTuple1(0) << " degrees\n";
 }
+
+/// The run's one-line summary, and a note when proportion steering emptied most of the model.
+void PrintSummary(vtkPolyData* labelled, vtkPolyData* model)
+{
+  vtkFieldData* fd = labelled->GetFieldData();
+  const auto count = [fd](const char* name, const char* one, const char* many)
+  {
+    const long long n = CountOf(fd, name);
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
+            << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
+            << count("Blocks", "block", "blocks") << " left unchanged, "
+            << count("Components", "solid part", "solid parts") << " ("
+            << CountOf(fd, "GroundedComponents") << " on the ground)\n";
+  // Proportion steering can empty most of the first model: say so where the user looks.
+  vtkDataArray* emptied = fd->GetArray("ProportionVolumeRemoved");
+  if (emptied && emptied->GetTuple1(0) > 0.5)
+    std::cout << "note: " << count("ProportionPartsRemoved", "part", "parts") << " ("
+              << static_cast<int>(std::lround(100 * emptied->GetTuple1(0)))
+              << " % of the solid) were emptied to keep the example's proportions; more "
+                 "constraints (--thickness, --overhang) or --no-proportions keep more\n";
+}
 } // namespace
 
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
@@ -278,24 +301,7 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   if (o.Snapshots > 0)
     lap("catalog sequence");
   WriteStatistics(labelled, model, o, dir, stages, voxel);
-  vtkFieldData* fd = labelled->GetFieldData();
-  const auto count = [&](const char* name, const char* one, const char* many)
-  {
-    const long long n = CountOf(fd, name);
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-  };
-  std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
-            << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
-            << count("Blocks", "block", "blocks") << " left unchanged, "
-            << count("Components", "solid part", "solid parts") << " ("
-            << CountOf(fd, "GroundedComponents") << " on the ground)\n";
-  // Proportion steering can empty most of the first model: say so where the user looks.
-  vtkDataArray* emptied = fd->GetArray("ProportionVolumeRemoved");
-  if (emptied && emptied->GetTuple1(0) > 0.5)
-    std::cout << "note: " << count("ProportionPartsRemoved", "part", "parts") << " ("
-              << static_cast<int>(std::lround(100 * emptied->GetTuple1(0)))
-              << " % of the solid) were emptied to keep the example's proportions; more "
-                 "constraints (--thickness, --overhang) or --no-proportions keep more\n";
+  PrintSummary(labelled, model);
   std::cout << "wrote " << written << dir << "/statistics.json" << sequence << "\n";
   return 0;
 }
