@@ -254,7 +254,7 @@ std::int64_t NetworkGuard::ClosedAround(const Block& block, LabelFn&& label, Ope
 {
   // Floods from the network's sites in the block and from those facing it through a connecting
   // side; a flood ends as soon as it meets an open site (or a site an open flood saw): only the
-  // closed-off components are walked whole.
+  // closed-off components are walked whole. (stack: the breadth-first queue)
   const Coord& n = this->N;
   const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
   if (++this->Call == 0) // wrapped: forget every mark
@@ -276,10 +276,11 @@ std::int64_t NetworkGuard::ClosedAround(const Block& block, LabelFn&& label, Ope
     this->VisitFlood[ToIndex(first)] = id;
     stack.assign(1, first);
     bool open = false;
-    while (!stack.empty() && !open)
+    // Breadth first: the open sites (those later blocks write, some in this block's overlap)
+    // lie near the block, the finished ones farther away.
+    for (std::size_t head = 0; head < stack.size() && !open; ++head)
     {
-      const std::int64_t s = stack.back();
-      stack.pop_back();
+      const std::int64_t s = stack[head];
       open = isOpen(s);
       const int sides = this->Rule.Sides(label(s));
       for (int d = 0; d < 6 && !open; ++d)
