@@ -2,7 +2,9 @@
 authoring.md) runs as written from the repository root: each ```sh block as a
 bash script and each ```python block with the interpreter it names (plain vtkmodules Python, or
 pvbatch for paraview.simple), in a scratch folder laid out like a checkout (Data, Utilities and
-build/ linked), so the outputs do not land in the sources. The two commands of a fresh machine
+build/ linked), so the outputs do not land in the sources. A block passes when it exits 0, prints no
+error (VTK's "ERR|", "Error", "error:") on either stream, and prints every number that a print's
+comment states (`print(n, "sites")  # 16384`). The two commands of a fresh machine
 (run-example.sh, run-tests.sh) and the placeholder my_script.py are left out: CI runs the first
 two itself. The main job's own output is measured against its example and against the measures
 recorded with the README's first picture (test_main_job_makes_the_picture)."""
@@ -37,6 +39,24 @@ def blocks():
             yield m.group(1), m.group(2), "%s:%d" % (name, text[:m.start()].count("\n") + 1)
 
 
+# An error that does not end the run: VTK's log ("ERR|"), a filter's "Error" or msynth's "error:"
+ERROR_LINE = re.compile(r"\bERR\||\bError\b|\berror:")
+# A print whose comment states what it prints: print(...)  # 16384  (or "# prints 16384 ...")
+STATED = re.compile(r"^\s*print\(.*#\s*(?:prints\s+)?(-?\d[\d.,]*)\b")
+
+
+def printed_problems(text, stdout, stderr):
+    """What a block's output says against it: error lines on either stream, and every number that
+    a print's comment states and no printed line holds as a word."""
+    problems = ["error printed: " + l for l in (stdout + stderr).splitlines() if ERROR_LINE.search(l)]
+    for source in text.splitlines():
+        m = STATED.match(source)
+        if m and not any(re.search(r"(?<![\w.])%s(?![\w.])" % re.escape(m.group(1)), l)
+                         for l in stdout.splitlines()):
+            problems.append("the comment says %s, none printed: %s" % (m.group(1), source.strip()))
+    return problems
+
+
 class ReadmeExamplesTest(unittest.TestCase):
     def test_every_example_runs(self):
         if os.environ.get("MSYNTH_SANITIZED"):
@@ -61,6 +81,8 @@ class ReadmeExamplesTest(unittest.TestCase):
                 self.fail("%s did not finish within 200 s:\n%s" % (line, text))
             self.assertEqual(done.returncode, 0, "%s:\n%s\n%s\n%s\n...\n%s" % (
                 line, text, done.stdout[-2000:], done.stderr[:2000], done.stderr[-2000:]))
+            self.assertEqual(printed_problems(text, done.stdout, done.stderr), [], "%s:\n%s\n%s\n%s" % (
+                line, text, done.stdout[-2000:], done.stderr[-2000:]))
             ran += 1
         self.assertGreaterEqual(ran, 11)
 
