@@ -34,8 +34,9 @@ ENTRIES = [
     ("village", "Label grid (.vti)", "Discrete synthesis in blocks, ground below and empty space "
      "around (dissertation ch. 3)", "synthesize Data/Examples/Village.vti --size 48 48 5 "
      "--block 12 12 5 --ground 1 --empty 0 --seed 7", "mesh"),
-    ("village-vox", "MagicaVoxel (.vox)", "The same village as MagicaVoxel writes it",
-     "synthesize Data/Examples/Village.vox --size 32 32 5 --block 16 16 5 --seed 2", "mesh"),
+    ("village-vox", "MagicaVoxel (.vox)", "The same village as MagicaVoxel writes it, ground "
+     "(1) below and air (0) around", "synthesize Data/Examples/Village.vox --size 32 32 5 "
+     "--block 16 16 5 --ground 1 --empty 0 --seed 2", "mesh"),
     ("lines", "Simple-tiled tileset (.xml)", "WaveFunctionCollapse's tileset format, 3 tiles",
      "synthesize Data/Tilesets/Lines.xml --size 24 16 1 --order entropy --choice frequency "
      "--seed 3", "picture"),
