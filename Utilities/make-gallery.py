@@ -6,8 +6,8 @@ with the command shown beside its preview. Run from the repository root after bu
 Each command runs as written (outputs in output/gallery/NAME); previews go to
 Documentation/images/gallery/NAME.png: meshes and models rendered offscreen (render-model.py, on
 a private Xvfb when there is no display), pictures copied, and an animation's frames stacked top
-to bottom. With names, only those
-entries are remade (the page lists all)."""
+to bottom. Documentation/images/image-samples.png (guide-tilesets.md) is composed from the
+meadow and rooms pictures. With names, only those entries are remade (the page lists all)."""
 import glob
 import os
 import shutil
@@ -161,6 +161,57 @@ def frames_picture(folder, png):
     writer.Write()
 
 
+def read_png(path):
+    """The RGB pixels of the PNG @p path, top row first."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
+    return pixels[::-1, :, :3]
+
+
+def write_png(rgb, path):
+    """Writes the RGB pixels @p rgb (top row first) to the PNG @p path."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    import numpy as np
+    rgb = np.ascontiguousarray(rgb[::-1])  # VTK rows: bottom first
+    image = vtkImageData()
+    image.SetDimensions(rgb.shape[1], rgb.shape[0], 1)
+    image.GetPointData().SetScalars(numpy_to_vtk(rgb.reshape(-1, 3), deep=1))
+    writer = vtkPNGWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    writer.Write()
+
+
+# Documentation/images/image-samples.png (guide-tilesets.md): these entries' pictures, each pixel
+# a square of SAMPLES_SCALE pixels, one above the other, centred on white, 8 pixels apart.
+SAMPLES_PICTURE = ("meadow", "rooms")
+SAMPLES_SCALE = 3
+
+
+def samples_picture(png):
+    """The guide's picture of image samples from the gallery's outputs of SAMPLES_PICTURE."""
+    import numpy as np
+    parts = [np.repeat(np.repeat(read_png(os.path.join("output", "gallery", name, "picture.png")),
+                                 SAMPLES_SCALE, axis=0), SAMPLES_SCALE, axis=1)
+             for name in SAMPLES_PICTURE]
+    width = max(p.shape[1] for p in parts)
+    rgb = np.full((sum(p.shape[0] for p in parts) + 8 * (len(parts) - 1), width, 3), 255, np.uint8)
+    y = 0
+    for p in parts:
+        x = (width - p.shape[1]) // 2
+        rgb[y:y + p.shape[0], x:x + p.shape[1]] = p
+        y += p.shape[0] + 8
+    write_png(rgb, png)
+
+
 def main(names):
     images = os.path.join("Documentation", "images", "gallery")
     os.makedirs(images, exist_ok=True)
@@ -180,6 +231,10 @@ def main(names):
         else:
             model = os.path.join(out, "mesh.vtp" if preview == "mesh" else "model.vtp")
             render_model().render(model, png, top=preview == "top", size=(480, 360))
+        print("made", png)
+    if not names or any(name in names for name in SAMPLES_PICTURE):
+        png = os.path.join("Documentation", "images", "image-samples.png")
+        samples_picture(png)
         print("made", png)
     write_page()
 
