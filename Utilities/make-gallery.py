@@ -7,7 +7,9 @@ Each command runs as written (outputs in output/gallery/NAME); previews go to
 Documentation/images/gallery/NAME.png: meshes and models rendered offscreen (render-model.py, on
 a private Xvfb when there is no display), pictures copied, and an animation's frames stacked top
 to bottom. Documentation/images/image-samples.png (guide-tilesets.md) is composed from the
-meadow and rooms pictures. With names, only those entries are remade (the page lists all)."""
+meadow and rooms pictures, and the continuous guide's continuous-houses.png and
+continuous-networks.png are rendered from the entries RENDERED_PICTURES names. With names, only
+those entries (and the pictures made from them) are remade (the page lists all)."""
 import glob
 import os
 import shutil
@@ -61,8 +63,9 @@ ENTRIES = [
     ("rooms", "Image sample (.png)", "Rooms, fewest choices first",
      "synthesize Data/Samples/Rooms.png --size 128 128 1 --block 32 32 1 --order entropy --seed 2",
      "picture"),
-    ("ball", "Time-varying (.vti, z = time)", "A rolling ball: 24 frames of a 32-site row, "
-     "looping (dissertation §3.5.4); frames top to bottom",
+    ("ball", "Time-varying (.vti, z = time)", "Balls rolling right one site a frame as the "
+     "example's one ball does, 9 or 10 in each of 24 frames of a 32-site row, looping "
+     "(dissertation §3.5.4); frames top to bottom",
      "animate Data/Examples/Ball.vti --size 32 1 1 --frames 24 --loop --seed 1", "frames"),
     ("houses", "Polyhedral (.obj)", "Continuous synthesis, no constraints: houses float",
      "synthesize %s/house.obj --size 24 24 10 --seed 3" % D, "model"),
@@ -78,7 +81,8 @@ ENTRIES = [
      "blocks of 8 spacings (a cottage does not fit the default 4)",
      "synthesize %s/cottage.obj --size 24 24 8 --seed 5 --grounded --thickness wall:z:2 "
      "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+ --blocks 8" % D, "model"),
-    ("oil", "Polyhedral (.obj)", "Decks one unit thick on beams, grown from three seeds",
+    ("oil", "Polyhedral (.obj)", "A deck one unit thick on beams, grown from the ground "
+     "(--connected solid:3: at most three seeds; the types' proportions keep one part here)",
      "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "
      "--thickness platform:z --thickness beam:x --thickness beam:y --connected solid:3" % D,
      "model"),
@@ -96,7 +100,7 @@ ENTRIES = [
      "--detail silo+silo2=%s/cylinder.obj" % (D, D), "model"),
     ("town", "Polyhedral + detail (.obj)", "A 474-polygon town block (houses, shops, roads, trees "
      "as bounding volumes) at 100 x 100 x 10: storeys, slabs one spacing thick, trees one spacing "
-     "across with tree.obj substituted (about 25 s on two cores)",
+     "across with tree.obj substituted (about 50 s of CPU and 1.3 GB; 79 s on two shared cores)",
      "synthesize %s/town.obj --size 100 100 10 --seed 1 --grounded --thickness wall:z:4 "
      "--thickness shop:z:6 --thickness shoproof:z --thickness road:z --thickness tree:x "
      "--thickness tree:y --detail tree=%s/tree.obj" % (D, D), "model"),
@@ -212,6 +216,28 @@ def samples_picture(png):
     write_png(rgb, png)
 
 
+# The continuous guide's pictures (Documentation/images/NAME) rendered from these entries'
+# models, side by side, each (width, height) pixels; True: seen from above.
+RENDERED_PICTURES = [
+    ("continuous-houses.png", [("houses", False)], (900, 700)),
+    ("continuous-networks.png", [("roads", True), ("pipes", False), ("silos", False),
+                                 ("oil", False)], (500, 500)),
+]
+
+
+def rendered_picture(png, panels, size):
+    """@p panels (entry, top view) rendered from the gallery's outputs and put side by side."""
+    import numpy as np
+    parts = []
+    for k, (name, top) in enumerate(panels):
+        panel = "%s.panel%d.png" % (png, k)
+        render_model().render(os.path.join("output", "gallery", name, "model.vtp"), panel, top=top,
+                              size=size)
+        parts.append(read_png(panel))
+        os.remove(panel)
+    write_png(np.concatenate(parts, axis=1), png)
+
+
 def main(names):
     images = os.path.join("Documentation", "images", "gallery")
     os.makedirs(images, exist_ok=True)
@@ -236,6 +262,11 @@ def main(names):
         png = os.path.join("Documentation", "images", "image-samples.png")
         samples_picture(png)
         print("made", png)
+    for picture, panels, size in RENDERED_PICTURES:
+        if not names or any(name in names for name, top in panels):
+            png = os.path.join("Documentation", "images", picture)
+            rendered_picture(png, panels, size)
+            print("made", png)
     write_page()
 
 
