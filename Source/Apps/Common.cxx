@@ -91,6 +91,11 @@ void CheckInputFile(const std::string& path, bool model)
   }
 }
 
+std::string Counted(long long n, const std::string& thing, const std::string& plural)
+{
+  return std::to_string(n) + " " + (n == 1 ? thing : plural.empty() ? thing + "s" : plural);
+}
+
 void Run(vtkAlgorithm* algorithm)
 {
   std::string messages;

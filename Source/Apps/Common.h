@@ -109,6 +109,10 @@ private:
   std::vector<std::pair<std::string, std::string>> Members;
 };
 
+/// "1 block", "2 blocks": @p n and @p thing, made plural (@p plural, or @p thing + "s") unless
+/// @p n is 1.
+std::string Counted(long long n, const std::string& thing, const std::string& plural = "");
+
 /// The solver's one-line message from field data `Message`.
 std::string MessageOf(vtkFieldData* fd, const char* name = "Message");
 /// The one-value count @p name of field data (0 when it is not there).

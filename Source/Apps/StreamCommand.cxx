@@ -411,8 +411,9 @@ int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std:
     PeakMegabytes());
   std::cout << MessageOf(fd) << "\n"
             << o.Size3[0] << " x " << o.Size3[1] << " x " << o.Size3[2] << " sites in "
-            << slabs.size() << " slabs, " << CountOf(fd, "Blocks") << " blocks ("
-            << CountOf(fd, "BlocksFailed") << " failed), " << timing << "\nwrote ";
+            << Counted(static_cast<long long>(slabs.size()), "slab") << ", "
+            << Counted(CountOf(fd, "Blocks"), "block") << " (" << CountOf(fd, "BlocksFailed")
+            << " failed), " << timing << "\nwrote ";
   for (std::size_t i = 0; i < written.size(); ++i)
     std::cout << (i ? ", " : "") << written[i];
   std::cout << "\n";

@@ -142,6 +142,11 @@ class StreamTest(unittest.TestCase):
         self.assertIn("slab 2 of the stream is damaged", done.stderr)
         stats = json.loads(text(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["SlabsResumed"], 2)
+        slabs = len(os.listdir(os.path.join(out, "labels")))  # the world's slabs, counted here
+        self.assertEqual(stats["Slabs"], slabs)
+        self.assertIn("(streamed in %d slabs along y: 2 kept from the earlier run, %d computed now)"
+                      % (slabs, slabs - 2), done.stdout)
+        self.assertIn("sites in %d slabs, " % slabs, done.stdout)
         fresh = fresh_folder("stream-fresh")
         done = msynth("synthesize", lines, *common, "--out", fresh)
         self.assertEqual(done.returncode, 0, done.stderr)
