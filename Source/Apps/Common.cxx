@@ -105,6 +105,24 @@ void Run(vtkAlgorithm* algorithm)
   }
 }
 
+void RunSynthesis(vtkAlgorithm* algorithm)
+{
+  try
+  {
+    Run(algorithm);
+  }
+  catch (const std::runtime_error& e)
+  {
+    // The filters' messages about a list property start with the property's name.
+    std::string text = e.what();
+    for (const auto& [property, option] : { std::make_pair("Counts: ", "--count: "),
+           std::make_pair("Connected: ", "--connected: "), std::make_pair("Path: ", "--path: ") })
+      if (text.compare(0, std::strlen(property), property) == 0)
+        text = option + text.substr(std::strlen(property));
+    throw std::runtime_error(text);
+  }
+}
+
 namespace
 {
 /// @p text with every occurrence of @p from replaced by @p to.

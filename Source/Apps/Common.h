@@ -59,6 +59,9 @@ void CheckInputFile(const std::string& path, bool model = false);
 
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm);
+/// Runs a synthesis filter as Run does, its messages about its list properties (Counts,
+/// Connected, Path) naming the command's options instead (--count, --connected, --path).
+void RunSynthesis(vtkAlgorithm* algorithm);
 
 /**
  * Runs @p command with a staging folder inside @p out and publishes its files together when it

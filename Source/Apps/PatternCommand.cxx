@@ -232,7 +232,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   {
     ProgressBar bar(synthesis);
     synthesis->UpdateInformation();
-    Run(synthesis); // all samples at once; the steps below come from the filter's cache
+    RunSynthesis(synthesis); // all samples at once; the steps below come from the filter's cache
   }
   const std::vector<msynth::Stencil> measured = msynth::ParseStencils(o.Measure.empty()
       ? MessageOf(synthesis->GetOutput()->GetFieldData(), "SoftShapes")

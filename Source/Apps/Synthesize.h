@@ -140,11 +140,13 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
  * option and the bound that is out. Prints a note when --block is larger than the model.
  */
 void CheckDiscreteSizes(const SynthesizeOptions& o);
-/// --ground and --empty against the labels of the label-grid example @p example.
+/// --ground and --empty against the labels of the label-grid example @p example (nullptr: of
+/// the tileset of @p o).
 /// @throw UsageError naming the option, the example and its labels.
 void CheckBoundaryLabels(const SynthesizeOptions& o, vtkImageData* example);
-/// A message of vtkMSDiscreteSynthesis in the command's terms: its options, the --fixed file.
-std::string InOptionTerms(const std::string& message, const SynthesizeOptions& o);
+/// Runs @p synthesis (RunSynthesis), its messages about the pinned sites naming --fixed and
+/// its file.
+void RunDiscrete(vtkAlgorithm* synthesis, const SynthesizeOptions& o);
 /// Continuous synthesis into the staging folder @p dir.
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir);
 

@@ -11,6 +11,7 @@
 
 #include "Core/Error.h"
 #include "Core/Index.h"
+#include "Formats/Tileset.h"
 
 #include <algorithm>
 #include <iostream>
@@ -53,11 +54,6 @@ std::string FirstValues(const std::set<long long>& values, std::size_t most = 20
   return text;
 }
 
-/// @p text with its prefix @p from, if it starts so, replaced by @p to.
-std::string Reprefixed(const std::string& text, const std::string& from, const std::string& to)
-{
-  return text.compare(0, from.size(), from) == 0 ? to + text.substr(from.size()) : text;
-}
 } // namespace
 
 void CheckDiscreteSizes(const SynthesizeOptions& o)
@@ -95,6 +91,11 @@ void CheckDiscreteSizes(const SynthesizeOptions& o)
           std::to_string(o.Pattern) + " x " + std::to_string(o.Pattern) +
           " pixels, its pattern size (--pattern " + std::to_string(o.Pattern) + ")" };
     }
+  if ((o.Stream || o.Resume) &&
+    std::none_of(o.Block.begin(), o.Block.end(),
+      [&o, i = 0](int b) mutable { return b > 0 && b < o.Size3[msynth::ToIndex(i++)]; }))
+    throw UsageError{ "--stream computes the world block by block: give a --block smaller than " +
+      size + " on at least one axis (--block " + Listed(o.Block) + ")" };
   bool larger = false, whole = true;
   for (int a = 0; a < 3; ++a)
   {
@@ -112,20 +113,30 @@ void CheckDiscreteSizes(const SynthesizeOptions& o)
 
 void CheckBoundaryLabels(const SynthesizeOptions& o, vtkImageData* example)
 {
-  vtkDataArray* labels = example ? vtkMSLabelArrays::FindLabelArray(example, nullptr) : nullptr;
-  if (!labels || (o.Ground.empty() && o.Empty.empty()))
+  if (o.Ground.empty() && o.Empty.empty())
     return;
   std::set<long long> values;
-  for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
-    values.insert(static_cast<long long>(labels->GetTuple1(i)));
+  if (vtkDataArray* labels = example ? vtkMSLabelArrays::FindLabelArray(example, nullptr) : nullptr)
+    for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
+      values.insert(static_cast<long long>(labels->GetTuple1(i)));
+  else if (IsTileset(o.Example)) // a tileset's labels: its tiles' orientations, numbered
+    for (int b = 0; b < msynth::ReadTilesetFile(o.Example, o.Subset, o.Tiles).NumberOfLabels(); ++b)
+      values.insert(b);
+  else
+    return;
   for (const auto& [name, option] :
     { std::make_pair("--ground", &o.Ground), std::make_pair("--empty", &o.Empty) })
     if (!option->empty() && values.count((*option)[0]) == 0)
       throw UsageError{ std::string(name) + " " + std::to_string((*option)[0]) + ": label " +
         std::to_string((*option)[0]) + " does not occur in '" + o.Example + "'; its labels are " +
-        FirstValues(values) };
+        FirstValues(values) +
+        (example ? std::string() : " (msynth info '" + o.Example + "' lists them)") };
 }
 
+namespace
+{
+/// A message of vtkMSDiscreteSynthesis about the pinned sites naming --fixed, its file and
+/// --size.
 std::string InOptionTerms(const std::string& message, const SynthesizeOptions& o)
 {
   std::string text = message;
@@ -135,13 +146,23 @@ std::string InOptionTerms(const std::string& message, const SynthesizeOptions& o
     const std::string size = "the output's size";
     const std::size_t at = text.find(size);
     if (at != std::string::npos)
-      text.insert(at + size.size(), " (--size " + Listed({ o.Size3[0], o.Size3[1], o.Size3[2] }) + ")");
+      text.insert(
+        at + size.size(), " (--size " + Listed({ o.Size3[0], o.Size3[1], o.Size3[2] }) + ")");
   }
-  // The filter's messages about its list properties start with the property's name.
-  text = Reprefixed(text, "Counts: ", "--count: ");
-  text = Reprefixed(text, "Connected: ", "--connected: ");
-  text = Reprefixed(text, "Path: ", "--path: ");
   return text;
+}
+} // namespace
+
+void RunDiscrete(vtkAlgorithm* synthesis, const SynthesizeOptions& o)
+{
+  try
+  {
+    RunSynthesis(synthesis);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw std::runtime_error(InOptionTerms(e.what(), o));
+  }
 }
 
 } // namespace cli

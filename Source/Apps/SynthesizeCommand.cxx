@@ -652,6 +652,7 @@ void SetUpDiscrete(
     synthesis->SetTilesetFile(o.Example.c_str());
     synthesis->SetTilesetSubset(o.Subset.c_str());
     synthesis->SetTilesFolder(o.Tiles.c_str());
+    CheckBoundaryLabels(o, nullptr);
   }
   else if (!IsSample(o.Example))
   {
@@ -683,14 +684,9 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   {
     ConnectGuide(synthesis, 1, guide, o.Guide);
   }
-  try
   {
     ProgressBar bar(synthesis);
-    Run(synthesis);
-  }
-  catch (const std::runtime_error& e)
-  {
-    throw std::runtime_error(InOptionTerms(e.what(), o));
+    RunDiscrete(synthesis, o);
   }
   vtkImageData* model = synthesis->GetOutput();
   std::vector<std::string> written;

@@ -109,6 +109,15 @@ class LabelOptionsTest(unittest.TestCase):
             expect_refused(self, ["synthesize", village], ["--size", "20", "20", "5", option, "9"],
                            "%s 9: label 9 does not occur in '%s'; its labels are %s" % (option, village, listed))
 
+    def test_ground_of_a_tileset_lists_its_labels(self):
+        lines = data("Tilesets/Lines.xml")
+        info = run_msynth("info", lines)  # the labels as msynth info lists them
+        self.assertEqual(info.returncode, 0, info.stderr)
+        count = int(re.search(r"^labels: (\d+)", info.stdout, re.M).group(1))
+        expect_refused(self, ["synthesize", lines], ["--size", "20", "20", "1", "--ground", "99"],
+                       "--ground 99: label 99 does not occur in '%s'; its labels are %s (msynth info '%s' "
+                       "lists them)" % (lines, ", ".join(str(b) for b in range(count)), lines))
+
     def test_tile_names_are_listed(self):
         lines = data("Tilesets/Lines.xml")
         expect_refused(self, ["synthesize", lines], ["--size", "20", "20", "1", "--count", "corners:1:5"],
@@ -119,6 +128,15 @@ class LabelOptionsTest(unittest.TestCase):
             expect_refused(self, ["synthesize", tracks], ["--size", "20", "20", "1", option, value],
                            "%s: '%s' is neither a label value nor a tile or label name of the tileset; its "
                            "tiles: %s" % (option, name, ", ".join(tile_names(tracks))))
+        # In a stream and in pattern synthesis too.
+        expect_refused(self, ["synthesize", tracks], ["--size", "40", "40", "1", "--block", "10", "10", "1",
+                                                      "--stream", "--connected", "track"],
+                       "--connected: 'track' is neither")
+        city = data("Patterns/City.xml")
+        expect_refused(self, ["pattern", data("Patterns/city-urban.vti")],
+                       ["--tileset", city, "--size", "20", "20", "--connected", "bridge"],
+                       "--connected: 'bridge' is neither a label value nor a tile or label name of the "
+                       "tileset; its tiles: " + ", ".join(tile_names(city)[:20]))
         expect_refused(self, ["synthesize", tracks],
                        ["--size", "20", "20", "1", "--connected", "Rail", "--path", "bridge"],
                        "--path: 'bridge' is neither a site x,y[,z] nor a label value or a tile or label name "

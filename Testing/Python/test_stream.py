@@ -228,9 +228,13 @@ class StreamTest(unittest.TestCase):
             self.assertNotEqual(done.returncode, 0, extra)
             self.assertIn(words, done.stderr)
             self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
-        done = msynth("synthesize", lines, "--size", "40", "40", "1", "--stream", "--out", out)
-        self.assertNotEqual(done.returncode, 0)
-        self.assertIn("give blocks smaller than the world", done.stderr)
+        for block in ([], ["--block", "40", "50", "1"]):
+            done = msynth("synthesize", lines, "--size", "40", "40", "1", *block, "--stream", "--out", out)
+            self.assertEqual(done.returncode, 2)
+            self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+            self.assertIn("--stream computes the world block by block: give a --block smaller than --size "
+                          "40 40 1 on at least one axis (--block %s)" % (" ".join(block[1:]) or "0 0 0"),
+                          done.stderr)
 
 
 if __name__ == "__main__":
