@@ -140,6 +140,9 @@ namespace
 std::string InOptionTerms(const std::string& message, const SynthesizeOptions& o)
 {
   std::string text = message;
+  const std::string property = "Fixed File '"; // the filter's messages about the file it read
+  if (text.compare(0, property.size(), property) == 0)
+    return "--fixed '" + text.substr(property.size());
   if (!o.Fixed.empty() && text.find("the pinned sites cover") != std::string::npos)
   {
     text = "--fixed '" + o.Fixed + "': " + text;

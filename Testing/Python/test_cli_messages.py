@@ -33,6 +33,18 @@ class FixedSizeTest(unittest.TestCase):
                        "--fixed '%s': the pinned sites cover %d x %d x %d sites, the output 30 x 30 x 1: "
                        "expected a grid of the output's size (--size 30 30 1)" % ((drawn,) + dims))
 
+    def test_a_fixed_file_that_does_not_fit_is_named(self):
+        picture = data("Tilesets/lines-drawn.png")
+        expect_refused(self, ["synthesize", data("Examples/Village.vti")],
+                       ["--size", "30", "30", "5", "--fixed", picture],
+                       "--fixed '%s': a picture pins the tiles of a 2D tileset or the patterns of an image "
+                       "sample; this run's rules come from a label grid example" % picture)
+        r = run_msynth("synthesize", data("Samples/Rooms.png"), "--size", "30", "30", "1", "--fixed", picture,
+                       "--out", os.path.join(fresh_folder("messages-fixed-sample"), "out"))
+        line = one_line(self, r, 1)
+        self.assertRegex(line, r"^msynth: error: --fixed '%s': pixel \(\d+, \d+\) has a colour the sample does "
+                         "not have" % re.escape(picture))
+
     def test_pattern_names_the_fixed_file_and_sizes(self):
         fixed = data("Patterns/city-crossroads-170.vti")
         dims = read_label_grid(fixed).GetDimensions()
@@ -72,6 +84,21 @@ class SizeOptionsTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("1 x 1 x 1 pattern sites (a 3 x 3 picture), 1 distinct pattern, 1 block (0 failed)",
                       r.stdout)
+
+    def test_the_filter_says_the_same_in_its_properties(self):
+        """Python and ParaView name the filter's properties, as the command names its options."""
+        import modelsynth
+        from msynth_testing import run_algorithm
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetSampleFile(data("Samples/Rooms.png"))
+        _, errors = run_algorithm(synthesis, OutputSize=[2, 2, 1], PatternSize=3)
+        self.assertIn("OutputSize must be at least 1 on every axis and, for an image sample, PatternSize (3) "
+                      "in x and y, got 2 2 1.", errors)
+        tracks = modelsynth.vtkMSDiscreteSynthesis()
+        tracks.SetTilesetFile(data("Tilesets/Tracks.xml"))
+        _, errors = run_algorithm(tracks, OutputSize=[8, 8, 1], Connected="track")
+        self.assertIn("Connected: 'track' is neither a label value nor a tile or label name of the tileset; "
+                      "its tiles: Grass, Rail, Curve, Switch", errors)
 
     def test_a_block_larger_than_the_model_says_it_runs_whole(self):
         village = data("Examples/Village.vti")
