@@ -91,9 +91,10 @@ void CheckDiscreteSizes(const SynthesizeOptions& o)
           std::to_string(o.Pattern) + " x " + std::to_string(o.Pattern) +
           " pixels, its pattern size (--pattern " + std::to_string(o.Pattern) + ")" };
     }
-  if ((o.Stream || o.Resume) &&
-    std::none_of(o.Block.begin(), o.Block.end(),
-      [&o, i = 0](int b) mutable { return b > 0 && b < o.Size3[msynth::ToIndex(i++)]; }))
+  bool blocks = false; // more than one block along some axis
+  for (std::size_t a = 0; a < 3; ++a)
+    blocks = blocks || (o.Block[a] > 0 && o.Block[a] < o.Size3[a]);
+  if ((o.Stream || o.Resume) && !blocks)
     throw UsageError{ "--stream computes the world block by block: give a --block smaller than " +
       size + " on at least one axis (--block " + Listed(o.Block) + ")" };
   bool larger = false, whole = true;
@@ -120,8 +121,11 @@ void CheckBoundaryLabels(const SynthesizeOptions& o, vtkImageData* example)
     for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
       values.insert(static_cast<long long>(labels->GetTuple1(i)));
   else if (IsTileset(o.Example)) // a tileset's labels: its tiles' orientations, numbered
-    for (int b = 0; b < msynth::ReadTilesetFile(o.Example, o.Subset, o.Tiles).NumberOfLabels(); ++b)
+  {
+    const int n = msynth::ReadTilesetFile(o.Example, o.Subset, o.Tiles).NumberOfLabels();
+    for (int b = 0; b < n; ++b)
       values.insert(b);
+  }
   else
     return;
   for (const auto& [name, option] :
