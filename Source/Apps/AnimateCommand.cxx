@@ -147,8 +147,8 @@ int Animate(const AnimateOptions& o, const std::string& dir)
             << "consistent: all " << CountOf(verdict, "PairsChecked")
             << " pairs of neighbours in space and time occur in the example\n"
             << "wrote " << dir << "/frame_0000.vti ... frame_" << std::setw(4) << std::setfill('0')
-            << (o.Frames - 1) << ".vti, " << dir << "/model_0001.vdb ..., " << dir
-            << "/statistics.json\n";
+            << (o.Frames - 1) << ".vti, " << dir << "/model_0001.vdb ... model_" << std::setw(4)
+            << o.Frames << ".vdb (frame_T.vti as model_T+1.vdb), " << dir << "/statistics.json\n";
   return 0;
 }
 } // namespace

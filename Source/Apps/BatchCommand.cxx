@@ -222,8 +222,11 @@ int RunBatch(const BatchOptions& b)
     table << line << result.substr(0, 200) << "\n";
   }
   std::cout << "\n" << table.str();
-  std::cout << (bad ? std::to_string(bad) + " of " : "all ") + std::to_string(entries.size()) +
-      " entries " + (bad ? "failed" : "succeeded") + "; outputs in " + b.Out + "\n";
+  const auto n = static_cast<long long>(entries.size());
+  std::cout << (bad ? std::to_string(bad) + " of " + Counted(n, "entry", "entries") + " failed"
+                   : n == 1 ? std::string("the 1 entry succeeded")
+                            : "all " + Counted(n, "entry", "entries") + " succeeded") +
+      "; outputs in " + b.Out + "\n";
   return bad ? 1 : 0;
 }
 } // namespace

@@ -146,9 +146,10 @@ int CheckContinuous(
   const Verdict verdict{ check->GetOutput()->GetFieldData() };
   if (verdict.Valid())
   {
-    std::cout << "valid: " << modelPath << " (" << modelReader->GetOutput()->GetNumberOfPolys()
-              << " polygons, " << CountOf(verdict.Fields, "Objects")
-              << " objects) has only neighbourhoods of " << example << " ("
+    std::cout << "valid: " << modelPath << " ("
+              << Counted(modelReader->GetOutput()->GetNumberOfPolys(), "polygon") << ", "
+              << Counted(CountOf(verdict.Fields, "Objects"), "object")
+              << ") has only neighbourhoods of " << example << " ("
               << CountOf(verdict.Fields, "DistinctLabels") << " distinct)\n";
     vtkDataArray* width = verdict.Fields->GetArray("SmallestFeature");
     vtkDataArray* fraction = verdict.Fields->GetArray("SmallestFeatureFraction");
@@ -210,9 +211,9 @@ int CheckVoxels(const std::string& example, const std::string& modelPath, const 
               << " adjacent pairs are allowed\n";
     return 0;
   }
-  std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " problems in "
-            << modelPath << " (" << CountOf(verdict.Fields, "Cells") << " tile cells, "
-            << CountOf(verdict.Fields, "PairsChecked") << " pairs)\n";
+  std::cout << "inconsistent: " << Counted(CountOf(verdict.Fields, "Violations"), "problem")
+            << " in " << modelPath << " (" << Counted(CountOf(verdict.Fields, "Cells"), "tile cell")
+            << ", " << Counted(CountOf(verdict.Fields, "PairsChecked"), "pair") << ")\n";
   verdict.PrintProblems("  ");
   return 1;
 }
@@ -271,7 +272,8 @@ int CheckDiscrete(const CheckOptions& o)
     return verdict.Valid() ? 0 : 1;
   }
   std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
-            << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never occur in "
+            << CountOf(verdict.Fields, "PairsChecked") << " adjacent pairs never "
+            << (CountOf(verdict.Fields, "Violations") == 1 ? "occurs" : "occur") << " in "
             << o.Example << "\n";
   verdict.PrintProblems("  ");
   return 1;
@@ -317,13 +319,16 @@ int CheckAnimation(const CheckOptions& o)
   if (verdict.Valid())
   {
     std::cout << "consistent: all " << CountOf(verdict.Fields, "PairsChecked")
-              << " pairs of neighbours in space and time of the " << frames << " frames from "
-              << o.Model << (o.Loop ? " (looping)" : "") << " occur in " << o.Example << "\n";
+              << " pairs of neighbours in space and time of the " << Counted(frames, "frame")
+              << " from " << o.Model << (o.Loop ? " (looping)" : "") << " occur in " << o.Example
+              << "\n";
     return 0;
   }
   std::cout << "inconsistent: " << CountOf(verdict.Fields, "Violations") << " of "
             << CountOf(verdict.Fields, "PairsChecked")
-            << " pairs of neighbours in space and time never occur in " << o.Example << "\n";
+            << " pairs of neighbours in space and time never "
+            << (CountOf(verdict.Fields, "Violations") == 1 ? "occurs" : "occur") << " in "
+            << o.Example << "\n";
   verdict.PrintProblems("  ");
   return 1;
 }
@@ -458,8 +463,9 @@ int CheckPieces(const std::string& example, const std::string& path, const std::
   }
   if (violations > 0)
     return 1;
-  std::cout << "consistent: all " << pairs << " adjacent pairs of the " << pieces.size()
-            << " pieces of " << path << " (seams included) occur in " << example << "\n";
+  std::cout << "consistent: all " << pairs << " adjacent pairs of the "
+            << Counted(static_cast<long long>(pieces.size()), "piece") << " of " << path
+            << " (seams included) occur in " << example << "\n";
   return 0;
 }
 } // namespace

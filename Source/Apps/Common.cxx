@@ -91,12 +91,35 @@ void CheckInputFile(const std::string& path, bool model)
   }
 }
 
+std::string Counted(long long n, const std::string& thing, const std::string& plural)
+{
+  return std::to_string(n) + " " + (n == 1 ? thing : plural.empty() ? thing + "s" : plural);
+}
+
 void Run(vtkAlgorithm* algorithm)
 {
   std::string messages;
   if (!vtkMSEngineBridge::Execute(algorithm, messages))
   {
     throw std::runtime_error(messages);
+  }
+}
+
+void RunSynthesis(vtkAlgorithm* algorithm)
+{
+  try
+  {
+    Run(algorithm);
+  }
+  catch (const std::runtime_error& e)
+  {
+    // The filters' messages about a list property start with the property's name.
+    std::string text = e.what();
+    for (const auto& [property, option] : { std::make_pair("Counts: ", "--count: "),
+           std::make_pair("Connected: ", "--connected: "), std::make_pair("Path: ", "--path: ") })
+      if (text.compare(0, std::strlen(property), property) == 0)
+        text = option + text.substr(std::strlen(property));
+    throw std::runtime_error(text);
   }
 }
 

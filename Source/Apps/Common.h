@@ -59,6 +59,9 @@ void CheckInputFile(const std::string& path, bool model = false);
 
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm);
+/// Runs a synthesis filter as Run does, its messages about its list properties (Counts,
+/// Connected, Path) naming the command's options instead (--count, --connected, --path).
+void RunSynthesis(vtkAlgorithm* algorithm);
 
 /**
  * Runs @p command with a staging folder inside @p out and publishes its files together when it
@@ -108,6 +111,10 @@ public:
 private:
   std::vector<std::pair<std::string, std::string>> Members;
 };
+
+/// "1 block", "2 blocks": @p n and @p thing, made plural (@p plural, or @p thing + "s") unless
+/// @p n is 1.
+std::string Counted(long long n, const std::string& thing, const std::string& plural = "");
 
 /// The solver's one-line message from field data `Message`.
 std::string MessageOf(vtkFieldData* fd, const char* name = "Message");

@@ -51,9 +51,9 @@ int VoxelTilesetInfo(const std::string& path, const msynth::Tileset& t)
             << " voxels\n"
             << "tiles: " << t.Tiles.size() << "\n";
   for (const auto& tile : t.Tiles)
-    std::cout << "  " << tile.Name << ": " << tile.Orientations << " distinct images (labels "
-              << tile.FirstLabel << "-" << tile.FirstLabel + tile.Orientations - 1 << "), weight "
-              << tile.Weight << "\n";
+    std::cout << "  " << tile.Name << ": " << Counted(tile.Orientations, "distinct image")
+              << " (labels " << tile.FirstLabel << "-" << tile.FirstLabel + tile.Orientations - 1
+              << "), weight " << tile.Weight << "\n";
   std::cout << "labels: " << t.NumberOfLabels() << " (tile, symmetry)\n";
   for (int b = 0; b < t.NumberOfLabels(); ++b)
     std::cout << "  label " << b << ": "
@@ -141,10 +141,10 @@ int SampleInfo(const std::string& example, const OverlappingOptions& options)
   const RgbaImage image = ReadImage(example);
   const PatternSet set = ExtractPatterns(image, options, example);
   std::cout << "example: " << example << " (image sample)\n"
-            << "size: " << image.Width << " x " << image.Height << " pixels, " << set.Colours.size()
-            << " colours\n"
+            << "size: " << image.Width << " x " << image.Height << " pixels, "
+            << Counted(static_cast<long long>(set.Colours.size()), "colour") << "\n"
             << "patterns: " << set.NumberOfPatterns() << " (" << options.N << " x " << options.N
-            << " windows, " << options.Symmetry << " symmetries, "
+            << " windows, " << Counted(options.Symmetry, "symmetry", "symmetries") << ", "
             << (options.PeriodicInput ? "wrapping" : "not wrapping") << ")\n"
             << "pairs: " << set.Pairs[0].size() << " along x, " << set.Pairs[1].size()
             << " along y\n";
@@ -171,7 +171,7 @@ int LabelGridInfo(const std::string& example)
   for (vtkIdType r = 0; r < labels->GetNumberOfRows(); ++r)
   {
     std::cout << "  label " << labels->GetValueByName(r, "Label").ToString() << ": "
-              << labels->GetValueByName(r, "Count").ToString() << " sites\n";
+              << Counted(labels->GetValueByName(r, "Count").ToLongLong(), "site") << "\n";
   }
   vtkFieldData* fd = transitions->GetFieldData();
   if (auto* verdict =

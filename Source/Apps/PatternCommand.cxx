@@ -154,6 +154,21 @@ void ConnectInputs(vtkMSPatternSynthesis* synthesis, vtkMSCheckModel* check,
   if (!o.Fixed.empty())
   {
     readers.push_back(OpenGrid(o.Fixed));
+    int d[3];
+    readers.back()->GetOutput()->GetDimensions(d);
+    const int n[3] = { o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1 };
+    if (d[0] != n[0] || d[1] != n[1] || d[2] != n[2])
+    {
+      const auto sites = [](const int* v) {
+        return std::to_string(v[0]) + " x " + std::to_string(v[1]) + " x " + std::to_string(v[2]);
+      };
+      std::string size;
+      for (int v : o.Size)
+        size += " " + std::to_string(v);
+      throw std::runtime_error("--fixed '" + o.Fixed + "': the grid has " + sites(d) +
+        " sites, the output " + sites(n) + ": expected a grid of the output's size (--size" + size +
+        ")");
+    }
     synthesis->SetFixedConnection(readers.back()->GetOutputPort());
   }
 }
@@ -217,7 +232,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   {
     ProgressBar bar(synthesis);
     synthesis->UpdateInformation();
-    Run(synthesis); // all samples at once; the steps below come from the filter's cache
+    RunSynthesis(synthesis); // all samples at once; the steps below come from the filter's cache
   }
   const std::vector<msynth::Stencil> measured = msynth::ParseStencils(o.Measure.empty()
       ? MessageOf(synthesis->GetOutput()->GetFieldData(), "SoftShapes")
@@ -280,7 +295,7 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   }
   vtkFieldData* fd = last->GetFieldData();
   WritePatternStatistics(dir, o, fd, measured, { logp, kl, firstValid, seconds }, samples.str());
-  std::cout << o.Samples << " sample(s) of " << o.Size[0] << " x " << o.Size[1]
+  std::cout << Counted(o.Samples, "sample") << " of " << o.Size[0] << " x " << o.Size[1]
             << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
             << o.Method << " in " << JsonNumber(seconds) << " s (first valid after "
             << JsonNumber(firstValid) << " s); every pair occurs in an exemplar"

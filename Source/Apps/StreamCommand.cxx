@@ -411,8 +411,9 @@ int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std:
     PeakMegabytes());
   std::cout << MessageOf(fd) << "\n"
             << o.Size3[0] << " x " << o.Size3[1] << " x " << o.Size3[2] << " sites in "
-            << slabs.size() << " slabs, " << CountOf(fd, "Blocks") << " blocks ("
-            << CountOf(fd, "BlocksFailed") << " failed), " << timing << "\nwrote ";
+            << Counted(static_cast<long long>(slabs.size()), "slab") << ", "
+            << Counted(CountOf(fd, "Blocks"), "block") << " (" << CountOf(fd, "BlocksFailed")
+            << " failed), " << timing << "\nwrote ";
   for (std::size_t i = 0; i < written.size(); ++i)
     std::cout << (i ? ", " : "") << written[i];
   std::cout << "\n";
@@ -494,6 +495,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   vtkNew<vtkMSDiscreteSynthesis> synthesis;
   SetUpDiscrete(o, reader, synthesis);
   StreamProgress progress(static_cast<int>(kept.size()));
+  std::size_t finished = 0; // slabs this run wrote
   const int thickness = SlabThickness(o, kinds);
   synthesis->StreamNextUpdate(thickness, static_cast<int>(kept.size()),
     [&](vtkImageData* slab, int j, int count)
@@ -529,9 +531,19 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
       if (!slabs)
         throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
       progress.Slab(j, count, static_cast<double>(slab->GetNumberOfPoints()));
+      ++finished;
       return true;
     });
-  Run(synthesis);
+  try
+  {
+    RunDiscrete(synthesis, o);
+  }
+  catch (const std::exception&)
+  {
+    if (kept.empty() && finished == 0) // nothing to resume: the output folder stays as it was
+      msynth::RemoveTree(folder);
+    throw;
+  }
   return PublishStream(o, dir, folder, synthesis->GetOutput(), kept.size(), start);
 }
 

@@ -134,6 +134,19 @@ void ConnectGuide(
 void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const SynthesizeOptions& o,
   const std::string& dir, const std::function<bool(const char*)>& wanted,
   std::vector<std::string>& written);
+/**
+ * The sizes of @p o against each other (SynthesizeChecks.cxx): a --region inside the world of
+ * --size, an image sample's picture at least its pattern wide. @throw UsageError naming the
+ * option and the bound that is out. Prints a note when --block is larger than the model.
+ */
+void CheckDiscreteSizes(const SynthesizeOptions& o);
+/// --ground and --empty against the labels of the label-grid example @p example (nullptr: of
+/// the tileset of @p o).
+/// @throw UsageError naming the option, the example and its labels.
+void CheckBoundaryLabels(const SynthesizeOptions& o, vtkImageData* example);
+/// Runs @p synthesis (RunSynthesis), its messages about the pinned sites naming --fixed and
+/// its file.
+void RunDiscrete(vtkAlgorithm* synthesis, const SynthesizeOptions& o);
 /// Continuous synthesis into the staging folder @p dir.
 int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir);
 

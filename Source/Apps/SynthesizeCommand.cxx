@@ -652,11 +652,13 @@ void SetUpDiscrete(
     synthesis->SetTilesetFile(o.Example.c_str());
     synthesis->SetTilesetSubset(o.Subset.c_str());
     synthesis->SetTilesFolder(o.Tiles.c_str());
+    CheckBoundaryLabels(o, nullptr);
   }
   else if (!IsSample(o.Example))
   {
     reader->SetFileName(o.Example.c_str());
     Run(reader);
+    CheckBoundaryLabels(o, reader->GetOutput());
     synthesis->SetInputConnection(reader->GetOutputPort());
   }
   if (!o.Fixed.empty()) // streamed runs take the pins too
@@ -684,7 +686,7 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   }
   {
     ProgressBar bar(synthesis);
-    Run(synthesis);
+    RunDiscrete(synthesis, o);
   }
   vtkImageData* model = synthesis->GetOutput();
   std::vector<std::string> written;
@@ -715,9 +717,16 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
   std::snprintf(timing, sizeof(timing), "total %.2f s, synthesis %.2f s",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
     seconds && seconds->GetNumberOfTuples() > 0 ? seconds->GetTuple1(0) : 0.0);
+  // An image sample's sites are its patterns' places: the picture is a pattern wider.
+  const std::string picture = !IsSample(o.Example)
+    ? ""
+    : " (a " + std::to_string(o.Size3[0]) + " x " + std::to_string(o.Size3[1]) + " picture)";
   std::cout << MessageOf(fd) << "\n"
-            << dims[0] << " x " << dims[1] << " x " << dims[2] << " sites, " << used.size()
-            << " distinct labels, " << CountOf(fd, "Blocks") << " blocks ("
+            << dims[0] << " x " << dims[1] << " x " << dims[2]
+            << (picture.empty() ? " sites, " : " pattern sites" + picture + ", ")
+            << Counted(static_cast<long long>(used.size()),
+                 picture.empty() ? "distinct label" : "distinct pattern")
+            << ", " << Counted(CountOf(fd, "Blocks"), "block") << " ("
             << CountOf(fd, "BlocksFailed") << " failed), " << timing << "\n"
             << "wrote ";
   for (std::size_t i = 0; i < written.size(); ++i)
@@ -772,6 +781,8 @@ CommandRunner AddSynthesize(CLI::App& app)
     CheckInputFile(opts.Example);
     const bool polyhedral = IsPolyhedral(opts.Example);
     CheckKind(r, polyhedral);
+    if (!polyhedral)
+      CheckDiscreteSizes(opts);
     return IntoFolder(opts.Out,
       [&](const std::string& dir)
       { return polyhedral ? SynthesizeContinuous(opts, dir) : SynthesizeDiscrete(opts, dir); });

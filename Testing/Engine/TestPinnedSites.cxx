@@ -102,7 +102,9 @@ TEST(PinnedSites, ContradictionsAreOneLineBeforeAnyWork)
     ErrorOf(boundary), "site (3, 4, 0) is pinned to label 2, but the boundary there is label 1");
   SynthesisOptions small = WithPins({}, whole);
   small.Pins = LabelGrid(4, 4, 5, FreeSite);
-  EXPECT_EQ(ErrorOf(small), "the pinned sites cover (4, 4, 5) sites, the output (24, 24, 5)");
+  EXPECT_EQ(ErrorOf(small),
+    "the pinned sites cover 4 x 4 x 5 sites, the output 24 x 24 x 5: "
+    "expected a grid of the output's size");
   SynthesisOptions mirrored = WithPins({ { 5, 5, 3, 3 } }, whole);
   mirrored.Symmetry[0].Enabled = true;
   EXPECT_NE(ErrorOf(mirrored).find("cannot be combined with mirror"), std::string::npos);

@@ -514,7 +514,11 @@ class CommandLineTest(unittest.TestCase):
         for args in ((bad, "--size", "20", "20", "1"), (meadow, "--size", "2", "20", "1"),
                      (data("Samples/Bricks.png"), "--pattern", "8", "--size", "20", "20", "1")):
             r = run("synthesize", *args, "--out", tmp("cli-sample-bad"))
-            self.assertEqual(r.returncode, 1, args)
+            # a picture narrower than the pattern is a usage error (exit 2) naming --size
+            self.assertEqual(r.returncode, 2 if args[0] == meadow else 1, args)
+            if args[0] == meadow:
+                self.assertIn("--size 2 20 1: a picture from '%s' is at least 3 x 3 pixels" % meadow,
+                              r.stderr)
             self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
             self.assertFalse(os.path.exists(tmp("cli-sample-bad/picture.png")))
 
@@ -683,6 +687,8 @@ class CommandLineTest(unittest.TestCase):
                     "--out", out, *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertIn("consistent", r.stdout)
+            # the summary names the last frame and the last volume (numbered from 1)
+            self.assertIn("frame_0011.vti, %s/model_0001.vdb ... model_0012.vdb" % out, r.stdout)
             movie = []
             for t in range(12):
                 reader = modelsynth.vtkMSLabelGridReader()

@@ -57,7 +57,7 @@ class InfallibleTest(unittest.TestCase):
                               "--seed", str(seed), "--out", folder, "--outputs", "labels")
                 self.assertEqual(done.returncode, 0, done.stderr)
                 self.assertIn("via an infallible refinement", done.stdout)
-                self.assertIn("1 blocks (0 failed)", done.stdout)
+                self.assertIn(", 1 block (0 failed)", done.stdout)
                 model = os.path.join(folder, "labels.vti")
                 check = msynth("check", example, model)
                 self.assertEqual(check.returncode, 0, check.stdout + check.stderr)

@@ -229,7 +229,9 @@ class PinsTest(unittest.TestCase):
         r = msynth("synthesize", data("Examples/Village.vti"), "--size", "16", "16", "5", "--fixed", small,
                    "--out", out)
         self.assertEqual(r.returncode, 1)
-        self.assertIn("the pinned sites cover (4, 4, 5) sites, the output (16, 16, 5)", r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("--fixed '%s': the pinned sites cover 4 x 4 x 5 sites, the output 16 x 16 x 5: "
+                      "expected a grid of the output's size (--size 16 16 5)" % small, r.stderr)
         r = msynth("synthesize", data("Examples/Village.vti"), "--size", "16", "16", "5",
                    "--fixed-empty-free", "--out", out)
         self.assertEqual(r.returncode, 2, r.stderr)  # needs --fixed

@@ -142,6 +142,11 @@ class StreamTest(unittest.TestCase):
         self.assertIn("slab 2 of the stream is damaged", done.stderr)
         stats = json.loads(text(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["SlabsResumed"], 2)
+        slabs = len(os.listdir(os.path.join(out, "labels")))  # the world's slabs, counted here
+        self.assertEqual(stats["Slabs"], slabs)
+        self.assertIn("(streamed in %d slabs along y: 2 kept from the earlier run, %d computed now)"
+                      % (slabs, slabs - 2), done.stdout)
+        self.assertIn("sites in %d slabs, " % slabs, done.stdout)
         fresh = fresh_folder("stream-fresh")
         done = msynth("synthesize", lines, *common, "--out", fresh)
         self.assertEqual(done.returncode, 0, done.stderr)
@@ -223,9 +228,13 @@ class StreamTest(unittest.TestCase):
             self.assertNotEqual(done.returncode, 0, extra)
             self.assertIn(words, done.stderr)
             self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
-        done = msynth("synthesize", lines, "--size", "40", "40", "1", "--stream", "--out", out)
-        self.assertNotEqual(done.returncode, 0)
-        self.assertIn("give blocks smaller than the world", done.stderr)
+        for block in ([], ["--block", "40", "50", "1"]):
+            done = msynth("synthesize", lines, "--size", "40", "40", "1", *block, "--stream", "--out", out)
+            self.assertEqual(done.returncode, 2)
+            self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+            self.assertIn("--stream computes the world block by block: give a --block smaller than --size "
+                          "40 40 1 on at least one axis (--block %s)" % (" ".join(block[1:]) or "0 0 0"),
+                          done.stderr)
 
 
 if __name__ == "__main__":

@@ -73,13 +73,15 @@ class WorldsTest(unittest.TestCase):
         self.assertEqual(errors, "")
         np.testing.assert_array_equal(labels_zyx(part), full[:, 20:40, 5:25])
         _, errors = run_algorithm(synthesis, Region=[5, 20, 0, 25, 41, 5])
-        self.assertIn("is not a non-empty box inside OutputSize", errors)
+        self.assertIn("is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1): y1 is past "
+                      "OutputSize's 40.", errors)
         _, errors = run_algorithm(synthesis, Region=[0, 0, 0, 8, 8, 5], Mirror=[1, 0, 0])
         self.assertIn("a region of a world takes no symmetry", errors)
         done = msynth("synthesize", data("Examples/Village.vti"), "--size", "20", "20", "5",
                       "--region", "0", "0", "0", "30", "5", "5", "--out", fresh_folder("worlds-bad"))
-        self.assertNotEqual(done.returncode, 0)
+        self.assertEqual(done.returncode, 2)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        self.assertIn("--region 0 0 0 30 5 5: x1 = 30 is past the world's 20 sites in x", done.stderr)
 
     def test_requested_extents_compute_only_their_cone(self):
         # The streaming pipeline's way (issue: worlds, section 3): the whole extent is the world,

@@ -689,10 +689,13 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
     r.Message = "the label counts were not kept: " + miss;
     return r;
   }
-  r.Message = status == SynthesisStatus::Succeeded
-    ? Summary(r.Statistics, false) + " (streamed in " + std::to_string(layout.Chunks - firstChunk) +
-      " slabs along " + "xyz"[layout.Axis] + ")"
-    : message;
+  r.Message = status == SynthesisStatus::Succeeded ? Summary(r.Statistics, false) +
+      " (streamed in " + std::to_string(layout.Chunks) + " slabs along " + "xyz"[layout.Axis] +
+      (firstChunk == 0 ? std::string()
+                       : ": " + std::to_string(firstChunk) + " kept from the earlier run, " +
+            std::to_string(layout.Chunks - firstChunk) + " computed now") +
+      ")"
+                                                   : message;
   return r;
 }
 

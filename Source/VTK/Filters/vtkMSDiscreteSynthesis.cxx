@@ -154,6 +154,26 @@ int PieceSplitMode(vtkMSDiscreteSynthesis* self)
       return a;
   return longest;
 }
+
+/// What is wrong with axis @p a of @p self's Region in the grid @p grid (empty when nothing).
+std::string RegionProblem(vtkMSDiscreteSynthesis* self, const int grid[3], int a)
+{
+  const int* r = self->GetRegion();
+  const int lo = r[a], hi = r[a + 3];
+  const bool sample = self->GetActiveSource() == vtkMSDiscreteSynthesis::SAMPLE_SOURCE;
+  if (!sample && lo >= 0 && hi <= grid[a] && lo < hi)
+    return std::string();
+  std::string text = "Region";
+  for (int i = 0; i < 6; ++i)
+    text += " " + std::to_string(r[i]);
+  if (sample)
+    return text + ": regions are for label grids and tilesets, not image samples.";
+  const std::string axis(1, static_cast<char>('x' + a));
+  return text + " is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1): " +
+    (lo < 0            ? axis + "0 is below 0."
+        : hi > grid[a] ? axis + "1 is past OutputSize's " + std::to_string(grid[a]) + "."
+                       : axis + "0 is not below " + axis + "1.");
+}
 } // namespace
 
 int vtkMSDiscreteSynthesis::RequestInformation(
@@ -166,8 +186,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     if (grid[a] < 1)
     {
       vtkErrorMacro(<< "OutputSize must be at least 1 on every axis"
-                    << (this->GetActiveSource() != SAMPLE_SOURCE ? ""
-                                                                 : " (and a pattern in x and y)")
+                    << (this->GetActiveSource() != SAMPLE_SOURCE
+                           ? ""
+                           : " and, for an image sample, PatternSize (" +
+                             std::to_string(this->PatternSize) + ") in x and y")
                     << ", got " << this->OutputSize[0] << " " << this->OutputSize[1] << " "
                     << this->OutputSize[2] << ".");
       return 0;
@@ -184,14 +206,10 @@ int vtkMSDiscreteSynthesis::RequestInformation(
     for (int a = 0; a < 3; ++a)
     {
       const int lo = this->Region[a], hi = this->Region[a + 3];
-      if (lo < 0 || hi > grid[a] || lo >= hi || this->GetActiveSource() == SAMPLE_SOURCE)
+      const std::string problem = RegionProblem(this, grid, a);
+      if (!problem.empty())
       {
-        vtkErrorMacro(<< "Region " << this->Region[0] << " " << this->Region[1] << " "
-                      << this->Region[2] << " " << this->Region[3] << " " << this->Region[4] << " "
-                      << this->Region[5]
-                      << (this->GetActiveSource() != SAMPLE_SOURCE
-                             ? " is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1)."
-                             : ": regions are for label grids and tilesets, not image samples."));
+        vtkErrorMacro(<< problem);
         return 0;
       }
       grid[a] = hi - lo;

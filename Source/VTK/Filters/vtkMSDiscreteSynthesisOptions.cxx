@@ -305,8 +305,12 @@ bool ReadPins(vtkMSDiscreteSynthesis* self, vtkImageData* fixed, msynth::Synthes
   }
   catch (const std::exception& e)
   {
-    vtkErrorWithObjectMacro(
-      self, << "Bad pinned sites (" << (fixed ? "Fixed input" : "Fixed File") << "): " << e.what());
+    // "Fixed File 'NAME': problem" (the problem names the file itself when it read it).
+    const std::string what = e.what(), named = "'" + file + "'";
+    const std::string text = fixed
+      ? "Bad pinned sites (Fixed input): " + what
+      : "Fixed File " + (what.compare(0, named.size(), named) == 0 ? what : named + ": " + what);
+    vtkErrorWithObjectMacro(self, << text);
     return false;
   }
 }

@@ -16,6 +16,20 @@
 
 namespace vtkMSLabelCounts
 {
+namespace
+{
+/// "; its tiles: A, B, ..." (the first twenty names), what a name may be.
+std::string TileNames(const msynth::Tileset& tiles)
+{
+  std::string text = "; its tiles: ";
+  const std::size_t most = 20;
+  for (std::size_t i = 0; i < tiles.Tiles.size() && i < most; ++i)
+    text += (i ? ", " : "") + msynth::Printable(tiles.Tiles[i].Name);
+  if (tiles.Tiles.size() > most)
+    text += ", ... (" + std::to_string(tiles.Tiles.size()) + " in all)";
+  return text;
+}
+} // namespace
 
 std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tileset* tiles)
 {
@@ -51,8 +65,8 @@ std::vector<msynth::LabelCount> Read(const std::string& text, const msynth::Tile
           c.Values.push_back(b);
       }
       if (c.Values.empty())
-        throw msynth::Error(
-          "Counts: the tileset has no tile or label named '" + msynth::Printable(c.Name) + "'");
+        throw msynth::Error("Counts: the tileset has no tile or label named '" +
+          msynth::Printable(c.Name) + "'" + TileNames(*tiles));
     }
     else
       throw msynth::Error(
@@ -117,7 +131,8 @@ void ReadPath(
     if (values.empty())
       throw msynth::Error("Path: '" + msynth::Printable(item) +
         "' is neither a site x,y[,z] nor a label value" +
-        (tiles ? " or a tile or label name of the tileset" : " (names need a tileset)"));
+        (tiles ? " or a tile or label name of the tileset" + TileNames(*tiles)
+               : " (names need a tileset)"));
     network.PathLabels.insert(network.PathLabels.end(), values.begin(), values.end());
   }
 }
@@ -157,7 +172,8 @@ msynth::ConnectedNetwork ReadConnected(
     network.Values.insert(network.Values.end(), values.begin(), values.end());
     if (network.Values.size() == before)
       throw msynth::Error("Connected: '" + msynth::Printable(item) +
-        (tiles ? "' is neither a label value nor a tile or label name of the tileset"
+        (tiles ? "' is neither a label value nor a tile or label name of the tileset" +
+              TileNames(*tiles)
                : "' is not a label value (names need a tileset)"));
     network.Name += (network.Name.empty() ? "" : ",") + item;
   }

@@ -1,0 +1,209 @@
+"""What msynth says to a new user: bad input gets one line that names the option (as typed on the
+command line, not the filter's property) and the file, says what is wrong and what is expected;
+summaries count in words that agree with their numbers (1 block, 2 blocks)."""
+import json
+import os
+import re
+import unittest
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from msynth_testing import data, expect_refused, fresh_folder, labels_zyx, read_label_grid, run_msynth
+
+
+def one_line(test, r, code):
+    """Exit @p code and one line on stderr; the line."""
+    test.assertEqual(r.returncode, code, r.stdout + r.stderr)
+    lines = r.stderr.strip().splitlines()
+    test.assertEqual(len(lines), 1, r.stderr)
+    return lines[0]
+
+
+def tile_names(tileset):
+    """The tile names of a simple-tiled tileset, read from its XML here."""
+    return [t.get("name") for t in ET.parse(tileset).getroot().find("tiles").findall("tile")]
+
+
+class FixedSizeTest(unittest.TestCase):
+    def test_synthesize_names_the_fixed_file_and_sizes(self):
+        lines, drawn = data("Tilesets/Lines.xml"), data("Tilesets/lines-drawn.vti")
+        dims = read_label_grid(drawn).GetDimensions()  # the pins' size, read independently
+        expect_refused(self, ["synthesize", lines], ["--size", "30", "30", "1", "--fixed", drawn],
+                       "--fixed '%s': the pinned sites cover %d x %d x %d sites, the output 30 x 30 x 1: "
+                       "expected a grid of the output's size (--size 30 30 1)" % ((drawn,) + dims))
+
+    def test_a_fixed_file_that_does_not_fit_is_named(self):
+        picture = data("Tilesets/lines-drawn.png")
+        expect_refused(self, ["synthesize", data("Examples/Village.vti")],
+                       ["--size", "30", "30", "5", "--fixed", picture],
+                       "--fixed '%s': a picture pins the tiles of a 2D tileset or the patterns of an image "
+                       "sample; this run's rules come from a label grid example" % picture)
+        r = run_msynth("synthesize", data("Samples/Rooms.png"), "--size", "30", "30", "1", "--fixed", picture,
+                       "--out", os.path.join(fresh_folder("messages-fixed-sample"), "out"))
+        line = one_line(self, r, 1)
+        self.assertRegex(line, r"^msynth: error: --fixed '%s': pixel \(\d+, \d+\) has a colour the sample does "
+                         "not have" % re.escape(picture))
+
+    def test_pattern_names_the_fixed_file_and_sizes(self):
+        fixed = data("Patterns/city-crossroads-170.vti")
+        dims = read_label_grid(fixed).GetDimensions()
+        expect_refused(self, ["pattern", data("Patterns/city-urban.vti")],
+                       ["--size", "100", "100", "--fixed", fixed],
+                       "--fixed '%s': the grid has %d x %d x %d sites, the output 100 x 100 x 1: expected "
+                       "a grid of the output's size (--size 100 100)" % ((fixed,) + dims))
+
+
+class SizeOptionsTest(unittest.TestCase):
+    def test_region_names_the_bound_that_is_out(self):
+        village = data("Examples/Village.vti")
+        size = ["--size", "100", "100", "5"]
+        for region, what in ((["90", "90", "0", "120", "120", "1"], "x1 = 120 is past the world's 100 sites in x"),
+                             (["10", "90", "0", "20", "101", "1"], "y1 = 101 is past the world's 100 sites in y"),
+                             (["10", "10", "3", "20", "20", "3"], "z0 = 3 is not below z1 = 3")):
+            out = os.path.join(fresh_folder("messages-region"), "out")
+            r = run_msynth("synthesize", village, *size, "--region", *region, "--out", out)
+            line = one_line(self, r, 2)
+            self.assertIn("--region %s: %s" % (" ".join(region), what), line)
+            self.assertIn("(--size 100 100 5)", line)
+            self.assertNotIn("OutputSize", line)
+            self.assertFalse(os.path.exists(out))
+
+    def test_a_sample_names_its_minimum_size(self):
+        rooms = data("Samples/Rooms.png")
+        for size, pattern in ((["2", "2", "1"], []), (["3", "9", "1"], ["--pattern", "4"])):
+            n = int(pattern[1]) if pattern else 3
+            r = run_msynth("synthesize", rooms, "--size", *size, *pattern,
+                           "--out", os.path.join(fresh_folder("messages-sample"), "out"))
+            line = one_line(self, r, 2)
+            self.assertIn("--size %s: a picture from '%s' is at least %d x %d pixels, its pattern size "
+                          "(--pattern %d)" % (" ".join(size), rooms, n, n, n), line)
+        # At the pattern size it runs: one window, one site.
+        out = fresh_folder("messages-sample-smallest")
+        r = run_msynth("synthesize", rooms, "--size", "3", "3", "1", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("1 x 1 x 1 pattern sites (a 3 x 3 picture), 1 distinct pattern, 1 block (0 failed)",
+                      r.stdout)
+
+    def test_the_filter_says_the_same_in_its_properties(self):
+        """Python and ParaView name the filter's properties, as the command names its options."""
+        import modelsynth
+        from msynth_testing import run_algorithm
+        synthesis = modelsynth.vtkMSDiscreteSynthesis()
+        synthesis.SetSampleFile(data("Samples/Rooms.png"))
+        _, errors = run_algorithm(synthesis, OutputSize=[2, 2, 1], PatternSize=3)
+        self.assertIn("OutputSize must be at least 1 on every axis and, for an image sample, PatternSize (3) "
+                      "in x and y, got 2 2 1.", errors)
+        tracks = modelsynth.vtkMSDiscreteSynthesis()
+        tracks.SetTilesetFile(data("Tilesets/Tracks.xml"))
+        _, errors = run_algorithm(tracks, OutputSize=[8, 8, 1], Connected="track")
+        self.assertIn("Connected: 'track' is neither a label value nor a tile or label name of the tileset; "
+                      "its tiles: Grass, Rail, Curve, Switch", errors)
+
+    def test_a_block_larger_than_the_model_says_it_runs_whole(self):
+        village = data("Examples/Village.vti")
+        common = ["--size", "12", "12", "5", "--seed", "4", "--outputs", "labels"]
+        whole = fresh_folder("messages-block-whole")
+        r = run_msynth("synthesize", village, *common, "--out", whole)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("note:", r.stdout)
+        out = fresh_folder("messages-block-large")
+        r = run_msynth("synthesize", village, *common, "--block", "40", "40", "5", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr, "")
+        notes = [line for line in r.stdout.splitlines() if line.startswith("note:")]
+        self.assertEqual(notes, ["note: --block 40 40 5 is larger than the model (12 x 12 x 5): the model "
+                                 "runs whole, in one block"])
+        self.assertIn(", 1 block (0 failed)", r.stdout)
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["Blocks"], 1)
+        np.testing.assert_array_equal(labels_zyx(read_label_grid(os.path.join(out, "labels.vti"))),
+                                      labels_zyx(read_label_grid(os.path.join(whole, "labels.vti"))))
+        # Larger on one axis only: the blocks span the model there.
+        r = run_msynth("synthesize", village, *common, "--block", "6", "6", "9",
+                       "--out", fresh_folder("messages-block-z"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("note: --block 6 6 9 is larger than the model (12 x 12 x 5): the blocks span the "
+                      "model on the axes where they are larger", r.stdout)
+
+
+class LabelOptionsTest(unittest.TestCase):
+    def test_ground_names_the_example_and_its_labels(self):
+        village = data("Examples/Village.vti")
+        labels = sorted(set(labels_zyx(read_label_grid(village)).ravel().tolist()))
+        listed = ", ".join(str(v) for v in labels)
+        for option in ("--ground", "--empty"):
+            expect_refused(self, ["synthesize", village], ["--size", "20", "20", "5", option, "9"],
+                           "%s 9: label 9 does not occur in '%s'; its labels are %s" % (option, village, listed))
+
+    def test_ground_of_a_tileset_lists_its_labels(self):
+        lines = data("Tilesets/Lines.xml")
+        info = run_msynth("info", lines)  # the labels as msynth info lists them
+        self.assertEqual(info.returncode, 0, info.stderr)
+        count = int(re.search(r"^labels: (\d+)", info.stdout, re.M).group(1))
+        expect_refused(self, ["synthesize", lines], ["--size", "20", "20", "1", "--ground", "99"],
+                       "--ground 99: label 99 does not occur in '%s'; its labels are %s (msynth info '%s' "
+                       "lists them)" % (lines, ", ".join(str(b) for b in range(count)), lines))
+
+    def test_tile_names_are_listed(self):
+        lines = data("Tilesets/Lines.xml")
+        expect_refused(self, ["synthesize", lines], ["--size", "20", "20", "1", "--count", "corners:1:5"],
+                       "--count: the tileset has no tile or label named 'corners'; its tiles: " +
+                       ", ".join(tile_names(lines)))
+        tracks = data("Tilesets/Tracks.xml")
+        for option, value, name in (("--connected", "track,turns", "track"), ("--connected", "Rail,turns", "turns")):
+            expect_refused(self, ["synthesize", tracks], ["--size", "20", "20", "1", option, value],
+                           "%s: '%s' is neither a label value nor a tile or label name of the tileset; its "
+                           "tiles: %s" % (option, name, ", ".join(tile_names(tracks))))
+        # In a stream and in pattern synthesis too.
+        expect_refused(self, ["synthesize", tracks], ["--size", "40", "40", "1", "--block", "10", "10", "1",
+                                                      "--stream", "--connected", "track"],
+                       "--connected: 'track' is neither")
+        city = data("Patterns/City.xml")
+        expect_refused(self, ["pattern", data("Patterns/city-urban.vti")],
+                       ["--tileset", city, "--size", "20", "20", "--connected", "bridge"],
+                       "--connected: 'bridge' is neither a label value nor a tile or label name of the "
+                       "tileset; its tiles: " + ", ".join(tile_names(city)[:20]))
+        expect_refused(self, ["synthesize", tracks],
+                       ["--size", "20", "20", "1", "--connected", "Rail", "--path", "bridge"],
+                       "--path: 'bridge' is neither a site x,y[,z] nor a label value or a tile or label name "
+                       "of the tileset; its tiles: " + ", ".join(tile_names(tracks)))
+
+
+class SummaryTest(unittest.TestCase):
+    def test_an_image_sample_says_sites_and_picture(self):
+        rooms = data("Samples/Rooms.png")
+        out = fresh_folder("messages-rooms")
+        r = run_msynth("synthesize", rooms, "--size", "64", "40", "1", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        grid = read_label_grid(os.path.join(out, "labels.vti")).GetDimensions()
+        patterns = len(np.unique(labels_zyx(read_label_grid(os.path.join(out, "labels.vti")))))
+        from vtkmodules.vtkIOImage import vtkPNGReader
+        png = vtkPNGReader()
+        png.SetFileName(os.path.join(out, "picture.png"))
+        png.Update()
+        picture = png.GetOutput().GetDimensions()
+        self.assertEqual(picture[:2], (64, 40))
+        self.assertIn("%d x %d x 1 pattern sites (a 64 x 40 picture), %d distinct patterns, 1 block (0 failed)"
+                      % (grid[0], grid[1], patterns), r.stdout)
+        self.assertEqual((grid[0], grid[1]), (62, 38))  # a 3 x 3 window at every site
+        with open(os.path.join(out, "statistics.json")) as f:
+            self.assertEqual(json.load(f)["size"], [64, 40, 1])  # the picture, as the summary says
+
+    def test_counts_agree_with_their_numbers(self):
+        out = fresh_folder("messages-blocks")
+        r = run_msynth("synthesize", data("Examples/Village.vti"), "--size", "24", "12", "5",
+                       "--block", "12", "12", "5", "--overlap", "0", "0", "0", "--outputs", "labels",
+                       "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, r", 2 blocks \(")
+        r = run_msynth("pattern", data("Patterns/city-urban.vti"), "--size", "12", "12", "--seed", "1",
+                       "--out", fresh_folder("messages-pattern"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(r.stdout.startswith("1 sample of 12 x 12 by blockss"), r.stdout)
+        self.assertNotIn("(s)", r.stdout)
+        self.assertIsNone(re.search(r"\b1 [a-z]+s\b", r.stdout), r.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
