@@ -139,9 +139,7 @@ QUICK_SIZES = {"town": "24 24 6"}
 def frames_picture(folder, png):
     """The frames of an animation (frame_0000.vti ..., one row of sites each) stacked top to
     bottom, each site a square of 8 pixels, labels coloured as render-model.py colours them."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLImageDataReader
     import numpy as np
     rows = []
@@ -155,14 +153,7 @@ def frames_picture(folder, png):
     colours = np.array([[255, 255, 255]] + [[int(255 * c) for c in palette[3 * i:3 * i + 3]]
                                             for i in range(12)], dtype=np.uint8)
     rgb = colours[np.clip(labels, 0, 12)]
-    rgb = np.repeat(np.repeat(rgb, 8, axis=0), 8, axis=1)[::-1]  # VTK rows: bottom first
-    image = vtkImageData()
-    image.SetDimensions(rgb.shape[1], rgb.shape[0], 1)
-    image.GetPointData().SetScalars(numpy_to_vtk(rgb.reshape(-1, 3), deep=1))
-    writer = vtkPNGWriter()
-    writer.SetInputData(image)
-    writer.SetFileName(png)
-    writer.Write()
+    write_png(np.repeat(np.repeat(rgb, 8, axis=0), 8, axis=1), png)
 
 
 def read_png(path):
