@@ -81,8 +81,7 @@ void RunBoxes(const Coord& n, std::uint32_t seed)
   for (auto& b : model)
     b = draw();
   const std::vector<std::int64_t> listed = { 0, total / 3, total / 2, total - 1 };
-  std::vector<char> pathLabel = { 0, 0, 1 };
-  detail::NetworkParts parts(rule, model, n, listed, pathLabel);
+  detail::NetworkParts parts(rule, model, n, listed);
 
   int exact = 0, applied = 0;
   for (int round = 0; round < 400; ++round)

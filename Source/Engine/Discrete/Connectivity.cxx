@@ -311,35 +311,19 @@ std::int64_t NetworkGuard::ClosedAround(const Block& block, LabelFn&& label, Ope
     floodOpen[ToIndex(id)] = open ? 1 : 0;
     closed += open ? 0 : 1;
   };
-  const Coord& o = block.Origin;
-  for (std::int64_t z = std::max<std::int64_t>(0, o[2] - 1);
-       z < std::min(n[2], o[2] + block.Dims[2] + 1); ++z)
-    for (std::int64_t y = std::max<std::int64_t>(0, o[1] - 1);
-         y < std::min(n[1], o[1] + block.Dims[1] + 1); ++y)
-      for (std::int64_t x = std::max<std::int64_t>(0, o[0] - 1);
-           x < std::min(n[0], o[0] + block.Dims[0] + 1); ++x)
-      {
-        const std::int64_t s = x + n[0] * (y + n[1] * z);
-        const int sides = this->Rule.Sides(label(s));
-        if (sides < 0)
-          continue;
-        const Coord p{ { x, y, z } };
-        bool touches = true;
-        for (std::size_t a = 0; a < 3; ++a)
-          touches = touches && p[a] >= o[a] && p[a] < o[a] + block.Dims[a];
-        for (int d = 0; d < 6 && !touches; ++d) // a ring site: does a connecting side face in?
-        {
-          const std::size_t a = ToIndex(d / 2);
-          Coord q = p;
-          q[a] += d % 2 == 0 ? 1 : -1;
-          bool in = (sides >> d) & 1;
-          for (std::size_t e = 0; e < 3; ++e)
-            in = in && q[e] >= o[e] && q[e] < o[e] + block.Dims[e];
-          touches = in;
-        }
-        if (touches)
-          flood(s);
-      }
+  ForEachSite(block, n,
+    [&](std::size_t s)
+    {
+      if (this->Rule.Sides(label(static_cast<std::int64_t>(s))) >= 0)
+        flood(static_cast<std::int64_t>(s));
+    });
+  ForEachRingSite(block, n,
+    [&](std::int64_t s, int toward, std::int64_t)
+    {
+      const int sides = this->Rule.Sides(label(s));
+      if (sides >= 0 && ((sides >> toward) & 1)) // a connecting side faces the block
+        flood(s);
+    });
   return closed;
 }
 

@@ -81,6 +81,38 @@ void Flood(const NetworkRule& rule, const Coord& n, LabelFn&& label, OpenFn&& op
   }
 }
 
+/**
+ * Visits each site of the model (@p n sites) face next to @p box and outside it, as
+ * visit(site, toward, inside): toward is the side (bit 2a: toward +a, 2a+1: toward -a) that
+ * faces the box, inside the box's site there.
+ */
+template <class Visit>
+void ForEachRingSite(const Block& box, const Coord& n, Visit&& visit)
+{
+  const std::int64_t stride[3] = { 1, n[0], n[0] * n[1] };
+  const Coord& o = box.Origin;
+  Coord p;
+  for (p[2] = std::max<std::int64_t>(0, o[2] - 1); p[2] < std::min(n[2], o[2] + box.Dims[2] + 1);
+       ++p[2])
+    for (p[1] = std::max<std::int64_t>(0, o[1] - 1); p[1] < std::min(n[1], o[1] + box.Dims[1] + 1);
+         ++p[1])
+      for (p[0] = std::max<std::int64_t>(0, o[0] - 1);
+           p[0] < std::min(n[0], o[0] + box.Dims[0] + 1); ++p[0])
+      {
+        int outside = 0, toward = 0;
+        for (std::size_t a = 0; a < 3; ++a)
+          if (p[a] < o[a] || p[a] >= o[a] + box.Dims[a])
+          {
+            ++outside;
+            toward = 2 * static_cast<int>(a) + (p[a] < o[a] ? 0 : 1);
+          }
+        if (outside != 1)
+          continue; // inside the box, or only next to an edge or corner of it
+        const std::int64_t s = p[0] + n[0] * (p[1] + n[1] * p[2]);
+        visit(s, toward, s + (toward % 2 == 0 ? 1 : -1) * stride[toward / 2]);
+      }
+}
+
 /// The components of @p model; @p ids (when given) receives each site's component number + 1
 /// (0: not in the network).
 std::vector<Component> FindComponents(const NetworkRule& rule,

@@ -47,11 +47,10 @@ void Unite(std::vector<std::int64_t>& parent, std::int64_t a, std::int64_t b)
 } // namespace
 
 NetworkParts::NetworkParts(const NetworkRule& rule, const std::vector<std::int32_t>& model,
-  const Coord& n, const std::vector<std::int64_t>& pathSites, const std::vector<char>& pathLabel)
+  const Coord& n, const std::vector<std::int64_t>& pathSites)
   : Rule(rule)
   , Model(model)
   , N(n)
-  , PathLabel(pathLabel)
 {
   const std::size_t total = ToIndex(n[0] * n[1] * n[2]);
   this->Listed.assign(total, 0);
@@ -62,7 +61,7 @@ NetworkParts::NetworkParts(const NetworkRule& rule, const std::vector<std::int32
   for (std::size_t s = 0; s < total; ++s)
   {
     const std::int32_t b = model[s];
-    this->PathLabels += b >= 0 && this->PathLabel[ToIndex(b)] ? 1 : 0;
+    this->PathLabels += this->IsPathLabel(b) ? 1 : 0;
     if (this->Id[s] != 0)
       this->Path[ToIndex(this->Id[s] - 1)] +=
         this->HoldsPathAt(static_cast<std::int64_t>(s), b) ? 1 : 0;
@@ -82,7 +81,7 @@ NetworkParts::NetworkParts(const NetworkRule& rule, const std::vector<std::int32
 
 bool NetworkParts::HoldsPathAt(std::int64_t s, std::int32_t label) const
 {
-  return label >= 0 && (this->PathLabel[ToIndex(label)] || this->Listed[ToIndex(s)]);
+  return label >= 0 && (this->IsPathLabel(label) || this->Listed[ToIndex(s)]);
 }
 
 bool NetworkParts::InBox(std::int64_t s) const
@@ -319,39 +318,23 @@ void NetworkParts::Touch(const Block& box, const std::vector<std::int32_t>& befo
       const auto s = static_cast<std::int64_t>(site);
       const std::int32_t was = before[i++], now = this->Model[site];
       this->BoxSites.push_back(s);
-      next.PathLabelSites -= was >= 0 && this->PathLabel[ToIndex(was)] ? 1 : 0;
-      next.PathLabelSites += now >= 0 && this->PathLabel[ToIndex(now)] ? 1 : 0;
+      next.PathLabelSites += (this->IsPathLabel(now) ? 1 : 0) - (this->IsPathLabel(was) ? 1 : 0);
       if (this->Listed[site])
         next.PathSitesOutside +=
           (this->Rule.Sides(now) < 0 ? 1 : 0) - (this->Id[site] == 0 ? 1 : 0);
       if (this->Id[site] != 0)
         touched.push_back({ this->Id[site] - 1, -1, -1, this->HoldsPathAt(s, was) });
     });
-  for (std::int64_t z = std::max<std::int64_t>(0, box.Origin[2] - 1);
-       z < std::min(n[2], this->BoxHigh[2] + 1); ++z)
-    for (std::int64_t y = std::max<std::int64_t>(0, box.Origin[1] - 1);
-         y < std::min(n[1], this->BoxHigh[1] + 1); ++y)
-      for (std::int64_t x = std::max<std::int64_t>(0, box.Origin[0] - 1);
-           x < std::min(n[0], this->BoxHigh[0] + 1); ++x)
-      {
-        const Coord p{ { x, y, z } };
-        int outside = 0, toward = 0;
-        for (std::size_t a = 0; a < 3; ++a)
-          if (p[a] < box.Origin[a] || p[a] >= this->BoxHigh[a])
-          {
-            ++outside;
-            toward = 2 * static_cast<int>(a) + (p[a] < box.Origin[a] ? 0 : 1);
-          }
-        const std::int64_t s = x + n[0] * (y + n[1] * z);
-        if (outside != 1 || this->Id[ToIndex(s)] == 0) // not a network site face next to the box
-          continue;
-        const std::int64_t step[3] = { 1, n[0], n[0] * n[1] };
-        const std::int64_t t = s + (toward % 2 == 0 ? 1 : -1) * step[toward / 2];
-        const int was = this->Rule.Sides(before[ToIndex(this->LocalOf(t))]);
-        const bool linked = ((this->Rule.Sides(this->Model[ToIndex(s)]) >> toward) & 1) &&
-          was >= 0 && ((was >> (toward ^ 1)) & 1);
-        touched.push_back({ this->Id[ToIndex(s)] - 1, s, linked ? t : -2, false });
-      }
+  ForEachRingSite(box, n,
+    [&](std::int64_t s, int toward, std::int64_t t)
+    {
+      if (this->Id[ToIndex(s)] == 0)
+        return; // not a network site
+      const int was = this->Rule.Sides(before[ToIndex(this->LocalOf(t))]);
+      const bool linked = ((this->Rule.Sides(this->Model[ToIndex(s)]) >> toward) & 1) && was >= 0 &&
+        ((was >> (toward ^ 1)) & 1);
+      touched.push_back({ this->Id[ToIndex(s)] - 1, s, linked ? t : -2, false });
+    });
   std::sort(touched.begin(), touched.end());
   for (const Touch& touch : touched)
   {

@@ -29,10 +29,9 @@ namespace detail
 class NetworkParts
 {
 public:
-  /// The components of @p model (@p n sites); @p pathSites: the listed path sites' indices,
-  /// @p pathLabel: per label index, whether it is a path label.
+  /// The components of @p model (@p n sites); @p pathSites: the listed path sites' indices.
   NetworkParts(const NetworkRule& rule, const std::vector<std::int32_t>& model, const Coord& n,
-    const std::vector<std::int64_t>& pathSites, const std::vector<char>& pathLabel);
+    const std::vector<std::int64_t>& pathSites);
 
   /// The components by number (Sites == 0: gone); bounding boxes may be larger than the
   /// component where it lost sites.
@@ -119,6 +118,7 @@ private:
   std::int64_t LocalOf(std::int64_t s) const;
   bool Linked(std::int64_t s, int d, std::int64_t& q) const;
   bool HoldsPathAt(std::int64_t s, std::int32_t label) const;
+  bool IsPathLabel(std::int32_t label) const { return label >= 0 && this->Rule.OnPath(label); }
   Near* Find(std::int32_t slot);
   int PieceOf(std::int64_t s);
   void Split(Near& near);
@@ -128,7 +128,7 @@ private:
   const NetworkRule& Rule;
   const std::vector<std::int32_t>& Model;
   Coord N;
-  std::vector<char> PathLabel, Listed;
+  std::vector<char> Listed;
   std::vector<Component> Comps;
   std::vector<std::int64_t> Path; ///< per component, its path sites
   std::vector<std::int32_t> Id;

@@ -39,7 +39,6 @@ struct Repair
   std::vector<double> Sparse; ///< the network's labels' weights scaled down
   std::vector<std::int32_t> SavedModel, SavedLast;
   std::vector<std::int64_t> PathSites; ///< the listed path sites' model indices
-  std::vector<char> PathLabel;         ///< per label index, whether it is a path label
   NetworkParts Net;                    ///< the components now
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
   Shortfall Now{ { 0, 0, 0 } };
@@ -54,8 +53,7 @@ struct Repair
     , Options(options)
     , Stats(stats)
     , PathSites(Listed(options, solver.Size()))
-    , PathLabel(PathLabels(rule))
-    , Net(rule, shared.Model, solver.Size(), this->PathSites, this->PathLabel)
+    , Net(rule, shared.Model, solver.Size(), this->PathSites)
   {
     this->Sparse.assign(ToIndex(rule.Labels()), 1.0);
     for (std::size_t b = 0; b < this->Sparse.size(); ++b)
@@ -73,14 +71,6 @@ struct Repair
     for (const Coord& p : options.Connected.PathSites)
       sites.push_back(p[0] + n[0] * (p[1] + n[1] * p[2]));
     return sites;
-  }
-
-  static std::vector<char> PathLabels(const NetworkRule& rule)
-  {
-    std::vector<char> path(ToIndex(rule.Labels()), 0);
-    for (int b = 0; b < rule.Labels(); ++b)
-      path[ToIndex(b)] = rule.OnPath(b) ? 1 : 0;
-    return path;
   }
 
   /// Whether the model has what the network asks.
