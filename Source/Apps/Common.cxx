@@ -91,6 +91,11 @@ void CheckInputFile(const std::string& path, bool model)
   }
 }
 
+std::string Triple(const int* v)
+{
+  return std::to_string(v[0]) + " x " + std::to_string(v[1]) + " x " + std::to_string(v[2]);
+}
+
 std::string Counted(long long n, const std::string& thing, const std::string& plural)
 {
   return std::to_string(n) + " " + (n == 1 ? thing : plural.empty() ? thing + "s" : plural);

@@ -112,6 +112,9 @@ private:
   std::vector<std::pair<std::string, std::string>> Members;
 };
 
+/// "NX x NY x NZ" of the three values at @p v.
+std::string Triple(const int* v);
+
 /// "1 block", "2 blocks": @p n and @p thing, made plural (@p plural, or @p thing + "s") unless
 /// @p n is 1.
 std::string Counted(long long n, const std::string& thing, const std::string& plural = "");

@@ -192,20 +192,15 @@ void NoteArrangementCompromises(vtkMSPlaneArrangement* arrangement)
 void PrintSummary(vtkPolyData* labelled, vtkPolyData* model)
 {
   vtkFieldData* fd = labelled->GetFieldData();
-  const auto count = [fd](const char* name, const char* one, const char* many)
-  {
-    const long long n = CountOf(fd, name);
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-  };
   std::cout << labelled->GetNumberOfPoints() << " arrangement vertices, "
             << model->GetNumberOfPolys() << " polygons, " << CountOf(fd, "BlocksFailed") << " of "
-            << count("Blocks", "block", "blocks") << " left unchanged, "
-            << count("Components", "solid part", "solid parts") << " ("
+            << Counted(CountOf(fd, "Blocks"), "block") << " left unchanged, "
+            << Counted(CountOf(fd, "Components"), "solid part") << " ("
             << CountOf(fd, "GroundedComponents") << " on the ground)\n";
   // Proportion steering can empty most of the first model: say so where the user looks.
   vtkDataArray* emptied = fd->GetArray("ProportionVolumeRemoved");
   if (emptied && emptied->GetTuple1(0) > 0.5)
-    std::cout << "note: " << count("ProportionPartsRemoved", "part", "parts") << " ("
+    std::cout << "note: " << Counted(CountOf(fd, "ProportionPartsRemoved"), "part") << " ("
               << static_cast<int>(std::lround(100 * emptied->GetTuple1(0)))
               << " % of the solid) were emptied to keep the example's proportions; more "
                  "constraints (--thickness, --overhang) or --no-proportions keep more\n";

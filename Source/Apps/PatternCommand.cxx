@@ -159,15 +159,12 @@ void ConnectInputs(vtkMSPatternSynthesis* synthesis, vtkMSCheckModel* check,
     const int n[3] = { o.Size[0], o.Size[1], o.Size.size() > 2 ? o.Size[2] : 1 };
     if (d[0] != n[0] || d[1] != n[1] || d[2] != n[2])
     {
-      const auto sites = [](const int* v) {
-        return std::to_string(v[0]) + " x " + std::to_string(v[1]) + " x " + std::to_string(v[2]);
-      };
       std::string size;
       for (int v : o.Size)
         size += " " + std::to_string(v);
-      throw std::runtime_error("--fixed '" + o.Fixed + "': the grid has " + sites(d) +
-        " sites, the output " + sites(n) + ": expected a grid of the output's size (--size" + size +
-        ")");
+      throw std::runtime_error("--fixed '" + o.Fixed + "': the grid has " + Triple(d) +
+        " sites, the output " + Triple(n) + ": expected a grid of the output's size (--size" +
+        size + ")");
     }
     synthesis->SetFixedConnection(readers.back()->GetOutputPort());
   }

@@ -27,11 +27,6 @@ namespace
 {
 const char* const AxisNames[3] = { "x", "y", "z" };
 
-std::string Triple(const int* v)
-{
-  return std::to_string(v[0]) + " x " + std::to_string(v[1]) + " x " + std::to_string(v[2]);
-}
-
 std::string Listed(const std::vector<int>& v, const char* separator = " ")
 {
   std::string text;

@@ -59,6 +59,12 @@ inline std::string Format(const Coord& c)
     ")";
 }
 
+/// A box's size, "NX x NY x NZ".
+inline std::string FormatSize(const Coord& n)
+{
+  return std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]);
+}
+
 /// Visits the model index of every site of @p block (x fastest).
 template <typename Visit>
 void ForEachSite(const Block& block, const Coord& n, Visit&& visit)

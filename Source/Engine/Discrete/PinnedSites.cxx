@@ -24,12 +24,6 @@ const char* const AxisNames[3] = { "x", "y", "z" };
 constexpr std::int64_t MaximumCheckedSites = std::int64_t(1) << 24;
 /// How far around the pins' box the propagation check reaches.
 constexpr std::int64_t PinMargin = 16;
-
-/// A box's size as "NX x NY x NZ".
-std::string Extent(const Coord& n)
-{
-  return std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]);
-}
 } // namespace
 
 std::int64_t BlockSolver::ApplyPins()
@@ -40,8 +34,8 @@ std::int64_t BlockSolver::ApplyPins()
   if (this->Plan || this->Seams)
     throw Error("pinned sites cannot be combined with mirror, translation or rotation symmetry");
   if (pins.Dimensions() != this->N)
-    throw Error("the pinned sites cover " + Extent(pins.Dimensions()) + " sites, the output " +
-      Extent(this->N) + ": expected a grid of the output's size");
+    throw Error("the pinned sites cover " + FormatSize(pins.Dimensions()) + " sites, the output " +
+      FormatSize(this->N) + ": expected a grid of the output's size");
   const auto& values = this->Rules.LabelValues();
   std::int64_t count = 0;
   Coord lo = this->N, hi{ { -1, -1, -1 } };
@@ -253,8 +247,8 @@ LabelGrid PinsOfBox(const SynthesisOptions& world, const Coord& low, const Coord
   const Coord& d = pins.Dimensions();
   for (int a = 0; a < 3; ++a)
     if (o[a] < 0 || o[a] + d[a] > world.Size[a])
-      throw Error("the pinned sites cover " + Extent(d) + " sites from " + Format(o) +
-        ", which is not inside the output " + Extent(world.Size));
+      throw Error("the pinned sites cover " + FormatSize(d) + " sites from " + Format(o) +
+        ", which is not inside the output " + FormatSize(world.Size));
   const Coord n{ { high[0] - low[0], high[1] - low[1], high[2] - low[2] } };
   LabelGrid out(n, std::vector<Label>(ToIndex(n[0] * n[1] * n[2]), FreeSite));
   Coord from, to;
