@@ -20,6 +20,7 @@
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include "Core/AtomicFile.h"
 #include "Core/Index.h"
 #include "Discrete/InfallibleRefinement.h"
 
@@ -167,6 +168,15 @@ CommandRunner AddAnalyze(CLI::App& app)
       if (IsTileset(o->Example) || IsPolyhedral(o->Example) || IsSample(o->Example))
         throw UsageError{ "'" + o->Example +
           "': --infallible needs a label grid (.vti, .txt, .vox)" };
+      if (!o->WriteInfallible.empty())
+      {
+        // Before the search: E_I and its map f are VTK image data; nothing else is replaced.
+        const std::string& w = o->WriteInfallible;
+        if (w.size() < 5 || w.compare(w.size() - 4, 4, ".vti") != 0)
+          throw UsageError{ "--write-infallible '" + o->WriteInfallible +
+            "': E_I is written as VTK image data with f as a field; name a .vti file" };
+        msynth::CheckReplaceable(o->WriteInfallible);
+      }
       return InfallibleSearch(*o);
     }
     if (IsTileset(o->Example))

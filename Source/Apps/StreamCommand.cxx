@@ -21,6 +21,7 @@
 #include "vtkXMLImageDataWriter.h"
 
 #include "Core/AtomicFile.h"
+#include "Core/Error.h"
 #include "Core/FileBytes.h"
 #include "Core/Fnv.h"
 #include "Core/Index.h"
@@ -28,6 +29,7 @@
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
 
+#include <dirent.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -95,12 +97,114 @@ std::string WorldDefinition(const SynthesizeOptions& o)
   return d.str();
 }
 
+/// What --stream writes per slab: labels always, pictures and volumes as --outputs asks.
+struct StreamOutputs
+{
+  bool Picture = false, Volume = false;
+};
+
+StreamOutputs StreamKinds(const SynthesizeOptions& o)
+{
+  const bool pictured = IsTileset(o.Example) || IsSample(o.Example);
+  const std::string list = !o.Outputs.empty() ? o.Outputs
+    : pictured                                ? "labels,picture"
+                                              : "labels,vdb";
+  StreamOutputs kinds;
+  std::istringstream in(list);
+  std::string kind;
+  while (std::getline(in, kind, ','))
+  {
+    if (kind == "picture" && pictured)
+      kinds.Picture = true;
+    else if (kind == "vdb")
+      kinds.Volume = true;
+    else if (kind != "labels")
+      throw std::runtime_error("--stream writes labels, pictures (of a tileset or an image "
+                               "sample) and vdb volumes slab by slab, not '" +
+        kind + "'");
+  }
+  return kinds;
+}
+
+/// The extent "x0,x1,y0,y1,z0,z1" of the slab file @p path as written (its WholeExtent); empty
+/// when it cannot be read.
+std::string WrittenExtent(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(msynth::ToIndex(in.gcount()));
+  const std::string key = "WholeExtent=\"";
+  const std::size_t at = head.find(key);
+  const std::size_t end = at == std::string::npos ? at : head.find('"', at + key.size());
+  if (end == std::string::npos)
+    return "";
+  std::istringstream numbers(head.substr(at + key.size(), end - at - key.size()));
+  std::string extent;
+  long long v = 0;
+  for (int k = 0; k < 6 && numbers >> v; ++k)
+    extent += (k ? "," : "") + std::to_string(v);
+  return extent;
+}
+
+/// Why the listed slab @p line cannot be kept (a file missing or damaged, an extent that is
+/// not its file's, other outputs than @p kinds asks for); empty when it can.
+std::string SlabProblem(const std::string& folder, const std::string& line, StreamOutputs kinds)
+{
+  std::istringstream in(line);
+  std::string entry, extent, labels;
+  in >> entry; // the index
+  bool picture = false, volume = false;
+  while (in >> entry)
+  {
+    const std::size_t eq = entry.rfind('=');
+    if (entry.rfind("extent=", 0) == 0)
+    {
+      extent = entry.substr(7);
+      continue;
+    }
+    const std::string file = entry.substr(0, eq);
+    if (eq == std::string::npos || FileStamp(folder + "/" + file) != entry.substr(eq + 1))
+      return "'" + file + "' is missing or damaged";
+    labels = file.rfind("labels/", 0) == 0 ? file : labels;
+    picture = picture || file.rfind("picture/", 0) == 0;
+    volume = volume || file.rfind("vdb/", 0) == 0;
+  }
+  if (labels.empty() || extent.empty() || WrittenExtent(folder + "/" + labels) != extent)
+    return "its extent is not its labels' extent";
+  if (picture != kinds.Picture || volume != kinds.Volume)
+    return "it was written with other --outputs";
+  return "";
+}
+
+/// Removes the files of @p folder's slab folders that no line of @p kept lists (the temporary
+/// files of a slab being written when the run was interrupted, the slabs computed again).
+void RemoveUnlisted(const std::string& folder, const std::vector<std::string>& kept)
+{
+  std::string listed = " ";
+  for (const auto& line : kept)
+    listed += line + " ";
+  for (const char* sub : { "labels", "picture", "vdb" })
+    if (DIR* d = ::opendir((folder + "/" + sub).c_str()))
+    {
+      std::vector<std::string> names;
+      while (const dirent* e = ::readdir(d))
+        names.emplace_back(e->d_name);
+      ::closedir(d);
+      for (const auto& name : names)
+        if (name != "." && name != ".." &&
+          listed.find(" " + std::string(sub) + "/" + name + "=") == std::string::npos)
+          msynth::RemoveTree(folder + "/" + sub + "/" + name);
+    }
+}
+
 /**
- * The slabs an interrupted stream in @p folder finished, as lines "J FILE=STAMP ...", each file
- * checked against its stamp: the list ends at the first slab missing or damaged (a note says
- * which). @throw std::runtime_error when the folder holds a stream of another world.
+ * The slabs an interrupted stream in @p folder finished, as lines "J extent=E FILE=STAMP ...",
+ * each checked (SlabProblem): the list ends at the first slab that cannot be kept (a note says
+ * which and why). @throw std::runtime_error when the folder holds a stream of another world.
  */
-std::vector<std::string> KeptSlabs(const std::string& folder, const std::string& definition)
+std::vector<std::string> KeptSlabs(
+  const std::string& folder, const std::string& definition, StreamOutputs kinds)
 {
   std::vector<std::string> kept;
   struct stat info;
@@ -124,20 +228,11 @@ std::vector<std::string> KeptSlabs(const std::string& folder, const std::string&
     in >> j;
     if (j != static_cast<int>(kept.size()))
       break;
-    std::string entry, damaged;
-    while (damaged.empty() && in >> entry)
+    const std::string problem = SlabProblem(folder, line, kinds);
+    if (!problem.empty())
     {
-      const std::size_t eq = entry.rfind('=');
-      if (entry.rfind("extent=", 0) == 0)
-        continue;
-      if (eq == std::string::npos ||
-        FileStamp(folder + "/" + entry.substr(0, eq)) != entry.substr(eq + 1))
-        damaged = entry.substr(0, eq);
-    }
-    if (!damaged.empty())
-    {
-      std::cerr << "msynth: note: slab " << j << " of the stream is damaged ('" << damaged
-                << "'): computing it again\n";
+      std::cerr << "msynth: note: slab " << j << " of the stream cannot be kept ("
+                << msynth::Printable(problem) << "): computing it again\n";
       break;
     }
     kept.push_back(line);
@@ -286,35 +381,6 @@ private:
   int Done = 0;
   double Sites = 0;
 };
-
-/// What --stream writes per slab: labels always, pictures and volumes as --outputs asks.
-struct StreamOutputs
-{
-  bool Picture = false, Volume = false;
-};
-
-StreamOutputs StreamKinds(const SynthesizeOptions& o)
-{
-  const bool pictured = IsTileset(o.Example) || IsSample(o.Example);
-  const std::string list = !o.Outputs.empty() ? o.Outputs
-    : pictured                                ? "labels,picture"
-                                              : "labels,vdb";
-  StreamOutputs kinds;
-  std::istringstream in(list);
-  std::string kind;
-  while (std::getline(in, kind, ','))
-  {
-    if (kind == "picture" && pictured)
-      kinds.Picture = true;
-    else if (kind == "vdb")
-      kinds.Volume = true;
-    else if (kind != "labels")
-      throw std::runtime_error("--stream writes labels, pictures (of a tileset or an image "
-                               "sample) and vdb volumes slab by slab, not '" +
-        kind + "'");
-  }
-  return kinds;
-}
 
 /// --slab, or for pictures slabs of about 2^18 sites (a picture of 8 x 8 pixel tiles then has
 /// 16 M pixels); 0: the engine's choice.
@@ -477,9 +543,11 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   const std::string definition = WorldDefinition(o);
   std::vector<std::string> kept;
   if (o.Resume)
-    kept = KeptSlabs(folder, definition);
+    kept = KeptSlabs(folder, definition, kinds);
   if (kept.empty())
     msynth::RemoveTree(folder);
+  else
+    RemoveUnlisted(folder, kept);
   for (const char* sub : { "", "/labels", "/picture", "/vdb" })
     ::mkdir((folder + sub).c_str(), 0755);
   WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });

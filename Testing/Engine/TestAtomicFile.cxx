@@ -207,3 +207,72 @@ TEST(OutputFolder, StagesOfKilledRunsAreRemovedByTheNextRun)
   EXPECT_EQ(Slurp(dir + "/x.txt"), "x");
   msynth::RemoveTree(dir);
 }
+
+TEST(OutputFolder, ADamagedManifestIsRefusedBeforeAnythingIsRemovedOrPublished)
+{
+  const std::string dir = std::string(MSYNTH_TEST_TMP) + "/manifest-" + std::to_string(::getpid());
+  msynth::RemoveTree(dir);
+  ::mkdir(dir.c_str(), 0755);
+  std::ofstream(dir + "/labels.vti") << "earlier run";
+  std::ofstream(dir + "/notes.txt") << "the user's";
+  {
+    std::ofstream manifest(dir + "/.msynth-outputs", std::ios::binary);
+    manifest << "labels.vti\n" << std::string(1, '\0') << "\nmesh.vtp\n";
+  }
+  // The NUL byte once stood for the folder itself: the cleanup recursed without end.
+  try
+  {
+    msynth::OutputFolder folder(dir);
+    FAIL() << "a damaged manifest must be refused";
+  }
+  catch (const msynth::Error& e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(".msynth-outputs"), std::string::npos) << what;
+    EXPECT_NE(what.find("line 2"), std::string::npos) << what;
+  }
+  EXPECT_EQ(Slurp(dir + "/labels.vti"), "earlier run");
+  EXPECT_EQ(Slurp(dir + "/notes.txt"), "the user's");
+
+  // Damaged after the run started: Publish refuses before it renames anything.
+  ::unlink((dir + "/.msynth-outputs").c_str());
+  {
+    msynth::OutputFolder folder(dir);
+    msynth::WriteFileAtomically(
+      folder.Stage() + "/labels.vti", [](std::ostream& out) { out << "new"; });
+    std::ofstream(dir + "/.msynth-outputs", std::ios::binary) << "../../etc\n";
+    EXPECT_THROW(folder.Publish(), msynth::Error);
+  }
+  EXPECT_EQ(Slurp(dir + "/labels.vti"), "earlier run");
+  EXPECT_EQ(Slurp(dir + "/notes.txt"), "the user's");
+
+  // A path with a NUL byte is never an ancestor for RemoveTree.
+  msynth::RemoveTree(dir + "/" + std::string(1, '\0'));
+  EXPECT_EQ(Slurp(dir + "/notes.txt"), "the user's");
+  msynth::RemoveTree(dir);
+}
+
+TEST(AtomicFile, ADeviceOrAPipeIsNeverWrittenOver)
+{
+  const std::string fifo = std::string(MSYNTH_TEST_TMP) + "/fifo-" + std::to_string(::getpid());
+  ::unlink(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  for (const std::string& path : { fifo, std::string("/dev/null") })
+  {
+    try
+    {
+      msynth::WriteFileAtomically(path, [](std::ostream& out) { out << "x"; });
+      FAIL() << path << " must be refused";
+    }
+    catch (const msynth::Error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+    struct stat info;
+    ASSERT_EQ(::stat(path.c_str(), &info), 0);
+    EXPECT_FALSE(S_ISREG(info.st_mode)) << path << " was replaced by a file";
+  }
+  EXPECT_FALSE(AnyTemporaryLeftIn(MSYNTH_TEST_TMP, fifo.substr(fifo.rfind('/') + 1)));
+  ::unlink(fifo.c_str());
+  EXPECT_THROW(msynth::CheckReplaceable(MSYNTH_TEST_TMP), msynth::Error) << "a folder";
+}

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 using namespace msynth;
@@ -60,6 +61,43 @@ TEST(VTKXMLCheck, ExtentsBeyondAnyCountAreLeftToTheReaderWithoutOverflow)
     {
       EXPECT_NE(std::string(e.what()).find("huge.vti"), std::string::npos) << e.what();
     }
+  }
+}
+
+TEST(VTKXMLCheck, AWholeExtentItsPiecesDoNotHoldIsRefused)
+{
+  // VTK's reader allocates the WholeExtent before it reads the pieces: 10^10 points for a
+  // piece of four was a SIGABRT in every command that read a guide.
+  std::string path = WriteImage("whole.vti", "0 1 0 1 0 0", "1 2 3 4");
+  {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(
+      text.find("WholeExtent=\"0 1 0 1 0 0\""), 25, "WholeExtent=\"0 100000 0 100000 0 0\"");
+    std::ofstream(path) << text;
+  }
+  try
+  {
+    CheckVTKXMLFile(path);
+    FAIL() << "a WholeExtent larger than its pieces must be refused";
+  }
+  catch (const Error& e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("whole.vti"), std::string::npos) << what;
+    EXPECT_NE(what.find("10000200001 points, but its pieces hold 4"), std::string::npos) << what;
+  }
+  // A reversed axis, in the WholeExtent or a piece's Extent.
+  try
+  {
+    CheckVTKXMLFile(WriteImage("reversed.vti", "0 1 0 1 5 0", "1 2 3 4"));
+    FAIL() << "a reversed extent must be refused";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(
+      std::string(e.what()).find("reversed WholeExtent '0 1 0 1 5 0' (axis z"), std::string::npos)
+      << e.what();
   }
 }
 

@@ -139,7 +139,8 @@ class StreamTest(unittest.TestCase):
         write(piece, bytes(raw), "wb")
         done = msynth("synthesize", lines, *common, "--resume", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
-        self.assertIn("slab 2 of the stream is damaged", done.stderr)
+        self.assertIn("slab 2 of the stream cannot be kept ('labels/labels_00002.vti' is missing "
+                      "or damaged)", done.stderr)
         stats = json.loads(text(os.path.join(out, "statistics.json")))
         self.assertEqual(stats["SlabsResumed"], 2)
         slabs = len(os.listdir(os.path.join(out, "labels")))  # the world's slabs, counted here
@@ -168,6 +169,85 @@ class StreamTest(unittest.TestCase):
         self.assertNotEqual(done.returncode, 0)
         self.assertIn("holds a stream of another world", done.stderr)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+
+    def interrupted(self, name, common, slabs=3):
+        """A stream of Lines.xml killed after `slabs` slabs; its output folder."""
+        out = fresh_folder(name)
+        listed = os.path.join(out, ".msynth-stream", "slabs.txt")
+        run = subprocess.Popen([MSYNTH, "synthesize", data("Tilesets/Lines.xml"), *common,
+                                "--out", out], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and run.poll() is None:
+            if os.path.exists(listed) and len(text(listed).splitlines()) >= slabs:
+                break
+            time.sleep(0.01)
+        self.assertIsNone(run.poll(), "the stream ended before it could be interrupted")
+        run.send_signal(signal.SIGKILL)
+        run.wait()
+        return out
+
+    def test_a_resumed_stream_keeps_only_what_it_can_trust(self):
+        """Issue 48, item 7: a slab whose listed extent was damaged, the temporary file of the
+        slab being written, slabs written with other --outputs, and a stream killed after its
+        last slab (before publishing)."""
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "400", "2400", "1", "--block", "32", "32", "1", "--seed", "8",
+                  "--stream", "--slab", "100", "--threads", "1", "--outputs", "labels"]
+        fresh = fresh_folder("stream-trust-fresh")
+        done = msynth("synthesize", lines, *common, "--out", fresh)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        expected = labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti")))
+        count = len(os.listdir(os.path.join(fresh, "labels")))
+
+        # A damaged extent (the slab's file and checksum intact) and a stray temporary file.
+        out = self.interrupted("stream-trust-extent", common)
+        stream = os.path.join(out, ".msynth-stream")
+        listed = text(os.path.join(stream, "slabs.txt")).splitlines()
+        listed[1] = listed[1].replace("extent=0,399,", "extent=0,398,")
+        write(os.path.join(stream, "slabs.txt"), "\n".join(listed) + "\n")
+        write(os.path.join(stream, "labels", "labels_00003.vti.tmp-99999-7"), "partial")
+        done = msynth("synthesize", lines, *common, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("slab 1 of the stream cannot be kept (its extent is not its labels' extent)",
+                      done.stderr)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "labels"))),
+                         sorted(os.listdir(os.path.join(fresh, "labels"))))
+        np.testing.assert_array_equal(
+            labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected)
+        self.assertEqual(msynth("check", lines, os.path.join(out, "labels.pvti")).returncode, 0)
+
+        # More --outputs on --resume: the slabs without pictures are computed again.
+        out = self.interrupted("stream-trust-outputs", common)
+        more = common[:-1] + ["labels,picture"]
+        done = msynth("synthesize", lines, *more, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("slab 0 of the stream cannot be kept (it was written with other --outputs)",
+                      done.stderr)
+        self.assertEqual(len(os.listdir(os.path.join(out, "picture"))), count)
+        self.assertTrue(os.path.exists(os.path.join(out, "picture.png")))
+
+        # Killed after the last slab, before publishing: every slab is listed; resuming publishes.
+        out = self.interrupted("stream-trust-all", common)
+        stream = os.path.join(out, ".msynth-stream")
+        rows = []
+        for j in range(count):
+            name = "labels/labels_%05d.vti" % j
+            with open(os.path.join(fresh, name), "rb") as f:
+                raw = f.read()
+            write(os.path.join(stream, name), raw, "wb")
+            digest = 1469598103934665603
+            for byte in raw:
+                digest = ((digest ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+            low, high = 0 if j == 0 else 100 * j - 1, min(100 * j + 99, 2399)
+            rows.append("%d extent=0,399,%d,%d,0,0 %s=%d:%016x"
+                        % (j, low, high, name, len(raw), digest))
+        write(os.path.join(stream, "slabs.txt"), "\n".join(rows) + "\n")
+        done = msynth("synthesize", lines, *common, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("all kept from the earlier run", done.stdout)
+        np.testing.assert_array_equal(
+            labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected)
 
     def test_the_filter_streams_slabs_to_a_python_observer(self):
         import modelsynth

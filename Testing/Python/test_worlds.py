@@ -55,7 +55,10 @@ class WorldsTest(unittest.TestCase):
         seconds = time.monotonic() - start
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertLess(seconds, 20)
-        labels = labels_zyx(read(os.path.join(out, "labels.vti")))
+        model = read(os.path.join(out, "labels.vti"))
+        # Where it lies in the world (a tileset's region was once placed at twice its corner).
+        np.testing.assert_allclose(model.GetOrigin(), (700000, 300000, 0))
+        labels = labels_zyx(model)
         self.assertEqual(labels.shape, (1, 96, 128))
         self.assertGreater(len(np.unique(labels)), 2)  # not a blank model
         check = msynth("check", data("Tilesets/Lines.xml"), os.path.join(out, "labels.vti"))

@@ -11,20 +11,41 @@
 #include <fcntl.h>
 #include <fstream>
 #include <streambuf>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
 namespace msynth
 {
 
+void CheckReplaceable(const std::string& path)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode))
+    throw Error::InFile(path,
+      S_ISDIR(info.st_mode) ? "is a folder, not a file to write"
+                            : "exists and is not a regular file (a device, a pipe or a socket); "
+                              "it is not written over");
+}
+
 std::string TemporaryPathBeside(const std::string& path)
 {
+  CheckReplaceable(path);
   static std::atomic<unsigned> counter{ 0 };
   return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
 void CommitTemporaryFile(const std::string& temporary, const std::string& path)
 {
+  try
+  {
+    CheckReplaceable(path); // again: it may have appeared while the file was written
+  }
+  catch (const Error&)
+  {
+    std::remove(temporary.c_str());
+    throw;
+  }
   if (std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     const std::string reason = std::strerror(errno);

@@ -12,7 +12,12 @@
 namespace msynth
 {
 
-/// A temporary file name beside @p path, unique within this process.
+/// @throw Error naming @p path when it exists and is not a regular file (a folder, a device
+/// such as /dev/null, a FIFO, a socket; a link is followed): renaming a file over it would
+/// replace it, so nothing is written there.
+void CheckReplaceable(const std::string& path);
+
+/// A temporary file name beside @p path, unique within this process (CheckReplaceable first).
 std::string TemporaryPathBeside(const std::string& path);
 
 /**
@@ -22,7 +27,8 @@ std::string TemporaryPathBeside(const std::string& path);
  */
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
-/// Renames @p temporary over @p path; removes @p temporary and throws Error on failure.
+/// Renames @p temporary over @p path; removes @p temporary and throws Error on failure (also
+/// when @p path is not replaceable).
 void CommitTemporaryFile(const std::string& temporary, const std::string& path);
 
 } // namespace msynth

@@ -3,6 +3,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Error.h"
+#include "Core/FileBytes.h"
 
 #include <algorithm>
 #include <atomic>
@@ -12,7 +13,6 @@
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <sys/file.h>
@@ -85,6 +85,54 @@ public:
 private:
   int Fd;
 };
+/// A name the manifest may list: a file of the folder's own, not hidden, without control
+/// characters.
+bool IsListedName(const std::string& name)
+{
+  const bool control = std::any_of(name.begin(), name.end(),
+    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  return !name.empty() && !control && name.find('/') == std::string::npos && name[0] != '.' &&
+    name.size() <= 255;
+}
+
+/**
+ * The names the last run published into @p dir (its manifest; none when there is none).
+ * @throw Error naming the manifest when a line is not a plain file name (a NUL byte or another
+ * control character, a slash, a leading dot, "..", more than 255 bytes): a damaged manifest
+ * could make the cleanup remove the folder itself, so nothing is removed or published then.
+ */
+std::vector<std::string> ReadManifest(const std::string& dir)
+{
+  const std::string path = dir + "/" + ManifestName;
+  struct stat info;
+  if (::lstat(path.c_str(), &info) != 0)
+    return {};
+  const auto damaged = [&path](const std::string& problem)
+  {
+    return Error::InFile(path,
+      "is damaged (" + problem +
+        "); remove it to let this run replace the folder's files without cleaning up after the "
+        "last run");
+  };
+  if (!S_ISREG(info.st_mode))
+    throw damaged("not a regular file");
+  const std::string text = ReadFileBytes(path, 1 << 20, "is larger than 1 MB");
+  std::vector<std::string> names;
+  std::size_t line = 1;
+  for (std::size_t start = 0; start < text.size(); ++line)
+  {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    std::string name = text.substr(start, end - start);
+    start = end + 1;
+    if (name.empty())
+      continue;
+    if (!IsListedName(name))
+      throw damaged("line " + std::to_string(line) + " is not a file name");
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
 /// The process id in a staging folder's name (".msynth-stage-PID-N", ".msynth-discard-PID-N"),
 /// or 0 when @p name is no such folder.
 pid_t StagePid(const std::string& name)
@@ -120,7 +168,8 @@ void RemoveStaleStages(const std::string& dir)
 void RemoveTree(const std::string& path)
 {
   struct stat info;
-  if (::lstat(path.c_str(), &info) != 0)
+  // A name with a NUL byte would stand for a shorter path (an ancestor, the folder itself).
+  if (path.find('\0') != std::string::npos || ::lstat(path.c_str(), &info) != 0)
     return;
   if (S_ISDIR(info.st_mode))
   {
@@ -154,6 +203,7 @@ OutputFolder::OutputFolder(const std::string& dir)
     else if (errno != EEXIST)
       throw Error::InFile(this->Dir, std::string("cannot create folder: ") + std::strerror(errno));
   }
+  ReadManifest(this->Dir); // refused before the run, not after it (Publish reads it again)
   RemoveStaleStages(this->Dir);
   static std::atomic<unsigned> counter{ 0 };
   this->StagePath =
@@ -221,14 +271,9 @@ void OutputFolder::Publish()
   const std::vector<std::string> written = Entries(this->StagePath);
   // What the previous run published, less what this run replaces.
   std::vector<std::string> stale;
-  {
-    std::ifstream manifest(this->Dir + "/" + ManifestName);
-    std::string name;
-    while (std::getline(manifest, name))
-      if (!name.empty() && name.find('/') == std::string::npos && name[0] != '.' &&
-        !std::binary_search(written.begin(), written.end(), name))
-        stale.push_back(name);
-  }
+  for (auto& name : ReadManifest(this->Dir))
+    if (!std::binary_search(written.begin(), written.end(), name))
+      stale.push_back(std::move(name));
   std::vector<std::string> replaced; // folders this run replaces, removed once it is published
   for (const auto& name : written)
   {
@@ -252,7 +297,8 @@ void OutputFolder::Publish()
     [&](std::ostream& out)
     {
       for (const auto& name : written)
-        out << name << "\n";
+        if (IsListedName(name))
+          out << name << "\n";
     });
   Registry().erase(this->StagePath);
   ::rmdir(this->StagePath.c_str());

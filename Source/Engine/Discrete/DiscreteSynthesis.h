@@ -438,7 +438,8 @@ struct StreamChunk
  * the next; every slab is handed to @p onChunk (false cancels) as soon as no later block can
  * change it, then dropped. The slabs equal the same sites of a whole run (Synthesize, or
  * SynthesizeRegion): the order respects every dependency of the world's schedule. From
- * @p firstChunk on (a resumed run), only the blocks the slabs from there need run. Memory is set
+ * @p firstChunk on (a resumed run), only the blocks the slabs from there need run (none when it is
+ * the number of slabs: the earlier run finished them all). Memory is set
  * by the slab and the wavefront's depth (phases × passes × reach), not by the world. The result
  * has no Model; its statistics count the blocks run. Options as SynthesizeRegion.
  */

@@ -625,11 +625,19 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   CheckWorldOptions(world, "a streamed world");
   CheckCountRequest(rules, world);
   CheckConnectedRequest(rules, world);
-  if (firstChunk < 0 || firstChunk >= layout.Chunks || layout.World != world.Size)
+  if (firstChunk < 0 || firstChunk > layout.Chunks || layout.World != world.Size)
     throw Error("a streamed run resumes at one of its own slabs");
   const WorldLattice lattice = LatticeOf(world);
   if (lattice.NumberOfBlocks() == 1)
     throw Error("a streamed world is computed in blocks: give blocks smaller than the world");
+  if (firstChunk == layout.Chunks) // interrupted after its last slab: nothing is left to compute
+  {
+    SynthesisResult done;
+    done.Status = SynthesisStatus::Succeeded;
+    done.Message = "streamed in " + std::to_string(layout.Chunks) + " slabs along " +
+      "xyz"[layout.Axis] + ", all kept from the earlier run";
+    return done;
+  }
   SynthesisOptions resolved = world;
   resolved.StartFrom = WorldStart(rules, world); // the world's, as every region's
   Wavefront wave(lattice, layout.Axis, Passes(world));

@@ -179,37 +179,66 @@ public:
   }
 
 private:
+  /**
+   * The points of the extent attribute @p name of @p e ("x0 x1 y0 y1 z0 z1"), 0 when it is
+   * absent, not six numbers, or too large to count (left to the reader's own limit, whose
+   * message names it). @throw Error when an axis is reversed (its end before its start): VTK
+   * sizes its arrays from such extents without checking them.
+   */
+  std::uint64_t ExtentPoints(const XmlElement& e, const char* name, std::uint64_t* cells) const
+  {
+    const std::string* extent = e.Attribute(name);
+    long long x[6] = { 0, 0, 0, 0, 0, 0 };
+    if (!extent ||
+      std::sscanf(extent->c_str(), "%lld %lld %lld %lld %lld %lld", &x[0], &x[1], &x[2], &x[3],
+        &x[4], &x[5]) != 6)
+      return 0;
+    std::uint64_t points = 1, n[3] = { 0, 0, 0 };
+    constexpr long long bound = 1LL << 40; // no overflow in the differences below
+    for (int a = 0; a < 3; ++a)
+    {
+      if (x[2 * a + 1] < x[2 * a])
+        this->Fail(std::string("has a reversed ") + name + " '" + *extent + "' (axis " + "xyz"[a] +
+          " ends before it starts)");
+      const auto inBound = [](long long v) { return v >= -bound && v <= bound; };
+      if (!inBound(x[2 * a]) || !inBound(x[2 * a + 1]) || x[2 * a + 1] - x[2 * a] >= (1LL << 20))
+        return 0;
+      n[a] = static_cast<std::uint64_t>(x[2 * a + 1] - x[2 * a] + 1);
+      points *= n[a];
+    }
+    if (points > (std::uint64_t(1) << 40))
+      return 0;
+    if (cells)
+      *cells = std::max<std::uint64_t>(n[0] - 1, 1) * std::max<std::uint64_t>(n[1] - 1, 1) *
+        std::max<std::uint64_t>(n[2] - 1, 1);
+    return points;
+  }
+
+  /**
+   * A structured dataset (<ImageData>, <RectilinearGrid>, <StructuredGrid>): its pieces must
+   * hold every point of its WholeExtent, which VTK's reader allocates before it reads them (a
+   * WholeExtent of 10^10 points over a piece of four would ask for that much memory).
+   */
+  void WalkStructured(const XmlElement& e)
+  {
+    const std::uint64_t whole = this->ExtentPoints(e, "WholeExtent", nullptr);
+    this->PiecePoints = 0;
+    this->Walk(e, 0, 0);
+    if (e.Attribute("WholeExtent") && (whole == 0 || this->PiecePoints < whole))
+      this->Fail("has a WholeExtent '" + *e.Attribute("WholeExtent") + "' of " +
+        (whole == 0 ? std::string("too many") : std::to_string(whole)) +
+        " points, but its pieces hold " + std::to_string(this->PiecePoints));
+  }
+
   /// Visits @p e; @p points and @p cells are the current piece's counts (0: unknown).
   void Walk(const XmlElement& e, std::uint64_t points, std::uint64_t cells)
   {
     if (e.Name == "Piece")
     {
-      points = cells = 0;
-      if (const std::string* extent = e.Attribute("Extent"))
-      {
-        long long x[6] = { 0, 0, 0, 0, 0, 0 };
-        if (std::sscanf(extent->c_str(), "%lld %lld %lld %lld %lld %lld", &x[0], &x[1], &x[2],
-              &x[3], &x[4], &x[5]) == 6)
-        {
-          // The counts size-check the piece's arrays; an extent too large to count is left
-          // to the reader's own limit (its message names the limit).
-          points = cells = 1;
-          constexpr long long bound = 1LL << 40; // no overflow in the differences below
-          for (int a = 0; a < 3; ++a)
-          {
-            const auto inBound = [](long long v) { return v >= -bound && v <= bound; };
-            const bool inRange = inBound(x[2 * a]) && inBound(x[2 * a + 1]);
-            const long long n = inRange ? x[2 * a + 1] - x[2 * a] + 1 : 0;
-            if (n < 1 || n > (1LL << 20) || points > (std::uint64_t(1) << 40))
-            {
-              points = cells = 0;
-              break;
-            }
-            points *= static_cast<std::uint64_t>(n);
-            cells *= static_cast<std::uint64_t>(n > 1 ? n - 1 : 1);
-          }
-        }
-      }
+      cells = 0;
+      points = this->ExtentPoints(e, "Extent", &cells);
+      // The counts size-check the piece's arrays.
+      this->PiecePoints += points;
     }
     const std::string parent = e.Name;
     // VTK's readers take every element inside these as an array, whatever its name.
@@ -219,7 +248,10 @@ private:
       std::begin(holders), std::end(holders), [&parent](const char* h) { return parent == h; });
     for (const auto& child : e.Children)
     {
-      if (holdsArrays || child.Name == "DataArray" || child.Name == "Array")
+      if (child.Name == "ImageData" || child.Name == "RectilinearGrid" ||
+        child.Name == "StructuredGrid")
+        this->WalkStructured(child);
+      else if (holdsArrays || child.Name == "DataArray" || child.Name == "Array")
       {
         std::uint64_t tuples = 0;
         if (parent == "PointData")
@@ -434,7 +466,8 @@ private:
   bool AppendedEncoded = false;
   int HeaderSize = 4;
   bool Swap = false;
-  int Compressor = 0; ///< 0 none, 1 zlib, 2 LZ4, 3 LZMA
+  int Compressor = 0;            ///< 0 none, 1 zlib, 2 LZ4, 3 LZMA
+  std::uint64_t PiecePoints = 0; ///< the points of the current structured dataset's pieces
 };
 } // namespace
 

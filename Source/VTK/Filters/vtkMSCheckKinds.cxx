@@ -24,6 +24,7 @@
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
+#include "Formats/VTKXMLCheck.h"
 #include "Formats/VoxelTileset.h"
 
 #include <algorithm>
@@ -98,6 +99,7 @@ std::vector<long long> GuideRegions(const std::string& path, const msynth::Label
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     throw msynth::Error("'" + path + "': not a readable guide volume (.vti)");
+  msynth::CheckVTKXMLFile(path); // what VTK's reader trusts, first
   reader->SetFileName(path.c_str());
   std::string messages;
   if (!vtkMSEngineBridge::Execute(reader, messages))
@@ -108,6 +110,8 @@ std::vector<long long> GuideRegions(const std::string& path, const msynth::Label
     throw msynth::Error("'" + path + "': the guide has no integer point array Region");
   int d[3];
   guide->GetDimensions(d);
+  if (d[0] < 1 || d[1] < 1 || d[2] < 1 || region->GetNumberOfTuples() != guide->GetNumberOfPoints())
+    throw msynth::Error("'" + path + "': the guide's Region array does not cover its extent");
   const auto& n = model.Dimensions();
   std::vector<long long> out;
   out.reserve(model.Data().size());

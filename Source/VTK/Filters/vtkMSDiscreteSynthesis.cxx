@@ -503,11 +503,11 @@ void vtkMSDiscreteSynthesis::FillOutput(vtkImageData* input, vtkImageData* outpu
   else
     output->SetExtent(0, static_cast<int>(size[0]) - 1, 0, static_cast<int>(size[1]) - 1, 0,
       static_cast<int>(size[2]) - 1);
-  if (input)
-  {
-    output->SetSpacing(input->GetSpacing());
-    output->SetOrigin(input->GetOrigin());
-  }
+  // The example's grid, or the unit grid at 0 for a tileset or a sample (as RequestInformation
+  // says): the output may already hold the region's origin from the pipeline information.
+  const double unit[3] = { 1, 1, 1 }, zero[3] = { 0, 0, 0 };
+  output->SetSpacing(input ? input->GetSpacing() : unit);
+  output->SetOrigin(input ? input->GetOrigin() : zero);
   if (this->HasRegion()) // the region where it lies in the world
   {
     double origin[3];

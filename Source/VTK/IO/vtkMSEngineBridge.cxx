@@ -28,6 +28,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -41,9 +42,34 @@ vtkMSEngineBridge::~vtkMSEngineBridge()
   this->Reset();
 }
 
+namespace
+{
+/// @p algorithm and every algorithm upstream of it, each once, upstream ones first.
+void WithUpstream(vtkAlgorithm* algorithm, std::vector<vtkAlgorithm*>& out)
+{
+  if (std::find(out.begin(), out.end(), algorithm) != out.end())
+    return;
+  for (int p = 0; p < algorithm->GetNumberOfInputPorts(); ++p)
+    for (int c = 0; c < algorithm->GetNumberOfInputConnections(p); ++c)
+      if (vtkAlgorithm* in = algorithm->GetInputAlgorithm(p, c))
+        WithUpstream(in, out);
+  out.push_back(algorithm);
+}
+} // namespace
+
 bool vtkMSEngineBridge::Execute(
   vtkAlgorithm* algorithm, std::string& messages, bool informationOnly)
 {
+  // Upstream algorithms (a reader of a damaged file) are heard too: when the update fails,
+  // their reasons come first, instead of only "<filter> failed".
+  std::vector<vtkAlgorithm*> pipeline;
+  WithUpstream(algorithm, pipeline);
+  std::vector<vtkSmartPointer<vtkMSEngineBridge>> upstream;
+  for (std::size_t i = 0; i + 1 < pipeline.size(); ++i)
+  {
+    upstream.push_back(vtkSmartPointer<vtkMSEngineBridge>::New());
+    upstream.back()->Watch(pipeline[i]);
+  }
   vtkNew<vtkMSEngineBridge> errors;
   errors->Watch(algorithm);
   vtkExecutive* executive = algorithm->GetExecutive();
@@ -65,6 +91,10 @@ bool vtkMSEngineBridge::Execute(
   }
   const bool ok = status != 0 && !errors->HasErrors() && thrown.empty();
   messages = errors->GetMessages() + thrown;
+  if (!ok)
+    for (auto it = upstream.rbegin(); it != upstream.rend(); ++it)
+      if ((*it)->HasErrors() && messages.find((*it)->GetMessages()) == std::string::npos)
+        messages = (*it)->GetMessages() + (messages.empty() ? "" : "; " + messages);
   if (!ok && messages.empty())
   {
     messages = std::string(algorithm->GetClassName()) + " failed";

@@ -1,0 +1,97 @@
+"""Files that could crash a run or be damaged by one (issue 48): a guide whose WholeExtent its
+pieces do not hold, or that is reversed; outputs named after a device, a FIFO or a folder; an
+output folder whose manifest is damaged; a model read by `check` from a broken file. Each ends in
+one line naming the file and the problem, within seconds, and leaves nothing behind."""
+import os
+import stat
+import unittest
+
+from msynth_testing import data, fresh_folder, run_msynth
+
+GUIDE = """<?xml version="1.0"?>
+<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">
+  <ImageData WholeExtent="{whole}" Origin="0 0 0" Spacing="1 1 1">
+    <Piece Extent="0 1 0 1 0 0">
+      <PointData>
+        <DataArray type="Float32" Name="Weight_1" format="ascii">1 1 1 1</DataArray>
+        <DataArray type="Int32" Name="Region" format="ascii">0 0 1 1</DataArray>
+      </PointData>
+    </Piece>
+  </ImageData>
+</VTKFile>
+"""
+
+
+def write(path, content, mode="w"):
+    with open(path, mode) as f:
+        f.write(content)
+
+
+class HostileFilesTest(unittest.TestCase):
+    def one_line(self, done, *needles):
+        self.assertNotEqual(done.returncode, 0, done.stdout)
+        self.assertLess(done.returncode, 128, "a signal, not an error: " + done.stderr)
+        lines = done.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, done.stderr)
+        for needle in needles:
+            self.assertIn(needle, lines[0])
+
+    def test_guides_whose_extent_their_pieces_do_not_hold(self):
+        folder = fresh_folder("hostile-guides")
+        village = data("Examples/Village.vti")
+        model = os.path.join(folder, "model")
+        done = run_msynth("synthesize", village, "--size", "16", "16", "5", "--out", model)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        large = os.path.join(folder, "large.vti")  # 10^10 points over a piece of four
+        write(large, GUIDE.format(whole="0 100000 0 100000 0 0"))
+        reversed_ = os.path.join(folder, "reversed.vti")
+        write(reversed_, GUIDE.format(whole="0 1 0 1 5 0"))
+        for guide, problem in ((large, "its pieces hold 4"), (reversed_, "reversed WholeExtent")):
+            out = os.path.join(folder, "out")
+            done = run_msynth("synthesize", village, "--size", "16", "16", "5", "--guide", guide,
+                              "--out", out, timeout=60)
+            self.one_line(done, os.path.basename(guide), problem)
+            self.assertFalse(os.path.exists(out))
+            done = run_msynth("synthesize", data("Continuous/house.obj"), "--size", "12", "12",
+                              "8", "--guide", guide, "--out", out, timeout=60)
+            self.one_line(done, os.path.basename(guide), problem)
+            self.assertFalse(os.path.exists(out))
+            done = run_msynth("check", village, os.path.join(model, "labels.vti"), "--count",
+                              "region=0:1:0:1000", "--guide", guide, timeout=60)
+            self.one_line(done, os.path.basename(guide), problem)
+
+    def test_a_device_a_fifo_or_another_format_is_not_written_over(self):
+        folder = fresh_folder("hostile-targets")
+        village = data("Examples/Village.vti")
+        fifo = os.path.join(folder, "pipe.vti")
+        os.mkfifo(fifo)
+        for target, problem in ((fifo, "not a regular file"), ("/dev/null", "name a .vti file"),
+                                (os.path.join(folder, "x.vox"), "name a .vti file")):
+            done = run_msynth("analyze", village, "--infallible", "--write-infallible", target)
+            self.one_line(done, target, problem)
+        self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))
+        self.assertTrue(stat.S_ISCHR(os.stat("/dev/null").st_mode))
+        self.assertFalse(os.path.exists(os.path.join(folder, "x.vox")))
+        self.assertEqual(sorted(os.listdir(folder)), ["pipe.vti"])  # no temporary file left
+
+    def test_a_damaged_manifest_stops_the_run_before_it_publishes(self):
+        out = fresh_folder("hostile-manifest")
+        village = data("Examples/Village.vti")
+        write(os.path.join(out, "notes.txt"), "the user's")
+        write(os.path.join(out, ".msynth-outputs"), b"labels.vti\n\x00\nmesh.vtp\n", "wb")
+        done = run_msynth("synthesize", village, "--size", "16", "16", "5", "--out", out,
+                          timeout=60)
+        self.one_line(done, ".msynth-outputs", "is damaged (line 2 is not a file name)")
+        self.assertEqual(sorted(os.listdir(out)), [".msynth-outputs", "notes.txt"])
+
+    def test_check_names_the_broken_file(self):
+        folder = fresh_folder("hostile-check")
+        broken = os.path.join(folder, "broken.vox")
+        write(broken, "garbage")
+        done = run_msynth("check", data("Tilesets/Lines.xml"), broken)
+        self.one_line(done, "broken.vox", "does not start with 'VOX '")
+        self.assertNotIn("vtkMSCheckModel failed", done.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
