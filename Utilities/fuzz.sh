@@ -35,17 +35,18 @@ declare -A seeds=(
   [FuzzTileset]="Tilesets/*.xml"
   [FuzzPolyhedral]=""
   [FuzzImage]="Tilesets/*/*.png Samples/*.png"
-  [FuzzVTKXML]="Examples/*.vti Malformed/*.vti"
+  [FuzzVTKXML]="Examples/*.vti Malformed/*.vti Continuous/*-guide.vti"
   [FuzzVDB]=""
   [FuzzSynthesis]=""
   [FuzzPatterns]=""
+  [FuzzOutputFolder]=""
 )
 export ASAN_OPTIONS="detect_leaks=0:allocator_may_return_null=1:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
 total=0
 failed=0
 printf '%-16s %12s %s\n' harness executions result
-for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis FuzzPatterns; do
+for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis FuzzPatterns FuzzOutputFolder; do
   corpus="$dir/corpus/$harness"
   crashes="$dir/crashes/$harness"
   mkdir -p "$corpus" "$crashes"

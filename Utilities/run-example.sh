@@ -47,7 +47,9 @@ done
 
 msynth="$root/build/bin/msynth"
 if [ "$build" = 1 ]; then
-  bash "$here/build.sh" --no-tests >/dev/null
+  # Shown as it goes: on a fresh machine installing and compiling take several minutes.
+  echo "== installing what is missing and building msynth (build.sh --no-tests)"
+  bash "$here/build.sh" --no-tests
 elif [ ! -x "$msynth" ]; then
   echo "run-example.sh: --no-build, but $msynth is not built" >&2
   exit 1

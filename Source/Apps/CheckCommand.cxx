@@ -190,8 +190,9 @@ int CheckVoxels(const std::string& example, const std::string& modelPath, const 
   reader->SetFileName(modelPath.c_str());
   reader->VoxSceneOn();
   reader->GenerateGeometryOff();
-  reader->SetMaximumNumberOfSites(static_cast<vtkIdType>(std::min<std::uint64_t>(
-    std::uint64_t(1) << 30, msynth::AvailableMemory() / (2 * sizeof(msynth::Label)))));
+  // The scene's span of voxels (its models far apart make it large for a small file): the
+  // composed grid, the reader's and the check's copies take about 12 bytes a voxel (measured).
+  reader->SetMaximumNumberOfSites(static_cast<vtkIdType>(SitesWithinMemory(16, 1LL << 30)));
   vtkNew<vtkMSCheckModel> check;
   check->SetInputConnection(reader->GetOutputPort());
   check->VoxelModelOn();

@@ -19,13 +19,16 @@
 
 #include "Core/Error.h"
 #include "Core/Index.h"
+#include "Core/Memory.h"
 #include "Core/OutputFolder.h"
 #include "Formats/Image.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -99,6 +102,39 @@ std::string Triple(const int* v)
 std::string Counted(long long n, const std::string& thing, const std::string& plural)
 {
   return std::to_string(n) + " " + (n == 1 ? thing : plural.empty() ? thing + "s" : plural);
+}
+
+namespace
+{
+std::mutex& NoteMutex()
+{
+  static auto* m = new std::mutex; // never destroyed: the signal thread may read at exit
+  return *m;
+}
+std::string& Note()
+{
+  static auto* note = new std::string;
+  return *note;
+}
+} // namespace
+
+void SetInterruptNote(const std::string& note)
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  Note() = note;
+}
+
+std::string InterruptNote()
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  return Note();
+}
+
+long long SitesWithinMemory(unsigned bytesPerSite, long long ceiling)
+{
+  const std::uint64_t sites = msynth::AvailableMemory() / std::max(1u, bytesPerSite);
+  return static_cast<long long>(
+    std::min<std::uint64_t>(sites, static_cast<std::uint64_t>(ceiling)));
 }
 
 void Run(vtkAlgorithm* algorithm)

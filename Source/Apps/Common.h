@@ -57,6 +57,14 @@ bool IsPolyhedral(const std::string& path);
  */
 void CheckInputFile(const std::string& path, bool model = false);
 
+/**
+ * The most sites a command that takes about @p bytesPerSite bytes a site (measured: its reader,
+ * its filters and their copies together) may read from a file: the memory available divided by
+ * that, at most @p ceiling. A file declaring more is refused by its reader before anything is
+ * allocated (vtkMSLabelGridReader::MaximumNumberOfSites).
+ */
+long long SitesWithinMemory(unsigned bytesPerSite, long long ceiling);
+
 /// Runs @p algorithm, turning its VTK errors into one exception message.
 void Run(vtkAlgorithm* algorithm);
 /// Runs a synthesis filter as Run does, its messages about its list properties (Counts,
@@ -69,6 +77,11 @@ void RunSynthesis(vtkAlgorithm* algorithm);
  * command prints names the final files, and is printed once they are there.
  */
 int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command);
+
+/// What an interrupted run says after "no outputs were written" (empty: nothing): a streamed
+/// run names what it keeps and how to go on. Set while the run goes; read by the signal thread.
+void SetInterruptNote(const std::string& note);
+std::string InterruptNote();
 
 /// @p table as CSV (a header of column names), written atomically.
 void WriteCSV(const std::string& path, vtkTable* table);

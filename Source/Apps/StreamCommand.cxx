@@ -602,16 +602,20 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
       ++finished;
       return true;
     });
+  SetInterruptNote("the finished slabs are kept in '" + folder +
+    "': the same command with --resume goes on from them");
   try
   {
     RunDiscrete(synthesis, o);
   }
   catch (const std::exception&)
   {
+    SetInterruptNote("");
     if (kept.empty() && finished == 0) // nothing to resume: the output folder stays as it was
       msynth::RemoveTree(folder);
     throw;
   }
+  SetInterruptNote("");
   return PublishStream(o, dir, folder, synthesis->GetOutput(), kept.size(), start);
 }
 

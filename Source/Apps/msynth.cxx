@@ -77,7 +77,9 @@ void HandleInterruptions()
         std::_Exit(0); // the run's outputs are complete: only its last words are lost
       }
       const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
-      std::fprintf(stderr, "\nmsynth: interrupted (%s); no outputs were written\n", name);
+      const std::string note = msynth::cli::InterruptNote();
+      std::fprintf(stderr, "\nmsynth: interrupted (%s); no outputs were written%s%s\n", name,
+        note.empty() ? "" : "; ", note.c_str());
       std::fflush(stderr);
       std::_Exit(128 + sig);
     })

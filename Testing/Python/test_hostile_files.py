@@ -4,6 +4,8 @@ output folder whose manifest is damaged; a model read by `check` from a broken f
 one line naming the file and the problem, within seconds, and leaves nothing behind."""
 import os
 import stat
+import struct
+import time
 import unittest
 
 from msynth_testing import data, fresh_folder, run_msynth
@@ -20,6 +22,37 @@ GUIDE = """<?xml version="1.0"?>
   </ImageData>
 </VTKFile>
 """
+
+
+def chunk(name, content, children=b""):
+    return name + struct.pack("<ii", len(content), len(children)) + content + children
+
+
+def vox(body):
+    return b"VOX " + struct.pack("<i", 150) + chunk(b"MAIN", b"", body)
+
+
+def far_scene(offset):
+    """A .vox scene of two 5 x 5 x 5 models, the second translated by `offset` (text "x y z")."""
+    def text(t):
+        return struct.pack("<i", len(t)) + t.encode()
+
+    def attributes(pairs):
+        return struct.pack("<i", len(pairs)) + b"".join(text(k) + text(v) for k, v in pairs)
+
+    def transform(node, child, at):
+        return chunk(b"nTRN", struct.pack("<i", node) + attributes([]) +
+                     struct.pack("<iiii", child, -1, 0, 1) + attributes([("_t", at)] if at else []))
+
+    def shape(node, model):
+        return chunk(b"nSHP", struct.pack("<i", node) + attributes([]) +
+                     struct.pack("<ii", 1, model) + attributes([]))
+
+    models = b"".join(chunk(b"SIZE", struct.pack("<iii", 5, 5, 5)) +
+                      chunk(b"XYZI", struct.pack("<i", 1) + bytes([0, 0, 0, 1])) for _ in range(2))
+    group = chunk(b"nGRP", struct.pack("<i", 1) + attributes([]) + struct.pack("<iii", 2, 2, 4))
+    return vox(models + transform(0, 1, None) + group + transform(2, 3, "0 0 0") + shape(3, 0) +
+               transform(4, 5, offset) + shape(5, 1))
 
 
 def write(path, content, mode="w"):
@@ -83,6 +116,28 @@ class HostileFilesTest(unittest.TestCase):
                           timeout=60)
         self.one_line(done, ".msynth-outputs", "is damaged (line 2 is not a file name)")
         self.assertEqual(sorted(os.listdir(out)), [".msynth-outputs", "notes.txt"])
+
+    def test_memory_is_estimated_before_a_small_file_asks_for_much(self):
+        """A scene's second model translated far away (a 362-byte file spanning 10^9 voxels), an
+        empty .vox declaring 512 x 512 x 256: refused at once when the memory available (here
+        set by MSYNTH_AVAILABLE_MEMORY) cannot hold what the command takes per site."""
+        folder = fresh_folder("hostile-memory")
+        scene = os.path.join(folder, "far.vox")
+        write(scene, far_scene("1000 1000 1000"), "wb")
+        empty = os.path.join(folder, "empty.vox")
+        write(empty, vox(chunk(b"SIZE", struct.pack("<iii", 512, 512, 256)) +
+                         chunk(b"XYZI", struct.pack("<i", 0))), "wb")
+        env = dict(os.environ, MSYNTH_AVAILABLE_MEMORY=str(10**9))
+        import subprocess
+        from msynth_testing import BIN
+        for args, needle in ((["check", data("Tilesets/Pipes.xml"), scene],
+                              "places its models over 1005 x 1005 x 1005 voxels"),
+                             (["info", empty], "declares a model of 512 x 512 x 256 voxels")):
+            start = time.monotonic()
+            done = subprocess.run([os.path.join(BIN, "msynth"), *args], capture_output=True,
+                                  text=True, timeout=60, env=env)
+            self.one_line(done, needle, "the memory available allows no more")
+            self.assertLess(time.monotonic() - start, 10)
 
     def test_check_names_the_broken_file(self):
         folder = fresh_folder("hostile-check")

@@ -249,6 +249,74 @@ class StreamTest(unittest.TestCase):
         np.testing.assert_array_equal(
             labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected)
 
+    def test_an_interrupted_stream_says_how_to_go_on(self):
+        """Ctrl-C during a stream: the one line names the kept slabs and --resume (issue 49)."""
+        common = ["--size", "400", "2400", "1", "--block", "32", "32", "1", "--seed", "8",
+                  "--stream", "--slab", "100", "--threads", "1", "--outputs", "labels"]
+        out = fresh_folder("stream-sigint")
+        listed = os.path.join(out, ".msynth-stream", "slabs.txt")
+        run = subprocess.Popen([MSYNTH, "synthesize", data("Tilesets/Lines.xml"), *common,
+                                "--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and run.poll() is None:
+            if os.path.exists(listed) and text(listed):
+                break
+            time.sleep(0.01)
+        run.send_signal(signal.SIGINT)
+        _, stderr = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 128 + signal.SIGINT, stderr)
+        self.assertIn("no outputs were written; the finished slabs are kept in '", stderr)
+        self.assertIn("': the same command with --resume goes on from them", stderr)
+        done = msynth("synthesize", data("Tilesets/Lines.xml"), *common, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+
+    def test_damaged_stream_states_resume_or_fail_cleanly(self):
+        """Seeded damage of an interrupted stream's state (a byte of slabs.txt, definition.txt
+        or a slab changed, a NUL written, a line repeated, a file cut short): --resume either
+        publishes the world a fresh run makes or fails in one line publishing nothing."""
+        import random
+        import shutil
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "160", "800", "1", "--block", "32", "32", "1", "--seed", "5",
+                  "--stream", "--slab", "100", "--threads", "1", "--outputs", "labels"]
+        fresh = fresh_folder("stream-damage-fresh")
+        done = msynth("synthesize", lines, *common, "--out", fresh)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        expected = labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti")))
+        state = self.interrupted("stream-damage-state", common, slabs=4)
+        for seed in range(int(os.environ.get("MSYNTH_STREAM_DAMAGE_SEEDS", "12"))):
+            rng = random.Random(seed)
+            out = fresh_folder("stream-damage")
+            shutil.rmtree(out)
+            shutil.copytree(state, out)
+            stream = os.path.join(out, ".msynth-stream")
+            victim = rng.choice(["slabs.txt", "slabs.txt", "definition.txt",
+                                 os.path.join("labels", "labels_00001.vti")])
+            path = os.path.join(stream, victim)
+            with open(path, "rb") as f:
+                raw = bytearray(f.read())
+            kind = rng.choice(["flip", "nul", "repeat", "cut"])
+            at = rng.randrange(len(raw))
+            if kind == "flip":
+                raw[at] ^= 1 << rng.randrange(8)
+            elif kind == "nul":
+                raw[at] = 0
+            elif kind == "repeat":
+                first = raw.split(b"\n")[0] + b"\n"
+                raw = first + raw
+            else:
+                raw = raw[:at]
+            write(path, bytes(raw), "wb")
+            done = msynth("synthesize", lines, *common, "--resume", "--out", out)
+            what = "seed %d: %s of %s at %d" % (seed, kind, victim, at)
+            if done.returncode == 0:
+                np.testing.assert_array_equal(
+                    labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected, what)
+            else:
+                self.assertEqual(len(done.stderr.strip().splitlines()), 1, what + done.stderr)
+                self.assertFalse(os.path.exists(os.path.join(out, "labels.pvti")), what)
+
     def test_the_filter_streams_slabs_to_a_python_observer(self):
         import modelsynth
         synthesis = modelsynth.vtkMSDiscreteSynthesis()

@@ -224,9 +224,12 @@ private:
     const std::uint64_t whole = this->ExtentPoints(e, "WholeExtent", nullptr);
     this->PiecePoints = 0;
     this->Walk(e, 0, 0);
-    if (e.Attribute("WholeExtent") && (whole == 0 || this->PiecePoints < whole))
-      this->Fail("has a WholeExtent '" + *e.Attribute("WholeExtent") + "' of " +
-        (whole == 0 ? std::string("too many") : std::to_string(whole)) +
+    const std::string* extent = e.Attribute("WholeExtent");
+    if (extent && whole == 0)
+      this->Fail("has a WholeExtent '" + *extent +
+        "' too large to read (over 2^20 points along an axis or 2^40 in all)");
+    if (extent && this->PiecePoints < whole)
+      this->Fail("has a WholeExtent '" + *extent + "' of " + std::to_string(whole) +
         " points, but its pieces hold " + std::to_string(this->PiecePoints));
   }
 

@@ -141,9 +141,11 @@ LabelGrid ReadSizeChunk(Cursor& c, std::uint32_t content, std::int64_t maxSites)
     if (d < 1 || d > 2048)
       c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
         std::to_string(size[2]) + " is outside 1..2048");
-  if (size[0] * size[1] * size[2] > maxSites)
-    c.Fail("model size " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
-      std::to_string(size[2]) + " exceeds the limit of " + std::to_string(maxSites) + " sites");
+  if (size[0] * size[1] * size[2] > maxSites) // a valid file, larger than the reader may hold
+    throw Error::InFile(c.Name,
+      "declares a model of " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
+        std::to_string(size[2]) + " voxels, more than the " + std::to_string(maxSites) +
+        " this reading may hold (the memory available allows no more)");
   return LabelGrid(size[0], size[1], size[2], 0);
 }
 
@@ -526,10 +528,11 @@ VoxModel ReadVoxScene(
     }
   }
   const std::int64_t n[3] = { high[0] - low[0], high[1] - low[1], high[2] - low[2] };
-  if (n[0] * n[1] * n[2] > maxSites)
-    c.Fail("the scene's models span " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
-      " x " + std::to_string(n[2]) + " voxels, more than the limit of " + std::to_string(maxSites) +
-      " sites");
+  if (n[0] * n[1] * n[2] > maxSites) // before the span is allocated
+    throw Error::InFile(c.Name,
+      "places its models over " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+        std::to_string(n[2]) + " voxels, more than the " + std::to_string(maxSites) +
+        " this reading may hold (the memory available allows no more)");
   result.Grid = LabelGrid(n[0], n[1], n[2], 0);
   for (const auto& p : placed)
   {
