@@ -39,7 +39,8 @@ std::pair<std::size_t, double> Variety(const LabelGrid& model, const Coord& low,
   std::int64_t most = 0;
   for (const auto& c : counts)
     most = std::max(most, c.second);
-  return { counts.size(), sites > 0 ? static_cast<double>(most) / static_cast<double>(sites) : 1.0 };
+  return { counts.size(),
+    sites > 0 ? static_cast<double>(most) / static_cast<double>(sites) : 1.0 };
 }
 
 std::pair<std::size_t, double> Variety(const LabelGrid& model)
