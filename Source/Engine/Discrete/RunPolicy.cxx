@@ -8,6 +8,7 @@
  * (RunFingerprint).
  */
 #include "Core/BlockDriver.h"
+#include "Core/BlockSynthesis.h"
 #include "Core/Error.h"
 #include "Core/Index.h"
 #include "Discrete/DiscreteSynthesis.h"
@@ -23,16 +24,28 @@ namespace msynth
 {
 namespace
 {
-/// The distinct labels of @p model and the share of its most frequent one.
-std::pair<std::size_t, double> Variety(const LabelGrid& model)
+using Coord = std::array<std::int64_t, 3>;
+
+/// The distinct labels of @p model in the box [@p low, @p high) and the share of its most
+/// frequent one.
+std::pair<std::size_t, double> Variety(const LabelGrid& model, const Coord& low, const Coord& high)
 {
   std::map<Label, std::int64_t> counts;
-  for (const Label v : model.Data())
-    ++counts[v];
+  std::int64_t sites = 0;
+  for (std::int64_t z = low[2]; z < high[2]; ++z)
+    for (std::int64_t y = low[1]; y < high[1]; ++y)
+      for (std::int64_t x = low[0]; x < high[0]; ++x, ++sites)
+        ++counts[model.At(x, y, z)];
   std::int64_t most = 0;
   for (const auto& c : counts)
     most = std::max(most, c.second);
-  return { counts.size(), static_cast<double>(most) / static_cast<double>(model.NumberOfSites()) };
+  return { counts.size(),
+    sites > 0 ? static_cast<double>(most) / static_cast<double>(sites) : 1.0 };
+}
+
+std::pair<std::size_t, double> Variety(const LabelGrid& model)
+{
+  return Variety(model, { { 0, 0, 0 } }, model.Dimensions());
 }
 
 /// More than 1.25 times the distinct labels of @p than, or a most frequent label's share under
@@ -43,9 +56,10 @@ bool MoreVaried(const std::pair<std::size_t, double>& v, const std::pair<std::si
     v.second < 0.8 * than.second;
 }
 
-/// Whether a block run from the trivial start left its model blank: its trivial label covers
-/// over 90 % of the sites, or over 1.25 times its share of the example (by the labels' weights).
-bool LooksBlank(const AdjacencyRules& rules, const SynthesisResult& trivial)
+/// Whether a block run over the whole output from the trivial start left it blank (the
+/// criterion of a world that is its own probe): its trivial label covers over 90 % of the
+/// sites, or over 1.25 times its share of the example (by the labels' weights).
+bool LooksBlankByWeight(const AdjacencyRules& rules, const SynthesisResult& trivial)
 {
   if (!trivial.Statistics.TrivialLabel)
     return false;
@@ -59,6 +73,103 @@ bool LooksBlank(const AdjacencyRules& rules, const SynthesisResult& trivial)
   const double example = b >= 0 && total > 0.0 ? weights[ToIndex(b)] / total : 1.0;
   return share > 0.9 || share > 1.25 * example;
 }
+
+/// Whether a probe is blank: one label on over 90 % of its sites and fewer than half of the
+/// rules' labels. (Not against the labels' weights: a tileset without weights gives its ground
+/// tile 1/29 of them, a castle of air is 85 % air in a whole run and 63 % in its example.)
+bool LooksBlank(const AdjacencyRules& rules, const std::pair<std::size_t, double>& v)
+{
+  return v.second > 0.9 && 2 * v.first < static_cast<std::size_t>(rules.NumberOfLabels());
+}
+
+/// A probe of its own: no messages to other processes, no counts or network (the whole
+/// output's), no snapshots, the first 1 % of progress.
+SynthesisOptions ProbeOptions(const SynthesisOptions& options)
+{
+  SynthesisOptions probe = options;
+  probe.Exchange = BlockExchange();
+  probe.Counts.clear();
+  probe.Connected = ConnectedNetwork();
+  probe.OnSnapshot = nullptr;
+  probe.SnapshotsPerBlock = 0;
+  probe.Progress = nullptr;
+  if (options.Progress)
+    probe.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.01 * f)); };
+  return probe;
+}
+
+/**
+ * The trivial start's probe of a large world: one block of the run ringed by the trivial label
+ * (a world of the block and one site on each side along the axes the blocks divide, those
+ * faces fixed to the label), synthesized whole: what every block inside the world meets, for the
+ * cost of one block. A block that cannot be synthesized keeps the trivial label: blank.
+ */
+std::pair<std::size_t, double> RingedBlockVariety(const AdjacencyRules& rules,
+  const SynthesisOptions& options, const Coord& m, int trivial, SynthesisStatus& status)
+{
+  SynthesisOptions ring = ProbeOptions(options);
+  ring.BlockSize = { { 0, 0, 0 } };
+  ring.BlocksWhenWholeFails = false;
+  ring.StartFrom = BlockStart::Trivial;
+  for (Translation& t : ring.Translate) // a block inside the world, away from the seams
+    t = Translation();
+  Coord low{ { 0, 0, 0 } }, high = options.Size;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (m[a] < options.Size[a])
+    {
+      ring.Size[a] = m[a] + 2;
+      ring.Boundary[2 * a] = ring.Boundary[2 * a + 1] = rules.LabelValues()[ToIndex(trivial)];
+      low[a] = 1;
+      high[a] = m[a] + 1;
+    }
+  const SynthesisResult r = Synthesize(rules, ring);
+  status = r.Status;
+  if (!r.Succeeded()) // no evidence either way (too few attempts): Algorithm 3.4's start
+    return { ToIndex(rules.NumberOfLabels()), 0.0 };
+  return Variety(r.Model, low, high);
+}
+
+/// The label of the trivial start of a world without guide or pins (TrivialStart), or -1 when
+/// it would be layered.
+int TrivialLabelOf(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  if (options.TrivialLabel)
+    return rules.IndexOf(*options.TrivialLabel);
+  return ChooseTrivialLabel(rules.NumberOfLabels(), rules.IndexOf(0),
+    [&](int b) { return rules.SelfAdjacent(b, options.Size); });
+}
+/**
+ * ChooseBlockStart once the trivial start looks blank: the undecided start when it decides
+ * every site of @p probe with no failed block and more variety than @p t (not with translation:
+ * the blocks along the seam meet decided sites on both sides); else a whole-model solution that
+ * the blocks modify, so as varied as a whole run (the run falls back to the trivial start where
+ * its whole run fails). Only a small world, its own probe (@p first), tries the whole-model start
+ * first and keeps the trivial one unless that is less blank: elsewhere it would cost a whole run.
+ */
+template <typename Keep>
+BlockStart ChooseAfterBlank(const AdjacencyRules& rules, SynthesisOptions& probe,
+  const std::pair<std::size_t, double>& t, bool translated, std::optional<SynthesisResult>& first,
+  const Keep& keep)
+{
+  if (!translated)
+  {
+    probe.StartFrom = BlockStart::Undecided;
+    SynthesisResult other = Synthesize(rules, probe);
+    if (other.Status == SynthesisStatus::Cancelled ||
+      (other.Succeeded() && other.Statistics.BlocksFailed == 0 &&
+        MoreVaried(Variety(other.Model), t)))
+      return keep(std::move(other), BlockStart::Undecided);
+  }
+  if (!first)
+    return BlockStart::WholeModel;
+  probe.StartFrom = BlockStart::WholeModel;
+  SynthesisResult whole = Synthesize(rules, probe);
+  if (whole.Status == SynthesisStatus::Cancelled ||
+    (whole.Succeeded() && whole.Statistics.BlocksFailed == 0 &&
+      Variety(whole.Model).second < t.second))
+    return keep(std::move(whole), BlockStart::WholeModel);
+  return keep(std::move(*first), BlockStart::Trivial);
+}
 } // namespace
 
 BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions& options,
@@ -69,54 +180,47 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
   std::array<std::int64_t, 3> m, step;
   if (BlockGeometry<3>(options.Size, options.BlockSize, options.Overlap, m, step) ||
     options.Start || options.Soft.Active() || detail::AnyMirror(options) ||
-    detail::AnySeamSymmetry(options) || options.SnapshotsPerBlock > 0)
+    options.Rotate.Enabled || options.SnapshotsPerBlock > 0)
     return BlockStart::Trivial;
-  SynthesisOptions probe = options;
-  bool whole = true;
+  // With translation the blocks along the seam meet decided sites on both sides, which an
+  // undecided start cannot close (WaveFunctionCollapse's City): no undecided probe there.
+  const bool translated = detail::AnySeamSymmetry(options);
+  // A small world (up to 4 block steps past one block per axis) is its own probe, kept as the
+  // result when its start is chosen; a larger one is probed by one block ringed by the trivial
+  // label, then by a world of 2 blocks per axis from the undecided start.
+  bool small = true;
   for (std::size_t a = 0; a < 3; ++a)
-  {
-    probe.Size[a] = std::min(options.Size[a], m[a] + 4 * step[a]);
-    whole &= probe.Size[a] == options.Size[a];
-  }
-  if (!whole && (options.Pins || options.Guide))
+    small &= options.Size[a] <= m[a] + 4 * step[a];
+  const int trivial = small ? -1 : TrivialLabelOf(rules, options);
+  if (!small && (options.Pins || options.Guide || trivial < 0))
     return BlockStart::Trivial;
-  if (!whole) // a probe of its own: no messages to other processes, the first 1 % of progress
-  {
-    probe.Exchange = BlockExchange();
-    probe.Counts.clear();                 // the counts are the whole output's
-    probe.Connected = ConnectedNetwork(); // so is the network
-    if (options.Progress)
-      probe.Progress = [&options](double f) { return options.Progress(std::max(1e-6, 0.01 * f)); };
-  }
-  probe.StartFrom = BlockStart::Trivial;
-  SynthesisResult trivial = Synthesize(rules, probe);
   const auto keep = [&](SynthesisResult r, BlockStart start)
   {
-    if (done && (whole || r.Status == SynthesisStatus::Cancelled))
+    if (done && (small || r.Status == SynthesisStatus::Cancelled))
       *done = std::move(r);
     return start;
   };
-  if (trivial.Status == SynthesisStatus::Cancelled)
-    return keep(std::move(trivial), BlockStart::Trivial);
-  if (!trivial.Succeeded() || !LooksBlank(rules, trivial))
-    return keep(std::move(trivial), BlockStart::Trivial);
-  // The undecided start, then a whole-model one, when it decides every site with no failed
-  // block: the undecided start with more variety than the trivial start; the whole-model start
-  // (a whole-model output modified, so as varied as one) with any less blank model.
-  const auto t = Variety(trivial.Model);
-  for (const BlockStart start : { BlockStart::Undecided, BlockStart::WholeModel })
+  SynthesisOptions probe = small ? options : ProbeOptions(options);
+  probe.StartFrom = BlockStart::Trivial;
+  std::pair<std::size_t, double> t;
+  std::optional<SynthesisResult> first; // a small world's trivial run
+  if (small)
   {
-    probe.StartFrom = start;
-    SynthesisResult other = Synthesize(rules, probe);
-    if (other.Status == SynthesisStatus::Cancelled)
-      return keep(std::move(other), start);
-    if (!other.Succeeded() || other.Statistics.BlocksFailed > 0)
-      continue;
-    const auto v = Variety(other.Model);
-    if (start == BlockStart::Undecided ? MoreVaried(v, t) : v.second < t.second)
-      return keep(std::move(other), start);
+    first = Synthesize(rules, probe);
+    if (!first->Succeeded() || !LooksBlankByWeight(rules, *first))
+      return keep(std::move(*first), BlockStart::Trivial);
+    t = Variety(first->Model);
   }
-  return keep(std::move(trivial), BlockStart::Trivial);
+  else
+  {
+    SynthesisStatus status = SynthesisStatus::Succeeded;
+    t = RingedBlockVariety(rules, options, m, trivial, status);
+    if (status == SynthesisStatus::Cancelled || !LooksBlank(rules, t))
+      return BlockStart::Trivial;
+    for (std::size_t a = 0; a < 3; ++a)
+      probe.Size[a] = std::min(options.Size[a], m[a] + step[a]);
+  }
+  return ChooseAfterBlank(rules, probe, t, translated, first, keep);
 }
 
 SynthesisResult SynthesizeFromWholeModel(

@@ -181,8 +181,8 @@ BlockStart WorldStart(const AdjacencyRules& rules, const SynthesisOptions& world
   const BlockStart start = ChooseBlockStart(rules, world);
   if (start == BlockStart::WholeModel)
     throw Error("the blocks of this world start from a whole-model solution (their trivial start "
-                "leaves them blank), which a region or a stream cannot compute: choose the "
-                "trivial or the undecided start");
+                "leaves them blank and an undecided start cannot close them), which a region or a "
+                "stream cannot compute: choose the trivial or the undecided start");
   return start;
 }
 } // namespace
