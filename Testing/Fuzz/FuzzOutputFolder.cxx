@@ -30,8 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   msynth::RemoveTree(top);
   ::mkdir(top.c_str(), 0755);
   ::mkdir(dir.c_str(), 0755);
-  std::ofstream(top + "/outside.txt") << "outside";         // beside the folder
-  std::ofstream(dir + "/kept.txt") << "unlisted";           // the user's, in the folder
+  std::ofstream(top + "/outside.txt") << "outside";          // beside the folder
+  std::ofstream(dir + "/kept.txt") << "unlisted";            // the user's, in the folder
   std::ofstream(dir + "/labels.vti") << "an earlier output"; // what a manifest may list
   std::ofstream(dir + "/.msynth-outputs", std::ios::binary)
     .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
@@ -40,7 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     [&]
     {
       msynth::OutputFolder folder(dir);
-      msynth::WriteFileAtomically(folder.Stage() + "/mesh.vtp", [](std::ostream& out) { out << "new"; });
+      msynth::WriteFileAtomically(
+        folder.Stage() + "/mesh.vtp", [](std::ostream& out) { out << "new"; });
       folder.Publish();
       published = true;
     });

@@ -79,7 +79,7 @@ bool LooksBlankByWeight(const AdjacencyRules& rules, const SynthesisResult& triv
 /// tile 1/29 of them, a castle of air is 85 % air in a whole run and 63 % in its example.)
 bool LooksBlank(const AdjacencyRules& rules, const std::pair<std::size_t, double>& v)
 {
-  return v.second > 0.9 && 2 * v.first < static_cast<std::size_t>(rules.NumberOfLabels());
+  return v.second > 0.9 && 2 * v.first < ToIndex(rules.NumberOfLabels());
 }
 
 /// A probe of its own: no messages to other processes, no counts or network (the whole
