@@ -760,6 +760,8 @@ CommandRunner AddSynthesize(CLI::App& app)
     s->add_option("--attempts", o.Attempts, "attempts per block (default 10; continuous 20)")
       ->check(CLI::Range(1, 1000000));
   r.Order = AddOrderOption(*s, o.Order, Orders);
+  r.Order->description(
+    r.Order->get_description() + " (default scanline; entropy for a polyhedral example)");
   AddChoiceOption(*s, o.Choice, Choices);
   AddSnapshotsOption(*s, o.Snapshots,
     "catalog snapshots (per block for a label grid), also written as the sequence "

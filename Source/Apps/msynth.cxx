@@ -16,6 +16,7 @@
 // problem; usage errors end with "see msynth CMD --help".
 #include "Commands.h"
 #include "Common.h"
+#include "HelpText.h"
 
 #include "vtkLogger.h"
 #include "vtkOutputWindow.h"
@@ -127,13 +128,27 @@ std::string NotUnderstood(CLI::App& app)
   const std::string& first = extras.front();
   if (command.empty() && !first.empty() && first[0] != '-')
   {
-    return "unknown command '" + first + "' (" + CommandList(app) + ")";
+    std::vector<std::string> names;
+    for (const CLI::App* c : app.get_subcommands({}))
+      names.push_back(c->get_name());
+    const std::string meant = msynth::cli::ClosestName(first, names);
+    return "unknown command '" + first + "' (" +
+      (meant.empty() ? CommandList(app) : "did you mean '" + meant + "'?") + ")";
   }
   for (const auto& extra : extras)
   {
     if (extra.size() > 1 && extra[0] == '-')
     {
-      return "unknown option '" + extra + "'";
+      // The command's options and msynth's own (they fall through), by their long names.
+      std::vector<std::string> names;
+      for (const CLI::App* scope : { command.empty() ? &app : app.get_subcommand(command), &app })
+        for (const CLI::Option* option : scope->get_options())
+          for (const auto& name : option->get_lnames())
+            names.push_back("--" + name);
+      const std::string typed = extra.substr(0, extra.find('='));
+      const std::string meant = msynth::cli::ClosestName(typed, names);
+      return "unknown option '" + extra + "'" +
+        (meant.empty() ? std::string() : " (did you mean " + meant + "?)");
     }
   }
   return "unexpected argument '" + first + "'";
@@ -152,6 +167,7 @@ int Main(int argc, char* argv[])
   CLI::App app(
     "msynth: model synthesis from a small example (ModelSynth " MSYNTH_VERSION ")", "msynth");
   app.footer(Footer);
+  app.formatter(msynth::cli::MakeHelpFormatter()); // before the commands: they inherit it
   app.option_defaults()->always_capture_default(); // --help shows each option's default
   app.require_subcommand(0, 1);
   bool version = false, verbose = false;

@@ -95,6 +95,29 @@ class CommandLineUsageTest(unittest.TestCase):
             listed = r.stderr[r.stderr.index("(") + 1:r.stderr.index(")")].replace(" or ", ", ").split(", ")
             self.assertEqual(sorted(listed), sorted(COMMANDS), r.stderr)
 
+    def test_help_reads_as_typed_and_mistypes_are_answered(self):
+        """Issue 49 item 6: CLI11's raw types ("--size FLOAT:NUMBER>=0=[] x 3 REQUIRED"), no default
+        for --order, no "did you mean"."""
+        for command in COMMANDS:
+            help = run(command, "--help").stdout
+            for raw in ("FLOAT", "INT:", "TEXT", "REQUIRED", "NUMBER>=0", "=[", " x 3"):
+                self.assertNotIn(raw, help, "%s --help shows '%s'" % (command, raw))
+        help = run("synthesize", "--help").stdout
+        for shown in ("--size NX NY NZ (required)", "--block BX BY BZ", "--seed N (default 0)",
+                      "--order scanline|random|entropy", "(default scanline; entropy for a "
+                      "polyhedral example)", "--out DIR (default msynth-output)",
+                      "--region X0 Y0 Z0 X1 Y1 Z1", "--start auto|trivial|undecided|whole"):
+            self.assertIn(shown, " ".join(help.split()))
+        village = data("Examples/Village.vti")
+        r = run("synthesize", village, "--sise", "8", "8", "8")
+        self.assertUsageError(r, "synthesize", "unknown option '--sise' (did you mean --size?)")
+        r = run("synthesize", village, "--size", "8", "8", "5", "--seeed=3")
+        self.assertUsageError(r, "synthesize", "unknown option '--seeed=3' (did you mean --seed?)")
+        r = run("synthesise", village)
+        self.assertUsageError(r, "", "unknown command 'synthesise' (did you mean 'synthesize'?)")
+        r = run("synthesize", village, "--size", "8", "8", "5", "--zzzzzz")
+        self.assertNotIn("did you mean", r.stderr)
+
     def test_help_names_the_folder_each_command_uses(self):
         """batch --help said DIR defaults to ./msynth-output; batch writes ./msynth-batch."""
         for command, folder in (("batch", "msynth-batch"), ("synthesize", "msynth-output")):
