@@ -188,7 +188,8 @@ int RunBatch(const BatchOptions& b)
     const SampleEntry& e = entries[i];
     const int shots = b.Screenshots >= 0 ? b.Screenshots : e.Screenshots;
     std::cout << "[" << i + 1 << "/" << entries.size() << "] " << e.Element << " " << e.Name
-              << (e.Subset.empty() ? "" : " (" + e.Subset + ")") << "\n";
+              << (e.Subset.empty() ? "" : " (" + e.Subset + ")")
+              << std::endl; // shown before it runs
     // The list's folder; IntoFolder makes the entry's and each output's own, and removes them
     // again when they stay empty (a failed entry leaves nothing behind).
     const std::string entryDir = b.Out + "/" + FolderName(i, e);

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <mutex>
@@ -438,10 +439,20 @@ void ProgressBar::OnProgress(double f)
   {
     return;
   }
+  f = std::clamp(f, 0.0, 1.0);
   const int width = 40, filled = static_cast<int>(f * width + 0.5);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  // The time left once a run has shown its pace (a percent done and two seconds).
+  char timing[64] = "";
+  if (seconds >= 2.0 && f >= 0.01 && f < 1.0)
+    std::snprintf(
+      timing, sizeof(timing), ", %.0f s, about %.0f s left   ", seconds, seconds * (1.0 - f) / f);
+  else if (seconds >= 2.0)
+    std::snprintf(timing, sizeof(timing), ", %.0f s   ", seconds);
   std::cerr << "\r" << this->Stage << " [" << std::string(msynth::ToIndex(filled), '#')
             << std::string(msynth::ToIndex(width - filled), ' ') << "] "
-            << static_cast<int>(f * 100 + 0.5) << "%" << std::flush;
+            << static_cast<int>(f * 100 + 0.5) << "%" << timing << std::flush;
   this->Shown = true;
 }
 

@@ -66,7 +66,8 @@ std::vector<std::string> DescribedNames(const std::string& description, int coun
   if (count == 1 && description.find("folder") != std::string::npos)
     return { "DIR" };
   if (count == 1 &&
-    (description.find(" file") != std::string::npos || description.find(".vti") != std::string::npos))
+    (description.find(" file") != std::string::npos ||
+      description.find(".vti") != std::string::npos))
     return { "FILE" };
   return {};
 }
@@ -78,8 +79,7 @@ public:
   {
     if (!option->get_option_text().empty())
       return " " + option->get_option_text();
-    if (option->get_type_size() == 0 || option->get_expected_max() == 0 ||
-      option->get_positional())
+    if (option->get_type_size() == 0 || option->get_expected_max() == 0 || option->get_positional())
       return ""; // a flag, or a positional named by its name
     std::ostringstream out;
     const std::string value = ValueName(option);

@@ -46,9 +46,9 @@ unsigned BlockDriver::Workers() const
   return this->State->Runner->Workers();
 }
 
-bool BlockDriver::Stopped(unsigned worker)
+bool BlockDriver::Stopped(unsigned worker, double within)
 {
-  return this->State->Current->Stopped(worker);
+  return this->State->Current->Stopped(worker, within);
 }
 
 double BlockDriver::Seconds() const

@@ -110,12 +110,13 @@ public:
     SynthesisStatistics& stats, const BlockPass& pass = BlockPass());
 
   /// For solvers inside a block: whether the run is being cancelled (polls the progress
-  /// callback on worker 0 at most every 100 ms).
-  bool Stopped(unsigned worker);
+  /// callback on worker 0 at most every 100 ms). @p within: how much of worker 0's block is
+  /// done (0 to 1), so that a run of one long block reports its progress too.
+  bool Stopped(unsigned worker, double within = 0.0);
   /// The one cancel poll of the solvers' inner loops: Stopped, every 1024th of @p count.
-  bool Poll(unsigned worker, std::int64_t count)
+  bool Poll(unsigned worker, std::int64_t count, double within = 0.0)
   {
-    return detail::PollDue(count) && this->Stopped(worker);
+    return detail::PollDue(count) && this->Stopped(worker, within);
   }
 
   /// Seconds since the run's start.

@@ -322,10 +322,11 @@ int BlockRunner::Processes() const
   return static_cast<int>(this->State->Processes);
 }
 
-bool BlockRunner::Stopped(unsigned worker)
+bool BlockRunner::Stopped(unsigned worker, double within)
 {
   Internal& s = *this->State;
-  if (worker == 0 && !s.Poll.Continue(s.Fraction()))
+  const double block = std::clamp(within, 0.0, 1.0) / double(std::max<std::size_t>(s.Blocks, 1));
+  if (worker == 0 && !s.Poll.Continue(std::min(1.0, s.Fraction() + block)))
     s.Stop.store(true);
   return s.Stop.load(std::memory_order_relaxed);
 }

@@ -259,9 +259,10 @@ public:
 
   /**
    * For the solvers inside a block, every 1024 assignments or so: whether the run is being
-   * cancelled. Worker 0 also polls the progress callback (at most every 100 ms).
+   * cancelled. Worker 0 also polls the progress callback (at most every 100 ms), told the
+   * blocks done and @p within, how much of its current block is (0 to 1).
    */
-  bool Stopped(unsigned worker);
+  bool Stopped(unsigned worker, double within = 0.0);
 
   /**
    * All attempts at a block: attempt a (0, 1, ...) gets the generator seed of (seed, block, a)

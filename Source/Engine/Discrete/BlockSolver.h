@@ -320,10 +320,16 @@ private:
       index / (this->N[0] * this->N[1]) } };
   }
 
-  /// Whether the run is being cancelled (the driver's poll, every 1024th of @p assignments).
+  /// Whether the run is being cancelled (the driver's poll, every 1024th of @p assignments, or
+  /// every one when labels are many: with thousands of an image sample's patterns an assignment
+  /// and its propagation take up to a tenth of a second); the block's decided sites tell the
+  /// progress callback how far it is.
   bool Poll(std::int64_t assignments)
   {
-    return this->Driver && this->Driver->Poll(this->Worker, assignments);
+    return this->Driver && (detail::PollDue(assignments) || this->Cat.NumberOfLabels() > 256) &&
+      this->Driver->Stopped(this->Worker,
+        static_cast<double>(this->Cat.Decided()) /
+          static_cast<double>(std::max<std::int64_t>(1, this->Cat.NumberOfSites())));
   }
 
   const AdjacencyRules& Rules;
