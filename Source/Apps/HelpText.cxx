@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "HelpText.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <iterator>
@@ -92,7 +93,7 @@ public:
     if (value != "VALUE" && named.size() == 1 && (named[0] == "DIR" || named[0] == "FILE"))
       named.clear(); // a number is no folder
     for (int i = 0; i < count; ++i)
-      out << " " << (named.empty() ? value : named[static_cast<std::size_t>(i)]);
+      out << " " << (named.empty() ? value : named[msynth::ToIndex(i)]);
     if (option->get_expected_max() == CLI::detail::expected_max_vector_size)
       out << " ... (repeatable)";
     const std::string fallback = option->get_default_str();
