@@ -6,22 +6,28 @@
 #include "Common.h"
 #include "Examples.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSNeighbourhoodLabels.h"
 #include "vtkMSTransitionTables.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
+#include "vtkXMLPolyDataReader.h"
 
 #include "Core/Index.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
+#include "Formats/VTKXMLCheck.h"
 
 #include <iostream>
+#include <map>
 #include <memory>
 
 namespace msynth
@@ -157,6 +163,65 @@ int SampleInfo(const std::string& example, const OverlappingOptions& options)
   return 0;
 }
 
+/// The polygon data of @p path when it is a model msynth wrote (its field ExampleFile), else null.
+vtkSmartPointer<vtkPolyData> WrittenModel(const std::string& path)
+{
+  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".vtp") != 0)
+    return nullptr;
+  msynth::CheckVTKXMLFile(path);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  Run(reader);
+  vtkPolyData* model = reader->GetOutput();
+  if (!vtkStringArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("ExampleFile")))
+    return nullptr;
+  return model;
+}
+
+/// A model msynth wrote (mesh.vtp, model.vtp): what it is made of, per label or object type.
+/// Its faces join as a model's do (four around an edge where two parts meet), so it is described,
+/// not validated as an example would be: `msynth check` does that against its example.
+int ModelInfo(const std::string& path, vtkPolyData* model)
+{
+  vtkFieldData* fd = model->GetFieldData();
+  const std::string example =
+    vtkStringArray::SafeDownCast(fd->GetAbstractArray("ExampleFile"))->GetValue(0);
+  double b[6];
+  model->GetBounds(b);
+  std::cout << "model: " << path << " (written by msynth from " << example << ")\n"
+            << "polygons: " << model->GetNumberOfPolys()
+            << ", points: " << model->GetNumberOfPoints() << "\n"
+            << "bounds: x " << b[0] << " to " << b[1] << ", y " << b[2] << " to " << b[3] << ", z "
+            << b[4] << " to " << b[5] << "\n";
+  auto* names = vtkStringArray::SafeDownCast(fd->GetAbstractArray("TypeNames"));
+  vtkDataArray* ids = fd->GetArray("TypeIds");
+  std::map<long long, std::string> typeName;
+  for (vtkIdType i = 0;
+       names && ids && i < names->GetNumberOfValues() && i < ids->GetNumberOfTuples(); ++i)
+    typeName[static_cast<long long>(ids->GetTuple1(i))] = names->GetValue(i);
+  const char* by = model->GetCellData()->GetArray("Label") ? "Label" : "InsideType";
+  if (vtkDataArray* cells = model->GetCellData()->GetArray(by))
+  {
+    std::map<long long, long long> polygons;
+    for (vtkIdType c = 0; c < cells->GetNumberOfTuples(); ++c)
+      ++polygons[static_cast<long long>(cells->GetTuple1(c))];
+    std::cout << (by[0] == 'L' ? "labels: " : "object types: ") << polygons.size() << "\n";
+    for (const auto& [value, count] : polygons)
+    {
+      std::cout << "  " << (by[0] == 'L' ? "label " : "type ") << value;
+      if (typeName.count(value))
+        std::cout << " (" << typeName[value] << ")";
+      std::cout << ": " << Counted(count, "polygon") << "\n";
+    }
+  }
+  if (by[0] == 'L') // a label grid's surface: the labels beside it are what check reads
+    std::cout << "check its labels: msynth check " << example << " "
+              << path.substr(0, path.find_last_of('/') + 1) << "labels.vti\n";
+  else
+    std::cout << "check it: msynth check " << example << " " << path << "\n";
+  return 0;
+}
+
 int LabelGridInfo(const std::string& example)
 {
   const ExampleTables a = AnalyzeLabelGrid(example);
@@ -216,6 +281,8 @@ CommandRunner AddInfo(CLI::App& app)
     {
       return TilesetInfo(o->Example, o->Subset, o->Tiles);
     }
+    if (const auto model = WrittenModel(o->Example))
+      return ModelInfo(o->Example, model);
     if (IsPolyhedral(o->Example))
     {
       return PolyhedralInfo(o->Example, o->Reading);
