@@ -299,7 +299,10 @@ void CompareWithUnions(
       marks.pop_back();
     }
   }
-  EXPECT_GT(counted.RevisionsByRemovals(), 0) << "the counts were not used";
+  if (rel.NumberOfLabels() > 512) // with fewer, the chunk unions are often cheaper
+  {
+    EXPECT_GT(counted.RevisionsByRemovals(), 0) << "the counts were not used";
+  }
 }
 } // namespace
 

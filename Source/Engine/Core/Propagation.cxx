@@ -16,7 +16,12 @@ int PopCount(const std::uint64_t* bits, int words)
   int n = 0;
   for (int i = 0; i < words; ++i)
   {
-    n += __builtin_popcountll(bits[i]);
+    // SWAR: the build does not assume a popcount instruction (__builtin_popcountll is a call).
+    std::uint64_t x = bits[i];
+    x = x - ((x >> 1) & 0x5555555555555555ull);
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    n += static_cast<int>((x * 0x0101010101010101ull) >> 56);
   }
   return n;
 }
@@ -82,6 +87,8 @@ void CompatibilityRelation::BuildLists()
   this->ListLabels.clear();
   this->Supports.clear();
   this->MeanList = 0;
+  this->MaxSupports = 0;
+  this->ListsForUnions = false;
   if (this->K <= 64 || this->K >= 65536)
   {
     return; // one word: the unions are cheaper; 65536 labels and more: no 16-bit counts
@@ -112,18 +119,37 @@ void CompatibilityRelation::BuildLists()
         {
           const int label = w * 64 + __builtin_ctzll(bits);
           this->ListLabels.push_back(static_cast<std::uint16_t>(label));
-          ++supports[label];
+          this->MaxSupports = std::max<int>(this->MaxSupports, ++supports[label]);
         }
       }
       this->ListStart.push_back(static_cast<std::uint32_t>(this->ListLabels.size()));
     }
   }
   this->MeanList = static_cast<double>(pairs) / (double(this->D) * double(this->K));
+  // A list entry costs about as much as 4 words of an or (measured on Font, k = 2468); the
+  // chunk unions of k <= 512 cost at most k/8 entries of W words.
+  this->ListsForUnions = 4 * this->MeanList < (this->K > 512 ? this->W : this->W / 8.0);
 }
 
 void CompatibilityRelation::UnionOf(int d, const std::uint64_t* domain, std::uint64_t* out) const
 {
   std::fill(out, out + this->W, 0);
+  if (this->ListsForUnions)
+  {
+    // A sparse relation: setting the bits of the lists is cheaper than or-ing whole sets.
+    for (int w = 0; w < this->W; ++w)
+    {
+      for (std::uint64_t bits = domain[w]; bits; bits &= bits - 1)
+      {
+        const int b = w * 64 + __builtin_ctzll(bits);
+        for (const std::uint16_t* c = this->ListBegin(d, b); c != this->ListEnd(d, b); ++c)
+        {
+          out[*c >> 6] |= std::uint64_t(1) << (*c & 63);
+        }
+      }
+    }
+    return;
+  }
   if (!this->ChunkUnions.empty())
   {
     const int chunks = (this->K + 7) / 8;
@@ -336,9 +362,10 @@ bool LabelDomains::SupportsFit(std::size_t pairs) const
 {
   // The counts take at most a quarter of the memory available (a 10^8-site whole model with
   // k > 64 never has them: it goes by the unions).
-  const std::uint64_t bytes = std::uint64_t(pairs) * std::uint64_t(this->K) * 2 +
+  const std::uint64_t width = this->Sup.Narrow ? 1 : 2;
+  const std::uint64_t bytes = std::uint64_t(pairs) * std::uint64_t(this->K) * width +
     2 * std::uint64_t(this->NumberOfSites()) * std::uint64_t(this->W) * 8;
-  return bytes <= std::uint64_t(this->Sup.Allocated) * 2 || bytes <= AvailableMemory() / 4;
+  return bytes <= std::uint64_t(this->Sup.Allocated) || bytes <= AvailableMemory() / 4;
 }
 
 bool LabelDomains::NumberPairs(const std::vector<std::int8_t>& state)
@@ -362,14 +389,14 @@ bool LabelDomains::NumberPairs(const std::vector<std::int8_t>& state)
   {
     return false;
   }
-  const std::size_t labels = pairs * ToIndex(this->K);
-  if (labels > sup.Allocated)
+  const std::size_t bytes = pairs * ToIndex(this->K) * (sup.Narrow ? 1 : 2);
+  if (bytes > sup.Allocated)
   {
     // Not value-initialised: a pair's counts are written when first needed, so pages of pairs
     // never counted are never touched.
     sup.Counts.reset();
-    sup.Counts.reset(new std::uint16_t[labels]);
-    sup.Allocated = labels;
+    sup.Counts.reset(new std::uint8_t[bytes]);
+    sup.Allocated = bytes;
   }
   sup.Pairs = pairs;
   sup.Ready.assign(pairs, 0);
@@ -385,8 +412,9 @@ bool LabelDomains::NumberPairs(const std::vector<std::int8_t>& state)
   return true;
 }
 
+template <typename Tally>
 void LabelDomains::CountSupports(
-  const CompatibilityRelation& rules, std::uint16_t* counts, int d, const std::uint64_t* source)
+  const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* source)
 {
   const int size = PopCount(source, this->W);
   if (2 * size < this->K)
@@ -396,7 +424,11 @@ void LabelDomains::CountSupports(
     return;
   }
   // Most labels possible: all of them, less the supports of the missing ones.
-  std::copy_n(rules.FullSupports(d), this->K, counts);
+  const std::uint16_t* full = rules.FullSupports(d);
+  for (int c = 0; c < this->K; ++c)
+  {
+    counts[c] = static_cast<Tally>(full[c]);
+  }
   for (int w = 0; w < this->W; ++w)
   {
     const bool last = w == this->W - 1 && this->K % 64;
@@ -412,8 +444,9 @@ void LabelDomains::CountSupports(
   }
 }
 
+template <typename Tally>
 void LabelDomains::AddSupports(
-  const CompatibilityRelation& rules, std::uint16_t* counts, int d, const std::uint64_t* labels)
+  const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* labels)
 {
   const int words = rules.Words();
   for (int w = 0; w < words; ++w)
@@ -457,7 +490,7 @@ bool LabelDomains::BeginRevision(const CompatibilityRelation& rules, std::int64_
   for (int w = 0; w < this->W; ++w)
   {
     sup.Delta[ToIndex(w)] = applied[w] & ~dv[w];
-    removed += __builtin_popcountll(sup.Delta[ToIndex(w)]);
+    removed += PopCountWord(sup.Delta[ToIndex(w)]);
   }
   if (removed == 0)
   {
@@ -465,10 +498,10 @@ bool LabelDomains::BeginRevision(const CompatibilityRelation& rules, std::int64_
   }
   // The cost of each way, in words or list entries per neighbour: the union walks v's labels
   // (with k <= 512, at most k/8 table entries), the removals their lists.
-  const int size = this->Counts[ToIndex(v)];
-  const double byUnion =
-    double(this->K <= 512 ? std::min(size, (this->K + 7) / 8) : size) * double(this->W);
-  if (double(removed) * rules.MeanListLength() >= byUnion)
+  // A count brought down costs about 4 words of an or (a scattered write to k counts against a
+  // sequential read; measured on Font, k = 2468).
+  const double byUnion = rules.UnionCost(this->Counts[ToIndex(v)]);
+  if (4 * double(removed) * rules.MeanListLength() >= byUnion)
   {
     return false;
   }
@@ -481,10 +514,40 @@ bool LabelDomains::BeginRevision(const CompatibilityRelation& rules, std::int64_
   return true;
 }
 
+void LabelDomains::AddSupportsTo(
+  const CompatibilityRelation& rules, std::uint32_t pair, int d, const std::uint64_t* labels)
+{
+  if (this->Sup.Narrow)
+  {
+    AddSupports(rules, this->CountsOf<std::uint8_t>(pair), d, labels);
+  }
+  else
+  {
+    AddSupports(rules, this->CountsOf<std::uint16_t>(pair), d, labels);
+  }
+}
+
 void LabelDomains::RemoveUnsupported(
   const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair)
 {
-  std::uint16_t* counts = this->CountsOf(pair);
+  const bool any = this->Sup.Narrow ? this->FindUnsupported<std::uint8_t>(rules, v, u, d, pair)
+                                    : this->FindUnsupported<std::uint16_t>(rules, v, u, d, pair);
+  if (any)
+  {
+    std::uint64_t* removed = this->Sup.Removed.data();
+    for (int w = 0; w < this->W; ++w)
+    {
+      removed[w] = ~removed[w];
+    }
+    this->Restrict(u, removed);
+  }
+}
+
+template <typename Tally>
+bool LabelDomains::FindUnsupported(
+  const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair)
+{
+  Tally* counts = this->CountsOf<Tally>(pair);
   const std::uint64_t* du = this->Domain(u);
   const bool live = this->EmptySite < 0 && this->Counts[ToIndex(u)] > 0;
   std::uint64_t* removed = this->Sup.Removed.data();
@@ -530,14 +593,7 @@ void LabelDomains::RemoveUnsupported(
       }
     }
   }
-  if (any)
-  {
-    for (int w = 0; w < this->W; ++w)
-    {
-      removed[w] = ~removed[w];
-    }
-    this->Restrict(u, removed);
-  }
+  return any;
 }
 
 std::uint64_t* LabelDomains::StaleOf(std::int64_t site)

@@ -20,6 +20,7 @@
  * where that is cheaper than by the union: a removal costs the labels compatible with it.
  */
 #include "Core/Index.h"
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -87,6 +88,15 @@ public:
   bool HasLists() const { return !this->ListStart.empty(); }
   /// Mean length of a list: the mean cost of counting one removed label at one neighbour.
   double MeanListLength() const { return this->MeanList; }
+  /// The cost of UnionOf for a set of @p size labels, in words of an or.
+  double UnionCost(int size) const
+  {
+    return this->ListsForUnions ? 4 * this->MeanList * size
+      : this->K > 512           ? double(this->W) * size
+                                : double(this->W) * std::min(size, (this->K + 7) / 8);
+  }
+  /// The largest FullSupports entry.
+  int MostSupports() const { return this->MaxSupports; }
   /// Per label c, the number of labels b with c in Compatible(d, b) (HasLists() only).
   const std::uint16_t* FullSupports(int d) const
   {
@@ -116,6 +126,8 @@ private:
   std::vector<std::uint16_t> ListLabels; ///< the pairs of Bits as lists
   std::vector<std::uint16_t> Supports;   ///< [direction][label]: FullSupports
   double MeanList = 0;
+  int MaxSupports = 0;
+  bool ListsForUnions = false; ///< UnionOf walks the lists (a sparse relation)
 
   void BuildLists();
 };
@@ -398,12 +410,15 @@ private:
     std::vector<std::uint8_t> Countable; ///< per direction class: counted
     std::vector<std::uint32_t> PairOf;   ///< [site][class]: the pair, or NoPair
     std::size_t Pairs = 0;
-    std::unique_ptr<std::uint16_t[]> Counts; ///< [pair][label], allocated, not initialised
-    std::size_t Allocated = 0;               ///< labels Counts holds room for
-    std::vector<std::uint8_t> Ready;         ///< per pair: its counts set up
-    std::vector<std::uint64_t> Applied;      ///< [site][word]
-    std::vector<std::uint8_t> Fresh;         ///< per site: its neighbours not yet revised from it
-    std::vector<std::uint64_t> Stale;        ///< [site][word]: labels to count again (after Undo)
+    /// [pair][label], 8 bits each when no count exceeds 255 (Narrow), else 16; allocated, not
+    /// initialised.
+    std::unique_ptr<std::uint8_t[]> Counts;
+    bool Narrow = false;
+    std::size_t Allocated = 0;          ///< bytes of Counts
+    std::vector<std::uint8_t> Ready;    ///< per pair: its counts set up
+    std::vector<std::uint64_t> Applied; ///< [site][word]
+    std::vector<std::uint8_t> Fresh;    ///< per site: its neighbours not yet revised from it
+    std::vector<std::uint64_t> Stale;   ///< [site][word]: labels to count again (after Undo)
     std::vector<std::int64_t> StaleSites;
     std::vector<std::uint64_t> Delta;   ///< the removals being applied (Words() words)
     std::vector<std::uint64_t> Removed; ///< labels losing their last support at one neighbour
@@ -421,6 +436,7 @@ private:
   {
     SupportState& sup = this->Sup;
     sup.On = false;
+    sup.Narrow = rules.HasLists() && rules.MostSupports() <= 255;
     const std::int64_t n = this->NumberOfSites();
     if (!this->CountsAllowed || this->W == 1 || !rules.HasLists() ||
       rules.NumberOfLabels() != this->K || !this->SupportsFit(ToIndex(n)) ||
@@ -463,7 +479,7 @@ private:
           const std::uint32_t pair = this->PairOf(u, d);
           if (pair != NoPair && this->Sup.Ready[pair])
           {
-            this->AddSupports(rules, this->CountsOf(pair), d, stale);
+            this->AddSupportsTo(rules, pair, d, stale);
           }
           return true;
         });
@@ -477,9 +493,10 @@ private:
       ? this->Sup.PairOf[ToIndex(u) * this->Sup.Classes + ToIndex(d)]
       : NoPair;
   }
-  std::uint16_t* CountsOf(std::uint32_t pair) const
+  template <typename Tally>
+  Tally* CountsOf(std::uint32_t pair) const
   {
-    return this->Sup.Counts.get() + std::size_t(pair) * ToIndex(this->K);
+    return reinterpret_cast<Tally*>(this->Sup.Counts.get()) + std::size_t(pair) * ToIndex(this->K);
   }
   /// Whether counts for @p pairs pairs fit in the memory the counts may take.
   bool SupportsFit(std::size_t pairs) const;
@@ -487,11 +504,16 @@ private:
   /// found) and allocates their counts; false (counts off) when there are none or too many.
   bool NumberPairs(const std::vector<std::int8_t>& state);
   /// Sets @p counts (along class @p d) from the set @p source of the pair's source.
+  template <typename Tally>
   void CountSupports(
-    const CompatibilityRelation& rules, std::uint16_t* counts, int d, const std::uint64_t* source);
+    const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* source);
   /// Adds the supports of the labels @p labels to @p counts (along @p d).
+  template <typename Tally>
   static void AddSupports(
-    const CompatibilityRelation& rules, std::uint16_t* counts, int d, const std::uint64_t* labels);
+    const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* labels);
+  /// AddSupports to the counts of @p pair.
+  void AddSupportsTo(
+    const CompatibilityRelation& rules, std::uint32_t pair, int d, const std::uint64_t* labels);
   /// Before v revises its neighbours: true when by its removals (Sup.Delta, then Applied[v] =
   /// Domain(v)), false when by the union (also the first revision from v after Reset).
   bool BeginRevision(const CompatibilityRelation& rules, std::int64_t v);
@@ -499,6 +521,10 @@ private:
   /// up from Domain(v) if not yet; removes the labels of u left without support (unless a set
   /// is already empty).
   void RemoveUnsupported(
+    const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair);
+  /// RemoveUnsupported's counting: true when labels of u go (those of Sup.Removed).
+  template <typename Tally>
+  bool FindUnsupported(
     const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair);
   /// Undo of a record of Applied and Fresh (site with the top bit set, Fresh, the old Applied).
   void UndoApplied(std::int64_t site, bool fresh, const std::uint64_t* applied);
