@@ -13,14 +13,13 @@
  *   neighbourhood structure given as a callable. When the set at v shrinks, each neighbour u of v
  *   keeps only the labels some label of v allows there.
  *
- * Memory is k bits plus a few bytes per site. With k > 64 and a sparse relation, Propagate
+ * Memory is k bits plus a few bytes per site. With k > 512 and a sparse relation, Propagate
  * also keeps support counts (AC-4: per site, direction class and label, how many labels of the
  * neighbour allow it; 16 bits each, so 2 bytes per class and 2 bits more per site and label)
  * when they take at most a quarter of the memory available, and revises by the removed labels
  * where that is cheaper than by the union: a removal costs the labels compatible with it.
  */
 #include "Core/Index.h"
-#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -82,18 +81,16 @@ public:
       this->ListStart[ToIndex(d) * ToIndex(this->K) + ToIndex(b) + 1];
   }
   /**
-   * Whether the lists exist: with 64 < k < 65536 labels and at most a quarter of the pairs
+   * Whether the lists exist: with 512 < k < 65536 labels and at most a quarter of the pairs
    * allowed (then the lists take at most 4 times the bit sets' memory).
    */
   bool HasLists() const { return !this->ListStart.empty(); }
   /// Mean length of a list: the mean cost of counting one removed label at one neighbour.
   double MeanListLength() const { return this->MeanList; }
-  /// The cost of UnionOf for a set of @p size labels, in words of an or.
+  /// The cost of UnionOf for a set of @p size labels, in words of an or (k > 512).
   double UnionCost(int size) const
   {
-    return this->ListsForUnions ? 4 * this->MeanList * size
-      : this->K > 512           ? double(this->W) * size
-                                : double(this->W) * std::min(size, (this->K + 7) / 8);
+    return (this->ListsForUnions ? 4 * this->MeanList : double(this->W)) * size;
   }
   /// The largest FullSupports entry.
   int MostSupports() const { return this->MaxSupports; }
@@ -391,7 +388,7 @@ private:
   }
 
   /**
-   * Support counts (AC-4), set up by the first Propagate after Reset when k > 64, the relation
+   * Support counts (AC-4), set up by the first Propagate after Reset when k > 512, the relation
    * has lists and the counts fit (SupportsFit). A pair is a site u and a counted direction
    * class d along which u is reached from one neighbour v (its source); Counts[pair][c] is the
    * number of labels b of Applied[v] with c in Compatible(d, b). Applied[v] holds Domain(v) and
