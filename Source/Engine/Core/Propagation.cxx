@@ -398,6 +398,7 @@ bool LabelDomains::NumberPairs(const std::vector<std::int8_t>& state)
     // never counted are never touched.
     sup.Counts.reset();
     sup.Counts.reset(new std::uint8_t[bytes]);
+    AdviseHugePages(sup.Counts.get(), bytes);
     sup.Allocated = bytes;
   }
   sup.Pairs = pairs;
