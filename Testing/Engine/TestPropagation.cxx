@@ -137,3 +137,221 @@ TEST(Propagation, WholeModelSearchOverATrimmedTrailIsValid)
   EXPECT_GT(r.Statistics.Assignments, 20000);
   EXPECT_TRUE(CheckConsistency(lines.Pairs, r.Model).Consistent);
 }
+
+namespace
+{
+/// A random relation over a grid's four direction classes (0: +x, 1: -x, 2: +y, 3: -y): each
+/// pair allowed with probability 1/@p sparsity, stored in both directions.
+class GridRelation : public CompatibilityRelation
+{
+public:
+  GridRelation(int k, int sparsity, std::uint64_t seed)
+  {
+    this->Allocate(k, 4);
+    Random rng(seed);
+    for (int axis = 0; axis < 2; ++axis)
+      for (int b = 0; b < k; ++b)
+        for (int c = 0; c < k; ++c)
+          if (rng.Next() % static_cast<std::uint64_t>(sparsity) == 0)
+          {
+            this->AllowOne(2 * axis, b, c);
+            this->AllowOne(2 * axis + 1, c, b);
+          }
+    this->Finish();
+  }
+};
+
+/// Neighbours on an nx x ny grid (not periodic), in the order +x, -x, +y, -y.
+struct GridNeighbours
+{
+  std::int64_t Nx, Ny;
+  template <class Visit>
+  void operator()(std::int64_t v, Visit&& visit) const
+  {
+    const std::int64_t x = v % this->Nx, y = v / this->Nx;
+    if (x + 1 < this->Nx && !visit(v + 1, 0))
+      return;
+    if (x > 0 && !visit(v - 1, 1))
+      return;
+    if (y + 1 < this->Ny && !visit(v + this->Nx, 2))
+      return;
+    if (y > 0)
+      visit(v - this->Nx, 3);
+  }
+};
+
+/// The sets and the order of changed sites of @p a and @p b are the same; @p what names the step.
+void ExpectSame(const LabelDomains& a, const LabelDomains& b, const std::string& what)
+{
+  ASSERT_EQ(a.Changed(), b.Changed()) << what;
+  ASSERT_EQ(a.Decided(), b.Decided()) << what;
+  for (std::int64_t s = 0; s < a.NumberOfSites(); ++s)
+  {
+    ASSERT_EQ(a.Count(s), b.Count(s)) << what << ", site " << s;
+    for (int w = 0; w < a.Words(); ++w)
+      ASSERT_EQ(a.Domain(s)[w], b.Domain(s)[w]) << what << ", site " << s;
+  }
+}
+
+/// Every label left has a support at each neighbour (the sets are arc consistent).
+void ExpectArcConsistent(
+  const LabelDomains& a, const CompatibilityRelation& rel, const GridNeighbours& grid)
+{
+  for (std::int64_t v = 0; v < a.NumberOfSites(); ++v)
+    grid(v,
+      [&](std::int64_t u, int d)
+      {
+        for (int c = 0; c < a.NumberOfLabels(); ++c)
+        {
+          if (!a.Contains(u, c))
+            continue;
+          bool supported = false;
+          for (int b = 0; b < a.NumberOfLabels() && !supported; ++b)
+            supported = a.Contains(v, b) && rel.Allowed(d, b, c);
+          EXPECT_TRUE(supported) << "label " << c << " at " << u << " from " << v;
+        }
+        return true;
+      });
+}
+
+/**
+ * Random choices with backtracking on a grid, once with support counts and once by the unions
+ * only: after every Propagate and Undo the same sets in the same order of changes. Counts in
+ * @p undos how many undos ran.
+ */
+void CompareWithUnions(
+  const GridRelation& rel, std::int64_t nx, std::int64_t ny, std::uint64_t seed, int& undos)
+{
+  const GridNeighbours grid{ nx, ny };
+  LabelDomains counted, unions;
+  unions.AllowSupportCounts(false);
+  counted.Reset(nx * ny, rel.NumberOfLabels());
+  unions.Reset(nx * ny, rel.NumberOfLabels());
+  counted.Record(true);
+  unions.Record(true);
+  // A restriction before the first propagation (its site keeps its place first in the queue).
+  std::vector<std::uint64_t> half(ToIndex(rel.Words()), 0x5555555555555555ull);
+  counted.Keep(nx + 1, half.data());
+  unions.Keep(nx + 1, half.data());
+  const std::int64_t start = counted.Propagate(rel, grid);
+  ASSERT_EQ(start, unions.Propagate(rel, grid));
+  EXPECT_TRUE(counted.UsesSupportCounts());
+  EXPECT_FALSE(unions.UsesSupportCounts());
+  ExpectSame(counted, unions, "start");
+  ASSERT_LT(start, 0) << "k " << rel.NumberOfLabels() << ": the relation allows no model";
+  ExpectArcConsistent(counted, rel, grid);
+  Random rng(seed);
+  std::vector<std::pair<std::size_t, std::size_t>> marks; // (counted, unions): trails differ
+  std::vector<std::uint64_t> others(ToIndex(rel.Words()));
+  for (int step = 0; step < 300 && !::testing::Test::HasFatalFailure(); ++step)
+  {
+    const std::string what = "seed " + std::to_string(seed) + ", step " + std::to_string(step);
+    counted.ClearChanged();
+    unions.ClearChanged();
+    std::int64_t site = -1;
+    for (int tries = 0; tries < 200 && site < 0; ++tries)
+    {
+      const auto s = static_cast<std::int64_t>(rng.Below(static_cast<std::uint64_t>(nx * ny)));
+      site = counted.Count(s) > 1 ? s : -1;
+    }
+    if (site < 0)
+      break;
+    int label = -1;
+    for (int c = static_cast<int>(rng.Below(static_cast<std::uint64_t>(rel.NumberOfLabels())));
+         label < 0; c = (c + 1) % rel.NumberOfLabels())
+      label = counted.Contains(site, c) ? c : -1;
+    marks.emplace_back(counted.Mark(), unions.Mark());
+    counted.Assign(site, label);
+    unions.Assign(site, label);
+    const std::int64_t a = counted.Propagate(rel, grid), b = unions.Propagate(rel, grid);
+    ASSERT_EQ(a, b) << what;
+    ExpectSame(counted, unions, what);
+    if (a < 0 && step % 25 == 0)
+      ExpectArcConsistent(counted, rel, grid);
+    if (a < 0 && rng.Below(6) != 0)
+      continue;
+    // Undo to this choice (after a failure) or to an older one, then rule the label out at its
+    // site as BlockSearch does when the undo went to this choice.
+    ++undos;
+    const std::size_t back = a >= 0 ? marks.size() - 1 : ToIndex(rng.Below(marks.size()));
+    counted.ClearChanged();
+    unions.ClearChanged();
+    counted.Undo(marks[back].first);
+    unions.Undo(marks[back].second);
+    marks.resize(back);
+    ExpectSame(counted, unions, what + ", undo");
+    if (a >= 0)
+    {
+      marks.emplace_back(counted.Mark(), unions.Mark());
+      std::fill(others.begin(), others.end(), ~std::uint64_t(0));
+      others[ToIndex(label >> 6)] &= ~(std::uint64_t(1) << (label & 63));
+      counted.ClearChanged();
+      unions.ClearChanged();
+      counted.Keep(site, others.data());
+      unions.Keep(site, others.data());
+      const std::int64_t c = counted.Propagate(rel, grid);
+      ASSERT_EQ(c, unions.Propagate(rel, grid)) << what;
+      ExpectSame(counted, unions, what + ", ruled out");
+      if (c >= 0)
+      {
+        counted.Undo(marks.back().first);
+        unions.Undo(marks.back().second);
+        ExpectSame(counted, unions, what + ", ruled out and undone");
+      }
+      marks.pop_back();
+    }
+  }
+  EXPECT_GT(counted.RevisionsByRemovals(), 0) << "the counts were not used";
+}
+} // namespace
+
+TEST(Propagation, SupportCountsGiveTheSetsAndChangesOfTheUnions)
+{
+  // k > 512 (the unions walk the labels or, sparsest, the lists), sparse relations (so the
+  // lists exist), random choices with failures and undos, also far back.
+  struct Case
+  {
+    int K, Sparsity;
+  };
+  for (const Case c : { Case{ 520, 40 }, Case{ 600, 60 }, Case{ 700, 120 }, Case{ 900, 150 } })
+  {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+    {
+      const GridRelation rel(c.K, c.Sparsity, seed * 7 + static_cast<std::uint64_t>(c.K));
+      ASSERT_TRUE(rel.HasLists());
+      int undos = 0;
+      CompareWithUnions(rel, 9, 7, seed, undos);
+      ASSERT_FALSE(HasFatalFailure()) << "k " << c.K << ", seed " << seed;
+      EXPECT_GT(undos, 0) << "k " << c.K;
+    }
+  }
+}
+
+TEST(Propagation, SupportCountsAfterResetsOfOtherSizes)
+{
+  // One LabelDomains reused for regions of several sizes (as a block solver does), with the
+  // counts kept from before: every region propagates as by the unions.
+  const GridRelation rel(600, 50, 11);
+  LabelDomains counted, unions;
+  unions.AllowSupportCounts(false);
+  for (const std::int64_t nx : { 6, 11, 4, 11 })
+  {
+    const GridNeighbours grid{ nx, 5 };
+    counted.Reset(nx * 5, rel.NumberOfLabels());
+    unions.Reset(nx * 5, rel.NumberOfLabels());
+    ASSERT_EQ(counted.Propagate(rel, grid), unions.Propagate(rel, grid));
+    Random rng(static_cast<std::uint64_t>(nx));
+    for (int i = 0; i < 12; ++i)
+    {
+      const auto s = static_cast<std::int64_t>(rng.Below(static_cast<std::uint64_t>(nx * 5)));
+      const int label = counted.Single(s);
+      counted.Assign(s, label);
+      unions.Assign(s, label);
+      const std::int64_t a = counted.Propagate(rel, grid);
+      ASSERT_EQ(a, unions.Propagate(rel, grid));
+      ExpectSame(counted, unions, "width " + std::to_string(nx));
+      if (a >= 0)
+        break;
+    }
+  }
+}

@@ -331,6 +331,8 @@ std::int64_t BlockSolver::AssignByEntropy(
     noise[ToIndex(local)] = 1e-6 * rng.Uniform();
     isFree[ToIndex(local)] = 1;
   }
+  std::vector<std::uint32_t> pushed(ToIndex(cat.NumberOfSites()), 0);
+  std::uint32_t step = 0;
   auto entropy = [&](std::int64_t local) { return this->Entropy(cat, local); };
   std::priority_queue<Entry> heap;
   for (std::int64_t local : free)
@@ -348,10 +350,15 @@ std::int64_t BlockSolver::AssignByEntropy(
     const std::int64_t empty = assign(e.Local);
     if (empty >= 0)
       return empty;
+    ++step;
     for (std::int64_t local : cat.Changed())
     {
-      if (isFree[ToIndex(local)] && cat.Count(local) > 1)
+      // A site changed several times in one propagation is pushed once (the same entry).
+      if (isFree[ToIndex(local)] && cat.Count(local) > 1 && pushed[ToIndex(local)] != step)
+      {
+        pushed[ToIndex(local)] = step;
         heap.push({ entropy(local) + noise[ToIndex(local)], local, cat.Count(local) });
+      }
     }
     if (this->Budget)
       this->SyncCounts(); // before the changes are dropped
