@@ -13,7 +13,7 @@ root="$(cd "$(dirname "$0")/../.." && pwd)"
 msynth="$root/build/bin/msynth"
 fastwfc=""
 seeds=3
-samples=/work/shared/data/WaveFunctionCollapse/samples
+samples="$root/../shared/data/WaveFunctionCollapse/samples"
 only=""
 while [ $# -gt 0 ]; do
   case "$1" in
