@@ -163,7 +163,7 @@ class PipelineTest(unittest.TestCase):
             "Malformed/no-label-array.vti": "has no label array 'Label'",
             "Malformed/float-labels.vti": "labels must be integers",
             "Malformed/not-xml.vti": "not a readable VTK image data",
-            "Malformed/huge-extent.vti": "more than the maximum",
+            "Malformed/huge-extent.vti": "too large to read",
         }
         for relative, problem in cases.items():
             reader = modelsynth.vtkMSLabelGridReader()

@@ -170,6 +170,13 @@ class StreamTest(unittest.TestCase):
         self.assertIn("holds a stream of another world", done.stderr)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
 
+    def fresh_world(self, name, common):
+        """An uninterrupted stream of Lines.xml: its folder and its labels."""
+        fresh = fresh_folder(name)
+        done = msynth("synthesize", data("Tilesets/Lines.xml"), *common, "--out", fresh)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        return fresh, labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti")))
+
     def interrupted(self, name, common, slabs=3):
         """A stream of Lines.xml killed after `slabs` slabs; its output folder."""
         out = fresh_folder(name)
@@ -194,10 +201,7 @@ class StreamTest(unittest.TestCase):
         lines = data("Tilesets/Lines.xml")
         common = ["--size", "200", "1200", "1", "--block", "32", "32", "1", "--seed", "8",
                   "--stream", "--slab", "100", "--threads", "1", "--outputs", "labels"]
-        fresh = fresh_folder("stream-trust-fresh")
-        done = msynth("synthesize", lines, *common, "--out", fresh)
-        self.assertEqual(done.returncode, 0, done.stderr)
-        expected = labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti")))
+        fresh, expected = self.fresh_world("stream-trust-fresh", common)
         count = len(os.listdir(os.path.join(fresh, "labels")))
 
         # A damaged extent (the slab's file and checksum intact) and a stray temporary file.
@@ -280,10 +284,7 @@ class StreamTest(unittest.TestCase):
         lines = data("Tilesets/Lines.xml")
         common = ["--size", "160", "800", "1", "--block", "32", "32", "1", "--seed", "5",
                   "--stream", "--slab", "100", "--threads", "1", "--outputs", "labels"]
-        fresh = fresh_folder("stream-damage-fresh")
-        done = msynth("synthesize", lines, *common, "--out", fresh)
-        self.assertEqual(done.returncode, 0, done.stderr)
-        expected = labels_zyx(read_pieces(os.path.join(fresh, "labels.pvti")))
+        _, expected = self.fresh_world("stream-damage-fresh", common)
         state = self.interrupted("stream-damage-state", common, slabs=4)
         seeds = 3 if os.environ.get("MSYNTH_SANITIZED") else 10
         for seed in range(int(os.environ.get("MSYNTH_STREAM_DAMAGE_SEEDS", seeds))):

@@ -238,6 +238,20 @@ public:
   }
 
 private:
+  /// The queue's site at @p head, taken off it (the queue compacted once most of it is done).
+  std::int64_t Pop(std::size_t& head)
+  {
+    const std::int64_t v = this->Queue[head++];
+    if (head > 4096 && head * 2 > this->Queue.size())
+    {
+      this->Queue.erase(
+        this->Queue.begin(), this->Queue.begin() + static_cast<std::ptrdiff_t>(head));
+      head = 0;
+    }
+    this->Queued[ToIndex(v)] = 0;
+    return v;
+  }
+
   /// Propagate's loop over the queue; returns how far it got. OneWord: k <= 64, the sets and
   /// the unions as single words, inline.
   template <bool OneWord, class ForEachNeighbour>
@@ -247,14 +261,7 @@ private:
     std::size_t head = 0;
     while (head < this->Queue.size() && this->EmptySite < 0)
     {
-      const std::int64_t v = this->Queue[head++];
-      if (head > 4096 && head * 2 > this->Queue.size())
-      {
-        this->Queue.erase(
-          this->Queue.begin(), this->Queue.begin() + static_cast<std::ptrdiff_t>(head));
-        head = 0;
-      }
-      this->Queued[ToIndex(v)] = 0;
+      const std::int64_t v = this->Pop(head);
       const std::uint64_t* dv = this->Domain(v);
       forEachNeighbour(v,
         [&](std::int64_t u, int d) -> bool
@@ -302,14 +309,7 @@ private:
     std::size_t head = 0;
     while (head < this->Queue.size() && this->EmptySite < 0)
     {
-      const std::int64_t v = this->Queue[head++];
-      if (head > 4096 && head * 2 > this->Queue.size())
-      {
-        this->Queue.erase(
-          this->Queue.begin(), this->Queue.begin() + static_cast<std::ptrdiff_t>(head));
-        head = 0;
-      }
-      this->Queued[ToIndex(v)] = 0;
+      const std::int64_t v = this->Pop(head);
       const bool byRemovals = this->BeginRevision(rules, v);
       const std::uint64_t* dv = this->Domain(v);
       forEachNeighbour(v,
