@@ -29,7 +29,6 @@
 #include "Core/OutputFolder.h"
 #include "Discrete/DiscreteSynthesis.h"
 
-#include <dirent.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -147,32 +146,53 @@ std::string WrittenExtent(const std::string& path)
   return extent;
 }
 
+/// A finished slab as a line of slabs.txt lists it: "J extent=X0,X1,Y0,Y1,Z0,Z1 FILE=STAMP ...".
+struct ListedSlab
+{
+  std::string ExtentText; ///< as listed, "x0,x1,y0,y1,z0,z1"
+  std::array<int, 6> Extent{};
+  std::string Labels, Picture, Volume;
+  std::vector<std::pair<std::string, std::string>> Stamps; ///< each file and its stamp
+};
+
+ListedSlab ParseSlab(const std::string& line)
+{
+  std::istringstream fields(line);
+  std::string entry;
+  fields >> entry; // the index
+  ListedSlab slab;
+  while (fields >> entry)
+  {
+    if (entry.rfind("extent=", 0) == 0)
+    {
+      slab.ExtentText = entry.substr(7);
+      std::sscanf(slab.ExtentText.c_str(), "%d,%d,%d,%d,%d,%d", &slab.Extent[0], &slab.Extent[1],
+        &slab.Extent[2], &slab.Extent[3], &slab.Extent[4], &slab.Extent[5]);
+      continue;
+    }
+    const std::size_t eq = entry.rfind('=');
+    const std::string file = entry.substr(0, eq);
+    slab.Stamps.emplace_back(file, eq == std::string::npos ? std::string() : entry.substr(eq + 1));
+    for (auto [prefix, kind] : { std::make_pair("labels/", &slab.Labels),
+           std::make_pair("picture/", &slab.Picture), std::make_pair("vdb/", &slab.Volume) })
+      if (file.rfind(prefix, 0) == 0)
+        *kind = file;
+  }
+  return slab;
+}
+
 /// Why the listed slab @p line cannot be kept (a file missing or damaged, an extent that is
 /// not its file's, other outputs than @p kinds asks for); empty when it can.
 std::string SlabProblem(const std::string& folder, const std::string& line, StreamOutputs kinds)
 {
-  std::istringstream in(line);
-  std::string entry, extent, labels;
-  in >> entry; // the index
-  bool picture = false, volume = false;
-  while (in >> entry)
-  {
-    const std::size_t eq = entry.rfind('=');
-    if (entry.rfind("extent=", 0) == 0)
-    {
-      extent = entry.substr(7);
-      continue;
-    }
-    const std::string file = entry.substr(0, eq);
-    if (eq == std::string::npos || FileStamp(folder + "/" + file) != entry.substr(eq + 1))
+  const ListedSlab slab = ParseSlab(line);
+  for (const auto& [file, stamp] : slab.Stamps)
+    if (stamp.empty() || FileStamp(folder + "/" + file) != stamp)
       return "'" + file + "' is missing or damaged";
-    labels = file.rfind("labels/", 0) == 0 ? file : labels;
-    picture = picture || file.rfind("picture/", 0) == 0;
-    volume = volume || file.rfind("vdb/", 0) == 0;
-  }
-  if (labels.empty() || extent.empty() || WrittenExtent(folder + "/" + labels) != extent)
+  if (slab.Labels.empty() || slab.ExtentText.empty() ||
+    WrittenExtent(folder + "/" + slab.Labels) != slab.ExtentText)
     return "its extent is not its labels' extent";
-  if (picture != kinds.Picture || volume != kinds.Volume)
+  if (slab.Picture.empty() == kinds.Picture || slab.Volume.empty() == kinds.Volume)
     return "it was written with other --outputs";
   return "";
 }
@@ -184,18 +204,10 @@ void RemoveUnlisted(const std::string& folder, const std::vector<std::string>& k
   std::string listed = " ";
   for (const auto& line : kept)
     listed += line + " ";
-  for (const char* sub : { "labels", "picture", "vdb" })
-    if (DIR* d = ::opendir((folder + "/" + sub).c_str()))
-    {
-      std::vector<std::string> names;
-      while (const dirent* e = ::readdir(d))
-        names.emplace_back(e->d_name);
-      ::closedir(d);
-      for (const auto& name : names)
-        if (name != "." && name != ".." &&
-          listed.find(" " + std::string(sub) + "/" + name + "=") == std::string::npos)
-          msynth::RemoveTree(folder + "/" + sub + "/" + name);
-    }
+  for (const std::string sub : { "labels", "picture", "vdb" })
+    for (const auto& name : msynth::FolderEntries(folder + "/" + sub))
+      if (listed.find(" " + sub + "/" + name + "=") == std::string::npos)
+        msynth::RemoveTree(folder + "/" + sub + "/" + name);
 }
 
 /**
@@ -398,36 +410,13 @@ int SlabThickness(const SynthesizeOptions& o, const StreamOutputs& kinds)
   return static_cast<int>(msynth::PlanStream(shape).LayersOf(std::int64_t(1) << 18));
 }
 
-/// A finished slab as slabs.txt lists it.
-struct ListedSlab
-{
-  std::array<int, 6> Extent{};
-  std::string Picture, Volume;
-};
-
 std::vector<ListedSlab> ListedSlabs(const std::string& folder)
 {
   std::vector<ListedSlab> listed;
   std::ifstream in(folder + "/slabs.txt");
   std::string line;
   while (std::getline(in, line))
-  {
-    std::istringstream fields(line);
-    std::string entry;
-    fields >> entry; // the index
-    ListedSlab slab;
-    while (fields >> entry)
-    {
-      if (entry.rfind("extent=", 0) == 0)
-        std::sscanf(entry.c_str() + 7, "%d,%d,%d,%d,%d,%d", &slab.Extent[0], &slab.Extent[1],
-          &slab.Extent[2], &slab.Extent[3], &slab.Extent[4], &slab.Extent[5]);
-      else if (entry.rfind("picture/", 0) == 0)
-        slab.Picture = entry.substr(0, entry.rfind('='));
-      else if (entry.rfind("vdb/", 0) == 0)
-        slab.Volume = entry.substr(0, entry.rfind('='));
-    }
-    listed.push_back(slab);
-  }
+    listed.push_back(ParseSlab(line));
   return listed;
 }
 

@@ -47,23 +47,6 @@ int& PublishedCount()
   return n;
 }
 
-std::vector<std::string> Entries(const std::string& dir)
-{
-  std::vector<std::string> names;
-  if (DIR* d = ::opendir(dir.c_str()))
-  {
-    while (const dirent* e = ::readdir(d))
-    {
-      const std::string name = e->d_name;
-      if (name != "." && name != "..")
-        names.push_back(name);
-    }
-    ::closedir(d);
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 /// An exclusive lock on DIR/.msynth-lock for the duration of a publication.
 class FolderLock
 {
@@ -156,7 +139,7 @@ pid_t StagePid(const std::string& name)
 /// those whose process no longer exists. Live runs' stages, and this process's, are kept.
 void RemoveStaleStages(const std::string& dir)
 {
-  for (const auto& name : Entries(dir))
+  for (const auto& name : FolderEntries(dir))
   {
     const pid_t pid = StagePid(name);
     if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
@@ -164,6 +147,23 @@ void RemoveStaleStages(const std::string& dir)
   }
 }
 } // namespace
+
+std::vector<std::string> FolderEntries(const std::string& dir)
+{
+  std::vector<std::string> names;
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string name = e->d_name;
+      if (name != "." && name != "..")
+        names.push_back(name);
+    }
+    ::closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 void RemoveTree(const std::string& path)
 {
@@ -173,7 +173,7 @@ void RemoveTree(const std::string& path)
     return;
   if (S_ISDIR(info.st_mode))
   {
-    for (const auto& name : Entries(path))
+    for (const auto& name : FolderEntries(path))
       RemoveTree(path + "/" + name);
     ::rmdir(path.c_str());
   }
@@ -268,7 +268,7 @@ void OutputFolder::Publish()
   if (!Registry().count(this->StagePath))
     throw Error::InFile(this->Dir, "was discarded before its outputs were published");
   FolderLock folderLock(this->Dir);
-  const std::vector<std::string> written = Entries(this->StagePath);
+  const std::vector<std::string> written = FolderEntries(this->StagePath);
   // What the previous run published, less what this run replaces.
   std::vector<std::string> stale;
   for (auto& name : ReadManifest(this->Dir))

@@ -58,6 +58,9 @@ private:
 /// why.
 std::vector<std::string> MakeMissingFolders(const std::string& path);
 
+/// The names in folder @p dir but "." and "..", sorted (none when it cannot be read).
+std::vector<std::string> FolderEntries(const std::string& dir);
+
 /// Removes @p path and, if it is a folder, everything in it. Errors are ignored.
 void RemoveTree(const std::string& path);
 
