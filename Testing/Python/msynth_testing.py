@@ -145,6 +145,17 @@ def run_algorithm(algorithm, port=None, data=None, **options):
     return algorithm.GetOutput(), errors.text()
 
 
+def labels_and_start(folder):
+    """The labels of FOLDER/labels.vti ([z, y, x]) and the start its blocks took (its field
+    StartFrom; None without one)."""
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(os.path.join(folder, "labels.vti"))
+    reader.Update()
+    start = reader.GetOutput().GetFieldData().GetAbstractArray("StartFrom")
+    return labels_zyx(reader.GetOutput()), start.GetValue(0) if start else None
+
+
 def labels_zyx(image, name="Label"):
     """The label array of a vtkImageData as a numpy array indexed [z, y, x]."""
     nx, ny, nz = image.GetDimensions()

@@ -12,9 +12,8 @@ import os
 import unittest
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
-from msynth_testing import data, fresh_folder, labels_zyx, tmp, violations
+from msynth_testing import data, fresh_folder, labels_and_start, labels_zyx, tmp, violations
 from msynth_testing import read_label_grid as read
 from msynth_testing import run_msynth as msynth
 
@@ -36,11 +35,7 @@ class BlockStartTest(unittest.TestCase):
     def run_labels(self, example, name, *options):
         done, folder = synthesize(example, name, *options)
         self.assertEqual(done.returncode, 0, done.stderr)
-        reader = vtkXMLImageDataReader()
-        reader.SetFileName(os.path.join(folder, "labels.vti"))
-        reader.Update()
-        start = reader.GetOutput().GetFieldData().GetAbstractArray("StartFrom")
-        return labels_zyx(reader.GetOutput()), start.GetValue(0) if start else None
+        return labels_and_start(folder)
 
     def test_blocks_as_varied_as_a_whole_run(self):
         example = labels_zyx(read(RAMPS))

@@ -10,21 +10,12 @@ import time
 import unittest
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
-from msynth_testing import data, fresh_folder, labels_zyx
+from msynth_testing import data, fresh_folder, labels_and_start
 from msynth_testing import run_msynth as msynth
 
 SHARED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared",
                       "data", "WaveFunctionCollapse")
-
-
-def read(folder):
-    reader = vtkXMLImageDataReader()
-    reader.SetFileName(os.path.join(folder, "labels.vti"))
-    reader.Update()
-    start = reader.GetOutput().GetFieldData().GetAbstractArray("StartFrom")
-    return labels_zyx(reader.GetOutput()), start.GetValue(0) if start else None
 
 
 def variety(labels):
@@ -39,7 +30,7 @@ class BlockStartDefaultsTest(unittest.TestCase):
         done = msynth("synthesize", *args, "--out", folder)
         seconds = time.monotonic() - began
         self.assertEqual(done.returncode, 0, done.stderr)
-        return read(folder) + (seconds,)
+        return labels_and_start(folder) + (seconds,)
 
     def test_text_example_probe_is_cheap(self):
         if os.environ.get("MSYNTH_SANITIZED"):
