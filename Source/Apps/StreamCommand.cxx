@@ -153,7 +153,55 @@ struct ListedSlab
   std::array<int, 6> Extent{};
   std::string Labels, Picture, Volume;
   std::vector<std::pair<std::string, std::string>> Stamps; ///< each file and its stamp
+  /// "failed=OX,OY,OZ,EX,EY,EZ;...": the slab's failed blocks (origin, emptied site)
+  std::vector<msynth::BlockFailure> Failures;
+  bool FailuresDamaged = false;
 };
+
+/// The failed blocks of a slab's field data as listed in slabs.txt ("" when none failed).
+std::string FailuresEntry(vtkImageData* slab)
+{
+  vtkFieldData* fd = slab->GetFieldData();
+  vtkDataArray* origins = fd->GetArray("FailedBlockOrigins");
+  vtkDataArray* sites = fd->GetArray("FailedBlockSites");
+  if (!origins || !sites || origins->GetNumberOfTuples() == 0)
+    return "";
+  std::string entry = " failed=";
+  for (vtkIdType i = 0; i < origins->GetNumberOfTuples(); ++i)
+  {
+    const double* o = origins->GetTuple3(i);
+    const double* e = sites->GetTuple3(i);
+    char text[160];
+    std::snprintf(text, sizeof(text), "%s%.0f,%.0f,%.0f,%.0f,%.0f,%.0f", i ? ";" : "", o[0], o[1],
+      o[2], e[0], e[1], e[2]);
+    entry += text;
+  }
+  return entry;
+}
+
+/// Parses the value of a "failed=" entry into @p slab's Failures (FailuresDamaged when it is not
+/// a list of six integers each).
+void ParseFailures(const std::string& text, ListedSlab& slab)
+{
+  std::istringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ';'))
+  {
+    long long v[6];
+    int used = 0;
+    if (std::sscanf(item.c_str(), "%lld,%lld,%lld,%lld,%lld,%lld%n", &v[0], &v[1], &v[2], &v[3],
+          &v[4], &v[5], &used) != 6 ||
+      ToIndex(used) != item.size() || v[0] < 0 || v[1] < 0 || v[2] < 0)
+    {
+      slab.FailuresDamaged = true;
+      return;
+    }
+    msynth::BlockFailure f;
+    f.Origin = { { v[0], v[1], v[2] } };
+    f.EmptySite = { { v[3], v[4], v[5] } };
+    slab.Failures.push_back(f);
+  }
+}
 
 ListedSlab ParseSlab(const std::string& line)
 {
@@ -168,6 +216,11 @@ ListedSlab ParseSlab(const std::string& line)
       slab.ExtentText = entry.substr(7);
       std::sscanf(slab.ExtentText.c_str(), "%d,%d,%d,%d,%d,%d", &slab.Extent[0], &slab.Extent[1],
         &slab.Extent[2], &slab.Extent[3], &slab.Extent[4], &slab.Extent[5]);
+      continue;
+    }
+    if (entry.rfind("failed=", 0) == 0)
+    {
+      ParseFailures(entry.substr(7), slab);
       continue;
     }
     const std::size_t eq = entry.rfind('=');
@@ -194,6 +247,8 @@ std::string SlabProblem(const std::string& folder, const std::string& line, Stre
     return "its extent is not its labels' extent";
   if (slab.Picture.empty() == kinds.Picture || slab.Volume.empty() == kinds.Volume)
     return "it was written with other --outputs";
+  if (slab.FailuresDamaged)
+    return "its list of failed blocks is damaged";
   return "";
 }
 
@@ -554,7 +609,14 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   StreamProgress progress(static_cast<int>(kept.size()));
   std::size_t finished = 0; // slabs this run wrote
   const int thickness = SlabThickness(o, kinds);
-  synthesis->StreamNextUpdate(thickness, static_cast<int>(kept.size()),
+  std::vector<msynth::BlockFailure> keptFailures; // reported again, as a whole run reports them
+  for (const auto& line : kept)
+  {
+    const ListedSlab slab = ParseSlab(line);
+    keptFailures.insert(keptFailures.end(), slab.Failures.begin(), slab.Failures.end());
+  }
+  synthesis->StreamNextUpdate(
+    thickness, static_cast<int>(kept.size()),
     [&](vtkImageData* slab, int j, int count)
     {
       char name[3][48];
@@ -568,6 +630,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
       for (int k = 1; k < 6; ++k)
         line += "," + std::to_string(e[k]);
       line += std::string(" ") + name[0] + "=" + FileStamp(folder + "/" + name[0]);
+      line += FailuresEntry(slab);
       std::vector<std::string> pictures;
       if (kinds.Picture)
         WritePicture(slab, o, folder + "/" + name[1], pictures);
@@ -590,7 +653,8 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
       progress.Slab(j, count, static_cast<double>(slab->GetNumberOfPoints()));
       ++finished;
       return true;
-    });
+    },
+    keptFailures);
   SetInterruptNote("the finished slabs are kept in '" + folder +
     "': the same command with --resume goes on from them");
   try

@@ -64,6 +64,35 @@ TEST(WorldRegion, TheLatticeIsTheBlockGridOfWholeRuns)
       }
 }
 
+TEST(WorldRegion, TheConeOfARegionOfAFlatWorldIsAFewBlocksWideWhateverTheWorldsSize)
+{
+  // 16 x 16 x 4 blocks over 8 layers: three block origins along z, thousands along x and y.
+  // Walking the 27 phases backwards, the cone grows along an axis each time that axis' digit
+  // of the phase changes; with z's digit changing fastest, x and y grow 9 and 3 times a pass.
+  // (With x's digit fastest, x grew 27 times a pass: 1000 sites wide at 4 passes.)
+  const WorldBox m{ { 16, 16, 4 } }, lo{ { 980, 1000, 0 } }, hi{ { 1013, 1033, 2 } };
+  for (const int passes : { 1, 4 })
+  {
+    std::vector<std::size_t> blocks;
+    for (const std::int64_t side : { 2000, 6000 })
+    {
+      const WorldBox n{ { side, side, 8 } };
+      WorldBox mm{}, step{};
+      BlockGeometry<3>(n, m, { { -1, -1, -1 } }, mm, step);
+      const WorldLattice lattice(n, mm, step);
+      const RegionCone cone = PlanRegion(lattice, lo, hi, passes);
+      for (int a = 0; a < 2; ++a)
+        EXPECT_LE(cone.WindowHigh[ToIndex(a)] - cone.WindowLow[ToIndex(a)], passes == 1 ? 260 : 960)
+          << "axis " << a << ", " << passes << " passes, world " << side;
+      std::size_t count = 0;
+      for (const auto& pass : cone.Passes)
+        count += pass.size();
+      blocks.push_back(count);
+    }
+    EXPECT_EQ(blocks[0], blocks[1]) << "the cone does not depend on the world's size";
+  }
+}
+
 TEST(WorldRegion, ARegionAloneEqualsTheSameSitesOfAWholeRun)
 {
   const LabelGrid village = msynth_test::Village();

@@ -11,7 +11,7 @@ import time
 import unittest
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLPImageDataReader
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader
 
 from msynth_testing import BIN, data, fresh_folder, labels_zyx, read_png, violations
 from msynth_testing import read_label_grid as read
@@ -33,6 +33,13 @@ def write(path, content, mode="w"):
 
 def png_rgb(path):
     return read_png(path)[:, :, :3].astype(float)
+
+
+def read_slab(path):
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
 
 
 def read_pieces(path):
@@ -252,6 +259,43 @@ class StreamTest(unittest.TestCase):
         self.assertIn("all kept from the earlier run", done.stdout)
         np.testing.assert_array_equal(
             labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected)
+
+    def test_a_resumed_stream_reports_the_worlds_failures(self):
+        """Issue 48, item 7: a resumed stream reported blocks failed that the uninterrupted run
+        repaired (it reruns first passes below its first slab, not their repairs). Each slab's
+        field data lists the failed blocks that start in it, slabs.txt keeps them, and the
+        resumed run reports the world's failures, as the uninterrupted run does."""
+        lines = data("Tilesets/Lines.xml")
+        common = ["--size", "400", "4800", "1", "--block", "6", "6", "1", "--attempts", "1",
+                  "--backtracks", "0", "--seed", "11", "--stream", "--slab", "100",
+                  "--threads", "1", "--outputs", "labels"]
+        fresh, expected = self.fresh_world("stream-failures-fresh", common)
+        out = self.interrupted("stream-failures", common, slabs=5)
+        done = msynth("synthesize", lines, *common, "--resume", "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        np.testing.assert_array_equal(
+            labels_zyx(read_pieces(os.path.join(out, "labels.pvti"))), expected)
+
+        def failed(folder):
+            """The failed blocks the slabs of `folder` list, each (origin, emptied site)."""
+            listed = []
+            for name in sorted(os.listdir(os.path.join(folder, "labels"))):
+                fields = read_slab(os.path.join(folder, "labels", name)).GetFieldData()
+                origins, sites = (fields.GetArray(n) for n in
+                                  ("FailedBlockOrigins", "FailedBlockSites"))
+                for i in range(origins.GetNumberOfTuples()):
+                    listed.append(origins.GetTuple3(i) + sites.GetTuple3(i))
+            return sorted(listed)
+
+        stats = json.loads(text(os.path.join(fresh, "statistics.json")))
+        resumed = json.loads(text(os.path.join(out, "statistics.json")))
+        self.assertGreater(stats["BlocksFailed"], 0, "the world checks too little")
+        self.assertGreater(resumed["SlabsResumed"], 0)
+        self.assertEqual(resumed["BlocksFailed"], stats["BlocksFailed"])
+        self.assertEqual(failed(out), failed(fresh))
+        self.assertEqual(len(failed(fresh)), stats["BlocksFailed"])
+        for origin in failed(fresh):  # in world coordinates (they were a window's once)
+            self.assertTrue(0 <= origin[0] < 400 and 0 <= origin[1] < 4800, origin)
 
     def test_an_interrupted_stream_says_how_to_go_on(self):
         """Ctrl-C during a stream: the one line names the kept slabs and --resume (issue 49)."""

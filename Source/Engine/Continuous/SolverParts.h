@@ -74,8 +74,8 @@ struct BlockLayout
       for (const auto* l = arrangement.LinksBegin(v); l != arrangement.LinksEnd(v); ++l)
         for (std::size_t c = 0; l->Vertex >= 0 && c < 3; ++c)
           reach = std::max(reach, std::abs(cellOf[ToIndex(v)][c] - cellOf[ToIndex(l->Vertex)][c]));
-    this->Grid =
-      PlanBoxBlocks<3>(this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, policy, this->Phases, reach);
+    this->Grid = PlanBoxBlocks<3>(this->Cells, { { 2, 2, 2 } }, { { 1, 1, 1 } }, policy,
+      this->Phases, reach, PhaseDigits::AxisOrder);
   }
 
   std::int64_t NumberOfBlocks() const { return static_cast<std::int64_t>(this->Grid.size()); }

@@ -68,7 +68,7 @@ std::vector<std::int64_t> BlockStarts(std::int64_t n, std::int64_t m, std::int64
 template <std::size_t D>
 std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
   const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
-  int& phases, std::int64_t reach)
+  int& phases, std::int64_t reach, PhaseDigits digits)
 {
   reach = std::max<std::int64_t>(reach, 0);
   std::array<std::vector<std::int64_t>, D> starts;
@@ -80,21 +80,30 @@ std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
     period[a] = starts[a].size() > 1 ? static_cast<int>((m[a] + reach + step[a] - 1) / step[a]) : 1;
     count *= starts[a].size();
   }
+  std::array<std::int64_t, D> origins{};
+  for (std::size_t a = 0; a < D; ++a)
+    origins[a] = static_cast<std::int64_t>(starts[a].size());
+  std::array<int, D> radix{};
+  int r = 1;
+  for (int a : PhaseDigitOrder<D>(origins, digits))
+  {
+    radix[ToIndex(a)] = r;
+    r *= period[ToIndex(a)];
+  }
   std::vector<BoxBlock<D>> blocks(count);
   for (std::size_t index = 0; index < count; ++index)
   {
     BoxBlock<D>& b = blocks[index];
     b.Index = static_cast<std::int64_t>(index);
     std::size_t rest = index;
-    int phase = 0, radix = 1;
+    int phase = 0;
     for (std::size_t a = 0; a < D; ++a)
     {
       const std::size_t i = rest % starts[a].size();
       rest /= starts[a].size();
       b.Origin[a] = starts[a][i];
       b.Dims[a] = std::min(m[a], n[a] - b.Origin[a]);
-      phase += radix * static_cast<int>(i % ToIndex(period[a]));
-      radix *= period[a];
+      phase += radix[a] * static_cast<int>(i % ToIndex(period[a]));
     }
     b.Phase = policy == PhasePolicy::NonTouching ? phase : static_cast<int>(index);
   }
@@ -115,10 +124,10 @@ std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
 
 template std::vector<BoxBlock<3>> PlanBoxBlocks<3>(const std::array<std::int64_t, 3>&,
   const std::array<std::int64_t, 3>&, const std::array<std::int64_t, 3>&, PhasePolicy, int&,
-  std::int64_t);
+  std::int64_t, PhaseDigits);
 template std::vector<BoxBlock<4>> PlanBoxBlocks<4>(const std::array<std::int64_t, 4>&,
   const std::array<std::int64_t, 4>&, const std::array<std::int64_t, 4>&, PhasePolicy, int&,
-  std::int64_t);
+  std::int64_t, PhaseDigits);
 
 int ChooseTrivialLabel(int k, int zero, const std::function<bool(int)>& usable)
 {

@@ -13,8 +13,10 @@
  * (Discrete/DiscreteSynthesis.cxx), time-varying synthesis (Discrete/TimeVarying.cxx) and
  * continuous synthesis (Continuous/ContinuousSynthesis.cxx) are its clients.
  */
+#include "Core/Index.h"
 #include "Core/LabelGrid.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -153,17 +155,49 @@ struct BoxBlock
   int Phase = 0;
 };
 
+/// Which axis' digit of a phase number (the block's lattice position modulo the axis' period)
+/// changes fastest.
+enum class PhaseDigits
+{
+  /// The axis with the fewest block origins first, ties in axis order. A region's cone grows
+  /// along an axis each time the axis' digit changes as the phases are walked backwards
+  /// (Core/WorldSchedule.h), so the axis that changes every phase is the one the world bounds
+  /// soonest, and the cone of a region in a wide, flat world stays a few blocks wide instead of
+  /// reaching across it. The discrete solver's worlds, regions and streams.
+  FewestOriginsFirst,
+  /// Axis 0 first, the last axis slowest: every block of the lowest layer of blocks runs before
+  /// those above. The continuous solver's: its grounded objects stand on what was chosen below
+  /// (with the vertical digit fastest, the grounded town's walls fell to 0.30 of the solid
+  /// volume in each of test_proportions' five seeds, against the example's 0.49).
+  AxisOrder
+};
+
+/// The axes in the order of their phase digits (the first changes fastest), for a grid with
+/// @p origins block origins along each axis.
+template <std::size_t D>
+std::array<int, D> PhaseDigitOrder(const std::array<std::int64_t, D>& origins, PhaseDigits digits)
+{
+  std::array<int, D> order{};
+  for (std::size_t a = 0; a < D; ++a)
+    order[a] = static_cast<int>(a);
+  if (digits == PhaseDigits::FewestOriginsFirst)
+    std::stable_sort(order.begin(), order.end(),
+      [&](int a, int b) { return origins[ToIndex(a)] < origins[ToIndex(b)]; });
+  return order;
+}
+
 /**
- * The blocks of a grid of @p n sites, blocks of @p m, origins @p step apart (axis 0 fastest),
- * ordered by phase then scan order. @p phases receives the number of phases. @p reach: how far
- * (in sites, along any axis) a site's neighbours may lie; NonTouching blocks of a phase are
- * ceil((m + reach) / step) origins apart, so no block reads a site another one writes (1 for
- * the grids' six neighbours; the continuous solver's cells pass the longest edge in cells).
+ * The blocks of a grid of @p n sites, blocks of @p m, origins @p step apart (indices in scan
+ * order, axis 0 fastest; phase digits as @p digits), ordered by phase then scan order. @p phases
+ * receives the number of phases. @p reach: how far (in sites, along any axis) a site's neighbours
+ * may lie; NonTouching blocks of a phase are ceil((m + reach) / step) origins apart, so no block
+ * reads a site another one writes (1 for the grids' six neighbours; the continuous solver's cells
+ * pass the longest edge in cells).
  */
 template <std::size_t D>
 std::vector<BoxBlock<D>> PlanBoxBlocks(const std::array<std::int64_t, D>& n,
   const std::array<std::int64_t, D>& m, const std::array<std::int64_t, D>& step, PhasePolicy policy,
-  int& phases, std::int64_t reach = 1);
+  int& phases, std::int64_t reach = 1, PhaseDigits digits = PhaseDigits::FewestOriginsFirst);
 
 /// The phase of each block of @p blocks, in their order (what BlockRunner::Run takes).
 template <std::size_t D>

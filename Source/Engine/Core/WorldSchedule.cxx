@@ -21,7 +21,11 @@ WorldLattice::WorldLattice(const WorldBox& world, const WorldBox& m, const World
     // Origins k · step for k = 0 .. K - 1, the last the first with k · step + m >= n.
     this->Counts[a] = world[a] <= m[a] ? 1 : (world[a] - m[a] + step[a] - 1) / step[a] + 1;
     this->Periods[a] = this->Counts[a] > 1 ? (m[a] + 1 + step[a] - 1) / step[a] : 1;
-    this->NumberOfPhases *= static_cast<int>(this->Periods[a]);
+  }
+  for (int a : PhaseDigitOrder<3>(this->Counts, PhaseDigits::FewestOriginsFirst))
+  {
+    this->Radix[ToIndex(a)] = this->NumberOfPhases;
+    this->NumberOfPhases *= static_cast<int>(this->Periods[ToIndex(a)]);
   }
 }
 
@@ -29,13 +33,11 @@ BoxBlock<3> WorldLattice::At(const WorldBox& g) const
 {
   BoxBlock<3> b;
   b.Index = g[0] + this->Counts[0] * (g[1] + this->Counts[1] * g[2]);
-  int radix = 1;
   for (std::size_t a = 0; a < 3; ++a)
   {
     b.Origin[a] = g[a] * this->Step[a];
     b.Dims[a] = std::min(this->M[a], this->N[a] - b.Origin[a]);
-    b.Phase += radix * static_cast<int>(g[a] % this->Periods[a]);
-    radix *= static_cast<int>(this->Periods[a]);
+    b.Phase += static_cast<int>(this->Radix[a] * (g[a] % this->Periods[a]));
   }
   return b;
 }
@@ -44,11 +46,9 @@ void WorldLattice::Meeting(
   int phase, const WorldBox& lo, const WorldBox& hi, std::vector<BoxBlock<3>>& out) const
 {
   std::array<std::vector<std::int64_t>, 3> along;
-  int rest = phase;
   for (std::size_t a = 0; a < 3; ++a)
   {
-    const auto digit = static_cast<std::int64_t>(rest % static_cast<int>(this->Periods[a]));
-    rest /= static_cast<int>(this->Periods[a]);
+    const std::int64_t digit = this->Digit(phase, static_cast<int>(a));
     // Blocks [k · step, k · step + m) with k · step < hi and k · step + m > lo.
     const std::int64_t first = std::max<std::int64_t>(0, (lo[a] - this->M[a]) / this->Step[a]);
     const std::int64_t last = std::min(this->Counts[a] - 1, (hi[a] - 1) / this->Step[a]);

@@ -44,6 +44,12 @@ public:
   const WorldBox& World() const { return this->N; }
   /// Lattice positions apart along axis @p a that blocks of one phase are.
   std::int64_t Period(int a) const { return this->Periods[ToIndex(a)]; }
+  /// Phase @p phase's digit along axis @p a: its blocks lie at the lattice positions g along
+  /// the axis with g % Period(a) == digit (PhaseDigits::FewestOriginsFirst).
+  std::int64_t Digit(int phase, int a) const
+  {
+    return (phase / this->Radix[ToIndex(a)]) % this->Periods[ToIndex(a)];
+  }
   /// The block step along axis @p a.
   std::int64_t StepAlong(int a) const { return this->Step[ToIndex(a)]; }
 
@@ -55,7 +61,7 @@ public:
     int phase, const WorldBox& lo, const WorldBox& hi, std::vector<BoxBlock<3>>& out) const;
 
 private:
-  WorldBox N, M, Step, Counts, Periods;
+  WorldBox N, M, Step, Counts, Periods, Radix;
   int NumberOfPhases = 1;
 };
 

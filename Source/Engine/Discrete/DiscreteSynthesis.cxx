@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Discrete model synthesis (D ch. 3): Algorithms 3.1 and 3.4 as one run of blocks over the
 // shared block machinery (Core/BlockSynthesis.h), each block solved by a BlockSolver
-// (Discrete/BlockSolver.h); soft constraints (M07§4.2) decide which blocks are kept; symmetric
-// outputs (D§3.5.2) synthesize a part and unfold it.
+// (Discrete/BlockSolver.h); soft constraints (M07§4.2, Discrete/SoftConstraints.h) decide which
+// blocks are kept; symmetric outputs (D§3.5.2) synthesize a part and unfold it.
 #include "Discrete/DiscreteSynthesis.h"
 
 #include "Core/BlockDriver.h"
@@ -16,6 +16,7 @@
 #include "Discrete/Connectivity.h"
 #include "Discrete/LabelCounts.h"
 #include "Discrete/MirrorPlan.h"
+#include "Discrete/SoftConstraints.h"
 #include "Discrete/SymmetryPlan.h"
 #include "Discrete/WindowRun.h"
 
@@ -33,150 +34,27 @@ using namespace detail;
 
 namespace
 {
-/**
- * Soft constraints (M07§4.2): keeps or rolls back each synthesized block with the Metropolis
- * probability, from the label counts of the model (target fractions) and an optional fitness
- * of the whole model. Decisions are made in block order.
- */
-class SoftConstraints
-{
-public:
-  SoftConstraints(const AdjacencyRules& rules, const SynthesisOptions& options, SharedModel& shared,
-    const Coord& n, std::size_t blocks, SynthesisStatistics& stats)
-    : Rules(rules)
-    , Options(options.Soft)
-    , Seed(options.Seed)
-    , Shared(shared)
-    , N(n)
-    , Stats(stats)
-  {
-    if (!this->Options.Active())
-      return;
-    const int k = rules.NumberOfLabels();
-    this->Target.assign(ToIndex(k), -1.0);
-    this->Counts.assign(ToIndex(k), 0);
-    this->Saved.resize(blocks);
-    for (const auto& kv : this->Options.TargetFractions)
-    {
-      const int b = rules.IndexOf(kv.first);
-      if (b < 0)
-        throw Error("the soft constraint names label " + std::to_string(kv.first) +
-          ", which does not occur in the example");
-      if (!(kv.second >= 0.0 && kv.second <= 1.0))
-        throw Error(
-          "the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
-      this->Target[ToIndex(b)] = kv.second;
-    }
-    if (!(this->Options.Temperature > 0.0) || !std::isfinite(this->Options.Temperature))
-      throw Error("the soft constraints' temperature must be positive");
-    for (std::int32_t b : shared.Model)
-      ++this->Counts[ToIndex(b)];
-    if (this->Options.Fitness)
-      this->Fitness = this->Options.Fitness(this->ModelGrid());
-  }
-
-  /// Remembers block @p i's labels before it changes (thread-safe across blocks).
-  void Save(std::size_t i, const Block& block)
-  {
-    if (!this->Options.Active())
-      return;
-    auto& saved = this->Saved[i];
-    saved.clear();
-    ForEachSite(block, this->N,
-      [&](std::size_t s)
-      {
-        saved.push_back(this->Shared.Model[s]);
-        saved.push_back(this->Shared.LastBlock[s]);
-      });
-  }
-
-  /// Keeps the synthesized block @p i (true) or restores its saved labels (false).
-  bool Decide(std::size_t i, const Block& block)
-  {
-    if (!this->Options.Active())
-      return true;
-    const int k = this->Rules.NumberOfLabels();
-    std::vector<std::int64_t> delta(ToIndex(k), 0);
-    const std::vector<std::int32_t>& saved = this->Saved[i];
-    std::size_t at = 0;
-    ForEachSite(block, this->N,
-      [&](std::size_t s)
-      {
-        --delta[ToIndex(saved[at])];
-        ++delta[ToIndex(this->Shared.Model[s])];
-        at += 2;
-      });
-    double dE = 0.0;
-    for (int b = 0; b < k; ++b)
-    {
-      const auto c = this->Counts[ToIndex(b)];
-      const auto d = delta[ToIndex(b)];
-      if (d != 0)
-        dE += this->Energy(b, c + d) - this->Energy(b, c);
-    }
-    double ratio = std::exp(-dE / this->Options.Temperature);
-    double fitness = this->Fitness;
-    if (this->Options.Fitness)
-    {
-      fitness = this->Options.Fitness(this->ModelGrid());
-      if (!(fitness > 0.0) || !(this->Fitness > 0.0))
-        throw Error("the soft constraints' fitness must be positive");
-      ratio *= fitness / this->Fitness;
-    }
-    Random rng =
-      Random::Derived(this->Seed, static_cast<std::uint64_t>(block.Index), 0x50f7ull << 32);
-    if (ratio >= 1.0 || rng.Uniform() < ratio)
-    {
-      for (int b = 0; b < k; ++b)
-        this->Counts[ToIndex(b)] += delta[ToIndex(b)];
-      this->Fitness = fitness;
-      return true;
-    }
-    at = 0;
-    ForEachSite(block, this->N,
-      [&](std::size_t s)
-      {
-        this->Shared.Model[s] = saved[at++];
-        this->Shared.LastBlock[s] = saved[at++];
-      });
-    ++this->Stats.BlocksRejected;
-    return false;
-  }
-
-private:
-  /// N · (fraction − target)² of label @p b at @p count sites (0 without a target).
-  double Energy(int b, std::int64_t count) const
-  {
-    const double t = this->Target[ToIndex(b)];
-    const auto sites = static_cast<double>(this->Shared.Model.size());
-    return t < 0.0 ? 0.0 : sites * (double(count) / sites - t) * (double(count) / sites - t);
-  }
-
-  LabelGrid ModelGrid() const
-  {
-    std::vector<Label> values(this->Shared.Model.size());
-    for (std::size_t i = 0; i < values.size(); ++i)
-      values[i] = this->Rules.LabelValues()[ToIndex(this->Shared.Model[i])];
-    return LabelGrid(this->N, std::move(values));
-  }
-
-  const AdjacencyRules& Rules;
-  const SoftConstraint& Options;
-  std::uint64_t Seed;
-  SharedModel& Shared;
-  Coord N;
-  SynthesisStatistics& Stats;
-  std::vector<double> Target;                   ///< per label index; -1: none
-  std::vector<std::int64_t> Counts;             ///< per label index, in the current model
-  double Fitness = 0.0;                         ///< of the current model
-  std::vector<std::vector<std::int32_t>> Saved; ///< per block: (label, last block) per site
-};
-
 /// The solvers of a run: worker 0's, and one more per extra thread over the same model.
 struct Workers
 {
+  /// Worker 0 (@p first) and one more per extra thread of @p driver (made by @p another),
+  /// each attached to it, over @p cone's window when given.
+  Workers(BlockSolver& first, BlockDriver& driver, const RegionCone* cone,
+    const std::function<std::unique_ptr<BlockSolver>()>& another)
+    : First(&first)
+    , Offset(cone ? cone->WindowLow : Coord{ { 0, 0, 0 } })
+  {
+    first.Attach(&driver, 0);
+    for (unsigned w = 1; w < driver.Workers(); ++w)
+    {
+      this->Extra.push_back(another());
+      this->Extra.back()->Attach(&driver, w);
+    }
+  }
+
   std::vector<std::unique_ptr<BlockSolver>> Extra;
   BlockSolver* First = nullptr;
+  Coord Offset; ///< where their model lies in the world (a window's low corner; else 0)
   BlockSolver& operator[](unsigned w) { return w == 0 ? *this->First : *this->Extra[w - 1]; }
   /// Adds every worker's backtracks to @p stats; returns their attempts that missed the counts.
   std::int64_t Totals(SynthesisStatistics& stats) const
@@ -218,10 +96,16 @@ BlockClient MakeClient(const std::vector<Block>& blocks, Workers& workers, SoftC
       solver.DropSnapshots(); // the block keeps its previous labels: repeat that state
     solver.CommitSnapshots(stats.Assignments + out.Assignments);
   };
-  client.Describe = [&blocks, n](std::size_t i, const BlockOutcome& out, BlockFailure& f)
+  client.Describe = [&blocks, n, off = workers.Offset](
+                      std::size_t i, const BlockOutcome& out, BlockFailure& f)
   {
-    f.Origin = blocks[i].Origin;
-    f.EmptySite = { { out.Empty % n[0], (out.Empty / n[0]) % n[1], out.Empty / (n[0] * n[1]) } };
+    // In the world's coordinates, as a region's or a stream's failures are reported.
+    const Coord e{ { out.Empty % n[0], (out.Empty / n[0]) % n[1], out.Empty / (n[0] * n[1]) } };
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      f.Origin[a] = blocks[i].Origin[a] + off[a];
+      f.EmptySite[a] = e[a] + off[a];
+    }
   };
   client.Pack = [&blocks, &shared, n](std::size_t i, BlockRunner::Bytes& out)
   {
@@ -447,14 +331,8 @@ SynthesisResult detail::SynthesizeDirect(const AdjacencyRules& rules,
   for (std::size_t p = 1; cone && p < cone->Passes.size(); ++p)
     most = std::max(most, cone->Passes[p].size());
   BlockDriver driver(std::move(policy), options.Seed, options.AttemptsPerBlock, most, start);
-  Workers workers;
-  workers.First = &solver;
-  solver.Attach(&driver, 0);
-  for (unsigned w = 1; w < driver.Workers(); ++w)
-  {
-    workers.Extra.push_back(std::make_unique<BlockSolver>(rules, options, plan, seams, shared));
-    workers.Extra.back()->Attach(&driver, w);
-  }
+  Workers workers(solver, driver, cone,
+    [&] { return std::make_unique<BlockSolver>(rules, options, plan, seams, shared); });
 
   if (!wholeModel && options.Pins)
   {

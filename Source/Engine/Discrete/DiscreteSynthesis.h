@@ -429,6 +429,9 @@ struct StreamChunk
   std::array<std::int64_t, 3> Low{}, High{}; ///< its box in the world
   LabelGrid Model;                           ///< its labels (values)
   std::vector<std::int32_t> LastBlock;       ///< per site, the world key of its last block
+  /// The world's blocks that failed for good (every pass over them ran) whose first layer along
+  /// the axis is one of this slab's own (not the shared one): each failed block in one slab.
+  std::vector<BlockFailure> Failures;
 };
 
 /**
@@ -439,13 +442,15 @@ struct StreamChunk
  * change it, then dropped. The slabs equal the same sites of a whole run (Synthesize, or
  * SynthesizeRegion): the order respects every dependency of the world's schedule. From
  * @p firstChunk on (a resumed run), only the blocks the slabs from there need run (none when it is
- * the number of slabs: the earlier run finished them all). Memory is set
+ * the number of slabs: the earlier run finished them all); @p kept are the failures the earlier
+ * run handed out with the slabs before (their StreamChunk::Failures). Memory is set
  * by the slab and the wavefront's depth (phases × passes × reach), not by the world. The result
- * has no Model; its statistics count the blocks run. Options as SynthesizeRegion.
+ * has no Model; its failures (Failures, BlocksFailed) are the world's, as an uninterrupted run
+ * reports them; its other counts are of the blocks this run ran. Options as SynthesizeRegion.
  */
 SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
-  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk,
-  int firstChunk = 0);
+  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk = 0,
+  const std::vector<BlockFailure>& kept = {});
 
 /**
  * Block synthesis of rules none of whose labels may touch itself on every axis (MarkovJunior's

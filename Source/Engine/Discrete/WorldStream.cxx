@@ -175,6 +175,20 @@ bool FailedOver(const WorldLattice& lattice, const std::vector<BlockFailure>& fa
 
 namespace
 {
+/// @p failures (read back from a file) with the world keys of the blocks at their origins.
+std::vector<BlockFailure> Keyed(const WorldLattice& lattice, std::vector<BlockFailure> failures)
+{
+  for (BlockFailure& f : failures)
+  {
+    WorldBox g{};
+    for (std::size_t a = 0; a < 3; ++a)
+      g[a] = std::clamp<std::int64_t>(f.Origin[a] / lattice.StepAlong(static_cast<int>(a)), 0,
+        lattice.Count(static_cast<int>(a)) - 1);
+    f.Block = lattice.At(g).Index;
+  }
+  return failures;
+}
+
 /// The world's block start; a whole-model one is refused: no region is a function of it alone.
 BlockStart WorldStart(const AdjacencyRules& rules, const SynthesisOptions& world)
 {
@@ -244,13 +258,7 @@ struct Wavefront
   }
 
   /// Phase @p t's digit along the axis: its blocks lie in the rows g with g % Period == digit.
-  std::int64_t Digit(int t) const
-  {
-    std::int64_t radix = 1;
-    for (int b = 0; b < this->Axis; ++b)
-      radix *= this->Lattice.Period(b);
-    return ((t % this->P) / radix) % this->Lattice.Period(this->Axis);
-  }
+  std::int64_t Digit(int t) const { return this->Lattice.Digit(t % this->P, this->Axis); }
 
   /// How many rows further along a block of phase @p t1 may lie than one of phase @p t2 it
   /// touches (blocks touch when fewer than Period rows apart).
@@ -363,7 +371,8 @@ public:
 
   int NextChunk = 0;
   std::vector<LabelCountResult> Counts; ///< the world's counts, slab by slab
-  std::vector<BlockFailure> Failures;
+  std::vector<BlockFailure> Failures; ///< of the blocks run, still failed (a later pass may repair)
+  std::vector<BlockFailure> Handed;   ///< the failures handed out with the slabs (final)
   SynthesisStatistics Totals;
   std::function<bool(double)> Progress;
   int Phases = 1;
@@ -586,6 +595,10 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
       labels[s] = values[ToIndex(model[s])];
     }
     c.Model = LabelGrid(dims, std::move(labels));
+    for (const BlockFailure& f : this->Failures) // final: every block over the slab has run
+      if (f.Origin[a] >= c.Low[a] + c.Shared && f.Origin[a] < c.High[a])
+        c.Failures.push_back(f);
+    this->Handed.insert(this->Handed.end(), c.Failures.begin(), c.Failures.end());
     this->Tally(c);
     ++this->NextChunk;
     if (!this->OnChunk(std::move(c)))
@@ -619,7 +632,8 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
 } // namespace
 
 SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
-  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk)
+  const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk,
+  const std::vector<BlockFailure>& kept)
 {
   const auto start = std::chrono::steady_clock::now();
   CheckWorldOptions(world, "a streamed world");
@@ -630,10 +644,13 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   const WorldLattice lattice = LatticeOf(world);
   if (lattice.NumberOfBlocks() == 1)
     throw Error("a streamed world is computed in blocks: give blocks smaller than the world");
+  const std::vector<BlockFailure> earlier = Keyed(lattice, kept);
   if (firstChunk == layout.Chunks) // interrupted after its last slab: nothing is left to compute
   {
     SynthesisResult done;
     done.Status = SynthesisStatus::Succeeded;
+    done.Statistics.Failures = earlier;
+    done.Statistics.BlocksFailed = static_cast<std::int64_t>(earlier.size());
     done.Message = "streamed in " + std::to_string(layout.Chunks) + " slabs along " +
       "xyz"[layout.Axis] + ", all kept from the earlier run";
     return done;
@@ -684,6 +701,16 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
   r.Status = status;
   r.Statistics = stream.Totals;
   r.Statistics.Failures = stream.Failures;
+  if (status == SynthesisStatus::Succeeded)
+  {
+    // The world's failures: a resumed run also ran first passes of blocks below its first slab
+    // whose repairs it did not need; their outcome is the earlier run's, handed out with its
+    // slabs (kept).
+    r.Statistics.Failures = earlier;
+    r.Statistics.Failures.insert(
+      r.Statistics.Failures.end(), stream.Handed.begin(), stream.Handed.end());
+    r.Statistics.BlocksFailed = static_cast<std::int64_t>(r.Statistics.Failures.size());
+  }
   r.Statistics.Phases = lattice.Phases();
   r.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -68,6 +68,7 @@ struct vtkMSDiscreteSynthesis::Internals
   {
     vtkIdType Thickness = 0;
     int First = 0;
+    std::vector<msynth::BlockFailure> Kept;
     std::function<bool(vtkImageData*, int, int)> Receive;
     vtkImageData* Input = nullptr;
   };
@@ -455,6 +456,8 @@ msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
         piece.Message = "slab " + std::to_string(c.Index) + " of a streamed world";
         piece.Model = std::move(c.Model);
         piece.LastBlock = std::move(c.LastBlock);
+        piece.Statistics.BlocksFailed = static_cast<std::int64_t>(c.Failures.size());
+        piece.Statistics.Failures = std::move(c.Failures);
         int extent[6];
         for (std::size_t a = 0; a < 3; ++a)
         {
@@ -465,7 +468,7 @@ msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
         this->FillOutput(stream->Input, slab, 0, piece, extent);
         return stream->Receive(slab, c.Index, layout.Chunks);
       },
-      stream->First);
+      stream->First, stream->Kept);
   }
   const std::array<int, 6>& e = this->Internal->Extent;
   if (e[0] >= 0) // a requested extent of the world
@@ -682,12 +685,14 @@ int vtkMSDiscreteSynthesis::RequestData(
   return 1;
 }
 
-void vtkMSDiscreteSynthesis::StreamNextUpdate(
-  vtkIdType thickness, int first, const std::function<bool(vtkImageData*, int, int)>& receive)
+void vtkMSDiscreteSynthesis::StreamNextUpdate(vtkIdType thickness, int first,
+  const std::function<bool(vtkImageData*, int, int)>& receive,
+  const std::vector<msynth::BlockFailure>& kept)
 {
   auto request = std::make_unique<Internals::StreamRequest>();
   request->Thickness = thickness;
   request->First = first;
+  request->Kept = kept;
   request->Receive = receive;
   this->Internal->Stream = std::move(request);
   this->Modified();

@@ -105,6 +105,7 @@
 #include <functional> // for std::function
 #include <memory>     // for std::unique_ptr
 #include <string>     // for ivar
+#include <vector>     // for std::vector
 
 class vtkDataArray;
 class vtkImageData;
@@ -112,6 +113,7 @@ class vtkPolyData;
 namespace msynth
 {
 class AdjacencyRules;
+struct BlockFailure;
 struct SynthesisOptions;
 struct SynthesisResult;
 }
@@ -538,10 +540,15 @@ public:
    * message. The slabs equal the same sites of the whole output. Needs blocks smaller than the
    * world, no Region or requested extent, and no option that needs the whole world (symmetry,
    * soft constraints, pins, guide, snapshots, resemblance). That update's output holds no
-   * sites, only the run's field data, until the filter is modified again.
+   * sites, only the run's field data, until the filter is modified again. Each slab's field
+   * data lists the failed blocks whose first layer is its own (FailedBlockOrigins,
+   * FailedBlockSites); a resumed run (@p first > 0) takes those of the slabs it keeps in
+   * @p kept (Block keys are recomputed from the origins), so its output reports the world's
+   * failures as an uninterrupted run does.
    */
   void StreamNextUpdate(vtkIdType thickness, int first,
-    const std::function<bool(vtkImageData* slab, int index, int count)>& receive);
+    const std::function<bool(vtkImageData* slab, int index, int count)>& receive,
+    const std::vector<msynth::BlockFailure>& kept = {});
 #endif
 
   /// The event StreamNextUpdate(thickness, first) invokes for each slab.
