@@ -364,6 +364,28 @@ class ContinuousExportsTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("glb (mesh.glb) and vox (model.vox), not 'picture'", r.stderr)
 
+    def test_large_label_grid_vox_is_a_scene(self):
+        """A label grid past 256 sites a side (a discrete model) is MagicaVoxel's scene of models
+        of at most 256 a side, composed back into the same labels."""
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        labels = (np.arange(300 * 3 * 2) % 4).astype(np.int32).reshape(2, 3, 300)  # z, y, x
+        image = vtkImageData()
+        image.SetDimensions(300, 3, 2)
+        array = numpy_to_vtk(labels.ravel(), deep=True)
+        array.SetName("Label")
+        image.GetPointData().AddArray(array)
+        writer = modelsynth.vtkMSLabelGridWriter()
+        writer.SetInputData(image)
+        path = os.path.join(fresh_folder("continuous-exports-grid"), "wide.vox")
+        writer.SetFileName(path)
+        errors = ErrorObserver(writer)
+        self.assertEqual(writer.Write(), 1)
+        self.assertEqual(errors.text(), "")
+        grid, _, models = read_vox(path)
+        self.assertEqual(models, 2)
+        self.assertTrue(np.array_equal(grid, labels.transpose(2, 1, 0)))
+
     def test_flat_model(self):
         """A 2D example: flat meshes facing up (glTF's +y), double-sided; one layer of voxels."""
         out = os.path.join(fresh_folder("continuous-exports-flat"), "flat")
