@@ -61,6 +61,15 @@ const std::vector<std::string> Choices{ "uniform", "frequency", "resemblance" };
 const std::vector<std::string> OutputKinds{ "labels", "mesh", "glb", "vdb", "picture", "txt",
   "vox" };
 
+const char* const OutputsHelp =
+  "which files to write, from labels (labels.vti), mesh (mesh.vtp), glb (mesh.glb: binary glTF, a "
+  "material per label, with any --pieces), vdb (model.vdb), picture (picture.png, tilesets), txt "
+  "(model.txt), vox (model.vox); default: labels,picture for a tileset, labels,mesh,vdb for a "
+  "label grid, plus txt or vox for such an example; polyhedral examples: labels "
+  "(arrangement.vtp), mesh (model.vtp), vdb (model.vdb), glb (mesh.glb: a mesh and material per "
+  "object type), all four by default, and vox (model.vox: the model voxelized, palette index = "
+  "object type); statistics.json is always written";
+
 /// "A:B" with two integers.
 std::string LabelPair(const std::string& text)
 {
@@ -166,14 +175,7 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_option("--empty", o.Empty,
               "fix LABEL on every other face (usually 0) but those of translated axes")
              ->expected(1));
-  s.add_option("--outputs", o.Outputs,
-     "which files to write, from labels (labels.vti), mesh (mesh.vtp), glb (mesh.glb: "
-     "binary glTF, a material per label, with any --pieces), vdb (model.vdb), "
-     "picture (picture.png, tilesets), txt (model.txt), vox (model.vox); default: "
-     "labels,picture for a tileset, labels,mesh,vdb for a label grid, plus txt or vox "
-     "for such an example; polyhedral examples: labels (arrangement.vtp), mesh (model.vtp), "
-     "vdb (model.vdb), all by default; statistics.json is always written")
-    ->check(OutputList, "KINDS");
+  s.add_option("--outputs", o.Outputs, OutputsHelp)->check(OutputList, "KINDS");
   discrete(s.add_option("--pieces", o.Pieces,
     "mesh each label with DIR/<label>.obj|.vtp|.ply|.stl (default: voxels), or with the "
     "pieces a .txt example names for it (DIR/round.obj for $round); with a tileset also "
@@ -267,9 +269,11 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
     s.add_option("--blocks", o.Blocks, "block edge in plane spacings (0: the whole model at once)")
       ->check(NonNegativeReal()));
   continuous(s.add_option("--voxel", o.Voxel,
-                "voxel size of model.vdb (default: a quarter of the smallest plane spacing, at "
-                "least 1/256 of the model's extent, coarser where the level sets would hold "
-                "over 10^6 voxels; statistics.json's VoxelSize)")
+                "voxel size of model.vdb and model.vox (default for model.vdb: a quarter of "
+                "the smallest plane spacing, at least 1/256 of the model's extent, coarser where "
+                "the level sets would hold over 10^6 voxels; for model.vox: half the smallest "
+                "plane spacing, at least 1/256 of the extent, one MagicaVoxel model; "
+                "statistics.json's VoxelSize and VoxVoxelSize)")
                ->check(NonNegativeReal()));
   for (CLI::Option* option : AddTypesOption(s, o.Reading))
     continuous(option);

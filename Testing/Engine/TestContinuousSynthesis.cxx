@@ -617,3 +617,28 @@ TEST(ContinuousConstraints, ShortTypesGrowByOccupancy)
   const detail::ConstraintPlan unsteered(l.Analysis, arrangement, constraints, 1);
   EXPECT_EQ(unsteered.Factor(0, face, tally), unsteered.Factor(0, edge, tally));
 }
+
+// Voxels whose centres lie on a face (a 45-degree slope through the centres of voxels aligned with
+// the model) fall to either side alike when sampled evenly, so the voxels add up to the volume;
+// one nudged sample puts all of them on one side.
+TEST(ContinuousMesh, VoxelizedEvenlyTiesSplit)
+{
+  // A wedge: the triangle (0, 0), (2, 0), (0, 2) in x and z, from y = 0 to 1 (volume 2).
+  const ContinuousMesh wedge = MeshFromPolygons(false,
+    { { 0, 0, 0 }, { 2, 0, 0 }, { 0, 0, 2 }, { 0, 1, 0 }, { 2, 1, 0 }, { 0, 1, 2 } },
+    { { 0, 1, 2 }, { 3, 5, 4 }, { 0, 3, 4, 1 }, { 0, 2, 5, 3 }, { 1, 4, 5, 2 } }, { 1, 1, 1, 1, 1 },
+    { 0, 0, 0, 0, 0 });
+  auto count = [](const LabelGrid& grid)
+  {
+    int n = 0;
+    for (std::int64_t z = 0; z < grid.Size(2); ++z)
+      for (std::int64_t y = 0; y < grid.Size(1); ++y)
+        for (std::int64_t x = 0; x < grid.Size(0); ++x)
+          n += grid.At(x, y, z) == 1 ? 1 : 0;
+    return n;
+  };
+  const std::array<std::int64_t, 3> dims{ { 4, 2, 4 } };
+  EXPECT_EQ(count(VoxelizeModelEvenly(wedge, { 0, 0, 0 }, 0.5, dims)), 16); // 2 / 0.5^3
+  // The 8 centres on the slope (x + z = 2) all on one side with one sample.
+  EXPECT_EQ(std::abs(count(VoxelizeModel(wedge, { 0, 0, 0 }, 0.5, dims)) - 16), 4);
+}

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -107,4 +108,108 @@ TEST(LabelColor, PaletteAndDistinctColoursBeyondIt)
   for (int a = 13; a < 80; ++a)
     for (int b = a + 1; b < 80; ++b)
       EXPECT_NE(msynth::LabelColor(a), msynth::LabelColor(b)) << a << " " << b;
+}
+
+namespace
+{
+/// The area of @p part's triangles and whether each triangle's normals are its winding's.
+double TriangleArea(const msynth::GltfPart& part, bool& normalsAgree)
+{
+  double area = 0;
+  normalsAgree = part.Normals.size() == part.Positions.size();
+  for (std::size_t t = 0; t + 2 < part.Triangles.size(); t += 3)
+  {
+    const float* a = &part.Positions[3 * part.Triangles[t]];
+    const float* b = &part.Positions[3 * part.Triangles[t + 1]];
+    const float* c = &part.Positions[3 * part.Triangles[t + 2]];
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    const double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+      u[0] * v[1] - u[1] * v[0] };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    EXPECT_GT(length, 1e-9) << "triangle " << t / 3 << " is degenerate";
+    area += length / 2;
+    for (std::size_t k = 0; k < 3 && normalsAgree; ++k)
+    {
+      const float* m = &part.Normals[3 * part.Triangles[t + k]];
+      normalsAgree = std::fabs(m[0] - n[0] / length) < 1e-6 &&
+        std::fabs(m[1] - n[1] / length) < 1e-6 && std::fabs(m[2] - n[2] / length) < 1e-6;
+    }
+  }
+  return area;
+}
+} // namespace
+
+// Flat polygons: a convex one fanned from its first corner, one with a straight corner fanned
+// around its centre (no degenerate triangle), a concave one cut into ears; normals from the
+// winding; vertices shared by coplanar polygons only.
+TEST(GltfFile, FlatPolygonsWithoutDegenerateTriangles)
+{
+  const std::vector<std::array<double, 3>> points = {
+    { 0, 0, 0 }, { 2, 0, 0 }, { 2, 2, 0 }, { 0, 2, 0 }, // 0-3: a square in z = 0
+    { 1, 0, 0 },                                        // 4: the middle of its lower side
+    { 2, 0, 1 }, { 0, 0, 1 },                           // 5, 6: a wall on y = 0
+    { 3, 0, 0 }, { 3, 1, 0 }, { 1, 1, 0 }, { 1, 3, 0 }, { 0, 3, 0 } // an L with 0
+  };
+  bool agree = false;
+  {
+    msynth::GltfPart part; // the square, facing +z, and the wall below y = 0 facing -y
+    msynth::AppendFlatPolygons(part, points, { { 0, 1, 2, 3 }, { 0, 1, 5, 6 } });
+    EXPECT_EQ(part.Triangles.size(), 12u);
+    EXPECT_EQ(part.Positions.size(), 3 * 8u); // points 0 and 1 once per plane
+    EXPECT_NEAR(TriangleArea(part, agree), 6.0, 1e-6);
+    EXPECT_TRUE(agree);
+    EXPECT_EQ(part.Normals[2], 1.0f);   // the square's first corner faces +z
+    EXPECT_EQ(part.Normals[13], -1.0f); // the wall's first corner (point 0 again) faces -y
+  }
+  {
+    msynth::GltfPart part; // the square keeping point 4 on its side: 5 triangles round its centre
+    msynth::AppendFlatPolygons(part, points, { { 0, 4, 1, 2, 3 } });
+    EXPECT_EQ(part.Triangles.size(), 15u);
+    EXPECT_EQ(part.Positions.size(), 3 * 6u);
+    EXPECT_NEAR(TriangleArea(part, agree), 4.0, 1e-6);
+    EXPECT_TRUE(agree);
+  }
+  {
+    msynth::GltfPart part; // an L of 6 corners (area 5): 4 ears
+    msynth::AppendFlatPolygons(part, points, { { 0, 7, 8, 9, 10, 11 } });
+    EXPECT_EQ(part.Triangles.size(), 12u);
+    EXPECT_NEAR(TriangleArea(part, agree), 5.0, 1e-6);
+    EXPECT_TRUE(agree);
+  }
+  {
+    msynth::GltfPart part; // no area, too few corners: nothing
+    msynth::AppendFlatPolygons(part, points, { { 0, 4, 1 }, { 0, 1 } });
+    EXPECT_TRUE(part.Triangles.empty());
+    EXPECT_THROW(msynth::AppendFlatPolygons(part, points, { { 0, 1, 99 } }), msynth::Error);
+  }
+}
+
+// Normals go into the file as a NORMAL accessor, turned to y up with the positions; a part's
+// material is double-sided when asked.
+TEST(GltfFile, NormalsTurnedAndDoubleSided)
+{
+  const std::string path = std::string(MSYNTH_TEST_TMP) + "/engine-normals.glb";
+  msynth::GltfPart part;
+  part.Name = "roof";
+  part.Color = { 0.65, 0.2, 0.12, 1.0 };
+  part.DoubleSided = true;
+  msynth::AppendFlatPolygons(part, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 0, 1 } }, { { 0, 1, 2 } });
+  ASSERT_EQ(part.Normals.size(), 9u);
+  EXPECT_EQ(part.Normals[1], -1.0f); // facing -y in the model's frame
+  msynth::WriteGlbFile(path, { part }, "test");
+  const std::string bytes = Bytes(path);
+  const std::uint32_t json = Word(bytes, 12);
+  const std::string text = bytes.substr(20, json);
+  EXPECT_NE(text.find("\"NORMAL\":1"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"doubleSided\":true"), std::string::npos) << text;
+  // The binary chunk: 3 positions (36 bytes), then 3 normals: -y is glTF's +z.
+  float n[3];
+  std::memcpy(n, bytes.data() + 20 + json + 8 + 36, sizeof(n));
+  EXPECT_EQ(n[0], 0.0f);
+  EXPECT_EQ(n[1], 0.0f);
+  EXPECT_EQ(n[2], 1.0f);
+  msynth::GltfPart bad = part;
+  bad.Normals.pop_back();
+  EXPECT_THROW(msynth::WriteGlbFile(path, { bad }, "test"), msynth::Error);
 }

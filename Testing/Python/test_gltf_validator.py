@@ -1,6 +1,7 @@
 """The Khronos glTF validator (npm package gltf-validator, run by node) on the .glb files
 ModelSynth writes: a voxel surface by label, a .vox example's palette colours, pieces, an empty
-mesh, a voxel tileset's mesh.glb. Every file must have no errors and no warnings. Skipped (exit 77, shown by ctest as
+mesh, a voxel tileset's mesh.glb, and continuous models' (the README's houses, domes substituted
+for bounding volumes, a flat model). Every file must have no errors and no warnings. Skipped (exit 77, shown by ctest as
 "Not Run") when node or the package is missing: Utilities/install-dependencies.sh --tests
 installs it into ~/.cache/modelsynth/npm (MSYNTH_NPM_PREFIX elsewhere)."""
 import os
@@ -59,6 +60,20 @@ def main():
     if done.returncode != 0:
         sys.exit(done.stderr)
     files.append(os.path.join(tiles, "mesh.glb"))
+    # Continuous models: the README's houses (a mesh per object type, with normals), a model
+    # with a detail mesh substituted (domes), and a flat one (double-sided).
+    for name, args in (
+            ("houses", ["Continuous/house.obj", "--size", "24", "24", "10", "--seed", "3",
+                        "--grounded", "--thickness", "wall:z", "--overhang", "roof", "--thickness",
+                        "wall:x:2+", "--thickness", "wall:y:2+", "--mirror", "x"]),
+            ("domes", ["Continuous/domed-building.obj", "--size", "12", "12", "8", "--seed", "2",
+                       "--grounded", "--detail", "dome=" + data("Continuous/dome.obj")]),
+            ("flat", ["Continuous/two-objects2d.obj", "--size", "12", "12", "0", "--seed", "1"])):
+        out = os.path.join(folder, name)
+        done = run_msynth("synthesize", data(args[0]), *args[1:], "--outputs", "glb", "--out", out)
+        if done.returncode != 0:
+            sys.exit(done.stderr)
+        files.append(os.path.join(out, "mesh.glb"))
     r = subprocess.run([node, os.path.join(HERE, "validate_gltf.js"), MODULES, *files],
                        capture_output=True, text=True, timeout=120)
     print(r.stdout + r.stderr)

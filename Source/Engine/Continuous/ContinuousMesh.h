@@ -91,6 +91,18 @@ LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double
   const std::array<std::int64_t, 3>& dims);
 
 /**
+ * VoxelizeModel with each voxel sampled twice, its centre nudged by that fraction of a voxel one
+ * way and the other: where the two disagree (the centre on a face, or within the nudge of one:
+ * sloped planes of an arrangement pass through the centres of voxels aligned with its planes),
+ * voxels of even x + y + z take the first and odd ones the second, so such ties fall on either
+ * side alike instead of all on one, and the voxels of a type add up to its volume without that
+ * bias (the README's houses at half-spacing voxels: roofs 12 % short with one sample). Twice
+ * VoxelizeModel's classifications. @throw Error as VoxelizeModel.
+ */
+LabelGrid VoxelizeModelEvenly(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims);
+
+/**
  * The voxel of a 3D model's level sets, in proportion to the model: a quarter of @p spacing (the
  * smallest plane spacing) or 1/256 of @p extent, whichever is coarser, and coarser still where
  * the narrow bands (2 · @p halfWidth voxels across every solid type's surface, estimated from

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <unordered_map>
 
 namespace msynth
 {
@@ -38,10 +39,140 @@ int AddView(tinygltf::Model& model, const void* bytes, std::size_t size, int tar
   return static_cast<int>(model.bufferViews.size() - 1);
 }
 
+using Vec = std::array<double, 3>;
+
+Vec Sub(const Vec& a, const Vec& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+Vec Cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+double Dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+double Length(const Vec& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+
+/// Corners of one polygon: where it turns by less than this share of its edges' lengths'
+/// product it is straight.
+constexpr double StraightSine = 1e-9;
+
+/// The part's vertices by point and normal (the normal to a millionth), so polygons of one plane
+/// share them and polygons meeting at an edge do not.
+class FlatVertices
+{
+public:
+  explicit FlatVertices(GltfPart& part)
+    : Part(part)
+  {
+  }
+
+  std::uint32_t Add(std::int64_t point, const Vec& position, const Vec& normal)
+  {
+    Key key{ point, std::llround(normal[0] * 1e6), std::llround(normal[1] * 1e6),
+      std::llround(normal[2] * 1e6) };
+    const auto found = this->Index.find(key);
+    if (found != this->Index.end())
+      return found->second;
+    const std::uint32_t index = this->Push(position, normal);
+    this->Index.emplace(key, index);
+    return index;
+  }
+
+  /// A vertex of its own (a polygon's centre).
+  std::uint32_t Push(const Vec& position, const Vec& normal)
+  {
+    if (this->Part.Positions.size() / 3 >= std::numeric_limits<std::uint32_t>::max())
+      throw Error("mesh '" + this->Part.Name + "': more than 2^32 vertices");
+    const auto index = static_cast<std::uint32_t>(this->Part.Positions.size() / 3);
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Part.Positions.push_back(static_cast<float>(position[ToIndex(c)]));
+      this->Part.Normals.push_back(static_cast<float>(normal[ToIndex(c)]));
+    }
+    return index;
+  }
+
+private:
+  struct Key
+  {
+    std::int64_t Point, X, Y, Z;
+    bool operator==(const Key& o) const
+    {
+      return this->Point == o.Point && this->X == o.X && this->Y == o.Y && this->Z == o.Z;
+    }
+  };
+  struct Hash
+  {
+    std::size_t operator()(const Key& k) const
+    {
+      std::uint64_t h = static_cast<std::uint64_t>(k.Point) * 0x9E3779B97F4A7C15ull;
+      for (std::int64_t v : { k.X, k.Y, k.Z })
+        h = (h ^ static_cast<std::uint64_t>(v)) * 0xBF58476D1CE4E5B9ull;
+      return ToIndex(h ^ (h >> 31));
+    }
+  };
+  GltfPart& Part;
+  std::unordered_map<Key, std::uint32_t, Hash> Index;
+};
+
+/// Ear clipping of a polygon that is not convex, in its plane (normal @p n); @p corners are its
+/// part's vertices, @p at their positions. Ears are strictly convex corners with no other corner
+/// in or on their triangle; what is left when none is found (a self-touching polygon) is fanned.
+void ClipEars(std::vector<std::uint32_t> corners, std::vector<Vec> at, const Vec& n,
+  std::vector<std::uint32_t>& triangles)
+{
+  auto area = [&n](const Vec& a, const Vec& b, const Vec& c)
+  { return Dot(Cross(Sub(b, a), Sub(c, b)), n); };
+  while (corners.size() > 3)
+  {
+    const std::size_t m = corners.size();
+    bool clipped = false;
+    for (std::size_t i = 0; i < m && !clipped; ++i)
+    {
+      const Vec& a = at[(i + m - 1) % m];
+      const Vec& b = at[i];
+      const Vec& c = at[(i + 1) % m];
+      if (area(a, b, c) <= StraightSine * Length(Sub(b, a)) * Length(Sub(c, b)))
+        continue; // reflex or straight
+      bool empty = true;
+      for (std::size_t j = 0; j < m && empty; ++j)
+      {
+        if (j == i || j == (i + 1) % m || j == (i + m - 1) % m)
+          continue;
+        const Vec& p = at[j];
+        empty = !(area(a, b, p) >= 0 && area(b, c, p) >= 0 && area(c, a, p) >= 0);
+      }
+      if (!empty)
+        continue;
+      triangles.insert(
+        triangles.end(), { corners[(i + m - 1) % m], corners[i], corners[(i + 1) % m] });
+      corners.erase(corners.begin() + static_cast<std::ptrdiff_t>(i));
+      at.erase(at.begin() + static_cast<std::ptrdiff_t>(i));
+      clipped = true;
+    }
+    if (!clipped)
+      break;
+  }
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+    if (Length(Cross(Sub(at[k], at[0]), Sub(at[k + 1], at[0]))) > 0)
+      triangles.insert(triangles.end(), { corners[0], corners[k], corners[k + 1] });
+}
+
 void CheckPart(const std::string& path, const GltfPart& part)
 {
   if (part.Positions.size() % 3 != 0)
     throw Error::InFile(path, "mesh '" + part.Name + "': positions are not in threes");
+  if (!part.Normals.empty() && part.Normals.size() != part.Positions.size())
+    throw Error::InFile(path, "mesh '" + part.Name + "': normals are not one per vertex");
   if (part.Triangles.size() % 3 != 0)
     throw Error::InFile(path, "mesh '" + part.Name + "': indices are not in threes");
   const std::size_t vertices = part.Positions.size() / 3;
@@ -79,6 +210,27 @@ void AddPart(tinygltf::Model& model, const GltfPart& part)
   positions.minValues = low;
   positions.maxValues = high;
   model.accessors.push_back(positions);
+  const int positionAccessor = static_cast<int>(model.accessors.size() - 1);
+
+  int normalAccessor = -1;
+  if (!part.Normals.empty())
+  {
+    for (std::size_t v = 0; v < vertices; ++v)
+    {
+      const float* n = &part.Normals[3 * v];
+      turned[3 * v] = n[0]; // z up -> y up, as the positions
+      turned[3 * v + 1] = n[2];
+      turned[3 * v + 2] = -n[1];
+    }
+    tinygltf::Accessor normals;
+    normals.bufferView =
+      AddView(model, turned.data(), turned.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    normals.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    normals.count = vertices;
+    normals.type = TINYGLTF_TYPE_VEC3;
+    model.accessors.push_back(normals);
+    normalAccessor = static_cast<int>(model.accessors.size() - 1);
+  }
 
   tinygltf::Accessor indices;
   indices.bufferView = AddView(model, part.Triangles.data(),
@@ -96,10 +248,13 @@ void AddPart(tinygltf::Model& model, const GltfPart& part)
   material.pbrMetallicRoughness.roughnessFactor = 1.0;
   if (part.Color[3] < 1.0)
     material.alphaMode = "BLEND";
+  material.doubleSided = part.DoubleSided;
   model.materials.push_back(material);
 
   tinygltf::Primitive primitive;
-  primitive.attributes["POSITION"] = static_cast<int>(model.accessors.size() - 2);
+  primitive.attributes["POSITION"] = positionAccessor;
+  if (normalAccessor >= 0)
+    primitive.attributes["NORMAL"] = normalAccessor;
   primitive.indices = static_cast<int>(model.accessors.size() - 1);
   primitive.material = static_cast<int>(model.materials.size() - 1);
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
@@ -115,6 +270,76 @@ void AddPart(tinygltf::Model& model, const GltfPart& part)
   model.scenes[0].nodes.push_back(static_cast<int>(model.nodes.size() - 1));
 }
 } // namespace
+
+void AppendFlatPolygons(GltfPart& part, const std::vector<std::array<double, 3>>& points,
+  const std::vector<std::vector<std::int32_t>>& polygons)
+{
+  FlatVertices vertices(part);
+  std::vector<Vec> at;
+  for (const auto& polygon : polygons)
+  {
+    const std::size_t n = polygon.size();
+    if (n < 3)
+      continue;
+    at.clear();
+    for (std::int32_t i : polygon)
+    {
+      if (i < 0 || ToIndex(i) >= points.size())
+        throw Error("mesh '" + part.Name + "': corner " + std::to_string(i) + " beyond its " +
+          std::to_string(points.size()) + " points");
+      at.push_back(points[ToIndex(i)]);
+    }
+    Vec normal{ 0, 0, 0 }; // Newell's: twice the area along the normal
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Vec& a = at[k];
+      const Vec& b = at[(k + 1) % n];
+      normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double twiceArea = Length(normal);
+    if (!(twiceArea > 0))
+      continue;
+    for (double& c : normal)
+      c /= twiceArea;
+    bool convex = true, straight = false;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Vec in = Sub(at[k], at[(k + n - 1) % n]);
+      const Vec out = Sub(at[(k + 1) % n], at[k]);
+      const double turn = Dot(Cross(in, out), normal);
+      const double scale = StraightSine * Length(in) * Length(out);
+      if (turn < -scale || (turn <= scale && Dot(in, out) <= 0))
+        convex = false; // reflex, or turning back
+      else if (turn <= scale)
+        straight = true;
+    }
+    std::vector<std::uint32_t> corners(n);
+    for (std::size_t k = 0; k < n; ++k)
+      corners[k] = vertices.Add(polygon[k], at[k], normal);
+    auto& triangles = part.Triangles;
+    if (convex && !straight)
+    {
+      for (std::size_t k = 1; k + 1 < n; ++k)
+        triangles.insert(triangles.end(), { corners[0], corners[k], corners[k + 1] });
+    }
+    else if (convex)
+    {
+      Vec centre{ 0, 0, 0 };
+      for (const Vec& p : at)
+        for (int c = 0; c < 3; ++c)
+          centre[ToIndex(c)] += p[ToIndex(c)] / static_cast<double>(n);
+      const std::uint32_t middle = vertices.Push(centre, normal);
+      for (std::size_t k = 0; k < n; ++k)
+        triangles.insert(triangles.end(), { middle, corners[k], corners[(k + 1) % n] });
+    }
+    else
+    {
+      ClipEars(corners, at, normal, triangles);
+    }
+  }
+}
 
 void WriteGlbFile(
   const std::string& path, const std::vector<GltfPart>& parts, const std::string& generator)

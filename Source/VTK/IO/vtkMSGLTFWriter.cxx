@@ -5,14 +5,19 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
+#include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTriangleFilter.h"
 
+#include "vtkMSPolyhedra.h"
+
+#include "Continuous/ContinuousMesh.h"
 #include "Core/Index.h"
 #include "Core/LabelColor.h"
 #include "Formats/GltfFile.h"
@@ -109,6 +114,61 @@ std::vector<msynth::GltfPart> GroupTriangles(
   }
   return parts;
 }
+
+/// The readable object type names of field data TypeNames (paired with TypeIds when present,
+/// else by type id, as vtkMSArrangementMesh stores them).
+std::map<int, std::string> TypeNames(vtkFieldData* fields)
+{
+  std::map<int, std::string> names;
+  auto* text = vtkStringArray::SafeDownCast(fields->GetAbstractArray("TypeNames"));
+  auto* ids = vtkDataArray::SafeDownCast(fields->GetAbstractArray("TypeIds"));
+  if (!text)
+    return names;
+  for (vtkIdType i = 0; i < text->GetNumberOfValues(); ++i)
+  {
+    const int type = ids && i < ids->GetNumberOfTuples()
+      ? static_cast<int>(std::llround(ids->GetTuple1(i)))
+      : static_cast<int>(i);
+    if (!text->GetValue(i).empty())
+      names[type] = text->GetValue(i);
+  }
+  return names;
+}
+
+/// A continuous model's mesh (or a polyhedral example): one part per solid object type, its
+/// closed surface (msynth::SurfacesByType: InsideType as is, OutsideType reversed),
+/// flat-shaded with normals, named by the type's name.
+std::vector<msynth::GltfPart> TypeParts(vtkPolyData* input, const std::string& path)
+{
+  const msynth::ContinuousMesh mesh = vtkMSPolyhedra::ToContinuousMesh(input, path);
+  const std::map<int, std::string> names = TypeNames(input->GetFieldData());
+  double bounds[6];
+  input->GetBounds(bounds);
+  const bool flat = input->GetNumberOfPoints() > 0 && bounds[5] <= bounds[4];
+  std::vector<msynth::GltfPart> parts;
+  for (const auto& [type, polygons] : msynth::SurfacesByType(mesh))
+  {
+    msynth::GltfPart part;
+    const auto name = names.find(type);
+    part.Name = name != names.end() ? name->second : "type " + std::to_string(type);
+    const auto rgb = msynth::LabelColor(type);
+    part.Color = { rgb[0], rgb[1], rgb[2], 1.0 };
+    part.DoubleSided = flat; // a flat model is seen from above and below
+    msynth::AppendFlatPolygons(part, mesh.Points, polygons);
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+/// Whether @p input is a continuous model's mesh or a polyhedral example: no label array, and
+/// object types per polygon (InsideType and OutsideType, or ObjectType).
+bool HasObjectTypes(vtkPolyData* input, const std::string& labelArray)
+{
+  vtkCellData* cells = input->GetCellData();
+  return !cells->GetArray(labelArray.c_str()) &&
+    (cells->GetArray("ObjectType") ||
+      (cells->GetArray("InsideType") && cells->GetArray("OutsideType")));
+}
 } // namespace
 
 void vtkMSGLTFWriter::PrintSelf(ostream& os, vtkIndent indent)
@@ -143,6 +203,12 @@ void vtkMSGLTFWriter::WriteData()
   }
   try
   {
+    if (HasObjectTypes(input, this->LabelArrayName))
+    {
+      msynth::WriteGlbFile(
+        this->FileName, TypeParts(input, this->FileName), "ModelSynth (vtkMSGLTFWriter)");
+      return;
+    }
     vtkNew<vtkPolyData> surface; // polygons and strips only: verts and lines have no faces
     surface->SetPoints(input->GetPoints());
     surface->SetPolys(input->GetPolys());

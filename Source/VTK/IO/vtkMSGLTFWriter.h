@@ -2,7 +2,7 @@
 /**
  * @class vtkMSGLTFWriter
  * @brief Writes a mesh as binary glTF 2.0 (`.glb`, for game engines and Blender) with one
- * material per label or colour.
+ * material per label, colour or object type.
  *
  * Input: vtkPolyData, such as the output of vtkMSLabelGeometry (a model's voxel surface or its
  * pieces). Polygons and triangle strips are triangulated (concave pieces too); vertices and
@@ -14,11 +14,21 @@
  * palette of render-model.py and the plugin's Label colour map). Without the label array all
  * cells form one grey mesh. The groups are ordered by label, then colour.
  *
+ * A continuous model's mesh (vtkMSArrangementMesh: cell arrays `InsideType` and `OutsideType`,
+ * or `ObjectType` in 2D; field data `TypeNames`), and a polyhedral example (`ObjectType`), when
+ * it has no label array, is written by object type instead: one mesh, node and material per
+ * solid type, named by the type's name (`wall`, `roof`; `type <T>` when unnamed), coloured as
+ * the type is in every picture (msynth::LabelColor of the type, as model.vtp is drawn). Each
+ * mesh is its type's closed surface (the polygons with InsideType T as they are and those with
+ * OutsideType T reversed), flat-shaded with normals that point out of the type; a face between
+ * two types is in both meshes, facing out of each. Polygons are triangulated without degenerate
+ * triangles (msynth::AppendFlatPolygons). A flat (2D) model's materials are double-sided.
+ *
  * glTF is y up: the model's z becomes glTF's y (Blender's importer turns it back). Colours are
  * written linear, as glTF specifies, so viewers show the sRGB colours of the palette. The file
  * is written atomically (complete or absent); every error is one line naming the file.
  *
- * @sa vtkMSLabelGeometry, msynth::WriteGlbFile (Formats/GltfFile.h)
+ * @sa vtkMSLabelGeometry, vtkMSArrangementMesh, msynth::WriteGlbFile (Formats/GltfFile.h)
  */
 #ifndef vtkMSGLTFWriter_h
 #define vtkMSGLTFWriter_h

@@ -13,7 +13,20 @@
  *
  * Labels are the point array "Label", else the active scalars (integers). Synthesis filters
  * pass the example's field data on, so reader → synthesis → this writer keeps trailer and
- * palette. The file is written atomically (complete or absent); errors name the file.
+ * palette. A `.vox` model past 256 voxels a side is written as MagicaVoxel's scene: pieces of
+ * at most 256 a side, each a model placed by its own transform node (msynth::WriteVoxScene), as
+ * voxel tilesets' model.vox is.
+ *
+ * A continuous model (vtkPolyData: vtkMSArrangementMesh's output, cell arrays `InsideType` and
+ * `OutsideType`, or `ObjectType`; also a polyhedral example) is written as `.vox` only, voxelized:
+ * each voxel holds the object type at its centre (msynth::VoxelizeModel; 0 empty; 2D models one
+ * layer), the grid's lowest corner at the model's lowest corner, palette index T coloured as
+ * type T is in every picture (msynth::LabelColor, as model.vtp is drawn). VoxelSize 0 chooses
+ * half the smallest plane spacing (field data `SmallestSpacing`), at least the longest extent /
+ * 256: one MagicaVoxel model. A finer VoxelSize gives a scene of several models, up to
+ * MaximumVoxelsPerAxis a side (MagicaVoxel's world reaches 1000 voxels from its centre) and
+ * MaximumVoxels in all. Types beyond 255 cannot be palette indices: an error.
+ * The file is written atomically (complete or absent); errors name the file.
  *
  * @sa vtkMSLabelGridReader
  */
@@ -24,6 +37,8 @@
 #include "vtkWriter.h"
 
 #include <string> // for ivars
+
+class vtkPolyData;
 
 class MODELSYNTHIO_EXPORT vtkMSLabelGridWriter : public vtkWriter
 {
@@ -38,6 +53,27 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// A continuous model's voxel edge (model units); 0 (default) chooses it (see above).
+  vtkSetClampMacro(VoxelSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(VoxelSize, double);
+  ///@}
+
+  ///@{
+  /// A continuous model's voxels: at most this many along any axis (default 1000) ...
+  vtkSetClampMacro(MaximumVoxelsPerAxis, int, 1, 1 << 20);
+  vtkGetMacro(MaximumVoxelsPerAxis, int);
+  ///@}
+
+  ///@{
+  /// ... and in all (default 10^8); a finer VoxelSize is an error before any work.
+  vtkSetClampMacro(MaximumVoxels, double, 1.0, 1e12);
+  vtkGetMacro(MaximumVoxels, double);
+  ///@}
+
+  /// The voxel edge the last write of a continuous model used (VoxelSize, or the one chosen).
+  vtkGetMacro(WrittenVoxelSize, double);
+
 protected:
   vtkMSLabelGridWriter() = default;
   ~vtkMSLabelGridWriter() override = default;
@@ -49,7 +85,13 @@ private:
   vtkMSLabelGridWriter(const vtkMSLabelGridWriter&) = delete;
   void operator=(const vtkMSLabelGridWriter&) = delete;
 
+  void WriteModelVoxels(vtkPolyData* model);
+
   std::string FileName;
+  double VoxelSize = 0;
+  int MaximumVoxelsPerAxis = 1000;
+  double MaximumVoxels = 1e8;
+  double WrittenVoxelSize = 0;
 };
 
 #endif
