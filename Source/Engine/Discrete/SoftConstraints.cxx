@@ -35,8 +35,7 @@ SoftConstraints::SoftConstraints(const AdjacencyRules& rules, const SynthesisOpt
       throw Error("the soft constraint names label " + std::to_string(kv.first) +
         ", which does not occur in the example");
     if (!(kv.second >= 0.0 && kv.second <= 1.0))
-      throw Error(
-        "the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
+      throw Error("the target fraction of label " + std::to_string(kv.first) + " is not in [0, 1]");
     this->Target[ToIndex(b)] = kv.second;
   }
   if (!(this->Options.Temperature > 0.0) || !std::isfinite(this->Options.Temperature))
