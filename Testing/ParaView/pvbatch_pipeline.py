@@ -180,8 +180,9 @@ synthesis.ComputeRequestedExtent = 1
 # (Fetch brings rank 0's piece of image data; its extent says where it lies.)
 piece = servermanager.Fetch(synthesis)
 x0, x1, y0, y1, z0, z1 = piece.GetExtent()
-# Pieces are slabs across y (the highest long axis, whose blocks' cones reach least far).
-check((y1 - y0 + 1) * ranks == 20 and x1 - x0 + 1 == 24, "piece extent %s" % (piece.GetExtent(),))
+# Pieces are slabs across x, the axis whose blocks' phase digit changes slowest (the most block
+# origins: 5 along x's 24 sites in blocks of 8 every 4, 4 along y's 20), so cones reach least far.
+check((x1 - x0 + 1) * ranks == 24 and y1 - y0 + 1 == 20, "piece extent %s" % (piece.GetExtent(),))
 mine = piece.GetPointData().GetArray("Label")
 whole = alone.GetPointData().GetArray("Label")
 check(all(mine.GetValue((x - x0) + (x1 - x0 + 1) * ((y - y0) + (y1 - y0 + 1) * (z - z0))) ==

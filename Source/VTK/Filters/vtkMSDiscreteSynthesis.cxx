@@ -32,6 +32,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "Core/BlockDriver.h"
+#include "Core/BlockSynthesis.h"
 #include "Core/TextLists.h"
 #include "Discrete/DiscreteSynthesis.h"
 #include "Discrete/OverlappingModel.h"
@@ -142,18 +144,22 @@ vtkPolyData* vtkMSDiscreteSynthesis::GetGeometryOutput()
 
 namespace
 {
-/// Pieces as slabs across the highest long axis (X/Y/Z_SLAB_MODE): its blocks' phase digit
-/// changes slowest, so a slab's dependency cone reaches least far along it
-/// (Core/WorldSchedule.h).
+/// Pieces as slabs across the axis whose blocks' phase digit changes slowest (X/Y/Z_SLAB_MODE),
+/// as the engine orders the digits (PhaseDigitOrder: the axis of most block origins last): a
+/// slab's dependency cone reaches least far along it (Core/WorldSchedule.h).
 int PieceSplitMode(vtkMSDiscreteSynthesis* self)
 {
-  int longest = 0;
-  for (int a = 1; a < 3; ++a)
-    longest = self->GridSize(a) > self->GridSize(longest) ? a : longest;
-  for (int a = 2; a > longest; --a)
-    if (2 * self->GridSize(a) >= self->GridSize(longest))
-      return a;
-  return longest;
+  std::array<std::int64_t, 3> n{}, size{}, overlap{}, m{}, step{}, origins{};
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = self->GridSize(a);
+    size[a] = self->GetBlockSize()[a];
+    overlap[a] = self->GetBlockOverlap()[a];
+  }
+  msynth::BlockGeometry<3>(n, size, overlap, m, step);
+  for (std::size_t a = 0; a < 3; ++a)
+    origins[a] = static_cast<std::int64_t>(msynth::BlockStarts(n[a], m[a], step[a]).size());
+  return msynth::PhaseDigitOrder<3>(origins, msynth::PhaseDigits::FewestOriginsFirst)[2];
 }
 
 /// What is wrong with axis @p a of @p self's Region in the grid @p grid (empty when nothing).
