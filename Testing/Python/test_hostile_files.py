@@ -139,6 +139,24 @@ class HostileFilesTest(unittest.TestCase):
             self.one_line(done, needle, "the memory available allows no more")
             self.assertLess(time.monotonic() - start, 10)
 
+    def test_a_scene_of_models_far_apart_is_refused_at_once(self):
+        """Two 5^3 models 400 x 400 x 300 voxels apart span 5 * 10^7 sites that fit in memory, but
+        composing and checking them took 5 s and 650 MB (6 * 10^8 sites 1000 apart: 7 GB and a
+        minute): a scene past 2^24 sites whose models' boxes fill under 1/64 of it is refused in
+        one line; models 100 apart (10^6 sites) are still read and checked."""
+        folder = fresh_folder("hostile-far-apart")
+        far = os.path.join(folder, "far.vox")
+        write(far, far_scene("400 400 300"), "wb")
+        start = time.monotonic()
+        done = run_msynth("check", data("Tilesets/Pipes.xml"), far, timeout=60)
+        self.one_line(done, "far.vox", "places its 2 models far apart", "405 x 405 x 305")
+        self.assertLess(time.monotonic() - start, 3)
+        near = os.path.join(folder, "near.vox")
+        write(near, far_scene("100 100 100"), "wb")
+        done = run_msynth("check", data("Tilesets/Pipes.xml"), near, timeout=60)
+        self.assertNotIn("far apart", done.stderr)
+        self.assertIn("tile cells", done.stdout + done.stderr)
+
     def test_check_names_the_broken_file(self):
         folder = fresh_folder("hostile-check")
         broken = os.path.join(folder, "broken.vox")

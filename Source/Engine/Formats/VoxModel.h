@@ -57,7 +57,8 @@ void WriteVoxSceneFile(const std::string& path, const VoxModel& model);
  * from the root; a file without a scene: every model at the origin), composed into one grid from
  * the lowest corner of the models; later models overwrite earlier ones. Rotated models are an
  * error. @throw Error naming the file and the problem; a composed model of more than
- * @p maxSites sites is refused before allocation.
+ * @p maxSites sites, or of more than 2^24 sites that its models' boxes fill less than 1/64 of
+ * (models far apart), is refused before allocation.
  */
 VoxModel ReadVoxScene(
   const std::vector<std::uint8_t>& bytes, const std::string& name, std::int64_t maxSites);
