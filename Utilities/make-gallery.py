@@ -137,7 +137,7 @@ QUICK_SIZES = {"town": "24 24 6"}
 
 
 def frames_picture(folder, png):
-    """The frames of an animation (frame_0000.vti ..., one row of sites each) stacked top to
+    """The frames of an animation (frame_0001.vti ..., one row of sites each) stacked top to
     bottom, each site a square of 8 pixels, labels coloured as render-model.py colours them."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLImageDataReader

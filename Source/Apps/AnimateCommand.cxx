@@ -2,7 +2,8 @@
 // `msynth animate EXAMPLE... --size NX NY NZ --frames N`: time-varying synthesis (D§3.5.4)
 // through vtkMSTimeVaryingSynthesis. One example file: its z slices are the frames; several:
 // one frame each, given to the filter as time steps (as a file series in ParaView). Writes
-// DIR/frame_0000.vti, ... (a series ParaView opens as time steps), DIR/model_0001.vdb, ... and
+// DIR/frame_0001.vti, ... (a series ParaView opens as time steps), DIR/model_0001.vdb, ... (the
+// same number for the same frame, from 1 as renderers number sequences) and
 // DIR/statistics.json, after checking the animation against the example frames (vtkMSCheckModel).
 #include "Commands.h"
 #include "Common.h"
@@ -47,14 +48,14 @@ struct AnimateOptions
   std::string Out = "msynth-output";
 };
 
-/// Frame @p t of the synthesis written: frame_t.vti and model_(t+1).vdb.
+/// Frame @p t (from 0) of the synthesis written: frame_(t+1).vti and model_(t+1).vdb.
 void WriteFrame(vtkMSTimeVaryingSynthesis* synthesis, int t, const std::string& dir)
 {
   synthesis->UpdateTimeStep(t);
   vtkNew<vtkImageData> image;
   image->DeepCopy(synthesis->GetOutput());
   char name[32];
-  std::snprintf(name, sizeof(name), "/frame_%04d.vti", t);
+  std::snprintf(name, sizeof(name), "/frame_%04d.vti", t + 1);
   WriteXML<vtkXMLImageDataWriter>(dir + name, image.GetPointer());
   vtkNew<vtkMSOpenVDBWriter> vdb;
   vdb->SetInputData(image);
@@ -146,9 +147,9 @@ int Animate(const AnimateOptions& o, const std::string& dir)
   std::cout << message << "\n"
             << "consistent: all " << CountOf(verdict, "PairsChecked")
             << " pairs of neighbours in space and time occur in the example\n"
-            << "wrote " << dir << "/frame_0000.vti ... frame_" << std::setw(4) << std::setfill('0')
-            << (o.Frames - 1) << ".vti, " << dir << "/model_0001.vdb ... model_" << std::setw(4)
-            << o.Frames << ".vdb (frame_T.vti as model_T+1.vdb), " << dir << "/statistics.json\n";
+            << "wrote " << dir << "/frame_0001.vti ... frame_" << std::setw(4) << std::setfill('0')
+            << o.Frames << ".vti, " << dir << "/model_0001.vdb ... model_" << std::setw(4)
+            << o.Frames << ".vdb, " << dir << "/statistics.json\n";
   return 0;
 }
 } // namespace
@@ -157,8 +158,9 @@ CommandRunner AddAnimate(CLI::App& app)
 {
   auto o = std::make_shared<AnimateOptions>();
   CLI::App* a = app.add_subcommand("animate",
-    "time-varying synthesis (D 3.5.4): one EXAMPLE image whose z slices are the frames, or one "
-    "file per frame; writes DIR/frame_0000.vti ... (a series ParaView opens as time steps), "
+    "time-varying synthesis, an animation whose frames follow each other as the example's do: "
+    "one EXAMPLE image whose z slices are the frames, or one "
+    "file per frame; writes DIR/frame_0001.vti ... (a series ParaView opens as time steps), "
     "DIR/model_0001.vdb ... and DIR/statistics.json");
   a->add_option("EXAMPLE", o->Examples, "the example: one image, or one file per frame")
     ->required();

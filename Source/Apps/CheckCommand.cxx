@@ -61,7 +61,7 @@ struct CheckOptions
   std::string Connected;
   std::string Names; ///< --tileset: names and sides for --count, --connected on a label grid
   std::vector<std::string> Path;
-  bool Animation = false; ///< MODEL is frame_0000.vti of an animation
+  bool Animation = false; ///< MODEL is the first frame (frame_0001.vti) of an animation
   bool Loop = false;
   std::string Guide; ///< --guide: the guide whose Region array --count region=R:... reads
 };
@@ -280,28 +280,31 @@ int CheckDiscrete(const CheckOptions& o)
   return 1;
 }
 
-/// An animation (MODEL is its frame_0000.vti; the frames after it follow while they exist)
-/// against the z slices of EXAMPLE, in space and in time: a frame series → vtkMSCheckModel
-/// (TimeVarying; Discrete/TimeVarying.h: CheckTimeVarying).
+/// An animation (MODEL is its first frame, frame_0001.vti, or any NNNN.vti; the frames numbered
+/// after it follow while they exist) against the z slices of EXAMPLE, in space and in time: a
+/// frame series → vtkMSCheckModel (TimeVarying; Discrete/TimeVarying.h: CheckTimeVarying).
 int CheckAnimation(const CheckOptions& o)
 {
-  const std::string first = "0000.vti";
-  if (o.Model.size() < first.size() ||
-    o.Model.compare(o.Model.size() - first.size(), first.size(), first) != 0)
-    throw UsageError{ "--animation: MODEL is an animation's first frame (frame_0000.vti), not '" +
+  const std::string& m = o.Model;
+  const std::size_t digits = m.size() >= 8 ? m.size() - 8 : 0;
+  const bool numbered = m.size() >= 8 && m.compare(m.size() - 4, 4, ".vti") == 0 &&
+    std::all_of(m.begin() + static_cast<std::ptrdiff_t>(digits), m.end() - 4,
+      [](char c) { return c >= '0' && c <= '9'; });
+  if (!numbered)
+    throw UsageError{ "--animation: MODEL is an animation's first frame (frame_0001.vti), not '" +
       o.Model + "'" };
-  const std::string prefix = o.Model.substr(0, o.Model.size() - first.size());
+  const std::string prefix = m.substr(0, digits);
   vtkNew<vtkMSFrameSeries> series;
   int frames = 0;
-  for (;; ++frames)
+  for (int number = std::stoi(m.substr(digits, 4)); number <= 9999; ++number, ++frames)
   {
-    char number[16];
-    std::snprintf(number, sizeof(number), "%04d.vti", frames);
+    char name[16];
+    std::snprintf(name, sizeof(name), "%04d.vti", number);
     struct stat info;
-    if (frames > 0 && ::stat((prefix + number).c_str(), &info) != 0)
+    if (frames > 0 && ::stat((prefix + name).c_str(), &info) != 0)
       break;
     vtkNew<vtkMSLabelGridReader> frame;
-    frame->SetFileName((prefix + number).c_str());
+    frame->SetFileName((prefix + name).c_str());
     frame->GenerateGeometryOff();
     Run(frame);
     series->AddFrame(frame->GetOutput());
@@ -518,8 +521,8 @@ CommandRunner AddCheck(CLI::App& app)
     "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
     "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
   auto* animation = check->add_flag("--animation", o->Animation,
-    "MODEL is the first frame of an animation (frame_0000.vti of msynth animate): it and the "
-    "frames after it (frame_0001.vti, ...) are checked in space and in time against EXAMPLE, "
+    "MODEL is the first frame of an animation (frame_0001.vti of msynth animate): it and the "
+    "frames after it (frame_0002.vti, ...) are checked in space and in time against EXAMPLE, "
     "whose z slices are the example's frames");
   check->add_flag("--loop", o->Loop, "with --animation: the last frame is followed by the first")
     ->needs(animation);

@@ -143,21 +143,21 @@ class CheckKindsTest(unittest.TestCase):
         r = run_msynth("animate", village, "--size", "8", "8", "1", "--frames", "3", "--seed", "1",
                        "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
-        first = os.path.join(out, "frame_0000.vti")
+        first = os.path.join(out, "frame_0001.vti")
         c = run_msynth("check", village, first, "--animation")
         self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
         self.assertIn("of the 3 frames", c.stdout)
         example = labels_zyx(read_label_grid(village))[:, np.newaxis]  # z slices as frames
-        model = np.array([labels_zyx(read_label_grid(os.path.join(out, "frame_%04d.vti" % t)))
+        model = np.array([labels_zyx(read_label_grid(os.path.join(out, "frame_%04d.vti" % (t + 1))))
                           for t in range(3)])
         # A site of the middle frame changed: exactly the pairs it breaks are counted.
-        image = read_label_grid(os.path.join(out, "frame_0001.vti"))
+        image = read_label_grid(os.path.join(out, "frame_0002.vti"))
         labels = labels_zyx(image)
         labels[0, 3, 3] = 1 if labels[0, 3, 3] != 1 else 2
         model[1, 0, 3, 3] = labels[0, 3, 3]
         writer = vtkXMLImageDataWriter()
         writer.SetInputData(image)
-        writer.SetFileName(os.path.join(out, "frame_0001.vti"))
+        writer.SetFileName(os.path.join(out, "frame_0002.vti"))
         writer.Write()
         expected = len(time_violations(example, model))
         self.assertGreater(expected, 0)
@@ -167,6 +167,13 @@ class CheckKindsTest(unittest.TestCase):
         looping = len(time_violations(example, model, loop=True))
         c = run_msynth("check", village, first, "--animation", "--loop")
         self.assertIn("inconsistent: %d of" % looping, c.stdout)
+        # Frame N is frame_N.vti and model_N.vdb, from 1; a file that is no numbered frame is
+        # refused in one line that names the first frame's name.
+        self.assertTrue(os.path.isfile(os.path.join(out, "model_0003.vdb")))
+        self.assertFalse(os.path.exists(os.path.join(out, "frame_0000.vti")))
+        c = run_msynth("check", village, village, "--animation")
+        self.assertEqual(c.returncode, 2, c.stdout + c.stderr)
+        self.assertIn("first frame (frame_0001.vti)", c.stderr)
 
     def test_a_picture_against_its_sample(self):
         s = modelsynth.vtkMSDiscreteSynthesis()

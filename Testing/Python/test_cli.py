@@ -687,12 +687,13 @@ class CommandLineTest(unittest.TestCase):
                     "--out", out, *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertIn("consistent", r.stdout)
-            # the summary names the last frame and the last volume (numbered from 1)
-            self.assertIn("frame_0011.vti, %s/model_0001.vdb ... model_0012.vdb" % out, r.stdout)
+            # the summary names the first and last frames and volumes, with the same numbers
+            self.assertIn("%s/frame_0001.vti ... frame_0012.vti, %s/model_0001.vdb ... model_0012.vdb"
+                          % (out, out), r.stdout)
             movie = []
             for t in range(12):
                 reader = modelsynth.vtkMSLabelGridReader()
-                reader.SetFileName(os.path.join(out, "frame_%04d.vti" % t))
+                reader.SetFileName(os.path.join(out, "frame_%04d.vti" % (t + 1)))
                 reader.Update()
                 movie.append(labels_zyx(reader.GetOutput())[0, 0].tolist())
                 self.assertTrue(os.path.isfile(os.path.join(out, "model_%04d.vdb" % (t + 1))))
