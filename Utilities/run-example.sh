@@ -20,8 +20,9 @@ checks it (msynth check).
 
   --out DIR         where the outputs go (default ./output): labels.vti (the model: point arrays
                     Label, LastBlock; statistics), mesh.vtp (its voxel surface, coloured by the
-                    example's palette), model.vox (for MagicaVoxel), model.vdb (OpenVDB: Int32
-                    grid Label, float copy Label_float), statistics.json
+                    example's palette), mesh.glb (the same surface as glTF for Blender and game
+                    engines), model.vox (for MagicaVoxel), model.vdb (OpenVDB: Int32 grid Label,
+                    float copy Label_float), statistics.json
   --seed S          the random seed (default 1)
   --size NX NY NZ   the model's size in sites (default 48 48 5)
   --no-build        use the existing build/bin/msynth (no install, no build)
@@ -59,7 +60,7 @@ echo "== example: $example"
 echo "== synthesizing ${size[*]} in 12 x 12 x 5 blocks, ground (1) below, empty (0) around," \
   "labels by resemblance, seed $seed"
 "$msynth" synthesize "$example" --size "${size[@]}" --block 12 12 5 --ground 1 --empty 0 \
-  --choice resemblance --seed "$seed" --out "$out"
+  --choice resemblance --seed "$seed" --outputs labels,mesh,glb,vox,vdb --out "$out"
 echo "== independent check of the adjacency constraint"
 "$msynth" check "$example" "$out/labels.vti"
 echo "outputs are in $out"

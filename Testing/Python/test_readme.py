@@ -123,6 +123,9 @@ class ReadmeExamplesTest(unittest.TestCase):
                               cwd=scratch, capture_output=True, text=True, timeout=200)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
         self.assertIn("consistent", done.stdout)
+        for name in ("labels.vti", "mesh.vtp", "mesh.glb", "model.vox", "model.vdb",
+                     "statistics.json"):  # what the README says the main job writes
+            self.assertTrue(os.path.isfile(os.path.join(scratch, "output", name)), name)
         model = village_measures.measures(
             village_measures.read_labels(os.path.join(scratch, "output", "labels.vti")))
         example = village_measures.measures(
