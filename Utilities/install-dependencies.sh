@@ -36,6 +36,9 @@ runtime=(
   # third-party headers that ParaView's VTK CMake config looks for (the modules we use)
   libdouble-conversion-dev libutfcpp-dev libexpat1-dev liblz4-dev liblzma-dev zlib1g-dev libeigen3-dev
   libpng-dev libjpeg-dev python3-dev # IOImage (tile pictures) and the Python wrapping
+  # RemotingViews (the plugin's colour map keeps the legend's labels current): the rendering
+  # modules' third-party CMake targets (GLEW, Freetype, OpenGL, X11)
+  libglew-dev libfreetype-dev libgl-dev libx11-dev libxt-dev
   # OpenVDB 10 (library, vdb_print, Python module for optional checks)
   libopenvdb-dev libopenvdb-tools python3-openvdb libboost-iostreams-dev libtbb-dev
   python3-imath # OpenVDB pulls Imath, whose CMake config names this package's library

@@ -5,6 +5,67 @@ import os
 from paraview.simple import *  # noqa: F401,F403
 
 report = os.environ["MSYNTH_GUI_REPORT"]
+
+
+def tutorial_colours():
+    """The tutorial's steps as a user clicks them (paraview-tutorial.md, "Synthesize a model"):
+    applied first without the boundaries the model has no ground; applied again with them, the
+    ground (label 1) must join the legend and be drawn in its colour. ParaView computes a
+    categorical map's active labels when a representation is first shown; the plugin computes
+    them again when the data shown changes (without it label 1 was drawn in the NaN colour and
+    left off the legend). "ok", or what is wrong."""
+    import importlib.util
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    spec = importlib.util.spec_from_file_location("render_model", os.path.join(
+        os.path.dirname(os.environ["MSYNTH_DATA"]), "Utilities", "render-model.py"))
+    render_model = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(render_model)
+    view = GetActiveViewOrCreate("RenderView")
+    for source in GetSources().values():
+        Hide(source, view)
+    village = ModelSynthLabelGridReader(FileName=os.path.join(os.environ["MSYNTH_DATA"], "Examples", "Village.vox"))
+    model = ModelSynthDiscreteSynthesis(Input=village, OutputSize=[32, 32, 5], BlockSize=[16, 16, 5], Seed=2)
+    drawn = Show(OutputPort(model, 1), view)
+    Render(view)
+    label_map = GetColorTransferFunction("Label")
+    before = sorted(int(v) for v in label_map.ActiveAnnotatedValues)
+    model.BoundaryLabels = [0, 0, 0, 0, 1, 0]
+    for face in ("XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax"):
+        setattr(model, "Boundary" + face, 1)
+    Render(view)
+    surface = servermanager.Fetch(model, None, None, 1).GetCellData().GetArray("Label")
+    present = sorted({int(surface.GetValue(i)) for i in range(surface.GetNumberOfTuples())})
+    after = sorted(int(v) for v in label_map.ActiveAnnotatedValues)
+    if 1 in before or 1 not in present:
+        return "first-model-had-ground(%s,%s)" % (before, present)
+    if after != present:
+        return "legend-%s-for-labels-%s" % (after, present)
+    # Flat colours and a NaN colour no label has: every label's colour is on the picture and the
+    # NaN colour is not.
+    drawn.Ambient, drawn.Diffuse = 1.0, 0.0
+    label_map.NanColor = [1.0, 0.0, 1.0]
+    view.ResetCamera()
+    png_path = os.path.join(os.environ["MSYNTH_TMP"], "gui-tutorial.png")
+    SaveScreenshot(png_path, view, ImageResolution=[320, 240])
+    label_map.NanColor = [1.0, 1.0, 0.0]
+    png = vtkPNGReader()
+    png.SetFileName(png_path)
+    png.Update()
+    pixels = [tuple(int(c) for c in p[:3]) for p in vtk_to_numpy(png.GetOutput().GetPointData().GetScalars())]
+
+    def near(p, q):
+        return all(abs(a - b) <= 2 for a, b in zip(p, q))
+    if any(near(p, (255, 0, 255)) for p in pixels):
+        return "nan-colour-drawn"
+    for label in present:
+        colour = tuple(round(255 * c) for c in render_model.label_colour(label))
+        if sum(near(p, colour) for p in pixels) < 100:
+            return "label-%d-not-in-its-colour-%s" % (label, colour)
+    Hide(OutputPort(model, 1), view)
+    return "ok"
+
+
 try:
     LoadPlugin(os.environ["MSYNTH_PLUGIN"], remote=False, ns=globals())
     reader = ModelSynthLabelGridReader(FileName=os.path.join(os.environ["MSYNTH_DATA"], "Examples", "Village.vti"))
@@ -86,9 +147,11 @@ try:
     Render()  # (GetAnimationScene().UpdateAnimationUsingDataTimeSteps() from a --script never
     # returns in this GUI, even for ParaView's own TimeSource; pvbatch tests the scene instead)
     frames = len(movie.TimestepValues)
-    result = "OK labels=%d continuous=%d model=%s frames=%d reseeded=%s categorical=%s picture=%s" % (
+    tutorial = tutorial_colours()
+    result = ("OK labels=%d continuous=%d model=%s frames=%d reseeded=%s categorical=%s picture=%s "
+              "tutorial=%s") % (
         rows, continuous, check if polygons > 0 else "empty", frames, reseeded, bool(categorical),
-        "matches" if matches else "differs (error %g; see %s)" % (error, picture))
+        "matches" if matches else "differs (error %g; see %s)" % (error, picture), tutorial)
 except Exception as e:  # report any failure instead of leaving the GUI open
     result = "ERROR %s" % e
 with open(report, "w") as f:

@@ -161,6 +161,7 @@ for label in list(range(0, 40)) + list(range(40, 1024, 37)) + [1023]:
           "label %d has the gallery's colour %s (got %s)" % (label, mine, colours[where:where + 3]))
 check(len({tuple(round(255 * v) for v in colours[3 * annotated.index(t):3 * annotated.index(t) + 3])
            for t in range(1, 201)}) == 200, "labels 1-200 have 200 colours")
+Hide(OutputPort(synthesis, 1), render_view)  # (a deleted view's representations live on, shown)
 Delete(render_view)
 del render_view
 

@@ -23,4 +23,4 @@ if not os.path.exists(report):
         gui.returncode, gui.stderr[:3000], gui.stderr[-2000:]))
 text = open(report).read()
 print(text)
-sys.exit(0 if text == "OK labels=4 continuous=28 model=valid frames=6 reseeded=True categorical=True picture=matches" else 1)
+sys.exit(0 if text == "OK labels=4 continuous=28 model=valid frames=6 reseeded=True categorical=True picture=matches tutorial=ok" else 1)
