@@ -131,9 +131,10 @@ int PolyhedralToFolder(
 CLI::Option* AddViaInfallible(CLI::App& synthesize, SynthesizeOptions& o)
 {
   return synthesize.add_flag("--via-infallible", o.ViaInfallible,
-    "label grids: run Algorithm 3.1 (whole model, scan-line order, one attempt) on an "
-    "infallible refinement E_I of the example and map the model back (D 3.3.8; msynth analyze "
-    "--infallible shows the search); an error when none is found");
+    "label grids: split the example's labels by their neighbours until synthesis of the whole "
+    "model in scan-line order cannot fail, synthesize with the split labels in one attempt and "
+    "map the model back (msynth analyze --infallible shows the search); an error when no such "
+    "split is found");
 }
 
 CommandRunner AddAnalyze(CLI::App& app)
@@ -146,12 +147,13 @@ CommandRunner AddAnalyze(CLI::App& app)
   AddOutOption(*analyze, o->Out);
   AddTypesOption(*analyze, o->Reading);
   analyze->add_flag("--infallible", o->Infallible,
-    "search a refinement E_I of a label grid (labels split by their neighbours) that is proved "
-    "infallible and keeps every model (D 3.3.8, Eq. 3.13); prints the search, writes no folder; "
-    "exit 3 when none is found");
+    "search a refinement of a label grid (labels split by their neighbours) with which "
+    "synthesis in scan-line order provably never fails and every model stays possible; prints "
+    "the search, writes no folder; exit 3 when none is found");
   analyze
     ->add_option("--write-infallible", o->WriteInfallible,
-      "with --infallible: write E_I to FILE (.vti; f as the field InfallibleLabelMap)")
+      "with --infallible: write the refined example to FILE (.vti; the split labels to the "
+      "example's as the field InfallibleLabelMap)")
     ->needs("--infallible");
   analyze
     ->add_option("--size", o->Size,

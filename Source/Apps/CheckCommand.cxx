@@ -478,9 +478,9 @@ CommandRunner AddCheck(CLI::App& app)
 {
   auto o = std::make_shared<CheckOptions>();
   CLI::App* check = app.add_subcommand("check",
-    "verify that MODEL satisfies the adjacency constraint of EXAMPLE (a label grid or tileset; "
-    "Eq. 3.1) or, for a polyhedral EXAMPLE, that the continuous MODEL.vtp is closed, oriented "
-    "and has only the example's neighbourhoods (Eq. 4.1), or for an image sample that every "
+    "verify that every pair of neighbours in MODEL occurs in EXAMPLE (a label grid or "
+    "tileset) or, for a polyhedral EXAMPLE, that the continuous MODEL.vtp is closed, oriented "
+    "and has only the example's neighbourhoods, or for an image sample that every "
     "window of the picture MODEL.png is one of the sample's; for a voxel tileset and a MODEL.vox, "
     "that every tile cell is an image of a tile and every adjacent pair allowed. Exit 0 when it "
     "does, 1 listing the "

@@ -359,7 +359,8 @@ CommandRunner AddPattern(CLI::App& app)
 {
   auto o = std::make_shared<PatternCommandOptions>();
   CLI::App* p = app.add_subcommand("pattern",
-    "factor-graph pattern synthesis (Yeh et al. 2012, BLOCKSS) from EXEMPLAR label grids; writes "
+    "pattern synthesis from EXEMPLAR label grids: samples whose small neighbourhoods occur about "
+    "as often as in the exemplars (a factor graph, sampled block by block); writes "
     "DIR/labels.vti (the last sample; with --samples also labels_0001.vti ...), DIR/picture.png "
     "with --tileset, and DIR/statistics.json (KL per factor shape, log probability)");
   p->add_option("EXEMPLAR", o->Exemplars,
@@ -418,7 +419,8 @@ CommandRunner AddPattern(CLI::App& app)
   p->add_option("--p-flip", o->PFlip, "probability that a WalkSAT move is a random block")
     ->check(CLI::Range(0.0, 1.0));
   p->add_option("--moves-per-sample", o->MovesPerSample,
-     "moves before a sample may end (-1: one per site; 0: the paper's Algorithm 2)")
+     "moves before a sample may end (-1: one per site; 0: none, a sample ends as soon as "
+     "every factor of its slice holds)")
     ->check(CLI::Range(std::int64_t(-1), std::int64_t(1) << 50));
   p->add_option("--max-moves", o->MaxMoves,
      "moves allowed for a sample before the run fails "
@@ -452,7 +454,7 @@ CommandRunner AddQuality(CLI::App& app)
 {
   auto o = std::make_shared<QualityOptions>();
   CLI::App* q = app.add_subcommand("quality",
-    "how much MODEL looks like the EXEMPLARs (Yeh et al. 2012, §7): the KL divergence of its "
+    "how much MODEL looks like the EXEMPLARs: the KL divergence of its "
     "configurations of each factor shape, its log probability, and whether every pair of "
     "neighbours occurs in an exemplar (exit 1 if not)");
   q->add_option("FILES", o->Files, "EXEMPLAR... MODEL: label grids (.vti, .txt, .vox)")

@@ -137,7 +137,7 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   auto discrete = [&r](CLI::Option* option)
   { r.DiscreteOnly.push_back(option->group("Discrete synthesis (label grids, tilesets)")); };
   discrete(s.add_option("--block", o.Block,
-              "block size BX BY BZ of Algorithm 3.4 (default: the whole model, Algorithm 3.1)")
+              "synthesize in overlapping blocks of BX BY BZ sites (default: the whole model)")
              ->expected(3)
              ->check(CLI::Range(0, 1000000000)));
   discrete(s.add_option("--region", o.Region,
@@ -161,8 +161,8 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
     "32-site blocks instead"));
   discrete(s.add_option("--start", o.Start,
               "how blocks start: auto (default: trivial unless a probe finds it leaves the model "
-              "blank), trivial (Algorithm 3.4's one label), undecided (every site free until a "
-              "block decides it) or whole (a whole-model solution that the blocks modify)")
+              "blank), trivial (every site one label that fits anywhere), undecided (every site "
+              "free until a block decides it) or whole (a whole-model solution the blocks modify)")
              ->check(CLI::IsMember(Starts)));
   s.add_option(
      "--threads", o.Threads, "threads for block synthesis (default: one per core; the same result)")
