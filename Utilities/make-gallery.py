@@ -81,10 +81,12 @@ ENTRIES = [
      "blocks of 8 spacings (a cottage does not fit the default 4)",
      "synthesize %s/cottage.obj --size 24 24 8 --seed 5 --grounded --thickness wall:z:2 "
      "--overhang roof --thickness wall:x:2+ --thickness wall:y:2+ --blocks 8" % D, "model"),
-    ("oil", "Polyhedral (.obj)", "A deck one unit thick on beams, grown from the ground "
-     "(--connected solid:3: at most three seeds; the types' proportions keep one part here)",
-     "synthesize %s/oil-platform.obj --size 24 24 12 --seed 1 --grounded --blocks 0 "
-     "--thickness platform:z --thickness beam:x --thickness beam:y --connected solid:3" % D,
+    ("oil", "Polyhedral (.obj)", "Decks one unit thick at several heights on beams, as the "
+     "example's two decks stand, each deck at least 2 spacings wide, grown from the ground "
+     "(--connected solid:3: at most three seeds)",
+     "synthesize %s/oil-platform.obj --size 24 24 12 --seed 2 --grounded --blocks 0 "
+     "--thickness platform:z --thickness platform:x:2+ --thickness platform:y:2+ "
+     "--thickness beam:x --thickness beam:y --connected solid:3" % D,
      "model"),
     ("roads", "Polyhedral, 2D (.obj)", "One road network from one seed, one lane wide",
      "synthesize %s/roads.obj --size 40 40 0 --seed 1 --blocks 0 --connected road:1 "
