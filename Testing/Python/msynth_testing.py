@@ -37,6 +37,23 @@ class ErrorObserver:
         return "\n".join(self.messages)
 
 
+def render_model():
+    """Utilities/render-model.py as a module: the palette every picture uses, taken from the
+    script that draws them (not from the writers' code)."""
+    import importlib.util
+    source = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    spec = importlib.util.spec_from_file_location(
+        "render_model", os.path.join(source, "Utilities", "render-model.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def linear(c):
+    """An sRGB component (0-1) as linear light, as glTF and OpenVDB colours are stored."""
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
 def fresh_folder(name):
     """An empty folder of the test output area (made anew)."""
     import shutil

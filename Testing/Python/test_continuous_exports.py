@@ -5,7 +5,6 @@ run, measured here: per object type the glTF mesh's name, colour, triangle count
 area, enclosed volume (positive: the normals point out), closedness and normals; the voxels per
 type against the type's volume, within the voxelization's error (half a voxel's diagonal times
 the type's surface area)."""
-import importlib.util
 import json
 import math
 import os
@@ -18,23 +17,14 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, fresh_folder, run_msynth
+from msynth_testing import ErrorObserver, data, fresh_folder, linear, render_model, run_msynth
 
-SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # The README's continuous example, as written there.
 HOUSES = ["Continuous/house.obj", "--size", "24", "24", "10", "--seed", "3", "--grounded",
           "--thickness", "wall:z", "--overhang", "roof", "--thickness", "wall:x:2+",
           "--thickness", "wall:y:2+", "--mirror", "x"]
 
-# The palette every picture uses, from the script that draws them (not from the writers' code).
-_spec = importlib.util.spec_from_file_location(
-    "render_model", os.path.join(SOURCE, "Utilities", "render-model.py"))
-render_model = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(render_model)
-
-
-def linear(c):
-    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+render_model = render_model()  # the palette every picture uses
 
 
 # --- the .glb, parsed here --------------------------------------------------------------------

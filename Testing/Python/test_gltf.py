@@ -2,7 +2,6 @@
 and by parsing the file's JSON here; each material's colour and each mesh's triangles checked
 against the mesh written (its labels, palette colours and pieces), colours against
 Utilities/render-model.py's palette; errors are one line naming the file."""
-import importlib.util
 import json
 import os
 import shutil
@@ -16,21 +15,12 @@ from vtkmodules.vtkIOGeometry import vtkGLTFReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
 import modelsynth
-from msynth_testing import BIN, ErrorObserver, data, fresh_folder, tmp
+from msynth_testing import BIN, ErrorObserver, data, fresh_folder, linear, render_model, tmp
 
 MSYNTH = os.path.join(BIN, "msynth")
 TIMEOUT = 300 if os.environ.get("MSYNTH_SANITIZED") else 120
-SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# The palette every picture uses, from the script that draws them (not from the writer's code).
-_spec = importlib.util.spec_from_file_location(
-    "render_model", os.path.join(SOURCE, "Utilities", "render-model.py"))
-render_model = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(render_model)
-
-
-def linear(c):
-    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+render_model = render_model()  # the palette every picture uses
 
 
 def glb_json(path):

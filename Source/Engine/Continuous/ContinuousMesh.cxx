@@ -319,8 +319,13 @@ double LevelSetVoxel(
   return std::max(voxel, banded);
 }
 
-LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
-  const std::array<std::int64_t, 3>& dims)
+namespace
+{
+/// VoxelizeModel (@p evenly false: each centre, nudged off the lattice) and VoxelizeModelEvenly
+/// (@p evenly true: nudged both ways, a centre the two disagree on takes either in a
+/// checkerboard, so a slope splits its voxels evenly).
+LabelGrid Voxelize(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims, bool evenly)
 {
   if (!(voxel > 0) || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
     static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
@@ -337,44 +342,6 @@ LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double
   const SolidClassifier classifier(model);
   // Off-lattice nudges (fractions of a voxel) keep centres off the planes of the arrangement.
   const double nudge[3] = { 0.0123456, 0.0234567, mesh.Planar ? 0.0 : 0.0345678 };
-  for (std::int64_t z = 0; z < dims[2]; ++z)
-  {
-    for (std::int64_t y = 0; y < dims[1]; ++y)
-    {
-      for (std::int64_t x = 0; x < dims[0]; ++x)
-      {
-        const Point3 p{ origin[0] + (static_cast<double>(x) + 0.5 + nudge[0]) * voxel,
-          origin[1] + (static_cast<double>(y) + 0.5 + nudge[1]) * voxel,
-          mesh.Planar ? 0.0 : origin[2] + (static_cast<double>(z) + 0.5 + nudge[2]) * voxel };
-        const int object = classifier.ObjectAt(p);
-        if (object >= 0)
-        {
-          grid.Set(x, y, z, model.ObjectTypes[ToIndex(object)]);
-        }
-      }
-    }
-  }
-  return grid;
-}
-
-LabelGrid VoxelizeModelEvenly(const ContinuousMesh& mesh, const Point3& origin, double voxel,
-  const std::array<std::int64_t, 3>& dims)
-{
-  if (!(voxel > 0) || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
-    static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) >
-      static_cast<double>(LabelGrid::MaxSites))
-  {
-    throw Error("voxelization: the grid is empty or has too many voxels");
-  }
-  LabelGrid grid(dims[0], dims[1], dims[2], 0);
-  if (mesh.Polygons.empty())
-  {
-    return grid;
-  }
-  const PolyhedralExample model = MeshToModel(mesh, {});
-  const SolidClassifier classifier(model);
-  // VoxelizeModel's off-lattice nudges, both ways.
-  const double nudge[3] = { 0.0123456, 0.0234567, mesh.Planar ? 0.0 : 0.0345678 };
   auto typeAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, double sign)
   {
     const Point3 p{ origin[0] + (static_cast<double>(x) + 0.5 + sign * nudge[0]) * voxel,
@@ -390,12 +357,30 @@ LabelGrid VoxelizeModelEvenly(const ContinuousMesh& mesh, const Point3& origin, 
       for (std::int64_t x = 0; x < dims[0]; ++x)
       {
         const int up = typeAt(x, y, z, 1.0);
+        if (!evenly)
+        {
+          grid.Set(x, y, z, up);
+          continue;
+        }
         const int down = typeAt(x, y, z, -1.0);
         grid.Set(x, y, z, up == down || (x + y + z) % 2 == 0 ? up : down);
       }
     }
   }
   return grid;
+}
+} // namespace
+
+LabelGrid VoxelizeModel(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims)
+{
+  return Voxelize(mesh, origin, voxel, dims, false);
+}
+
+LabelGrid VoxelizeModelEvenly(const ContinuousMesh& mesh, const Point3& origin, double voxel,
+  const std::array<std::int64_t, 3>& dims)
+{
+  return Voxelize(mesh, origin, voxel, dims, true);
 }
 
 ContinuousMesh MeshFromPolygons(bool planar, std::vector<Point3> points,
