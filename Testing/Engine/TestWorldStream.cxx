@@ -22,6 +22,23 @@ using namespace msynth;
 
 namespace
 {
+Tileset LinesTileset()
+{
+  return ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+}
+
+/// Lines over 70 x 150 in 6 x 6 blocks of one attempt without backtracking: blocks fail, so the
+/// repair passes do work.
+SynthesisOptions FailingBlocks()
+{
+  SynthesisOptions o;
+  o.Size = { { 70, 150, 1 } };
+  o.BlockSize = { { 6, 6, 1 } };
+  o.AttemptsPerBlock = 1;
+  o.BacktracksPerAttempt = 0;
+  return o;
+}
+
 /// The slabs of a streamed run from @p first, pasted into a model of the world's size (sites of
 /// earlier slabs stay -2); fails the test when the stream fails.
 LabelGrid Stream(const AdjacencyRules& rules, const SynthesisOptions& o, std::int64_t thickness,
@@ -76,14 +93,9 @@ TEST(WorldStream, SlabsEqualTheWholeRun)
 
 TEST(WorldStream, FailedAndRepairedBlocksStreamAsInTheWholeRun)
 {
-  // Few attempts and no backtracking make blocks fail, so the repair passes do work.
-  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const Tileset lines = LinesTileset();
   const AdjacencyRules rules = lines.Rules();
-  SynthesisOptions o;
-  o.Size = { { 70, 150, 1 } };
-  o.BlockSize = { { 6, 6, 1 } };
-  o.AttemptsPerBlock = 1;
-  o.BacktracksPerAttempt = 0;
+  SynthesisOptions o = FailingBlocks();
   o.Seed = 11;
   const SynthesisResult whole = Synthesize(rules, o);
   ASSERT_TRUE(whole.Succeeded()) << whole.Message;
@@ -110,13 +122,9 @@ TEST(WorldStream, AResumedStreamReportsTheWorldsFailures)
   // Issue 48, item 7: a resumed stream runs first passes of blocks below its first slab whose
   // repairs it does not need; it reported them as failed. Each slab hands out the failed blocks
   // that start in it, and a resumed run takes those of the slabs it keeps.
-  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const Tileset lines = LinesTileset();
   const AdjacencyRules rules = lines.Rules();
-  SynthesisOptions o;
-  o.Size = { { 70, 150, 1 } };
-  o.BlockSize = { { 6, 6, 1 } };
-  o.AttemptsPerBlock = 1;
-  o.BacktracksPerAttempt = 0;
+  SynthesisOptions o = FailingBlocks();
   auto origins = [](const std::vector<BlockFailure>& failures)
   {
     std::set<std::array<std::int64_t, 4>> keys;
@@ -202,7 +210,7 @@ TEST(WorldStream, LayoutsAndRefusals)
 // placements it meets, so the slabs equal the whole run with the same pins, which they keep.
 TEST(WorldStream, PinsStreamAsInTheWholeRun)
 {
-  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const Tileset lines = LinesTileset();
   const AdjacencyRules rules = lines.Rules();
   SynthesisOptions source;
   source.Size = { { 32, 32, 1 } };
@@ -248,7 +256,7 @@ TEST(WorldStream, PinsStreamAsInTheWholeRun)
 // world with one equal the whole run, and it closes fewer components off than a run without it.
 TEST(WorldStream, OpenNetworksStreamAndRegionAsInTheWholeRun)
 {
-  const Tileset lines = ReadTilesetFile(std::string(MSYNTH_DATA) + "/Tilesets/Lines.xml");
+  const Tileset lines = LinesTileset();
   const AdjacencyRules rules = lines.Rules();
   SynthesisOptions o;
   o.Size = { { 96, 80, 1 } };
