@@ -66,8 +66,8 @@ vdb::LabelRenderView RenderView(const Volume& v)
 /// The exact distance from voxel centre (x, y, z) to the nearest voxel box of the voxels for
 /// which @p member holds, by brute force over the grown box (in voxels of side 1).
 template <typename Member>
-double BruteDistance(const Volume& v, std::int64_t x, std::int64_t y, std::int64_t z,
-  const Member& member)
+double BruteDistance(
+  const Volume& v, std::int64_t x, std::int64_t y, std::int64_t z, const Member& member)
 {
   double best = 1e9;
   const auto& d = v.Header.Dims;
@@ -108,13 +108,14 @@ void CheckLevelSet(const Volume& v, const vdb::DenseGrid& g, const Solid& solid)
         const std::int64_t vx = x + g.Header.IndexMin[0] - v.Header.IndexMin[0];
         const std::int64_t vy = y + g.Header.IndexMin[1] - v.Header.IndexMin[1];
         const std::int64_t vz = z + g.Header.IndexMin[2] - v.Header.IndexMin[2];
-        const float value = g.Floats[static_cast<std::size_t>(
-          x + g.Header.Dims[0] * (y + g.Header.Dims[1] * z))];
+        const float value =
+          g.Floats[static_cast<std::size_t>(x + g.Header.Dims[0] * (y + g.Header.Dims[1] * z))];
         const bool inside = solid(vx, vy, vz);
         ASSERT_EQ(value < 0, inside) << "at " << vx << ", " << vy << ", " << vz;
         const double exact = h *
           BruteDistance(v, vx, vy, vz,
-            [&](std::int64_t i, std::int64_t j, std::int64_t k) { return solid(i, j, k) != inside; });
+            [&](std::int64_t i, std::int64_t j, std::int64_t k)
+            { return solid(i, j, k) != inside; });
         if (exact < band)
           ASSERT_NEAR(std::abs(value), exact, 1e-5) << "at " << vx << ", " << vy << ", " << vz;
         else
@@ -151,8 +152,8 @@ TEST(RenderGrids, DensityColorAndLevelSetsAreWhatTheLabelsSay)
     solid += label != 0;
   EXPECT_EQ(listed["density"].ActiveVoxelCount, solid);
   EXPECT_EQ(listed["color"].ActiveVoxelCount, solid);
-  EXPECT_NE(listed["surface"].Metadata["msynth_label_surfaces"].find("2 written"),
-    std::string::npos);
+  EXPECT_NE(
+    listed["surface"].Metadata["msynth_label_surfaces"].find("2 written"), std::string::npos);
 
   const vdb::FileContents file = vdb::ReadFile(path);
   const auto& label = Grid(file, "Label");

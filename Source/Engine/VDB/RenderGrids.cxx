@@ -86,8 +86,8 @@ private:
  * rows of x at a time (contiguous, so the inner loop vectorizes). Each line's result depends on
  * that line alone, so it is the same for any thread count.
  */
-void MinimumAlong(std::vector<float>& d, const Box& box, std::size_t a, int reach,
-  const std::vector<float>& cost)
+void MinimumAlong(
+  std::vector<float>& d, const Box& box, std::size_t a, int reach, const std::vector<float>& cost)
 {
   const std::int64_t nx = box.Dims[0], ny = box.Dims[1], n = box.Dims[a];
   if (a == 0)
@@ -330,8 +330,8 @@ void AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const B
   const KeyIndex nameOf(keys);
   const std::int32_t* key = view.NameKeys ? view.NameKeys : view.Labels;
   std::vector<Box> boxes(nameIndex.size());
-  std::vector<std::array<std::int64_t, 6>> bounds(nameIndex.size(),
-    { { INT64_MAX, INT64_MAX, INT64_MAX, INT64_MIN, INT64_MIN, INT64_MIN } });
+  std::vector<std::array<std::int64_t, 6>> bounds(
+    nameIndex.size(), { { INT64_MAX, INT64_MAX, INT64_MAX, INT64_MIN, INT64_MIN, INT64_MIN } });
   std::int64_t next = 0;
   for (std::int64_t z = 0; z < labels.Dims[2]; ++z)
     for (std::int64_t y = 0; y < labels.Dims[1]; ++y)
@@ -382,8 +382,8 @@ void AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const B
 // ---------------------------------------------------------------------------------------------
 // the module's render grids
 // ---------------------------------------------------------------------------------------------
-void AppendRenderGrids(const LabelRenderView& view, const openvdb::math::Transform& transform,
-  openvdb::GridPtrVec& out)
+void AppendRenderGrids(
+  const LabelRenderView& view, const openvdb::math::Transform& transform, openvdb::GridPtrVec& out)
 {
   if (!view.Labels || view.Geometry.NumberOfVoxels() <= 0)
     throw Error("the render grids have no labels");
@@ -405,10 +405,10 @@ void AppendRenderGrids(const LabelRenderView& view, const openvdb::math::Transfo
     names.insert(kv.second);
   const bool fit = LabelSurfacesFit(labels.Size(), names.size(), view.LabelSurfaceBudget);
   std::string note = names.empty() ? "none: the labels have no names"
-    : fit ? std::to_string(names.size()) + " written (surface_NAME)"
-          : "skipped: " + std::to_string(labels.Size()) + " voxels x " +
-        std::to_string(names.size()) + " named labels is over the budget of " +
-        std::to_string(static_cast<long long>(view.LabelSurfaceBudget));
+    : fit                          ? std::to_string(names.size()) + " written (surface_NAME)"
+                                   : "skipped: " + std::to_string(labels.Size()) + " voxels x " +
+      std::to_string(names.size()) + " named labels is over the budget of " +
+      std::to_string(static_cast<long long>(view.LabelSurfaceBudget));
   surface->insertMeta("msynth_label_surfaces", openvdb::StringMetadata(note));
   out.push_back(surface);
   if (fit && !names.empty())

@@ -47,8 +47,8 @@ struct LabelRenderView
   const std::int32_t* NameKeys = nullptr;
   /// Names of keys; keys of one name make one `surface_NAME`.
   std::map<std::int32_t, std::string> Names;
-  double HalfWidth = 3.0;              ///< narrow band half width, in voxels (≥ 1)
-  double LabelSurfaceBudget = 2e7;     ///< the most voxels × names of `surface_NAME` grids
+  double HalfWidth = 3.0;          ///< narrow band half width, in voxels (≥ 1)
+  double LabelSurfaceBudget = 2e7; ///< the most voxels × names of `surface_NAME` grids
 };
 
 /// A display (sRGB) colour component in [0, 1] as a linear one, as glTF and renderers use.

@@ -25,8 +25,8 @@ constexpr const char* IndexMaxKey = "msynth_index_max";
  * RenderGrids.h) to @p out, each with a copy of @p transform (the label grid's).
  * @throw Error when the view has no labels, or a band narrower than one voxel.
  */
-void AppendRenderGrids(const LabelRenderView& view, const openvdb::math::Transform& transform,
-  openvdb::GridPtrVec& out);
+void AppendRenderGrids(
+  const LabelRenderView& view, const openvdb::math::Transform& transform, openvdb::GridPtrVec& out);
 
 } // namespace detail
 } // namespace vdb

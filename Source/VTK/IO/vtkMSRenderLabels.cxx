@@ -64,8 +64,8 @@ void AddNames(vtkFieldData* fields, msynth::vdb::LabelRenderView& view)
 void vtkMSRenderLabels::Describe(
   vtkFieldData* fields, bool named, msynth::vdb::LabelRenderView& view)
 {
-  auto* palette = vtkUnsignedCharArray::SafeDownCast(
-    fields ? fields->GetAbstractArray("PaletteRGBA") : nullptr);
+  auto* palette =
+    vtkUnsignedCharArray::SafeDownCast(fields ? fields->GetAbstractArray("PaletteRGBA") : nullptr);
   if (palette && palette->GetNumberOfComponents() != 4)
     palette = nullptr;
   for (std::int32_t label : Distinct(view.Labels, view.Geometry.NumberOfVoxels()))
