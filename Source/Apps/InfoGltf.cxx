@@ -72,9 +72,10 @@ int GltfInfo(const std::string& path)
     const auto& material = s.Materials[m];
     const auto& c = material.BaseColor;
     char hex[8];
-    std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", DisplayByte(c[0]), DisplayByte(c[1]),
-      DisplayByte(c[2]));
-    std::cout << "  " << m << " " << (material.Name.empty() ? "(unnamed)" : msynth::Printable(material.Name))
+    std::snprintf(
+      hex, sizeof(hex), "#%02x%02x%02x", DisplayByte(c[0]), DisplayByte(c[1]), DisplayByte(c[2]));
+    std::cout << "  " << m << " "
+              << (material.Name.empty() ? "(unnamed)" : msynth::Printable(material.Name))
               << ": base colour " << hex << " (linear " << c[0] << ", " << c[1] << ", " << c[2]
               << ", alpha " << c[3] << ")" << (material.DoubleSided ? ", double-sided" : "")
               << "\n";

@@ -27,7 +27,8 @@ std::string Text(const std::string& path)
 {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0 || info.st_size > (std::int64_t(1) << 26))
-    throw msynth::Error::InFile(path, "is missing or larger than 64 MiB (not a .pvti msynth writes)");
+    throw msynth::Error::InFile(
+      path, "is missing or larger than 64 MiB (not a .pvti msynth writes)");
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
@@ -42,12 +43,13 @@ std::array<long long, 6> ExtentOf(const XmlElement& e, const char* key, const st
   std::istringstream in(value ? *value : "");
   for (auto& v : x)
     if (!(in >> v) || v < -(1LL << 31) || v >= (1LL << 31))
-      throw msynth::Error::InFile(path, "line " + std::to_string(e.Line) + ": <" + e.Name + "> has no " +
-          key + " of six integers");
+      throw msynth::Error::InFile(path,
+        "line " + std::to_string(e.Line) + ": <" + e.Name + "> has no " + key + " of six integers");
   for (std::size_t a = 0; a < 3; ++a)
     if (x[2 * a] > x[2 * a + 1])
-      throw msynth::Error::InFile(path, "line " + std::to_string(e.Line) + ": <" + e.Name + "> has the empty " +
-          key + " " + msynth::Printable(*value));
+      throw msynth::Error::InFile(path,
+        "line " + std::to_string(e.Line) + ": <" + e.Name + "> has the empty " + key + " " +
+          msynth::Printable(*value));
   return x;
 }
 
@@ -83,7 +85,8 @@ int PiecesInfo(const std::string& path)
     if (c.Name == "PImageData")
       image = &c;
   if (root.Name != "VTKFile" || !type || *type != "PImageData" || !image)
-    throw msynth::Error::InFile(path, "is not VTK's parallel image data (<VTKFile type=\"PImageData\">)");
+    throw msynth::Error::InFile(
+      path, "is not VTK's parallel image data (<VTKFile type=\"PImageData\">)");
   const auto whole = ExtentOf(*image, "WholeExtent", path);
   std::cout << "file: " << path << " (parallel image data)\n"
             << "whole extent: " << Extent(whole) << " ("
@@ -106,8 +109,9 @@ int PiecesInfo(const std::string& path)
     const auto x = ExtentOf(c, "Extent", path);
     for (std::size_t a = 0; a < 3; ++a)
       if (x[2 * a] < whole[2 * a] || x[2 * a + 1] > whole[2 * a + 1])
-        throw msynth::Error::InFile(path, "line " + std::to_string(c.Line) + ": a piece's extent " +
-            Extent(x) + " is outside the whole extent " + Extent(whole));
+        throw msynth::Error::InFile(path,
+          "line " + std::to_string(c.Line) + ": a piece's extent " + Extent(x) +
+            " is outside the whole extent " + Extent(whole));
     const std::string* source = c.Attribute("Source");
     struct stat info;
     const bool present = source && ::stat((folder + *source).c_str(), &info) == 0;
@@ -119,8 +123,9 @@ int PiecesInfo(const std::string& path)
     if (c.Name == "PPointData" || c.Name == "PCellData")
       PrintArrays(c, c.Name == "PPointData" ? "point arrays" : "cell arrays");
   if (missing > 0)
-    throw msynth::Error::InFile(path, Counted(missing, "piece file") + " named in it " +
-        (missing == 1 ? "is" : "are") + " missing");
+    throw msynth::Error::InFile(path,
+      Counted(missing, "piece file") + " named in it " + (missing == 1 ? "is" : "are") +
+        " missing");
   return 0;
 }
 

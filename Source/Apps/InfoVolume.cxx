@@ -30,8 +30,8 @@ int VolumeInfo(const std::string& path)
 {
   msynth::vdb::MetadataMap file;
   const std::vector<msynth::vdb::GridSummary> grids = msynth::vdb::ListGrids(path, &file);
-  std::cout << "file: " << path << " (OpenVDB, " << Counted(static_cast<long long>(grids.size()), "grid")
-            << ")\n";
+  std::cout << "file: " << path << " (OpenVDB, "
+            << Counted(static_cast<long long>(grids.size()), "grid") << ")\n";
   for (const char* key : { "generator", "msynth_command", "seed", "ExampleFile", "TilesetFile" })
     if (file.count(key))
       std::cout << key << ": " << msynth::Printable(file[key]) << "\n";

@@ -35,12 +35,13 @@ void CheckContainer(const std::vector<std::uint8_t>& b, const std::string& name)
   if (size < 20 || U32(b, 0) != 0x46546C67)
     throw Error::InFile(name, "is not a binary glTF file (no 'glTF' header)");
   if (U32(b, 4) != 2)
-    throw Error::InFile(name, "is binary glTF version " + std::to_string(U32(b, 4)) +
-        "; only version 2 is read");
+    throw Error::InFile(
+      name, "is binary glTF version " + std::to_string(U32(b, 4)) + "; only version 2 is read");
   const std::uint64_t length = U32(b, 8);
   if (length != size)
-    throw Error::InFile(name, "is truncated or damaged (its header says " +
-        std::to_string(length) + " bytes, the file has " + std::to_string(size) + ")");
+    throw Error::InFile(name,
+      "is truncated or damaged (its header says " + std::to_string(length) +
+        " bytes, the file has " + std::to_string(size) + ")");
   const std::uint64_t json = U32(b, 12);
   if (U32(b, 16) != 0x4E4F534A || json < 2 || 20 + json > size)
     throw Error::InFile(name, "is damaged (its JSON chunk is missing or runs past the end)");
@@ -72,8 +73,9 @@ void CheckNesting(const char* text, std::size_t size, const std::string& name)
     else if (c == '"')
       quoted = true;
     else if ((c == '[' || c == '{') && ++depth > MaximumNesting)
-      throw Error::InFile(name, "is not a glTF file we read (JSON nested deeper than " +
-          std::to_string(MaximumNesting) + " levels)");
+      throw Error::InFile(name,
+        "is not a glTF file we read (JSON nested deeper than " + std::to_string(MaximumNesting) +
+          " levels)");
     else if (c == ']' || c == '}')
       --depth;
   }
@@ -106,7 +108,7 @@ bool ReadWhole(std::vector<unsigned char>* out, std::string* err, const std::str
     return false;
   }
   std::ifstream in(path, std::ios::binary);
-  out->resize(static_cast<std::size_t>(info.st_size));
+  out->resize(ToIndex(info.st_size));
   in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(out->size()));
   if (!in)
     *err = "'" + path + "' could not be read";
@@ -125,9 +127,10 @@ void CheckAccessor(const tinygltf::Model& model, int a, const std::string& name)
   if (a < 0 || a >= static_cast<int>(model.accessors.size()))
     throw Error::InFile(name, "is damaged (a primitive names " + what + ", which is missing)");
   const tinygltf::Accessor& accessor = model.accessors[ToIndex(a)];
-  const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
-  const int bytes = tinygltf::GetComponentSizeInBytes(
-    static_cast<std::uint32_t>(accessor.componentType));
+  const int components =
+    tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
+  const int bytes =
+    tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
   if (components <= 0 || bytes <= 0)
     throw Error::InFile(name, "is damaged (" + what + " has an unknown type)");
   if (accessor.bufferView < 0)
@@ -145,7 +148,8 @@ void CheckAccessor(const tinygltf::Model& model, int a, const std::string& name)
   const std::uint64_t offset = accessor.byteOffset;
   if (count > 0 &&
     (count > (std::uint64_t(1) << 40) || offset + (count - 1) * stride + element > view.byteLength))
-    throw Error::InFile(name, "is damaged (" + what + "'s " + std::to_string(count) +
+    throw Error::InFile(name,
+      "is damaged (" + what + "'s " + std::to_string(count) +
         " elements lie outside its buffer view)");
 }
 
@@ -219,24 +223,25 @@ GltfSummary SummarizeGltf(const std::vector<std::uint8_t>& bytes, const std::str
   loader.SetImageLoader(&NoImage, nullptr);
   std::string base = folder;
   loader.SetFsCallbacks(tinygltf::FsCallbacks{ &Exists, &Expand,
-    folder.empty() ? static_cast<tinygltf::ReadWholeFileFunction>(
-                       [](std::vector<unsigned char>*, std::string* err, const std::string& p, void*)
-                       {
-                         *err = "external file '" + p + "' is not read here";
-                         return false;
-                       })
-                   : &ReadWhole,
+    folder.empty()
+      ? static_cast<tinygltf::ReadWholeFileFunction>(
+          [](std::vector<unsigned char>*, std::string* err, const std::string& p, void*)
+          {
+            *err = "external file '" + p + "' is not read here";
+            return false;
+          })
+      : &ReadWhole,
     &NoWrite, &base });
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
   try
   {
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                    static_cast<unsigned int>(bytes.size()), folder)
-                : loader.LoadASCIIFromString(&model, &err, &warn,
-                    reinterpret_cast<const char*>(bytes.data()),
-                    static_cast<unsigned int>(bytes.size()), folder);
+    ok = binary
+      ? loader.LoadBinaryFromMemory(
+          &model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), folder)
+      : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+          static_cast<unsigned int>(bytes.size()), folder);
   }
   catch (const std::bad_alloc&)
   {
@@ -265,8 +270,8 @@ GltfSummary ReadGltfSummary(const std::string& path)
   std::string err;
   if (!ReadWhole(&bytes, &err, path, nullptr))
     throw Error::InFile(path, "cannot be read (missing, not a file, or larger than 2 GiB)");
-  const bool binary = bytes.size() >= 4 && bytes[0] == 'g' && bytes[1] == 'l' &&
-    bytes[2] == 'T' && bytes[3] == 'F';
+  const bool binary =
+    bytes.size() >= 4 && bytes[0] == 'g' && bytes[1] == 'l' && bytes[2] == 'T' && bytes[3] == 'F';
   const std::size_t slash = path.rfind('/');
   const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash);
   return SummarizeGltf(bytes, path, binary, folder);

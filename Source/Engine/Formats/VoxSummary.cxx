@@ -96,8 +96,8 @@ void ReadNode(Reader& r, const std::string& id, std::map<std::int64_t, Node>& no
     {
       auto d = r.Dict();
       std::istringstream t(d.count("_t") ? d["_t"] : "");
-      if (f == 0 && d.count("_t") && !(t >> node.Translation[0] >> node.Translation[1] >>
-                                         node.Translation[2]))
+      if (f == 0 && d.count("_t") &&
+        !(t >> node.Translation[0] >> node.Translation[1] >> node.Translation[2]))
         r.Fail("a translation that is not three integers");
     }
   }
@@ -232,7 +232,7 @@ VoxSummary ReadVoxSummary(const std::string& path)
     throw Error::InFile(path, "cannot be read (missing or not a file)");
   if (info.st_size > (std::int64_t(1) << 28))
     throw Error::InFile(path, "is larger than 256 MiB");
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(info.st_size));
+  std::vector<std::uint8_t> bytes(ToIndex(info.st_size));
   std::ifstream in(path, std::ios::binary);
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!in)

@@ -424,7 +424,7 @@ void vtkMSOpenVDBWriter::WriteData()
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
     std::vector<msynth::vdb::LabelRenderView> renders;
-    if (this->WriteRenderGrids && !types)
+    if (this->WriteRenderGrids && !resampled) // label images only, not points resampled
       AddRenderView(this, input, views, renders);
     msynth::vdb::WriteFile(this->CurrentFileName, views, {}, renders,
       FileMetadata(input->GetFieldData(), this->Internal->Metadata));

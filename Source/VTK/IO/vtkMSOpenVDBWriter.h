@@ -55,8 +55,9 @@
  * solid sites' voxel boundary, negative inside, a band of BandWidth voxels) and `surface_NAME`
  * per named label (a tileset's tiles, a text example's pieces; the keys of the point array
  * NameArrayName when set) while sites × names ≤ LabelSurfaceBudget (`surface`'s metadata
- * `msynth_label_surfaces` says when they are skipped). Not for continuous models, which get
- * their own `density` and `surface` from their mesh.
+ * `msynth_label_surfaces` says when they are skipped). Only for image inputs: not for points
+ * resampled or continuous models voxelized (a continuous model's mesh gets its own `density`
+ * and `surface`). msynth turns them off for catalog snapshots (undecided sites).
  *
  * **Sequences:** with WriteTimeSteps and an input that has time steps (e.g. the catalog
  * snapshots of the solver filters), Write() writes one file per step, numbered from 1 with four

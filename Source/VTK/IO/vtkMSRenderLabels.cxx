@@ -9,6 +9,7 @@
 #include "Core/Index.h"
 #include "Core/LabelColor.h"
 
+#include <limits>
 #include <unordered_set>
 
 namespace
@@ -73,7 +74,7 @@ void vtkMSRenderLabels::Describe(
     if (label == view.EmptyLabel)
       continue;
     std::array<double, 3> rgb{ { 0.5, 0.5, 0.5 } };
-    if (!palette)
+    if (!palette && label != std::numeric_limits<std::int32_t>::min()) // not an undecided site
       rgb = msynth::LabelColor(label);
     else if (label >= 0 && label < palette->GetNumberOfTuples())
       for (int c = 0; c < 3; ++c)
