@@ -319,8 +319,9 @@ void AppendDensityAndColor(const LabelRenderView& view, const Box& labels,
   out.push_back(color);
 }
 
-/// The `surface_NAME` grids: each name's voxels, their bounding box found in one pass.
-void AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const Band& band,
+/// The `surface_NAME` grids: each name's voxels, their bounding box found in one pass. Returns
+/// how many were written (a name no solid voxel has gets none).
+int AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const Band& band,
   const openvdb::math::Transform& transform, openvdb::GridPtrVec& out)
 {
   std::map<std::string, int> nameIndex;
@@ -349,11 +350,13 @@ void AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const B
           b[a + 3] = std::max(b[a + 3], p[a]);
         }
       }
+  int written = 0;
   for (const auto& [name, k] : nameIndex)
   {
     const auto& b = bounds[ToIndex(k)];
     if (b[0] > b[3])
-      continue; // a name no voxel has
+      continue; // a name no solid voxel has
+    ++written;
     Box box;
     for (std::size_t a = 0; a < 3; ++a)
     {
@@ -376,6 +379,7 @@ void AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const B
     grid->insertMeta(view.NameKeys ? "name_keys" : "labels", openvdb::StringMetadata(values));
     out.push_back(grid);
   }
+  return written;
 }
 } // namespace
 
@@ -404,15 +408,21 @@ void AppendRenderGrids(
   for (const auto& kv : view.Names)
     names.insert(kv.second);
   const bool fit = LabelSurfacesFit(labels.Size(), names.size(), view.LabelSurfaceBudget);
-  std::string note = names.empty() ? "none: the labels have no names"
-    : fit                          ? std::to_string(names.size()) + " written (surface_NAME)"
-                                   : "skipped: " + std::to_string(labels.Size()) + " voxels x " +
+  out.push_back(surface);
+  std::string note = "none: the labels have no names";
+  if (!names.empty() && !fit)
+    note = "skipped: " + std::to_string(labels.Size()) + " voxels x " +
       std::to_string(names.size()) + " named labels is over the budget of " +
       std::to_string(static_cast<long long>(view.LabelSurfaceBudget));
+  else if (!names.empty())
+  {
+    const int written = AppendLabelSurfaces(view, labels, band, transform, out);
+    note = std::to_string(written) + " written (surface_NAME)";
+    if (written < static_cast<int>(names.size()))
+      note +=
+        "; " + std::to_string(names.size() - ToIndex(written)) + " named labels have no solid site";
+  }
   surface->insertMeta("msynth_label_surfaces", openvdb::StringMetadata(note));
-  out.push_back(surface);
-  if (fit && !names.empty())
-    AppendLabelSurfaces(view, labels, band, transform, out);
 }
 
 } // namespace detail
