@@ -321,9 +321,9 @@ CommandRunner AddInfo(CLI::App& app)
     if (IsWrittenFile(o->Example))
       return WrittenFileInfo(o->Example);
     CheckInputFile(o->Example);
-    // A .vox: its models and palette; one model is also an example (its labels and tables).
-    if (LowerExtension(o->Example) == ".vox" && VoxInfo(o->Example) != 1)
-      return 0;
+    // A .vox: its models and palette, then its labels and tables as an example's.
+    if (LowerExtension(o->Example) == ".vox")
+      VoxInfo(o->Example);
     if (IsSample(o->Example))
     {
       OverlappingOptions patterns = o->Patterns;

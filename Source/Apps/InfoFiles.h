@@ -23,7 +23,7 @@ int VolumeInfo(const std::string& path);
 /// A .glb or .gltf: its meshes, primitives, vertex and triangle counts, materials and colours.
 int GltfInfo(const std::string& path);
 /// A .vox: its models, their sizes, voxels and placements, the palette entries used. Returns
-/// the number of models (the caller analyses a one-model file's labels as an example's).
+/// the number of models (the caller then analyses its labels as an example's).
 int VoxInfo(const std::string& path);
 /// A .pvti: the whole extent, the pieces and their extents (each piece file checked to exist),
 /// the arrays.

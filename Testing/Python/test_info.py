@@ -107,7 +107,7 @@ class InfoTest(unittest.TestCase):
         self.assertIn("model 0: 24 x 20 x 5", done.stdout)
         self.assertIn("palette: the file's", done.stdout)
         self.assertRegex(done.stdout, r"\n  [0-9]+: [0-9]+ voxels?, #[0-9a-f]{6}")
-        self.assertIn("labels:", done.stdout)  # one model: also analysed as an example
+        self.assertIn("labels:", done.stdout)  # then analysed as an example
 
     def test_labels_pvti(self):
         done = self.info(os.path.join(self.stream, "labels.pvti"))
