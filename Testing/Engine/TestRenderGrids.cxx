@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -229,4 +230,26 @@ TEST(RenderGrids, NoLabelsOrANarrowBandIsAnErrorNamingTheFile)
   view = RenderView(v);
   view.Labels = nullptr;
   EXPECT_THROW(vdb::WriteFile(path, {}, {}, { view }, {}), msynth::Error);
+}
+
+TEST(RenderGrids, UndecidedSitesAreEmpty)
+{
+  // A catalog snapshot's undecided sites (INT_MIN) are empty, as mesh.vtp leaves them out.
+  Volume v = MakeVolume();
+  std::int64_t solid = 0;
+  for (std::size_t i = 0; i < v.Labels.size(); ++i)
+  {
+    if (i % 3 == 0)
+      v.Labels[i] = std::numeric_limits<std::int32_t>::min();
+    solid += v.Labels[i] != 0 && v.Labels[i] != std::numeric_limits<std::int32_t>::min();
+  }
+  const std::string path = Tmp("render-grids-undecided.vdb");
+  vdb::WriteFile(path, {}, {}, { RenderView(v) }, {});
+  for (const auto& g : vdb::ListGrids(path))
+  {
+    if (g.Name == "density" || g.Name == "color")
+    {
+      EXPECT_EQ(g.ActiveVoxelCount, solid) << g.Name;
+    }
+  }
 }

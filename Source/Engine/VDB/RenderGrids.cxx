@@ -32,6 +32,13 @@ namespace
 constexpr float Far = std::numeric_limits<float>::infinity();
 using Extent = std::array<std::int64_t, 3>;
 
+/// Whether a voxel of @p label is solid: not empty, nor undecided (a catalog snapshot's INT_MIN,
+/// empty in mesh.vtp too).
+bool IsSolid(const LabelRenderView& view, std::int32_t label)
+{
+  return label != view.EmptyLabel && label != std::numeric_limits<std::int32_t>::min();
+}
+
 /// A box of voxels: its lowest index and its dimensions.
 struct Box
 {
@@ -273,7 +280,7 @@ void AppendDensityAndColor(const LabelRenderView& view, const Box& labels,
   const auto n = ToIndex(labels.Size());
   std::vector<float> solid(n);
   for (std::size_t i = 0; i < n; ++i)
-    solid[i] = view.Labels[i] != view.EmptyLabel ? 1.0f : 0.0f;
+    solid[i] = IsSolid(view, view.Labels[i]) ? 1.0f : 0.0f;
   openvdb::FloatGrid::Ptr density = openvdb::FloatGrid::create(0.0f);
   const openvdb::Coord lo(static_cast<openvdb::Int32>(labels.Lo[0]),
     static_cast<openvdb::Int32>(labels.Lo[1]), static_cast<openvdb::Int32>(labels.Lo[2]));
@@ -339,7 +346,7 @@ int AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const Ba
       for (std::int64_t x = 0; x < labels.Dims[0]; ++x, ++next)
       {
         const auto at = ToIndex(next);
-        const int k = view.Labels[at] == view.EmptyLabel ? -1 : nameOf(key[at]);
+        const int k = IsSolid(view, view.Labels[at]) ? nameOf(key[at]) : -1;
         if (k < 0)
           continue;
         auto& b = bounds[ToIndex(k)];
@@ -368,7 +375,7 @@ int AppendLabelSurfaces(const LabelRenderView& view, const Box& labels, const Ba
       [&](std::int64_t at)
       {
         const auto site = ToIndex(at);
-        return view.Labels[site] != view.EmptyLabel && nameOf(key[site]) == wanted;
+        return IsSolid(view, view.Labels[site]) && nameOf(key[site]) == wanted;
       });
     grid->setName("surface_" + GridNameSuffix(name));
     grid->insertMeta("label_name", openvdb::StringMetadata(name));
@@ -402,7 +409,7 @@ void AppendRenderGrids(
   const Band band = MakeBand(view);
   AppendDensityAndColor(view, labels, transform, out);
   openvdb::FloatGrid::Ptr surface = LevelSet(labels, Grown(labels, band), band, transform,
-    [&view](std::int64_t at) { return view.Labels[ToIndex(at)] != view.EmptyLabel; });
+    [&view](std::int64_t at) { return IsSolid(view, view.Labels[ToIndex(at)]); });
   surface->setName("surface");
   std::set<std::string> names;
   for (const auto& kv : view.Names)

@@ -7,8 +7,8 @@
  *
  * For a label volume (one label per voxel, the voxels of GridHeader's geometry) the file gets,
  * all with the label grid's transform (index (i, j, k) at Origin + (i, j, k) * Spacing):
- * - `density`: FloatGrid, `GRID_CLASS` fog volume: 1 at the solid voxels (label != EmptyLabel),
- *   inactive 0 elsewhere;
+ * - `density`: FloatGrid, `GRID_CLASS` fog volume: 1 at the solid voxels (label != EmptyLabel
+ *   and not INT_MIN, the undecided sites of a catalog snapshot), inactive 0 elsewhere;
  * - `color`: Vec3SGrid of linear RGB at the solid voxels (Colors of their label), inactive
  *   (0, 0, 0) elsewhere; Blender's Color Attribute node reads it by this name;
  * - `surface`: FloatGrid, `GRID_CLASS` level set: the exact signed distance from each voxel
