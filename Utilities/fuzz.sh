@@ -5,12 +5,13 @@
 # executions of each harness; exits non-zero when a harness finds a crash (the input is kept
 # in build-fuzz/crashes/<harness>/).
 #   Utilities/fuzz.sh [SECONDS]     default 20
+# MSYNTH_FUZZ_HARNESSES="FuzzGltf FuzzVoxModel" runs only those.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 case "${1:-}" in
   -h | --help)
-    sed -n '2,7p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    sed -n '2,8p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
     exit 0 ;;
 esac
 seconds="${1:-20}"
@@ -40,13 +41,14 @@ declare -A seeds=(
   [FuzzSynthesis]=""
   [FuzzPatterns]=""
   [FuzzOutputFolder]=""
+  [FuzzGltf]=""
 )
 export ASAN_OPTIONS="detect_leaks=0:allocator_may_return_null=1:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
 total=0
 failed=0
 printf '%-16s %12s %s\n' harness executions result
-for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis FuzzPatterns FuzzOutputFolder; do
+for harness in ${MSYNTH_FUZZ_HARNESSES:-FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage FuzzVTKXML FuzzVDB FuzzSynthesis FuzzPatterns FuzzOutputFolder FuzzGltf}; do
   corpus="$dir/corpus/$harness"
   crashes="$dir/crashes/$harness"
   mkdir -p "$corpus" "$crashes"
@@ -59,6 +61,10 @@ for harness in FuzzTextModel FuzzVoxModel FuzzTileset FuzzPolyhedral FuzzImage F
   if [ "$harness" = FuzzVDB ] && [ -x "$root/build/bin/msynth" ]; then
     "$root/build/bin/msynth" analyze "$data/Examples/Village.vti" --out "$dir/vdb-seed" >/dev/null 2>&1 \
       && cp "$dir/vdb-seed/example.vdb" "$corpus/village.vdb" || true
+  fi
+  if [ "$harness" = FuzzGltf ] && [ -x "$root/build/bin/msynth" ]; then # a mesh.glb msynth writes
+    "$root/build/bin/msynth" synthesize "$data/Examples/Village.vti" --size 8 8 5 --outputs glb \
+      --out "$dir/glb-seed" >/dev/null 2>&1 && cp "$dir/glb-seed/mesh.glb" "$corpus/village.glb" || true
   fi
   if [ -d "$regressions/$harness" ] && ls "$regressions/$harness"/* >/dev/null 2>&1; then
     if ! "$dir/bin/$harness" "$regressions/$harness"/* >"$dir/$harness-regressions.log" 2>&1; then

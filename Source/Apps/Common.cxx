@@ -480,6 +480,7 @@ void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double v
   catalog->SetFileName((dir + "/catalog.vdb").c_str());
   catalog->SetVoxelSize(voxel);
   catalog->WriteTimeStepsOn();
+  catalog->WriteRenderGridsOff(); // the solver's state, for inspection rather than rendering
   catalog->AddMetadata(key, value.c_str());
   vtkNew<vtkMSEngineBridge> errors;
   errors->Watch(catalog);

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `msynth info EXAMPLE`: a label grid's labels, counts, transitions (Eq. 3.2) and the
 // infallibility verdict (D§3.4); a tileset's labels; a polyhedral example's neighbourhood
-// labels and plane families (D§4.3).
+// labels and plane families (D§4.3); the files msynth writes (InfoFiles.h, a file per format).
 #include "Commands.h"
 #include "Common.h"
 #include "Examples.h"
+#include "InfoFiles.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -26,9 +27,13 @@
 #include "Formats/Tileset.h"
 #include "Formats/VTKXMLCheck.h"
 
+#include <sys/stat.h>
+
+#include <cctype>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 namespace msynth
 {
@@ -254,14 +259,57 @@ int LabelGridInfo(const std::string& example)
 }
 } // namespace
 
+std::string LowerExtension(const std::string& path)
+{
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos)
+    return "";
+  std::string ext = path.substr(dot);
+  for (auto& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool IsWrittenFile(const std::string& path)
+{
+  const std::string ext = LowerExtension(path);
+  return ext == ".vdb" || ext == ".glb" || ext == ".gltf" || ext == ".pvti";
+}
+
+namespace
+{
+/// A file msynth wrote, described by its format (after the checks CheckInputFile makes).
+int WrittenFileInfo(const std::string& path)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+    throw std::runtime_error("'" + path + "': no such file");
+  if (!S_ISREG(info.st_mode))
+    throw std::runtime_error("'" + path + "': " +
+      (S_ISDIR(info.st_mode) ? "is a folder, not a file"
+                             : "is not a regular file (a pipe, socket or device)"));
+  const std::string ext = LowerExtension(path);
+  if (ext == ".vdb")
+    return VolumeInfo(path);
+  if (ext == ".pvti")
+    return PiecesInfo(path);
+  return GltfInfo(path);
+}
+} // namespace
+
 CommandRunner AddInfo(CLI::App& app)
 {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* info = app.add_subcommand("info",
     "print an example's labels and transition tables; for an image sample (.png, .bmp) its "
     "patterns and their pairs; for a polyhedral example (.obj, .vtp, .ply, .stl) its "
-    "neighbourhood labels (continuous model synthesis)");
-  info->add_option("EXAMPLE", o->Example, "a label grid, tileset or polyhedral example")
+    "neighbourhood labels (continuous model synthesis); for the files msynth writes what they "
+    "hold: a .vdb's grids, a .glb or .gltf's meshes and materials, a .vox's models and palette, "
+    "a .pvti's pieces");
+  info
+    ->add_option("EXAMPLE", o->Example,
+      "a label grid, tileset or polyhedral example, or a file msynth wrote (.vdb, .glb, "
+      ".gltf, .vox, .pvti)")
     ->required();
   AddSubsetOption(*info, o->Subset);
   info->add_option("--tiles", o->Tiles,
@@ -270,7 +318,12 @@ CommandRunner AddInfo(CLI::App& app)
   AddPatternOptions(*info, o->Patterns.N, o->Patterns.Symmetry, o->NoPeriodicInput);
   return [o]()
   {
+    if (IsWrittenFile(o->Example))
+      return WrittenFileInfo(o->Example);
     CheckInputFile(o->Example);
+    // A .vox: its models and palette, then its labels and tables as an example's.
+    if (LowerExtension(o->Example) == ".vox")
+      VoxInfo(o->Example);
     if (IsSample(o->Example))
     {
       OverlappingOptions patterns = o->Patterns;

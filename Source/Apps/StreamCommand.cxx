@@ -13,7 +13,6 @@
 #include "vtkImageData.h"
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSLabelGridReader.h"
-#include "vtkMSOpenVDBWriter.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPointData.h"
@@ -638,13 +637,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
         line += std::string(" ") + name[1] + "=" + FileStamp(folder + "/" + name[1]);
       if (kinds.Volume)
       {
-        vtkNew<vtkMSOpenVDBWriter> vdb;
-        vdb->SetInputData(slab);
-        vdb->SetFileName((folder + "/" + name[2]).c_str());
-        vdb->WriteFloatLabelsOn();
-        vdb->AddMetadata("msynth_command", "synthesize --stream");
-        vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
-        Run(vdb);
+        WriteModelVolume(slab, o, folder + "/" + name[2], "synthesize --stream", nullptr);
         line += std::string(" ") + name[2] + "=" + FileStamp(folder + "/" + name[2]);
       }
       slabs << line << "\n" << std::flush;

@@ -28,6 +28,7 @@ class vtkXMLImageDataReader;
 namespace msynth
 {
 struct Tileset;
+struct VoxModel;
 namespace cli
 {
 
@@ -134,6 +135,21 @@ void ConnectGuide(
 void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const SynthesizeOptions& o,
   const std::string& dir, const std::function<bool(const char*)>& wanted,
   std::vector<std::string>& written);
+/**
+ * model.vdb of the discrete model @p model at @p path (ModelVolume.cxx): its point arrays
+ * (`Label` also as `Label_float`) and the render grids `density`, `color`, `surface`,
+ * `surface_NAME` of its solid sites (those not of --empty's label); metadata
+ * `msynth_command` = @p command and the seed; a progress bar named @p progress (none: null).
+ */
+void WriteModelVolume(vtkImageData* model, const SynthesizeOptions& o, const std::string& path,
+  const char* command, const char* progress);
+/**
+ * A voxel tileset's model.vdb (ModelVolume.cxx) at the resolution of its tiles' voxels @p vox,
+ * placed as mesh.vtp: `Label` the palette index (0 empty, as model.vox), `Tile` the label of
+ * each voxel's site, and the render grids (colours from the palette, `surface_TILE` per tile).
+ */
+void WriteTileVoxelVolume(vtkImageData* model, const msynth::Tileset& set,
+  const msynth::VoxModel& vox, const SynthesizeOptions& o, const std::string& path);
 /**
  * The sizes of @p o against each other (SynthesizeChecks.cxx): a --region inside the world of
  * --size, an image sample's picture at least its pattern wide. @throw UsageError naming the

@@ -15,7 +15,6 @@
 #include "vtkMSLabelGeometry.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSLabelGridWriter.h"
-#include "vtkMSOpenVDBWriter.h"
 #include "vtkMSPatternImage.h"
 #include "vtkMSTileImage.h"
 #include "vtkPointData.h"
@@ -633,14 +632,8 @@ void WriteOutputs(vtkImageData* model, const SynthesizeOptions& o, bool tileset,
     WritePicture(model, o, dir + "/picture.png", written);
   if (wanted("vdb"))
   {
-    vtkNew<vtkMSOpenVDBWriter> vdb;
-    vdb->SetInputData(model);
-    vdb->SetFileName((dir + "/model.vdb").c_str());
-    vdb->WriteFloatLabelsOn();
-    vdb->AddMetadata("msynth_command", "synthesize");
-    vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
-    ProgressBar bar(vdb, "model.vdb");
-    Run(vdb);
+    if (!voxel) // a voxel tileset's is written by WriteTileVoxels
+      WriteModelVolume(model, o, dir + "/model.vdb", "synthesize", "model.vdb");
     written.push_back(dir + "/model.vdb");
   }
 }

@@ -64,6 +64,8 @@ void WriteTileVoxels(vtkImageData* model, const msynth::Tileset& set, const Synt
       written.push_back(dir + "/mesh.glb");
     }
   }
+  if (wanted("vdb"))
+    WriteTileVoxelVolume(model, set, vox, o, dir + "/model.vdb"); // listed by WriteOutputs
   const auto& d = vox.Grid.Dimensions();
   if (wanted("picture"))
   {

@@ -87,6 +87,19 @@ for i in range(nx * ny * nz):
     if back_labels.GetValue(i) != labels.GetValue(i):
         check(False, "label %d differs" % i)
 
+# The render grids (WriteRenderGrids, on by default) are read back on the labels' extent;
+# the plugin's property turns them off.
+for name in ("density", "color", "surface"):
+    check(back_image.GetPointData().GetArray(name) is not None, "render grid %s read back" % name)
+bare_path = os.path.join(TMP, "pvbatch-%s-bare.vdb" % suffix)
+writer = CreateWriter(bare_path, reader)
+writer.WriteRenderGrids = 0
+writer.LabelSurfaceBudget = 0
+writer.UpdatePipeline()
+del writer
+bare = servermanager.Fetch(ModelSynthOpenVDBReader(FileName=bare_path))
+check(bare.GetPointData().GetArray("density") is None, "WriteRenderGrids 0 writes no density")
+
 # And with OpenVDB's own Python reader, from the float copy.
 import pyopenvdb  # noqa: E402
 

@@ -360,6 +360,12 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
         p.Str(g.GridClass);
         p.Map(g.Metadata);
         p.U64(static_cast<std::uint64_t>(g.ActiveVoxelCount));
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          p.U64(static_cast<std::uint64_t>(static_cast<std::uint32_t>(g.ActiveMin[a])));
+          p.U64(static_cast<std::uint64_t>(static_cast<std::uint32_t>(g.ActiveMax[a])));
+          p.F64(g.VoxelSize[a]);
+        }
       }
       detail::SendBlock(fd, p.Bytes);
     },
@@ -377,6 +383,12 @@ std::vector<GridSummary> ListGrids(const std::string& path, MetadataMap* fileMet
     g.GridClass = u.Str();
     g.Metadata = u.Map();
     g.ActiveVoxelCount = static_cast<std::int64_t>(u.U64());
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      g.ActiveMin[a] = static_cast<std::int32_t>(static_cast<std::uint32_t>(u.U64(UINT32_MAX)));
+      g.ActiveMax[a] = static_cast<std::int32_t>(static_cast<std::uint32_t>(u.U64(UINT32_MAX)));
+      g.VoxelSize[a] = u.F64();
+    }
     result.push_back(std::move(g));
   }
   return result;

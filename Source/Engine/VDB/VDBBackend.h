@@ -12,7 +12,7 @@
  *
  * The module exports one C function, `msynth_openvdb_backend`, returning this table.
  */
-#include "VDB/VDBFile.h"
+#include "VDB/RenderGrids.h"
 
 namespace msynth
 {
@@ -25,7 +25,8 @@ struct Backend
 {
   void (*Initialize)();
   void (*Write)(const std::string& path, const std::vector<DenseGridView>& grids,
-    const std::vector<MeshGridView>& meshes, const MetadataMap& metadata);
+    const std::vector<MeshGridView>& meshes, const std::vector<LabelRenderView>& labels,
+    const MetadataMap& metadata);
   FileContents (*Read)(const std::string& path, const ReadOptions& options);
   std::vector<GridSummary> (*List)(const std::string& path, MetadataMap* fileMetadata);
   /// In a forked reader: OpenVDB's TBB runs one thread (the parent's workers do not exist).

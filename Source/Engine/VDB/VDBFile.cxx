@@ -10,6 +10,7 @@
 #include "Core/Index.h"
 #include "Core/Memory.h"
 #include "VDB/IsolatedRead.h"
+#include "VDB/RenderGridsOpenVDB.h"
 
 #include <cerrno>
 #include <csignal>
@@ -44,8 +45,8 @@ namespace
 // ---------------------------------------------------------------------------------------------
 // internal
 // ---------------------------------------------------------------------------------------------
-constexpr const char* IndexMinKey = "msynth_index_min";
-constexpr const char* IndexMaxKey = "msynth_index_max";
+using detail::IndexMaxKey;
+using detail::IndexMinKey;
 
 void InitializeOpenVDB()
 {
@@ -581,7 +582,8 @@ void MakeMeshGrids(const MeshGridView& mesh, openvdb::GridPtrVec& out)
 // same role in libModelSynthVDB never interpose them)
 // ---------------------------------------------------------------------------------------------
 void WriteHere(const std::string& path, const std::vector<DenseGridView>& grids,
-  const std::vector<MeshGridView>& meshes, const MetadataMap& metadata)
+  const std::vector<MeshGridView>& meshes, const std::vector<LabelRenderView>& labels,
+  const MetadataMap& metadata)
 {
   InitializeOpenVDB();
   if (path.empty())
@@ -605,6 +607,10 @@ void WriteHere(const std::string& path, const std::vector<DenseGridView>& grids,
     for (const auto& mesh : meshes)
     {
       MakeMeshGrids(mesh, vdbGrids);
+    }
+    for (const auto& view : labels)
+    {
+      detail::AppendRenderGrids(view, *MakeTransform(view.Geometry), vdbGrids);
     }
     for (std::size_t i = 0; i < vdbGrids.size(); ++i)
     {
@@ -705,6 +711,15 @@ std::vector<GridSummary> ListHere(const std::string& path, MetadataMap* fileMeta
     s.GridClass = openvdb::GridBase::gridClassToString(g->getGridClass());
     s.Metadata = StringMetadataOf(*g);
     s.ActiveVoxelCount = static_cast<std::int64_t>(g->activeVoxelCount());
+    const openvdb::CoordBBox box = g->evalActiveVoxelBoundingBox();
+    if (!box.empty())
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        s.ActiveMin[a] = box.min()[static_cast<int>(a)];
+        s.ActiveMax[a] = box.max()[static_cast<int>(a)];
+      }
+    const openvdb::Vec3d size = g->voxelSize();
+    s.VoxelSize = { { size.x(), size.y(), size.z() } };
     result.push_back(std::move(s));
   }
   return result;

@@ -105,6 +105,10 @@ struct GridSummary
   std::string GridClass;
   MetadataMap Metadata;
   std::int64_t ActiveVoxelCount = 0; ///< voxels whose value is not the background
+  /// The active voxels' index bounding box (ActiveMin > ActiveMax when there are none).
+  std::array<std::int32_t, 3> ActiveMin{ { 0, 0, 0 } };
+  std::array<std::int32_t, 3> ActiveMax{ { -1, -1, -1 } };
+  std::array<double, 3> VoxelSize{ { 1.0, 1.0, 1.0 } }; ///< world units along each axis
 };
 
 /**

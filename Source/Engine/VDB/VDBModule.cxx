@@ -92,7 +92,14 @@ void WriteFile(
 void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
   const std::vector<MeshGridView>& meshes, const MetadataMap& metadata)
 {
-  detail::LoadedBackend().Write(path, grids, meshes, metadata);
+  detail::LoadedBackend().Write(path, grids, meshes, {}, metadata);
+}
+
+void WriteFile(const std::string& path, const std::vector<DenseGridView>& grids,
+  const std::vector<MeshGridView>& meshes, const std::vector<LabelRenderView>& labels,
+  const MetadataMap& metadata)
+{
+  detail::LoadedBackend().Write(path, grids, meshes, labels, metadata);
 }
 
 } // namespace vdb

@@ -52,6 +52,33 @@ int vtkMSOpenVDBReader::CanReadFile(const char* name)
   return s.size() > 4 && s.compare(s.size() - 4, 4, ".vdb") == 0 ? 1 : 0;
 }
 
+namespace
+{
+/// The union of the extents of @p grids: of their data grids (no class) when there are any.
+void MergedExtent(
+  const std::vector<msynth::vdb::DenseGrid>& grids, std::int64_t lo[3], std::int64_t hi[3])
+{
+  const bool data = std::any_of(grids.begin(), grids.end(),
+    [](const msynth::vdb::DenseGrid& g) { return g.Header.GridClass.empty(); });
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = INT64_MAX;
+    hi[a] = INT64_MIN;
+  }
+  for (const auto& grid : grids)
+  {
+    const auto& h = grid.Header;
+    if (data && !h.GridClass.empty())
+      continue;
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min<std::int64_t>(lo[a], h.IndexMin[a]);
+      hi[a] = std::max<std::int64_t>(hi[a], h.IndexMin[a] + h.Dims[a] - 1);
+    }
+  }
+}
+} // namespace
+
 bool vtkMSOpenVDBReader::Load()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
@@ -101,15 +128,11 @@ bool vtkMSOpenVDBReader::Load()
     return false;
   }
 
-  // Keep the grids that share the first grid's transform; merge their extents.
+  // Keep the grids that share the first grid's transform; merge their extents: those of the
+  // data grids (no class) when there are any, as level sets and fog volumes made from them
+  // (a label grid's render grids) lie in them but for the level sets' band (padding).
   const auto& first = contents.Grids.front().Header;
   std::vector<msynth::vdb::DenseGrid> kept;
-  std::int64_t lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = first.IndexMin[a];
-    hi[a] = first.IndexMin[a] + first.Dims[a] - 1;
-  }
   for (auto& grid : contents.Grids)
   {
     const auto& h = grid.Header;
@@ -120,13 +143,10 @@ bool vtkMSOpenVDBReader::Load()
                       << "'; skipped (select it with GridName).");
       continue;
     }
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min<std::int64_t>(lo[a], h.IndexMin[a]);
-      hi[a] = std::max<std::int64_t>(hi[a], h.IndexMin[a] + h.Dims[a] - 1);
-    }
     kept.push_back(std::move(grid));
   }
+  std::int64_t lo[3], hi[3];
+  MergedExtent(kept, lo, hi);
   std::int64_t voxels = 1;
   for (int a = 0; a < 3; ++a)
   {
@@ -197,16 +217,23 @@ int vtkMSOpenVDBReader::RequestData(
     array->SetNumberOfTuples(n);
     msynth::AdviseHugePages(array->GetVoidPointer(0), msynth::ToIndex(n * nc) * 4);
     array->Fill(h.Background);
-    // Copy the grid's box into the union box, row by row (x fastest in both; a row of values
-    // of the array's own type at a time: a virtual call per value took 8 s for 2^28 voxels).
+    // Copy the grid's box, clipped to the output's, row by row (x fastest in both; a row of
+    // values of the array's own type at a time: a virtual call per value took 8 s for 2^28
+    // voxels).
     const bool ints = h.Type == msynth::vdb::ValueType::Int32;
-    const std::size_t rowBytes = msynth::ToIndex(h.Dims[0] * nc) * 4;
-    for (std::int64_t k = 0; k < h.Dims[2]; ++k)
+    std::int64_t from[3], to[3]; // the grid's own indices of the part inside the output
+    for (int a = 0; a < 3; ++a)
     {
-      for (std::int64_t j = 0; j < h.Dims[1]; ++j)
+      from[a] = std::max<std::int64_t>(0, ext[2 * a] - std::int64_t(h.IndexMin[a]));
+      to[a] = std::min<std::int64_t>(h.Dims[a], ext[2 * a + 1] - std::int64_t(h.IndexMin[a]) + 1);
+    }
+    const std::size_t rowBytes = to[0] > from[0] ? msynth::ToIndex((to[0] - from[0]) * nc) * 4 : 0;
+    for (std::int64_t k = from[2]; k < to[2] && rowBytes > 0; ++k)
+    {
+      for (std::int64_t j = from[1]; j < to[1]; ++j)
       {
-        const auto src = msynth::ToIndex(h.Dims[0] * (j + h.Dims[1] * k) * nc);
-        const vtkIdType dst = (h.IndexMin[0] - ext[0]) +
+        const auto src = msynth::ToIndex((from[0] + h.Dims[0] * (j + h.Dims[1] * k)) * nc);
+        const vtkIdType dst = (h.IndexMin[0] + from[0] - ext[0]) +
           nx * ((h.IndexMin[1] - ext[2] + j) + ny * (h.IndexMin[2] - ext[4] + k));
         std::memcpy(array->GetVoidPointer(dst * nc),
           ints ? static_cast<const void*>(grid.Ints.data() + src)

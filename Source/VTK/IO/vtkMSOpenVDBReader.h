@@ -7,8 +7,10 @@
  * Int32 grids become vtkIntArray, float grids vtkFloatArray, vec3s grids 3-component
  * vtkFloatArray, all as point data (a voxel is a point). Grids that share a transform are
  * merged onto the union of their extents (the extent the writer stored, or else the active
- * bounding box); voxels outside a grid's own extent take its background value. Grids with a
- * different transform than the first are skipped with a warning (choose one with GridName).
+ * bounding box); voxels outside a grid's own extent take its background value. When some of
+ * them are data grids (no grid class: labels, colours), the union is theirs and level sets and
+ * fog volumes are read inside it (a label grid's `surface` band reaches past the labels). Grids
+ * with a different transform than the first are skipped with a warning (choose one with GridName).
  * File-level string metadata becomes single-valued string arrays in field data.
  *
  * @warning The dense output is refused, with an error, when it would exceed MaximumNumberOfVoxels.

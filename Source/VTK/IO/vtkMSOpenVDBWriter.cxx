@@ -7,6 +7,7 @@
 #include "vtkMSLabelArrays.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
+#include "vtkMSRenderLabels.h"
 
 #include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
@@ -33,7 +34,7 @@
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
 #include "Core/Index.h"
-#include "VDB/VDBFile.h"
+#include "VDB/RenderGrids.h"
 
 #include <algorithm>
 #include <array>
@@ -314,6 +315,41 @@ void AddGrids(vtkDataSetAttributes* data, vtkImageData* input,
 }
 } // namespace
 
+namespace
+{
+/// The render view of the label grid among @p views (none without one) onto @p renders.
+void AddRenderView(vtkMSOpenVDBWriter* self, vtkImageData* input,
+  const std::vector<msynth::vdb::DenseGridView>& views,
+  std::vector<msynth::vdb::LabelRenderView>& renders)
+{
+  // The integer point grids written above: the labels, and the keys of their names.
+  const auto pointInts = [&views](const std::string& name) -> const msynth::vdb::DenseGridView*
+  {
+    for (const auto& view : views)
+      if (view.Header.Name == name && view.Header.Type == msynth::vdb::ValueType::Int32 &&
+        view.Header.Metadata.at("vtk_association") == "point")
+        return &view;
+    return nullptr;
+  };
+  const msynth::vdb::DenseGridView* labels = pointInts(self->GetLabelArrayName());
+  if (!labels)
+    return; // no label volume: nothing a renderer would shade as solid
+  const msynth::vdb::DenseGridView* keys =
+    std::string(self->GetNameArrayName()).empty() ? nullptr : pointInts(self->GetNameArrayName());
+  msynth::vdb::LabelRenderView render;
+  render.Geometry = labels->Header;
+  render.Labels = static_cast<const std::int32_t*>(labels->Values);
+  render.EmptyLabel = self->GetEmptyLabel();
+  render.NameKeys = keys ? static_cast<const std::int32_t*>(keys->Values) : nullptr;
+  render.HalfWidth = self->GetBandWidth();
+  render.LabelSurfaceBudget = self->GetLabelSurfaceBudget();
+  vtkMSRenderLabels::Describe(
+    input->GetFieldData(), std::string(self->GetNameArrayName()).empty() || keys, render);
+  renders.push_back(std::move(render));
+}
+
+} // namespace
+
 void vtkMSOpenVDBWriter::WriteData()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
@@ -387,8 +423,11 @@ void vtkMSOpenVDBWriter::WriteData()
     {
       throw msynth::Error("the input has no array that maps to a VDB grid");
     }
-    msynth::vdb::WriteFile(
-      this->CurrentFileName, views, FileMetadata(input->GetFieldData(), this->Internal->Metadata));
+    std::vector<msynth::vdb::LabelRenderView> renders;
+    if (this->WriteRenderGrids && !resampled) // label images only, not points resampled
+      AddRenderView(this, input, views, renders);
+    msynth::vdb::WriteFile(this->CurrentFileName, views, {}, renders,
+      FileMetadata(input->GetFieldData(), this->Internal->Metadata));
   }
   catch (const std::exception& e)
   {
@@ -699,5 +738,8 @@ void vtkMSOpenVDBWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LevelSetBudget: " << this->LevelSetBudget << "\n";
   os << indent << "WriteFog: " << this->WriteFog << "\n";
   os << indent << "WriteTimeSteps: " << this->WriteTimeSteps << "\n";
+  os << indent << "WriteRenderGrids: " << this->WriteRenderGrids << "\n";
+  os << indent << "LabelSurfaceBudget: " << this->LabelSurfaceBudget << "\n";
+  os << indent << "NameArrayName: " << this->NameArrayName << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";
 }

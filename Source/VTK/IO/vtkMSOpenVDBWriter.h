@@ -46,6 +46,19 @@
  * `ObjectType` (and `ObjectType_float`) of the object type at each voxel's centre over the
  * arrangement's box (`VoxelizeModel`). A grid of more than MaximumVoxels voxels is refused.
  *
+ * **Render grids** (WriteRenderGrids, on by default): an image with the integer point array
+ * LabelArrayName (a discrete model) also gets what renderers shade, on the label grid's
+ * transform (msynth::vdb::LabelRenderView, VDB/RenderGrids.h): `density` (fog volume, 1 at the
+ * solid sites, those whose label is not EmptyLabel), `color` (Vec3SGrid, the linear RGB of each
+ * solid site's label: the `.vox` example's palette `PaletteRGBA`, else msynth::LabelColor, as
+ * mesh.vtp and mesh.glb are coloured), `surface` (level set: the exact signed distance to the
+ * solid sites' voxel boundary, negative inside, a band of BandWidth voxels) and `surface_NAME`
+ * per named label (a tileset's tiles, a text example's pieces; the keys of the point array
+ * NameArrayName when set) while sites × names ≤ LabelSurfaceBudget (`surface`'s metadata
+ * `msynth_label_surfaces` says when they are skipped). Only for image inputs: not for points
+ * resampled or continuous models voxelized (a continuous model's mesh gets its own `density`
+ * and `surface`). msynth turns them off for catalog snapshots (undecided sites).
+ *
  * **Sequences:** with WriteTimeSteps and an input that has time steps (e.g. the catalog
  * snapshots of the solver filters), Write() writes one file per step, numbered from 1 with four
  * digits before the extension (`catalog.vdb` → `catalog_0001.vdb`, `catalog_0002.vdb`, …), as
@@ -156,6 +169,28 @@ public:
   vtkBooleanMacro(WriteTimeSteps, bool);
   ///@}
 
+  ///@{
+  /// Label images: also write the render grids `density`, `color`, `surface` and
+  /// `surface_NAME` (see above). Default on.
+  vtkSetMacro(WriteRenderGrids, bool);
+  vtkGetMacro(WriteRenderGrids, bool);
+  vtkBooleanMacro(WriteRenderGrids, bool);
+  ///@}
+
+  ///@{
+  /// Label images: `surface_NAME` grids are written while sites × named labels is at most this
+  /// (each is a pass over its label's bounding box). Default 2e7.
+  vtkSetClampMacro(LabelSurfaceBudget, double, 0.0, 1e18);
+  vtkGetMacro(LabelSurfaceBudget, double);
+  ///@}
+
+  ///@{
+  /// Label images: the integer point array whose values key the names of `surface_NAME`
+  /// ("" (the default): the labels themselves).
+  vtkSetStdStringFromCharMacro(NameArrayName);
+  vtkGetCharFromStdStringMacro(NameArrayName);
+  ///@}
+
   /// Writes the file, or with WriteTimeSteps the sequence. Returns 1 on success.
   int Write() override;
   /// The file written for step @p index (0-based) of a sequence: `<stem>_<index + 1>.vdb`.
@@ -219,6 +254,9 @@ private:
   double WrittenVoxelSize = 0;
   bool WriteFog = true;
   bool WriteTimeSteps = false;
+  bool WriteRenderGrids = true;
+  double LabelSurfaceBudget = 2e7;
+  std::string NameArrayName;
   std::string CurrentFileName; ///< the file being written (FileName, or a sequence member)
   bool WritingSequence = false;
   double CurrentTime = 0; ///< the time step being written in a sequence
