@@ -59,6 +59,8 @@ tests=(
   clang libclang-rt-14-dev
   # Style (Utilities/check-style.sh)
   clang-format
+  # A real renderer imports and renders the exports (Testing/Python/test_blender.py)
+  blender
 )
 # The glTF validator's runtime (Testing/Python/test_gltf_validator.py), only where no node or npm
 # is on the PATH already (a NodeSource nodejs brings its own npm, which Debian's npm conflicts with).

@@ -189,9 +189,9 @@ class RenderGridsTest(unittest.TestCase):
         done = run_msynth("animate", data("Examples/Ball.vti"), "--size", "16", "1", "1",
                           "--frames", "3", "--loop", "--seed", "3", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
-        for t in range(3):
+        for t in range(1, 4):  # frame N is frame_N.vti and model_N.vdb
             labels, image = read_labels(os.path.join(out, "frame_%04d.vti" % t))
-            self.check_render_grids(os.path.join(out, "model_%04d.vdb" % (t + 1)), labels,
+            self.check_render_grids(os.path.join(out, "model_%04d.vdb" % t), labels,
                                     (0, 0, 0), image)
 
     def test_writer_properties_from_python(self):
