@@ -266,7 +266,9 @@ class StreamTest(unittest.TestCase):
         field data lists the failed blocks that start in it, slabs.txt keeps them, and the
         resumed run reports the world's failures, as the uninterrupted run does."""
         lines = data("Tilesets/Lines.xml")
-        common = ["--size", "400", "4800", "1", "--block", "6", "6", "1", "--attempts", "1",
+        # (a quarter of the world under the sanitizers: 8 failed blocks, and minutes, not ten)
+        size = ["200", "2400"] if os.environ.get("MSYNTH_SANITIZED") else ["400", "4800"]
+        common = ["--size", *size, "1", "--block", "6", "6", "1", "--attempts", "1",
                   "--backtracks", "0", "--seed", "11", "--stream", "--slab", "100",
                   "--threads", "1", "--outputs", "labels"]
         fresh, expected = self.fresh_world("stream-failures-fresh", common)
@@ -295,7 +297,7 @@ class StreamTest(unittest.TestCase):
         self.assertEqual(failed(out), failed(fresh))
         self.assertEqual(len(failed(fresh)), stats["BlocksFailed"])
         for origin in failed(fresh):  # in world coordinates (they were a window's once)
-            self.assertTrue(0 <= origin[0] < 400 and 0 <= origin[1] < 4800, origin)
+            self.assertTrue(0 <= origin[0] < int(size[0]) and 0 <= origin[1] < int(size[1]), origin)
 
     def test_an_interrupted_stream_says_how_to_go_on(self):
         """Ctrl-C during a stream: the one line names the kept slabs and --resume (issue 49)."""
