@@ -55,7 +55,7 @@ elif [ ! -x "$msynth" ]; then
   echo "run-example.sh: --no-build, but $msynth is not built" >&2
   exit 1
 fi
-echo "== example: $example"
+echo "== the example"
 "$msynth" info "$example" | head -3
 echo "== synthesizing ${size[*]} in 12 x 12 x 5 blocks, ground (1) below, empty (0) around," \
   "labels by resemblance, seed $seed"

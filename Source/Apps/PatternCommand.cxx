@@ -294,8 +294,9 @@ int Pattern(const PatternCommandOptions& o, const std::string& dir)
   WritePatternStatistics(dir, o, fd, measured, { logp, kl, firstValid, seconds }, samples.str());
   std::cout << Counted(o.Samples, "sample") << " of " << o.Size[0] << " x " << o.Size[1]
             << (o.Size.size() > 2 ? " x " + std::to_string(o.Size[2]) : std::string()) << " by "
-            << o.Method << " in " << JsonNumber(seconds) << " s (first valid after "
-            << JsonNumber(firstValid) << " s); every pair occurs in an exemplar"
+            << (o.Method == "blockss" ? std::string("BLOCKSS") : o.Method) << " in "
+            << JsonNumber(seconds) << " s (first valid after " << JsonNumber(firstValid)
+            << " s); every pair occurs in an exemplar"
             << (tileset.empty() ? "" : " or the tileset's rules") << "\n";
   for (std::size_t i = 0; i < measured.size(); ++i)
     std::cout << "KL " << measured[i].Name << ": " << JsonNumber(kl[i]) << "\n";

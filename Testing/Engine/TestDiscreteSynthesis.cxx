@@ -132,6 +132,34 @@ TEST(DiscreteSynthesis, BlocksModifyATrivialStart)
   }
 }
 
+TEST(DiscreteSynthesis, AFlatExampleAskedForDepthIsAClearError)
+{
+  // A 2D example (or tileset) has no pair along z: a model 3 sites deep cannot exist. It said
+  // "the catalog became empty at site (0, 0, 1) in all 10 attempts; try another seed".
+  const LabelGrid flat = Grid2D({ { 1, 2, 1 }, { 2, 1, 2 }, { 1, 2, 1 } });
+  SynthesisOptions o;
+  o.Size = { { 6, 5, 3 } };
+  for (const bool blocks : { false, true })
+  {
+    o.BlockSize = blocks ? std::array<std::int64_t, 3>{ { 3, 3, 3 } }
+                         : std::array<std::int64_t, 3>{ { 0, 0, 0 } };
+    try
+    {
+      SynthesizeFrom(flat, o);
+      FAIL() << "expected an error";
+    }
+    catch (const Error& e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("no two labels may be neighbours along z"), std::string::npos) << what;
+      EXPECT_NE(what.find("(size 6 5 1)"), std::string::npos) << what;
+    }
+  }
+  o.Size = { { 6, 5, 1 } };
+  o.BlockSize = { { 0, 0, 0 } };
+  EXPECT_TRUE(SynthesizeFrom(flat, o).Succeeded());
+}
+
 TEST(DiscreteSynthesis, NoTrivialStartIsAClearError)
 {
   const LabelGrid board = Grid2D({ { 0, 1, 0 }, { 1, 0, 1 }, { 0, 1, 0 } });

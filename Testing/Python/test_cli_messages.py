@@ -229,7 +229,7 @@ class SummaryTest(unittest.TestCase):
         r = run_msynth("pattern", data("Patterns/city-urban.vti"), "--size", "12", "12", "--seed", "1",
                        "--out", fresh_folder("messages-pattern"))
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertTrue(r.stdout.startswith("1 sample of 12 x 12 by blockss"), r.stdout)
+        self.assertTrue(r.stdout.startswith("1 sample of 12 x 12 by BLOCKSS"), r.stdout)
         self.assertNotIn("(s)", r.stdout)
         self.assertIsNone(re.search(r"\b1 [a-z]+s\b", r.stdout), r.stdout)
 

@@ -266,7 +266,8 @@ class SynthesisTest(unittest.TestCase):
         self.assertIn("square in x and y", errors)
 
     def test_whole_model_failure_is_an_error_not_a_model(self):
-        # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y.
+        # A 1D example 0 1 2 cannot fill a 2D output: nothing may follow anything along y, which
+        # is said before any attempt (it was a catalog emptied in every attempt).
         example = vtkImageData()
         example.SetDimensions(3, 1, 1)
         labels = vtkIntArray()
@@ -275,7 +276,8 @@ class SynthesisTest(unittest.TestCase):
             labels.InsertNextValue(v)
         example.GetPointData().SetScalars(labels)
         out, errors = synthesize(example_data=example, OutputSize=(4, 4, 1))
-        self.assertIn("Algorithm 3.1", errors)
+        self.assertIn("no two labels may be neighbours along y", errors)
+        self.assertIn("(size 4 1 1)", errors)
         self.assertEqual(out.GetNumberOfPoints(), 0)
 
     def test_explicit_source(self):

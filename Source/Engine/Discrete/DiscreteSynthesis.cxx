@@ -562,6 +562,36 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 }
 } // namespace
 
+namespace
+{
+/// A model more than one site long along an axis on which no two labels may be neighbours (a 2D
+/// tileset or a flat example asked for a 3D size) cannot exist: said at once, with the size
+/// that can, instead of as a catalog emptied in every attempt.
+void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& options)
+{
+  static const char* const names[3] = { "x", "y", "z" };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (options.Size[ToIndex(a)] <= 1 || rules.NumberOfLabels() == 0)
+      continue;
+    const std::uint64_t* any = rules.CompatibleWithAny(2 * a);
+    bool none = true;
+    for (int w = 0; w < rules.Words() && none; ++w)
+      none = any[w] == 0;
+    if (!none)
+      continue;
+    std::string size;
+    for (int b = 0; b < 3; ++b)
+      size +=
+        (b ? " " : "") + (b == a ? std::string("1") : std::to_string(options.Size[ToIndex(b)]));
+    throw Error(std::string("no two labels may be neighbours along ") + names[a] +
+      " (the rules are flat along it: a 2D tileset or example), so a model " +
+      std::to_string(options.Size[ToIndex(a)]) + " sites long along " + names[a] +
+      " cannot exist; ask for one site along it (size " + size + ")");
+  }
+}
+} // namespace
+
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& given)
 {
   std::optional<SynthesisOptions> placed; // a placed pin grid, spread over the output
@@ -572,6 +602,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
     placed->PinsOrigin.reset();
   }
   const SynthesisOptions& options = placed ? *placed : given;
+  CheckAxesWithoutPairs(rules, options);
   CheckCountRequest(rules, options);
   CheckConnectedRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);
