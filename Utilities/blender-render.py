@@ -82,6 +82,9 @@ def volume_material():
 
 def main(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
+    if "--help" in args or "-h" in args:
+        print(__doc__)
+        return
     if len(args) < 2:
         sys.exit("usage: blender -b --factory-startup -P blender-render.py -- MODEL OUT.png "
                  "[--size N] [--flat] [--oblique]")
