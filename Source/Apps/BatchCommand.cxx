@@ -187,6 +187,12 @@ int RunBatch(const BatchOptions& b)
   {
     const SampleEntry& e = entries[i];
     const int shots = b.Screenshots >= 0 ? b.Screenshots : e.Screenshots;
+    // Each entry's outputs are published as they finish: an interruption says which are there.
+    SetInterruptDone((i == 0 ? "no entry of " + std::to_string(entries.size()) + " is complete"
+                             : "entries 1-" + std::to_string(i) + " of " +
+                           std::to_string(entries.size()) + " are complete in '" + b.Out + "'") +
+      "; entry " + std::to_string(i + 1) + " (" + e.Name +
+      ") keeps the outputs it finished, the rest were not written");
     std::cout << "[" << i + 1 << "/" << entries.size() << "] " << e.Element << " " << e.Name
               << (e.Subset.empty() ? "" : " (" + e.Subset + ")")
               << std::endl; // shown before it runs
@@ -242,7 +248,9 @@ CommandRunner AddBatch(CLI::App& app)
     "list as each program lays them out. Each output goes to DIR/ENTRY-NAME/K and is checked "
     "independently; a summary table follows. Exit 1 if any entry failed");
   batch->add_option("SAMPLES", o->List, "the sample list (.xml)")->required();
-  AddOutOption(*batch, o->Out);
+  AddOutOption(*batch, o->Out)
+    ->description("output folder: each output appears whole in DIR/ENTRY-NAME/K as it is done, "
+                  "so an interrupted batch keeps the entries it finished");
   AddSeedOption(*batch, o->Seed);
   batch->add_option("--threads", o->Threads, "threads for block synthesis (default: one per core)")
     ->check(CLI::Range(0, 1024));

@@ -131,6 +131,27 @@ std::string InterruptNote()
   return Note();
 }
 
+namespace
+{
+std::string& Done()
+{
+  static auto* done = new std::string;
+  return *done;
+}
+} // namespace
+
+void SetInterruptDone(const std::string& done)
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  Done() = done;
+}
+
+std::string InterruptDone()
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  return Done();
+}
+
 long long SitesWithinMemory(unsigned bytesPerSite, long long ceiling)
 {
   const std::uint64_t sites = msynth::AvailableMemory() / std::max(1u, bytesPerSite);
@@ -494,9 +515,9 @@ void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double v
 // Shared options
 // ---------------------------------------------------------------------------------------------
 
-void AddOutOption(CLI::App& command, std::string& out)
+CLI::Option* AddOutOption(CLI::App& command, std::string& out)
 {
-  command
+  return command
     .add_option("--out", out,
       "output folder; its files appear together, or not at all when the run fails or is "
       "interrupted")

@@ -82,6 +82,10 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 /// run names what it keeps and how to go on. Set while the run goes; read by the signal thread.
 void SetInterruptNote(const std::string& note);
 std::string InterruptNote();
+/// What an interrupted run has written, said instead of "no outputs were written" (empty: that):
+/// a batch's finished entries. Set while the run goes; read by the signal thread.
+void SetInterruptDone(const std::string& done);
+std::string InterruptDone();
 
 /// @p table as CSV (a header of column names), written atomically.
 void WriteCSV(const std::string& path, vtkTable* table);
@@ -215,7 +219,7 @@ void WriteCatalogSequence(vtkAlgorithm* source, const std::string& dir, double v
 
 /// `--out DIR` (default @p out's value: ./msynth-output, ./msynth-batch for batch); an empty
 /// name is a usage error.
-void AddOutOption(CLI::App& command, std::string& out);
+CLI::Option* AddOutOption(CLI::App& command, std::string& out);
 /// `--seed S`: a decimal whole number in the signed 64-bit range; anything else, a usage error.
 void AddSeedOption(CLI::App& command, std::int64_t& seed);
 /// `--attempts N` with @p what (attempts per block, or per block of the arrangement).

@@ -73,14 +73,16 @@ void HandleInterruptions()
         std::_Exit(FinalStatus);
       }
       int published = 0;
-      if (msynth::OutputFolder::DiscardAll(&published) == 0 && published > 0)
+      const std::string done = msynth::cli::InterruptDone(); // (a batch: more was to come)
+      if (msynth::OutputFolder::DiscardAll(&published) == 0 && published > 0 && done.empty())
       {
         std::_Exit(0); // the run's outputs are complete: only its last words are lost
       }
       const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
       const std::string note = msynth::cli::InterruptNote();
-      std::fprintf(stderr, "\nmsynth: interrupted (%s); no outputs were written%s%s\n", name,
-        note.empty() ? "" : "; ", note.c_str());
+      std::fprintf(stderr, "\nmsynth: interrupted (%s); %s%s%s\n", name,
+        done.empty() ? "no outputs were written" : done.c_str(), note.empty() ? "" : "; ",
+        note.c_str());
       std::fflush(stderr);
       std::_Exit(128 + sig);
     })

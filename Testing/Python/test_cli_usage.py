@@ -1,6 +1,7 @@
 """The msynth command line's edges: option values out of range, unknown options and commands, what
 --help promises, the error messages of odd files, and what a failed batch entry leaves."""
 import json
+import re
 import os
 import shutil
 import subprocess
@@ -139,6 +140,29 @@ class CommandLineUsageTest(unittest.TestCase):
         r = run("batch", "samples.xml", cwd=here)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         self.assertEqual(sorted(os.listdir(here)), ["msynth-batch", "samples", "samples.xml"])
+
+    def test_an_interrupted_batch_says_which_entries_are_complete(self):
+        """Ctrl-C in a batch said "no outputs were written" beside the entries it had finished."""
+        import signal
+        root = fresh_folder("cli-batch-interrupted")
+        os.makedirs(os.path.join(root, "samples"))
+        shutil.copy(data("Samples/Meadow.png"), os.path.join(root, "samples", "Meadow.png"))
+        with open(os.path.join(root, "samples.xml"), "w") as f:
+            f.write("<samples>\n%s</samples>\n" % ('  <overlapping name="Meadow" N="3" size="64" '
+                                                  'screenshots="1"/>\n' * 40))
+        run = subprocess.Popen([os.path.join(BIN, "msynth"), "batch", "samples.xml", "--out", "out"],
+                               cwd=root, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        for line in run.stdout:  # the third entry has started: two are complete
+            if line.startswith("[3/40]"):
+                break
+        run.send_signal(signal.SIGINT)
+        _, err = run.communicate(timeout=120)
+        self.assertEqual(run.returncode, 128 + signal.SIGINT, err)
+        self.assertNotIn("no outputs were written", err)
+        done = re.search(r"entries 1-(\d+) of 40 are complete in 'out'", err)
+        self.assertIsNotNone(done, err)
+        finished = sorted(os.listdir(os.path.join(root, "out")))
+        self.assertGreaterEqual(len(finished), int(done.group(1)), finished)
 
     def test_failed_batch_entries_leave_nothing(self):
         """A failed entry left an empty DIR/N-NAME/ folder. Entries given size="N" (as
