@@ -127,6 +127,17 @@ class VoxelTilesetTest(unittest.TestCase):
         self.assertEqual(done.returncode, 1)
         self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
         self.assertIn("Empty.vox", done.stderr)
+        # Tiles in subfolders of the tileset's own folder (as MarkovJunior's Knots3D keeps them
+        # in Knots3D/3, Knots3D/4, ...): the line names the subfolders and how to choose one.
+        shutil.copytree(data("Tilesets/Pipes"), os.path.join(folder, "Mine", "thin"))
+        shutil.copytree(data("Tilesets/Pipes"), os.path.join(folder, "Mine", "thick"))
+        done = run("synthesize", xml, "--size", 4, 4, 4, "--out", os.path.join(folder, "no"))
+        self.assertEqual(done.returncode, 1)
+        self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        self.assertIn("Mine/Empty.vox': is missing; the tileset's folder holds its tiles in the "
+                      "subfolders thick, thin: choose one as the tiles folder (msynth --tiles "
+                      "Mine/thick", done.stderr)
+        shutil.rmtree(os.path.join(folder, "Mine"))
         # --tiles relative to the XML's folder.
         done = run("synthesize", xml, "--tiles", "Drawn/v1", "--size", 4, 4, 4, "--out",
                    os.path.join(folder, "yes"))

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <dirent.h>
 #include <set>
 #include <sstream>
 #include <sys/stat.h>
@@ -174,6 +175,39 @@ VoxelBlock ReadVoxelBlock(const std::string& path)
           (std::uint32_t(c[2]) << 16) | (std::uint32_t(255) << 24);
       }
   return block;
+}
+
+/// A tile file missing from @p folder whose subfolders hold it (MarkovJunior's Knots3D keeps its
+/// tile sets in Knots3D/3, Knots3D/4, ...): an error that names them and how to choose one.
+void RefuseMissingTile(const std::string& folder, const std::string& file)
+{
+  struct stat info;
+  if (::stat((folder + "/" + file).c_str(), &info) == 0)
+    return;
+  std::vector<std::string> holding;
+  if (DIR* dir = ::opendir(folder.c_str()))
+  {
+    while (const dirent* entry = ::readdir(dir))
+    {
+      const std::string name = entry->d_name;
+      if (name != "." && name != ".." &&
+        ::stat((folder + "/" + name + "/" + file).c_str(), &info) == 0)
+        holding.push_back(name);
+    }
+    ::closedir(dir);
+  }
+  if (holding.empty())
+    return; // the reader's own message: missing or unreadable
+  std::sort(holding.begin(), holding.end());
+  std::string list;
+  for (std::size_t i = 0; i < holding.size() && i < 12; ++i)
+    list += (i ? ", " : "") + holding[i];
+  const std::string::size_type slash = folder.rfind('/');
+  const std::string base = slash == std::string::npos ? folder : folder.substr(slash + 1);
+  throw Error::InFile(folder + "/" + file,
+    "is missing; the tileset's folder holds its tiles in the subfolders " + list +
+      ": choose one as the tiles folder (msynth --tiles " + base + "/" + holding.front() +
+      "; the filters' TilesFolder)");
 }
 
 std::string VoxelTilesFolder(const std::string& xmlPath, const std::string& tiles)
@@ -354,6 +388,7 @@ private:
           "tile '" + tile.Name + "' has weight '" + *weight + "'; weights are positive numbers",
           t.Line);
     const std::string file = this->Set.TilesFolder + "/" + tile.Name + ".vox";
+    RefuseMissingTile(this->Set.TilesFolder, tile.Name + ".vox");
     const VoxelBlock block = ReadVoxelBlock(file);
     this->CheckSize(block, file, t.Line);
     // Bounds on what a file may make us allocate: the labels' rules grow as their square, their
