@@ -226,7 +226,10 @@ int RunBatch(const BatchOptions& b)
         std::to_string(e.Size[2]))
         .c_str(),
       good, shots, failedBlocks, seconds);
-    table << line << result.substr(0, 200) << "\n";
+    // (a long message ends at a word, marked, not in the middle of one)
+    const std::string::size_type cut =
+      result.size() <= 200 ? std::string::npos : result.rfind(' ', 200);
+    table << line << (cut == std::string::npos ? result : result.substr(0, cut) + " ...") << "\n";
   }
   std::cout << "\n" << table.str();
   const auto n = static_cast<long long>(entries.size());

@@ -25,6 +25,38 @@ def tile_names(tileset):
     return [t.get("name") for t in ET.parse(tileset).getroot().find("tiles").findall("tile")]
 
 
+class ImpossibleOutputTest(unittest.TestCase):
+    def test_a_failure_blocks_cannot_mend_is_not_blamed_on_blocks(self):
+        """WaveFunctionCollapse's Chess (N=2, size 47, periodic): a checkerboard cannot repeat
+        with an odd period, so the whole model fails; the fallback to blocks cannot start (no
+        label is next to itself), and its error ("no usable trivial start ... use whole-model
+        synthesis") was reported instead of the whole model's failure."""
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOImage import vtkPNGWriter
+        folder = fresh_folder("cli-chess")
+        board = np.array([[[0, 0, 0], [255, 255, 255]], [[255, 255, 255], [0, 0, 0]]], np.uint8)
+        image = vtkImageData()
+        image.SetDimensions(2, 2, 1)
+        image.GetPointData().SetScalars(numpy_to_vtk(board.reshape(4, 3), deep=True))
+        writer = vtkPNGWriter()
+        writer.SetFileName(os.path.join(folder, "Chess.png"))
+        writer.SetInputData(image)
+        writer.Write()
+        r = run_msynth("synthesize", os.path.join(folder, "Chess.png"), "--pattern", "2",
+                       "--translate", "xy", "--size", "47", "47", "1", "--out",
+                       os.path.join(folder, "out"))
+        one_line(self, r, 1)
+        self.assertIn("whole-model synthesis", r.stderr)
+        self.assertIn("Try another seed or more attempts (block synthesis cannot start with this "
+                      "example)", r.stderr)
+        self.assertNotIn("trivial start", r.stderr)
+        r = run_msynth("synthesize", os.path.join(folder, "Chess.png"), "--pattern", "2",
+                       "--translate", "xy", "--size", "48", "48", "1", "--out",
+                       os.path.join(folder, "out"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+
 class FixedSizeTest(unittest.TestCase):
     def test_synthesize_names_the_fixed_file_and_sizes(self):
         lines, drawn = data("Tilesets/Lines.xml"), data("Tilesets/lines-drawn.vti")

@@ -615,7 +615,22 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   SynthesisOptions blocks = options;
   blocks.BlockSize = block;
   blocks.Overlap = { { -1, -1, -1 } };
-  SynthesisResult second = SynthesizeWithStart(rules, blocks);
+  SynthesisResult second;
+  try
+  {
+    second = SynthesizeWithStart(rules, blocks);
+  }
+  catch (const Error&)
+  {
+    // Blocks cannot start here (no trivial start): the whole model's failure is the answer,
+    // without advice to use blocks.
+    const std::string advice = ", more attempts, or block synthesis";
+    const auto at = r.Message.rfind(advice);
+    if (at != std::string::npos)
+      r.Message.replace(
+        at, advice.size(), " or more attempts (block synthesis cannot start with this example)");
+    return r;
+  }
   if (!second.Succeeded())
     return second.Status == SynthesisStatus::Cancelled ? second : r;
   second.Message = r.Message.substr(0, r.Message.find(';')) + ", so the model was synthesized in " +
