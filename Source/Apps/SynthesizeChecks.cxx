@@ -107,10 +107,40 @@ void CheckDiscreteSizes(const SynthesizeOptions& o)
               << "\n";
 }
 
+namespace
+{
+/// A 3D example whose bottom layer is one label throughout stands on it, and a model without
+/// --ground floats (roofs and walls with no ground under them): the note says which option
+/// puts it under the model.
+void NoteGround(const SynthesizeOptions& o, vtkImageData* example)
+{
+  int dims[3] = { 0, 0, 0 };
+  if (example)
+    example->GetDimensions(dims);
+  vtkDataArray* labels = example ? vtkMSLabelArrays::FindLabelArray(example, nullptr) : nullptr;
+  if (!labels || dims[2] < 2 || o.Size3[2] < 2 || labels->GetNumberOfTuples() < dims[0] * dims[1])
+    return;
+  const double ground = labels->GetTuple1(0);
+  for (vtkIdType i = 1; i < static_cast<vtkIdType>(dims[0]) * dims[1]; ++i)
+    if (labels->GetTuple1(i) != ground)
+      return;
+  if (ground == 0)
+    return;
+  bool air = false; // label 0 in the example: --empty 0 may go around the model
+  for (vtkIdType i = 0; i < labels->GetNumberOfTuples() && !air; ++i)
+    air = labels->GetTuple1(i) == 0;
+  std::cout << "note: the example stands on a layer of label " << ground << "; --ground " << ground
+            << " puts one under the model" << (air ? " (and --empty 0 air around it)" : "") << "\n";
+}
+} // namespace
+
 void CheckBoundaryLabels(const SynthesizeOptions& o, vtkImageData* example)
 {
   if (o.Ground.empty() && o.Empty.empty())
+  {
+    NoteGround(o, example);
     return;
+  }
   std::set<long long> values;
   if (vtkDataArray* labels = example ? vtkMSLabelArrays::FindLabelArray(example, nullptr) : nullptr)
     for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)

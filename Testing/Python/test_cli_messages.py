@@ -138,12 +138,20 @@ class SizeOptionsTest(unittest.TestCase):
         whole = fresh_folder("messages-block-whole")
         r = run_msynth("synthesize", village, *common, "--out", whole)
         self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("note: --block", r.stdout)
+        # The village stands on label 1: a run without --ground says how to put it under the
+        # model (it floated: roofs and walls with no ground), and one with it says nothing.
+        self.assertIn("note: the example stands on a layer of label 1; --ground 1 puts one under "
+                      "the model (and --empty 0 air around it)", r.stdout)
+        r = run_msynth("synthesize", village, *common, "--ground", "1", "--out",
+                       fresh_folder("messages-grounded"))
+        self.assertEqual(r.returncode, 0, r.stderr)
         self.assertNotIn("note:", r.stdout)
         out = fresh_folder("messages-block-large")
         r = run_msynth("synthesize", village, *common, "--block", "40", "40", "5", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(r.stderr, "")
-        notes = [line for line in r.stdout.splitlines() if line.startswith("note:")]
+        notes = [line for line in r.stdout.splitlines() if line.startswith("note: --block")]
         self.assertEqual(notes, ["note: --block 40 40 5 is larger than the model (12 x 12 x 5): the model "
                                  "runs whole, in one block"])
         self.assertIn(", 1 block (0 failed)", r.stdout)
