@@ -15,27 +15,29 @@ from collections import Counter
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader
 
-from msynth_testing import data, fresh_folder, render_model, run_msynth
+from msynth_testing import data, fresh_folder, read_png, render_model, run_msynth
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SIZE = 200
 render_model = render_model()
 
 
-def read_png(path):
-    """(height, width, 4) RGBA, top row first."""
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    w, h, _ = image.GetDimensions()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, -1).astype(int)
+def read_rgba(path):
+    """(height, width, 4) RGBA as int, top row first (opaque when the PNG has no alpha)."""
+    pixels = read_png(path).astype(int)
     if pixels.shape[2] == 3:
-        pixels = np.concatenate([pixels, np.full((h, w, 1), 255)], axis=2)
-    return pixels[::-1]
+        pixels = np.concatenate([pixels, np.full(pixels.shape[:2] + (1,), 255)], axis=2)
+    return pixels
+
+
+def mesh_cells(path):
+    """The cell data of a mesh file (.vtp)."""
+    mesh = vtkXMLPolyDataReader()
+    mesh.SetFileName(path)
+    mesh.Update()
+    return mesh.GetOutput().GetCellData()
 
 
 def framed(mask, n=100):
@@ -90,7 +92,7 @@ class BlenderTest(unittest.TestCase):
                                mesh, theirs, "--top", "--size", str(SIZE), str(SIZE)],
                               capture_output=True, text=True, timeout=300)
         self.assertEqual(done.returncode, 0, done.stderr[-2000:])
-        blender, paraview = read_png(mine), read_png(theirs)
+        blender, paraview = read_rgba(mine), read_rgba(theirs)
         silhouette = blender[..., 3] > 128
         drawn = (paraview[..., :3] < 250).any(axis=2)  # render-model.py draws on white
         self.assertGreater(silhouette.sum(), SIZE * SIZE // 20, "%s: Blender drew nothing" % name)
@@ -107,10 +109,7 @@ class BlenderTest(unittest.TestCase):
                                            os.path.join(out, "mesh.vtp"), "village")
         self.assertGreaterEqual(overlap, 0.9)
         # The example's palette: the colour of each label on mesh.vtp's cells (PaletteColor).
-        mesh = vtkXMLPolyDataReader()
-        mesh.SetFileName(os.path.join(out, "mesh.vtp"))
-        mesh.Update()
-        cells = mesh.GetOutput().GetCellData()
+        cells = mesh_cells(os.path.join(out, "mesh.vtp"))
         palette = {int(label): tuple(int(v) for v in rgba[:3]) for label, rgba in zip(
             vtk_to_numpy(cells.GetArray("Label")), vtk_to_numpy(cells.GetArray("PaletteColor")))}
         # Seen from above: the label at the top of each column, recomputed from the label grid.
@@ -138,8 +137,8 @@ class BlenderTest(unittest.TestCase):
                                os.path.join(out, "model.vdb"), volume, "--size", str(SIZE),
                                "--flat"], capture_output=True, text=True, timeout=300)
         self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
-        fog = read_png(volume)
-        mesh_silhouette = read_png(os.path.join(self.folder, "village-blender.png"))[..., 3] > 128
+        fog = read_rgba(volume)
+        mesh_silhouette = read_rgba(os.path.join(self.folder, "village-blender.png"))[..., 3] > 128
         self.assertGreaterEqual(iou(fog[..., 3] > 128, mesh_silhouette), 0.9)
         close, shares = near_shares(fog[fog[..., 3] > 128][:, :3], {c: c for c in expected}, 12)
         self.assertGreater(close, 0.7, "volume pixels in the palette's colours")
@@ -154,11 +153,8 @@ class BlenderTest(unittest.TestCase):
         pixels, overlap = self.render_both(os.path.join(out, "mesh.glb"),
                                            os.path.join(out, "mesh.vtp"), "pipes")
         self.assertGreaterEqual(overlap, 0.9)
-        mesh = vtkXMLPolyDataReader()
-        mesh.SetFileName(os.path.join(out, "mesh.vtp"))
-        mesh.Update()
         colours = {tuple(int(v) for v in rgba[:3]) for rgba in vtk_to_numpy(
-            mesh.GetOutput().GetCellData().GetArray("PaletteColor"))}
+            mesh_cells(os.path.join(out, "mesh.vtp")).GetArray("PaletteColor"))}
         close, _ = near_shares(pixels, {c: c for c in colours})
         self.assertGreater(close, 0.97, "pixels in the tiles' palette colours")
 
