@@ -57,6 +57,13 @@ class ImpossibleOutputTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
 
 
+class SubsetTest(unittest.TestCase):
+    def test_an_unknown_subset_lists_the_subsets(self):
+        r = run_msynth("synthesize", data("Tilesets/Lines.xml"), "--subset", "Foo", "--size", "8",
+                       "8", "1", "--out", fresh_folder("messages-subset"))
+        self.assertIn("has no subset named 'Foo'; its subsets: straight", one_line(self, r, 1))
+
+
 class FixedSizeTest(unittest.TestCase):
     def test_synthesize_names_the_fixed_file_and_sizes(self):
         lines, drawn = data("Tilesets/Lines.xml"), data("Tilesets/lines-drawn.vti")

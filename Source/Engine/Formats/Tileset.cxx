@@ -275,7 +275,16 @@ private:
         if (s.Name == "subset" && s.Attribute("name") && *s.Attribute("name") == subsetName)
           chosen = &s;
     if (!chosen)
-      throw Error::InFile(this->Name, "has no subset named '" + subsetName + "'");
+    {
+      std::string names; // the subsets it has, to choose from
+      if (subsets)
+        for (const auto& s : subsets->Children)
+          if (s.Name == "subset" && s.Attribute("name"))
+            names += (names.empty() ? "" : ", ") + *s.Attribute("name");
+      throw Error::InFile(this->Name,
+        "has no subset named '" + subsetName + "'" +
+          (names.empty() ? std::string("; it has no subsets") : "; its subsets: " + names));
+    }
     for (const auto& t : chosen->Children)
       if (t.Name == "tile" && t.Attribute("name"))
         allowed.insert(*t.Attribute("name"));
