@@ -112,44 +112,40 @@ std::mutex& NoteMutex()
   static auto* m = new std::mutex; // never destroyed: the signal thread may read at exit
   return *m;
 }
-std::string& Note()
+/// What the signal thread says of an interrupted run (InterruptNote, InterruptDone).
+struct InterruptWords
 {
-  static auto* note = new std::string;
-  return *note;
+  std::string Note, Done;
+};
+InterruptWords& Words()
+{
+  static auto* words = new InterruptWords; // never destroyed, as the mutex
+  return *words;
 }
 } // namespace
 
 void SetInterruptNote(const std::string& note)
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
-  Note() = note;
+  Words().Note = note;
 }
 
 std::string InterruptNote()
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
-  return Note();
+  return Words().Note;
 }
-
-namespace
-{
-std::string& Done()
-{
-  static auto* done = new std::string;
-  return *done;
-}
-} // namespace
 
 void SetInterruptDone(const std::string& done)
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
-  Done() = done;
+  Words().Done = done;
 }
 
 std::string InterruptDone()
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
-  return Done();
+  return Words().Done;
 }
 
 long long SitesWithinMemory(unsigned bytesPerSite, long long ceiling)

@@ -155,6 +155,10 @@ TEST(DiscreteSynthesis, AFlatExampleAskedForDepthIsAClearError)
       EXPECT_NE(what.find("(size 6 5 1)"), std::string::npos) << what;
     }
   }
+  // A region of such a world says the same (streams check as regions do).
+  o.BlockSize = { { 3, 3, 3 } };
+  const auto rules = AdjacencyRules::FromExample(ExampleAnalysis::FromExample(flat));
+  EXPECT_THROW(SynthesizeRegion(rules, o, { { 0, 0, 0 } }, { { 3, 3, 3 } }), Error);
   o.Size = { { 6, 5, 1 } };
   o.BlockSize = { { 0, 0, 0 } };
   EXPECT_TRUE(SynthesizeFrom(flat, o).Succeeded());

@@ -562,11 +562,6 @@ bool FallbackBlocks(const SynthesisOptions& options, Coord& block)
 }
 } // namespace
 
-namespace
-{
-/// A model more than one site long along an axis on which no two labels may be neighbours (a 2D
-/// tileset or a flat example asked for a 3D size) cannot exist: said at once, with the size
-/// that can, instead of as a catalog emptied in every attempt.
 void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& options)
 {
   static const char* const names[3] = { "x", "y", "z" };
@@ -590,7 +585,6 @@ void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& 
       " cannot exist; ask for one site along it (size " + size + ")");
   }
 }
-} // namespace
 
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& given)
 {

@@ -515,4 +515,12 @@ std::int64_t CountSnapshots(const SynthesisOptions& options);
  */
 SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& options);
 
+/**
+ * A model more than one site long along an axis on which no two labels may be neighbours (a 2D
+ * tileset or a flat example asked for a 3D size) cannot exist: said at once, with the size that
+ * can, instead of as a catalog emptied in every attempt. Whole runs, regions and streams call it.
+ * @throw Error naming the axis and the size.
+ */
+void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& options);
+
 } // namespace msynth

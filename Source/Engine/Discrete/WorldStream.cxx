@@ -205,6 +205,7 @@ SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOpt
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {
   CheckWorldOptions(world, "a region of a world");
+  CheckAxesWithoutPairs(rules, world);
   CheckCountRequest(rules, world); // shares by position (LabelCounts.h): as in the whole run
   CheckConnectedRequest(rules, world);
   const WorldLattice lattice = LatticeOf(world);
@@ -637,6 +638,7 @@ SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisO
 {
   const auto start = std::chrono::steady_clock::now();
   CheckWorldOptions(world, "a streamed world");
+  CheckAxesWithoutPairs(rules, world);
   CheckCountRequest(rules, world);
   CheckConnectedRequest(rules, world);
   if (firstChunk < 0 || firstChunk > layout.Chunks || layout.World != world.Size)

@@ -182,6 +182,16 @@ Band MakeBand(const LabelRenderView& view)
   return band;
 }
 
+/// The values of @p box (x fastest) into @p grid; those equal to its background stay inactive.
+void CopyFromBox(const Box& box, float* values, openvdb::FloatGrid& grid)
+{
+  const auto c = [](std::int64_t v) { return static_cast<openvdb::Int32>(v); };
+  const openvdb::CoordBBox bounds(openvdb::Coord(c(box.Lo[0]), c(box.Lo[1]), c(box.Lo[2])),
+    openvdb::Coord(c(box.Hi(0)), c(box.Hi(1)), c(box.Hi(2))));
+  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(bounds, values);
+  openvdb::tools::copyFromDense(dense, grid, 0.0f);
+}
+
 /// Squared distances over @p box from each voxel to the nearest voxel box of the set whose
 /// voxels hold 0 in @p d (Far elsewhere): exact below the band, Far or more beyond it.
 void SquaredDistances(std::vector<float>& d, const Box& box, const Band& band)
@@ -240,13 +250,7 @@ openvdb::FloatGrid::Ptr LevelSet(const Box& labels, const Box& box, const Band& 
     });
   std::vector<float>().swap(toEmpty);
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
-  const openvdb::Coord lo(static_cast<openvdb::Int32>(box.Lo[0]),
-    static_cast<openvdb::Int32>(box.Lo[1]), static_cast<openvdb::Int32>(box.Lo[2]));
-  const openvdb::Coord hi(static_cast<openvdb::Int32>(box.Hi(0)),
-    static_cast<openvdb::Int32>(box.Hi(1)), static_cast<openvdb::Int32>(box.Hi(2)));
-  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(
-    openvdb::CoordBBox(lo, hi), toSolid.data());
-  openvdb::tools::copyFromDense(dense, *grid, 0.0f);
+  CopyFromBox(box, toSolid.data(), *grid);
   openvdb::tools::signedFloodFill(grid->tree());
   grid->setTransform(transform.copy());
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
@@ -282,13 +286,7 @@ void AppendDensityAndColor(const LabelRenderView& view, const Box& labels,
   for (std::size_t i = 0; i < n; ++i)
     solid[i] = IsSolid(view, view.Labels[i]) ? 1.0f : 0.0f;
   openvdb::FloatGrid::Ptr density = openvdb::FloatGrid::create(0.0f);
-  const openvdb::Coord lo(static_cast<openvdb::Int32>(labels.Lo[0]),
-    static_cast<openvdb::Int32>(labels.Lo[1]), static_cast<openvdb::Int32>(labels.Lo[2]));
-  const openvdb::Coord hi(static_cast<openvdb::Int32>(labels.Hi(0)),
-    static_cast<openvdb::Int32>(labels.Hi(1)), static_cast<openvdb::Int32>(labels.Hi(2)));
-  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(
-    openvdb::CoordBBox(lo, hi), solid.data());
-  openvdb::tools::copyFromDense(dense, *density, 0.0f);
+  CopyFromBox(labels, solid.data(), *density);
   density->setName("density");
   density->setGridClass(openvdb::GRID_FOG_VOLUME);
   density->setTransform(transform.copy());
