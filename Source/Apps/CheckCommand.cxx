@@ -8,6 +8,7 @@
 #include "Common.h"
 #include "Examples.h"
 #include "FrameSeries.h"
+#include "Resemblance.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -156,6 +157,7 @@ int CheckContinuous(
     if (width && fraction && fraction->GetTuple1(0) > 0)
       std::cout << "narrowest face, edge or gap: " << width->GetTuple1(0) << " ("
                 << fraction->GetTuple1(0) << " of the smallest plane spacing)\n";
+    PrintResemblance(verdict.Fields, std::cout);
     return 0;
   }
   std::cout << "invalid: " << modelPath << ": ";

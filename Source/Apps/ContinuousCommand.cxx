@@ -5,6 +5,7 @@
 // statistics.json.
 #include "Common.h"
 #include "Examples.h"
+#include "Resemblance.h"
 #include "Synthesize.h"
 
 #include "vtkDataArray.h"
@@ -157,6 +158,8 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     // occupancy (what the proportions steer).
     .Prefixed("TypeShares", model->GetFieldData(), "VolumeShare_")
     .Prefixed("VertexShares", fd, "TypeShare_")
+    // Parts of each type, their sizes and what they front, against the example's.
+    .Raw("Resemblance", ResemblanceJson(model->GetFieldData()))
     .Raw("StageSeconds", "{" + seconds + "}")
     .Number("VoxelSize", voxel)
     .Number("VoxVoxelSize", voxVoxel)
@@ -242,6 +245,9 @@ void PrintSummary(vtkPolyData* labelled, vtkPolyData* model)
               << static_cast<int>(std::lround(100 * emptied->GetTuple1(0)))
               << " % of the solid) were emptied to keep the example's proportions; more "
                  "constraints (--thickness, --overhang) or --no-proportions keep more\n";
+  if (ResemblanceFailed(model->GetFieldData()) >= 0)
+    std::cout << "structure against the example: " << ResemblanceSummary(model->GetFieldData())
+              << "\n";
 }
 } // namespace
 

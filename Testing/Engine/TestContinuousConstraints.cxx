@@ -407,6 +407,27 @@ TEST(ContinuousConstraints, RoadsAndPipesAreOneNetworkOfFixedWidth)
   }
 }
 
+TEST(ContinuousConstraints, AGroundedNetworkFromOneSeedLeavesTheOtherTypesTheirGround)
+{
+  // TVCG §4.6, Fig. 10: roads grow from one seed while buildings still fill the rest. Grounded,
+  // only the seeded type is held to its seed; the houses start anywhere on the ground (before,
+  // every type waited for the road to reach it, and the town was a road and nothing else).
+  const Loaded town = Load("town.obj");
+  ContinuousSynthesisOptions o;
+  o.Seed = 1;
+  o.BlockSize = 4;
+  o.Constraints.Grounded = true;
+  constexpr int Road = 5;
+  o.Constraints.Connected.push_back({ Road, 1 });
+  const Voxels v = Synthesize(town, { 16, 16, 4 }, o, 0.5);
+  std::map<Label, std::int64_t> voxels;
+  for (Label t : v.Types.Data())
+    ++voxels[t];
+  EXPECT_GT(voxels[Road], 0) << "the seed starts a road";
+  EXPECT_GT(voxels[Wall], 0) << "houses beside the road";
+  EXPECT_GT(voxels[3], 0) << "shops beside the road";
+}
+
 TEST(ContinuousConstraints, OverhangsReachOneSpacingPastTheirSupport)
 {
   // Undersides of roofs (roof voxels over empty ones) at most one spacing wide: no square two

@@ -55,6 +55,8 @@ public:
 
   /// Connectivity: the types that only grow next to their group (0: none).
   std::uint64_t GrowMask() const { return this->Grow; }
+  /// Grounded with seeds: the types grown from their seeds, whose front is labelled first.
+  std::uint64_t LeadMask() const { return this->GroundSeeded; }
   /**
    * The growing types that may not be chosen where the decided neighbours reach the types
    * @p reach: every group of growing types that @p reach does not meet. A group is the solid as
@@ -233,7 +235,9 @@ private:
   std::vector<double> Target; ///< per type bit: share of the solid
   std::uint64_t FillMask = 0; ///< connected types (type bits), steered toward FillTarget
   double FillTarget = 0;      ///< their share of the example's bounding box
-  bool GroundSeeded = false;  ///< grounded with seeds: objects start at the seeds, on the ground
+  /// Grounded with seeds: the types that start at their seeds (on the ground) only; the other
+  /// solid types start anywhere on the ground (a road network from one seed among houses).
+  std::uint64_t GroundSeeded = 0;
   std::vector<std::int64_t> SeedVertices;
   std::vector<std::uint64_t> SeedMask; ///< per seed vertex
 };

@@ -357,7 +357,8 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
                                      : interior >= 0 && this->Arrangement.FamilyMask(v) == 0)
         candidates.push_back(v); // on the ground; else inside a cell, where interiors can go
     }
-    this->GroundSeeded = this->GroundSeeded || this->Constraints.Grounded;
+    if (this->Constraints.Grounded)
+      this->GroundSeeded |= mask; // these types start at their seeds only, not on all the ground
     if (candidates.empty())
     {
       for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
@@ -423,8 +424,8 @@ std::uint64_t ConstraintPlan::SeedTypes(std::int64_t v) const
 std::uint64_t ConstraintPlan::StartTypes(std::int64_t v) const
 {
   std::uint64_t mask = this->SeedTypes(v);
-  if (this->Constraints.Grounded && !this->GroundSeeded && this->OnGround(v))
-    mask |= this->Solid;
+  if (this->Constraints.Grounded && this->OnGround(v))
+    mask |= this->Solid & ~this->GroundSeeded;
   return mask;
 }
 

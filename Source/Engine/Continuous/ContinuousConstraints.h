@@ -63,8 +63,8 @@ struct ThicknessConstraint
  * to that type (an edge of an already labelled neighbour touches it), so objects grow from
  * seeds; vertices next to the grown objects are labelled first. @p Seeds random vertices (from
  * the run's seed) start an object each; 0 seeds leaves the type unconstrained. Type 0 means
- * every solid type together. In a grounded run the seeds are on the ground, and objects start
- * only there (not anywhere on the ground).
+ * every solid type together. In a grounded run the seeds are on the ground, and objects of
+ * the seeded types start only there (the other types anywhere on the ground).
  */
 struct ConnectivityConstraint
 {

@@ -81,16 +81,14 @@ struct RunParts
       [&](std::int64_t v, std::uint64_t* domain) { this->Rules.InitialDomain(v, domain, seams); });
     if (!options.PartOf.empty())
       RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
-    if (options.Choice == LabelChoice::Frequency)
-    {
-      for (const auto& info : analysis.Labels())
-        this->Weights.push_back(static_cast<double>(std::max<std::int64_t>(info.Occurrences, 1)));
-    }
-    else if (options.Choice != LabelChoice::Uniform)
-    {
+    if (options.Choice != LabelChoice::Frequency && options.Choice != LabelChoice::Uniform)
       throw Error(
         "continuous synthesis: only uniform and frequency-weighted label choice are available");
-    }
+    const bool given = options.LabelWeights.size() == analysis.Labels().size();
+    const std::size_t k = options.Choice == LabelChoice::Frequency ? analysis.Labels().size() : 0;
+    for (std::size_t id = 0; id < k; ++id) // lattice counts (LatticeCounts.h) or sampled ones
+      this->Weights.push_back(std::max(1.0,
+        given ? options.LabelWeights[id] : static_cast<double>(analysis.Labels()[id].Occurrences)));
     if (options.Constraints.RestrictsCatalog())
       eachVertex([&](std::int64_t v, std::uint64_t* domain) { this->Plan->Restrict(v, domain); });
     if (this->Parallel)
@@ -436,16 +434,14 @@ std::int64_t ContinuousRun::AssignAll(
     for (std::int64_t i = 0; i < m; ++i)
     {
       const std::int64_t v = this->Verts[ToIndex(i)];
-      bool front = (this->Plan->StartTypes(v) & this->Plan->GrowMask()) != 0;
+      std::uint64_t reach = this->Plan->StartTypes(v);
       for (const auto* l = this->Arrangement.LinksBegin(v); l != this->Arrangement.LinksEnd(v); ++l)
       {
         if (l->Vertex >= 0 && this->LocalOf[ToIndex(l->Vertex)] < 0)
-          front = front ||
-            (this->Plan->EdgeTypes(l->Direction ^ 1, this->Result.Labels[ToIndex(l->Vertex)]) &
-              this->Plan->GrowMask()) != 0;
+          reach |= this->Plan->EdgeTypes(l->Direction ^ 1, this->Result.Labels[ToIndex(l->Vertex)]);
       }
-      if (front)
-        queue.SetFront(i);
+      if (reach & this->Plan->GrowMask())
+        queue.SetFront(i, (reach & this->Plan->LeadMask()) != 0);
     }
     for (std::int64_t i = 0; i < m; ++i)
       if (this->Domains.Count(i) == 1)
@@ -513,8 +509,9 @@ void ContinuousRun::Spread(std::int64_t i, detail::SiteQueue& queue) const
   this->ForEachNeighbour(i,
     [&](std::int64_t u, int d)
     {
-      if (this->Domains.Count(u) > 1 && (this->Plan->EdgeTypes(d, label) & this->Plan->GrowMask()))
-        queue.SetFront(u);
+      const std::uint64_t reach = this->Plan->EdgeTypes(d, label);
+      if (this->Domains.Count(u) > 1 && (reach & this->Plan->GrowMask()))
+        queue.SetFront(u, (reach & this->Plan->LeadMask()) != 0);
       return true;
     });
 }

@@ -97,6 +97,9 @@ struct ContinuousSynthesisOptions
   SiteOrder Order = SiteOrder::MinimumEntropy;
   /// Uniform (the dissertation) or weighted by how often the label occurs in the example.
   LabelChoice Choice = LabelChoice::Uniform;
+  /// With Frequency: the weight of each label (LatticeOccurrences); empty: the analysis's
+  /// Occurrences (each sampled feature once).
+  std::vector<double> LabelWeights;
   /// Dimensional, connectivity, ground, guide and proportion constraints (TVCG §4.5–4.7).
   ContinuousConstraints Constraints;
   /// Reflection symmetry across these axes (bit 0 x, bit 1 y, bit 2 z; 0 none): see

@@ -181,14 +181,17 @@ public:
       this->Pending.push(this->Entry(i, count));
   }
 
-  /// Puts vertex @p i on the growth front (labelled before the vertices off it).
-  void SetFront(std::int64_t i)
+  /// Puts vertex @p i on the growth front (labelled before the vertices off it); @p lead: on
+  /// the front of a type grown from seeds (labelled before the rest of the front: a road network
+  /// grows from its seed before the houses beside it start on the ground).
+  void SetFront(std::int64_t i, bool lead = false)
   {
-    if (this->Front[ToIndex(i)])
+    const char level = lead ? 2 : 1;
+    if (this->Front[ToIndex(i)] >= level)
       return;
     const int count = this->Counts[ToIndex(i)];
     this->Update(i, 0);
-    this->Front[ToIndex(i)] = 1;
+    this->Front[ToIndex(i)] = level;
     this->Update(i, count);
   }
   bool OnFront(std::int64_t i) const { return this->Front[ToIndex(i)] != 0; }
@@ -212,7 +215,7 @@ public:
 private:
   std::tuple<int, std::uint64_t, std::int64_t> Entry(std::int64_t i, int count) const
   {
-    const int rank = (this->Front[ToIndex(i)] ? 0 : 1 << 28) +
+    const int rank = (2 - this->Front[ToIndex(i)]) * (1 << 27) +
       (this->Order == SiteOrder::MinimumEntropy ? count : 0);
     return { rank, this->Key[ToIndex(i)], i };
   }

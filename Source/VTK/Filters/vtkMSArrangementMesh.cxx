@@ -2,6 +2,7 @@
 #include "vtkMSArrangementMesh.h"
 
 #include "vtkMSArrangementStorage.h"
+#include "vtkMSCheckKinds.h"
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
@@ -205,6 +206,23 @@ vtkDataArray* ModelLabelArray(vtkPolyData* labelled, const std::string& where)
   return labelArray;
 }
 
+/**
+ * What the synthesized model (before any substitution) measures, as field data: the smallest
+ * plane spacing (a check holds features to a fraction of it) and its narrowest feature, on its
+ * polygons (FeatureWidth.h), and the structure a person sees (parts, their sizes, what they
+ * front) against the example's (ModelStructure.h).
+ */
+void AddMeasures(vtkFieldData* out, const msynth::PolyhedralExample& ex,
+  const msynth::ContinuousMesh& model, double spacing)
+{
+  const msynth::FeatureWidth width = msynth::SmallestFeature(model, spacing);
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "SmallestSpacing", spacing);
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "SmallestFeature", width.Width);
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
+    out, "SmallestFeatureFraction", spacing > 0 ? width.Width / spacing : 0.0);
+  vtkMSCheckKinds::AddResemblance(out, ex, msynth::MeshToModel(model, ex.TypeNames), spacing);
+}
+
 /// Each type's share of the solid volume (area in 2D) of @p mesh as it is: VolumeShare_TYPE.
 void AddVolumeShares(vtkPolyData* output, const msynth::ContinuousMesh& mesh)
 {
@@ -285,17 +303,8 @@ int vtkMSArrangementMesh::RequestData(
       output->GetFieldData(), "AngleTolerance", record.AngleToleranceDegrees);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(
       output->GetFieldData(), "MaximumSmallInteger", record.MaximumSmallInteger);
-    // The smallest plane spacing (a check holds features to a fraction of it) and the narrowest
-    // feature of the synthesized model, measured on its polygons (FeatureWidth.h).
     const double spacing = vtkMSArrangementStorage::SmallestSpacing(labelled->GetFieldData());
-    const msynth::FeatureWidth width =
-      msynth::SmallestFeature(detail ? synthesized : mesh, spacing);
-    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
-      output->GetFieldData(), "SmallestSpacing", spacing);
-    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
-      output->GetFieldData(), "SmallestFeature", width.Width);
-    vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
-      output->GetFieldData(), "SmallestFeatureFraction", spacing > 0 ? width.Width / spacing : 0.0);
+    AddMeasures(output->GetFieldData(), ex, detail ? synthesized : mesh, spacing);
     if (this->CheckModel)
     {
       // The synthesized model (before any substitution) against the example.

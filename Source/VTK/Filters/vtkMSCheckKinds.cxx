@@ -7,6 +7,7 @@
 #include "vtkMSLabelCounts.h"
 
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -17,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 
+#include "Continuous/ModelStructure.h"
 #include "Core/Error.h"
 #include "Core/Index.h"
 #include "Core/TextLists.h"
@@ -28,6 +30,8 @@
 #include "Formats/VoxelTileset.h"
 
 #include <algorithm>
+#include <cmath>
+#include <initializer_list>
 
 namespace vtkMSCheckKinds
 {
@@ -190,5 +194,49 @@ bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request,
   }
   out->AddArray(findings);
   return kept;
+}
+int AddResemblance(vtkFieldData* out, const msynth::PolyhedralExample& example,
+  const msynth::PolyhedralExample& model, double spacing)
+{
+  if (example.Planar || model.Planar)
+    return 0;
+  double extent = 0;
+  for (int k = 0; k < 2; ++k)
+  {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const auto& p : example.Points)
+    {
+      lo = std::min(lo, p[msynth::ToIndex(k)]);
+      hi = std::max(hi, p[msynth::ToIndex(k)]);
+    }
+    extent = std::max(extent, hi - lo);
+  }
+  const double voxel = msynth::StructureVoxel(spacing, extent);
+  const double reach = msynth::StructureReach(spacing, extent);
+  const auto items = msynth::CompareStructure(msynth::MeasureStructure(example, voxel, reach),
+    msynth::MeasureStructure(model, voxel, reach), example.TypeNames);
+  vtkNew<vtkStringArray> measure, bounds;
+  vtkNew<vtkDoubleArray> inExample, inModel;
+  vtkNew<vtkIntArray> passes;
+  measure->SetName("ResemblanceMeasure");
+  bounds->SetName("ResemblanceBounds");
+  inExample->SetName("ResemblanceExample");
+  inModel->SetName("ResemblanceModel");
+  passes->SetName("ResemblancePasses");
+  int failed = 0;
+  for (const auto& item : items)
+  {
+    measure->InsertNextValue(item.Measure);
+    bounds->InsertNextValue(item.Bounds);
+    inExample->InsertNextValue(item.Example);
+    inModel->InsertNextValue(item.Model);
+    passes->InsertNextValue(item.Passes ? 1 : 0);
+    failed += item.Passes ? 0 : 1;
+  }
+  for (vtkAbstractArray* a :
+    std::initializer_list<vtkAbstractArray*>{ measure, bounds, inExample, inModel, passes })
+    out->AddArray(a);
+  vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "ResemblanceFailed", failed);
+  return failed;
 }
 } // namespace vtkMSCheckKinds

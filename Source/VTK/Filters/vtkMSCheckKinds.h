@@ -8,6 +8,7 @@
  * network. Each throws msynth::Error on bad input; the filter reports it.
  */
 #include "Core/LabelGrid.h"
+#include "Formats/PolyhedralExample.h"
 
 #include <cstdint>
 #include <string>
@@ -65,4 +66,14 @@ struct NetworkRequest
  * whether all are kept (true when nothing was asked).
  */
 bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request, vtkFieldData* out);
+
+/**
+ * The structure of the 3D polyhedral @p model against its @p example's (ModelStructure.h), on
+ * voxels and reach from @p spacing (the smallest plane spacing, 0 when unknown), as field data:
+ * one tuple per measure in `ResemblanceMeasure`, `ResemblanceExample`, `ResemblanceModel`,
+ * `ResemblanceBounds`, `ResemblancePasses`; `ResemblanceFailed` counts the measures out of
+ * bounds. Planar examples add nothing. Returns the number out of bounds.
+ */
+int AddResemblance(vtkFieldData* out, const msynth::PolyhedralExample& example,
+  const msynth::PolyhedralExample& model, double spacing);
 } // namespace vtkMSCheckKinds

@@ -299,6 +299,8 @@ bool vtkMSCheckModel::CheckContinuous(
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(out, "SmallestFeature", report.SmallestFeature);
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(
       out, "SmallestFeatureFraction", spacing > 0 ? report.SmallestFeature / spacing : 0.0);
+    // What a person sees (parts, their sizes, what they front) against the example.
+    vtkMSCheckKinds::AddResemblance(out, ex, msynth::MeshToModel(mesh, ex.TypeNames), spacing);
   }
   catch (const std::exception& e)
   {

@@ -27,6 +27,7 @@
 #include "vtkStringArray.h"
 
 #include "Continuous/ContinuousSynthesis.h"
+#include "Continuous/LatticeCounts.h"
 #include "Core/Error.h"
 #include "Core/Fnv.h"
 #include "Core/Index.h"
@@ -229,6 +230,8 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
   options.Choice =
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
+  if (options.Choice == msynth::LabelChoice::Frequency)
+    options.LabelWeights = msynth::LatticeOccurrences(ex, analysis, parameters);
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
   const int* mirror = self->GetMirror();

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What a person sees in a continuous model (ModelStructure.h): parts, their footprints,
+// heights and what they front, measured on boxes whose answers are known; the comparison with
+// the example; and the example's label counts at its own lattice (LatticeCounts.h).
+#include "Continuous/LatticeCounts.h"
+#include "Continuous/ModelStructure.h"
+#include "Continuous/PlaneArrangement.h"
+#include "Core/Error.h"
+#include "Formats/PolyhedralExample.h"
+
+#include "Fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+using namespace msynth;
+
+namespace
+{
+/// An OBJ object: the axis-aligned box [x0, x1] x [y0, y1] x [z0, z1].
+std::string Box(const std::string& name, double x0, double y0, double z0, double x1, double y1,
+  double z1, int& points)
+{
+  std::ostringstream s;
+  s << "o " << name << "\n";
+  for (int k = 0; k < 8; ++k)
+    s << "v " << (k & 1 ? x1 : x0) << " " << (k & 2 ? y1 : y0) << " " << (k & 4 ? z1 : z0)
+      << "\n";
+  const int b = points + 1;
+  const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  for (const auto& f : faces)
+    s << "f " << b + f[0] << " " << b + f[1] << " " << b + f[2] << " " << b + f[3] << "\n";
+  points += 8;
+  return s.str();
+}
+
+PolyhedralExample Model(const std::string& text)
+{
+  std::istringstream in(text);
+  PolyhedralExample model = ReadOBJExample(in, "test.obj");
+  ValidateExample(model);
+  return model;
+}
+
+/// Two houses (4 x 2 x 2 and 1 x 1 x 1) beside a road 10 long, one 0.5 from the road.
+PolyhedralExample Street()
+{
+  int points = 0;
+  std::string text = Box("house", 0, 0, 0, 4, 2, 2, points);
+  text += Box("house.001", 6, 0, 0, 7, 1, 1, points);
+  text += Box("road", 0, 2.5, 0, 10, 3.5, 0.5, points);
+  return Model(text);
+}
+} // namespace
+
+TEST(ModelStructure, PartsTheirSizesAndWhatTheyFront)
+{
+  const ModelStructure s = MeasureStructure(Street(), 0.25, 1.0);
+  ASSERT_EQ(s.Types.size(), 2u);
+  const TypeStructure* house = s.Find(1);
+  const TypeStructure* road = s.Find(2);
+  ASSERT_TRUE(house && road);
+  ASSERT_EQ(house->Parts.size(), 2u);
+  EXPECT_NEAR(house->Parts[0].Footprint, 8.0, 1e-9); // the larger first
+  EXPECT_NEAR(house->Parts[0].Height, 2.0, 1e-9);
+  EXPECT_NEAR(house->Parts[1].Footprint, 1.0, 1e-9);
+  EXPECT_NEAR(house->MedianFootprint, 4.5, 1e-9);
+  EXPECT_NEAR(house->Volume, 17.0, 1e-9);
+  ASSERT_EQ(road->Parts.size(), 1u);
+  EXPECT_NEAR(road->Parts[0].Span, 10.0, 1e-9);
+  EXPECT_NEAR(s.GroundArea, 10.0 * 3.5, 1e-9);
+  EXPECT_NEAR(house->PartsPer100, 100.0 * 2 / 35.0, 1e-9);
+  // The first house is 0.5 from the road, the second 1.5: within a reach of 1, one of two.
+  EXPECT_NEAR(house->Fronting.at(2), 0.5, 1e-9);
+  EXPECT_NEAR(road->Fronting.at(1), 1.0, 1e-9);
+  // Within a reach of 2 both front it.
+  EXPECT_NEAR(MeasureStructure(Street(), 0.25, 2.0).Find(1)->Fronting.at(2), 1.0, 1e-9);
+}
+
+TEST(ModelStructure, TouchingObjectsOfOneTypeAreOnePart)
+{
+  int points = 0;
+  std::string text = Box("road", 0, 0, 0, 2, 2, 0.5, points);
+  text += Box("road.001", 2, 0, 0, 4, 2, 0.5, points);
+  text += Box("road.002", 2, 2, 0, 4, 4, 0.5, points);
+  const ModelStructure s = MeasureStructure(Model(text), 0.25, 1.0);
+  ASSERT_EQ(s.Types.size(), 1u);
+  ASSERT_EQ(s.Types[0].Parts.size(), 1u);
+  EXPECT_NEAR(s.Types[0].Parts[0].Footprint, 16.0, 1e-9);
+  EXPECT_NEAR(s.Types[0].Volume, 6.0, 1e-9);
+}
+
+TEST(ModelStructure, AModelLikeItsExampleResemblesItAndSmallPartsDoNot)
+{
+  const std::map<int, std::string> names{ { 1, "house" }, { 2, "road" } };
+  const ModelStructure example = MeasureStructure(Street(), 0.25, 1.0);
+  for (const auto& item : CompareStructure(example, example, names))
+    EXPECT_TRUE(item.Passes) << item.Measure;
+  // Houses a quarter of the size, the road in three pieces: footprints and the network fail.
+  int points = 0;
+  std::string text = Box("house", 0, 0, 0, 2, 1, 2, points);
+  text += Box("house.001", 6, 0, 0, 6.5, 0.5, 1, points);
+  for (int k = 0; k < 3; ++k)
+    text += Box("road" + std::string(k ? ".00" + std::to_string(k) : ""), 3.5 * k, 2.5, 0,
+      3.5 * k + 2.5, 3.5, 0.5, points);
+  const ModelStructure model = MeasureStructure(Model(text), 0.25, 1.0);
+  std::map<std::string, bool> passes;
+  for (const auto& item : CompareStructure(example, model, names))
+    passes[item.Measure] = item.Passes;
+  EXPECT_FALSE(passes.at("house: median footprint (square units)"));
+  EXPECT_FALSE(passes.at("road: volume share in networks (parts spanning half the example's)"));
+  EXPECT_TRUE(passes.at("house: parts per 100 square units of ground"));
+  EXPECT_THROW(MeasureStructure(Street(), 0, 1), Error);
+}
+
+TEST(LatticeCounts, LabelsCountOncePerVertexOfTheExamplesOwnLattice)
+{
+  // A 4 x 1 x 1 bar with planes a unit apart (the default would be 4 across x): each of its four edges along x holds three
+  // lattice vertices between its corners, each corner one, so an edge label along x counts 3
+  // where the analysis samples it once.
+  int points = 0;
+  PolyhedralExample bar = Model(Box("bar", 0, 0, 0, 4, 1, 1, points));
+  const PolyhedralAnalysis analysis = PolyhedralAnalysis::Analyze(bar);
+  const ArrangementParameters p =
+    DefaultArrangementParameters(bar, analysis, { 12, 12, 12 }, 0, { 1, 1, 1 });
+  const std::vector<double> counts = LatticeOccurrences(bar, analysis, p);
+  ASSERT_EQ(counts.size(), static_cast<std::size_t>(analysis.NumberOfLabels()));
+  double total = 0;
+  int edgesAlongX = 0;
+  for (int id = 0; id < analysis.NumberOfLabels(); ++id)
+  {
+    total += counts[static_cast<std::size_t>(id)];
+    if (analysis.Label(id).Kind == FeatureKind::Edge && counts[static_cast<std::size_t>(id)] == 3)
+      ++edgesAlongX;
+  }
+  EXPECT_EQ(total, 5 * 2 * 2); // every vertex of the 5 x 2 x 2 lattice has a label
+  EXPECT_EQ(edgesAlongX, 4);
+}
