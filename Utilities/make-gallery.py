@@ -9,8 +9,12 @@ a private Xvfb when there is no display), pictures copied, and an animation's fr
 to bottom. Documentation/images/image-samples.png (guide-tilesets.md) is composed from the
 meadow and rooms pictures, and the continuous guide's continuous-houses.png and
 continuous-networks.png are rendered from the entries RENDERED_PICTURES names. With names, only
-those entries (and the pictures made from them) are remade (the page lists all)."""
+those entries (and the pictures made from them) are remade (the page lists all). A continuous
+model's caption ends with its structure against the example (statistics.json's Resemblance: how
+many of the measures of `msynth check` are within bounds, and the ones out), kept in
+Documentation/images/gallery/structure.json between runs."""
 import glob
+import json
 import os
 import shutil
 import subprocess
@@ -242,6 +246,7 @@ def main(names):
         done = subprocess.run([M] + command.split() + ["--out", out], capture_output=True, text=True)
         if done.returncode != 0:
             sys.exit("%s: %s" % (name, done.stderr.strip()))
+        record_structure(name, os.path.join(out, "statistics.json"))
         png = os.path.join(images, name + ".png")
         if preview == "picture":
             shutil.copyfile(os.path.join(out, "picture.png"), png)
@@ -263,6 +268,32 @@ def main(names):
     write_page()
 
 
+STRUCTURE = os.path.join("Documentation", "images", "gallery", "structure.json")
+
+
+def load_structure():
+    if not os.path.exists(STRUCTURE):
+        return {}
+    with open(STRUCTURE) as f:
+        return json.load(f)
+
+
+def record_structure(name, statistics):
+    """Keeps the entry's structure summary (continuous models) for its caption."""
+    with open(statistics) as f:
+        measures = json.load(f).get("Resemblance")
+    kept = load_structure()
+    kept.pop(name, None)
+    if measures:
+        out = ["%s %.3g (example %.3g)" % (m["measure"], m["model"], m["example"])
+               for m in measures if not m["passes"]]
+        kept[name] = "structure against the example: %d of %d measures within bounds%s" % (
+            len(measures) - len(out), len(measures), "; out: " + ", ".join(out) if out else "")
+    with open(STRUCTURE, "w") as f:
+        json.dump(kept, f, indent=1, sort_keys=True)
+        f.write("\n")
+
+
 def write_page():
     """Documentation/gallery.md from ENTRIES."""
     with open(os.path.join("Documentation", "gallery.md"), "w") as f:
@@ -271,7 +302,10 @@ def write_page():
                 "made by `pvpython Utilities/make-gallery.py`, which runs these "
                 "commands and renders their outputs.\n\n")
         f.write("| preview | example | command |\n|---|---|---|\n")
+        structure = load_structure()
         for name, kind, what, command, preview in ENTRIES:
+            if name in structure:
+                what += " (%s)" % structure[name]
             f.write("| ![%s](images/gallery/%s.png) | **%s** (%s): %s | `build/bin/msynth %s` |\n" % (
                 name, name, name, kind, what, command))
 

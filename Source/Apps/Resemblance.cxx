@@ -68,9 +68,8 @@ void PrintResemblance(vtkFieldData* fd, std::ostream& out)
   const Arrays a = ArraysOf(fd);
   if (!a.Measure || a.Count() == 0)
     return;
-  out << "structure against the example (parts of each type): "
-      << a.Count() - ResemblanceFailed(fd) << " of " << Counted(a.Count(), "measure")
-      << " within bounds\n";
+  out << "structure against the example (parts of each type): " << a.Count() - ResemblanceFailed(fd)
+      << " of " << Counted(a.Count(), "measure") << " within bounds\n";
   std::size_t width = 0;
   for (vtkIdType i = 0; i < a.Count(); ++i)
     width = std::max(width, a.Measure->GetValue(i).size());

@@ -26,8 +26,7 @@ std::string Box(const std::string& name, double x0, double y0, double z0, double
   std::ostringstream s;
   s << "o " << name << "\n";
   for (int k = 0; k < 8; ++k)
-    s << "v " << (k & 1 ? x1 : x0) << " " << (k & 2 ? y1 : y0) << " " << (k & 4 ? z1 : z0)
-      << "\n";
+    s << "v " << (k & 1 ? x1 : x0) << " " << (k & 2 ? y1 : y0) << " " << (k & 4 ? z1 : z0) << "\n";
   const int b = points + 1;
   const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
     { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
@@ -45,13 +44,16 @@ PolyhedralExample Model(const std::string& text)
   return model;
 }
 
-/// Two houses (4 x 2 x 2 and 1 x 1 x 1) beside a road 10 long, one 0.5 from the road.
+/// Three houses (4 x 2 x 2, 1 x 1 x 1, 2 x 1 x 1) and a T of roads (10 along x, 4.5 more along
+/// y from its middle): the first house 0.5 from the road, the others 1.5.
 PolyhedralExample Street()
 {
   int points = 0;
   std::string text = Box("house", 0, 0, 0, 4, 2, 2, points);
   text += Box("house.001", 6, 0, 0, 7, 1, 1, points);
+  text += Box("house.002", 7, 5, 0, 9, 6, 1, points);
   text += Box("road", 0, 2.5, 0, 10, 3.5, 0.5, points);
+  text += Box("road.001", 4.5, 3.5, 0, 5.5, 8, 0.5, points);
   return Model(text);
 }
 } // namespace
@@ -63,20 +65,22 @@ TEST(ModelStructure, PartsTheirSizesAndWhatTheyFront)
   const TypeStructure* house = s.Find(1);
   const TypeStructure* road = s.Find(2);
   ASSERT_TRUE(house && road);
-  ASSERT_EQ(house->Parts.size(), 2u);
-  EXPECT_NEAR(house->Parts[0].Footprint, 8.0, 1e-9); // the larger first
+  ASSERT_EQ(house->Parts.size(), 3u);
+  EXPECT_NEAR(house->Parts[0].Footprint, 8.0, 1e-9); // the largest first
   EXPECT_NEAR(house->Parts[0].Height, 2.0, 1e-9);
-  EXPECT_NEAR(house->Parts[1].Footprint, 1.0, 1e-9);
-  EXPECT_NEAR(house->MedianFootprint, 4.5, 1e-9);
-  EXPECT_NEAR(house->Volume, 17.0, 1e-9);
-  ASSERT_EQ(road->Parts.size(), 1u);
+  EXPECT_NEAR(house->Parts[1].Footprint, 2.0, 1e-9);
+  EXPECT_NEAR(house->Parts[2].Footprint, 1.0, 1e-9);
+  EXPECT_NEAR(house->MedianFootprint, 2.0, 1e-9);
+  EXPECT_NEAR(house->Volume, 19.0, 1e-9);
+  ASSERT_EQ(road->Parts.size(), 1u); // the two road objects touch
   EXPECT_NEAR(road->Parts[0].Span, 10.0, 1e-9);
-  EXPECT_NEAR(s.GroundArea, 10.0 * 3.5, 1e-9);
-  EXPECT_NEAR(house->PartsPer100, 100.0 * 2 / 35.0, 1e-9);
-  // The first house is 0.5 from the road, the second 1.5: within a reach of 1, one of two.
-  EXPECT_NEAR(house->Fronting.at(2), 0.5, 1e-9);
+  EXPECT_NEAR(road->Parts[0].Footprint, 10.0 * 5.5, 1e-9);
+  EXPECT_NEAR(road->Parts[0].Ground, 10.0 + 4.5, 1e-9);
+  EXPECT_NEAR(s.GroundArea, 10.0 * 8.0, 1e-9);
+  EXPECT_NEAR(house->PartsPer100, 100.0 * 3 / 80.0, 1e-9);
+  // Within a reach of 1 one house of three fronts the road; within 2 all do.
+  EXPECT_NEAR(house->Fronting.at(2), 1.0 / 3, 1e-9);
   EXPECT_NEAR(road->Fronting.at(1), 1.0, 1e-9);
-  // Within a reach of 2 both front it.
   EXPECT_NEAR(MeasureStructure(Street(), 0.25, 2.0).Find(1)->Fronting.at(2), 1.0, 1e-9);
 }
 
@@ -103,6 +107,7 @@ TEST(ModelStructure, AModelLikeItsExampleResemblesItAndSmallPartsDoNot)
   int points = 0;
   std::string text = Box("house", 0, 0, 0, 2, 1, 2, points);
   text += Box("house.001", 6, 0, 0, 6.5, 0.5, 1, points);
+  text += Box("house.002", 7, 5, 0, 8, 5.5, 1, points);
   for (int k = 0; k < 3; ++k)
     text += Box("road" + std::string(k ? ".00" + std::to_string(k) : ""), 3.5 * k, 2.5, 0,
       3.5 * k + 2.5, 3.5, 0.5, points);
@@ -113,14 +118,21 @@ TEST(ModelStructure, AModelLikeItsExampleResemblesItAndSmallPartsDoNot)
   EXPECT_FALSE(passes.at("house: median footprint (square units)"));
   EXPECT_FALSE(passes.at("road: volume share in networks (parts spanning half the example's)"));
   EXPECT_TRUE(passes.at("house: parts per 100 square units of ground"));
+  // One house in its own box: its density is not compared, nor is a solid block a network.
+  int one = 0;
+  const ModelStructure house =
+    MeasureStructure(Model(Box("house", 0, 0, 0, 4, 2, 2, one)), 0.25, 1);
+  const auto items = CompareStructure(house, model, names);
+  ASSERT_EQ(items.size(), 1u);
+  EXPECT_EQ(items[0].Measure, "house: median footprint (square units)");
   EXPECT_THROW(MeasureStructure(Street(), 0, 1), Error);
 }
 
 TEST(LatticeCounts, LabelsCountOncePerVertexOfTheExamplesOwnLattice)
 {
-  // A 4 x 1 x 1 bar with planes a unit apart (the default would be 4 across x): each of its four edges along x holds three
-  // lattice vertices between its corners, each corner one, so an edge label along x counts 3
-  // where the analysis samples it once.
+  // A 4 x 1 x 1 bar with planes a unit apart (the default would be 4 across x): each of its four
+  // edges along x holds three lattice vertices between its corners, each corner one, so an edge
+  // label along x counts 3 where the analysis samples it once.
   int points = 0;
   PolyhedralExample bar = Model(Box("bar", 0, 0, 0, 4, 1, 1, points));
   const PolyhedralAnalysis analysis = PolyhedralAnalysis::Analyze(bar);

@@ -35,6 +35,33 @@ class GalleryTest(unittest.TestCase):
                                   capture_output=True, text=True, timeout=300)
             self.assertEqual(done.returncode, 0, "%s: %s" % (name, done.stderr))
             self.assertTrue(os.listdir(os.path.join(scratch, name)), name)
+            self.check_structure(name, command, os.path.join(scratch, name, "statistics.json"))
+
+    def check_structure(self, name, command, statistics):
+        """A 3D continuous model records its structure against its example: a median footprint
+        (or, for a network, its share in network-sized parts) for every object type of the
+        example, named as its OBJ names them."""
+        words = command.split()
+        example = words[1]
+        if not example.endswith(".obj") or "--size" not in words or \
+                float(words[words.index("--size") + 3]) == 0:
+            return
+        import json
+        with open(statistics) as f:
+            measures = {m["measure"]: m for m in json.load(f)["Resemblance"]}
+        types = set()
+        with open(os.path.join(ROOT, example)) as f:
+            for line in f:
+                if line.startswith("o "):
+                    types.add(line.split()[1].split(".")[0])
+        for t in types:
+            if "--types" in words:
+                break  # types renamed on the command line
+            key = "%s: median footprint (square units)" % t
+            if key not in measures:  # a network: how much of it is in network-sized parts
+                key = "%s: volume share in networks (parts spanning half the example's)" % t
+            self.assertIn(key, measures, name)
+            self.assertGreater(measures[key]["example"], 0, (name, key))
 
 
 if __name__ == "__main__":

@@ -20,8 +20,8 @@ std::vector<double> LatticeOccurrences(const PolyhedralExample& example,
     // The output's exact origin is the example's lowest corner (DefaultArrangementParameters).
     p.BoxLow[c] = 0;
     p.BoxHigh[c] = c < dims
-      ? static_cast<std::int64_t>(std::floor(
-          (analysis.High()[ToIndex(c)] - analysis.Low()[ToIndex(c)]) / p.Quantum + 0.5))
+      ? static_cast<std::int64_t>(
+          std::floor((analysis.High()[ToIndex(c)] - analysis.Low()[ToIndex(c)]) / p.Quantum + 0.5))
       : 0;
   }
   const PlaneArrangement lattice(analysis.Families(), p);

@@ -12,11 +12,14 @@
  * (its bounding box's longer x-y side); a part fronts a type when its footprint grown by the
  * reach meets a voxel of that type at any height (houses along streets, roofs on walls).
  *
- * Compared with the example, a type resembles it when its parts per ground area and its median
- * footprint are within 0.5–2× of the example's; a network type (its largest example part spans
- * at least half the example's width: streets) when nearly all of its volume is in parts at
- * least half that long; and fronting holds when a pair the example has for most of its parts
- * holds for most of the model's (at least 0.8 of the example's share).
+ * Compared with the example, a type resembles it when its median footprint is within 0.5–2× of
+ * the example's, and so are its parts per ground area where the example has several parts of it
+ * (one object's box says nothing of how far apart copies stand); a network type (its largest
+ * example part spans at least half the example's width and covers under half of its box: the
+ * streets of a town, not the one house of a house example) when nearly all of its volume is in
+ * parts at least half that long (its size and count are the model's, not compared); and fronting
+ * holds when a pair the example has for most of its parts holds for most of the model's (at least
+ * 0.8 of the example's share).
  */
 #include "Formats/PolyhedralExample.h"
 
@@ -35,6 +38,7 @@ struct StructurePart
   double Height = 0;    ///< z extent
   double Span = 0;      ///< the bounding box's longer x-y side
   double Volume = 0;
+  double Ground = 0;       ///< the area it covers seen from above
   std::vector<int> Fronts; ///< the other types within the reach of its footprint (ascending)
 };
 
@@ -52,9 +56,9 @@ struct TypeStructure
 
 struct ModelStructure
 {
-  double Voxel = 0;      ///< the voxel edge the parts were found on
-  double Reach = 0;      ///< how far a footprint is grown to find what it fronts
-  double GroundArea = 0; ///< the x-y area of the model's box
+  double Voxel = 0;                 ///< the voxel edge the parts were found on
+  double Reach = 0;                 ///< how far a footprint is grown to find what it fronts
+  double GroundArea = 0;            ///< the x-y area of the model's box
   std::vector<TypeStructure> Types; ///< solid types present, ascending
   const TypeStructure* Find(int type) const;
 };
@@ -80,10 +84,10 @@ struct ResemblanceItem
 
 /**
  * The model's structure against the example's, type by type (names from @p typeNames):
- * parts per ground area and median footprint (0.5–2×), network types' share of volume in
- * network-length parts (≥ 0.9), fronting the example has for at least 0.5 of a type's parts
- * (at least 0.8 of its share). Types the model lacks fail; types the example lacks are not
- * compared.
+ * parts per ground area (types with three parts or more in the example) and median footprint
+ * (0.5–2×), or for a network type its share of volume in network-length parts (≥ 0.9); fronting
+ * the example has for at least 0.5 of a type's parts (at least 0.8 of its share). Types the
+ * model lacks fail; types the example lacks are not compared.
  */
 std::vector<ResemblanceItem> CompareStructure(const ModelStructure& example,
   const ModelStructure& model, const std::map<int, std::string>& typeNames);
