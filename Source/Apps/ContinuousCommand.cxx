@@ -138,6 +138,7 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Count("Polygons", model->GetNumberOfPolys())
     .Solver(fd)
     .Flag("Grounded", o.Grounded)
+    .Flag("ExampleSizes", o.Sizes)
     .Count("Components", CountOf(fd, "Components"))
     .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
@@ -179,6 +180,7 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetNumberOfSnapshots(o.Snapshots);
   synthesis->SetGrounded(o.Grounded);
   synthesis->SetKeepProportions(!o.NoProportions);
+  synthesis->SetExampleSizes(o.Sizes);
   synthesis->SetBlockCandidates(o.Candidates);
   synthesis->SetModelCandidates(o.Models);
   synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,

@@ -89,6 +89,7 @@ struct SynthesizeOptions
   bool Grounded = false;
   std::vector<std::string> Thickness, Overhang, Connected;
   bool NoProportions = false;
+  bool Sizes = false; ///< --sizes: runs ended with the example's chances
   int Candidates = 1;
   int Models = 1;     ///< whole-model candidates
   std::string Detail; ///< TYPE=FILE

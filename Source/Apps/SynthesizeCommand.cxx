@@ -313,6 +313,9 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                ->check(CLI::Range(1, 1000)));
   continuous(s.add_flag("--no-proportions", o.NoProportions,
     "do not steer the label choice toward the example's proportions of object types"));
+  continuous(s.add_flag("--sizes", o.Sizes,
+    "parts as long as the example's: a wall, slab or road ends along x or y with the chance "
+    "that the example's of that length end, not with the same odds at every length"));
 }
 
 /// Options of label grids that an image sample does not take, and the forms of --ground.

@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // What a person sees in a continuous model (ModelStructure.h): parts, their footprints,
 // heights and what they front, measured on boxes whose answers are known; the comparison with
-// the example; and the example's label counts at its own lattice (LatticeCounts.h).
+// the example; the example's label counts at its own lattice (LatticeCounts.h); and its runs
+// and their chances of ending (RunEnds.h).
+#include "Continuous/ContinuousMesh.h"
+#include "Continuous/ContinuousSynthesis.h"
 #include "Continuous/LatticeCounts.h"
 #include "Continuous/ModelStructure.h"
 #include "Continuous/PlaneArrangement.h"
+#include "Continuous/RunEnds.h"
 #include "Core/Error.h"
 #include "Formats/PolyhedralExample.h"
 
@@ -12,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 
@@ -150,4 +155,62 @@ TEST(LatticeCounts, LabelsCountOncePerVertexOfTheExamplesOwnLattice)
   }
   EXPECT_EQ(total, 5 * 2 * 2); // every vertex of the 5 x 2 x 2 lattice has a label
   EXPECT_EQ(edgesAlongX, 4);
+}
+
+TEST(RunEnds, TheExamplesRunsAndTheirChancesOfEnding)
+{
+  // Rows of a quarter unit along x: the first house's 64 are 4 long and start at the example's
+  // edge (cut: it may go on beyond), the second's 16 are 1, the third's 16 are 2.
+  const ExampleRuns runs = MeasureRuns(Street(), 0.25);
+  const TypeRuns& house = runs.at(1)[0];
+  EXPECT_EQ(house.Complete.size(), 16u + 16u);
+  EXPECT_EQ(house.Cut.size(), 64u);
+  EXPECT_NEAR(house.EndChance(2, 1), 16.0 / (16 + 64), 1e-12);
+  EXPECT_NEAR(house.EndChance(3, 1), 0.0, 1e-12); // no house ends at 3: it goes on
+  EXPECT_NEAR(house.EndChance(4, 1), 0.0, 1e-12); // the one 4 long may go on past the edge
+  EXPECT_NEAR(house.EndChance(9, 1), 1.0, 1e-12); // longer than any the example shows: it ends
+  // The road along x crosses the whole example (cut); its branch along y is 1 across.
+  const TypeRuns& road = runs.at(2)[0];
+  EXPECT_EQ(road.Cut.size(), 4u * 2u);
+  EXPECT_NEAR(road.EndChance(5, 1), 0.0, 1e-12);
+  // A gabled roof narrows toward its ridge: only the walls are followed.
+  const auto houses = msynth_test::LoadPolyhedra("house.obj");
+  const ExampleRuns upright = MeasureRuns(houses.Example, 0.25);
+  EXPECT_EQ(upright.size(), 1u);
+  EXPECT_EQ(upright.count(1), 1u);
+}
+
+TEST(RunEnds, BarsComeOutAsLongAsTheExamplesWithItsChances)
+{
+  // Bars 5 and 6 long along x (planes a unit apart across x): drawn with the same odds at each
+  // vertex, most bars end after a unit or two; with the example's chances, at 5 or 6.
+  int points = 0;
+  std::string text = Box("bar", 0, 0, 0, 6, 1, 1, points);
+  text += Box("bar.001", 1, 2, 0, 6, 3, 1, points);
+  text += Box("bar.002", 0, 4, 0, 5, 5, 1, points);
+  const PolyhedralExample bars = Model(text);
+  const PolyhedralAnalysis analysis = PolyhedralAnalysis::Analyze(bars);
+  const PlaneArrangement arrangement(
+    analysis.Families(), DefaultArrangementParameters(bars, analysis, { 24, 12, 1 }, 0, {}));
+  auto medianLength = [&](bool sizes)
+  {
+    ContinuousSynthesisOptions o;
+    o.Seed = 4;
+    o.BlockSize = 0;
+    if (sizes)
+      o.Runs = MeasureRuns(bars, 0.25);
+    const auto result = SynthesizeContinuous(analysis, arrangement, o);
+    EXPECT_TRUE(result.Succeeded()) << result.Message;
+    const ContinuousMesh mesh = ExtractMesh(analysis, arrangement, result.Labels);
+    EXPECT_TRUE(CheckContinuousModel(analysis, mesh, {}).Valid);
+    std::vector<double> lengths = MeasureRuns(MeshToModel(mesh, {}), 0.25).at(1)[0].Complete;
+    EXPECT_FALSE(lengths.empty());
+    std::sort(lengths.begin(), lengths.end());
+    return lengths.empty() ? 0.0 : lengths[lengths.size() / 2];
+  };
+  const double memoryless = medianLength(false);
+  const double sized = medianLength(true);
+  EXPECT_LE(memoryless, 3.0);
+  EXPECT_GE(sized, 4.5);
+  EXPECT_LE(sized, 6.5);
 }

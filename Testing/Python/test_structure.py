@@ -75,6 +75,22 @@ class StructureTest(unittest.TestCase):
         self.assertIn("road: volume share in networks (parts spanning half the example's)", m)
         self.assertIn("structure against the example:", self.synthesis.stdout)
 
+    def test_sizes_are_recorded_and_the_same_on_any_number_of_threads(self):
+        # --sizes draws a run's end with the example's chance at its length, reading the
+        # decided vertices behind it: within a block only, so threads give the same model.
+        models = []
+        for threads in ("1", "2"):
+            out = os.path.join(fresh_folder("structure-sizes-" + threads), "town")
+            r = run_msynth("synthesize", data("Continuous/town.obj"), "--size", "24", "24", "6",
+                           "--seed", "2", *TOWN, "--sizes", "--threads", threads, "--outputs",
+                           "mesh", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "statistics.json")) as f:
+                self.assertTrue(json.load(f)["ExampleSizes"])
+            with open(os.path.join(out, "model.vtp"), "rb") as f:
+                models.append(f.read())
+        self.assertEqual(models[0], models[1])
+
     def test_check_prints_the_table(self):
         r = run_msynth("check", data("Continuous/town.obj"), os.path.join(self.out, "model.vtp"))
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)

@@ -3,6 +3,7 @@
 
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/ContinuousMirror.h"
+#include "Continuous/RunParts.h"
 #include "Continuous/SolverParts.h"
 #include "Core/BlockDriver.h"
 #include "Core/Error.h"
@@ -37,89 +38,6 @@ double DoubleOf(std::int64_t bits)
 }
 
 /**
- * What the workers of one run share, read-only while blocks run: the rules, each vertex's
- * starting catalog, the compiled constraints, the block layout and the schedule.
- */
-struct RunParts
-{
-  RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& arrangement,
-    const ContinuousSynthesisOptions& options)
-    : Rules(analysis, arrangement)
-  {
-    const std::int64_t n = arrangement.NumberOfVertices();
-    const int words = this->Rules.Words();
-    this->Plan = std::make_unique<detail::ConstraintPlan>(
-      analysis, arrangement, options.Constraints, options.Seed);
-    double reference = 0;
-    for (int f = 0; f < arrangement.Families().Size(); ++f)
-      reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
-    this->Whole = options.BlockSize == 0;
-    // Blocks spread outward from connectivity seeds one after the other; else non-touching
-    // blocks run in phases, concurrently.
-    this->Parallel = this->Plan->Seeds().empty();
-    this->Layout = std::make_unique<detail::BlockLayout>(arrangement,
-      this->Whole ? 0.0 : options.BlockSize * reference,
-      this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
-    this->Initial.resize(ToIndex(n) * words);
-    int seams = 0;
-    for (const ArrangementMirror* plan : options.PartOf)
-      seams |= 1 << plan->Axis;
-    // Each vertex's starting catalog on its own (threads: chunks of vertices, the same catalogs).
-    const auto eachVertex = [&](const auto& work)
-    {
-      constexpr std::int64_t chunk = 8192;
-      RunChunks(ToIndex((n + chunk - 1) / chunk),
-        static_cast<unsigned>(std::max(0, options.Threads)),
-        [&](std::size_t c)
-        {
-          const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
-          for (std::int64_t v = first; v < std::min(n, first + chunk); ++v)
-            work(v, this->Initial.data() + ToIndex(v) * words);
-        });
-    };
-    eachVertex(
-      [&](std::int64_t v, std::uint64_t* domain) { this->Rules.InitialDomain(v, domain, seams); });
-    if (!options.PartOf.empty())
-      RestrictToMirrorImages(options.PartOf, arrangement, this->Initial);
-    if (options.Choice != LabelChoice::Frequency && options.Choice != LabelChoice::Uniform)
-      throw Error(
-        "continuous synthesis: only uniform and frequency-weighted label choice are available");
-    const bool given = options.LabelWeights.size() == analysis.Labels().size();
-    const std::size_t k = options.Choice == LabelChoice::Frequency ? analysis.Labels().size() : 0;
-    for (std::size_t id = 0; id < k; ++id) // lattice counts (LatticeCounts.h) or sampled ones
-      this->Weights.push_back(std::max(1.0,
-        given ? options.LabelWeights[id] : static_cast<double>(analysis.Labels()[id].Occurrences)));
-    if (options.Constraints.RestrictsCatalog())
-      eachVertex([&](std::int64_t v, std::uint64_t* domain) { this->Plan->Restrict(v, domain); });
-    if (this->Parallel)
-    {
-      this->Order.resize(this->Layout->Grid.size());
-      std::iota(this->Order.begin(), this->Order.end(), std::int64_t(0));
-    }
-    else
-    {
-      this->Order = this->Layout->OrderFrom(this->Plan->Seeds());
-    }
-    for (std::size_t i = 0; i < this->Order.size(); ++i)
-    {
-      const auto& block = this->Layout->Grid[ToIndex(this->Order[i])];
-      this->Schedule.Phases.push_back(this->Parallel ? block.Phase : static_cast<int>(i));
-      this->Schedule.Keys.push_back(static_cast<std::uint64_t>(block.Index));
-    }
-  }
-
-  const ArrangementRules Rules;
-  std::unique_ptr<detail::ConstraintPlan> Plan;
-  bool Whole = true;
-  bool Parallel = true; ///< the schedule has phases of non-touching blocks
-  std::unique_ptr<detail::BlockLayout> Layout;
-  std::vector<std::uint64_t> Initial; ///< [vertex][word]: the catalog before anything is chosen
-  std::vector<double> Weights;        ///< per label; empty: uniform
-  std::vector<std::int64_t> Order;    ///< blocks (in the layout) in the order they are labelled
-  BlockSchedule Schedule;             ///< per position in Order: its phase and generator key
-};
-
-/**
  * One worker of a run of continuous synthesis (D§4.5, Algorithm 4.1; T§4.5.6 for the blocks):
  * its block's vertices and catalog, the attempt with one level of backtracking, and (worker 0,
  * alone) the catalog snapshots. The workers share the model's labels, each writing only its own
@@ -128,7 +46,7 @@ struct RunParts
 class ContinuousRun
 {
 public:
-  ContinuousRun(const RunParts& parts, const PlaneArrangement& arrangement,
+  ContinuousRun(const detail::RunParts& parts, const PlaneArrangement& arrangement,
     const ContinuousSynthesisOptions& options, ContinuousSynthesisResult& result, unsigned worker)
     : Arrangement(arrangement)
     , Options(options)
@@ -144,12 +62,13 @@ public:
     , Initial(parts.Initial)
     , Weights(parts.Weights)
     , Plan(parts.Plan.get())
+    , Ends(parts.Ends.get())
     , Order(parts.Order)
   {
     if (worker == 0)
       result.Labels.assign(ToIndex(this->N), this->Rules.EmptyLabel());
     this->LocalOf.assign(ToIndex(this->N), -1);
-    this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0;
+    this->Guided = this->Plan->Weighted() || this->Plan->GrowMask() != 0 || this->Ends;
     this->Tally.assign(ToIndex(this->Plan->NumberOfTypes()), 0.0);
   }
 
@@ -335,6 +254,7 @@ private:
   const std::vector<std::uint64_t>& Initial; ///< [vertex][word]: the starting catalog
   const std::vector<double>& Weights;        ///< per label; empty: uniform
   const detail::ConstraintPlan* Plan;
+  const detail::RunEnds* Ends;
   const std::vector<std::int64_t>& Order; ///< blocks in the order they are labelled
   bool Guided = false;                    ///< labels drawn by Choose (constraints active)
   std::vector<double> Tally;      ///< solid shares of the model at the phase's start (per type bit)
@@ -560,7 +480,7 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
     if (!c.empty())
       break;
   }
-  if (!this->Plan->Weighted() && this->Weights.empty())
+  if (!this->Plan->Weighted() && this->Weights.empty() && !this->Ends)
     return c[ToIndex(rng.Below(c.size()))];
   auto& weight = this->CandidateWeights;
   weight.resize(c.size());
@@ -571,6 +491,17 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
       this->Plan->Factor(v, c[k], this->AttemptTally);
     total += weight[k];
   }
+  if (this->Ends) // a decided vertex's label, or -1; past the first only the block's own
+    this->Ends->Weigh(v, c, weight,
+      [this](std::int64_t u, bool far)
+      {
+        const std::int32_t l = this->LocalOf[ToIndex(u)];
+        return l >= 0 ? (this->Domains.Count(l) == 1 ? this->Domains.Single(l) : -1)
+                      : (far ? -1 : this->Result.Labels[ToIndex(u)]);
+      });
+  total = 0;
+  for (double w : weight)
+    total += w;
   if (!(total > 0))
     return c[ToIndex(rng.Below(c.size()))];
   const int k =
@@ -639,7 +570,7 @@ std::int64_t ContinuousRun::Attempt(std::int64_t b, Random& rng, BlockDriver& dr
  * The model's type shares move on in block order after each phase, so every block of a phase
  * sees the same shares whatever the number of threads.
  */
-SynthesisStatus RunBlocks(const RunParts& parts, ContinuousRun& run,
+SynthesisStatus RunBlocks(const detail::RunParts& parts, ContinuousRun& run,
   const PlaneArrangement& arrangement, const ContinuousSynthesisOptions& options,
   ContinuousSynthesisResult& result, BlockDriver& driver)
 {
@@ -719,7 +650,7 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
     throw Error("continuous synthesis: at least one attempt is needed");
   ContinuousSynthesisResult result;
   SynthesisStatistics& stats = result.Statistics;
-  const RunParts parts(analysis, arrangement, options);
+  const detail::RunParts parts(analysis, arrangement, options);
   ContinuousRun run(parts, arrangement, options, result, 0);
   if (run.Snapshots())
     run.Emit(run.Capture(-1, false));

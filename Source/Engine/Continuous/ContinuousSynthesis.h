@@ -14,6 +14,7 @@
 #include "Continuous/ContinuousConstraints.h"
 #include "Continuous/PlaneArrangement.h"
 #include "Continuous/PolyhedralAnalysis.h"
+#include "Continuous/RunEnds.h"
 #include "Core/BlockSynthesis.h"
 #include "Core/Index.h"
 #include "Core/Propagation.h"
@@ -100,6 +101,9 @@ struct ContinuousSynthesisOptions
   /// With Frequency: the weight of each label (LatticeOccurrences); empty: the analysis's
   /// Occurrences (each sampled feature once).
   std::vector<double> LabelWeights;
+  /// The example's runs along x and y (MeasureRuns): labels that would end a type's run are
+  /// drawn with the example's chance of ending at its length (RunEnds.h); empty: memoryless.
+  ExampleRuns Runs;
   /// Dimensional, connectivity, ground, guide and proportion constraints (TVCG §4.5–4.7).
   ContinuousConstraints Constraints;
   /// Reflection symmetry across these axes (bit 0 x, bit 1 y, bit 2 z; 0 none): see

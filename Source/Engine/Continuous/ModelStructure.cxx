@@ -24,19 +24,6 @@ const TypeStructure* ModelStructure::Find(int type) const
 
 namespace
 {
-/// Voxel grid over the model's bounding box (x fastest).
-struct Grid
-{
-  Point3 Origin{};
-  double Voxel = 0;
-  std::array<std::int64_t, 3> Dims{};
-  std::vector<std::int32_t> Types; ///< object type per voxel (0 = empty)
-  std::int64_t Index(std::int64_t x, std::int64_t y, std::int64_t z) const
-  {
-    return x + this->Dims[0] * (y + this->Dims[1] * z);
-  }
-};
-
 /// A face crossing a column: at height Z, entering (+1) or leaving (-1) Type going up.
 struct Crossing
 {
@@ -70,7 +57,7 @@ bool InsidePolygon2D(
 }
 
 /// Every non-vertical face's crossings with the vertical rays through the column centres.
-std::vector<Crossing> Crossings(const PolyhedralExample& model, const Grid& g)
+std::vector<Crossing> Crossings(const PolyhedralExample& model, const TypeVoxels& g)
 {
   std::vector<Crossing> crossings;
   for (std::size_t f = 0; f < model.Faces.size(); ++f)
@@ -123,9 +110,9 @@ std::vector<Crossing> Crossings(const PolyhedralExample& model, const Grid& g)
   return crossings;
 }
 
-/// The model's object type at every voxel centre, from the crossings along each column: inside
-/// a type while more of its faces were entered than left below the centre.
-Grid Classify(const PolyhedralExample& model, double voxel)
+} // namespace
+
+TypeVoxels ClassifyTypes(const PolyhedralExample& model, double voxel)
 {
   Point3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   for (const auto& p : model.Points)
@@ -134,7 +121,7 @@ Grid Classify(const PolyhedralExample& model, double voxel)
       lo[ToIndex(k)] = std::min(lo[ToIndex(k)], p[ToIndex(k)]);
       hi[ToIndex(k)] = std::max(hi[ToIndex(k)], p[ToIndex(k)]);
     }
-  Grid g;
+  TypeVoxels g;
   g.Origin = lo;
   g.Voxel = voxel;
   for (;; g.Voxel *= 1.25)
@@ -178,6 +165,8 @@ Grid Classify(const PolyhedralExample& model, double voxel)
   return g;
 }
 
+namespace
+{
 double Median(std::vector<double> v)
 {
   if (v.empty())
@@ -189,7 +178,7 @@ double Median(std::vector<double> v)
 
 /// Per type, the number of columns up to (x, y) holding that type at some height (2D prefix
 /// sums with a zero row and column in front).
-std::map<int, std::vector<std::int64_t>> Presence(const Grid& g)
+std::map<int, std::vector<std::int64_t>> Presence(const TypeVoxels& g)
 {
   const std::int64_t nx = g.Dims[0], ny = g.Dims[1];
   std::map<int, std::vector<std::int64_t>> sums;
@@ -214,7 +203,7 @@ std::map<int, std::vector<std::int64_t>> Presence(const Grid& g)
 }
 
 /// The parts of every type: 6-connected voxels of one type, found breadth first.
-void FindParts(const Grid& g, double reach, ModelStructure& out)
+void FindParts(const TypeVoxels& g, double reach, ModelStructure& out)
 {
   const auto presence = Presence(g);
   const std::int64_t grow = static_cast<std::int64_t>(std::ceil(reach / g.Voxel - 1e-9));
@@ -317,7 +306,7 @@ ModelStructure MeasureStructure(const PolyhedralExample& model, double voxel, do
     out.Voxel = voxel;
     return out;
   }
-  const Grid g = Classify(model, voxel);
+  const TypeVoxels g = ClassifyTypes(model, voxel);
   out.Voxel = g.Voxel;
   out.GroundArea = static_cast<double>(g.Dims[0] * g.Dims[1]) * g.Voxel * g.Voxel;
   FindParts(g, reach, out);

@@ -23,6 +23,7 @@
  */
 #include "Formats/PolyhedralExample.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -30,6 +31,26 @@
 
 namespace msynth
 {
+
+/// A model's object type at voxel centres over its bounding box (x fastest; 0 = empty).
+struct TypeVoxels
+{
+  Point3 Origin{};
+  double Voxel = 0;
+  std::array<std::int64_t, 3> Dims{};
+  std::vector<std::int32_t> Types;
+  std::int64_t Index(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return x + this->Dims[0] * (y + this->Dims[1] * z);
+  }
+};
+
+/**
+ * @p model's types on voxels of edge @p voxel (coarsened until the box holds at most 2^23),
+ * from vertical rays through its non-vertical polygons: a centre is inside a type while more of
+ * its faces were entered than left below it (centres and rays nudged off the lattice).
+ */
+TypeVoxels ClassifyTypes(const PolyhedralExample& model, double voxel);
 
 /// One connected part of one object type.
 struct StructurePart

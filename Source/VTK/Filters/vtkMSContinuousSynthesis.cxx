@@ -70,6 +70,7 @@ void vtkMSContinuousSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Overhang: " << this->Overhang << "\n";
   os << indent << "Connected: " << this->Connected << "\n";
   os << indent << "KeepProportions: " << this->KeepProportions << "\n";
+  os << indent << "ExampleSizes: " << this->ExampleSizes << "\n";
   os << indent << "TargetFractions: " << this->TargetFractions << "\n";
   os << indent << "BlockCandidates: " << this->BlockCandidates << "\n";
   os << indent << "ModelCandidates: " << this->ModelCandidates << "\n";
@@ -157,9 +158,9 @@ std::int64_t Fingerprint(
   text << self->GetSeed() << ' ' << self->GetBlockSize() << ' ' << self->GetAttempts() << ' '
        << self->GetSiteOrder() << ' ' << self->GetLabelChoice() << ' '
        << self->GetNumberOfSnapshots() << ' ' << self->GetGrounded() << ' '
-       << self->GetKeepProportions() << ' ' << self->GetBlockCandidates() << ' '
-       << self->GetModelCandidates() << ' ' << mirror[0] << mirror[1] << mirror[2] << ' '
-       << arrangement.NumberOfVertices() << '|'
+       << self->GetKeepProportions() << ' ' << self->GetExampleSizes() << ' '
+       << self->GetBlockCandidates() << ' ' << self->GetModelCandidates() << ' ' << mirror[0]
+       << mirror[1] << mirror[2] << ' ' << arrangement.NumberOfVertices() << '|'
        << (self->GetThickness() ? self->GetThickness() : "") << '|'
        << (self->GetOverhang() ? self->GetOverhang() : "") << '|'
        << (self->GetConnected() ? self->GetConnected() : "") << '|'
@@ -232,6 +233,14 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   if (options.Choice == msynth::LabelChoice::Frequency)
     options.LabelWeights = msynth::LatticeOccurrences(ex, analysis, parameters);
+  if (self->GetExampleSizes())
+  {
+    // Runs measured on voxels of half the smallest plane spacing (ModelStructure's).
+    double spacing = HUGE_VAL;
+    for (int f = 0; f < analysis.Families().Size(); ++f)
+      spacing = std::min(spacing, parameters.Spacing(analysis.Families(), f));
+    options.Runs = msynth::MeasureRuns(ex, 0.5 * spacing);
+  }
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
   const int* mirror = self->GetMirror();

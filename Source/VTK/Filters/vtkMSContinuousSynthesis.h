@@ -165,6 +165,14 @@ public:
   vtkBooleanMacro(KeepProportions, bool);
   ///@}
   ///@{
+  /// Parts as long as the example's: where a label would end a run of an upright object type
+  /// (walls, slabs, roads) along x or y, it is drawn with the chance that the example's runs of
+  /// that length end (RunEnds.h), instead of the same odds at every length. Default off.
+  vtkSetMacro(ExampleSizes, bool);
+  vtkGetMacro(ExampleSizes, bool);
+  vtkBooleanMacro(ExampleSizes, bool);
+  ///@}
+  ///@{
   /// Target shares of the solid volume per object type, "TYPE:F,..." (others keep the example's
   /// proportions among themselves). Default "".
   vtkSetStdStringFromCharMacro(TargetFractions);
@@ -217,6 +225,7 @@ private:
   std::string Overhang;
   std::string Connected;
   bool KeepProportions = true;
+  bool ExampleSizes = false;
   std::string TargetFractions;
   int BlockCandidates = 1;
   int ModelCandidates = 1;

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/**
+ * @file RunEnds.h
+ * @brief Parts as long as the example's: where a label would end an object type's run along x
+ * or y, it is drawn with the chance that the example's runs of that length end.
+ *
+ * Labels are drawn one vertex at a time from what the neighbours allow, so whether a wall goes
+ * on or ends is decided afresh at every vertex along it, with the same odds whatever its length
+ * so far: lengths come out geometric, most of them a spacing or two, and a town's houses a
+ * sixth of its example's. The example's runs (ExampleRuns: the lengths of each type's runs of
+ * voxels along x and along y, complete ones and those cut by the example's box) give instead
+ * the chance that a run which has reached length L ends there (its hazard). At a vertex whose
+ * neighbour behind it along an axis is decided and carries a type, the candidate labels that
+ * end the type ahead and those that carry it on are rescaled to that chance, the length behind
+ * measured over the decided vertices of the block. Only upright types are followed (every face
+ * vertical or horizontal: walls, slabs, roads): the rows of a gabled roof narrow toward its
+ * ridge, so its short runs near the top would look like ends; it follows its walls. Beyond the papers (their runs are
+ * memoryless; their dimensional constraints fix lengths the user gives).
+ */
+#include "Continuous/ConstraintPlan.h"
+#include "Continuous/PlaneArrangement.h"
+#include "Formats/PolyhedralExample.h"
+
+#include <array>
+#include <map>
+#include <vector>
+
+namespace msynth
+{
+
+/// The runs of one type along one axis, in world lengths (ascending).
+struct TypeRuns
+{
+  std::vector<double> Complete; ///< both ends inside the example's box
+  std::vector<double> Cut;      ///< touching the box (the run goes on beyond the example)
+  /// The chance that a run which has reached @p length ends there (lengths within half of
+  /// @p step of it), or -1 without runs that long to tell.
+  double EndChance(double length, double step) const;
+};
+
+/// Per object type, its runs along x and along y.
+using ExampleRuns = std::map<int, std::array<TypeRuns, 2>>;
+
+/// The runs of @p example's upright solid types (no sloped face) along x and y, on voxels of
+/// about @p voxel (the classification of MeasureStructure). @throw Error as MeasureStructure.
+ExampleRuns MeasureRuns(const PolyhedralExample& example, double voxel);
+
+namespace detail
+{
+
+class RunEnds
+{
+public:
+  RunEnds(const ExampleRuns& runs, const PlaneArrangement& arrangement, const ConstraintPlan& plan);
+  /**
+   * Rescales @p weight (of the candidate labels @p candidates at vertex @p v) so that, along
+   * each axis direction whose vertex behind @p v carries a type with runs, the labels ending it
+   * ahead take the example's chance of ending at the run's length. @p labelOf(u, far) is the
+   * label of decided vertex u, or -1 (undecided, or not to be read: @p far is true past the
+   * first vertex behind, which only the block's own vertices may be).
+   */
+  template <typename LabelOf>
+  void Weigh(std::int64_t v, const std::vector<int>& candidates, std::vector<double>& weight,
+    LabelOf&& labelOf) const
+  {
+    for (const Axis& axis : this->Axes)
+    {
+      std::int64_t u = this->Behind(v, axis.Direction);
+      const int behind = u >= 0 ? labelOf(u, false) : -1;
+      if (behind < 0)
+        continue;
+      const std::uint64_t carried = this->Plan.EdgeTypes(axis.Direction, behind) & this->Tracked;
+      for (int t = 0; t < this->Plan.NumberOfTypes(); ++t)
+      {
+        if (!((carried >> t) & 1u))
+          continue;
+        const TypeRuns& runs = this->Runs[ToIndex(t)][ToIndex(axis.Index)];
+        // The length behind v: over decided vertices whose edge toward v carries the type.
+        const double step = this->Distance(u, v);
+        double length = step;
+        for (std::int64_t w = this->Behind(u, axis.Direction); w >= 0;
+             w = this->Behind(u, axis.Direction))
+        {
+          const int label = labelOf(w, true);
+          if (label < 0 || !((this->Plan.EdgeTypes(axis.Direction, label) >> t) & 1u))
+            break;
+          length += this->Distance(w, u);
+          u = w;
+        }
+        this->Rescale(runs.EndChance(length, step), t, axis.Direction, candidates, weight);
+        u = this->Behind(v, axis.Direction);
+      }
+    }
+  }
+
+private:
+  struct Axis
+  {
+    int Direction = 0; ///< the direction class of +x, -x, +y or -y
+    int Index = 0;     ///< 0: x, 1: y
+  };
+  /// The vertex behind @p v looking along direction class @p d (the neighbour along d ^ 1).
+  std::int64_t Behind(std::int64_t v, int d) const;
+  double Distance(std::int64_t a, std::int64_t b) const;
+  void Rescale(double chance, int t, int d, const std::vector<int>& candidates,
+    std::vector<double>& weight) const;
+
+  const PlaneArrangement& Arrangement;
+  const ConstraintPlan& Plan;
+  std::vector<Axis> Axes;
+  std::vector<std::array<TypeRuns, 2>> Runs; ///< per type bit
+  std::uint64_t Tracked = 0;                 ///< type bits with runs
+};
+
+} // namespace detail
+} // namespace msynth
