@@ -217,3 +217,22 @@ def winding_numbers(points, polygons, queries):
             total += 2 * np.arctan2(det, div)
     return total / (4 * np.pi)
 
+
+def obj_objects(path):
+    """Points and [(object name, [polygon as point indices])] of an OBJ in file order (each `o`
+    or `g` statement starts an object), parsed here independently of the project's reader."""
+    points, objects = [], []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w or w[0].startswith("#"):
+                continue
+            if w[0] == "v":
+                points.append([float(c) for c in w[1:4]])
+            elif w[0] in ("o", "g"):
+                objects.append((" ".join(w[1:]), []))
+            elif w[0] == "f":
+                if not objects:
+                    objects.append(("object", []))
+                objects[-1][1].append([int(t.split("/")[0]) - 1 for t in w[1:]])
+    return points, objects

@@ -15,7 +15,7 @@ from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 
 import modelsynth
-from msynth_testing import ErrorObserver, data, tmp, winding_numbers
+from msynth_testing import ErrorObserver, data, obj_objects, tmp, winding_numbers
 
 
 def analyze(path, **options):
@@ -32,19 +32,12 @@ def analyze(path, **options):
 
 
 def read_obj(path):
-    """Points and {object: [polygon as point indices]} of an OBJ, parsed here independently."""
-    points, objects, current = [], {}, "object"
-    with open(path) as f:
-        for line in f:
-            w = line.split()
-            if not w or w[0].startswith("#"):
-                continue
-            if w[0] == "v":
-                points.append([float(c) for c in w[1:4]])
-            elif w[0] in ("o", "g"):
-                current = " ".join(w[1:])
-            elif w[0] == "f":
-                objects.setdefault(current, []).append([int(t.split("/")[0]) - 1 for t in w[1:]])
+    """Points and {object: [polygon as point indices]} of an OBJ, parsed here independently
+    (objects of one name together)."""
+    points, listed = obj_objects(path)
+    objects = {}
+    for name, polygons in listed:
+        objects.setdefault(name, []).extend(polygons)
     return points, objects
 
 

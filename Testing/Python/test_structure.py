@@ -7,7 +7,7 @@ import json
 import os
 import unittest
 
-from msynth_testing import data, fresh_folder, run_msynth
+from msynth_testing import data, fresh_folder, obj_objects, run_msynth
 
 TOWN = ["--grounded", "--thickness", "wall:z:4", "--thickness", "shop:z:6", "--thickness",
         "shoproof:z", "--thickness", "road:z", "--thickness", "tree:x", "--thickness", "tree:y"]
@@ -15,21 +15,12 @@ TOWN = ["--grounded", "--thickness", "wall:z:4", "--thickness", "shop:z:6", "--t
 
 def boxes(path):
     """[(object name, (x0, y0, x1, y1))] of the x-y boxes of an OBJ's objects, read here."""
-    points, out = [], []
-    with open(path) as f:
-        for line in f:
-            w = line.split()
-            if not w or w[0].startswith("#"):
-                continue
-            if w[0] == "v":
-                points.append((float(w[1]), float(w[2])))
-            elif w[0] == "o":
-                out.append((w[1], (1e30, 1e30, -1e30, -1e30)))
-            elif w[0] == "f":
-                xs = [points[int(t.split("/")[0]) - 1] for t in w[1:]]
-                name, (x0, y0, x1, y1) = out[-1]
-                out[-1] = (name, (min([x0] + [p[0] for p in xs]), min([y0] + [p[1] for p in xs]),
-                                  max([x1] + [p[0] for p in xs]), max([y1] + [p[1] for p in xs])))
+    points, objects = obj_objects(path)
+    out = []
+    for name, polygons in objects:
+        xs = [points[i][0] for poly in polygons for i in poly]
+        ys = [points[i][1] for poly in polygons for i in poly]
+        out.append((name, (min(xs), min(ys), max(xs), max(ys))))
     return out
 
 
