@@ -31,6 +31,7 @@
 #include <iostream>
 #include <map>
 #include <pthread.h>
+#include <regex>
 #include <thread>
 
 namespace
@@ -157,6 +158,19 @@ std::string NotUnderstood(CLI::App& app)
 }
 
 /// "msynth[ CMD]: WHAT; see msynth[ CMD] --help" on stderr; exit status 2.
+/// CLI11's count messages ("--size: At least 3 required but received 2") in the words of the
+/// other messages ("--size takes 3 values, not 2"); others as they are.
+std::string InOwnWords(const CLI::ParseError& e)
+{
+  static const std::regex count("(.*): At (?:least|Most) ([0-9]+) required but received ([0-9]+)");
+  std::smatch m;
+  const std::string what = e.what();
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && std::regex_match(what, m, count))
+    return m[1].str() + " takes " + m[2].str() + (m[2] == "1" ? " value" : " values") + ", not " +
+      m[3].str();
+  return what;
+}
+
 int UsageFailure(const std::string& command, const std::string& what)
 {
   const std::string name = command.empty() ? "msynth" : "msynth " + command;
@@ -201,7 +215,7 @@ int Main(int argc, char* argv[])
   {
     // An unknown command or option first: it explains the errors it causes.
     const std::string unknown = NotUnderstood(app);
-    return UsageFailure(CommandOf(app), unknown.empty() ? e.what() : unknown);
+    return UsageFailure(CommandOf(app), unknown.empty() ? InOwnWords(e) : unknown);
   }
   if (version)
   {

@@ -96,6 +96,14 @@ class CommandLineUsageTest(unittest.TestCase):
             listed = r.stderr[r.stderr.index("(") + 1:r.stderr.index(")")].replace(" or ", ", ").split(", ")
             self.assertEqual(sorted(listed), sorted(COMMANDS), r.stderr)
 
+    def test_a_wrong_number_of_values_is_said_in_plain_words(self):
+        """Issue 49: CLI11's "At Most 3 required but received 4" read as "takes 3 values"."""
+        for values, got in ((["4", "4"], "2"), (["4", "4", "4", "4"], "4")):
+            r = run("synthesize", "Data/Examples/Village.vti", "--size", *values)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("--size takes 3 values, not %s" % got, r.stderr)
+            self.assertNotIn("required but received", r.stderr)
+
     def test_help_reads_as_typed_and_mistypes_are_answered(self):
         """Issue 49 item 6: CLI11's raw types ("--size FLOAT:NUMBER>=0=[] x 3 REQUIRED"), no default
         for --order, no "did you mean"."""

@@ -126,9 +126,8 @@ void RunEnds::Rescale(double chance, int t, int d, const std::vector<int>& candi
     return;
   const double total = ending + going;
   for (std::size_t k = 0; k < candidates.size(); ++k)
-    weight[k] *= (this->Plan.EdgeTypes(d, candidates[k]) >> t) & 1u
-      ? (1 - chance) * total / going
-      : chance * total / ending;
+    weight[k] *= (this->Plan.EdgeTypes(d, candidates[k]) >> t) & 1u ? (1 - chance) * total / going
+                                                                    : chance * total / ending;
 }
 
 } // namespace detail

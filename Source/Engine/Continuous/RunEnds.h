@@ -15,8 +15,8 @@
  * end the type ahead and those that carry it on are rescaled to that chance, the length behind
  * measured over the decided vertices of the block. Only upright types are followed (every face
  * vertical or horizontal: walls, slabs, roads): the rows of a gabled roof narrow toward its
- * ridge, so its short runs near the top would look like ends; it follows its walls. Beyond the papers (their runs are
- * memoryless; their dimensional constraints fix lengths the user gives).
+ * ridge, so its short runs near the top would look like ends; it follows its walls. Beyond the
+ * papers (their runs are memoryless; their dimensional constraints fix lengths the user gives).
  */
 #include "Continuous/ConstraintPlan.h"
 #include "Continuous/PlaneArrangement.h"

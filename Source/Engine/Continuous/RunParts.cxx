@@ -20,8 +20,8 @@ RunParts::RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& a
 {
   const std::int64_t n = arrangement.NumberOfVertices();
   const int words = this->Rules.Words();
-  this->Plan = std::make_unique<ConstraintPlan>(
-    analysis, arrangement, options.Constraints, options.Seed);
+  this->Plan =
+    std::make_unique<ConstraintPlan>(analysis, arrangement, options.Constraints, options.Seed);
   if (!options.Runs.empty())
     this->Ends = std::make_unique<RunEnds>(options.Runs, arrangement, *this->Plan);
   double reference = 0;
@@ -31,9 +31,9 @@ RunParts::RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& a
   // Blocks spread outward from connectivity seeds one after the other; else non-touching
   // blocks run in phases, concurrently.
   this->Parallel = this->Plan->Seeds().empty();
-  this->Layout = std::make_unique<BlockLayout>(arrangement,
-    this->Whole ? 0.0 : options.BlockSize * reference,
-    this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
+  this->Layout =
+    std::make_unique<BlockLayout>(arrangement, this->Whole ? 0.0 : options.BlockSize * reference,
+      this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
   this->Initial.resize(ToIndex(n) * words);
   int seams = 0;
   for (const ArrangementMirror* plan : options.PartOf)
@@ -42,8 +42,7 @@ RunParts::RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& a
   const auto eachVertex = [&](const auto& work)
   {
     constexpr std::int64_t chunk = 8192;
-    RunChunks(ToIndex((n + chunk - 1) / chunk),
-      static_cast<unsigned>(std::max(0, options.Threads)),
+    RunChunks(ToIndex((n + chunk - 1) / chunk), static_cast<unsigned>(std::max(0, options.Threads)),
       [&](std::size_t c)
       {
         const std::int64_t first = static_cast<std::int64_t>(c) * chunk;
