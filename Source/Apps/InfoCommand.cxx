@@ -9,6 +9,7 @@
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataArraySelection.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSLabelGridReader.h"
@@ -19,6 +20,7 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include "Core/Index.h"
@@ -183,6 +185,25 @@ vtkSmartPointer<vtkPolyData> WrittenModel(const std::string& path)
   return model;
 }
 
+/// The example a label grid msynth wrote (labels.vti) was made from (its field ExampleFile, read
+/// without the grid's arrays), or "" for any other file.
+std::string WrittenFrom(const std::string& path)
+{
+  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".vti") != 0)
+    return "";
+  msynth::CheckVTKXMLFile(path);
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  reader->GetPointDataArraySelection()->DisableAllArrays();
+  reader->GetCellDataArraySelection()->DisableAllArrays();
+  Run(reader);
+  vtkFieldData* fd = reader->GetOutput()->GetFieldData();
+  auto* example = vtkStringArray::SafeDownCast(fd->GetAbstractArray("ExampleFile"));
+  return example && example->GetNumberOfValues() > 0 && fd->GetArray("Seed") ? example->GetValue(0)
+                                                                             : "";
+}
+
 /// A model msynth wrote (mesh.vtp, model.vtp): what it is made of, per label or object type.
 /// Its faces join as a model's do (four around an edge where two parts meet), so it is described,
 /// not validated as an example would be: `msynth check` does that against its example.
@@ -235,8 +256,14 @@ int LabelGridInfo(const std::string& example)
   vtkTable* transitions = a.Tables->GetOutput(0);
   int dims[3];
   image->GetDimensions(dims);
-  std::cout << "example: " << example << "\n"
-            << "size: " << dims[0] << " x " << dims[1] << " x " << dims[2] << "\n"
+  // A model msynth wrote names its example: say it is a model, and how to check it.
+  const std::string from = WrittenFrom(example);
+  if (from.empty())
+    std::cout << "example: " << example << "\n";
+  else
+    std::cout << "model: " << example << " (written by msynth from " << from
+              << "), described as an example would be:\n";
+  std::cout << "size: " << dims[0] << " x " << dims[1] << " x " << dims[2] << "\n"
             << "labels: " << labels->GetNumberOfRows() << "\n";
   for (vtkIdType r = 0; r < labels->GetNumberOfRows(); ++r)
   {
@@ -255,6 +282,8 @@ int LabelGridInfo(const std::string& example)
               << "\n";
   }
   PrintTransitions(transitions);
+  if (!from.empty())
+    std::cout << "check it: msynth check " << from << " " << example << "\n";
   return 0;
 }
 } // namespace

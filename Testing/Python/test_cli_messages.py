@@ -244,6 +244,14 @@ class InfoOfOutputsTest(unittest.TestCase):
         self.assertRegex(r.stdout, r"type \d+ \((wall|roof)\): \d+ polygons")
         self.assertIn("check it: msynth check %s %s" % (house, model), r.stdout)
         self.assertEqual(run_msynth("check", house, model).returncode, 0)
+        # The label grid a run wrote is a model too (it was called an "example").
+        labels = os.path.join(out, "Village.vti", "labels.vti")
+        r = run_msynth("info", labels)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("model: %s (written by msynth from %s)" % (labels, village), r.stdout)
+        self.assertNotIn("example: ", r.stdout)
+        self.assertIn("check it: msynth check %s %s" % (village, labels), r.stdout)
+        self.assertIn("example: %s" % village, run_msynth("info", village).stdout)
 
 
 class SummaryTest(unittest.TestCase):
