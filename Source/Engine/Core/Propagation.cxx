@@ -84,16 +84,15 @@ void CompatibilityRelation::Finish()
 void CompatibilityRelation::BuildLists()
 {
   this->ListStart.clear();
+  this->ReverseStart.clear();
   this->ListLabels.clear();
-  this->Supports.clear();
   this->MeanList = 0;
-  this->MaxSupports = 0;
   this->ListsForUnions = false;
   if (this->K <= 512 || this->K >= 65536)
   {
-    // Up to 512 labels the chunk unions cost at most k/8 lookups a revision, less than setting
-    // the counts up (measured: City, k = 93, 40 x 40 x 10 took 44 % longer with counts);
-    // 65536 labels and more: no 16-bit counts.
+    // Up to 512 labels the chunk unions cost at most k/8 lookups a revision, less than keeping
+    // Applied (measured with support counts: City, k = 93, 40 x 40 x 10 took 44 % longer);
+    // 65536 labels and more: no 16-bit labels.
     return;
   }
   if (this->Bits.size() >= (std::size_t(1) << 26))
@@ -106,13 +105,15 @@ void CompatibilityRelation::BuildLists()
   {
     return; // dense: the unions are cheap compared with the lists
   }
-  this->ListStart.reserve(ToIndex(this->D) * ToIndex(this->K) + 1);
-  this->ListLabels.reserve(pairs);
-  this->Supports.assign(ToIndex(this->D) * ToIndex(this->K), 0);
+  const std::size_t rows = ToIndex(this->D) * ToIndex(this->K);
+  this->ListStart.reserve(rows + 1);
+  this->ListLabels.resize(2 * pairs);
+  // The supports' offsets: how many lists hold each label, then the running sums.
+  this->ReverseStart.assign(rows + 1, 0);
   this->ListStart.push_back(0);
+  std::size_t at = 0;
   for (int d = 0; d < this->D; ++d)
   {
-    std::uint16_t* supports = this->Supports.data() + ToIndex(d) * ToIndex(this->K);
     for (int b = 0; b < this->K; ++b)
     {
       const std::uint64_t* c = this->Compatible(d, b);
@@ -121,11 +122,29 @@ void CompatibilityRelation::BuildLists()
         for (std::uint64_t bits = c[w]; bits; bits &= bits - 1)
         {
           const int label = w * 64 + __builtin_ctzll(bits);
-          this->ListLabels.push_back(static_cast<std::uint16_t>(label));
-          this->MaxSupports = std::max<int>(this->MaxSupports, ++supports[label]);
+          this->ListLabels[at++] = static_cast<std::uint16_t>(label);
+          ++this->ReverseStart[ToIndex(d) * ToIndex(this->K) + ToIndex(label) + 1];
         }
       }
-      this->ListStart.push_back(static_cast<std::uint32_t>(this->ListLabels.size()));
+      this->ListStart.push_back(static_cast<std::uint32_t>(at));
+    }
+  }
+  this->ReverseStart[0] = static_cast<std::uint32_t>(pairs);
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    this->ReverseStart[r + 1] += this->ReverseStart[r];
+  }
+  // Fill the supports in ascending order of b (the lists are walked in that order).
+  std::vector<std::uint32_t> next(this->ReverseStart.begin(), this->ReverseStart.end() - 1);
+  for (int d = 0; d < this->D; ++d)
+  {
+    for (int b = 0; b < this->K; ++b)
+    {
+      for (const std::uint16_t* c = this->ListBegin(d, b); c != this->ListEnd(d, b); ++c)
+      {
+        this->ListLabels[next[ToIndex(d) * ToIndex(this->K) + *c]++] =
+          static_cast<std::uint16_t>(b);
+      }
     }
   }
   this->MeanList = static_cast<double>(pairs) / (double(this->D) * double(this->K));
@@ -230,16 +249,10 @@ void LabelDomains::Start(std::int64_t n)
   this->Queue.clear();
   this->FromScratch = true;
   this->ChangedSites.clear();
-  this->Trail.clear();
-  this->TrailBase = 0;
   this->Scratch.assign(ToIndex(this->W), 0);
-  for (const std::int64_t v : this->Sup.StaleSites)
-  {
-    std::fill_n(this->Sup.Stale.data() + ToIndex(v) * this->W, this->W, 0);
-  }
-  this->Sup.StaleSites.clear();
-  this->Sup.On = false; // until the first Propagate sets the counts up
+  this->Sup.On = false; // until the first Propagate decides
   this->Sup.ByRemovals = 0;
+  this->Record(this->Recording); // an empty trail, and stamps for the new sites
 }
 
 int LabelDomains::Single(std::int64_t site) const
@@ -270,15 +283,14 @@ bool LabelDomains::Restrict(std::int64_t site, const std::uint64_t* mask)
   }
   if (changed)
   {
-    if (this->Recording)
-    {
-      this->Trail.push_back(static_cast<std::uint64_t>(site));
-      this->Trail.push_back(static_cast<std::uint64_t>(this->Counts[ToIndex(site)]));
-      this->Trail.insert(this->Trail.end(), d, d + this->W);
-    }
     for (int w = 0; w < this->W; ++w)
     {
-      d[w] &= mask[w];
+      const std::uint64_t now = d[w] & mask[w];
+      if (now != d[w] && this->Recording)
+      {
+        this->Save(TrailKind::Domain, this->SavedDomain, ToIndex(site) * this->W + w, d[w]);
+      }
+      d[w] = now;
     }
     const int count = PopCount(d, this->W);
     const int before = this->Counts[ToIndex(site)];
@@ -309,43 +321,82 @@ void LabelDomains::Forget(std::size_t mark)
   this->TrailBase = mark;
 }
 
+void LabelDomains::Record(bool on)
+{
+  this->Recording = on;
+  this->Trail.clear();
+  this->TrailBase = 0;
+  this->LastMark = 0;
+  this->SavedDomain.clear();
+  this->SavedApplied.clear();
+  const std::size_t words = ToIndex(this->NumberOfSites()) * ToIndex(this->W);
+  if (on && words <= (std::size_t(1) << 24))
+  {
+    this->SavedDomain.assign(words, 0);
+    if (this->Sup.On)
+    {
+      this->SavedApplied.assign(words, 0);
+    }
+  }
+}
+
 void LabelDomains::Undo(std::size_t mark)
 {
   if (mark < this->TrailBase)
   {
     throw Error("label domains: undo past the forgotten part of the trail");
   }
-  mark -= this->TrailBase;
-  const std::size_t entry = ToIndex(this->W) + 2;
-  while (this->Trail.size() > mark)
-  {
-    const std::size_t at = this->Trail.size() - entry;
-    if (this->Trail[at] >> 63)
-    {
-      this->UndoApplied(static_cast<std::int64_t>(this->Trail[at] & ~(std::uint64_t(1) << 63)),
-        this->Trail[at + 1] != 0, this->Trail.data() + at + 2);
-      this->Trail.resize(at);
-      continue;
-    }
-    const auto site = static_cast<std::int64_t>(this->Trail[at]);
-    const int count = static_cast<int>(this->Trail[at + 1]);
-    std::copy_n(this->Trail.data() + at + 2, this->W, this->Bits.data() + ToIndex(site) * this->W);
-    if (this->Sup.On)
-    {
-      // A set restored from before the counts were set up may hold labels Applied lacks.
-      this->UndoApplied(site, this->Sup.Fresh[ToIndex(site)] != 0, this->Domain(site));
-    }
-    const int now = this->Counts[ToIndex(site)];
-    this->DecidedSites += (count == 1) - (now == 1);
-    this->Counts[ToIndex(site)] = count;
-    this->ChangedSites.push_back(site);
-    this->Trail.resize(at);
-  }
   for (std::int64_t q : this->Queue)
   {
     this->Queued[ToIndex(q)] = 0;
   }
   this->Queue.clear();
+  // Newest first, so that the oldest entry after the mark (the value at the mark) wins.
+  const std::size_t keep = mark - this->TrailBase;
+  const std::uint64_t indexBits = (std::uint64_t(1) << 62) - 1;
+  std::vector<std::int64_t>& touched = this->Touched;
+  touched.clear();
+  while (this->Trail.size() > keep)
+  {
+    const std::size_t at = this->Trail.size() - 2;
+    const auto kind = static_cast<TrailKind>(this->Trail[at] >> 62);
+    const std::size_t index = this->Trail[at] & indexBits;
+    const std::uint64_t old = this->Trail[at + 1];
+    this->Trail.resize(at);
+    if (kind == TrailKind::Fresh)
+    {
+      this->Sup.Fresh[index] = static_cast<std::uint8_t>(old);
+      continue;
+    }
+    const auto site = static_cast<std::int64_t>(index / ToIndex(this->W));
+    std::vector<std::uint64_t>& saved =
+      kind == TrailKind::Applied ? this->SavedApplied : this->SavedDomain;
+    if (!saved.empty())
+    {
+      saved[index] = 0;
+    }
+    if (kind == TrailKind::Applied)
+    {
+      this->Sup.Applied[index] = old;
+      continue;
+    }
+    this->Bits[index] = old;
+    if (!this->Queued[ToIndex(site)])
+    {
+      this->Queued[ToIndex(site)] = 1;
+      touched.push_back(site);
+    }
+  }
+  for (const std::int64_t site : touched)
+  {
+    this->Queued[ToIndex(site)] = 0;
+    const int count = PopCount(this->Domain(site), this->W);
+    const int now = this->Counts[ToIndex(site)];
+    this->DecidedSites += (count == 1) - (now == 1);
+    this->Counts[ToIndex(site)] = count;
+    this->ChangedSites.push_back(site);
+  }
+  this->LastMark = mark;
   this->EmptySite = -1;
 }
 
@@ -360,280 +411,120 @@ bool LabelDomains::Assign(std::int64_t site, int b)
   return this->Restrict(site, this->Scratch.data());
 }
 
-bool LabelDomains::SupportsFit(std::size_t pairs) const
+void LabelDomains::StartRemovals(const CompatibilityRelation& rules)
 {
-  // The counts take at most a quarter of the memory available (a 10^8-site whole model with
-  // k > 512 never has them: it goes by the unions).
-  const std::uint64_t width = this->Sup.Narrow ? 1 : 2;
-  const std::uint64_t bytes = std::uint64_t(pairs) * std::uint64_t(this->K) * width +
-    2 * std::uint64_t(this->NumberOfSites()) * std::uint64_t(this->W) * 8;
-  return bytes <= std::uint64_t(this->Sup.Allocated) || bytes <= AvailableMemory() / 4;
-}
-
-bool LabelDomains::NumberPairs(const std::vector<std::int8_t>& state)
-{
-  SupportState& sup = this->Sup;
-  sup.Countable.assign(state.size(), 0);
-  for (std::size_t d = 0; d < state.size(); ++d)
-  {
-    sup.Countable[d] = state[d] > 0;
-  }
-  // Site by site, so that the pairs of a site are together.
-  std::size_t pairs = 0;
-  for (std::size_t i = 0; i < sup.PairOf.size(); ++i)
-  {
-    if (sup.PairOf[i] != NoPair && sup.Countable[i % sup.Classes])
-    {
-      sup.PairOf[i] = static_cast<std::uint32_t>(pairs++);
-    }
-  }
-  if (pairs == 0 || !this->SupportsFit(pairs))
-  {
-    return false;
-  }
-  const std::size_t bytes = pairs * ToIndex(this->K) * (sup.Narrow ? 1 : 2);
-  if (bytes > sup.Allocated)
-  {
-    // Not value-initialised: a pair's counts are written when first needed, so pages of pairs
-    // never counted are never touched.
-    sup.Counts.reset();
-    sup.Counts.reset(new std::uint8_t[bytes]);
-    AdviseHugePages(sup.Counts.get(), bytes);
-    sup.Allocated = bytes;
-  }
-  sup.Pairs = pairs;
-  sup.Ready.assign(pairs, 0);
-  sup.Applied = this->Bits;
-  sup.Fresh.assign(ToIndex(this->NumberOfSites()), 1);
-  if (!sup.Stale.empty())
-  {
-    sup.Stale.assign(ToIndex(this->NumberOfSites()) * ToIndex(this->W), 0);
-  }
-  sup.Delta.assign(ToIndex(this->W), 0);
-  sup.Removed.assign(ToIndex(this->W), 0);
-  sup.On = true;
-  return true;
-}
-
-template <typename Tally>
-void LabelDomains::CountSupports(
-  const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* source)
-{
-  const int size = PopCount(source, this->W);
-  if (2 * size < this->K)
-  {
-    std::fill_n(counts, this->K, 0);
-    AddSupports(rules, counts, d, source);
-    return;
-  }
-  // Most labels possible: all of them, less the supports of the missing ones.
-  const std::uint16_t* full = rules.FullSupports(d);
-  for (int c = 0; c < this->K; ++c)
-  {
-    counts[c] = static_cast<Tally>(full[c]);
-  }
-  for (int w = 0; w < this->W; ++w)
-  {
-    const bool last = w == this->W - 1 && this->K % 64;
-    const std::uint64_t all = last ? (std::uint64_t(1) << (this->K % 64)) - 1 : ~std::uint64_t(0);
-    for (std::uint64_t bits = all & ~source[w]; bits; bits &= bits - 1)
-    {
-      const int b = w * 64 + __builtin_ctzll(bits);
-      for (const std::uint16_t* c = rules.ListBegin(d, b); c != rules.ListEnd(d, b); ++c)
-      {
-        --counts[*c];
-      }
-    }
-  }
-}
-
-template <typename Tally>
-void LabelDomains::AddSupports(
-  const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* labels)
-{
-  const int words = rules.Words();
-  for (int w = 0; w < words; ++w)
-  {
-    for (std::uint64_t bits = labels[w]; bits; bits &= bits - 1)
-    {
-      const int b = w * 64 + __builtin_ctzll(bits);
-      for (const std::uint16_t* c = rules.ListBegin(d, b); c != rules.ListEnd(d, b); ++c)
-      {
-        ++counts[*c];
-      }
-    }
-  }
-}
-
-void LabelDomains::RecordApplied(std::int64_t site)
-{
-  const std::uint64_t* applied = this->Sup.Applied.data() + ToIndex(site) * this->W;
-  this->Trail.push_back(static_cast<std::uint64_t>(site) | (std::uint64_t(1) << 63));
-  this->Trail.push_back(this->Sup.Fresh[ToIndex(site)]);
-  this->Trail.insert(this->Trail.end(), applied, applied + this->W);
-}
-
-bool LabelDomains::BeginRevision(const CompatibilityRelation& rules, std::int64_t v)
-{
-  SupportState& sup = this->Sup;
-  std::uint64_t* applied = sup.Applied.data() + ToIndex(v) * this->W;
-  if (sup.Fresh[ToIndex(v)])
-  {
-    // The first revision from v goes by the union: it removes the labels that had no support
-    // in v's set from the start (their counts are zero).
-    if (this->Recording)
-    {
-      this->RecordApplied(v);
-    }
-    sup.Fresh[ToIndex(v)] = 0;
-    return false;
-  }
-  const std::uint64_t* dv = this->Domain(v);
-  int removed = 0;
-  for (int w = 0; w < this->W; ++w)
-  {
-    sup.Delta[ToIndex(w)] = applied[w] & ~dv[w];
-    removed += PopCountWord(sup.Delta[ToIndex(w)]);
-  }
-  if (removed == 0)
-  {
-    return false;
-  }
-  // The cost of each way, in words or list entries per neighbour: the union walks v's labels
-  // (with k <= 512, at most k/8 table entries), the removals their lists.
-  // A count brought down costs about 4 words of an or (a scattered write to k counts against a
-  // sequential read; measured on Font, k = 2468).
-  const double byUnion = rules.UnionCost(this->Counts[ToIndex(v)]);
-  if (4 * double(removed) * rules.MeanListLength() >= byUnion)
-  {
-    return false;
-  }
-  if (this->Recording)
-  {
-    this->RecordApplied(v);
-  }
-  std::copy_n(dv, this->W, applied);
-  ++sup.ByRemovals;
-  return true;
-}
-
-void LabelDomains::AddSupportsTo(
-  const CompatibilityRelation& rules, std::uint32_t pair, int d, const std::uint64_t* labels)
-{
-  if (this->Sup.Narrow)
-  {
-    AddSupports(rules, this->CountsOf<std::uint8_t>(pair), d, labels);
-  }
-  else
-  {
-    AddSupports(rules, this->CountsOf<std::uint16_t>(pair), d, labels);
-  }
-}
-
-void LabelDomains::RemoveUnsupported(
-  const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair)
-{
-  const bool any = this->Sup.Narrow ? this->FindUnsupported<std::uint8_t>(rules, v, u, d, pair)
-                                    : this->FindUnsupported<std::uint16_t>(rules, v, u, d, pair);
-  if (any)
-  {
-    std::uint64_t* removed = this->Sup.Removed.data();
-    for (int w = 0; w < this->W; ++w)
-    {
-      removed[w] = ~removed[w];
-    }
-    this->Restrict(u, removed);
-  }
-}
-
-template <typename Tally>
-bool LabelDomains::FindUnsupported(
-  const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair)
-{
-  Tally* counts = this->CountsOf<Tally>(pair);
-  const std::uint64_t* du = this->Domain(u);
-  const bool live = this->EmptySite < 0 && this->Counts[ToIndex(u)] > 0;
-  std::uint64_t* removed = this->Sup.Removed.data();
-  bool any = false;
-  if (!this->Sup.Ready[pair])
-  {
-    // First use: the counts of Domain(v) (= Applied[v] now); the labels of u with none go.
-    this->Sup.Ready[pair] = 1;
-    this->CountSupports(rules, counts, d, this->Domain(v));
-    for (int w = 0; w < this->W && live; ++w)
-    {
-      removed[w] = 0;
-      for (std::uint64_t bits = du[w]; bits; bits &= bits - 1)
-      {
-        const int c = w * 64 + __builtin_ctzll(bits);
-        if (counts[c] == 0)
-        {
-          removed[w] |= std::uint64_t(1) << (c & 63);
-          any = true;
-        }
-      }
-    }
-  }
-  else
-  {
-    for (int w = 0; w < this->W; ++w)
-    {
-      for (std::uint64_t bits = this->Sup.Delta[ToIndex(w)]; bits; bits &= bits - 1)
-      {
-        const int b = w * 64 + __builtin_ctzll(bits);
-        for (const std::uint16_t* c = rules.ListBegin(d, b); c != rules.ListEnd(d, b); ++c)
-        {
-          if (--counts[*c] == 0 && live && ((du[*c >> 6] >> (*c & 63)) & 1u))
-          {
-            if (!any)
-            {
-              std::fill_n(removed, this->W, 0);
-              any = true;
-            }
-            removed[*c >> 6] |= std::uint64_t(1) << (*c & 63);
-          }
-        }
-      }
-    }
-  }
-  return any;
-}
-
-std::uint64_t* LabelDomains::StaleOf(std::int64_t site)
-{
-  SupportState& sup = this->Sup;
-  if (sup.Stale.empty())
-  {
-    sup.Stale.assign(ToIndex(this->NumberOfSites()) * ToIndex(this->W), 0);
-  }
-  std::uint64_t* stale = sup.Stale.data() + ToIndex(site) * this->W;
-  if (std::all_of(stale, stale + this->W, [](std::uint64_t x) { return x == 0; }))
-  {
-    sup.StaleSites.push_back(site);
-  }
-  return stale;
-}
-
-void LabelDomains::UndoApplied(std::int64_t site, bool fresh, const std::uint64_t* applied)
-{
-  SupportState& sup = this->Sup;
+  // Applied takes as much memory as the sets: at most a quarter of the memory available (a
+  // 10^8-site whole model with k > 512 may go by the unions alone).
+  RemovalState& sup = this->Sup;
+  const std::uint64_t bytes = std::uint64_t(this->Bits.size()) * 8;
+  sup.On = this->RemovalsAllowed && this->W > 1 && rules.HasLists() &&
+    rules.NumberOfLabels() == this->K &&
+    (bytes <= sup.Applied.capacity() * 8 || bytes <= AvailableMemory() / 4);
   if (!sup.On)
   {
     return;
   }
-  std::uint64_t* now = sup.Applied.data() + ToIndex(site) * this->W;
-  std::uint64_t* stale = nullptr;
+  sup.Rules = &rules;
+  sup.Applied = this->Bits;
+  if (!this->SavedDomain.empty())
+  {
+    this->SavedApplied.assign(this->SavedDomain.size(), 0);
+  }
+  sup.Fresh.assign(ToIndex(this->NumberOfSites()), 1);
+  sup.Delta.assign(ToIndex(this->W), 0);
+  sup.Candidates.assign(ToIndex(this->W), 0);
+}
+
+bool LabelDomains::BeginRevision(const CompatibilityRelation& rules, std::int64_t v)
+{
+  RemovalState& sup = this->Sup;
+  std::uint64_t* applied = sup.Applied.data() + ToIndex(v) * this->W;
+  const std::uint64_t* dv = this->Domain(v);
+  const bool fresh = sup.Fresh[ToIndex(v)] != 0;
+  int removed = 0;
   for (int w = 0; w < this->W; ++w)
   {
-    const std::uint64_t back = applied[w] & ~now[w];
-    if (back)
+    const std::uint64_t delta = applied[w] & ~dv[w];
+    sup.Delta[ToIndex(w)] = delta;
+    removed += PopCountWord(delta);
+    if (delta && this->Recording)
     {
-      stale = stale ? stale : this->StaleOf(site);
-      stale[w] |= back;
-      now[w] |= back;
+      this->Save(TrailKind::Applied, this->SavedApplied, ToIndex(v) * this->W + w, applied[w]);
+    }
+    applied[w] = dv[w];
+  }
+  if (fresh)
+  {
+    // The first revision from v goes by the union: it removes the labels that had no support
+    // in v's set from the start.
+    if (this->Recording)
+    {
+      this->Trail.push_back(
+        (static_cast<std::uint64_t>(TrailKind::Fresh) << 62) | static_cast<std::uint64_t>(v));
+      this->Trail.push_back(1);
+    }
+    sup.Fresh[ToIndex(v)] = 0;
+    return false;
+  }
+  // The cost of each way, in list entries per neighbour: the union walks the lists of v's
+  // labels, the removals those of the removed labels and the supports of the labels of the
+  // neighbour found in them (about as many again).
+  const int size = this->Counts[ToIndex(v)];
+  if (2 * double(removed) * rules.MeanListLength() * 4 >= rules.UnionCost(size))
+  {
+    return false;
+  }
+  ++sup.ByRemovals;
+  return true;
+}
+
+bool LabelDomains::RemoveUnsupported(
+  const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d)
+{
+  // The labels of u that a removed label of v allowed: only these may have lost their last
+  // support in v.
+  std::uint64_t* candidates = this->Sup.Candidates.data();
+  const std::uint64_t* delta = this->Sup.Delta.data();
+  for (int w = 0; w < this->W; ++w)
+  {
+    for (std::uint64_t bits = delta[w]; bits; bits &= bits - 1)
+    {
+      const int b = w * 64 + __builtin_ctzll(bits);
+      for (const std::uint16_t* c = rules.ListBegin(d, b); c != rules.ListEnd(d, b); ++c)
+      {
+        candidates[*c >> 6] |= std::uint64_t(1) << (*c & 63);
+      }
     }
   }
-  sup.Fresh[ToIndex(site)] = fresh ? 1 : 0;
+  const std::uint64_t* du = this->Domain(u);
+  const std::uint64_t* dv = this->Domain(v);
+  bool any = false;
+  for (int w = 0; w < this->W; ++w)
+  {
+    std::uint64_t keep = ~std::uint64_t(0);
+    for (std::uint64_t bits = candidates[w] & du[w]; bits; bits &= bits - 1)
+    {
+      const int c = w * 64 + __builtin_ctzll(bits);
+      const std::uint16_t* b = rules.SupportsBegin(d, c);
+      const std::uint16_t* end = rules.SupportsEnd(d, c);
+      while (b != end && !((dv[*b >> 6] >> (*b & 63)) & 1u))
+      {
+        ++b;
+      }
+      if (b == end)
+      {
+        keep &= ~(std::uint64_t(1) << (c & 63));
+      }
+    }
+    candidates[w] = keep; // the mask for Restrict
+    any = any || keep != ~std::uint64_t(0);
+  }
+  if (any)
+  {
+    this->Restrict(u, candidates);
+  }
+  std::fill_n(candidates, this->W, 0);
+  return this->Counts[ToIndex(u)] > 0;
 }
 
 } // namespace msynth

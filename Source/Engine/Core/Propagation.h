@@ -14,9 +14,8 @@
  *   keeps only the labels some label of v allows there.
  *
  * Memory is k bits plus a few bytes per site. With k > 512 and a sparse relation, Propagate
- * also keeps support counts (AC-4: per site, direction class and label, how many labels of the
- * neighbour allow it; 16 bits each, so 2 bytes per class and 2 bits more per site and label)
- * when they take at most a quarter of the memory available, and revises by the removed labels
+ * also keeps each site's set as of its last revision (Applied: k bits more per site) when that
+ * takes at most a quarter of the memory available, and revises by the labels removed since then
  * where that is cheaper than by the union: a removal costs the labels compatible with it.
  */
 #include "Core/Index.h"
@@ -69,7 +68,7 @@ public:
     return (this->Compatible(d, b)[c >> 6] >> (c & 63)) & 1u;
   }
 
-  /// Compatible(d, b) as a list of labels (ascending), for support counting; empty unless
+  /// Compatible(d, b) as a list of labels (ascending), for revisions by removals; empty unless
   /// HasLists().
   const std::uint16_t* ListBegin(int d, int b) const
   {
@@ -80,24 +79,28 @@ public:
     return this->ListLabels.data() +
       this->ListStart[ToIndex(d) * ToIndex(this->K) + ToIndex(b) + 1];
   }
+  /// The labels b with @p c in Compatible(d, b) (ascending): the supports of c along d; empty
+  /// unless HasLists().
+  const std::uint16_t* SupportsBegin(int d, int c) const
+  {
+    return this->ListLabels.data() + this->ReverseStart[ToIndex(d) * ToIndex(this->K) + ToIndex(c)];
+  }
+  const std::uint16_t* SupportsEnd(int d, int c) const
+  {
+    return this->ListLabels.data() +
+      this->ReverseStart[ToIndex(d) * ToIndex(this->K) + ToIndex(c) + 1];
+  }
   /**
    * Whether the lists exist: with 512 < k < 65536 labels and at most a quarter of the pairs
-   * allowed (then the lists take at most 4 times the bit sets' memory).
+   * allowed (then the lists take at most 8 times the bit sets' memory).
    */
   bool HasLists() const { return !this->ListStart.empty(); }
-  /// Mean length of a list: the mean cost of counting one removed label at one neighbour.
+  /// Mean length of a list: the mean cost of one removed label at one neighbour.
   double MeanListLength() const { return this->MeanList; }
   /// The cost of UnionOf for a set of @p size labels, in words of an or (k > 512).
   double UnionCost(int size) const
   {
     return (this->ListsForUnions ? 4 * this->MeanList : double(this->W)) * size;
-  }
-  /// The largest FullSupports entry.
-  int MostSupports() const { return this->MaxSupports; }
-  /// Per label c, the number of labels b with c in Compatible(d, b) (HasLists() only).
-  const std::uint16_t* FullSupports(int d) const
-  {
-    return this->Supports.data() + ToIndex(d) * ToIndex(this->K);
   }
 
 protected:
@@ -119,11 +122,10 @@ private:
   std::vector<std::uint64_t> AnyBits; // [direction][word]
   /// [direction][chunk of 8 labels][byte value][word]; empty when k > 512.
   std::vector<std::uint64_t> ChunkUnions;
-  std::vector<std::uint32_t> ListStart;  ///< [direction][label], D·k + 1 offsets into ListLabels
-  std::vector<std::uint16_t> ListLabels; ///< the pairs of Bits as lists
-  std::vector<std::uint16_t> Supports;   ///< [direction][label]: FullSupports
+  std::vector<std::uint32_t> ListStart;    ///< [direction][label], D·k + 1 offsets into ListLabels
+  std::vector<std::uint32_t> ReverseStart; ///< [direction][label]: offsets of the supports
+  std::vector<std::uint16_t> ListLabels;   ///< the pairs of Bits as lists, then as supports
   double MeanList = 0;
-  int MaxSupports = 0;
   bool ListsForUnions = false; ///< UnionOf walks the lists (a sparse relation)
 
   void BuildLists();
@@ -161,19 +163,23 @@ public:
   bool Keep(std::int64_t site, const std::uint64_t* mask);
 
   /**
-   * Undo support for search with backtracking: while recording, every change keeps the old set.
-   * Mark() names the current state; Undo(mark) restores it (and reports the restored sites as
-   * changed). Recording costs Words() + 2 words per change (with support counts, also per
-   * revision by removals).
+   * Undo support for search with backtracking: while recording, every change keeps the old
+   * words of the set. Mark() names the current state; Undo(mark) restores it (and reports the
+   * restored sites as changed). Recording costs 2 words per changed word of a set (with support
+   * counts, also per changed word of Applied), each word kept once between two marks when the
+   * sites' stamps fit (8 bytes per site and word, at most 2^24 words): Undo needs only the state
+   * at the mark, so a site revised many times after one choice is recorded once.
    */
-  void Record(bool on)
+  void Record(bool on);
+  /// Names the current state for Undo. Marks count every word recorded since Record(true), also
+  /// those that Forget() dropped.
+  std::size_t Mark()
   {
-    this->Recording = on;
-    this->Trail.clear();
-    this->TrailBase = 0;
+    this->LastMark = this->TrailBase + this->Trail.size();
+    return this->LastMark;
   }
-  /// Marks count every word recorded since Record(true), also those that Forget() dropped.
-  std::size_t Mark() const { return this->TrailBase + this->Trail.size(); }
+  /// Words of the trail kept now (those Forget() dropped not counted).
+  std::size_t TrailWords() const { return this->Trail.size(); }
   /// Restores the state of @p mark, which must not be older than the last Forget().
   void Undo(std::size_t mark);
   /// Drops the record of the changes before @p mark (no Undo will go back past it), when that
@@ -181,13 +187,13 @@ public:
   void Forget(std::size_t mark);
 
   /**
-   * Whether Propagate may count supports (AC-4, see SupportState) where k, the relation and
-   * the memory allow; on by default. Either way the sets, and the order of Changed(), are the
-   * same. Takes effect at the next Reset.
+   * Whether Propagate may revise by removals (see RemovalState) where k, the relation and the
+   * memory allow; on by default. Either way the sets, and the order of Changed(), are the same.
+   * Takes effect at the next Reset.
    */
-  void AllowSupportCounts(bool on) { this->CountsAllowed = on; }
-  /// Whether the propagation since the last Reset counts supports.
-  bool UsesSupportCounts() const { return this->Sup.On; }
+  void AllowRevisionsByRemovals(bool on) { this->RemovalsAllowed = on; }
+  /// Whether the propagation since the last Reset may revise by removals.
+  bool UsesRevisionsByRemovals() const { return this->Sup.On; }
   /// Revisions since the last Reset that went by removals (the rest by unions).
   std::int64_t RevisionsByRemovals() const { return this->Sup.ByRemovals; }
 
@@ -211,20 +217,16 @@ public:
       // become arc consistent from the start (the catalog C of Statement 3.6): a label without
       // support at a neighbour goes before any choice. Changed sites keep their place first.
       this->FromScratch = false;
-      this->StartSupports(rules, forEachNeighbour);
+      this->StartRemovals(rules);
       for (std::int64_t s = 0; s < this->NumberOfSites(); ++s)
         this->Push(s);
     }
     else if (this->Sup.On && &rules != this->Sup.Rules)
     {
-      this->Sup.On = false; // another relation: the counts do not hold for it
-    }
-    else if (this->Sup.On && !this->Sup.StaleSites.empty())
-    {
-      this->Recount(rules, forEachNeighbour);
+      this->Sup.On = false; // another relation: Applied does not hold for it
     }
     std::size_t head = this->W == 1 ? this->Drain<true>(rules, forEachNeighbour)
-      : this->Sup.On                ? this->DrainCounted(rules, forEachNeighbour)
+      : this->Sup.On                ? this->DrainByRemovals(rules, forEachNeighbour)
                                     : this->Drain<false>(rules, forEachNeighbour);
     if (this->EmptySite >= 0)
     {
@@ -296,14 +298,15 @@ private:
     return head;
   }
   /**
-   * Drain with support counts: a site v whose set lost few labels since its counts were last
-   * brought up to date (Sup.Applied) revises its neighbours by those removals (AC-4: each removed
-   * label costs its list); otherwise, and along classes without counts, by the union as Drain
-   * does. Both give the same sets (the counts hold at every site: see SupportState), in the same
-   * order of revisions.
+   * Drain by removals: a site v whose set lost fewer labels since its last revision (Applied)
+   * than it has left revises its neighbours by those removals (RemoveUnsupported: each removed
+   * label costs its list, each label of a neighbour that lost a support its reverse list);
+   * otherwise, and on its first revision, by the union as Drain does. Both give the same sets,
+   * in the same order of revisions.
    */
   template <class ForEachNeighbour>
-  std::size_t DrainCounted(const CompatibilityRelation& rules, ForEachNeighbour& forEachNeighbour)
+  std::size_t DrainByRemovals(
+    const CompatibilityRelation& rules, ForEachNeighbour& forEachNeighbour)
   {
     std::vector<std::uint64_t>& allowed = this->Scratch;
     std::size_t head = 0;
@@ -315,24 +318,13 @@ private:
       forEachNeighbour(v,
         [&](std::int64_t u, int d) -> bool
         {
-          if (byRemovals)
-          {
-            // Every neighbour along a counted class has its counts brought down, also after a
-            // set emptied (then nothing is removed), so that the counts stay those of Applied.
-            const std::uint32_t pair = this->PairOf(u, d);
-            if (pair != NoPair)
-            {
-              this->RemoveUnsupported(rules, v, u, d, pair);
-              return true;
-            }
-            if (this->EmptySite >= 0)
-            {
-              return true;
-            }
-          }
           if (this->Counts[ToIndex(u)] == 0)
           {
             return true;
+          }
+          if (byRemovals)
+          {
+            return this->RemoveUnsupported(rules, v, u, d);
           }
           const std::uint64_t* mask;
           if (this->Counts[ToIndex(v)] == this->K)
@@ -344,7 +336,7 @@ private:
             rules.UnionOf(d, dv, allowed.data());
             mask = allowed.data();
           }
-          return this->Restrict(u, mask) || byRemovals;
+          return this->Restrict(u, mask);
         });
     }
     return head;
@@ -358,13 +350,7 @@ private:
     {
       if (this->Recording)
       {
-        if (this->Trail.capacity() - this->Trail.size() < 3)
-        {
-          this->Trail.reserve(2 * this->Trail.size() + 1024);
-        }
-        this->Trail.push_back(static_cast<std::uint64_t>(site));
-        this->Trail.push_back(static_cast<std::uint64_t>(count));
-        this->Trail.push_back(d);
+        this->Save(TrailKind::Domain, this->SavedDomain, ToIndex(site), d);
       }
       d &= mask;
       const int now = PopCountWord(d);
@@ -388,147 +374,60 @@ private:
   }
 
   /**
-   * Support counts (AC-4), set up by the first Propagate after Reset when k > 512, the relation
-   * has lists and the counts fit (SupportsFit). A pair is a site u and a counted direction
-   * class d along which u is reached from one neighbour v (its source); Counts[pair][c] is the
-   * number of labels b of Applied[v] with c in Compatible(d, b). Applied[v] holds Domain(v) and
-   * the labels removed from v since its counts were last brought down. Every label c at u has a
-   * non-zero count along each pair whose source has been revised once (Fresh[v] = 0): so
-   * bringing the counts down by Applied[v] − Domain(v) finds exactly the labels at u without
-   * support in Domain(v). A pair's counts are set up when its source first revises by removals
-   * (Ready; untouched memory until then). Undo puts Applied back and lists the labels to count
-   * again (Stale), done before the next Propagate's drain (Recount).
+   * Revision by removals, set up by the first Propagate after Reset when k > 512, the relation
+   * has lists and Applied fits in a quarter of the memory available. Invariant: each label at a
+   * neighbour u of a site v has a support in Applied[v] (the set of v at its last revision), so
+   * when v loses labels, only the labels of u in the lists of those removals can lose their
+   * last support, and each is checked against Domain(v) by its reverse list (AC-3 with the
+   * removals as the delta; no per-pair counts to keep, so no memory per site and label beyond
+   * Applied's bit, and Undo restores Applied from the trail).
    */
-  struct SupportState
+  struct RemovalState
   {
     bool On = false;
     const CompatibilityRelation* Rules = nullptr;
-    std::size_t Classes = 0;
-    std::vector<std::uint8_t> Countable; ///< per direction class: counted
-    std::vector<std::uint32_t> PairOf;   ///< [site][class]: the pair, or NoPair
-    std::size_t Pairs = 0;
-    /// [pair][label], 8 bits each when no count exceeds 255 (Narrow), else 16; allocated, not
-    /// initialised.
-    std::unique_ptr<std::uint8_t[]> Counts;
-    bool Narrow = false;
-    std::size_t Allocated = 0;          ///< bytes of Counts
-    std::vector<std::uint8_t> Ready;    ///< per pair: its counts set up
-    std::vector<std::uint64_t> Applied; ///< [site][word]
-    std::vector<std::uint8_t> Fresh;    ///< per site: its neighbours not yet revised from it
-    std::vector<std::uint64_t> Stale;   ///< [site][word]: labels to count again (after Undo)
-    std::vector<std::int64_t> StaleSites;
-    std::vector<std::uint64_t> Delta;   ///< the removals being applied (Words() words)
-    std::vector<std::uint64_t> Removed; ///< labels losing their last support at one neighbour
+    std::vector<std::uint64_t> Applied;    ///< [site][word]: the set at the site's last revision
+    std::vector<std::uint8_t> Fresh;       ///< per site: not yet revised since Reset
+    std::vector<std::uint64_t> Delta;      ///< the revision's removals (Words() words)
+    std::vector<std::uint64_t> Candidates; ///< labels of a neighbour that lost a support
     std::int64_t ByRemovals = 0;
   };
-  static constexpr std::uint32_t NoPair = ~std::uint32_t(0);
 
-  /**
-   * Decides whether the sets allow support counts (k, the relation's lists, each site reached
-   * along each class from one neighbour other than itself, and the memory) and numbers the
-   * pairs; their counts are set up when first needed.
-   */
-  template <class ForEachNeighbour>
-  void StartSupports(const CompatibilityRelation& rules, ForEachNeighbour& forEachNeighbour)
-  {
-    SupportState& sup = this->Sup;
-    sup.On = false;
-    sup.Narrow = rules.HasLists() && rules.MostSupports() <= 255;
-    const std::int64_t n = this->NumberOfSites();
-    if (!this->CountsAllowed || this->W == 1 || !rules.HasLists() ||
-      rules.NumberOfLabels() != this->K || !this->SupportsFit(ToIndex(n)) ||
-      ToIndex(n) * ToIndex(rules.Directions()) >= NoPair)
-    {
-      return;
-    }
-    // Which classes occur, and whether a site is reached along a class more than once.
-    sup.Classes = ToIndex(rules.Directions());
-    sup.PairOf.assign(ToIndex(n) * sup.Classes, NoPair);
-    std::vector<std::int8_t> state(sup.Classes, 0); // 0 unused, 1 counted, -1 not countable
-    bool selfLoop = false;
-    for (std::int64_t v = 0; v < n && !selfLoop; ++v)
-    {
-      forEachNeighbour(v,
-        [&](std::int64_t u, int d) -> bool
-        {
-          std::uint32_t& pair = sup.PairOf[ToIndex(u) * sup.Classes + ToIndex(d)];
-          state[ToIndex(d)] = pair != NoPair || state[ToIndex(d)] < 0 ? -1 : 1;
-          pair = 0;
-          selfLoop = selfLoop || u == v;
-          return true;
-        });
-    }
-    if (!selfLoop && this->NumberPairs(state))
-    {
-      sup.Rules = &rules;
-    }
-  }
-  /// Counts the Stale labels again at the neighbours of the sites Undo listed.
-  template <class ForEachNeighbour>
-  void Recount(const CompatibilityRelation& rules, ForEachNeighbour& forEachNeighbour)
-  {
-    for (const std::int64_t v : this->Sup.StaleSites)
-    {
-      std::uint64_t* stale = this->Sup.Stale.data() + ToIndex(v) * this->W;
-      forEachNeighbour(v,
-        [&](std::int64_t u, int d) -> bool
-        {
-          const std::uint32_t pair = this->PairOf(u, d);
-          if (pair != NoPair && this->Sup.Ready[pair])
-          {
-            this->AddSupportsTo(rules, pair, d, stale);
-          }
-          return true;
-        });
-      std::fill(stale, stale + this->W, 0);
-    }
-    this->Sup.StaleSites.clear();
-  }
-  std::uint32_t PairOf(std::int64_t u, int d) const
-  {
-    return this->Sup.Countable[ToIndex(d)]
-      ? this->Sup.PairOf[ToIndex(u) * this->Sup.Classes + ToIndex(d)]
-      : NoPair;
-  }
-  template <typename Tally>
-  Tally* CountsOf(std::uint32_t pair) const
-  {
-    return reinterpret_cast<Tally*>(this->Sup.Counts.get()) + std::size_t(pair) * ToIndex(this->K);
-  }
-  /// Whether counts for @p pairs pairs fit in the memory the counts may take.
-  bool SupportsFit(std::size_t pairs) const;
-  /// Numbers the pairs of the classes @p state marks counted (PairOf holds 0 for each pair
-  /// found) and allocates their counts; false (counts off) when there are none or too many.
-  bool NumberPairs(const std::vector<std::int8_t>& state);
-  /// Sets @p counts (along class @p d) from the set @p source of the pair's source.
-  template <typename Tally>
-  void CountSupports(
-    const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* source);
-  /// Adds the supports of the labels @p labels to @p counts (along @p d).
-  template <typename Tally>
-  static void AddSupports(
-    const CompatibilityRelation& rules, Tally* counts, int d, const std::uint64_t* labels);
-  /// AddSupports to the counts of @p pair.
-  void AddSupportsTo(
-    const CompatibilityRelation& rules, std::uint32_t pair, int d, const std::uint64_t* labels);
-  /// Before v revises its neighbours: true when by its removals (Sup.Delta, then Applied[v] =
-  /// Domain(v)), false when by the union (also the first revision from v after Reset).
+  /// Decides whether the sets go by removals (k, the relation's lists and the memory).
+  void StartRemovals(const CompatibilityRelation& rules);
+  /// Before v revises its neighbours: true when by its removals (Sup.Delta), false when by the
+  /// union (also the first revision from v after Reset); either way Applied[v] = Domain(v).
   bool BeginRevision(const CompatibilityRelation& rules, std::int64_t v);
-  /// Brings the counts of @p pair (u along @p d from v) down by Sup.Delta, first setting them
-  /// up from Domain(v) if not yet; removes the labels of u left without support (unless a set
-  /// is already empty).
-  void RemoveUnsupported(
-    const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair);
-  /// RemoveUnsupported's counting: true when labels of u go (those of Sup.Removed).
-  template <typename Tally>
-  bool FindUnsupported(
-    const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d, std::uint32_t pair);
-  /// Undo of a record of Applied and Fresh (site with the top bit set, Fresh, the old Applied).
-  void UndoApplied(std::int64_t site, bool fresh, const std::uint64_t* applied);
-  /// The labels of @p site to count again (Words() words), listing the site in StaleSites.
-  std::uint64_t* StaleOf(std::int64_t site);
-  /// Trail entry of Applied[site] and Fresh[site] before a revision changes them.
-  void RecordApplied(std::int64_t site);
+  /// Removes the labels of u (along @p d from v) left without support by Sup.Delta; false when
+  /// u's set became empty.
+  bool RemoveUnsupported(const CompatibilityRelation& rules, std::int64_t v, std::int64_t u, int d);
+
+  /// What a trail entry holds: a word of a set, a word of Applied, or Fresh of a site.
+  enum class TrailKind : std::uint64_t
+  {
+    Domain = 0,
+    Applied = 1,
+    Fresh = 2
+  };
+  /**
+   * Trail entry [kind and index, old value] for word @p index (site · Words() + word; a site
+   * for Fresh) before it changes, unless it was kept since the last mark (@p saved: per word,
+   * 1 + the position of its latest entry; empty when the stamps did not fit).
+   */
+  void Save(TrailKind kind, std::vector<std::uint64_t>& saved, std::size_t index, std::uint64_t old)
+  {
+    if (!saved.empty())
+    {
+      std::uint64_t& at = saved[index];
+      if (at > this->LastMark)
+      {
+        return; // kept since the last mark: Undo restores that older value
+      }
+      at = this->TrailBase + this->Trail.size() + 1;
+    }
+    this->Trail.push_back((static_cast<std::uint64_t>(kind) << 62) | index);
+    this->Trail.push_back(old);
+  }
 
   /// Counts, queue and trail for @p n sites whose sets are in Bits.
   void Start(std::int64_t n);
@@ -553,11 +452,15 @@ private:
   std::int64_t EmptySite = -1;
   std::int64_t DecidedSites = 0;
   bool Recording = false;
-  bool FromScratch = false;         ///< set by Reset: the next Propagate revises every site
-  std::vector<std::uint64_t> Trail; ///< [site, count, W old words] per recorded change
-  std::size_t TrailBase = 0;        ///< words recorded before Trail[0] (dropped by Forget)
-  SupportState Sup;
-  bool CountsAllowed = true;
+  bool FromScratch = false;                ///< set by Reset: the next Propagate revises every site
+  std::vector<std::uint64_t> Trail;        ///< [kind and index, old value] per recorded change
+  std::size_t TrailBase = 0;               ///< words recorded before Trail[0] (dropped by Forget)
+  std::size_t LastMark = 0;                ///< the latest Mark() (or Undo's mark)
+  std::vector<std::uint64_t> SavedDomain;  ///< per word of Bits: see Save
+  std::vector<std::uint64_t> SavedApplied; ///< per word of Sup.Applied: see Save
+  std::vector<std::int64_t> Touched;       ///< Undo's restored sites
+  RemovalState Sup;
+  bool RemovalsAllowed = true;
 };
 
 } // namespace msynth

@@ -44,7 +44,7 @@ std::int64_t BlockSearch::Assign(std::int64_t local)
   std::int64_t empty = cat.Propagate();
   if (empty < 0)
   {
-    if (this->Searching && cat.Mark() > MaximumTrailWords)
+    if (this->Searching && cat.TrailWords() > MaximumTrailWords)
     {
       // Too long a trail to keep: go on as Algorithm 3.4 does, without undoing.
       this->Searching = false;
