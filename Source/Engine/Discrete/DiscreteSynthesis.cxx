@@ -597,6 +597,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   }
   const SynthesisOptions& options = placed ? *placed : given;
   CheckAxesWithoutPairs(rules, options);
+  CheckTranslationPeriods(rules, options);
   CheckCountRequest(rules, options);
   CheckConnectedRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);

@@ -523,4 +523,13 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
  */
 void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& options);
 
+/**
+ * A model that repeats every P sites along a translated axis needs rows of labels that close
+ * after P steps; when the rules' rows along it close only after multiples of d and d does not
+ * divide P (WaveFunctionCollapse's Chess, N = 2, at periodic size 47), no model exists: said at
+ * once with the period, instead of as a failed run or its block fallback (Discrete/PeriodCheck).
+ * @throw Error naming the axis, the example's period and a size that may work.
+ */
+void CheckTranslationPeriods(const AdjacencyRules& rules, const SynthesisOptions& options);
+
 } // namespace msynth
