@@ -257,7 +257,7 @@ def main():
         return 0
     entries = wfc_entries(data, args.small) + mj_entries(data, args.small, args.msynth)
     if args.only:
-        entries = [e for e in entries if any(o.lower() in e.name.lower() for o in args.only)]
+        entries = [e for e in entries if any(e.name.startswith(o) for o in args.only)]
     print("| entry | whole: labels, top share, time | blocks | region |")
     print("|---|---|---|---|")
     failed, tally = [], {"ok": 0, "n/a": 0, "cells": 0}

@@ -294,6 +294,13 @@ struct SynthesisOptions
    */
   std::optional<LabelGrid> Start;
   /**
+   * With StartFrom Automatic: the blocks start undecided, and only where that run fails from the
+   * given Start (or the automatic start without one). An image sample that does not repeat sets
+   * it (OverlappingModel: its tiled start shows along the block borders); a region or a stream
+   * of such a world starts undecided (UndecidedWorld).
+   */
+  bool UndecidedFirst = false;
+  /**
    * Pinned sites, to complete a partial model: label values over the output, FreeSite where
    * the site is to be synthesized. Pinned labels are kept: whole-model synthesis starts its
    * catalog from them; block synthesis first places each pin into the start with a block of the
@@ -531,5 +538,9 @@ void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& 
  * @throw Error naming the axis, the example's period and a size that may work.
  */
 void CheckTranslationPeriods(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/// @p world as a region or a stream computes it: with UndecidedFirst, the undecided start and
+/// no given start (a world whose undecided run fails falls back to it: its regions do not).
+SynthesisOptions UndecidedWorld(const SynthesisOptions& world);
 
 } // namespace msynth

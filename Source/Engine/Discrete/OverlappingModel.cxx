@@ -277,14 +277,9 @@ void PatternSet::Configure(SynthesisOptions& options, const Periodic& periodic) 
   // along two of its edges), and a block must continue what its ring holds: a straight feature
   // of the wrap runs on through every block along the borders, a seam through the picture
   // (issue 44). Where the output does not repeat, an undecided start gives the blocks no such
-  // ring (and a region can compute it); a repeating output keeps the tiled start, since an
-  // undecided one cannot close its seam.
-  if (!periodic[0] && !periodic[1])
-  {
-    if (options.StartFrom == BlockStart::Automatic)
-      options.StartFrom = BlockStart::Undecided;
-    return;
-  }
+  // ring (and a region can compute it), the tiled one only where it fails; a repeating output
+  // keeps the tiled start, since an undecided one cannot close its seam.
+  options.UndecidedFirst = !periodic[0] && !periodic[1];
   if (!options.Guide)
     options.Start = this->TiledStart(options.Size, periodic);
 }

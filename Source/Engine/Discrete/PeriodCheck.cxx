@@ -139,8 +139,7 @@ void CheckTranslationPeriods(const AdjacencyRules& rules, const SynthesisOptions
     const std::int64_t p = t.Period > 0 ? t.Period : options.Size[a];
     if (!t.Enabled || !t.Map.empty() || rules.NumberOfLabels() == 0)
       continue;
-    const std::vector<std::int64_t> periods =
-      Periods(Successors(rules, 2 * static_cast<int>(a)));
+    const std::vector<std::int64_t> periods = Periods(Successors(rules, 2 * static_cast<int>(a)));
     std::int64_t least = 0;
     bool fits = periods.empty(); // no cycle at all: the solver says so itself
     for (std::int64_t d : periods)

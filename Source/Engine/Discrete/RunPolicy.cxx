@@ -264,6 +264,18 @@ SynthesisResult SynthesizeFromWholeModel(
   return r;
 }
 
+SynthesisOptions UndecidedWorld(const SynthesisOptions& world)
+{
+  SynthesisOptions w = world;
+  if (w.UndecidedFirst && w.StartFrom == BlockStart::Automatic)
+  {
+    w.StartFrom = BlockStart::Undecided;
+    w.Start.reset();
+  }
+  w.UndecidedFirst = false;
+  return w;
+}
+
 double SnapshotBytes(const SynthesisOptions& options)
 {
   // A label, a catalog size and an entropy (4 bytes each) per site and snapshot.

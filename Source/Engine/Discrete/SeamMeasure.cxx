@@ -9,6 +9,7 @@
 #include "Core/BlockDriver.h"
 #include "Core/BlockSynthesis.h"
 #include "Core/Error.h"
+#include "Core/Index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,8 @@ double Distance(const Histogram& p, const Histogram& q)
   for (const auto& c : p)
   {
     const auto other = q.find(c.first);
-    const double f = other == q.end() ? 0.0 : static_cast<double>(other->second) / static_cast<double>(nq);
+    const double f =
+      other == q.end() ? 0.0 : static_cast<double>(other->second) / static_cast<double>(nq);
     sum += std::fabs(static_cast<double>(c.second) / static_cast<double>(np) - f);
   }
   for (const auto& c : q)
@@ -70,7 +72,7 @@ std::vector<Label> WindowAt(const LabelGrid& grid, const std::array<std::int64_t
   const std::array<std::int64_t, 3>& w)
 {
   std::vector<Label> c;
-  c.reserve(static_cast<std::size_t>(w[0] * w[1] * w[2]));
+  c.reserve(ToIndex(w[0] * w[1] * w[2]));
   for (std::int64_t z = 0; z < w[2]; ++z)
     for (std::int64_t y = 0; y < w[1]; ++y)
       for (std::int64_t x = 0; x < w[0]; ++x)
@@ -99,8 +101,8 @@ std::array<std::vector<std::int64_t>, 3> BlockBorderPlanes(const std::array<std:
   return planes;
 }
 
-SeamMeasure MeasureSeams(const LabelGrid& model, const std::array<std::vector<std::int64_t>, 3>& planes,
-  int window, const LabelGrid* whole)
+SeamMeasure MeasureSeams(const LabelGrid& model,
+  const std::array<std::vector<std::int64_t>, 3>& planes, int window, const LabelGrid* whole)
 {
   const auto& n = model.Dimensions();
   std::array<std::int64_t, 3> w{};

@@ -27,20 +27,23 @@ namespace msynth
 /// The window statistics of a block run's borders, its interior and a whole run.
 struct SeamMeasure
 {
-  int Window = 2;                  ///< window edge W in sites (1 along a flat axis)
-  std::int64_t BorderWindows = 0;  ///< windows touching a block border
-  std::int64_t InteriorWindows = 0; ///< the other windows
-  double BorderVsInterior = 0.0;   ///< distance of the model's border and interior windows
-  double BorderTop = 0.0;          ///< share of the most frequent border window
-  double InteriorTop = 0.0;        ///< share of the most frequent interior window
-  bool HasWhole = false;           ///< whether a whole run was given (the fields below)
+  int Window = 2;                     ///< window edge W in sites (1 along a flat axis)
+  std::int64_t BorderWindows = 0;     ///< windows touching a block border
+  std::int64_t InteriorWindows = 0;   ///< the other windows
+  double BorderVsInterior = 0.0;      ///< distance of the model's border and interior windows
+  double BorderTop = 0.0;             ///< share of the most frequent border window
+  double InteriorTop = 0.0;           ///< share of the most frequent interior window
+  bool HasWhole = false;              ///< whether a whole run was given (the fields below)
   double WholeBorderVsInterior = 0.0; ///< the whole run's windows at the same places
-  double BorderVsWhole = 0.0;      ///< the model's border windows against all the whole run's
-  double InteriorVsWhole = 0.0;    ///< the model's interior windows against all the whole run's
-  double WholeBorderTop = 0.0;     ///< share of the most frequent whole-run window at the borders
+  double BorderVsWhole = 0.0;         ///< the model's border windows against all the whole run's
+  double InteriorVsWhole = 0.0;       ///< the model's interior windows against all the whole run's
+  double WholeBorderTop = 0.0; ///< share of the most frequent whole-run window at the borders
   /// BorderVsInterior − WholeBorderVsInterior: how much more the borders differ from the
   /// interior than the whole run's own windows at those places do (0 without a whole run).
-  double Excess() const { return this->HasWhole ? this->BorderVsInterior - this->WholeBorderVsInterior : 0.0; }
+  double Excess() const
+  {
+    return this->HasWhole ? this->BorderVsInterior - this->WholeBorderVsInterior : 0.0;
+  }
 };
 
 /// The planes between sites p − 1 and p along each axis where a block's ring held labels, for a
@@ -55,7 +58,8 @@ std::array<std::vector<std::int64_t>, 3> BlockBorderPlanes(const std::array<std:
  * of the same size; nullptr: none).
  * @throw Error when @p window is below 1 or larger than the model, or @p whole's size differs.
  */
-SeamMeasure MeasureSeams(const LabelGrid& model, const std::array<std::vector<std::int64_t>, 3>& planes,
-  int window, const LabelGrid* whole = nullptr);
+SeamMeasure MeasureSeams(const LabelGrid& model,
+  const std::array<std::vector<std::int64_t>, 3>& planes, int window,
+  const LabelGrid* whole = nullptr);
 
 } // namespace msynth

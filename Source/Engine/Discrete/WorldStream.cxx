@@ -201,9 +201,10 @@ BlockStart WorldStart(const AdjacencyRules& rules, const SynthesisOptions& world
 }
 } // namespace
 
-SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& given,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {
+  const SynthesisOptions world = UndecidedWorld(given);
   CheckWorldOptions(world, "a region of a world");
   CheckAxesWithoutPairs(rules, world);
   CheckCountRequest(rules, world); // shares by position (LabelCounts.h): as in the whole run
@@ -632,10 +633,11 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
 }
 } // namespace
 
-SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
+SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& given,
   const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk,
   const std::vector<BlockFailure>& kept)
 {
+  const SynthesisOptions world = UndecidedWorld(given);
   const auto start = std::chrono::steady_clock::now();
   CheckWorldOptions(world, "a streamed world");
   CheckAxesWithoutPairs(rules, world);
