@@ -539,8 +539,9 @@ void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& 
  */
 void CheckTranslationPeriods(const AdjacencyRules& rules, const SynthesisOptions& options);
 
-/// @p world as a region or a stream computes it: with UndecidedFirst, the undecided start and
-/// no given start (a world whose undecided run fails falls back to it: its regions do not).
+/// @p world as a region (SynthesizeRegion calls it) or a stream (its caller does) computes it:
+/// with UndecidedFirst, the undecided start and no given start (a world whose undecided run
+/// fails falls back to the given one: its regions and streams do not).
 SynthesisOptions UndecidedWorld(const SynthesisOptions& world);
 
 } // namespace msynth

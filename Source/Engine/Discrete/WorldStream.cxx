@@ -633,11 +633,10 @@ bool Stream::Emit(std::int64_t final, SynthesisResult& r)
 }
 } // namespace
 
-SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& given,
+SynthesisResult SynthesizeStreamed(const AdjacencyRules& rules, const SynthesisOptions& world,
   const StreamLayout& layout, const std::function<bool(StreamChunk&&)>& onChunk, int firstChunk,
   const std::vector<BlockFailure>& kept)
 {
-  const SynthesisOptions world = UndecidedWorld(given);
   const auto start = std::chrono::steady_clock::now();
   CheckWorldOptions(world, "a streamed world");
   CheckAxesWithoutPairs(rules, world);

@@ -451,7 +451,7 @@ msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
         "a streamed world is the whole world: clear Region and ComputeRequestedExtent");
     const msynth::StreamLayout layout = msynth::PlanStream(options, stream->Thickness);
     return msynth::SynthesizeStreamed(
-      rules, options, layout,
+      rules, msynth::UndecidedWorld(options), layout,
       [&](msynth::StreamChunk&& c)
       {
         msynth::SynthesisResult piece;
