@@ -13,17 +13,21 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSCheckModel.h"
+#include "vtkMSLabelArrays.h"
 #include "vtkMSLabelGridReader.h"
 #include "vtkMSPatternSynthesis.h"
 #include "vtkMSTileImage.h"
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include "Discrete/SeamMeasure.h"
 #include "Patterns/FactorGraph.h"
 
+#include <array>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace msynth
@@ -310,11 +314,68 @@ struct QualityOptions
   std::vector<std::string> Files;
   std::string Factors = "4H,4V";
   double Epsilon = 0.1;
+  std::vector<int> Seams;                 ///< the block size MODEL was synthesized in (--seams)
+  std::vector<int> Overlap{ -1, -1, -1 }; ///< its blocks' overlap
+  std::string Whole;                      ///< a whole run of the same size to compare with
+  int Window = 2;
 };
+
+/// The labels of the label grid file @p path.
+msynth::LabelGrid GridOf(const std::string& path)
+{
+  auto reader = OpenGrid(path);
+  vtkImageData* image = reader->GetOutput();
+  return vtkMSLabelArrays::ToLabelGrid(image, vtkMSLabelArrays::FindLabelArray(image, nullptr));
+}
+
+/// `msynth quality MODEL --seams BX BY BZ [--whole WHOLE]`: SeamMeasure.h's figures.
+int QualitySeams(const QualityOptions& o)
+{
+  const std::string& path = o.Files.back();
+  const msynth::LabelGrid model = GridOf(path);
+  std::array<std::int64_t, 3> block{}, overlap{};
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    block[a] = o.Seams[a];
+    overlap[a] = o.Overlap[a];
+  }
+  const auto planes = msynth::BlockBorderPlanes(model.Dimensions(), block, overlap);
+  std::optional<msynth::LabelGrid> whole;
+  if (!o.Whole.empty())
+    whole = GridOf(o.Whole);
+  const msynth::SeamMeasure s =
+    msynth::MeasureSeams(model, planes, o.Window, whole ? &*whole : nullptr);
+  std::cout << path << ": " << model.Size(0) << " x " << model.Size(1) << " x " << model.Size(2)
+            << " in " << o.Seams[0] << " x " << o.Seams[1] << " x " << o.Seams[2] << " blocks\n";
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    std::cout << "block borders along " << static_cast<char>('x' + a) << ":";
+    for (std::int64_t p : planes[a])
+      std::cout << " " << p;
+    std::cout << (planes[a].empty() ? " none\n" : "\n");
+  }
+  std::cout << "seam windows: " << s.Window << " sites a side, " << s.BorderWindows
+            << " touching a border, " << s.InteriorWindows << " inside\n"
+            << "seam distance (border windows against interior ones, total variation): "
+            << JsonNumber(s.BorderVsInterior) << "\n"
+            << "seam top share (most frequent window, border / interior): "
+            << JsonNumber(s.BorderTop) << " / " << JsonNumber(s.InteriorTop) << "\n";
+  if (s.HasWhole)
+    std::cout << "whole run at the same places (its own variation): "
+              << JsonNumber(s.WholeBorderVsInterior) << ", top share at the borders "
+              << JsonNumber(s.WholeBorderTop) << "\n"
+              << "against all of the whole run's windows: border " << JsonNumber(s.BorderVsWhole)
+              << ", interior " << JsonNumber(s.InteriorVsWhole) << "\n"
+              << "seam excess (seam distance minus the whole run's): " << JsonNumber(s.Excess())
+              << "\n";
+  return 0;
+}
 
 /// EXEMPLAR... MODEL: readers → vtkMSCheckModel (the pairs, KL per shape, log probability).
 int Quality(const QualityOptions& o)
 {
+  if (!o.Seams.empty())
+    return QualitySeams(o);
   std::vector<vtkSmartPointer<vtkMSLabelGridReader>> readers;
   vtkNew<vtkMSCheckModel> check;
   for (std::size_t i = 0; i + 1 < o.Files.size(); ++i)
@@ -458,16 +519,36 @@ CommandRunner AddQuality(CLI::App& app)
     "how much MODEL looks like the EXEMPLARs: the KL divergence of its "
     "configurations of each factor shape, its log probability, and whether every pair of "
     "neighbours occurs in an exemplar (exit 1 if not)");
-  q->add_option("FILES", o->Files, "EXEMPLAR... MODEL: label grids (.vti, .txt, .vox)")
+  q->add_option("FILES", o->Files,
+     "EXEMPLAR... MODEL: label grids (.vti, .txt, .vox); with --seams MODEL alone")
     ->required()
-    ->expected(2, -1);
+    ->expected(1, -1);
   q->add_option("--factors", o->Factors, "factor shapes to measure (as msynth pattern --factors)");
   q->add_option("--epsilon", o->Epsilon, "epsilon of the log probability")
     ->check(NonNegativeReal());
+  q->add_option("--seams", o->Seams,
+     "BX BY BZ: MODEL was synthesized in blocks of this size; measure whether their borders "
+     "show: the frequencies of the windows touching a block border against the interior's "
+     "(total variation distance) and, with --whole, the whole run's at the same places")
+    ->expected(3)
+    ->check(CLI::Range(0, 1000000000));
+  q->add_option("--overlap", o->Overlap, "with --seams: the blocks' overlap (default -1: half)")
+    ->expected(3)
+    ->check(CLI::Range(-1, 1000000000));
+  q->add_option("--whole", o->Whole, "with --seams: a whole run of MODEL's size to compare with");
+  q->add_option("--window", o->Window, "with --seams: window edge in sites (default 2)")
+    ->check(CLI::Range(1, 64));
   return [o]()
   {
     for (const auto& path : o->Files)
       CheckInputFile(path);
+    if (!o->Whole.empty())
+      CheckInputFile(o->Whole);
+    if (o->Seams.empty() && o->Files.size() < 2)
+      throw UsageError{ "quality needs EXEMPLAR... MODEL (or MODEL --seams BX BY BZ)" };
+    if (!o->Seams.empty() && o->Files.size() != 1)
+      throw UsageError{ "quality --seams measures one MODEL, not " +
+        std::to_string(o->Files.size()) + " files (a whole run goes with --whole)" };
     try
     {
       msynth::ParseStencils(o->Factors);

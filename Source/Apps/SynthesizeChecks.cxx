@@ -56,7 +56,7 @@ void CheckDiscreteSizes(const SynthesizeOptions& o)
   const bool sample = IsSample(o.Example);
   const bool region = std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; });
   const std::string size = "--size " + Listed({ o.Size3[0], o.Size3[1], o.Size3[2] });
-  if (region && !sample)
+  if (region)
   {
     for (int a = 0; a < 3; ++a)
     {

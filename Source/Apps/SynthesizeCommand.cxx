@@ -141,7 +141,8 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
              ->check(CLI::Range(0, 1000000000)));
   discrete(s.add_option("--region", o.Region,
               "only the region X0 Y0 Z0 X1 Y1 Z1 (half-open) of the world of --size, computed "
-              "from the blocks it depends on: the same sites as a whole run")
+              "from the blocks it depends on: the same sites as a whole run (an image sample's "
+              "pattern sites: a picture of X1 - X0 + N - 1 pixels across, N the pattern size)")
              ->expected(6)
              ->check(CLI::Range(0, 2147483647)));
   discrete(s.add_option("--overlap", o.Overlap,
@@ -718,8 +719,12 @@ int SynthesizeDiscrete(const SynthesizeOptions& o, const std::string& dir)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
     seconds && seconds->GetNumberOfTuples() > 0 ? seconds->GetTuple1(0) : 0.0);
   // An image sample's sites are its patterns' places: the picture is a pattern wider.
-  const std::string picture = !IsSample(o.Example)
-    ? ""
+  // A region's picture does not repeat: its last pattern's pixels end it.
+  const bool region = std::any_of(o.Region.begin(), o.Region.end(), [](int v) { return v != 0; });
+  const std::string picture = !IsSample(o.Example) ? ""
+    : region
+    ? " (a " + std::to_string(dims[0] + o.Pattern - 1) + " x " +
+      std::to_string(dims[1] + o.Pattern - 1) + " picture of a region)"
     : " (a " + std::to_string(o.Size3[0]) + " x " + std::to_string(o.Size3[1]) + " picture)";
   std::cout << MessageOf(fd) << "\n"
             << dims[0] << " x " << dims[1] << " x " << dims[2]

@@ -12,6 +12,7 @@
 
 #include <map>
 #include <random>
+#include <string>
 
 using namespace msynth;
 using msynth_test::Grid2D;
@@ -162,15 +163,23 @@ TEST(Symmetry, TranslationWithPeriodAndLabelMap)
       for (std::int64_t x = 0; x + 3 < 14; ++x)
         EXPECT_EQ(r.Model.At(x + 3, y, 0), Mapped(swap, r.Model.At(x, y, 0)));
   }
-  // Without the map an odd period cannot continue a checkerboard: reported as a failure.
+  // Without the map an odd period cannot continue a checkerboard: refused with the reason
+  // before any attempt (CheckTranslationPeriods, issue 44).
   SynthesisOptions o;
   o.Size = { { 14, 5, 1 } };
   o.Translate[0].Enabled = true;
   o.Translate[0].Period = 3;
   o.AttemptsPerBlock = 3;
-  const auto r = Synthesize(rules, o);
-  EXPECT_FALSE(r.Succeeded());
-  EXPECT_EQ(r.Model.NumberOfSites(), 0);
+  try
+  {
+    Synthesize(rules, o);
+    ADD_FAILURE() << "an odd period of a checkerboard was not refused";
+  }
+  catch (const Error& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("repeats every 2 sites along x"), std::string::npos)
+      << error.what();
+  }
 }
 
 TEST(Symmetry, RotationByQuarterTurns)

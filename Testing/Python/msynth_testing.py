@@ -73,8 +73,9 @@ def run_msynth(*args, timeout=None):
 
 def expect_refused(test, command, args, message, name="refused"):
     """Runs `msynth *command *args --out DIR` and asserts that it fails with one line on stderr
-    holding `message` and writes nothing."""
-    out = os.path.join(fresh_folder(name), "out")
+    holding `message` and writes nothing. The folder is the process's own: test scripts that
+    ctest runs side by side would otherwise empty and fill the same one."""
+    out = os.path.join(fresh_folder("%s-%d" % (name, os.getpid())), "out")
     r = run_msynth(*command, *args, "--out", out)
     test.assertNotEqual(r.returncode, 0, args)
     lines = r.stderr.strip().splitlines()

@@ -13,7 +13,7 @@ import unittest
 import numpy as np
 
 import modelsynth
-from msynth_testing import BIN, data, labels_zyx, tmp, violations
+from msynth_testing import BIN, data, fresh_folder, labels_zyx, tmp, violations
 
 MSYNTH = os.path.join(BIN, "msynth")
 
@@ -858,11 +858,17 @@ class CommandLineTest(unittest.TestCase):
         self.assertNotIn("[", piped.stderr)
 
     def test_synthesize_errors(self):
+        # No label of a checkerboard tiles space: its blocks start undecided by default (issue
+        # 44), and the trivial start, asked for, says why it cannot be.
+        ok = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
+                 "--block", "3", "3", "1", "--out", tmp("cli-undecided"))
+        self.assertEqual(ok.returncode, 0, ok.stderr)
+        failed = fresh_folder("cli-fail-trivial")
         r = run("synthesize", data("Examples/Checkerboard.vti"), "--size", "9", "9", "1",
-                "--block", "3", "3", "1", "--out", tmp("cli-fail"))
+                "--block", "3", "3", "1", "--start", "trivial", "--out", failed)
         self.assertEqual(r.returncode, 1)
         self.assertIn("no usable trivial start", r.stderr)
-        self.assertFalse(os.path.exists(os.path.join(tmp("cli-fail"), "labels.vti")))
+        self.assertFalse(os.path.exists(os.path.join(failed, "labels.vti")))
         self.assertEqual(run("synthesize", data("Examples/Village.vti")).returncode, 2)  # no --size
         self.assertEqual(run("synthesize", data("Examples/Village.vti"), "--size", "4", "x", "4").returncode, 2)
         self.assertEqual(run("synthesize", data("Examples/Village.vti"), "--size", "0", "4", "4").returncode, 2)

@@ -30,7 +30,8 @@ class ImpossibleOutputTest(unittest.TestCase):
         """WaveFunctionCollapse's Chess (N=2, size 47, periodic): a checkerboard cannot repeat
         with an odd period, so the whole model fails; the fallback to blocks cannot start (no
         label is next to itself), and its error ("no usable trivial start ... use whole-model
-        synthesis") was reported instead of the whole model's failure."""
+        synthesis") was reported instead of the whole model's failure. Now the reason comes
+        first, before any attempt: the example repeats every 2 sites (issue 44, item 5)."""
         from vtkmodules.util.numpy_support import numpy_to_vtk
         from vtkmodules.vtkCommonDataModel import vtkImageData
         from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -47,9 +48,9 @@ class ImpossibleOutputTest(unittest.TestCase):
                        "--translate", "xy", "--size", "47", "47", "1", "--out",
                        os.path.join(folder, "out"))
         one_line(self, r, 1)
-        self.assertIn("whole-model synthesis", r.stderr)
-        self.assertIn("Try another seed or more attempts (block synthesis cannot start with this "
-                      "example)", r.stderr)
+        self.assertIn("the example repeats every 2 sites along x", r.stderr)
+        self.assertIn("a model that repeats every 47 sites along x cannot exist: use a multiple "
+                      "of 2 (48)", r.stderr)
         self.assertNotIn("trivial start", r.stderr)
         r = run_msynth("synthesize", os.path.join(folder, "Chess.png"), "--pattern", "2",
                        "--translate", "xy", "--size", "48", "48", "1", "--out",

@@ -597,6 +597,7 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
   }
   const SynthesisOptions& options = placed ? *placed : given;
   CheckAxesWithoutPairs(rules, options);
+  CheckTranslationPeriods(rules, options);
   CheckCountRequest(rules, options);
   CheckConnectedRequest(rules, options);
   SynthesisResult r = SynthesizeWithStart(rules, options);
@@ -639,6 +640,17 @@ SynthesisResult SynthesizeWithStart(const AdjacencyRules& rules, const Synthesis
 {
   LabelGrid::CheckDimensions(options.Size[0], options.Size[1], options.Size[2]);
   CheckSynthesisMemory(rules, options);
+  if (options.StartFrom == BlockStart::Automatic && options.UndecidedFirst)
+  {
+    SynthesisResult r = SynthesizeWithStart(rules, UndecidedWorld(options));
+    if (r.Status != SynthesisStatus::Failed)
+      return r;
+    SynthesisOptions given = options;
+    given.UndecidedFirst = false;
+    SynthesisResult second = SynthesizeWithStart(rules, given);
+    second.Message += " (from the given start: the undecided start failed, " + r.Message + ")";
+    return second;
+  }
   if (options.StartFrom == BlockStart::Automatic)
   {
     std::optional<SynthesisResult> done;

@@ -294,6 +294,13 @@ struct SynthesisOptions
    */
   std::optional<LabelGrid> Start;
   /**
+   * With StartFrom Automatic: the blocks start undecided, and only where that run fails from the
+   * given Start (or the automatic start without one). An image sample that does not repeat sets
+   * it (OverlappingModel: its tiled start shows along the block borders); a region or a stream
+   * of such a world starts undecided (UndecidedWorld).
+   */
+  bool UndecidedFirst = false;
+  /**
    * Pinned sites, to complete a partial model: label values over the output, FreeSite where
    * the site is to be synthesized. Pinned labels are kept: whole-model synthesis starts its
    * catalog from them; block synthesis first places each pin into the start with a block of the
@@ -522,5 +529,19 @@ SynthesisResult Synthesize(const AdjacencyRules& rules, const SynthesisOptions& 
  * @throw Error naming the axis and the size.
  */
 void CheckAxesWithoutPairs(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/**
+ * A model that repeats every P sites along a translated axis needs rows of labels that close
+ * after P steps; when the rules' rows along it close only after multiples of d and d does not
+ * divide P (WaveFunctionCollapse's Chess, N = 2, at periodic size 47), no model exists: said at
+ * once with the period, instead of as a failed run or its block fallback (Discrete/PeriodCheck).
+ * @throw Error naming the axis, the example's period and a size that may work.
+ */
+void CheckTranslationPeriods(const AdjacencyRules& rules, const SynthesisOptions& options);
+
+/// @p world as a region (SynthesizeRegion calls it) or a stream (its caller does) computes it:
+/// with UndecidedFirst, the undecided start and no given start (a world whose undecided run
+/// fails falls back to the given one: its regions and streams do not).
+SynthesisOptions UndecidedWorld(const SynthesisOptions& world);
 
 } // namespace msynth

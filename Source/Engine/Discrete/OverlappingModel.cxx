@@ -271,7 +271,16 @@ void PatternSet::Configure(SynthesisOptions& options, const Periodic& periodic) 
     blocks |= options.BlockSize[a] > 0 && options.BlockSize[a] < options.Size[a];
   // The sample tiled holds every pattern somewhere, so a guide that forbids one would refuse it:
   // with a guide the start is the solver's own (a trivial label or layers the guide allows).
-  if (blocks && !options.TrivialLabel && !options.Start && !options.Guide)
+  if (!blocks || options.TrivialLabel || options.Start)
+    return;
+  // The sample tiled brings the sample's own wrap into every block's ring (Rooms: a double wall
+  // along two of its edges), and a block must continue what its ring holds: a straight feature
+  // of the wrap runs on through every block along the borders, a seam through the picture
+  // (issue 44). Where the output does not repeat, an undecided start gives the blocks no such
+  // ring (and a region can compute it), the tiled one only where it fails; a repeating output
+  // keeps the tiled start, since an undecided one cannot close its seam.
+  options.UndecidedFirst = !periodic[0] && !periodic[1];
+  if (!options.Guide)
     options.Start = this->TiledStart(options.Size, periodic);
 }
 

@@ -102,8 +102,10 @@ public:
     const std::array<std::int64_t, 3>& sites, const Periodic& periodic) const;
   /**
    * Sets up @p options (Size already the grid's) for these patterns: the ground guide with
-   * Ground (@throw Error when @p options has a guide already), and for block synthesis without
-   * a guide the tiled start where there is one.
+   * Ground (@throw Error when @p options has a guide already), and for block synthesis an
+   * undecided start first where the output does not repeat (UndecidedFirst: the tiled start's
+   * wrap would show along the block borders) and, without a guide, the tiled start where there
+   * is one.
    */
   void Configure(SynthesisOptions& options, const Periodic& periodic) const;
   /// The picture of a grid of patterns (label values 0..k−1). @throw Error on other values.

@@ -206,7 +206,18 @@ BlockStart ChooseBlockStart(const AdjacencyRules& rules, const SynthesisOptions&
   std::optional<SynthesisResult> first; // a small world's trivial run
   if (small)
   {
-    first = Synthesize(rules, probe);
+    try
+    {
+      first = Synthesize(rules, probe);
+    }
+    catch (const Error&)
+    {
+      // No label tiles space and no layers of such labels fit (WaveFunctionCollapse's Large
+      // Circles): no trivial start at all, so the other starts, as for a blank one.
+      if (options.TrivialLabel || TrivialLabelOf(rules, options) >= 0)
+        throw;
+      return ChooseAfterBlank(rules, probe, { 0, 1.0 }, translated, first, keep);
+    }
     if (!first->Succeeded() || !LooksBlankByWeight(rules, *first))
       return keep(std::move(*first), BlockStart::Trivial);
     t = Variety(first->Model);
@@ -251,6 +262,18 @@ SynthesisResult SynthesizeFromWholeModel(
   SynthesisResult r = Synthesize(rules, blocks);
   r.Statistics.StartFrom = "whole";
   return r;
+}
+
+SynthesisOptions UndecidedWorld(const SynthesisOptions& world)
+{
+  SynthesisOptions w = world;
+  if (w.UndecidedFirst && w.StartFrom == BlockStart::Automatic)
+  {
+    w.StartFrom = BlockStart::Undecided;
+    w.Start.reset();
+  }
+  w.UndecidedFirst = false;
+  return w;
 }
 
 double SnapshotBytes(const SynthesisOptions& options)

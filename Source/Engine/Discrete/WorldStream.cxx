@@ -201,9 +201,10 @@ BlockStart WorldStart(const AdjacencyRules& rules, const SynthesisOptions& world
 }
 } // namespace
 
-SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& world,
+SynthesisResult SynthesizeRegion(const AdjacencyRules& rules, const SynthesisOptions& given,
   const std::array<std::int64_t, 3>& low, const std::array<std::int64_t, 3>& high)
 {
+  const SynthesisOptions world = UndecidedWorld(given);
   CheckWorldOptions(world, "a region of a world");
   CheckAxesWithoutPairs(rules, world);
   CheckCountRequest(rules, world); // shares by position (LabelCounts.h): as in the whole run

@@ -167,14 +167,11 @@ std::string RegionProblem(vtkMSDiscreteSynthesis* self, const int grid[3], int a
 {
   const int* r = self->GetRegion();
   const int lo = r[a], hi = r[a + 3];
-  const bool sample = self->GetActiveSource() == vtkMSDiscreteSynthesis::SAMPLE_SOURCE;
-  if (!sample && lo >= 0 && hi <= grid[a] && lo < hi)
+  if (lo >= 0 && hi <= grid[a] && lo < hi)
     return std::string();
   std::string text = "Region";
   for (int i = 0; i < 6; ++i)
     text += " " + std::to_string(r[i]);
-  if (sample)
-    return text + ": regions are for label grids and tilesets, not image samples.";
   const std::string axis(1, static_cast<char>('x' + a));
   return text + " is not a non-empty box inside OutputSize (x0 y0 z0 x1 y1 z1): " +
     (lo < 0            ? axis + "0 is below 0."
@@ -454,7 +451,7 @@ msynth::SynthesisResult vtkMSDiscreteSynthesis::Run(
         "a streamed world is the whole world: clear Region and ComputeRequestedExtent");
     const msynth::StreamLayout layout = msynth::PlanStream(options, stream->Thickness);
     return msynth::SynthesizeStreamed(
-      rules, options, layout,
+      rules, msynth::UndecidedWorld(options), layout,
       [&](msynth::StreamChunk&& c)
       {
         msynth::SynthesisResult piece;
