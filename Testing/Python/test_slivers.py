@@ -43,7 +43,8 @@ class SliverTest(unittest.TestCase):
         check = msynth("check", example, os.path.join(out, "model.vtp"))
         self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
         self.assertIn("narrowest face, edge or gap: ", check.stdout)
-        fraction = float(check.stdout.split("(")[-1].split()[0])
+        line = next(l for l in check.stdout.splitlines() if l.startswith("narrowest face"))
+        fraction = float(line.split("(")[-1].split()[0])
         self.assertGreaterEqual(fraction, 0.1)
         self.assertAlmostEqual(fraction, stats["SmallestFeatureFraction"], places=4)
 
