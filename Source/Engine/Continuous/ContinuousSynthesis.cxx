@@ -489,7 +489,6 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   {
     weight[k] = (this->Weights.empty() ? 1.0 : this->Weights[ToIndex(c[k])]) *
       this->Plan->Factor(v, c[k], this->AttemptTally);
-    total += weight[k];
   }
   if (this->Ends) // a decided vertex's label, or -1; past the first only the block's own
     this->Ends->Weigh(v, c, weight,
@@ -499,7 +498,6 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
         return l >= 0 ? (this->Domains.Count(l) == 1 ? this->Domains.Single(l) : -1)
                       : (far ? -1 : this->Result.Labels[ToIndex(u)]);
       });
-  total = 0;
   for (double w : weight)
     total += w;
   if (!(total > 0))

@@ -66,8 +66,8 @@ public:
   {
     for (const Axis& axis : this->Axes)
     {
-      std::int64_t u = this->Behind(v, axis.Direction);
-      const int behind = u >= 0 ? labelOf(u, false) : -1;
+      const std::int64_t first = this->Behind(v, axis.Direction);
+      const int behind = first >= 0 ? labelOf(first, false) : -1;
       if (behind < 0)
         continue;
       const std::uint64_t carried = this->Plan.EdgeTypes(axis.Direction, behind) & this->Tracked;
@@ -75,21 +75,19 @@ public:
       {
         if (!((carried >> t) & 1u))
           continue;
-        const TypeRuns& runs = this->Runs[ToIndex(t)][ToIndex(axis.Index)];
         // The length behind v: over decided vertices whose edge toward v carries the type.
-        const double step = this->Distance(u, v);
+        const double step = this->Distance(first, v);
         double length = step;
-        for (std::int64_t w = this->Behind(u, axis.Direction); w >= 0;
-             w = this->Behind(u, axis.Direction))
+        for (std::int64_t u = first, w = this->Behind(u, axis.Direction); w >= 0;
+             u = w, w = this->Behind(u, axis.Direction))
         {
           const int label = labelOf(w, true);
           if (label < 0 || !((this->Plan.EdgeTypes(axis.Direction, label) >> t) & 1u))
             break;
           length += this->Distance(w, u);
-          u = w;
         }
+        const TypeRuns& runs = this->Runs[ToIndex(t)][ToIndex(axis.Index)];
         this->Rescale(runs.EndChance(length, step), t, axis.Direction, candidates, weight);
-        u = this->Behind(v, axis.Direction);
       }
     }
   }

@@ -28,6 +28,7 @@
 
 #include "Continuous/ContinuousSynthesis.h"
 #include "Continuous/LatticeCounts.h"
+#include "Continuous/ModelStructure.h"
 #include "Core/Error.h"
 #include "Core/Fnv.h"
 #include "Core/Index.h"
@@ -234,13 +235,11 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   if (options.Choice == msynth::LabelChoice::Frequency)
     options.LabelWeights = msynth::LatticeOccurrences(ex, analysis, parameters);
   if (self->GetExampleSizes())
-  {
-    // Runs measured on voxels of half the smallest plane spacing (ModelStructure's).
-    double spacing = HUGE_VAL;
-    for (int f = 0; f < analysis.Families().Size(); ++f)
-      spacing = std::min(spacing, parameters.Spacing(analysis.Families(), f));
-    options.Runs = msynth::MeasureRuns(ex, 0.5 * spacing);
-  }
+    // Runs measured on the structure measure's voxels: half the smallest plane spacing.
+    options.Runs = msynth::MeasureRuns(ex,
+      msynth::StructureVoxel(
+        vtkMSArrangementStorage::SmallestSpacing(arrangementData->GetFieldData()),
+        std::max(analysis.High()[0] - analysis.Low()[0], analysis.High()[1] - analysis.Low()[1])));
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
   const int* mirror = self->GetMirror();
