@@ -262,8 +262,10 @@ void FindParts(const TypeVoxels& g, double reach, ModelStructure& out)
     const std::int64_t y0 = std::max<std::int64_t>(0, box[1] - grow);
     const std::int64_t x1 = std::min(nx, box[3] + grow + 1);
     const std::int64_t y1 = std::min(ny, box[4] + grow + 1);
-    for (const auto& [other, s] : presence)
+    for (const auto& entry : presence)
     {
+      const int other = entry.first;
+      const auto& s = entry.second;
       const auto at = [&](std::int64_t x, std::int64_t y) { return s[ToIndex(x + (nx + 1) * y)]; };
       if (other != t && at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0) > 0)
         part.Fronts.push_back(other);
