@@ -58,6 +58,13 @@ std::set<std::string> ContinuousOutputs(const SynthesizeOptions& o)
 /// of export on two cores).
 constexpr double LevelSetBudget = 1e6;
 
+/// One number of field data @p name, 0 when absent.
+double NumberOf(vtkFieldData* fd, const char* name)
+{
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+}
+
 /// model.vdb: a 3D model as level sets per object type and a fog volume; a 2D (or empty) model
 /// as a slab of object types (the writer chooses the voxels from the planes of @p labelled,
 /// unless --voxel gives them).
@@ -73,7 +80,8 @@ double WriteModelVDB(
   vdb->AddMetadata("msynth_command", "synthesize");
   vdb->AddMetadata("example", o.Example.c_str());
   vdb->AddMetadata("seed", std::to_string(o.Seed).c_str());
-  vdb->AddMetadata("block_spacings", std::to_string(o.Blocks).c_str());
+  vdb->AddMetadata(
+    "block_spacings", std::to_string(NumberOf(labelled->GetFieldData(), "BlockSize")).c_str());
   vdb->AddMetadata("plane_spacing", o.Spacing > 0 ? std::to_string(o.Spacing).c_str() : "derived");
   {
     ProgressBar bar(vdb, "model.vdb");
@@ -111,13 +119,6 @@ double WriteExports(vtkPolyData* model, const SynthesizeOptions& o,
   return vox->GetWrittenVoxelSize();
 }
 
-/// One number of field data @p name, 0 when absent.
-double NumberOf(vtkFieldData* fd, const char* name)
-{
-  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
-  return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
-}
-
 void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const SynthesizeOptions& o,
   const std::string& dir, const std::vector<std::pair<std::string, double>>& stages, double voxel,
   double voxVoxel)
@@ -132,13 +133,14 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Raw("size",
       "[" + JsonNumber(o.Size[0]) + ", " + JsonNumber(o.Size[1]) + ", " + JsonNumber(o.Size[2]) +
         "]")
-    .Number("blockSize", o.Blocks)
+    .Number("blockSize", NumberOf(fd, "BlockSize"))
+    .Text("SiteOrder", MessageOf(fd, "SiteOrder"))
     .Count("seed", o.Seed)
     .Count("Vertices", labelled->GetNumberOfPoints())
     .Count("Polygons", model->GetNumberOfPolys())
     .Solver(fd)
     .Flag("Grounded", o.Grounded)
-    .Flag("ExampleSizes", o.Sizes)
+    .Flag("ExampleSizes", !o.NoSizes)
     .Count("Components", CountOf(fd, "Components"))
     .Count("GroundedComponents", CountOf(fd, "GroundedComponents"))
     .Count("FloatingPartsRemoved", CountOf(fd, "FloatingPartsRemoved"))
@@ -175,12 +177,14 @@ void ConfigureSolver(vtkMSContinuousSynthesis* synthesis, const SynthesizeOption
   synthesis->SetBlockSize(o.Blocks);
   synthesis->SetAttempts(o.Attempts);
   synthesis->SetNumberOfThreads(o.Threads);
-  synthesis->SetSiteOrder(o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2));
+  synthesis->SetSiteOrder(o.Order.empty()
+      ? vtkMSContinuousSynthesis::AUTOMATIC_ORDER
+      : (o.Order == "scanline" ? 0 : (o.Order == "random" ? 1 : 2)));
   synthesis->SetLabelChoice(o.Choice == "frequency" ? 1 : 0);
   synthesis->SetNumberOfSnapshots(o.Snapshots);
   synthesis->SetGrounded(o.Grounded);
   synthesis->SetKeepProportions(!o.NoProportions);
-  synthesis->SetExampleSizes(o.Sizes);
+  synthesis->SetExampleSizes(!o.NoSizes);
   synthesis->SetBlockCandidates(o.Candidates);
   synthesis->SetModelCandidates(o.Models);
   synthesis->SetMirror(o.Mirror.find('x') != std::string::npos,

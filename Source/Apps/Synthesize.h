@@ -48,7 +48,7 @@ struct SynthesizeOptions
   std::string Start;              ///< how blocks start: auto (empty), trivial, undecided, whole
   bool NoFallback = false;        ///< no blocks when the whole model fails
   bool ViaInfallible = false;     ///< Algorithm 3.1 on an infallible refinement (D§3.3.8)
-  std::string Order;              ///< empty: scanline (discrete), entropy (continuous)
+  std::string Order;              ///< empty: scanline (discrete), automatic (continuous)
   std::string Choice = "uniform";
   int Snapshots = 0;
   // Discrete.
@@ -84,12 +84,13 @@ struct SynthesizeOptions
   // Continuous.
   PolyhedralReading Reading; ///< --types and --up
   double Spacing = 0;
-  double Blocks = 4;
+  double Blocks = -1; ///< --blocks; negative: automatic (the filter's)
   double Voxel = 0;
   bool Grounded = false;
   std::vector<std::string> Thickness, Overhang, Connected;
   bool NoProportions = false;
-  bool Sizes = false; ///< --sizes: runs ended with the example's chances
+  bool NoSizes = false; ///< --no-sizes: runs ended with the same odds at any length
+  bool Sizes = true;    ///< --sizes, the default (kept for scripts that give it)
   int Candidates = 1;
   int Models = 1;     ///< whole-model candidates
   std::string Detail; ///< TYPE=FILE

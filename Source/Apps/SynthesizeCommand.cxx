@@ -266,7 +266,9 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                 "smallest plane spacing (default: derived from the example's planes)")
                ->check(NonNegativeReal()));
   continuous(
-    s.add_option("--blocks", o.Blocks, "block edge in plane spacings (0: the whole model at once)")
+    s.add_option("--blocks", o.Blocks,
+       "block edge in plane spacings (0: the whole model at once; default: twice the example's "
+       "longest wall, slab or road, at least 4)")
       ->check(NonNegativeReal()));
   continuous(s.add_option("--voxel", o.Voxel,
                 "voxel size of model.vdb and model.vox (default for model.vdb: a quarter of "
@@ -314,9 +316,9 @@ void AddContinuousOptions(CLI::App& s, Registered& r)
                ->check(CLI::Range(1, 1000)));
   continuous(s.add_flag("--no-proportions", o.NoProportions,
     "do not steer the label choice toward the example's proportions of object types"));
-  continuous(s.add_flag("--sizes", o.Sizes,
-    "parts as long as the example's: a wall, slab or road ends along x or y with the chance "
-    "that the example's of that length end, not with the same odds at every length"));
+  continuous(s.add_flag("--sizes", o.Sizes, "parts as long as the example's (the default)"));
+  continuous(s.add_flag("--no-sizes", o.NoSizes,
+    "walls, slabs, roads end along x or y with the same odds at any length (TVCG 2010)"));
 }
 
 /// Options of label grids that an image sample does not take, and the forms of --ground.
@@ -354,8 +356,6 @@ void CheckKind(const Registered& r, bool polyhedral)
   }
   if (polyhedral)
   {
-    if (r.Order->count() == 0)
-      o.Order = "entropy";
     if (r.Attempts->count() == 0)
       o.Attempts = 20;
     if (o.Choice == "resemblance")
@@ -765,8 +765,8 @@ CommandRunner AddSynthesize(CLI::App& app)
     s->add_option("--attempts", o.Attempts, "attempts per block (default 10; continuous 20)")
       ->check(CLI::Range(1, 1000000));
   r.Order = AddOrderOption(*s, o.Order, Orders);
-  r.Order->description(
-    r.Order->get_description() + " (default scanline; entropy for a polyhedral example)");
+  r.Order->description(r.Order->get_description() +
+    " (default scanline; for a polyhedral example entropy if grown from seeds or --no-sizes)");
   AddChoiceOption(*s, o.Choice, Choices);
   AddSnapshotsOption(*s, o.Snapshots,
     "catalog snapshots (per block for a label grid), also written as the sequence "

@@ -180,6 +180,25 @@ TEST(RunEnds, TheExamplesRunsAndTheirChancesOfEnding)
   EXPECT_EQ(upright.count(1), 1u);
 }
 
+TEST(RunEnds, APartFitsWhereTheExamplesRunsFitAndBlocksHoldTheLongest)
+{
+  // The street's houses along x: 16 complete rows 1 long, 16 complete 2 long, 64 cut at 4.
+  const ExampleRuns runs = MeasureRuns(Street(), 0.25);
+  const TypeRuns& house = runs.at(1)[0];
+  // In a room of 1 only the 16 rows 1 long fit, among the complete rows and the cut ones
+  // longer than the room (which go on past the example's edge: they need more).
+  EXPECT_NEAR(house.FitChance(1, 0.25), 16.0 / (32 + 64), 1e-12);
+  EXPECT_NEAR(house.FitChance(2, 0.25), 32.0 / (32 + 64), 1e-12);
+  EXPECT_NEAR(house.FitChance(0.5, 0.25), 0.0, 1e-12); // no house is that narrow
+  EXPECT_NEAR(house.FitChance(4, 0.25), 1.0, 1e-12);   // the cut rows may end at 4 as well
+  EXPECT_LT(TypeRuns{}.FitChance(3, 1), 0);            // nothing to tell
+  EXPECT_NEAR(house.Longest(), 4.0, 1e-12);
+  // Blocks twice the longest complete run (the street's: 2), at least 4 spacings.
+  EXPECT_EQ(AutomaticBlockSize(runs, 1.0), 4.0);
+  EXPECT_EQ(AutomaticBlockSize(runs, 0.25), 16.0);
+  EXPECT_EQ(AutomaticBlockSize({}, 1.0), 4.0);
+}
+
 TEST(RunEnds, BarsComeOutAsLongAsTheExamplesWithItsChances)
 {
   // Bars 5 and 6 long along x (planes a unit apart across x): drawn with the same odds at each

@@ -117,8 +117,8 @@ class CommandLineUsageTest(unittest.TestCase):
             self.assertIsNone(thesis, "%s --help cites the papers: %s" % (command, thesis and thesis.group()))
         help = run("synthesize", "--help").stdout
         for shown in ("--size NX NY NZ (required)", "--block BX BY BZ", "--seed N (default 0)",
-                      "--order scanline|random|entropy", "(default scanline; entropy for a "
-                      "polyhedral example)", "--out DIR (default msynth-output)",
+                      "--order scanline|random|entropy", "(default scanline; for a polyhedral "
+                      "example entropy if grown from seeds or --no-sizes)", "--out DIR (default msynth-output)",
                       "--region X0 Y0 Z0 X1 Y1 Z1", "--start auto|trivial|undecided|whole"):
             self.assertIn(shown, " ".join(help.split()))
         village = data("Examples/Village.vti")

@@ -15,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <numeric>
@@ -57,6 +58,7 @@ public:
     , Words(this->Rules.Words())
     , Worker(worker)
     , Whole(parts.Whole)
+    , Parallel(parts.Parallel)
     , Layout(parts.Layout.get())
     , Blocks(this->Whole ? 1 : static_cast<std::int64_t>(parts.Order.size()))
     , Initial(parts.Initial)
@@ -249,6 +251,8 @@ private:
   const int K, Words;
   const unsigned Worker;
   const bool Whole;
+  const bool
+    Parallel; ///< blocks of a phase run concurrently (their neighbourhoods may not be read)
   const detail::BlockLayout* Layout;
   const std::int64_t Blocks;
   const std::vector<std::uint64_t>& Initial; ///< [vertex][word]: the starting catalog
@@ -486,18 +490,25 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   weight.resize(c.size());
   double total = 0;
   for (std::size_t k = 0; k < c.size(); ++k)
+    weight[k] = this->Weights.empty() ? 1.0 : this->Weights[ToIndex(c[k])];
+  if (this->Ends)
   {
-    weight[k] = (this->Weights.empty() ? 1.0 : this->Weights[ToIndex(c[k])]) *
-      this->Plan->Factor(v, c[k], this->AttemptTally);
-  }
-  if (this->Ends) // a decided vertex's label, or -1; past the first only the block's own
+    // A decided vertex's label, -1 undecided, -2 outside the block where another block of the
+    // phase may be labelling (a cell's edge or more away: BlockLayout).
+    const double halo = this->Whole || !this->Parallel ? std::numeric_limits<double>::infinity()
+                                                       : this->Layout->CellEdge;
     this->Ends->Weigh(v, c, weight,
-      [this](std::int64_t u, bool far)
+      [this, halo](std::int64_t u, double distance)
       {
         const std::int32_t l = this->LocalOf[ToIndex(u)];
         return l >= 0 ? (this->Domains.Count(l) == 1 ? this->Domains.Single(l) : -1)
-                      : (far ? -1 : this->Result.Labels[ToIndex(u)]);
+                      : (distance < halo ? this->Result.Labels[ToIndex(u)] : -2);
       });
+  }
+  // The constraints' factors (guide, proportions, fill) last: the run ends rescale the labels
+  // that end a part against those that carry it on, which would undo a type's proportion.
+  for (std::size_t k = 0; k < c.size(); ++k)
+    weight[k] *= this->Plan->Factor(v, c[k], this->AttemptTally);
   for (double w : weight)
     total += w;
   if (!(total > 0))
@@ -640,15 +651,18 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   if (options.MirrorAxes != 0)
     return SynthesizeMirrored(analysis, arrangement, options);
   const auto start = std::chrono::steady_clock::now();
-  if (!std::isfinite(options.BlockSize) || !(options.BlockSize == 0 || options.BlockSize >= 1))
+  if (!std::isfinite(options.BlockSize) ||
+    !(options.BlockSize < 0 || options.BlockSize == 0 || options.BlockSize >= 1))
     throw Error("continuous synthesis: the block size is measured in plane spacings and must be "
-                "0 (the whole model at once) or at least 1, not " +
+                "0 (the whole model at once), at least 1, or negative (automatic), not " +
       std::to_string(options.BlockSize));
   if (options.Attempts < 1)
     throw Error("continuous synthesis: at least one attempt is needed");
   ContinuousSynthesisResult result;
   SynthesisStatistics& stats = result.Statistics;
   const detail::RunParts parts(analysis, arrangement, options);
+  result.BlockSize = parts.BlockSize;
+  result.Order = options.Order;
   ContinuousRun run(parts, arrangement, options, result, 0);
   if (run.Snapshots())
     run.Emit(run.Capture(-1, false));

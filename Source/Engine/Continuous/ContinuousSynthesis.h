@@ -82,7 +82,8 @@ struct ContinuousSynthesisOptions
 {
   std::uint64_t Seed = 0;
   /// Block edge in plane spacings (of the family with the largest spacing); 0 labels the whole
-  /// arrangement at once (Algorithm 4.1 as written). Blocks overlap by half (§4.5.6).
+  /// arrangement at once (Algorithm 4.1 as written). Blocks overlap by half (§4.5.6). Negative:
+  /// automatic, AutomaticBlockSize (room for the example's parts when Runs are followed).
   double BlockSize = 0;
   int Attempts = 20; ///< tries per block (or for the whole model) before giving up
   /// Threads for blocks (non-touching blocks of a phase run concurrently); 0: one per core. The
@@ -126,7 +127,9 @@ struct ContinuousSynthesisResult
   /// Blocks, attempts, failed blocks (BlockFailure::EmptyIndex: the vertex whose catalog
   /// emptied), assignments, backtracks (labels withdrawn because their propagation failed).
   SynthesisStatistics Statistics;
-  std::string Message; ///< why it failed, or a summary
+  std::string Message;  ///< why it failed, or a summary
+  double BlockSize = 0; ///< the block edge used, in plane spacings (0: the whole model)
+  SiteOrder Order = SiteOrder::MinimumEntropy; ///< the vertex order used
   /// Grounded runs: solid parts that did not touch the ground and were emptied.
   std::int64_t FloatingPartsRemoved = 0;
   /// Solid parts emptied because a corner came closer than MinimumFeatureFraction of the

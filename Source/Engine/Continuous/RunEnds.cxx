@@ -23,19 +23,51 @@ double TypeRuns::EndChance(double length, double step) const
   return (above(this->Complete, low) - above(this->Complete, high)) / reaching;
 }
 
+double TypeRuns::FitChance(double room, double step) const
+{
+  const double high = room + 0.5 * step;
+  const auto fitting = static_cast<double>(
+    std::upper_bound(this->Complete.begin(), this->Complete.end(), high) - this->Complete.begin());
+  const auto longer = static_cast<double>(
+    this->Cut.end() - std::upper_bound(this->Cut.begin(), this->Cut.end(), high));
+  const double all = static_cast<double>(this->Complete.size()) + longer;
+  return all > 0 ? fitting / all : -1.0;
+}
+
+double TypeRuns::Longest() const
+{
+  return std::max(this->Complete.empty() ? 0.0 : this->Complete.back(),
+    this->Cut.empty() ? 0.0 : this->Cut.back());
+}
+
+double AutomaticBlockSize(const ExampleRuns& runs, double reference)
+{
+  double longest = 0;
+  for (const auto& entry : runs)
+    for (const TypeRuns& t : entry.second)
+      if (!t.Complete.empty())
+        longest = std::max(longest, t.Complete.back());
+  constexpr double least = 4; // the default of blocks before runs were followed
+  return reference > 0 ? std::max(least, std::ceil(2 * longest / reference - 1e-9)) : least;
+}
+
 ExampleRuns MeasureRuns(const PolyhedralExample& example, double voxel)
 {
   ExampleRuns runs;
   if (example.Planar)
     return runs;
   const TypeVoxels g = ClassifyTypes(example, voxel);
-  // Types with a sloped face (a gabled roof) have rows that narrow with height: every short
-  // run near the ridge would look like an end. Only upright types (faces vertical or
-  // horizontal: walls, slabs, roads) are followed.
+  // Types with a face across the axes (a gabled roof, a prism's diagonal side) have rows that
+  // narrow along it: every short run near the ridge would look like an end. Only box-like
+  // types (every face across x, y or z: walls, slabs, roads) are followed.
   std::set<int> sloped;
   for (const BoundaryElement& e : BoundaryOf(example))
-    if (std::abs(e.Normal[2]) > 1e-6 && std::abs(e.Normal[2]) < 1 - 1e-6)
+  {
+    const double largest =
+      std::max({ std::abs(e.Normal[0]), std::abs(e.Normal[1]), std::abs(e.Normal[2]) });
+    if (largest < 1 - 1e-6)
       sloped.insert(example.ObjectTypes[ToIndex(e.Object)]);
+  }
   for (int axis = 0; axis < 2; ++axis)
   {
     const std::int64_t n = g.Dims[ToIndex(axis)];
@@ -82,8 +114,9 @@ RunEnds::RunEnds(
 {
   for (int t = 1; t < plan.NumberOfTypes(); ++t)
   {
+    // A type grown from seeds is drawn by its growth and fill (a network), not by lengths.
     const auto it = runs.find(plan.TypeAt(t));
-    if (it == runs.end())
+    if (it == runs.end() || ((plan.LeadMask() >> t) & 1u))
       continue;
     this->Runs[ToIndex(t)] = it->second;
     this->Tracked |= std::uint64_t(1) << t;
@@ -92,7 +125,7 @@ RunEnds::RunEnds(
   {
     const IntVec3& e = arrangement.Direction(d);
     if (e[2] == 0 && std::abs(e[0]) + std::abs(e[1]) == 1)
-      this->Axes.push_back({ d, e[0] != 0 ? 0 : 1 });
+      this->Axes.push_back({ d, e[0] != 0 ? 0 : 1, e[0] + e[1] > 0 });
   }
 }
 

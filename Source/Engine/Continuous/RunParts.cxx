@@ -27,12 +27,14 @@ RunParts::RunParts(const PolyhedralAnalysis& analysis, const PlaneArrangement& a
   double reference = 0;
   for (int f = 0; f < arrangement.Families().Size(); ++f)
     reference = std::max(reference, arrangement.Parameters().Spacing(arrangement.Families(), f));
-  this->Whole = options.BlockSize == 0;
+  this->BlockSize =
+    options.BlockSize < 0 ? AutomaticBlockSize(options.Runs, reference) : options.BlockSize;
+  this->Whole = this->BlockSize == 0;
   // Blocks spread outward from connectivity seeds one after the other; else non-touching
   // blocks run in phases, concurrently.
   this->Parallel = this->Plan->Seeds().empty();
   this->Layout =
-    std::make_unique<BlockLayout>(arrangement, this->Whole ? 0.0 : options.BlockSize * reference,
+    std::make_unique<BlockLayout>(arrangement, this->Whole ? 0.0 : this->BlockSize * reference,
       this->Parallel ? PhasePolicy::NonTouching : PhasePolicy::Sequential);
   this->Initial.resize(ToIndex(n) * words);
   int seams = 0;

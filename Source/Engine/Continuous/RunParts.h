@@ -31,6 +31,7 @@ struct RunParts
   const ArrangementRules Rules;
   std::unique_ptr<detail::ConstraintPlan> Plan;
   std::unique_ptr<detail::RunEnds> Ends; ///< runs as long as the example's (none: memoryless)
+  double BlockSize = 0; ///< the block edge in plane spacings (options' or automatic)
   bool Whole = true;
   bool Parallel = true; ///< the schedule has phases of non-touching blocks
   std::unique_ptr<detail::BlockLayout> Layout;

@@ -36,12 +36,16 @@ struct BlockLayout
   std::vector<std::vector<std::int64_t>> CellVertices;
   std::vector<BoxBlock<3>> Grid; ///< the blocks by phase, then in scan order, in cells
   int Phases = 1;
+  /// A cell's edge (half the block edge; 0: one block). Blocks of a NonTouching phase lie at
+  /// least a cell apart, so a block may read the vertices nearer than this outside it.
+  double CellEdge = 0;
 
   BlockLayout(const PlaneArrangement& arrangement, double edge, PhasePolicy policy)
   {
     const auto& p = arrangement.Parameters();
     const int dims = arrangement.Planar() ? 2 : 3;
     const double half = edge / 2;
+    this->CellEdge = half;
     std::array<double, 3> lo{};
     for (std::size_t c = 0; c < 3; ++c)
     {

@@ -229,7 +229,6 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
   options.BlockSize = self->GetBlockSize();
   options.Attempts = self->GetAttempts();
   options.Threads = self->GetNumberOfThreads();
-  options.Order = static_cast<msynth::SiteOrder>(self->GetSiteOrder());
   options.Choice =
     self->GetLabelChoice() == 1 ? msynth::LabelChoice::Frequency : msynth::LabelChoice::Uniform;
   if (options.Choice == msynth::LabelChoice::Frequency)
@@ -242,6 +241,13 @@ msynth::ContinuousSynthesisResult Solve(vtkMSContinuousSynthesis* self, vtkPolyD
         std::max(analysis.High()[0] - analysis.Low()[0], analysis.High()[1] - analysis.Low()[1])));
   options.Snapshots = self->GetNumberOfSnapshots();
   options.Constraints = Constraints(self, guide, ex, analysis.Families());
+  // Automatic: a part's end drawn next to the vertices it has decided, where sizes are
+  // followed; growth from seeds keeps its own front.
+  options.Order = self->GetSiteOrder() != vtkMSContinuousSynthesis::AUTOMATIC_ORDER
+    ? static_cast<msynth::SiteOrder>(self->GetSiteOrder())
+    : (!options.Runs.empty() && options.Constraints.Connected.empty()
+          ? msynth::SiteOrder::ScanLine
+          : msynth::SiteOrder::MinimumEntropy);
   const int* mirror = self->GetMirror();
   options.MirrorAxes = (mirror[0] ? 1 : 0) | (mirror[1] ? 2 : 0) | (mirror[2] ? 4 : 0);
   snapshots.clear();
@@ -378,6 +384,11 @@ void vtkMSContinuousSynthesis::FillOutput(
   vtkMSFieldData::AddFieldValue<vtkIntArray>(fields, "Success", 1);
   vtkMSFieldData::AddStatistics(fields, result.Statistics, result.Status, result.Message);
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(fields, "Seed", static_cast<vtkIdType>(this->Seed));
+  vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fields, "BlockSize", result.BlockSize);
+  vtkMSFieldData::AddFieldValue<vtkStringArray>(fields, "SiteOrder",
+    result.Order == msynth::SiteOrder::ScanLine
+      ? "scanline"
+      : (result.Order == msynth::SiteOrder::Random ? "random" : "entropy"));
   const auto& m = cache.Measures;
   vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
     fields, "Components", static_cast<vtkIdType>(m.Components));

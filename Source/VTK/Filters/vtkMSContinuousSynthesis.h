@@ -61,9 +61,12 @@ public:
   };
   enum SiteOrders
   {
-    SCAN_LINE = 0,      ///< z, then y, then x (the dissertation)
-    RANDOM = 1,         ///< a seeded random order
-    MINIMUM_ENTROPY = 2 ///< fewest labels first
+    SCAN_LINE = 0,       ///< z, then y, then x (the dissertation)
+    RANDOM = 1,          ///< a seeded random order
+    MINIMUM_ENTROPY = 2, ///< fewest labels first
+    /// Scan line where the example's sizes are followed and nothing grows from seeds (a part's
+    /// end is drawn next to the vertices it has decided), fewest labels first otherwise.
+    AUTOMATIC_ORDER = 3
   };
 
   /// The arrangement input (port 1).
@@ -79,8 +82,10 @@ public:
 
   ///@{
   /// Block edge in plane spacings (of the family with the largest spacing); blocks overlap by
-  /// half. 0 labels the whole arrangement at once. Default 4.
-  vtkSetClampMacro(BlockSize, double, 0.0, 1e6);
+  /// half. 0 labels the whole arrangement at once; negative: automatic, room for the example's
+  /// parts (twice its longest wall, slab or road with ExampleSizes, at least 4; else 4). The
+  /// edge used is the output's field array BlockSize. Default -1 (automatic).
+  vtkSetClampMacro(BlockSize, double, -1.0, 1e6);
   vtkGetMacro(BlockSize, double);
   ///@}
 
@@ -111,12 +116,14 @@ public:
   ///@}
 
   ///@{
-  /// Vertex order (SiteOrders). Default MINIMUM_ENTROPY.
-  vtkSetClampMacro(SiteOrder, int, SCAN_LINE, MINIMUM_ENTROPY);
+  /// Vertex order (SiteOrders). Default AUTOMATIC_ORDER; the order used is the output's field
+  /// array SiteOrder.
+  vtkSetClampMacro(SiteOrder, int, SCAN_LINE, AUTOMATIC_ORDER);
   vtkGetMacro(SiteOrder, int);
   void SetSiteOrderToScanLine() { this->SetSiteOrder(SCAN_LINE); }
   void SetSiteOrderToRandom() { this->SetSiteOrder(RANDOM); }
   void SetSiteOrderToMinimumEntropy() { this->SetSiteOrder(MINIMUM_ENTROPY); }
+  void SetSiteOrderToAutomatic() { this->SetSiteOrder(AUTOMATIC_ORDER); }
   ///@}
 
   ///@{
@@ -167,7 +174,8 @@ public:
   ///@{
   /// Parts as long as the example's: where a label would end a run of an upright object type
   /// (walls, slabs, roads) along x or y, it is drawn with the chance that the example's runs of
-  /// that length end (RunEnds.h), instead of the same odds at every length. Default off.
+  /// that length end (RunEnds.h), instead of the same odds at every length, and no part is
+  /// begun where it cannot reach the example's lengths. Default on.
   vtkSetMacro(ExampleSizes, bool);
   vtkGetMacro(ExampleSizes, bool);
   vtkBooleanMacro(ExampleSizes, bool);
@@ -213,11 +221,11 @@ private:
   void FillOutput(vtkPolyData* arrangementData, vtkPolyData* output, vtkInformation* outInfo);
 
   vtkIdType Seed = 0;
-  double BlockSize = 4;
+  double BlockSize = -1;
   int Attempts = 20;
   int NumberOfThreads = 0;
   bool DistributeBlocks = true;
-  int SiteOrder = MINIMUM_ENTROPY;
+  int SiteOrder = AUTOMATIC_ORDER;
   int LabelChoice = UNIFORM;
   int NumberOfSnapshots = 0;
   bool Grounded = false;
@@ -225,7 +233,7 @@ private:
   std::string Overhang;
   std::string Connected;
   bool KeepProportions = true;
-  bool ExampleSizes = false;
+  bool ExampleSizes = true;
   std::string TargetFractions;
   int BlockCandidates = 1;
   int ModelCandidates = 1;
