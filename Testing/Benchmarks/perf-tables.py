@@ -12,6 +12,8 @@ the load average before and after (the machine is shared: say the load next to t
 Subcommands (performance.md's section in brackets):
   whole-runs     tileset and voxel-tileset runs with the outputs users get ("Whole runs")
   startup        the fixed cost of a process: --version, 16² runs, the castle ("Whole runs")
+  backtracks     Lines in 32² blocks: backtracking and the overlap ("Blocks, threads and
+                 backtracking at scale")
   continuous     the TVCG examples and the house at 48 x 48 x 10, all outputs ("Continuous
                  synthesis", as the next three)
   threads        the house at 48 x 48 x 10 on 1 and 2 threads, stage seconds
@@ -35,6 +37,7 @@ package in a child process.
 import argparse
 import json
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -345,6 +348,37 @@ def exports(t):
     t.table("exports", header, gen())
 
 
+def top_share(t, run):
+    """The most frequent label's share of the run's labels.vti (from `msynth info`)."""
+    done = subprocess.run([t.msynth, "info", os.path.join(run.out, "labels.vti")],
+                          capture_output=True, text=True)
+    counts = [int(c) for c in re.findall(r"^  label \S+: (\d+) sites", done.stdout, re.M)]
+    return "%.3f" % (max(counts) / sum(counts)) if counts else "–"
+
+
+def backtracks(t):
+    """Lines in 32² blocks, one thread: what backtracking and the blocks' overlap cost."""
+    n = 256 if t.args.small else 1000
+    base = ("synthesize Data/Tilesets/Lines.xml --size %d %d 1 --seed 1 --threads 1 "
+            "--outputs labels" % (n, n))
+    rows = [("whole model", ""), ("32² blocks, overlap 16 (default)", " --block 32 32 1"),
+            ("the same, `--backtracks 0`", " --block 32 32 1 --backtracks 0"),
+            ("32² blocks, overlap 8", " --block 32 32 1 --overlap 8 8 0"),
+            ("32² blocks, overlap 0", " --block 32 32 1 --overlap 0 0 0")]
+
+    def gen():
+        for name, extra in rows:
+            runs = t.msynth_runs(base + extra)
+            s = runs[0].stats
+            yield [name, count(s.get("Blocks", 0)), "%s (%s)" % (
+                count(s.get("Attempts", 0)), count(s.get("FailedAttempts", 0))),
+                count(s.get("Backtracks", 0)), count(s.get("BlocksFailed", 0)),
+                spread(r.user for r in runs), top_share(t, runs[0])]
+    t.table("backtracks (Lines %d², seed 1, one thread)" % n,
+            ["run", "blocks", "attempts (failed)", "backtracks", "failed blocks", "user CPU s",
+             "most frequent label"], gen())
+
+
 def stream(t):
     """Lines in 32² blocks: a world in memory against a streamed one, per site and peak."""
     whole, streamed = (300, 1000) if t.args.small else (1000, 8000)
@@ -535,7 +569,8 @@ def render_grids(t):
             ["`model.vdb`", "write s", "file MB", "peak MB"], gen())
 
 
-SUBCOMMANDS = {"whole-runs": whole_runs, "startup": startup, "continuous": continuous,
+SUBCOMMANDS = {"whole-runs": whole_runs, "startup": startup, "backtracks": backtracks,
+               "continuous": continuous,
                "threads": threads, "town": town, "exports": exports, "stream": stream,
                "regions": regions, "connected": connected, "failed-blocks": failed_blocks,
                "render-grids": render_grids}
