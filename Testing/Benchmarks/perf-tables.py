@@ -145,6 +145,10 @@ class Tables:
             print("| " + " | ".join(str(c) for c in row) + " |")
             sys.stdout.flush()
         print("<!-- load after %s -->" % self.load())
+        if not self.args.keep:  # the outputs of the table's runs (GBs for some: town, stream)
+            for name in os.listdir(self.scratch):
+                if name.startswith("run"):
+                    shutil.rmtree(os.path.join(self.scratch, name), ignore_errors=True)
 
 
 def seconds(v):
