@@ -3,7 +3,7 @@
     PYTHONPATH=build/lib/python3.11/site-packages mpirun -np 2 pvbatch --mpi \\
         Utilities/mpi-blocks-timing.py build/lib/paraview-5.11/plugins/ModelSynthPlugin/ModelSynthPlugin.so
 
-Figures in Documentation/performance.md ("Blocks over MPI ranks")."""
+Figures in Documentation/performance.md ("MPI")."""
 import os
 import sys
 import time

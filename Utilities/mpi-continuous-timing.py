@@ -5,8 +5,7 @@ ranks (one thread per rank), the solver alone: the arrangement is built before t
         build/lib/paraview-5.11/plugins/ModelSynthPlugin/ModelSynthPlugin.so [SIZE]
 
 SIZE (default 48) gives a SIZE x SIZE x 10 house. Run it on one process too (plain pvbatch) for
-the one-rank time. Figures in Documentation/performance.md ("Continuous blocks on threads and
-ranks")."""
+the one-rank time. Figures in Documentation/performance.md ("MPI")."""
 import os
 import sys
 import time

@@ -5,7 +5,7 @@ exchange), against the same run on one rank.
     mpirun -np 2 pvbatch --mpi Utilities/mpi-world-timing.py \\
         build/lib/paraview-5.11/plugins/ModelSynthPlugin/ModelSynthPlugin.so [N]
 
-Figures in Documentation/performance.md ("Pieces of a world under MPI")."""
+Figures in Documentation/performance.md ("MPI")."""
 import os
 import sys
 import time

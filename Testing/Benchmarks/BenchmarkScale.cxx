@@ -2,7 +2,7 @@
 // Synthesis at scale (issue 26 §4): the bundled Lines tileset at 10^6, 10^7 and 10^8 sites,
 // the whole model and 32 x 32 blocks, with the time per site and the peak memory of the run.
 // Not a timed test: the smoke test runs none of these (the smallest takes a second), and the
-// figures go to Documentation/performance.md ("Speed at scale").
+// figures go to Documentation/performance.md ("Blocks, threads and backtracking at scale").
 #include "Discrete/DiscreteSynthesis.h"
 #include "Formats/Tileset.h"
 
