@@ -255,6 +255,72 @@ class InfoOfOutputsTest(unittest.TestCase):
         self.assertIn("example: %s" % village, run_msynth("info", village).stdout)
 
 
+class SwappedArgumentsTest(unittest.TestCase):
+    def test_check_and_quality_refuse_the_model_where_the_example_goes(self):
+        """Issue 49: `msynth check MODEL EXAMPLE` said "consistent" for a label grid and a picture
+        (the pairs of the example occur in the model) or failed on the example as a model; now
+        the model given first (a file msynth wrote: field data naming its example, a picture's
+        text chunk, a streamed model's pieces) or an example given second (a tileset, an .obj)
+        is refused in one line naming both files and the order."""
+        out = fresh_folder("swapped")
+        village, lines, rooms = (data("Examples/Village.vti"), data("Tilesets/Lines.xml"),
+                                 data("Samples/Rooms.png"))
+        house, city = data("Continuous/house.obj"), data("Patterns/city-urban.vti")
+        runs = {
+            "village": ("synthesize", village, "--size", "16", "16", "5", "--block", "8", "8",
+                        "5", "--ground", "1", "--empty", "0"),
+            "tiles": ("synthesize", lines, "--size", "12", "12", "1"),
+            "rooms": ("synthesize", rooms, "--size", "32", "32", "1"),
+            "houses": ("synthesize", house, "--size", "12", "12", "8"),
+            "stream": ("synthesize", lines, "--size", "64", "64", "1", "--block", "16", "16", "1",
+                       "--stream", "--slab", "32", "--outputs", "labels"),
+            "city": ("pattern", city, "--size", "12", "12"),
+        }
+        for name, command in runs.items():
+            done = run_msynth(*command, "--seed", "2", "--out", os.path.join(out, name))
+            self.assertEqual(done.returncode, 0, done.stderr)
+        model = {name: os.path.join(out, name, file) for name, file in (
+            ("village", "labels.vti"), ("mesh", "mesh.vtp"), ("tiles", "labels.vti"),
+            ("rooms", "picture.png"), ("houses", "model.vtp"), ("stream", "labels.pvti"),
+            ("city", "labels.vti"))}
+        model["mesh"] = os.path.join(out, "village", "mesh.vtp")
+        for example, name in ((village, "village"), (village, "mesh"), (lines, "tiles"),
+                              (rooms, "rooms"), (house, "houses"), (lines, "stream")):
+            r = run_msynth("check", model[name], example)
+            line = one_line(self, r, 2)
+            self.assertIn("'%s'" % model[name], line)
+            self.assertIn("'%s'" % example, line)
+            self.assertIn("the order is msynth check EXAMPLE MODEL (msynth check %s %s)"
+                          % (example, model[name]), line)
+            self.assertNotIn("consistent", r.stdout)
+            if name != "mesh":  # (a label grid's surface is described by info, not checked)
+                r = run_msynth("check", example, model[name])
+                self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        line = one_line(self, run_msynth("check", model["village"], village), 2)
+        self.assertIn("'%s' is a model msynth wrote from %s and '%s' is not" % (
+            model["village"], village, village), line)
+        line = one_line(self, run_msynth("check", model["houses"], house), 2)
+        self.assertIn("'%s' is an example (a polyhedron) and '%s' is a model msynth wrote"
+                      % (house, model["houses"]), line)
+        # quality EXEMPLAR... MODEL, the same.
+        suburban = data("Patterns/city-suburban.vti")
+        line = one_line(self, run_msynth("quality", suburban, model["city"], city), 2)
+        self.assertIn("the order is msynth quality EXEMPLAR... MODEL (msynth quality %s %s %s)"
+                      % (suburban, city, model["city"]), line)
+        r = run_msynth("quality", city, model["city"])
+        self.assertIn("KL 4H:", r.stdout)
+        self.assertEqual(r.stderr, "")
+        # Two models msynth wrote may be compared, either way.
+        other = os.path.join(out, "village-again")
+        done = run_msynth(*runs["village"], "--seed", "3", "--out", other)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        for a, b in ((model["village"], os.path.join(other, "labels.vti")),
+                     (os.path.join(other, "labels.vti"), model["village"])):
+            r = run_msynth("check", a, b)
+            self.assertEqual(r.stderr, "")
+            self.assertIn("adjacent pairs of", r.stdout)
+
+
 class SummaryTest(unittest.TestCase):
     def test_an_image_sample_says_sites_and_picture(self):
         rooms = data("Samples/Rooms.png")
