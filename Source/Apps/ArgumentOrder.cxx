@@ -19,7 +19,6 @@
 
 #include <sys/stat.h>
 
-
 namespace msynth
 {
 namespace cli
@@ -106,8 +105,8 @@ bool Exists(const std::string& path)
 }
 } // namespace
 
-void CheckOrder(const std::string& usage, const std::vector<std::string>& examples,
-  const std::string& model)
+void CheckOrder(
+  const std::string& usage, const std::vector<std::string>& examples, const std::string& model)
 {
   if (!Exists(model))
     return; // the command's own check names the missing file

@@ -115,7 +115,7 @@ std::mutex& NoteMutex()
 /// What the signal thread says of an interrupted run (InterruptNote, InterruptDone).
 struct InterruptWords
 {
-  std::string Note, Done;
+  std::string Note, Done, Discard;
 };
 InterruptWords& Words()
 {
@@ -124,16 +124,26 @@ InterruptWords& Words()
 }
 } // namespace
 
-void SetInterruptNote(const std::string& note)
+void SetInterruptNote(
+  const std::string& note, const std::string& discard, const std::function<void()>& change)
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
+  if (change)
+    change();
   Words().Note = note;
+  Words().Discard = discard;
 }
 
 std::string InterruptNote()
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
   return Words().Note;
+}
+
+std::string InterruptDiscard()
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  return Words().Discard;
 }
 
 void SetInterruptDone(const std::string& done)

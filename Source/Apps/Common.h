@@ -80,8 +80,13 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
 
 /// What an interrupted run says after "no outputs were written" (empty: nothing): a streamed
 /// run names what it keeps and how to go on. Set while the run goes; read by the signal thread.
-void SetInterruptNote(const std::string& note);
+/// @p discard: a folder the signal thread removes before it says so (a stream's folder before
+/// its first slab is finished: nothing in it to resume). @p change, when given, runs first under
+/// the same lock: what the note describes changes with it (a slab listed), never apart.
+void SetInterruptNote(const std::string& note, const std::string& discard = "",
+  const std::function<void()>& change = nullptr);
 std::string InterruptNote();
+std::string InterruptDiscard();
 /// What an interrupted run has written, said instead of "no outputs were written" (empty: that):
 /// a batch's finished entries. Set while the run goes; read by the signal thread.
 void SetInterruptDone(const std::string& done);

@@ -4,8 +4,9 @@
 // SynthesizeStreamed). Finished slabs go to DIR/.msynth-stream as they come, with a list of
 // their files and checksums; the finished run publishes DIR/labels.pvti over DIR/labels/, the
 // per-slab pictures and volumes and an overview picture together. An interrupted run leaves
-// the stream folder; --resume checks every listed slab against the world's definition and its
-// checksum and goes on from the first missing or damaged one.
+// the stream folder once a slab is finished (Ctrl-C names them; before, it removes the folder
+// and says there is nothing to resume); --resume checks every listed slab against the world's
+// definition and its checksum and goes on from the first missing or damaged one.
 #include "Common.h"
 #include "Synthesize.h"
 
@@ -587,10 +588,29 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   std::vector<std::string> kept;
   if (o.Resume)
     kept = KeptSlabs(folder, definition, kinds);
+  // What Ctrl-C finds on disk: nothing to go on from until a slab is finished (the folder is
+  // removed then), and from then on the finished slabs and --resume.
+  const auto keptNote =
+    [&folder](std::size_t slabs, int count, const std::function<void()>& listing = nullptr)
+  {
+    SetInterruptNote(Counted(static_cast<long long>(slabs), "finished slab") +
+        (count > 0 ? " of " + std::to_string(count) : std::string()) +
+        (slabs == 1 ? " is" : " are") + " kept in '" + folder +
+        "': the same command with --resume goes on from " + (slabs == 1 ? "it" : "them"),
+      "", listing);
+  };
   if (kept.empty())
+  {
+    SetInterruptNote(
+      "no slab was finished, so there is nothing to --resume: the same command starts again",
+      folder);
     msynth::RemoveTree(folder);
+  }
   else
+  {
+    keptNote(kept.size(), 0);
     RemoveUnlisted(folder, kept);
+  }
   for (const char* sub : { "", "/labels", "/picture", "/vdb" })
     ::mkdir((folder + sub).c_str(), 0755);
   WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
@@ -640,16 +660,19 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
         WriteModelVolume(slab, o, folder + "/" + name[2], "synthesize --stream", nullptr);
         line += std::string(" ") + name[2] + "=" + FileStamp(folder + "/" + name[2]);
       }
-      slabs << line << "\n" << std::flush;
-      if (!slabs)
-        throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
+      // Listed and said together: Ctrl-C names the slabs slabs.txt lists.
+      keptNote(kept.size() + finished + 1, count,
+        [&]()
+        {
+          slabs << line << "\n" << std::flush;
+          if (!slabs)
+            throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
+        });
       progress.Slab(j, count, static_cast<double>(slab->GetNumberOfPoints()));
       ++finished;
       return true;
     },
     keptFailures);
-  SetInterruptNote("the finished slabs are kept in '" + folder +
-    "': the same command with --resume goes on from them");
   try
   {
     RunDiscrete(synthesis, o);

@@ -33,6 +33,7 @@
 #include <pthread.h>
 #include <regex>
 #include <thread>
+#include <unistd.h>
 
 namespace
 {
@@ -72,6 +73,16 @@ void HandleInterruptions()
       if (FinalStatus >= 0)
       {
         std::_Exit(FinalStatus);
+      }
+      // A folder with nothing to go on from (a stream before its first slab): moved away
+      // first, so that no file appears in it while it is removed, and before the staging
+      // folders, so that an output folder the run made is empty again and removed with them.
+      const std::string discard = msynth::cli::InterruptDiscard();
+      if (!discard.empty())
+      {
+        const std::string doomed = discard.substr(0, discard.rfind('/') + 1) + ".msynth-discard-" +
+          std::to_string(::getpid()) + "-interrupted";
+        msynth::RemoveTree(std::rename(discard.c_str(), doomed.c_str()) == 0 ? doomed : discard);
       }
       int published = 0;
       const std::string done = msynth::cli::InterruptDone(); // (a batch: more was to come)
