@@ -529,6 +529,51 @@ int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std:
   std::cout << "\n";
   return 0;
 }
+/// What Ctrl-C finds of a stream in @p folder once @p slabs are finished (of @p count, when
+/// known): the slabs and --resume. @p listing runs with it: the slab listed as the note changes.
+void KeptNote(const std::string& folder, std::size_t slabs, int count,
+  const std::function<void()>& listing = nullptr)
+{
+  SetInterruptNote(Counted(static_cast<long long>(slabs), "finished slab") +
+      (count > 0 ? " of " + std::to_string(count) : std::string()) + (slabs == 1 ? " is" : " are") +
+      " kept in '" + folder + "': the same command with --resume goes on from " +
+      (slabs == 1 ? "it" : "them"),
+    "", listing);
+}
+
+/// The stream's folder @p folder made ready: the slabs an interrupted run left that --resume
+/// keeps (returned), the rest removed, the world's definition and the list written. Until a slab
+/// is finished there is nothing to go on from: Ctrl-C removes the folder and says so.
+std::vector<std::string> StartStreamFolder(
+  const SynthesizeOptions& o, const std::string& folder, StreamOutputs kinds)
+{
+  const std::string definition = WorldDefinition(o);
+  std::vector<std::string> kept;
+  if (o.Resume)
+    kept = KeptSlabs(folder, definition, kinds);
+  if (kept.empty())
+  {
+    SetInterruptNote(
+      "no slab was finished, so there is nothing to --resume: the same command starts again",
+      folder);
+    msynth::RemoveTree(folder);
+  }
+  else
+  {
+    KeptNote(folder, kept.size(), 0);
+    RemoveUnlisted(folder, kept);
+  }
+  for (const char* sub : { "", "/labels", "/picture", "/vdb" })
+    ::mkdir((folder + sub).c_str(), 0755);
+  WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
+  WriteFileAtomically(folder + "/slabs.txt",
+    [&](std::ostream& out)
+    {
+      for (const auto& line : kept)
+        out << line << "\n";
+    });
+  return kept;
+}
 } // namespace
 
 void AddStreamOptions(
@@ -584,42 +629,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   // The stream's own folder beside the staging folder, in the output folder: kept when the run
   // is interrupted, for --resume.
   const std::string folder = dir.substr(0, dir.rfind('/')) + "/" + StreamFolder;
-  const std::string definition = WorldDefinition(o);
-  std::vector<std::string> kept;
-  if (o.Resume)
-    kept = KeptSlabs(folder, definition, kinds);
-  // What Ctrl-C finds on disk: nothing to go on from until a slab is finished (the folder is
-  // removed then), and from then on the finished slabs and --resume.
-  const auto keptNote =
-    [&folder](std::size_t slabs, int count, const std::function<void()>& listing = nullptr)
-  {
-    SetInterruptNote(Counted(static_cast<long long>(slabs), "finished slab") +
-        (count > 0 ? " of " + std::to_string(count) : std::string()) +
-        (slabs == 1 ? " is" : " are") + " kept in '" + folder +
-        "': the same command with --resume goes on from " + (slabs == 1 ? "it" : "them"),
-      "", listing);
-  };
-  if (kept.empty())
-  {
-    SetInterruptNote(
-      "no slab was finished, so there is nothing to --resume: the same command starts again",
-      folder);
-    msynth::RemoveTree(folder);
-  }
-  else
-  {
-    keptNote(kept.size(), 0);
-    RemoveUnlisted(folder, kept);
-  }
-  for (const char* sub : { "", "/labels", "/picture", "/vdb" })
-    ::mkdir((folder + sub).c_str(), 0755);
-  WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
-  WriteFileAtomically(folder + "/slabs.txt",
-    [&](std::ostream& out)
-    {
-      for (const auto& line : kept)
-        out << line << "\n";
-    });
+  const std::vector<std::string> kept = StartStreamFolder(o, folder, kinds);
   std::ofstream slabs(folder + "/slabs.txt", std::ios::app);
 
   vtkNew<vtkMSLabelGridReader> reader;
@@ -661,7 +671,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
         line += std::string(" ") + name[2] + "=" + FileStamp(folder + "/" + name[2]);
       }
       // Listed and said together: Ctrl-C names the slabs slabs.txt lists.
-      keptNote(kept.size() + finished + 1, count,
+      KeptNote(folder, kept.size() + finished + 1, count,
         [&]()
         {
           slabs << line << "\n" << std::flush;
