@@ -134,7 +134,8 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
         "]")
     .Number("blockSize", o.Blocks)
     .Count("seed", o.Seed)
-    .Count("Vertices", labelled->GetNumberOfPoints())
+    // The figure and name of the console's summary and of the solver's message.
+    .Count("ArrangementVertices", labelled->GetNumberOfPoints())
     .Count("Polygons", model->GetNumberOfPolys())
     .Solver(fd)
     .Flag("Grounded", o.Grounded)

@@ -341,6 +341,34 @@ class SummaryTest(unittest.TestCase):
         with open(os.path.join(out, "statistics.json")) as f:
             self.assertEqual(json.load(f)["size"], [64, 40, 1])  # the picture, as the summary says
 
+    def test_a_continuous_run_counts_its_vertices_once(self):
+        """Issue 49: `synthesize house.obj` printed "21021 arrangement vertices" while
+        statistics.json recorded "Vertices": 21021 and, mirrored, a message of "10725 vertices"
+        (the half it synthesized). One figure, one name: the console's, statistics.json's
+        ArrangementVertices and its message's are the written arrangement's points."""
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        house = data("Continuous/house.obj")
+        for extra in ([], ["--mirror", "x"]):
+            out = fresh_folder("vertices-%d" % len(extra))
+            r = run_msynth("synthesize", house, "--size", "16", "16", "8", "--seed", "3",
+                           "--grounded", *extra, "--outputs", "mesh,labels", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            printed = int(re.search(r"^(\d+) arrangement vertices, ", r.stdout, re.M).group(1))
+            with open(os.path.join(out, "statistics.json")) as f:
+                stats = json.load(f)
+            self.assertNotIn("Vertices", stats)
+            self.assertEqual(stats["ArrangementVertices"], printed)
+            self.assertTrue(stats["Message"].startswith("%d arrangement vertices, " % printed),
+                            stats["Message"])
+            self.assertEqual(len(re.findall(r"\d+ (arrangement )?vertices", stats["Message"])),
+                             1, stats["Message"])
+            reader = vtkXMLPolyDataReader()
+            reader.SetFileName(os.path.join(out, "arrangement.vtp"))
+            reader.Update()
+            self.assertEqual(reader.GetOutput().GetNumberOfPoints(), printed)
+            if extra:
+                self.assertIn("mirrored across the plane at 7.5", stats["Message"])
+
     def test_counts_agree_with_their_numbers(self):
         out = fresh_folder("messages-blocks")
         r = run_msynth("synthesize", data("Examples/Village.vti"), "--size", "24", "12", "5",
