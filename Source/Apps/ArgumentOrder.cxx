@@ -60,6 +60,15 @@ std::string WrittenFrom(const std::string& path)
   return "";
 }
 
+std::string WrittenExample(const std::string& path)
+{
+  if (LowerExtension(path) == ".vtp")
+    if (const auto model = WrittenModel(path))
+      return vtkStringArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("ExampleFile"))
+        ->GetValue(0);
+  return WrittenFrom(path);
+}
+
 namespace
 {
 /// What msynth wrote @p path as ("a model msynth wrote from E", "a picture msynth wrote", "the
@@ -74,11 +83,7 @@ std::string WrittenAs(const std::string& path)
       return "the pieces of a model msynth streamed";
     if (ext == ".png")
       return msynth::IsWrittenPng(path) ? "a picture msynth wrote" : "";
-    std::string from = WrittenFrom(path);
-    if (ext == ".vtp")
-      if (const auto model = WrittenModel(path))
-        from = vtkStringArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("ExampleFile"))
-                 ->GetValue(0);
+    const std::string from = WrittenExample(path);
     return from.empty() ? "" : "a model msynth wrote from " + from;
   }
   catch (const std::exception&)

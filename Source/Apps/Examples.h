@@ -52,6 +52,8 @@ vtkSmartPointer<vtkPolyData> WrittenModel(const std::string& path);
 /// field data ExampleFile, TilesetFile or SampleFile, with Seed; read without the grid's
 /// arrays), or "" for any other file.
 std::string WrittenFrom(const std::string& path);
+/// The example a model msynth wrote names: WrittenModel's for a .vtp, else WrittenFrom's.
+std::string WrittenExample(const std::string& path);
 
 /**
  * @throw UsageError when the files of `msynth @p usage` ("check EXAMPLE MODEL") are given the

@@ -255,6 +255,20 @@ class InfoOfOutputsTest(unittest.TestCase):
         self.assertIn("example: %s" % village, run_msynth("info", village).stdout)
 
 
+class OtherKindTest(unittest.TestCase):
+    def test_an_option_of_the_other_kind_names_its_counterpart(self):
+        """The first hour (issue 49): --block on a polyhedral example (or --blocks, --grounded on
+        a label grid) was refused without the option that does it there."""
+        house, village = data("Continuous/house.obj"), data("Examples/Village.vti")
+        for example, given, counterpart in (
+                (house, ["--block", "8", "8", "5"], "continuous synthesis takes --blocks N"),
+                (village, ["--blocks", "8"], "take --block NX NY NZ"),
+                (village, ["--grounded"], "take --ground LABEL"),
+                (house, ["--ground", "1"], "--grounded stands a continuous model on the ground")):
+            expect_refused(self, ["synthesize", example], ["--size", "12", "12", "5", *given],
+                           counterpart)
+
+
 class SwappedArgumentsTest(unittest.TestCase):
     def test_check_and_quality_refuse_the_model_where_the_example_goes(self):
         """Issue 49: `msynth check MODEL EXAMPLE` said "consistent" for a label grid and a picture
@@ -310,6 +324,12 @@ class SwappedArgumentsTest(unittest.TestCase):
         r = run_msynth("quality", city, model["city"])
         self.assertIn("KL 4H:", r.stdout)
         self.assertEqual(r.stderr, "")
+        # The model alone: the example it was made from is named, with the command to run.
+        for name, example in (("village", village), ("houses", house)):
+            line = one_line(self, run_msynth("check", model[name]), 2)
+            self.assertIn("EXAMPLE is missing: '%s' is a model msynth wrote from %s (msynth check "
+                          "%s %s)" % (model[name], example, example, model[name]), line)
+        self.assertIn("MODEL is required", one_line(self, run_msynth("check", village), 2))
         # Two models msynth wrote may be compared, either way.
         other = os.path.join(out, "village-again")
         done = run_msynth(*runs["village"], "--seed", "3", "--out", other)
