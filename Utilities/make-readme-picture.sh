@@ -18,11 +18,11 @@ case "${1:-}" in
 esac
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-bash "$root/Utilities/run-example.sh" --no-build --out "$scratch/output" >/dev/null
+bash "$root/Utilities/run-example.sh" --no-build --out "$scratch/output/main" >/dev/null
 picture="$root/Documentation/images/village.png"
-pvpython "$root/Utilities/render-model.py" "$scratch/output/mesh.vtp" "$picture" --size 900 600
+pvpython "$root/Utilities/render-model.py" "$scratch/output/main/mesh.vtp" "$picture" --size 900 600
 /usr/bin/python3 "$root/Testing/Python/village_measures.py" "$root/Data/Examples/Houses.vox" \
-  "$scratch/output/labels.vti" --json "$scratch/measures.json" >/dev/null
+  "$scratch/output/main/labels.vti" --json "$scratch/measures.json" >/dev/null
 /usr/bin/python3 - "$scratch/measures.json" "$picture" "$root/Documentation/images/village.json" <<'PY'
 import hashlib, json, sys
 measures = json.load(open(sys.argv[1]))

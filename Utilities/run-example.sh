@@ -18,7 +18,7 @@ MagicaVoxel example: one house on the ground, its walls labelled by side) in 12 
 ground label 1 below, empty label 0 around, labels drawn by resemblance to the example, and
 checks it (msynth check).
 
-  --out DIR         where the outputs go (default ./output): labels.vti (the model: point arrays
+  --out DIR         where the outputs go (default ./output/main): labels.vti (the model: point arrays
                     Label, LastBlock; statistics), mesh.vtp (its voxel surface, coloured by the
                     example's palette), mesh.glb (the same surface as glTF for Blender and game
                     engines), model.vox (for MagicaVoxel), model.vdb (OpenVDB: Int32 grid Label,
@@ -31,7 +31,7 @@ EOF
 }
 
 example="$root/Data/Examples/Houses.vox"
-out="$PWD/output"
+out="$PWD/output/main"
 seed=1
 size=(48 48 5)
 build=1

@@ -22,6 +22,7 @@
 
 #include "Core/AtomicFile.h"
 #include "Core/Index.h"
+#include "Core/OutputFolder.h"
 #include "Discrete/InfallibleRefinement.h"
 
 #include <iostream>
@@ -153,7 +154,7 @@ CommandRunner AddAnalyze(CLI::App& app)
   analyze
     ->add_option("--write-infallible", o->WriteInfallible,
       "with --infallible: write the refined example to FILE (.vti; the split labels to the "
-      "example's as the field InfallibleLabelMap)")
+      "example's as the field InfallibleLabelMap; its missing folders are made)")
     ->needs("--infallible");
   analyze
     ->add_option("--size", o->Size,
@@ -177,6 +178,9 @@ CommandRunner AddAnalyze(CLI::App& app)
         if (w.size() < 5 || w.compare(w.size() - 4, 4, ".vti") != 0)
           throw UsageError{ "--write-infallible '" + o->WriteInfallible +
             "': E_I is written as VTK image data with f as a field; name a .vti file" };
+        // Its missing folders are made, as --out's (output/infallible/EI.vti in a fresh checkout).
+        if (w.find('/') != std::string::npos && w.rfind('/') > 0)
+          msynth::MakeMissingFolders(w.substr(0, w.rfind('/')));
         msynth::CheckReplaceable(o->WriteInfallible);
       }
       return InfallibleSearch(*o);

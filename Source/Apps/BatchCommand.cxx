@@ -140,7 +140,9 @@ SynthesizeOptions OptionsOf(const SampleEntry& e, const BatchOptions& b, int k)
   return o;
 }
 
-Outcome RunOne(const SampleEntry& e, const BatchOptions& b, int k, const std::string& dir)
+/// One output of entry @p e into @p dir; @p replaced gets "dir/" when it replaced an earlier one.
+Outcome RunOne(const SampleEntry& e, const BatchOptions& b, int k, const std::string& dir,
+  std::vector<std::string>& replaced)
 {
   Outcome out;
   const auto start = std::chrono::steady_clock::now();
@@ -148,7 +150,11 @@ Outcome RunOne(const SampleEntry& e, const BatchOptions& b, int k, const std::st
   {
     CheckInputFile(e.File);
     const SynthesizeOptions o = OptionsOf(e, b, k);
-    IntoFolder(dir, [&](const std::string& stage) { return SynthesizeDiscrete(o, stage); });
+    std::vector<std::string> earlier;
+    IntoFolder(
+      dir, [&](const std::string& stage) { return SynthesizeDiscrete(o, stage); }, &earlier);
+    if (!earlier.empty())
+      replaced.push_back(dir.substr(b.Out.size() + 1) + "/");
     out.FailedBlocks = static_cast<long long>(StatisticOf(dir, "BlocksFailed"));
     out.Problem = CheckOutput(e, dir);
     if (!out.Problem.empty())
@@ -183,6 +189,7 @@ int RunBatch(const BatchOptions& b)
   table << "entry  kind         name                      size          outputs  failed blocks  "
            "seconds  result\n";
   int bad = 0;
+  std::vector<std::string> replaced; // the outputs of an earlier batch this one replaced
   for (std::size_t i = 0; i < entries.size(); ++i)
   {
     const SampleEntry& e = entries[i];
@@ -208,7 +215,7 @@ int RunBatch(const BatchOptions& b)
     std::string result = "ok";
     for (int k = 0; k < shots; ++k)
     {
-      const Outcome out = RunOne(e, b, k, entryDir + "/" + std::to_string(k + 1));
+      const Outcome out = RunOne(e, b, k, entryDir + "/" + std::to_string(k + 1), replaced);
       failedBlocks += out.FailedBlocks;
       seconds += out.Seconds;
       good += out.Result == "ok";
@@ -237,6 +244,8 @@ int RunBatch(const BatchOptions& b)
                    : n == 1 ? std::string("the 1 entry succeeded")
                             : "all " + Counted(n, "entry", "entries") + " succeeded") +
       "; outputs in " + b.Out + "\n";
+  if (!replaced.empty())
+    std::cerr << ReplacedNote(b.Out, replaced) << "\n";
   return bad ? 1 : 0;
 }
 } // namespace

@@ -530,6 +530,7 @@ CommandRunner AddCheck(CLI::App& app)
     ->needs(animation);
   return [o]()
   {
+    CheckOrder("check EXAMPLE MODEL", { o->Example }, o->Model);
     CheckInputFile(o->Example);
     CheckInputFile(o->Model, true);
     if (o->Animation)

@@ -115,7 +115,7 @@ std::mutex& NoteMutex()
 /// What the signal thread says of an interrupted run (InterruptNote, InterruptDone).
 struct InterruptWords
 {
-  std::string Note, Done;
+  std::string Note, Done, Discard;
 };
 InterruptWords& Words()
 {
@@ -124,16 +124,26 @@ InterruptWords& Words()
 }
 } // namespace
 
-void SetInterruptNote(const std::string& note)
+void SetInterruptNote(
+  const std::string& note, const std::string& discard, const std::function<void()>& change)
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
+  if (change)
+    change();
   Words().Note = note;
+  Words().Discard = discard;
 }
 
 std::string InterruptNote()
 {
   std::lock_guard<std::mutex> lock(NoteMutex());
   return Words().Note;
+}
+
+std::string InterruptDiscard()
+{
+  std::lock_guard<std::mutex> lock(NoteMutex());
+  return Words().Discard;
 }
 
 void SetInterruptDone(const std::string& done)
@@ -196,7 +206,39 @@ std::string Replaced(std::string text, const std::string& from, const std::strin
 }
 } // namespace
 
-int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command)
+namespace
+{
+/// "a, b, c and N more": at most eight names of @p names.
+std::string Listed(const std::vector<std::string>& names)
+{
+  constexpr std::size_t shown = 8;
+  std::string list;
+  for (std::size_t i = 0; i < names.size() && i < shown; ++i)
+    list += (i ? ", " : "") + msynth::Printable(names[i]);
+  if (names.size() > shown)
+    list += " and " + std::to_string(names.size() - shown) + " more";
+  return list;
+}
+} // namespace
+
+std::string ReplacedNote(const std::string& dir, const std::vector<std::string>& replaced,
+  const std::vector<std::string>& removed)
+{
+  if (replaced.empty() && removed.empty())
+    return "";
+  std::string note = "msynth: note: this run ";
+  if (!replaced.empty())
+    note += "replaced the earlier outputs in '" + msynth::Printable(dir) + "' (" +
+      Listed(replaced) + ")" + (removed.empty() ? "" : " and ");
+  if (!removed.empty())
+    note += "removed the earlier outputs it did not write again" +
+      (replaced.empty() ? " from '" + msynth::Printable(dir) + "'" : std::string()) + " (" +
+      Listed(removed) + ")";
+  return note;
+}
+
+int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command,
+  std::vector<std::string>* replaced)
 {
   msynth::OutputFolder folder(out);
   std::ostringstream said;
@@ -220,6 +262,13 @@ int IntoFolder(const std::string& out, const std::function<int(const std::string
   }
   std::cout.rdbuf(console.Saved);
   std::cout << Replaced(said.str(), folder.Stage(), folder.Final()) << std::flush;
+  if (replaced)
+  {
+    replaced->insert(replaced->end(), folder.Replaced().begin(), folder.Replaced().end());
+    replaced->insert(replaced->end(), folder.Removed().begin(), folder.Removed().end());
+  }
+  else if (!folder.Replaced().empty() || !folder.Removed().empty())
+    std::cerr << ReplacedNote(folder.Final(), folder.Replaced(), folder.Removed()) << "\n";
   return status;
 }
 

@@ -74,14 +74,27 @@ void RunSynthesis(vtkAlgorithm* algorithm);
 /**
  * Runs @p command with a staging folder inside @p out and publishes its files together when it
  * succeeds (msynth::OutputFolder): a failed or interrupted run leaves @p out as it was. What the
- * command prints names the final files, and is printed once they are there.
+ * command prints names the final files, and is printed once they are there, then a note naming
+ * the files of an earlier run it replaced or removed (ReplacedNote). With @p replaced, those
+ * names go there instead of the note (a batch says it once for all its entries).
  */
-int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command);
+int IntoFolder(const std::string& out, const std::function<int(const std::string&)>& command,
+  std::vector<std::string>* replaced = nullptr);
+/// "msynth: note: this run replaced the earlier outputs in 'DIR' (a, b, ... and N more) and
+/// removed those it did not write again (c)" for the @p replaced and @p removed names of @p dir;
+/// "" when there are none.
+std::string ReplacedNote(const std::string& dir, const std::vector<std::string>& replaced,
+  const std::vector<std::string>& removed = {});
 
 /// What an interrupted run says after "no outputs were written" (empty: nothing): a streamed
 /// run names what it keeps and how to go on. Set while the run goes; read by the signal thread.
-void SetInterruptNote(const std::string& note);
+/// @p discard: a folder the signal thread removes before it says so (a stream's folder before
+/// its first slab is finished: nothing in it to resume). @p change, when given, runs first under
+/// the same lock: what the note describes changes with it (a slab listed), never apart.
+void SetInterruptNote(const std::string& note, const std::string& discard = "",
+  const std::function<void()>& change = nullptr);
 std::string InterruptNote();
+std::string InterruptDiscard();
 /// What an interrupted run has written, said instead of "no outputs were written" (empty: that):
 /// a batch's finished entries. Set while the run goes; read by the signal thread.
 void SetInterruptDone(const std::string& done);

@@ -136,7 +136,8 @@ void WriteStatistics(vtkPolyData* labelled, vtkPolyData* model, const Synthesize
     .Number("blockSize", NumberOf(fd, "BlockSize"))
     .Text("SiteOrder", MessageOf(fd, "SiteOrder"))
     .Count("seed", o.Seed)
-    .Count("Vertices", labelled->GetNumberOfPoints())
+    // The figure and name of the console's summary and of the solver's message.
+    .Count("ArrangementVertices", labelled->GetNumberOfPoints())
     .Count("Polygons", model->GetNumberOfPolys())
     .Solver(fd)
     .Flag("Grounded", o.Grounded)

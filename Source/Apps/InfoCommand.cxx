@@ -9,7 +9,6 @@
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
-#include "vtkDataArraySelection.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMSLabelGridReader.h"
@@ -20,14 +19,11 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkVariant.h"
-#include "vtkXMLImageDataReader.h"
-#include "vtkXMLPolyDataReader.h"
 
 #include "Core/Index.h"
 #include "Discrete/OverlappingModel.h"
 #include "Formats/Image.h"
 #include "Formats/Tileset.h"
-#include "Formats/VTKXMLCheck.h"
 
 #include <sys/stat.h>
 
@@ -168,40 +164,6 @@ int SampleInfo(const std::string& example, const OverlappingOptions& options)
   std::cout << "patterns adjacent to themselves (single-pattern starts for blocks): " << uniform
             << "\n";
   return 0;
-}
-
-/// The polygon data of @p path when it is a model msynth wrote (its field ExampleFile), else null.
-vtkSmartPointer<vtkPolyData> WrittenModel(const std::string& path)
-{
-  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".vtp") != 0)
-    return nullptr;
-  msynth::CheckVTKXMLFile(path);
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  Run(reader);
-  vtkPolyData* model = reader->GetOutput();
-  if (!vtkStringArray::SafeDownCast(model->GetFieldData()->GetAbstractArray("ExampleFile")))
-    return nullptr;
-  return model;
-}
-
-/// The example a label grid msynth wrote (labels.vti) was made from (its field ExampleFile, read
-/// without the grid's arrays), or "" for any other file.
-std::string WrittenFrom(const std::string& path)
-{
-  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".vti") != 0)
-    return "";
-  msynth::CheckVTKXMLFile(path);
-  vtkNew<vtkXMLImageDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->UpdateInformation();
-  reader->GetPointDataArraySelection()->DisableAllArrays();
-  reader->GetCellDataArraySelection()->DisableAllArrays();
-  Run(reader);
-  vtkFieldData* fd = reader->GetOutput()->GetFieldData();
-  auto* example = vtkStringArray::SafeDownCast(fd->GetAbstractArray("ExampleFile"));
-  return example && example->GetNumberOfValues() > 0 && fd->GetArray("Seed") ? example->GetValue(0)
-                                                                             : "";
 }
 
 /// A model msynth wrote (mesh.vtp, model.vtp): what it is made of, per label or object type.

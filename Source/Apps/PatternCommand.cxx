@@ -8,6 +8,7 @@
 // filter.
 #include "Commands.h"
 #include "Common.h"
+#include "Examples.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -540,6 +541,9 @@ CommandRunner AddQuality(CLI::App& app)
     ->check(CLI::Range(1, 64));
   return [o]()
   {
+    if (o->Files.size() > 1)
+      CheckOrder(
+        "quality EXEMPLAR... MODEL", { o->Files.begin(), o->Files.end() - 1 }, o->Files.back());
     for (const auto& path : o->Files)
       CheckInputFile(path);
     if (!o->Whole.empty())

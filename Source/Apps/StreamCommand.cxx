@@ -4,8 +4,9 @@
 // SynthesizeStreamed). Finished slabs go to DIR/.msynth-stream as they come, with a list of
 // their files and checksums; the finished run publishes DIR/labels.pvti over DIR/labels/, the
 // per-slab pictures and volumes and an overview picture together. An interrupted run leaves
-// the stream folder; --resume checks every listed slab against the world's definition and its
-// checksum and goes on from the first missing or damaged one.
+// the stream folder once a slab is finished (Ctrl-C names them; before, it removes the folder
+// and says there is nothing to resume); --resume checks every listed slab against the world's
+// definition and its checksum and goes on from the first missing or damaged one.
 #include "Common.h"
 #include "Synthesize.h"
 
@@ -528,6 +529,51 @@ int PublishStream(const SynthesizeOptions& o, const std::string& dir, const std:
   std::cout << "\n";
   return 0;
 }
+/// What Ctrl-C finds of a stream in @p folder once @p slabs are finished (of @p count, when
+/// known): the slabs and --resume. @p listing runs with it: the slab listed as the note changes.
+void KeptNote(const std::string& folder, std::size_t slabs, int count,
+  const std::function<void()>& listing = nullptr)
+{
+  SetInterruptNote(Counted(static_cast<long long>(slabs), "finished slab") +
+      (count > 0 ? " of " + std::to_string(count) : std::string()) + (slabs == 1 ? " is" : " are") +
+      " kept in '" + folder + "': the same command with --resume goes on from " +
+      (slabs == 1 ? "it" : "them"),
+    "", listing);
+}
+
+/// The stream's folder @p folder made ready: the slabs an interrupted run left that --resume
+/// keeps (returned), the rest removed, the world's definition and the list written. Until a slab
+/// is finished there is nothing to go on from: Ctrl-C removes the folder and says so.
+std::vector<std::string> StartStreamFolder(
+  const SynthesizeOptions& o, const std::string& folder, StreamOutputs kinds)
+{
+  const std::string definition = WorldDefinition(o);
+  std::vector<std::string> kept;
+  if (o.Resume)
+    kept = KeptSlabs(folder, definition, kinds);
+  if (kept.empty())
+  {
+    SetInterruptNote(
+      "no slab was finished, so there is nothing to --resume: the same command starts again",
+      folder);
+    msynth::RemoveTree(folder);
+  }
+  else
+  {
+    KeptNote(folder, kept.size(), 0);
+    RemoveUnlisted(folder, kept);
+  }
+  for (const char* sub : { "", "/labels", "/picture", "/vdb" })
+    ::mkdir((folder + sub).c_str(), 0755);
+  WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
+  WriteFileAtomically(folder + "/slabs.txt",
+    [&](std::ostream& out)
+    {
+      for (const auto& line : kept)
+        out << line << "\n";
+    });
+  return kept;
+}
 } // namespace
 
 void AddStreamOptions(
@@ -583,23 +629,7 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
   // The stream's own folder beside the staging folder, in the output folder: kept when the run
   // is interrupted, for --resume.
   const std::string folder = dir.substr(0, dir.rfind('/')) + "/" + StreamFolder;
-  const std::string definition = WorldDefinition(o);
-  std::vector<std::string> kept;
-  if (o.Resume)
-    kept = KeptSlabs(folder, definition, kinds);
-  if (kept.empty())
-    msynth::RemoveTree(folder);
-  else
-    RemoveUnlisted(folder, kept);
-  for (const char* sub : { "", "/labels", "/picture", "/vdb" })
-    ::mkdir((folder + sub).c_str(), 0755);
-  WriteFileAtomically(folder + "/definition.txt", [&](std::ostream& out) { out << definition; });
-  WriteFileAtomically(folder + "/slabs.txt",
-    [&](std::ostream& out)
-    {
-      for (const auto& line : kept)
-        out << line << "\n";
-    });
+  const std::vector<std::string> kept = StartStreamFolder(o, folder, kinds);
   std::ofstream slabs(folder + "/slabs.txt", std::ios::app);
 
   vtkNew<vtkMSLabelGridReader> reader;
@@ -640,16 +670,19 @@ int SynthesizeStream(const SynthesizeOptions& o, const std::string& dir)
         WriteModelVolume(slab, o, folder + "/" + name[2], "synthesize --stream", nullptr);
         line += std::string(" ") + name[2] + "=" + FileStamp(folder + "/" + name[2]);
       }
-      slabs << line << "\n" << std::flush;
-      if (!slabs)
-        throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
+      // Listed and said together: Ctrl-C names the slabs slabs.txt lists.
+      KeptNote(folder, kept.size() + finished + 1, count,
+        [&]()
+        {
+          slabs << line << "\n" << std::flush;
+          if (!slabs)
+            throw std::runtime_error("'" + folder + "/slabs.txt': could not be written");
+        });
       progress.Slab(j, count, static_cast<double>(slab->GetNumberOfPoints()));
       ++finished;
       return true;
     },
     keptFailures);
-  SetInterruptNote("the finished slabs are kept in '" + folder +
-    "': the same command with --resume goes on from them");
   try
   {
     RunDiscrete(synthesis, o);

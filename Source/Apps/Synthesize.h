@@ -158,6 +158,10 @@ void WriteTileVoxelVolume(vtkImageData* model, const msynth::Tileset& set,
  * option and the bound that is out. Prints a note when --block is larger than the model.
  */
 void CheckDiscreteSizes(const SynthesizeOptions& o);
+/// The option of the other kind of synthesis that does what @p name does (--block and
+/// --blocks, --ground and --grounded), as "; ... takes ..." for the refusal of @p name ("" when
+/// there is none).
+std::string Counterpart(const std::string& name, bool polyhedral);
 /// --ground and --empty against the labels of the label-grid example @p example (nullptr: of
 /// the tileset of @p o).
 /// @throw UsageError naming the option, the example and its labels.

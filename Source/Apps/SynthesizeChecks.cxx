@@ -51,6 +51,21 @@ std::string FirstValues(const std::set<long long>& values, std::size_t most = 20
 
 } // namespace
 
+/// The option of the other kind of synthesis that does what @p name does (--block and
+/// --blocks, --ground and --grounded), as "; ... takes ..." ("" when there is none).
+std::string Counterpart(const std::string& name, bool polyhedral)
+{
+  if (polyhedral && name == "--block")
+    return "; continuous synthesis takes --blocks N (a block's edge in plane spacings)";
+  if (!polyhedral && name == "--blocks")
+    return "; label grids and tilesets take --block NX NY NZ (in sites)";
+  if (polyhedral && (name == "--ground" || name == "--empty"))
+    return "; --grounded stands a continuous model on the ground";
+  if (!polyhedral && name == "--grounded")
+    return "; label grids and tilesets take --ground LABEL (and --empty LABEL)";
+  return "";
+}
+
 void CheckDiscreteSizes(const SynthesizeOptions& o)
 {
   const bool sample = IsSample(o.Example);

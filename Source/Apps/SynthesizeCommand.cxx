@@ -351,7 +351,7 @@ void CheckKind(const Registered& r, bool polyhedral)
     {
       throw UsageError{ option->get_name() + " applies to " +
         (polyhedral ? "label grids and tilesets" : "polyhedral examples") + ", not to '" +
-        o.Example + "'" };
+        o.Example + "'" + Counterpart(option->get_name(), polyhedral) };
     }
   }
   if (polyhedral)

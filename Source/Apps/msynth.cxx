@@ -16,6 +16,7 @@
 // problem; usage errors end with "see msynth CMD --help".
 #include "Commands.h"
 #include "Common.h"
+#include "Examples.h"
 #include "HelpText.h"
 
 #include "vtkLogger.h"
@@ -33,6 +34,7 @@
 #include <pthread.h>
 #include <regex>
 #include <thread>
+#include <unistd.h>
 
 namespace
 {
@@ -72,6 +74,16 @@ void HandleInterruptions()
       if (FinalStatus >= 0)
       {
         std::_Exit(FinalStatus);
+      }
+      // A folder with nothing to go on from (a stream before its first slab): moved away
+      // first, so that no file appears in it while it is removed, and before the staging
+      // folders, so that an output folder the run made is empty again and removed with them.
+      const std::string discard = msynth::cli::InterruptDiscard();
+      if (!discard.empty())
+      {
+        const std::string doomed = discard.substr(0, discard.rfind('/') + 1) + ".msynth-discard-" +
+          std::to_string(::getpid()) + "-interrupted";
+        msynth::RemoveTree(std::rename(discard.c_str(), doomed.c_str()) == 0 ? doomed : discard);
       }
       int published = 0;
       const std::string done = msynth::cli::InterruptDone(); // (a batch: more was to come)
@@ -157,6 +169,30 @@ std::string NotUnderstood(CLI::App& app)
   return "unexpected argument '" + first + "'";
 }
 
+/// `msynth check MODEL` with the example left out: the model msynth wrote names the example it
+/// was made from, and the message the command to run ("" for anything else).
+std::string MissingExample(CLI::App& app)
+{
+  if (CommandOf(app) != "check")
+    return "";
+  CLI::App* check = app.get_subcommand("check");
+  const CLI::Option* example = check->get_option("EXAMPLE");
+  if (example->count() != 1 || check->get_option("MODEL")->count() != 0)
+    return "";
+  const std::string given = example->results().front();
+  std::string from;
+  try
+  {
+    from = msynth::cli::WrittenExample(given);
+  }
+  catch (const std::exception&)
+  {
+  }
+  return from.empty() ? ""
+                      : "EXAMPLE is missing: '" + given + "' is a model msynth wrote from " + from +
+      " (msynth check " + from + " " + given + ")";
+}
+
 /// "msynth[ CMD]: WHAT; see msynth[ CMD] --help" on stderr; exit status 2.
 /// CLI11's count messages ("--size: At least 3 required but received 2") in the words of the
 /// other messages ("--size takes 3 values, not 2"); others as they are.
@@ -215,7 +251,11 @@ int Main(int argc, char* argv[])
   {
     // An unknown command or option first: it explains the errors it causes.
     const std::string unknown = NotUnderstood(app);
-    return UsageFailure(CommandOf(app), unknown.empty() ? InOwnWords(e) : unknown);
+    const std::string missing = unknown.empty() ? MissingExample(app) : "";
+    return UsageFailure(CommandOf(app),
+      !unknown.empty()     ? unknown
+        : !missing.empty() ? missing
+                           : InOwnWords(e));
   }
   if (version)
   {

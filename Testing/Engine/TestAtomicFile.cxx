@@ -276,3 +276,35 @@ TEST(AtomicFile, ADeviceOrAPipeIsNeverWrittenOver)
   ::unlink(fifo.c_str());
   EXPECT_THROW(msynth::CheckReplaceable(MSYNTH_TEST_TMP), msynth::Error) << "a folder";
 }
+
+// What a run replaces of an earlier one is named (the command prints it, issue 49): the names
+// it wrote again (a folder with a slash) and the earlier run's files it did not write again.
+// Files the earlier runs did not list (a user's) are neither replaced nor removed.
+TEST(OutputFolder, ReplacedAndRemovedNameTheEarlierRunsFiles)
+{
+  const std::string dir = std::string(MSYNTH_TEST_TMP) + "/replaced-" + std::to_string(::getpid());
+  msynth::RemoveTree(dir);
+  const auto publish = [&dir](const std::vector<std::string>& files, bool folder)
+  {
+    auto run = std::make_unique<msynth::OutputFolder>(dir);
+    for (const auto& name : files)
+      msynth::WriteFileAtomically(run->Stage() + "/" + name, [](std::ostream& out) { out << "x"; });
+    if (folder)
+    {
+      ::mkdir((run->Stage() + "/labels").c_str(), 0755);
+      msynth::WriteFileAtomically(
+        run->Stage() + "/labels/a.vti", [](std::ostream& out) { out << "a"; });
+    }
+    run->Publish();
+    return run;
+  };
+  auto first = publish({ "labels.vti", "mesh.glb" }, true);
+  EXPECT_TRUE(first->Replaced().empty());
+  EXPECT_TRUE(first->Removed().empty());
+  msynth::WriteFileAtomically(dir + "/notes.txt", [](std::ostream& out) { out << "mine"; });
+  auto second = publish({ "labels.vti", "statistics.json" }, true);
+  EXPECT_EQ(second->Replaced(), (std::vector<std::string>{ "labels.vti", "labels/" }));
+  EXPECT_EQ(second->Removed(), (std::vector<std::string>{ "mesh.glb" }));
+  EXPECT_EQ(Slurp(dir + "/notes.txt"), "mine");
+  msynth::RemoveTree(dir);
+}

@@ -175,6 +175,30 @@ TEST(Image, FewColoursAreWrittenAsAPalette)
     }
 }
 
+TEST(Image, WrittenPicturesSayMsynthWroteThem)
+{
+  // So that `msynth check` can tell a picture it wrote from a sample given in its place.
+  const std::string path = Temp("written.png");
+  WritePng(path, Pattern(8, 8, true));
+  EXPECT_TRUE(IsWrittenPng(path));
+  EXPECT_EQ(ReadPng(path).Pixels, Pattern(8, 8, true).Pixels);
+  std::vector<char> bytes = Bytes(path);
+  const std::string text(bytes.begin(), bytes.end());
+  const std::size_t at = text.find("Software");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 9] = 'x'; // another program's text (its CRC no longer matters: not read)
+  Put(Temp("other.png"), bytes);
+  EXPECT_FALSE(IsWrittenPng(Temp("other.png")));
+  const std::vector<char> whole = Bytes(path);
+  for (const std::size_t n : { std::size_t(0), std::size_t(8), std::size_t(20) })
+  {
+    Put(Temp("cut.png"),
+      std::vector<char>(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(n)));
+    EXPECT_FALSE(IsWrittenPng(Temp("cut.png"))) << n;
+  }
+  EXPECT_FALSE(IsWrittenPng(Temp("no-such.png")));
+}
+
 TEST(Image, BmpIsReadAsOlderTilesetsHaveIt)
 {
   const RgbaImage image = Pattern(5, 3, true);

@@ -297,6 +297,7 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("wrote %s/labels.vti" % out, r.stdout)  # the final names, not the staging
         self.assertIn("catalog_0019.vdb", os.listdir(out))
+        self.assertNotIn("replaced", r.stderr)  # a new folder: nothing replaced
 
         def snapshot():
             files = {}
@@ -310,6 +311,13 @@ class CommandLineTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         visible = sorted(n for n in os.listdir(out) if not n.startswith("."))
         self.assertEqual(visible, ["labels.vti", "mesh.vtp", "model.vdb", "statistics.json"])
+        # ... and says so in one line (issue 49: earlier outputs were replaced silently).
+        self.assertEqual(r.stderr.strip().splitlines()[-1],
+                         "msynth: note: this run replaced the earlier outputs in '%s' (labels.vti, "
+                         "mesh.vtp, model.vdb, statistics.json) and removed the earlier outputs it "
+                         "did not write again (catalog_0001.vdb, catalog_0002.vdb, catalog_0003.vdb, "
+                         "catalog_0004.vdb, catalog_0005.vdb, catalog_0006.vdb, catalog_0007.vdb, "
+                         "catalog_0008.vdb and 11 more)" % out)
         before = snapshot()
         # Interrupted at any moment (synthesis, writing, publishing): exit 130/143 with one line
         # and the earlier set untouched, or exit 0 with a complete new set; never a mixture, and
@@ -562,6 +570,13 @@ class CommandLineTest(unittest.TestCase):
             self.assertTrue(os.path.exists(os.path.join(out, folder, "statistics.json")), folder)
         self.assertTrue(os.path.exists(os.path.join(out, "1-Flowers/1/picture.png")))
         self.assertTrue(os.path.exists(os.path.join(out, "4-village.txt/1/model.txt")))
+        self.assertNotIn("replaced", r.stderr)
+        # Again into the same folder: one note for the batch, not one per output.
+        again = run("batch", os.path.join(root, "samples.xml"), "--out", out, "--seed", "4")
+        notes = [l for l in again.stderr.splitlines() if "replaced" in l]
+        self.assertEqual(notes, ["msynth: note: this run replaced the earlier outputs in '%s' "
+                                 "(1-Flowers/1/, 1-Flowers/2/, 2-Pipes/1/, 3-OldPipes-straight/1/, "
+                                 "4-village.txt/1/)" % out], again.stderr)
         # Each output is checked independently: the pictures against the sample's windows.
         r = run("check", os.path.join(root, "samples", "Flowers.png"), os.path.join(out, "1-Flowers/2/picture.png"),
                 "--symmetry", "2", "--translate", "xy", "--ground")

@@ -255,6 +255,92 @@ class InfoOfOutputsTest(unittest.TestCase):
         self.assertIn("example: %s" % village, run_msynth("info", village).stdout)
 
 
+class OtherKindTest(unittest.TestCase):
+    def test_an_option_of_the_other_kind_names_its_counterpart(self):
+        """The first hour (issue 49): --block on a polyhedral example (or --blocks, --grounded on
+        a label grid) was refused without the option that does it there."""
+        house, village = data("Continuous/house.obj"), data("Examples/Village.vti")
+        for example, given, counterpart in (
+                (house, ["--block", "8", "8", "5"], "continuous synthesis takes --blocks N"),
+                (village, ["--blocks", "8"], "take --block NX NY NZ"),
+                (village, ["--grounded"], "take --ground LABEL"),
+                (house, ["--ground", "1"], "--grounded stands a continuous model on the ground")):
+            expect_refused(self, ["synthesize", example], ["--size", "12", "12", "5", *given],
+                           counterpart)
+
+
+class SwappedArgumentsTest(unittest.TestCase):
+    def test_check_and_quality_refuse_the_model_where_the_example_goes(self):
+        """Issue 49: `msynth check MODEL EXAMPLE` said "consistent" for a label grid and a picture
+        (the pairs of the example occur in the model) or failed on the example as a model; now
+        the model given first (a file msynth wrote: field data naming its example, a picture's
+        text chunk, a streamed model's pieces) or an example given second (a tileset, an .obj)
+        is refused in one line naming both files and the order."""
+        out = fresh_folder("swapped")
+        village, lines, rooms = (data("Examples/Village.vti"), data("Tilesets/Lines.xml"),
+                                 data("Samples/Rooms.png"))
+        house, city = data("Continuous/house.obj"), data("Patterns/city-urban.vti")
+        runs = {
+            "village": ("synthesize", village, "--size", "16", "16", "5", "--block", "8", "8",
+                        "5", "--ground", "1", "--empty", "0"),
+            "tiles": ("synthesize", lines, "--size", "12", "12", "1"),
+            "rooms": ("synthesize", rooms, "--size", "32", "32", "1"),
+            "houses": ("synthesize", house, "--size", "12", "12", "8"),
+            "stream": ("synthesize", lines, "--size", "64", "64", "1", "--block", "16", "16", "1",
+                       "--stream", "--slab", "32", "--outputs", "labels"),
+            "city": ("pattern", city, "--size", "12", "12"),
+        }
+        for name, command in runs.items():
+            done = run_msynth(*command, "--seed", "2", "--out", os.path.join(out, name))
+            self.assertEqual(done.returncode, 0, done.stderr)
+        model = {name: os.path.join(out, name, file) for name, file in (
+            ("village", "labels.vti"), ("mesh", "mesh.vtp"), ("tiles", "labels.vti"),
+            ("rooms", "picture.png"), ("houses", "model.vtp"), ("stream", "labels.pvti"),
+            ("city", "labels.vti"))}
+        model["mesh"] = os.path.join(out, "village", "mesh.vtp")
+        for example, name in ((village, "village"), (village, "mesh"), (lines, "tiles"),
+                              (rooms, "rooms"), (house, "houses"), (lines, "stream")):
+            r = run_msynth("check", model[name], example)
+            line = one_line(self, r, 2)
+            self.assertIn("'%s'" % model[name], line)
+            self.assertIn("'%s'" % example, line)
+            self.assertIn("the order is msynth check EXAMPLE MODEL (msynth check %s %s)"
+                          % (example, model[name]), line)
+            self.assertNotIn("consistent", r.stdout)
+            if name != "mesh":  # (a label grid's surface is described by info, not checked)
+                r = run_msynth("check", example, model[name])
+                self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        line = one_line(self, run_msynth("check", model["village"], village), 2)
+        self.assertIn("'%s' is a model msynth wrote from %s and '%s' is not" % (
+            model["village"], village, village), line)
+        line = one_line(self, run_msynth("check", model["houses"], house), 2)
+        self.assertIn("'%s' is an example (a polyhedron) and '%s' is a model msynth wrote"
+                      % (house, model["houses"]), line)
+        # quality EXEMPLAR... MODEL, the same.
+        suburban = data("Patterns/city-suburban.vti")
+        line = one_line(self, run_msynth("quality", suburban, model["city"], city), 2)
+        self.assertIn("the order is msynth quality EXEMPLAR... MODEL (msynth quality %s %s %s)"
+                      % (suburban, city, model["city"]), line)
+        r = run_msynth("quality", city, model["city"])
+        self.assertIn("KL 4H:", r.stdout)
+        self.assertEqual(r.stderr, "")
+        # The model alone: the example it was made from is named, with the command to run.
+        for name, example in (("village", village), ("houses", house)):
+            line = one_line(self, run_msynth("check", model[name]), 2)
+            self.assertIn("EXAMPLE is missing: '%s' is a model msynth wrote from %s (msynth check "
+                          "%s %s)" % (model[name], example, example, model[name]), line)
+        self.assertIn("MODEL is required", one_line(self, run_msynth("check", village), 2))
+        # Two models msynth wrote may be compared, either way.
+        other = os.path.join(out, "village-again")
+        done = run_msynth(*runs["village"], "--seed", "3", "--out", other)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        for a, b in ((model["village"], os.path.join(other, "labels.vti")),
+                     (os.path.join(other, "labels.vti"), model["village"])):
+            r = run_msynth("check", a, b)
+            self.assertEqual(r.stderr, "")
+            self.assertIn("adjacent pairs of", r.stdout)
+
+
 class SummaryTest(unittest.TestCase):
     def test_an_image_sample_says_sites_and_picture(self):
         rooms = data("Samples/Rooms.png")
@@ -274,6 +360,34 @@ class SummaryTest(unittest.TestCase):
         self.assertEqual((grid[0], grid[1]), (62, 38))  # a 3 x 3 window at every site
         with open(os.path.join(out, "statistics.json")) as f:
             self.assertEqual(json.load(f)["size"], [64, 40, 1])  # the picture, as the summary says
+
+    def test_a_continuous_run_counts_its_vertices_once(self):
+        """Issue 49: `synthesize house.obj` printed "21021 arrangement vertices" while
+        statistics.json recorded "Vertices": 21021 and, mirrored, a message of "10725 vertices"
+        (the half it synthesized). One figure, one name: the console's, statistics.json's
+        ArrangementVertices and its message's are the written arrangement's points."""
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        house = data("Continuous/house.obj")
+        for extra in ([], ["--mirror", "x"]):
+            out = fresh_folder("vertices-%d" % len(extra))
+            r = run_msynth("synthesize", house, "--size", "16", "16", "8", "--seed", "3",
+                           "--grounded", *extra, "--outputs", "mesh,labels", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            printed = int(re.search(r"^(\d+) arrangement vertices, ", r.stdout, re.M).group(1))
+            with open(os.path.join(out, "statistics.json")) as f:
+                stats = json.load(f)
+            self.assertNotIn("Vertices", stats)
+            self.assertEqual(stats["ArrangementVertices"], printed)
+            self.assertTrue(stats["Message"].startswith("%d arrangement vertices, " % printed),
+                            stats["Message"])
+            self.assertEqual(len(re.findall(r"\d+ (arrangement )?vertices", stats["Message"])),
+                             1, stats["Message"])
+            reader = vtkXMLPolyDataReader()
+            reader.SetFileName(os.path.join(out, "arrangement.vtp"))
+            reader.Update()
+            self.assertEqual(reader.GetOutput().GetNumberOfPoints(), printed)
+            if extra:
+                self.assertIn("mirrored across the plane at 7.5", stats["Message"])
 
     def test_counts_agree_with_their_numbers(self):
         out = fresh_folder("messages-blocks")

@@ -286,7 +286,7 @@ class ContinuousSynthesisTest(unittest.TestCase):
                                "labels,mesh", "--out", out], capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr)
         stats = json.load(open(os.path.join(out, "statistics.json")))
-        self.assertGreaterEqual(stats["Vertices"], 2**18)
+        self.assertGreaterEqual(stats["ArrangementVertices"], 2**18)
         with open(os.path.join(out, "arrangement.vtp"), "rb") as f:
             head = f.read(400)
         self.assertIn(b'compressor="vtkLZ4DataCompressor"', head)
@@ -294,7 +294,7 @@ class ContinuousSynthesisTest(unittest.TestCase):
         reader.SetFileName(os.path.join(out, "arrangement.vtp"))
         reader.Update()
         got = reader.GetOutput()
-        self.assertEqual(got.GetNumberOfPoints(), stats["Vertices"])
+        self.assertEqual(got.GetNumberOfPoints(), stats["ArrangementVertices"])
         labels = vtk_to_numpy(got.GetPointData().GetArray("Label"))
         self.assertTrue((labels >= 0).all())
         check = subprocess.run([msynth, "check", data("Continuous/house.obj"),

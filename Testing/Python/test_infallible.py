@@ -22,7 +22,8 @@ FIG_36A = data("Examples/Fallible-Fig3.6a.vti")
 class InfallibleTest(unittest.TestCase):
     def test_analyze_converts_both_and_writes_e_i_with_f(self):
         for example, renamed in ((FIG_35A, "9->0"), (FIG_36A, "7->2")):
-            out = os.path.join(fresh_folder("infallible-analyze"), "EI.vti")
+            # (in a folder not made yet, as output/infallible/ in a fresh checkout: made, as --out)
+            out = os.path.join(fresh_folder("infallible-analyze"), "infallible", "EI.vti")
             done = msynth("analyze", example, "--infallible", "--write-infallible", out)
             self.assertEqual(done.returncode, 0, done.stderr)
             self.assertIn("step | split | labels | Algorithm 3.6 | Eq. 3.13 | why", done.stdout)

@@ -87,6 +87,30 @@ class ReadmeExamplesTest(unittest.TestCase):
             ran += 1
         self.assertGreaterEqual(ran, 11)
 
+    def test_each_example_writes_a_folder_of_its_own(self):
+        """Issue 49: outputs landed in output/ (the main job), output/NAME/ and beside them
+        (output/houses.vtp next to output/houses/), and one folder served different commands
+        (output/pipes: a voxel tileset in one guide, continuous pipes in another), each run
+        replacing the other's files. Every example of the README and the guides writes into
+        output/NAME/ (no file directly in output/), and a folder is one command's."""
+        commands = {}
+        loose = []
+        for language, text, line in blocks():
+            joined = re.sub(r"\\\n\s*", " ", text)
+            for command in joined.splitlines():
+                command = re.sub(r"#.*", "", command).strip()
+                loose += ["%s: %s" % (line, m) for m in
+                          re.findall(r"""(?<![\w/.-])output/[^/\s"']+\.\w+(?=[\s"']|$)""", command)]
+                out = re.search(r"--out (output/[^\s]+)", command)
+                if language == "sh" and out:
+                    same = re.sub(r"^(\$M|build/bin/msynth) ", "msynth ", re.sub(r"\s+", " ", command))
+                    commands.setdefault(out.group(1).rstrip("/"), {}).setdefault(same, line)
+        self.assertFalse(loose, "files written directly in output/")
+        shared = {folder: sorted(uses.values()) for folder, uses in commands.items()
+                  if len(uses) > 1}
+        self.assertFalse(shared, "folders written by different commands")
+        self.assertGreater(len(commands), 40)
+
     def scratch_checkout(self, name):
         """A scratch folder laid out like a checkout (Data, Utilities and build/ linked)."""
         scratch = tmp(name)
@@ -118,16 +142,20 @@ class ReadmeExamplesTest(unittest.TestCase):
                              "%s is not the picture Utilities/make-readme-picture.sh made" % picture)
 
         scratch = self.scratch_checkout("main-job")
+        # (its default --out, output/main, as the README says: each run in a folder of its own)
         done = subprocess.run(["bash", os.path.join(scratch, "Utilities", "run-example.sh"),
-                               "--no-build", "--out", os.path.join(scratch, "output")],
-                              cwd=scratch, capture_output=True, text=True, timeout=200)
+                               "--no-build"], cwd=scratch, capture_output=True, text=True,
+                              timeout=200)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
         self.assertIn("consistent", done.stdout)
+        main = os.path.join(scratch, "output", "main")
+        self.assertIn("outputs are in %s" % main, done.stdout)
+        self.assertIn("`%s/labels.vti`" % os.path.relpath(main, scratch), readme)
         for name in ("labels.vti", "mesh.vtp", "mesh.glb", "model.vox", "model.vdb",
                      "statistics.json"):  # what the README says the main job writes
-            self.assertTrue(os.path.isfile(os.path.join(scratch, "output", name)), name)
+            self.assertTrue(os.path.isfile(os.path.join(main, name)), name)
         model = village_measures.measures(
-            village_measures.read_labels(os.path.join(scratch, "output", "labels.vti")))
+            village_measures.read_labels(os.path.join(main, "labels.vti")))
         example = village_measures.measures(
             village_measures.read_labels(os.path.join(ROOT, "Data", "Examples", "Houses.vox")))
         self.assertEqual(village_measures.compare(model, example), [])

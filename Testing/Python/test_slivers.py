@@ -76,7 +76,7 @@ class SliverTest(unittest.TestCase):
             start = time.monotonic()
             stats = self.synthesize(model, again, "--size", *size, "--seed", "1")
             self.assertLess(time.monotonic() - start, 20)
-            self.assertLess(stats["Vertices"], 5000)
+            self.assertLess(stats["ArrangementVertices"], 5000)
             self.assertEqual(stats["BlocksFailed"], 0)
             self.assertGreaterEqual(stats["SmallestFeatureFraction"], 0.1)
             check = msynth("check", model, os.path.join(again, "model.vtp"))

@@ -316,10 +316,39 @@ class StreamTest(unittest.TestCase):
         run.send_signal(signal.SIGINT)
         _, stderr = run.communicate(timeout=60)
         self.assertEqual(run.returncode, 128 + signal.SIGINT, stderr)
-        self.assertIn("no outputs were written; the finished slabs are kept in '", stderr)
-        self.assertIn("': the same command with --resume goes on from them", stderr)
+        finished = len(text(listed).splitlines())  # what is on disk, as the line says
+        self.assertGreater(finished, 0)
+        self.assertRegex(stderr, r"no outputs were written; %d finished slabs? of \d+ (is|are) "
+                         r"kept in '" % finished)
+        self.assertIn("': the same command with --resume goes on from ", stderr)
         done = msynth("synthesize", data("Tilesets/Lines.xml"), *common, "--resume", "--out", out)
         self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("%d kept from the earlier run" % finished, done.stdout)
+
+    def test_an_early_interrupt_promises_nothing_to_resume(self):
+        """Issue 49: Ctrl-C before the first slab was finished promised kept slabs and --resume,
+        and left an empty stream behind. Now it says there is nothing to resume, and the stream's
+        folder is gone with the output folder the run made."""
+        common = ["--size", "400", "2400", "1", "--block", "32", "32", "1", "--seed", "8",
+                  "--stream", "--slab", "2400", "--threads", "1", "--outputs", "labels"]
+        out = os.path.join(fresh_folder("stream-sigint-early"), "out")
+        stream = os.path.join(out, ".msynth-stream")
+        run = subprocess.Popen([MSYNTH, "synthesize", data("Tilesets/Lines.xml"), *common,
+                                "--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and run.poll() is None:
+            if os.path.exists(os.path.join(stream, "definition.txt")):
+                break
+            time.sleep(0.005)
+        self.assertEqual(text(os.path.join(stream, "slabs.txt")), "", "the one slab was finished")
+        run.send_signal(signal.SIGINT)
+        _, stderr = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 128 + signal.SIGINT, stderr)
+        self.assertEqual(stderr.strip(), "msynth: interrupted (SIGINT); no outputs were written; "
+                         "no slab was finished, so there is nothing to --resume: the same "
+                         "command starts again")
+        self.assertFalse(os.path.exists(out), os.listdir(out) if os.path.exists(out) else "")
 
     def test_damaged_stream_states_resume_or_fail_cleanly(self):
         """Seeded damage of an interrupted stream's state (a byte of slabs.txt, definition.txt

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace msynth
 {
@@ -295,7 +296,12 @@ ContinuousSynthesisResult SynthesizeMirrored(const PolyhedralAnalysis& analysis,
   result.NarrowPartsRemoved +=
     detail::ConstraintPlan(analysis, arrangement, ContinuousConstraints(), options.Seed)
       .EmptyPartsAt(result.Labels, empty, rules.NarrowCorners(result.Labels));
-  result.Message += ", mirrored across the plane at " + std::to_string(seam);
+  std::ostringstream at;
+  at << seam;
+  result.Message += ", mirrored across the plane at " + at.str();
+  if (options.PartOf.empty()) // the whole model: its vertices, as an unmirrored run's message
+    result.Message =
+      std::to_string(arrangement.NumberOfVertices()) + " arrangement vertices, " + result.Message;
   return result;
 }
 

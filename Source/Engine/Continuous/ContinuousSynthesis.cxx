@@ -715,7 +715,11 @@ ContinuousSynthesisResult SynthesizeContinuous(const PolyhedralAnalysis& analysi
   result.ProportionPartsRemoved = proportioned.Removed;
   result.ProportionVolumeRemoved = proportioned.VolumeRemoved;
   result.ProportionsOutside = proportioned.Reason;
-  result.Message = std::to_string(arrangement.NumberOfVertices()) + " vertices, " +
+  // The arrangement's vertices are the output's points (the mirrored model's: its whole
+  // arrangement, which the outermost mirror names).
+  result.Message = (options.PartOf.empty()
+                       ? std::to_string(arrangement.NumberOfVertices()) + " arrangement vertices, "
+                       : std::string()) +
     Summary(stats, run.WholeModel());
   if (options.Constraints.Grounded)
     result.Message +=

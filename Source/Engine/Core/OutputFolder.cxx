@@ -274,12 +274,16 @@ void OutputFolder::Publish()
   for (auto& name : ReadManifest(this->Dir))
     if (!std::binary_search(written.begin(), written.end(), name))
       stale.push_back(std::move(name));
-  std::vector<std::string> replaced; // folders this run replaces, removed once it is published
+  std::vector<std::string> replaced;   // folders this run replaces, removed once it is published
+  std::vector<std::string> said, gone; // what it replaces and removes, as Replaced() names them
   for (const auto& name : written)
   {
     const std::string target = this->Dir + "/" + name;
     struct stat info;
-    if (::lstat(target.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+    const bool there = ::lstat(target.c_str(), &info) == 0;
+    if (there && name[0] != '.')
+      said.push_back(name + (S_ISDIR(info.st_mode) ? "/" : ""));
+    if (there && S_ISDIR(info.st_mode))
     {
       replaced.push_back(this->Dir + "/.msynth-discard-" + std::to_string(::getpid()) + "-" +
         std::to_string(replaced.size()) + "-" + name);
@@ -290,7 +294,17 @@ void OutputFolder::Publish()
       throw Error::InFile(target, std::string("could not be published: ") + std::strerror(errno));
   }
   for (const auto& name : stale)
-    RemoveTree(this->Dir + "/" + name);
+  {
+    struct stat info;
+    const std::string path = this->Dir + "/" + name;
+    if (::lstat(path.c_str(), &info) == 0)
+      gone.push_back(name + (S_ISDIR(info.st_mode) ? "/" : ""));
+    RemoveTree(path);
+  }
+  std::sort(said.begin(), said.end());
+  std::sort(gone.begin(), gone.end());
+  this->ReplacedNames = std::move(said);
+  this->RemovedNames = std::move(gone);
   for (const auto& folder : replaced)
     RemoveTree(folder);
   WriteFileAtomically(this->Dir + "/" + ManifestName,

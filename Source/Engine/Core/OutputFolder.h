@@ -36,6 +36,11 @@ public:
   const std::string& Final() const { return this->Dir; }
   /// Moves every staged file into the folder (see above). @throw Error on failure.
   void Publish();
+  /// What Publish() replaced of an earlier run: the names already in the folder that this run
+  /// wrote (a folder's with a slash: "labels/"), sorted.
+  const std::vector<std::string>& Replaced() const { return this->ReplacedNames; }
+  /// What Publish() removed: the earlier run's files that this run did not write again, sorted.
+  const std::vector<std::string>& Removed() const { return this->RemovedNames; }
 
   /// Removes the staging folders of every OutputFolder not yet published, and the folders made
   /// for them when empty; for a signal-handling thread that then ends the process (not for
@@ -48,6 +53,7 @@ private:
 
   std::string Dir;
   std::string StagePath;
+  std::vector<std::string> ReplacedNames, RemovedNames;
   bool Published = false;
   bool Created = false; ///< the folder did not exist: removed again if nothing is published
   std::vector<std::string> CreatedParents; ///< missing parents made for it (outermost first)

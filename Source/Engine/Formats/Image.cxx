@@ -179,6 +179,38 @@ bool IsImageFile(const std::string& path)
 
 namespace
 {
+/// The text chunk WritePng puts after the header: keyword, NUL, text.
+constexpr char WrittenBy[] = "Software\0msynth";
+} // namespace
+
+bool IsWrittenPng(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char signature[8];
+  if (!in.read(signature, 8) || std::memcmp(signature, "\x89PNG\r\n\x1a\n", 8) != 0)
+    return false;
+  // The chunks before the pixels: IHDR, PLTE, tRNS, text (a few, each checked for its length).
+  for (int chunk = 0; chunk < 16; ++chunk)
+  {
+    unsigned char head[8];
+    if (!in.read(reinterpret_cast<char*>(head), 8))
+      return false;
+    const std::uint32_t length = (std::uint32_t(head[0]) << 24) | (std::uint32_t(head[1]) << 16) |
+      (std::uint32_t(head[2]) << 8) | head[3];
+    const std::string type(reinterpret_cast<const char*>(head) + 4, 4);
+    if (type == "IDAT" || type == "IEND" || length > (1u << 20))
+      return false;
+    std::string data(length, '\0');
+    if (!in.read(&data[0], static_cast<std::streamsize>(length)) || !in.ignore(4))
+      return false;
+    if (type == "tEXt" && data == std::string(WrittenBy, sizeof(WrittenBy) - 1))
+      return true;
+  }
+  return false;
+}
+
+namespace
+{
 /// The PNG filter of one row (None, Sub or Up, whichever leaves the smallest sum of absolute
 /// differences, as libpng's heuristic) written to @p out (1 + bytes): filter type, then bytes.
 void FilterRow(
@@ -429,6 +461,8 @@ void WritePng(const std::string& path, int width, int height,
       header[8] = 8; // bits per channel (or index)
       header[9] = static_cast<std::uint8_t>(layout.Indexed ? 3 : (layout.Opaque ? 2 : 6));
       PutChunk(out, "IHDR", header, 13);
+      PutChunk(
+        out, "tEXt", reinterpret_cast<const std::uint8_t*>(WrittenBy), sizeof(WrittenBy) - 1);
       if (layout.Indexed)
       {
         // PLTE: the colours' RGB; tRNS: their alpha up to the last not opaque one.

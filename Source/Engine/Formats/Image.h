@@ -40,13 +40,17 @@ RgbaImage ReadBmp(const std::string& path);
 RgbaImage ReadImage(const std::string& path);
 /// Whether @p path names a picture ReadImage reads by its extension: .png or .bmp, any case.
 bool IsImageFile(const std::string& path);
+/// Whether @p path is a PNG that msynth wrote (WritePng: its text chunk Software = msynth), read
+/// chunk by chunk up to the pixels; false for any other file or one that cannot be read.
+bool IsWrittenPng(const std::string& path);
 
 /**
  * Writes @p image as an 8-bit RGBA (RGB when every pixel is opaque) PNG, atomically;
  * @p compression 0-9 as zlib's levels (1: fast, the default for large pictures). Rows are
  * filtered (None, Sub or Up per row) and deflated in strips of about 1 MB on all cores; the
  * strips' streams join into one zlib stream, and the file is the same whatever the number of
- * threads. @throw Error naming @p path on failure.
+ * threads. A text chunk says msynth wrote it (Software = msynth; IsWrittenPng).
+ * @throw Error naming @p path on failure.
  */
 void WritePng(const std::string& path, const RgbaImage& image, int compression = 1);
 /// The same for a picture of @p width × @p height pixels whose row y (from the top) is the
