@@ -321,7 +321,7 @@ def town(t):
         for run in t.msynth_runs("synthesize " + TOWN.format(size=size)):
             yield (["%s, 2 threads" % size.replace(" ", " × "), seconds(run.wall),
                     "%s (%s + %s)" % (seconds(run.cpu), seconds(run.user), seconds(run.system)),
-                    "%.2f" % (run.peak_mb / 1024), count(run.stats.get("Vertices", 0)),
+                    "%.2f" % (run.peak_mb / 1024), count(run.stats.get("ArrangementVertices", 0)),
                     count(run.stats.get("Polygons", 0)), count(run.stats.get("Components", 0))] +
                    [seconds(run.stage(s)) for s in STAGES] +
                    [megabytes(run.size_mb("arrangement.vtp"))])
