@@ -106,7 +106,7 @@ ENTRIES = [
      "--detail silo+silo2=%s/cylinder.obj" % (D, D), "model"),
     ("town", "Polyhedral + detail (.obj)", "A 474-polygon town block (houses, shops, roads, trees "
      "as bounding volumes) at 100 x 100 x 10: storeys, slabs one spacing thick, trees one spacing "
-     "across with tree.obj substituted (about 50 s of CPU and 1.3 GB; 79 s on two shared cores)",
+     "across with tree.obj substituted (about 35 s and 1.3 GB on two shared cores)",
      "synthesize %s/town.obj --size 100 100 10 --seed 1 --grounded --thickness wall:z:4 "
      "--thickness shop:z:6 --thickness shoproof:z --thickness road:z --thickness tree:x "
      "--thickness tree:y --detail tree=%s/tree.obj" % (D, D), "model"),
