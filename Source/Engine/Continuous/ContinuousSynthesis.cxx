@@ -15,8 +15,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numeric>
 
@@ -58,7 +58,8 @@ public:
     , Words(this->Rules.Words())
     , Worker(worker)
     , Whole(parts.Whole)
-    , Parallel(parts.Parallel)
+    , Halo(parts.Whole || !parts.Parallel ? std::numeric_limits<double>::infinity()
+                                          : parts.Layout->CellEdge)
     , Layout(parts.Layout.get())
     , Blocks(this->Whole ? 1 : static_cast<std::int64_t>(parts.Order.size()))
     , Initial(parts.Initial)
@@ -251,8 +252,9 @@ private:
   const int K, Words;
   const unsigned Worker;
   const bool Whole;
-  const bool
-    Parallel; ///< blocks of a phase run concurrently (their neighbourhoods may not be read)
+  /// How far outside its block a block may read labels: a cell's edge where blocks of a phase
+  /// run concurrently (BlockLayout), anywhere when one block or one at a time.
+  const double Halo;
   const detail::BlockLayout* Layout;
   const std::int64_t Blocks;
   const std::vector<std::uint64_t>& Initial; ///< [vertex][word]: the starting catalog
@@ -494,15 +496,13 @@ int ContinuousRun::Choose(std::int64_t i, Random& rng)
   if (this->Ends)
   {
     // A decided vertex's label, -1 undecided, -2 outside the block where another block of the
-    // phase may be labelling (a cell's edge or more away: BlockLayout).
-    const double halo = this->Whole || !this->Parallel ? std::numeric_limits<double>::infinity()
-                                                       : this->Layout->CellEdge;
+    // phase may be labelling (Halo or more away).
     this->Ends->Weigh(v, c, weight,
-      [this, halo](std::int64_t u, double distance)
+      [this](std::int64_t u, double distance)
       {
         const std::int32_t l = this->LocalOf[ToIndex(u)];
         return l >= 0 ? (this->Domains.Count(l) == 1 ? this->Domains.Single(l) : -1)
-                      : (distance < halo ? this->Result.Labels[ToIndex(u)] : -2);
+                      : (distance < this->Halo ? this->Result.Labels[ToIndex(u)] : -2);
       });
   }
   // The constraints' factors (guide, proportions, fill) last: the run ends rescale the labels
