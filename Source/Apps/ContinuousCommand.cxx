@@ -289,6 +289,11 @@ int SynthesizeContinuous(const SynthesizeOptions& o, const std::string& dir)
   synthesis->SetInputConnection(0, reader->GetOutputPort());
   synthesis->SetArrangementConnection(arrangement->GetOutputPort());
   ConfigureSolver(synthesis, o);
+  // A mistyped constraint is reported before the arrangement is built (minutes at city sizes).
+  const std::string problem = synthesis->CheckConstraints(
+    reader->GetOutput(), arrangement->GetAngleTolerance(), arrangement->GetMaximumSmallInteger());
+  if (!problem.empty())
+    throw std::runtime_error(problem);
   vtkNew<vtkXMLImageDataReader> guide;
   if (!o.Guide.empty())
     ConnectGuide(synthesis, 2, guide, o.Guide);

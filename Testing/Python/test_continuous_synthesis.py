@@ -540,6 +540,18 @@ class ContinuousSynthesisTest(unittest.TestCase):
             self.assertNotEqual(done.returncode, 0, args)
             self.assertIn(message, done.stderr)
             self.assertEqual(len(done.stderr.strip().splitlines()), 1, done.stderr)
+        # A mistyped constraint is read before the plane arrangement is built: at a size whose
+        # arrangement is refused for its vertices, the constraint's problem is what is said.
+        for args, message in ((["--thickness", "wall:xy:2"], "a width across several axes"),
+                              (["--connected", "tower"], "'tower' is not an object type"),
+                              (["--overhang", "tower"], "'tower' is not an object type")):
+            done = subprocess.run([msynth, "synthesize", data("Continuous/house.obj"), "--size",
+                                   "3000", "3000", "30", "--out", out + "-z"] + args,
+                                  capture_output=True, text=True)
+            self.assertNotEqual(done.returncode, 0, args)
+            self.assertIn(message, done.stderr)
+            self.assertNotIn("candidate vertices", done.stderr)
+            self.assertFalse(os.path.exists(out + "-z"))
         done = subprocess.run([msynth, "synthesize", data("Examples/Village.vti"), "--size", "8", "8",
                                "4", "--grounded", "--out", out + "-y"], capture_output=True, text=True)
         self.assertNotEqual(done.returncode, 0)

@@ -417,3 +417,22 @@ void vtkMSContinuousSynthesis::FillOutput(
     vtkMSFieldData::AddFieldValue<vtkDoubleArray>(fields, "MatchError", result.MatchError);
   }
 }
+
+std::string vtkMSContinuousSynthesis::CheckConstraints(
+  vtkPolyData* example, double angleToleranceDegrees, int maximumSmallInteger)
+{
+  if (!example)
+    return "no example to check the constraints against";
+  try
+  {
+    msynth::PolyhedralExample ex;
+    const auto analysis =
+      vtkMSPolyhedra::AnalyzeExample(example, angleToleranceDegrees, maximumSmallInteger, ex);
+    Constraints(this, nullptr, ex, analysis.Families());
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return std::string();
+}

@@ -205,6 +205,16 @@ public:
   vtkGetMacro(ModelCandidates, int);
   ///@}
 
+  /**
+   * Checks Thickness, Overhang, Connected and TargetFractions against the object types and plane
+   * families of @p example (analysed with the arrangement's @p angleToleranceDegrees and
+   * @p maximumSmallInteger) before anything is computed: "" when they read, else the problem in
+   * one line, as RequestData would report it after the plane arrangement is built (a mistyped
+   * constraint then costs seconds, not the arrangement's minutes).
+   */
+  std::string CheckConstraints(
+    vtkPolyData* example, double angleToleranceDegrees, int maximumSmallInteger);
+
 protected:
   vtkMSContinuousSynthesis();
   ~vtkMSContinuousSynthesis() override;
