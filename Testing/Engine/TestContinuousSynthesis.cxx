@@ -164,6 +164,33 @@ TEST(PlaneArrangement, TheSameOnAnyNumberOfThreads)
   EXPECT_THROW(PlaneArrangement(l.Analysis.Families(), p), Error);
 }
 
+TEST(PlaneArrangement, CostFollowsTheVerticesNotTheCandidates)
+{
+  // A wide, flat box under the house's sloped families: the index boxes of their planes hold
+  // some 10^8 candidate points, nearly all above or below the box. Only each line's stretch
+  // inside the box is visited and only the vertices are kept (a table over every candidate
+  // refused this box, or took 4 bytes a candidate).
+  const Loaded l = Load("house.obj");
+  ArrangementParameters p =
+    DefaultArrangementParameters(l.Example, l.Analysis, { 250, 250, 0.5 }, 0, {});
+  p.MaxVertices = 2000000;
+  const PlaneArrangement a(l.Analysis.Families(), p);
+  ASSERT_GT(a.NumberOfVertices(), 250 * 250);
+  // Every link leads to the nearest vertex along its line, which links back.
+  for (std::int64_t v = 0; v < a.NumberOfVertices(); v += 101)
+  {
+    for (auto k = a.LinksBegin(v); k != a.LinksEnd(v); ++k)
+    {
+      if (k->Vertex < 0)
+        continue;
+      bool back = false;
+      for (auto j = a.LinksBegin(k->Vertex); j != a.LinksEnd(k->Vertex); ++j)
+        back = back || (j->Vertex == v && (j->Direction ^ 1) == k->Direction);
+      EXPECT_TRUE(back) << v;
+    }
+  }
+}
+
 TEST(PlaneArrangement, RefusesTooManyVertices)
 {
   const Loaded l = Load("cube.obj");

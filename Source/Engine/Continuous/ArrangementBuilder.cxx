@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <numeric>
 #include <string>
 
@@ -97,7 +98,8 @@ Wide ArrangementBuilder::Determinant(const int* t) const
 // the lexicographically first independent tuple among the families through it.
 void ArrangementBuilder::ListTuples()
 {
-  Wide denseSize = 0;
+  Wide rows = 0, candidates = 0;
+  double fewest = 0; // the vertices there must be, about
   this->TupleAt.assign(ToIndex(this->M) * ToIndex(this->M) * ToIndex(this->M), -1);
   std::array<int, 3> t{ { 0, 0, 0 } };
   const auto consider = [&]()
@@ -116,8 +118,17 @@ void ArrangementBuilder::ListTuples()
       tu.Count[ToIndex(i)] = std::max<Wide>(0, r[1] - r[0] + 1);
       cells = Mul(cells, tu.Count[ToIndex(i)]);
     }
-    tu.Base = static_cast<std::size_t>(denseSize);
-    denseSize = Add(denseSize, cells);
+    // Its points in the box, about: the box's volume times the points' density |det| / (the
+    // product of the spacings). They are distinct vertices, so the most of any tuple is about a
+    // lower bound of the arrangement's vertices.
+    double points = std::abs(static_cast<double>(this->Determinant(t.data())));
+    for (int i = 0; i < this->Dim; ++i)
+      points *= static_cast<double>(this->Params.BoxHigh[i] - this->Params.BoxLow[i]) /
+        static_cast<double>(this->SpacingOf(t[ToIndex(i)]));
+    fewest = std::max(fewest, points);
+    tu.RowBase = ToIndex(rows);
+    rows = Add(rows, this->Dim == 3 ? Mul(tu.Count[0], tu.Count[1]) : tu.Count[0]);
+    candidates = Add(candidates, cells);
     if (this->Dim == 3)
     {
       tu.Cross = { CrossInt(this->Normal(t[1]), this->Normal(t[2])),
@@ -145,16 +156,57 @@ void ArrangementBuilder::ListTuples()
       }
     }
   }
-  // Candidates are the plane-index boxes of the tuples; most lie in the output box.
-  const Wide maxCandidates = std::max<Wide>(Wide(8) * this->Params.MaxVertices, Wide(10000000));
-  if (denseSize > maxCandidates || denseSize > Wide(2000000000))
+  // The candidates are the plane-index boxes of the tuples; only the part of each row (a line)
+  // inside the output box is visited, and the rows' starts are kept (8 bytes a row).
+  const auto limit = static_cast<double>(this->Params.MaxVertices);
+  if (fewest > 1.05 * limit + 1000)
   {
-    throw Error("plane arrangement: about " +
-      std::to_string(static_cast<long long>(std::min<Wide>(denseSize, Wide(1) << 62))) +
-      " candidate vertices, more than the limit of " + std::to_string(this->Params.MaxVertices) +
+    throw Error("plane arrangement: about " + std::to_string(std::llround(std::min(fewest, 1e18))) +
+      " vertices, more than the limit of " + std::to_string(this->Params.MaxVertices) +
+      " allows; use a smaller box or a larger spacing");
+  }
+  const Wide maxRows = std::max<Wide>(Wide(4) * this->Params.MaxVertices, Wide(10000000));
+  if (rows > maxRows || candidates > (Wide(1) << 60))
+  {
+    throw Error("plane arrangement: " +
+      std::to_string(static_cast<long long>(std::min<Wide>(rows, Wide(1) << 62))) +
+      " lines of planes cross the box, more than the limit of " +
+      std::to_string(this->Params.MaxVertices) +
       " vertices allows; use a smaller box or a larger spacing");
   }
-  this->Dense.assign(static_cast<std::size_t>(denseSize), -1);
+  this->RowStart.assign(ToIndex(rows) + 1, 0);
+}
+
+std::array<Wide, 2> ArrangementBuilder::KeysInBox(const Tuple& tu, Wide c0, Wide c1) const
+{
+  // X(c2) = (A + c2 B) / Den along the row: each coordinate within the box bounds c2.
+  const int f0 = tu.F[0], f1 = tu.F[1], f2 = tu.F[2];
+  const Wide v0 = Add(this->Offset(f0), Mul(tu.Lo[0] + c0, this->SpacingOf(f0)));
+  const Wide v1 = Add(this->Offset(f1), Mul(tu.Lo[1] + c1, this->SpacingOf(f1)));
+  const Wide v2 = Add(this->Offset(f2), Mul(tu.Lo[2], this->SpacingOf(f2)));
+  const Wide sign = tu.Det < 0 ? -1 : 1;
+  const Wide den = sign * tu.Det;
+  Wide first = 0, last = tu.Count[2] - 1;
+  for (int c = 0; c < 3 && first <= last; ++c)
+  {
+    const Wide a =
+      sign * Add(Add(Mul(v0, tu.Cross[0][c]), Mul(v1, tu.Cross[1][c])), Mul(v2, tu.Cross[2][c]));
+    const Wide b = sign * Mul(this->SpacingOf(f2), tu.Cross[2][c]);
+    const Wide low = Mul(this->Params.BoxLow[c], den) - a;
+    const Wide high = Mul(this->Params.BoxHigh[c], den) - a;
+    if (b == 0)
+    {
+      if (low > 0 || high < 0)
+        return { 0, 0 };
+      continue;
+    }
+    // low <= c2 b <= high
+    const Wide lo = b > 0 ? CeilDiv(low, b) : CeilDiv(-high, -b);
+    const Wide hi = b > 0 ? FloorDiv(high, b) : FloorDiv(-low, -b);
+    first = std::max(first, lo);
+    last = std::min(last, hi);
+  }
+  return first <= last ? std::array<Wide, 2>{ { first, last + 1 } } : std::array<Wide, 2>{};
 }
 
 Exact ArrangementBuilder::Solve(const Tuple& tu, const std::array<Wide, 3>& value) const
@@ -249,16 +301,14 @@ const ArrangementBuilder::Tuple* ArrangementBuilder::FirstTuple(std::uint64_t ma
   return nullptr;
 }
 
-std::size_t ArrangementBuilder::DenseSlot(
-  const Tuple& tu, const std::vector<Wide>& planeIndex) const
+std::size_t ArrangementBuilder::RowOf(
+  const Tuple& tu, const std::vector<Wide>& planeIndex, std::int32_t& key) const
 {
-  Wide idx = 0;
+  Wide c[3] = { 0, 0, 0 };
   for (int i = 0; i < this->Dim; ++i)
-  {
-    const Wide c = planeIndex[ToIndex(tu.F[ToIndex(i)])] - tu.Lo[ToIndex(i)];
-    idx = idx * tu.Count[ToIndex(i)] + c;
-  }
-  return tu.Base + ToIndex(idx);
+    c[i] = planeIndex[ToIndex(tu.F[ToIndex(i)])] - tu.Lo[ToIndex(i)];
+  key = static_cast<std::int32_t>(c[this->Dim - 1]);
+  return tu.RowBase + ToIndex(this->Dim == 3 ? c[0] * tu.Count[1] + c[1] : c[0]);
 }
 
 // 1. Vertices: every point of a tuple's planes in the box, generated by its first tuple only.
@@ -290,7 +340,8 @@ void ArrangementBuilder::GenerateVertices()
   {
     std::vector<Exact> Vertices;
     std::vector<std::uint64_t> Masks;
-    std::vector<std::size_t> Slots;
+    std::vector<std::size_t> Rows;
+    std::vector<std::int32_t> Keys;
   };
   std::vector<Found> found(chunks.size());
   std::atomic<std::int64_t> total{ 0 };
@@ -306,7 +357,9 @@ void ArrangementBuilder::GenerateVertices()
       const Wide n2 = this->Dim == 3 ? tu.Count[2] : 1;
       for (c[1] = rows.C1Begin; c[1] < rows.C1End; ++c[1])
       {
-        for (c[2] = 0; c[2] < n2; ++c[2])
+        const std::array<Wide, 2> keys =
+          this->Dim == 3 ? this->KeysInBox(tu, c[0], c[1]) : std::array<Wide, 2>{ { 0, n2 } };
+        for (c[2] = keys[0]; c[2] < keys[1]; ++c[2])
         {
           for (int i = 0; i < this->Dim; ++i)
           {
@@ -332,22 +385,31 @@ void ArrangementBuilder::GenerateVertices()
           }
           out.Vertices.push_back(x);
           out.Masks.push_back(mask);
-          out.Slots.push_back(this->DenseSlot(tu, planeIndex));
+          std::int32_t key = 0;
+          out.Rows.push_back(this->RowOf(tu, planeIndex, key));
+          out.Keys.push_back(key);
         }
       }
     });
   this->Vertices.reserve(ToIndex(total.load()));
   this->Masks.reserve(ToIndex(total.load()));
+  this->Keys.reserve(ToIndex(total.load()));
+  this->Ids.reserve(ToIndex(total.load()));
+  // Chunks hold whole rows in row order, and each row's keys ascending: counting entries per
+  // row gives the compressed rows.
   for (Found& f : found)
   {
     for (std::size_t i = 0; i < f.Vertices.size(); ++i)
     {
-      this->Dense[f.Slots[i]] = static_cast<std::int32_t>(this->Vertices.size());
+      this->RowStart[f.Rows[i] + 1] += 1;
+      this->Keys.push_back(f.Keys[i]);
+      this->Ids.push_back(static_cast<std::int32_t>(this->Vertices.size()));
       this->Vertices.push_back(f.Vertices[i]);
       this->Masks.push_back(f.Masks[i]);
     }
     f = Found();
   }
+  std::partial_sum(this->RowStart.begin(), this->RowStart.end(), this->RowStart.begin());
 }
 
 // 2. Scan-line order: by z, then y, then x (exactly), so ids follow the solver's sweep.
@@ -389,13 +451,8 @@ void ArrangementBuilder::NumberInScanLineOrder(PlaneArrangement& out)
   {
     rank[ToIndex(order[i])] = static_cast<std::int32_t>(i);
   }
-  for (auto& id : this->Dense)
-  {
-    if (id >= 0)
-    {
-      id = rank[ToIndex(id)];
-    }
-  }
+  for (auto& id : this->Ids)
+    id = rank[ToIndex(id)];
   std::vector<Exact> sorted(n);
   out.Masks.resize(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -495,12 +552,16 @@ std::int32_t ArrangementBuilder::NextAlong(
   {
     throw Error("plane arrangement: internal error (a crossing is not a vertex)");
   }
-  const std::int32_t target = this->Dense[this->DenseSlot(*tu, scratch)];
-  if (target < 0)
+  std::int32_t key = 0;
+  const std::size_t row = this->RowOf(*tu, scratch, key);
+  const auto begin = this->Keys.begin() + this->RowStart[row];
+  const auto end = this->Keys.begin() + this->RowStart[row + 1];
+  const auto at = std::lower_bound(begin, end, key);
+  if (at == end || *at != key)
   {
     throw Error("plane arrangement: internal error (a vertex was not generated)");
   }
-  return target;
+  return this->Ids[ToIndex(at - this->Keys.begin())];
 }
 
 void ArrangementBuilder::LinesThrough(std::uint64_t mask, std::vector<int>& lines) const

@@ -32,13 +32,14 @@ public:
   void Build(PlaneArrangement& out);
 
 private:
-  /// dim families with independent normals, and their block of candidate vertices in Dense.
+  /// dim families with independent normals; their candidate vertices (one per plane of each)
+  /// in rows: the planes of all families but the last fixed, a row is a line.
   struct Tuple
   {
     std::array<int, 3> F{};
     std::array<Wide, 3> Lo{};
     std::array<Wide, 3> Count{};
-    std::size_t Base = 0;
+    std::size_t RowBase = 0;        ///< its first row in RowStart
     std::array<IntVec3, 3> Cross{}; ///< n1×n2, n2×n0, n0×n1 (3D)
     Wide Det = 0;
   };
@@ -67,7 +68,12 @@ private:
   std::uint64_t FamiliesThrough(const Exact& x, std::vector<Wide>& planeIndex) const;
   /// The lexicographically first independent tuple among the families of @p mask.
   const Tuple* FirstTuple(std::uint64_t mask) const;
-  std::size_t DenseSlot(const Tuple& tu, const std::vector<Wide>& planeIndex) const;
+  /// The row of @p tu holding the vertex of plane indices @p planeIndex, and its key (the last
+  /// family's plane, from the tuple's lowest) within the row.
+  std::size_t RowOf(const Tuple& tu, const std::vector<Wide>& planeIndex, std::int32_t& key) const;
+  /// The first and one-past-last key of row (@p c0, @p c1) of @p tu whose candidates can lie in
+  /// the box (a line meets the box in a segment); empty when none.
+  std::array<Wide, 2> KeysInBox(const Tuple& tu, Wide c0, Wide c1) const;
   std::size_t TripleSlot(int a, int b, int c) const
   {
     return (ToIndex(a) * ToIndex(this->M) + ToIndex(b)) * ToIndex(this->M) + ToIndex(c);
@@ -83,8 +89,13 @@ private:
   /// Per family triple (a, b, c) at (a·M + b)·M + c (c = 0 in 2D): its tuple, or -1 when the
   /// normals are dependent.
   std::vector<std::int32_t> TupleAt;
-  std::vector<std::int32_t> Dense; ///< per candidate of every tuple: vertex id or -1
-  std::vector<Exact> Vertices;     ///< exact positions, then in scan-line order
+  /// The vertices by generating tuple and row (compressed rows): row r's are entries
+  /// RowStart[r] .. RowStart[r + 1] of Keys (ascending) and Ids. Memory in proportion to the
+  /// vertices and rows, not to every candidate of the tuples' plane boxes.
+  std::vector<std::int64_t> RowStart;
+  std::vector<std::int32_t> Keys;
+  std::vector<std::int32_t> Ids;
+  std::vector<Exact> Vertices; ///< exact positions, then in scan-line order
   std::vector<std::uint64_t> Masks;
   std::map<IntVec3, int> DirectionIndex;
 };
