@@ -153,6 +153,13 @@ public:
   void UseCounts(const CountBudget* budget) { this->Budget = budget; }
   /// In a repair pass every block has run: a block must keep the others' own counts.
   void SetRepairing(bool repairing) { this->Repairing = repairing; }
+  /**
+   * A connected network's repairs (NetworkRepair.cxx) run boxes over a finished model: with
+   * @p whole every site of a box counts, and a box is kept when each count of the model stays
+   * in its range (CountBudget::Range; one already outside may not move farther out), its choice
+   * steered toward that. Off: the blocks' shares (the run's blocks).
+   */
+  void SetCountsOfModel(bool whole) { this->CountsOfModel = whole; }
   /// Attempts that solved their block but missed its label counts, over all blocks so far.
   std::int64_t CountMisses() const { return this->Misses; }
 
@@ -190,6 +197,9 @@ private:
   int ChooseCounted(std::int64_t local, Random& rng);
   /// Whether the solved block keeps its shares (and, repairing, the other blocks' counts).
   bool CountsKept(const Block& block);
+  /// The least and most sites of count @p c the current block's own sites may hold.
+  std::int64_t ShareMinimum(std::size_t c) const;
+  std::int64_t ShareMaximum(std::size_t c) const;
 
   /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
   void SetUpResemblance();
@@ -364,7 +374,9 @@ private:
   const std::vector<double>* Scale = nullptr; ///< per label index, or nullptr
   const SiteBias* Bias = nullptr;             ///< per model site and label index, or nullptr
   bool Repairing = false;
+  bool CountsOfModel = false; ///< SetCountsOfModel
   std::int64_t Misses = 0;
+  std::vector<std::int64_t> BoxMin, BoxMax; ///< CountsOfModel: per count, the box's range
   std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
   std::vector<std::int32_t> Own;     ///< per local site: 0, or 1 + its count slot if own
   std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it

@@ -455,6 +455,8 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
         for (Label v : want.Values)
           this->PositionOf[slot * this->K + ToIndex(rules.IndexOf(v))] = static_cast<int>(c);
     this->Counted.push_back(static_cast<int>(c));
+    this->WholeMin.push_back(want.Minimum);
+    this->WholeMax.push_back(want.Maximum);
   }
   for (std::size_t i = 0; i < blocks.size(); ++i)
     this->Rows.emplace(blocks[i].Index, i);

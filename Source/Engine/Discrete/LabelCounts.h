@@ -99,6 +99,10 @@ public:
   {
     return this->Max[this->Rows.at(block) * this->Counted.size() + c];
   }
+  /// Count @p c's range over the whole model (its MIN and MAX): what a connected network's
+  /// repairs keep (BlockSolver::SetCountsOfModel).
+  std::int64_t RangeMinimum(std::size_t c) const { return this->WholeMin[c]; }
+  std::int64_t RangeMaximum(std::size_t c) const { return this->WholeMax[c]; }
 
 private:
   /// The shares of count @p c of the world (the file comment): by each block's prefix of own
@@ -118,6 +122,7 @@ private:
   std::vector<std::int64_t> Owners;
   std::unordered_map<std::int64_t, std::size_t> Rows; ///< block key → its place in the run
   std::vector<std::int64_t> Min, Max;                 ///< [block's place][counted label]
+  std::vector<std::int64_t> WholeMin, WholeMax;       ///< per count, its MIN and MAX
 };
 
 } // namespace detail

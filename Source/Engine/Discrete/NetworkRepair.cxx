@@ -43,6 +43,7 @@ struct Repair
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
   Shortfall Now{ { 0, 0, 0 } };
   std::int64_t Tried = 0;  ///< box attempts so far
+  std::int64_t MissesBefore = 0; ///< the solver's count misses before the repairs
   std::int64_t MayTry = 0; ///< box attempts allowed (AttemptsPerPart)
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
@@ -422,10 +423,13 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
-    const std::string tried = this->OutOfWork()
+    std::string tried = this->OutOfWork()
       ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
         std::to_string(AttemptsPerPart) + " per component and path site at the start)"
       : "no repair brought them nearer";
+    if (!this->Options.Counts.empty())
+      tried += ", " + std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
+        " of them solved but would have moved the label counts out of their ranges";
     if (this->Now[0] > 0 || this->Now[1] > 1)
       return name + " does not join the path: " +
         (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
@@ -447,6 +451,15 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
 {
   Repair repair(solver, shared, rule, options, stats);
   repair.Key = firstIndex;
+  // With label counts every box keeps the model's counts in their ranges (the blocks kept
+  // them), its choice steered toward them: the network and the counts hold together.
+  repair.MissesBefore = solver.CountMisses();
+  solver.SetCountsOfModel(true);
+  struct Restore
+  {
+    BlockSolver& Solver;
+    ~Restore() { this->Solver.SetCountsOfModel(false); }
+  } restore{ solver };
   out.Before = repair.Net.Count();
   out.PathComponentsBefore = repair.Now[1];
   while (!repair.Done())
