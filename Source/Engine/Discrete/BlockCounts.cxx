@@ -202,6 +202,8 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
       scale(0.0, 1.0);
       continue;
     }
+    if (this->CountsOfModel && this->Bias)
+      continue; // a repair box steered along a gap: its bias keeps the rest, CountsKept checks
     const double low = 1.25 * static_cast<double>(need) / open;
     const double high = static_cast<double>(room) / open;
     const double target = share < low ? low : (share > high ? high : share);

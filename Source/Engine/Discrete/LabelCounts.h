@@ -18,7 +18,10 @@
  * total when the whole world is computed. Sites fixed by boundary labels or pins count in the
  * block that owns them; a block whose fixed sites leave its share impossible is refused. A block
  * run again in a repair pass must also leave the count of every other block's own sites inside it
- * unchanged.
+ * unchanged. With a connected network kept by repairs of the whole model (Connectivity.h) the
+ * shares are planned over the range narrowed by a quarter of its span on each side (the full
+ * range when pins leave a block no room for that): the repairs, which keep the whole range
+ * (BlockSolver::SetCountsOfModel), then have room to lay or lift counted labels.
  *
  * A count of a guide region (LabelCount::Region) counts the sites whose guide cell belongs to
  * the region: its range is split over the run's blocks in proportion to their own free sites in

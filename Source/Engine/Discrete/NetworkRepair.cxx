@@ -423,13 +423,15 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
-    std::string tried = this->OutOfWork()
-      ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
-        std::to_string(AttemptsPerPart) + " per component and path site at the start)"
-      : "no repair brought them nearer";
-    if (!this->Options.Counts.empty())
-      tried += ", " + std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
-        " of them solved but would have moved the label counts out of their ranges";
+    const std::string counts = this->Options.Counts.empty()
+      ? std::string()
+      : " (" + std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
+        " solved box attempts would have moved the label counts out of their ranges)";
+    const std::string tried = (this->OutOfWork()
+        ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
+          std::to_string(AttemptsPerPart) + " per component and path site at the start)"
+        : "no repair brought them nearer") +
+      counts;
     if (this->Now[0] > 0 || this->Now[1] > 1)
       return name + " does not join the path: " +
         (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
@@ -438,7 +440,8 @@ struct Repair
     const Component& c = this->Net.Parts()[ToIndex(this->Net.BySize().begin()->second)];
     return name + " has " + std::to_string(this->Net.Count()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
-      (this->OutOfWork() ? ", and " + tried : ", and none could be joined to another or removed") +
+      (this->OutOfWork() ? ", and " + tried
+                         : ", and none could be joined to another or removed" + counts) +
       " (the smallest: " + std::to_string(c.Sites) + (c.Sites == 1 ? " site at " : " sites at ") +
       Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
   }
