@@ -81,7 +81,26 @@ class ConstraintsComposeTest(unittest.TestCase):
                 self.assertIn("connected: %s form 1 component" % ROADS, c.stdout)
                 with open(os.path.join(out, "statistics.json")) as f:
                     stats = json.load(f)
-                self.assertEqual(stats["Connected"]["Components"], 1, what)
+                self.assertEqual(stats["Connected"]["components"], 1, what)
+                self.assertEqual(stats["Counts"][0]["achieved"], houses, what)
+
+    def test_path_and_counts_per_guide_region_compose_too(self):
+        guide = data("Tilesets/lines-halves.vti")  # Region 0 the left half, 1 the right one
+        for blocks in ([], ["--block", "16", "16", "1"]):
+            what = "blocks %s" % blocks
+            out = fresh_folder("compose-path-%d" % len(blocks))
+            both = ["--fixed", PINS, "--guide", guide, "--count", "region=0:16:10:25",
+                    "--count", "region=1:16:50:80", "--connected", ROADS + ":4",
+                    "--path", "6,5", "42,42", "24,30"]
+            r = run_msynth("synthesize", CITY, "--size", "48", "48", "1", *blocks, "--seed", "2",
+                           *both, "--outputs", "labels", "--out", out)
+            self.assertEqual(r.returncode, 0, what + ": " + r.stderr)
+            c = run_msynth("check", CITY, os.path.join(out, "labels.vti"), *both)
+            self.assertEqual(c.returncode, 0, what + ": " + c.stdout + c.stderr)
+            self.assertIn("path joined: 3 sites in 1 component", c.stdout)
+            labels = labels_zyx(read_label_grid(os.path.join(out, "labels.vti")))[0]
+            self.assertTrue(10 <= np.count_nonzero(labels[:, :24] == HOUSE) <= 25, what)
+            self.assertTrue(50 <= np.count_nonzero(labels[:, 24:] == HOUSE) <= 80, what)
 
     def test_check_finds_a_missed_pin(self):
         out = fresh_folder("compose-plain")
@@ -106,13 +125,12 @@ class ConstraintsComposeTest(unittest.TestCase):
         self.assertEqual(fd.GetArray("ConnectedComponents").GetValue(0), 1)
         houses = self.verify(labels_zyx(output)[0], "filter")
         self.assertEqual(fd.GetArray("CountAchieved").GetValue(0), houses)
-        check, errors = run_algorithm(modelsynth.vtkMSCheckModel(), port=synthesis.GetOutputPort(),
-                                      PinsFile=PINS, Counts="%d:%d:%d" % (HOUSE, *HOUSES),
-                                      Connected=ROADS)
-        check.SetInputConnection(1, reader.GetOutputPort())
-        check.Update()
+        check = modelsynth.vtkMSCheckModel()
+        check.AddExampleConnection(reader.GetOutputPort())
+        checked, errors = run_algorithm(check, port=synthesis.GetOutputPort(), PinsFile=PINS,
+                                        Counts="%d:%d:%d" % (HOUSE, *HOUSES), Connected=ROADS)
         self.assertEqual(errors, "")
-        cfd = check.GetOutput().GetFieldData()
+        cfd = checked.GetFieldData()
         self.assertEqual(cfd.GetArray("Valid").GetValue(0), 1)
         self.assertEqual(cfd.GetArray("PinsKept").GetValue(0), 1)
         self.assertEqual(cfd.GetArray("PinsChecked").GetValue(0), 7)
@@ -133,8 +151,10 @@ class ConstraintsComposeTest(unittest.TestCase):
         w = labels_zyx(read_label_grid(os.path.join(whole, "labels.vti")))[0]
         p = labels_zyx(read_label_grid(os.path.join(part, "labels.vti")))[0]
         self.assertTrue(np.array_equal(p, w[12:36, 8:40]))
+        # Pins and counts hold in the world; LABELS:open's guarantee is per block (a component
+        # closed off across blocks can remain, as without them: architecture.md), not checked.
         c = run_msynth("check", CITY, os.path.join(whole, "labels.vti"), "--fixed", PINS,
-                       "--count", "16:80:140", "--connected", ROADS + ":open")
+                       "--count", "16:80:140")
         self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
 
     def test_combinations_that_cannot_work_are_one_line(self):
