@@ -552,8 +552,7 @@ CommandRunner AddCheck(CLI::App& app)
     if (o->Animation)
     {
       if (!o->Counts.empty() || !o->Connected.empty() || !o->Fixed.empty() ||
-        IsPolyhedral(o->Example) ||
-        IsSample(o->Example) || IsTileset(o->Example))
+        IsPolyhedral(o->Example) || IsSample(o->Example) || IsTileset(o->Example))
         throw UsageError{ "--animation checks the frames of a label grid example's animation "
                           "(no --count, --connected, --fixed, tileset, sample or polyhedral "
                           "example)" };

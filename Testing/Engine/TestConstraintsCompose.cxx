@@ -90,7 +90,8 @@ std::int64_t Components(const LabelGrid& model, Label value)
       i = parent[static_cast<std::size_t>(i)];
     return i;
   };
-  const auto on = [&](std::int64_t i) { return model.Data()[static_cast<std::size_t>(i)] == value; };
+  const auto on = [&](std::int64_t i)
+  { return model.Data()[static_cast<std::size_t>(i)] == value; };
   const std::int64_t stride[3] = { 1, d[0], d[0] * d[1] };
   for (std::int64_t i = 0; i < n; ++i)
     for (std::size_t a = 0; a < 3; ++a)

@@ -377,12 +377,12 @@ private:
   bool CountsOfModel = false; ///< SetCountsOfModel
   std::int64_t Misses = 0;
   std::vector<std::int64_t> BoxMin, BoxMax; ///< CountsOfModel: per count, the box's range
-  std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
-  std::vector<std::int32_t> Own;     ///< per local site: 0, or 1 + its count slot if own
-  std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
-  std::int64_t Left = 0;             ///< own sites still to choose
-  std::vector<double> Steer;         ///< the counted choice's weights
-  std::vector<int> Tally;            ///< per own site: its count, -1 none, -2 undecided
+  std::int64_t OwnBlock = -1;               ///< the block whose shares apply (counts)
+  std::vector<std::int32_t> Own;            ///< per local site: 0, or 1 + its count slot if own
+  std::vector<std::int64_t> Have;           ///< per counted label: own sites decided to hold it
+  std::int64_t Left = 0;                    ///< own sites still to choose
+  std::vector<double> Steer;                ///< the counted choice's weights
+  std::vector<int> Tally;                   ///< per own site: its count, -1 none, -2 undecided
   std::vector<std::int64_t> Offered; ///< per count: own choices whose catalog held its labels
   std::int64_t Choices = 0;          ///< choices at own sites in this attempt
   std::size_t ChangedSeen = 0;       ///< catalog changes already tallied

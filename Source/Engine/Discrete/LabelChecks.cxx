@@ -147,8 +147,8 @@ PinsCheck CheckPinnedLabels(const LabelGrid& model, const LabelGrid& pins,
       throw Error("the pins (" + std::to_string(m[0]) + " x " + std::to_string(m[1]) + " x " +
         std::to_string(m[2]) + " sites from (" + std::to_string(origin[0]) + ", " +
         std::to_string(origin[1]) + ", " + std::to_string(origin[2]) +
-        ")) do not lie inside the model (" + std::to_string(n[0]) + " x " +
-        std::to_string(n[1]) + " x " + std::to_string(n[2]) + " sites)");
+        ")) do not lie inside the model (" + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+        " x " + std::to_string(n[2]) + " sites)");
   PinsCheck out;
   std::size_t i = 0;
   for (long long z = 0; z < m[2]; ++z)

@@ -511,9 +511,8 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
     // of the span inside the range on each side, which leaves the repairs room to lay or lift
     // counted labels while they join components (they keep the whole range); the full range
     // when the pins leave a block no room for that.
-    const std::int64_t margin = options.Connected.Active() && !options.Connected.Open
-      ? (want.Maximum - want.Minimum) / 4
-      : 0;
+    const std::int64_t margin =
+      options.Connected.Active() && !options.Connected.Open ? (want.Maximum - want.Minimum) / 4 : 0;
     if (margin > 0)
     {
       LabelCount inner = want;

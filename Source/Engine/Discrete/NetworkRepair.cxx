@@ -42,9 +42,9 @@ struct Repair
   NetworkParts Net;                    ///< the components now
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
   Shortfall Now{ { 0, 0, 0 } };
-  std::int64_t Tried = 0;  ///< box attempts so far
+  std::int64_t Tried = 0;        ///< box attempts so far
   std::int64_t MissesBefore = 0; ///< the solver's count misses before the repairs
-  std::int64_t MayTry = 0; ///< box attempts allowed (AttemptsPerPart)
+  std::int64_t MayTry = 0;       ///< box attempts allowed (AttemptsPerPart)
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
     const SynthesisOptions& options, SynthesisStatistics& stats)
@@ -427,10 +427,11 @@ struct Repair
       ? std::string()
       : " (" + std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
         " solved box attempts would have moved the label counts out of their ranges)";
-    const std::string tried = (this->OutOfWork()
-        ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
-          std::to_string(AttemptsPerPart) + " per component and path site at the start)"
-        : "no repair brought them nearer") +
+    const std::string tried =
+      (this->OutOfWork()
+          ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
+            std::to_string(AttemptsPerPart) + " per component and path site at the start)"
+          : "no repair brought them nearer") +
       counts;
     if (this->Now[0] > 0 || this->Now[1] > 1)
       return name + " does not join the path: " +

@@ -140,8 +140,8 @@ std::vector<long long> GuideRegions(const std::string& path, const msynth::Label
 msynth::LabelGrid ReadPins(const std::string& path, std::array<long long, 3>& origin)
 {
   if (msynth::IsImageFile(path))
-    throw msynth::Error("'" + path +
-      "': the check reads pins from a label grid (.vti, .txt, .vox), not a picture");
+    throw msynth::Error(
+      "'" + path + "': the check reads pins from a label grid (.vti, .txt, .vox), not a picture");
   vtkNew<vtkMSLabelGridReader> reader;
   reader->GenerateGeometryOff();
   reader->SetFileName(path.c_str());

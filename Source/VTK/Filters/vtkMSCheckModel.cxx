@@ -237,8 +237,8 @@ bool vtkMSCheckModel::CheckLabels(
     vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
       own ? this->ConnectedTilesetFile : tileset,
       own || !recorded ? this->TilesetSubset : Recorded(fd, "TilesetSubset"),
-      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {},
-      this->CountGuideFile, this->PinsFile, this->PinsEmptyFree };
+      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {}, this->CountGuideFile,
+      this->PinsFile, this->PinsEmptyFree };
     request.Source = !request.Tileset.empty() ? request.Tileset
       : examples->GetNumberOfInformationObjects() > 0
       ? vtkMSFieldData::ExampleName(vtkImageData::GetData(examples, 0))
