@@ -61,6 +61,7 @@ void BlockSolver::StartCounts(const Block& block)
       this->BoxMax[c] = std::max(this->Budget->RangeMaximum(c) - outside, inside[c]);
     }
   }
+  this->LimitedNow = false;
   this->ChangedSeen = 0;
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
     this->TallySite(local);
@@ -199,6 +200,11 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     };
     if (room <= 0)
     {
+      if (this->CountsOfModel && mine > 0.0 && !this->LimitedNow)
+      {
+        this->LimitedNow = true; // a repair box wanted more of the count's labels
+        ++this->Limits;
+      }
       scale(0.0, 1.0);
       continue;
     }

@@ -156,12 +156,16 @@ public:
   /**
    * A connected network's repairs (NetworkRepair.cxx) run boxes over a finished model: with
    * @p whole every site of a box counts, and a box is kept when each count of the model stays
-   * in its range (CountBudget::Range; one already outside may not move farther out), its choice
-   * steered toward that. Off: the blocks' shares (the run's blocks).
+   * in its range (CountBudget::RangeMinimum, RangeMaximum; one already outside may not move
+   * farther out): a count's labels are not drawn once the range leaves the box none, and a box
+   * without a SiteBias is steered toward it as a block is. Off: the blocks' shares.
    */
   void SetCountsOfModel(bool whole) { this->CountsOfModel = whole; }
   /// Attempts that solved their block but missed its label counts, over all blocks so far.
   std::int64_t CountMisses() const { return this->Misses; }
+  /// Attempts of SetCountsOfModel boxes that met a count at its range's end (its labels could
+  /// not be drawn there any more), over all so far.
+  std::int64_t CountLimits() const { return this->Limits; }
 
   /// Checks each solved block against a connected network by @p guard (not owned; nullptr:
   /// none); Connectivity.h.
@@ -375,6 +379,8 @@ private:
   const SiteBias* Bias = nullptr;             ///< per model site and label index, or nullptr
   bool Repairing = false;
   bool CountsOfModel = false; ///< SetCountsOfModel
+  bool LimitedNow = false;    ///< this attempt met a count at its range's end (CountLimits)
+  std::int64_t Limits = 0;
   std::int64_t Misses = 0;
   std::vector<std::int64_t> BoxMin, BoxMax; ///< CountsOfModel: per count, the box's range
   std::int64_t OwnBlock = -1;               ///< the block whose shares apply (counts)

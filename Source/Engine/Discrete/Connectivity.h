@@ -20,11 +20,13 @@
  * model left with more than Maximum fails, as does one whose repairs made 64 box attempts per
  * component and path site they started with (the work is bounded).
  * Pins hold throughout (a box keeps the fixed labels inside it, as a block does). With label
- * counts (LabelCounts.h) each block keeps its shares as without a network, and each repair box
- * keeps the model's counts in their ranges (BlockSolver::SetCountsOfModel: its choice steered
- * toward what the sites outside it leave, an attempt that would move a count out redone), so
- * the network, the counts and the pins hold together; a network the repairs cannot join within
- * the counts fails in one line that says how many attempts the counts turned down.
+ * counts (LabelCounts.h) each block keeps its shares (planned a quarter of each range's span
+ * inside it, room for the repairs), and each repair box keeps the model's counts in their ranges
+ * (BlockSolver::SetCountsOfModel: a count's labels are no longer drawn once the sites outside
+ * the box leave it none; free boxes are also steered toward the rest; an attempt that would
+ * move a count out is redone), so the network, the counts and the pins hold together; a network
+ * the repairs cannot join within the counts fails in one line that says how many attempts the
+ * counts held back or turned down.
  * With a path (ConnectedNetwork::PathSites, PathLabels) the repairs first bring each listed
  * site into the network (boxes around it), then join the components holding path sites (boxes
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in

@@ -44,6 +44,7 @@ struct Repair
   Shortfall Now{ { 0, 0, 0 } };
   std::int64_t Tried = 0;        ///< box attempts so far
   std::int64_t MissesBefore = 0; ///< the solver's count misses before the repairs
+  std::int64_t LimitsBefore = 0; ///< the solver's count limits before the repairs
   std::int64_t MayTry = 0;       ///< box attempts allowed (AttemptsPerPart)
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
@@ -423,10 +424,12 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
-    const std::string counts = this->Options.Counts.empty()
-      ? std::string()
-      : " (" + std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
-        " solved box attempts would have moved the label counts out of their ranges)";
+    const std::string counts = this->Options.Counts.empty() ? std::string()
+                                                            : " (the label counts held back " +
+        std::to_string(this->Solver.CountLimits() - this->LimitsBefore) +
+        " box attempts at a range's end and turned down " +
+        std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
+        " solved ones; wider counts leave the repairs room)";
     const std::string tried =
       (this->OutOfWork()
           ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
@@ -458,6 +461,7 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
   // With label counts every box keeps the model's counts in their ranges (the blocks kept
   // them), its choice steered toward them: the network and the counts hold together.
   repair.MissesBefore = solver.CountMisses();
+  repair.LimitsBefore = solver.CountLimits();
   solver.SetCountsOfModel(true);
   struct Restore
   {
