@@ -424,8 +424,9 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
-    const std::string counts = this->Options.Counts.empty() ? std::string()
-                                                            : " (the label counts held back " +
+    std::string counts; // what the label counts held back (BlockSolver::SetCountsOfModel)
+    if (!this->Options.Counts.empty())
+      counts = " (the label counts held back " +
         std::to_string(this->Solver.CountLimits() - this->LimitsBefore) +
         " box attempts at a range's end and turned down " +
         std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
@@ -459,7 +460,8 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
   Repair repair(solver, shared, rule, options, stats);
   repair.Key = firstIndex;
   // With label counts every box keeps the model's counts in their ranges (the blocks kept
-  // them), its choice steered toward them: the network and the counts hold together.
+  // them; a count's labels are not drawn where the range leaves the box none): the network,
+  // the counts and the pins (fixed labels in every box) hold together.
   repair.MissesBefore = solver.CountMisses();
   repair.LimitsBefore = solver.CountLimits();
   solver.SetCountsOfModel(true);
