@@ -689,6 +689,13 @@ def pattern_data(data):
     # Crossroads every 20 tiles over a 170 x 170 city (-1: free), as Yeh et al. fix them.
     write(label_image((170, 170, 1), lambda x, y, z: 3 if x % 20 == 10 and y % 20 == 10 else -1),
           os.path.join(folder, "city-crossroads-170.vti"))
+    # A 48 x 48 suburban town's pinned sites (-1: free): four road sites near the corners, which
+    # one road network must join, and three houses (taken from a model of city-suburban.vti, so
+    # they can hold together); the constraints-together example of guide-command-line.md.
+    town_pins = {(6, 5): 2, (41, 5): 2, (5, 42): 1, (42, 42): 2, (23, 24): 16, (14, 40): 16,
+                 (31, 11): 16}
+    write(label_image((48, 48, 1), lambda x, y, z: town_pins.get((x, y), -1)),
+          os.path.join(folder, "city-pins-48.vti"))
 
 
 # "MS" in a 5-row bitmap font, one character per 5 columns with a gap column.

@@ -65,6 +65,8 @@ struct CheckOptions
   bool Animation = false; ///< MODEL is the first frame (frame_0001.vti) of an animation
   bool Loop = false;
   std::string Guide; ///< --guide: the guide whose Region array --count region=R:... reads
+  std::string Fixed; ///< --fixed: the pins the model must hold
+  bool FixedEmptyFree = false;
 };
 
 /// The verdict of @p check (vtkMSCheckModel's field data) after it ran.
@@ -246,9 +248,10 @@ int CheckDiscrete(const CheckOptions& o)
   if (IsTileset(o.Example) && IsVoxelTileset(o.Example) && o.Model.size() > 4 &&
     o.Model.compare(o.Model.size() - 4, 4, ".vox") == 0)
   {
-    if (!o.Counts.empty() || !o.Connected.empty())
-      throw std::runtime_error(
-        "--count and --connected check a model's labels (labels.vti), not '" + o.Model + "'");
+    if (!o.Counts.empty() || !o.Connected.empty() || !o.Fixed.empty())
+      throw std::runtime_error("--count, --connected and --fixed check a model's labels "
+                               "(labels.vti), not '" +
+        o.Model + "'");
     return CheckVoxels(o.Example, o.Model, o.Tiles);
   }
   vtkNew<vtkMSLabelGridReader> e, m;
@@ -263,6 +266,12 @@ int CheckDiscrete(const CheckOptions& o)
   }
   check->SetConnected(o.Connected.c_str());
   check->SetPath(Joined(o.Path, ";").c_str());
+  if (!o.Fixed.empty())
+  {
+    CheckInputFile(o.Fixed);
+    check->SetPinsFile(o.Fixed.c_str());
+    check->SetPinsEmptyFree(o.FixedEmptyFree);
+  }
   if (!IsTileset(o.Example) && IsTileset(o.Names))
     check->SetConnectedTilesetFile(o.Names.c_str());
   Run(check);
@@ -519,6 +528,13 @@ CommandRunner AddCheck(CLI::App& app)
   check->add_option("--path", o->Path,
     "with --connected: also check that these sites (x,y[,z]) and every site of these labels "
     "hold network labels and lie in one component");
+  auto* fixed = check->add_option("--fixed", o->Fixed,
+    "also check that the model holds the pins of this label grid (.vti, .txt, .vox; as "
+    "synthesize --fixed: the model's size, or a smaller .vti placed by its extent; -1 free)");
+  check
+    ->add_flag("--fixed-empty-free", o->FixedEmptyFree,
+      "with --fixed: label 0 is free too (as synthesize --fixed-empty-free)")
+    ->needs(fixed);
   check->add_option("--tileset", o->Names,
     "with --count or --connected and a label grid as EXAMPLE (a pattern's exemplar): the "
     "tileset whose tile names and connecting sides they use (e.g. Data/Patterns/City.xml)");
@@ -535,27 +551,28 @@ CommandRunner AddCheck(CLI::App& app)
     CheckInputFile(o->Model, true);
     if (o->Animation)
     {
-      if (!o->Counts.empty() || !o->Connected.empty() || IsPolyhedral(o->Example) ||
-        IsSample(o->Example) || IsTileset(o->Example))
+      if (!o->Counts.empty() || !o->Connected.empty() || !o->Fixed.empty() ||
+        IsPolyhedral(o->Example) || IsSample(o->Example) || IsTileset(o->Example))
         throw UsageError{ "--animation checks the frames of a label grid example's animation "
-                          "(no --count, --connected, tileset, sample or polyhedral example)" };
+                          "(no --count, --connected, --fixed, tileset, sample or polyhedral "
+                          "example)" };
       return CheckAnimation(*o);
     }
     if (IsPolyhedral(o->Example))
     {
       return CheckContinuous(o->Example, o->Model, o->Reading);
     }
-    if ((!o->Counts.empty() || !o->Connected.empty()) &&
+    if ((!o->Counts.empty() || !o->Connected.empty() || !o->Fixed.empty()) &&
       (IsPolyhedral(o->Example) || IsSample(o->Example)))
-      throw UsageError{ "--count and --connected check the labels of a discrete model (a label "
-                        "grid or tileset's labels.vti)" };
+      throw UsageError{ "--count, --connected and --fixed check the labels of a discrete model "
+                        "(a label grid or tileset's labels.vti)" };
     if (IsSample(o->Example))
       return CheckSamplePicture(*o);
     if (o->Model.size() > 5 && o->Model.compare(o->Model.size() - 5, 5, ".pvti") == 0)
     {
-      if (!o->Counts.empty() || !o->Connected.empty())
-        throw UsageError{ "--count and --connected check one labels.vti, not the pieces of a "
-                          "streamed model" };
+      if (!o->Counts.empty() || !o->Connected.empty() || !o->Fixed.empty())
+        throw UsageError{ "--count, --connected and --fixed check one labels.vti, not the pieces "
+                          "of a streamed model" };
       return CheckPieces(o->Example, o->Model, o->Subset, o->Tiles);
     }
     if (!o->Names.empty())

@@ -215,7 +215,7 @@ void AddDiscreteOptions(CLI::App& s, Registered& r)
   discrete(s.add_option("--count", o.Counts,
               "sites holding label L (tileset: a label, a tile's name or \"tile k\") number MIN "
               "to MAX (L:MIN:MAX, or region=R:L:MIN:MAX in region R of the --guide's array "
-              "Region; repeatable; not with symmetry, --target or --region)")
+              "Region; repeatable; with --fixed, --connected; not with symmetry or --target)")
              ->allow_extra_args(false));
   discrete(s.add_option("--temperature", o.Temperature,
               "temperature of the soft constraints' Metropolis acceptance")

@@ -299,9 +299,6 @@ TEST(Connectivity, RequestsItCannotKeepAreOneLine)
   o.Connected.Maximum = 0;
   EXPECT_NE(ErrorOf(rules, o).find("at least 1"), std::string::npos);
   o = Options(set, { { 0, 0, 0 } }, 1);
-  o.Counts.push_back(LabelCount{ { 0 }, "0", 0, 100 });
-  EXPECT_NE(ErrorOf(rules, o).find("label counts"), std::string::npos);
-  o = Options(set, { { 0, 0, 0 } }, 1);
   o.Symmetry[0].Enabled = true;
   EXPECT_NE(ErrorOf(rules, o).find("symmetry"), std::string::npos);
   o = Options(set, { { 10, 10, 1 } }, 1);

@@ -114,7 +114,6 @@ class ConnectedTest(unittest.TestCase):
                 (PATHS, ["--connected", "line:1,corner:2"], "names more than one network"),
                 (village, ["--connected", "9"], "label 9 does not occur in the example"),
                 (village, ["--connected", "2,3", "--mirror", "x"], "cannot be combined with symmetry"),
-                (village, ["--connected", "2,3", "--count", "2:1:900"], "label counts"),
                 (village, ["--connected", "2,3", "--block", "12", "12", "5", "--region", "0", "0", "0",
                            "12", "12", "5"], "connected network")]:
             size = ["24", "24", "5"] if example == village else ["16", "16", "1"]

@@ -29,11 +29,39 @@ void BlockSolver::StartCounts(const Block& block)
   {
     const Coord c = cat.Coordinates(local);
     const auto s = ToIndex(this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } }));
-    if (this->Budget->Owner(s) != block.Index)
+    if (!this->CountsOfModel && this->Budget->Owner(s) != block.Index)
       continue;
     this->Own[ToIndex(local)] = 1 + this->Budget->Slot(s);
     ++this->Left; // undecided until tallied
   }
+  if (this->CountsOfModel)
+  {
+    // A network repair's box over a finished model: the box may hold what the model's ranges
+    // leave to it once the sites outside it are counted, and at least keeps what it holds when
+    // a count is already outside its range (it moves no count farther out).
+    const std::size_t counted = this->Budget->Labels().size();
+    std::vector<std::int64_t> total(counted, 0), inside(counted, 0);
+    for (std::size_t s = 0; s < this->Model.size(); ++s)
+      if (const std::int32_t b = this->Model[s]; b >= 0)
+        if (const int c = this->Budget->Position(b, this->Budget->Slot(s)); c >= 0)
+          ++total[ToIndex(c)];
+    ForEachSite(block, this->N,
+      [&](std::size_t s)
+      {
+        if (const std::int32_t b = this->Model[s]; b >= 0)
+          if (const int c = this->Budget->Position(b, this->Budget->Slot(s)); c >= 0)
+            ++inside[ToIndex(c)];
+      });
+    this->BoxMin.assign(counted, 0);
+    this->BoxMax.assign(counted, 0);
+    for (std::size_t c = 0; c < counted; ++c)
+    {
+      const std::int64_t outside = total[c] - inside[c];
+      this->BoxMin[c] = std::min(this->Budget->RangeMinimum(c) - outside, inside[c]);
+      this->BoxMax[c] = std::max(this->Budget->RangeMaximum(c) - outside, inside[c]);
+    }
+  }
+  this->LimitedNow = false;
   this->ChangedSeen = 0;
   for (std::int64_t local = 0; local < cat.NumberOfSites(); ++local)
     this->TallySite(local);
@@ -103,6 +131,22 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
         weight[ToIndex(b)] = this->SiteWeight(cell, b);
         return true;
       });
+  // A network repair's steering (BiasWeights, ScaleWeights) multiplies the weights, as in
+  // ChooseLabel.
+  if (this->Bias || this->Scale)
+  {
+    const Coord c = this->Cat.Coordinates(local);
+    const Coord& o = this->Cat.Origin();
+    const std::int64_t site = this->Index({ { o[0] + c[0], o[1] + c[1], o[2] + c[2] } });
+    ForEachLabel(domain, words,
+      [&](int b)
+      {
+        double& w = weight[ToIndex(b)];
+        w *= (this->Bias ? (*this->Bias)(site, b) : 1.0) *
+          (this->Scale ? (*this->Scale)[ToIndex(b)] : 1.0);
+        return true;
+      });
+  }
   // Each counted label's probability is moved into [need, room] / (own sites left where it may
   // go): up to the
   // rate that reaches its minimum (a quarter faster), down to
@@ -138,8 +182,8 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     ++this->Offered[c];
     const double open =
       left * static_cast<double>(this->Offered[c]) / static_cast<double>(this->Choices);
-    const std::int64_t need = this->Budget->Minimum(this->OwnBlock, c) - this->Have[c];
-    const std::int64_t room = this->Budget->Maximum(this->OwnBlock, c) - this->Have[c];
+    const std::int64_t need = this->ShareMinimum(c) - this->Have[c];
+    const std::int64_t room = this->ShareMaximum(c) - this->Have[c];
     const double others = total - mine;
     const double share = total > 0.0 ? mine / total : 0.0;
     const auto scale = [&](double factor, double otherwise)
@@ -156,9 +200,16 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
     };
     if (room <= 0)
     {
+      if (this->CountsOfModel && mine > 0.0 && !this->LimitedNow)
+      {
+        this->LimitedNow = true; // a repair box wanted more of the count's labels
+        ++this->Limits;
+      }
       scale(0.0, 1.0);
       continue;
     }
+    if (this->CountsOfModel && this->Bias)
+      continue; // a repair box steered along a gap: its bias keeps the rest, CountsKept checks
     const double low = 1.25 * static_cast<double>(need) / open;
     const double high = static_cast<double>(room) / open;
     const double target = share < low ? low : (share > high ? high : share);
@@ -172,6 +223,16 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
   }
   return DrawLabel(
     domain, words, [&](int b) { return weight[ToIndex(b)]; }, rng.Uniform());
+}
+
+std::int64_t BlockSolver::ShareMinimum(std::size_t c) const
+{
+  return this->CountsOfModel ? this->BoxMin[c] : this->Budget->Minimum(this->OwnBlock, c);
+}
+
+std::int64_t BlockSolver::ShareMaximum(std::size_t c) const
+{
+  return this->CountsOfModel ? this->BoxMax[c] : this->Budget->Maximum(this->OwnBlock, c);
 }
 
 bool BlockSolver::CountsKept(const Block& block)
@@ -188,7 +249,7 @@ bool BlockSolver::CountsKept(const Block& block)
     const std::int32_t slot = this->Budget->Slot(s);
     const int now = this->Budget->Position(cat.Single(local), slot);
     const std::int64_t owner = this->Budget->Owner(s);
-    if (owner == block.Index)
+    if (owner == block.Index || this->CountsOfModel) // a network repair's box: all its own
     {
       if (now >= 0)
         ++own[ToIndex(now)];
@@ -208,8 +269,7 @@ bool BlockSolver::CountsKept(const Block& block)
   }
   bool kept = true;
   for (std::size_t c = 0; c < counted; ++c)
-    kept = kept && own[c] >= this->Budget->Minimum(block.Index, c) &&
-      own[c] <= this->Budget->Maximum(block.Index, c);
+    kept = kept && own[c] >= this->ShareMinimum(c) && own[c] <= this->ShareMaximum(c);
   for (const auto& kv : others)
     kept = kept &&
       std::all_of(kv.second.begin(), kv.second.end(), [](std::int64_t d) { return d == 0; });

@@ -153,8 +153,19 @@ public:
   void UseCounts(const CountBudget* budget) { this->Budget = budget; }
   /// In a repair pass every block has run: a block must keep the others' own counts.
   void SetRepairing(bool repairing) { this->Repairing = repairing; }
+  /**
+   * A connected network's repairs (NetworkRepair.cxx) run boxes over a finished model: with
+   * @p whole every site of a box counts, and a box is kept when each count of the model stays
+   * in its range (CountBudget::RangeMinimum, RangeMaximum; one already outside may not move
+   * farther out): a count's labels are not drawn once the range leaves the box none, and a box
+   * without a SiteBias is steered toward it as a block is. Off: the blocks' shares.
+   */
+  void SetCountsOfModel(bool whole) { this->CountsOfModel = whole; }
   /// Attempts that solved their block but missed its label counts, over all blocks so far.
   std::int64_t CountMisses() const { return this->Misses; }
+  /// Attempts of SetCountsOfModel boxes that met a count at its range's end (its labels could
+  /// not be drawn there any more), over all so far.
+  std::int64_t CountLimits() const { return this->Limits; }
 
   /// Checks each solved block against a connected network by @p guard (not owned; nullptr:
   /// none); Connectivity.h.
@@ -190,6 +201,9 @@ private:
   int ChooseCounted(std::int64_t local, Random& rng);
   /// Whether the solved block keeps its shares (and, repairing, the other blocks' counts).
   bool CountsKept(const Block& block);
+  /// The least and most sites of count @p c the current block's own sites may hold.
+  std::int64_t ShareMinimum(std::size_t c) const;
+  std::int64_t ShareMaximum(std::size_t c) const;
 
   /// The example as label indices, and the window offsets, for LabelChoice::Resemblance.
   void SetUpResemblance();
@@ -364,13 +378,17 @@ private:
   const std::vector<double>* Scale = nullptr; ///< per label index, or nullptr
   const SiteBias* Bias = nullptr;             ///< per model site and label index, or nullptr
   bool Repairing = false;
+  bool CountsOfModel = false; ///< SetCountsOfModel
+  bool LimitedNow = false;    ///< this attempt met a count at its range's end (CountLimits)
+  std::int64_t Limits = 0;
   std::int64_t Misses = 0;
-  std::int64_t OwnBlock = -1;        ///< the block whose shares apply (counts)
-  std::vector<std::int32_t> Own;     ///< per local site: 0, or 1 + its count slot if own
-  std::vector<std::int64_t> Have;    ///< per counted label: own sites decided to hold it
-  std::int64_t Left = 0;             ///< own sites still to choose
-  std::vector<double> Steer;         ///< the counted choice's weights
-  std::vector<int> Tally;            ///< per own site: its count, -1 none, -2 undecided
+  std::vector<std::int64_t> BoxMin, BoxMax; ///< CountsOfModel: per count, the box's range
+  std::int64_t OwnBlock = -1;               ///< the block whose shares apply (counts)
+  std::vector<std::int32_t> Own;            ///< per local site: 0, or 1 + its count slot if own
+  std::vector<std::int64_t> Have;           ///< per counted label: own sites decided to hold it
+  std::int64_t Left = 0;                    ///< own sites still to choose
+  std::vector<double> Steer;                ///< the counted choice's weights
+  std::vector<int> Tally;                   ///< per own site: its count, -1 none, -2 undecided
   std::vector<std::int64_t> Offered; ///< per count: own choices whose catalog held its labels
   std::int64_t Choices = 0;          ///< choices at own sites in this attempt
   std::size_t ChangedSeen = 0;       ///< catalog changes already tallied

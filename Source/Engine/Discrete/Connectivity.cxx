@@ -103,8 +103,6 @@ void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& 
       "synthesized)");
   if (options.Soft.Active())
     throw Error(name + " cannot be combined with soft constraints (which roll blocks back)");
-  if (!options.Counts.empty())
-    throw Error(name + " cannot be combined with label counts (a repair would move them)");
   if (network.Open && network.HasPath())
     throw Error(name + ":open takes no path (a path is joined by repairs of the whole model)");
   if (network.Maximum < 1)

@@ -19,6 +19,14 @@
  * 1, 2, 4, ... sites), until a result has fewer components (it joined another or vanished); a
  * model left with more than Maximum fails, as does one whose repairs made 64 box attempts per
  * component and path site they started with (the work is bounded).
+ * Pins hold throughout (a box keeps the fixed labels inside it, as a block does). With label
+ * counts (LabelCounts.h) each block keeps its shares (planned a quarter of each range's span
+ * inside it, room for the repairs), and each repair box keeps the model's counts in their ranges
+ * (BlockSolver::SetCountsOfModel: a count's labels are no longer drawn once the sites outside
+ * the box leave it none; free boxes are also steered toward the rest; an attempt that would
+ * move a count out is redone), so the network, the counts and the pins hold together; a network
+ * the repairs cannot join within the counts fails in one line that says how many attempts the
+ * counts held back or turned down.
  * With a path (ConnectedNetwork::PathSites, PathLabels) the repairs first bring each listed
  * site into the network (boxes around it), then join the components holding path sites (boxes
  * over the gap to the nearest other such): a result is kept when it is nearer, compared in
@@ -66,7 +74,7 @@ private:
 };
 
 /// Refuses a network the rules or options cannot keep (unknown labels, Maximum < 1, symmetry,
-/// soft constraints, counts), with one line. Needs no model.
+/// soft constraints), with one line. Needs no model.
 void CheckConnectedRequest(const AdjacencyRules& rules, const SynthesisOptions& options);
 
 /// The number of the network's components in @p model (label indices over @p n; -1 undecided).

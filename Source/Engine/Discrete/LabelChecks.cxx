@@ -129,6 +129,48 @@ void CheckPath(const LabelGrid& model, const std::vector<std::string>& path, con
 }
 } // namespace
 
+std::string PinsCheck::Describe() const
+{
+  if (this->Kept())
+    return "pins kept: " + Plural(this->Pinned, "pinned site") + " hold their labels";
+  return "pins missed: " + std::to_string(this->Missed) + " of " +
+    Plural(this->Pinned, "pinned site") + " hold another label (the first: " + this->First + ")";
+}
+
+PinsCheck CheckPinnedLabels(const LabelGrid& model, const LabelGrid& pins,
+  const std::array<long long, 3>& origin, bool emptyFree)
+{
+  const auto& n = model.Dimensions();
+  const auto& m = pins.Dimensions();
+  for (std::size_t a = 0; a < 3; ++a)
+    if (origin[a] < 0 || origin[a] + m[a] > n[a])
+      throw Error("the pins (" + std::to_string(m[0]) + " x " + std::to_string(m[1]) + " x " +
+        std::to_string(m[2]) + " sites from (" + std::to_string(origin[0]) + ", " +
+        std::to_string(origin[1]) + ", " + std::to_string(origin[2]) +
+        ")) do not lie inside the model (" + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+        " x " + std::to_string(n[2]) + " sites)");
+  PinsCheck out;
+  std::size_t i = 0;
+  for (long long z = 0; z < m[2]; ++z)
+    for (long long y = 0; y < m[1]; ++y)
+      for (long long x = 0; x < m[0]; ++x, ++i)
+      {
+        const Label want = pins.Data()[i];
+        if (want == -1 || (emptyFree && want == 0))
+          continue;
+        ++out.Pinned;
+        const long long p[3] = { x + origin[0], y + origin[1], z + origin[2] };
+        const Label has = model.Data()[ToIndex(p[0] + n[0] * (p[1] + n[1] * p[2]))];
+        if (has == want)
+          continue;
+        if (out.Missed++ == 0)
+          out.First = "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
+            std::to_string(p[2]) + ") holds " + std::to_string(has) + ", pinned to " +
+            std::to_string(want);
+      }
+  return out;
+}
+
 std::string CountCheck::Describe() const
 {
   return std::string(this->Kept() ? "count kept: " : "count missed: ") + this->Name + " holds " +

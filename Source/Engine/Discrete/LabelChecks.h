@@ -2,14 +2,16 @@
 #pragma once
 /**
  * @file LabelChecks.h
- * @brief The independent checks of a model's label counts and connected network (`msynth check
- * --count --connected --path`, vtkMSCheckModel's Counts, Connected and Path): the sites counted
- * and the components found by a union-find of their own over the written labels, sharing no
- * code with the solver's counts (LabelCounts.h) or repairs (Connectivity.h). Labels are values,
+ * @brief The independent checks of a model's pinned sites, label counts and connected network
+ * (`msynth check --fixed --count --connected --path`, vtkMSCheckModel's PinsFile, Counts,
+ * Connected and Path): the pins compared site by site, the sites counted and the components
+ * found by a union-find of their own over the written labels, sharing no code with the solver's
+ * pins (PinnedSites.cxx), counts (LabelCounts.h) or repairs (Connectivity.h). Labels are values,
  * or with a tileset a tile's name (all its labels) or a label's name ("tile k").
  */
 #include "Core/LabelGrid.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,26 @@ struct CountCheck
  */
 std::vector<CountCheck> CheckLabelCounts(const LabelGrid& model, const std::string& counts,
   const Tileset& names, const std::string& source, const std::vector<long long>* regions = nullptr);
+
+/// The pinned sites of a grid of pins as the model holds them.
+struct PinsCheck
+{
+  long long Pinned = 0; ///< sites the pins fix
+  long long Missed = 0; ///< of those, sites whose label differs
+  std::string First;    ///< the first missed: "(x, y, z) holds A, pinned to B"
+  bool Kept() const { return this->Missed == 0; }
+  /// "pins kept: N pinned sites hold their labels", or "pins missed: ...".
+  std::string Describe() const;
+};
+
+/**
+ * Whether @p model holds the labels of @p pins: a grid of the model's size, or smaller and
+ * placed with its first site at @p origin (x, y, z); FreeSite (-1) is free, and so is 0 with
+ * @p emptyFree (`--fixed-empty-free`).
+ * @throw Error when @p pins does not fit in the model there.
+ */
+PinsCheck CheckPinnedLabels(const LabelGrid& model, const LabelGrid& pins,
+  const std::array<long long, 3>& origin, bool emptyFree);
 
 /// A connected network "LABELS[:N]" and its path as the model holds them.
 struct NetworkCheck

@@ -455,6 +455,8 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
         for (Label v : want.Values)
           this->PositionOf[slot * this->K + ToIndex(rules.IndexOf(v))] = static_cast<int>(c);
     this->Counted.push_back(static_cast<int>(c));
+    this->WholeMin.push_back(want.Minimum);
+    this->WholeMax.push_back(want.Maximum);
   }
   for (std::size_t i = 0; i < blocks.size(); ++i)
     this->Rows.emplace(blocks[i].Index, i);
@@ -498,10 +500,34 @@ CountBudget::CountBudget(const AdjacencyRules& rules, const SynthesisOptions& op
     const LabelCount& want = options.Counts[c];
     if (want.Region >= 0 || !cone) // the model is all the count's scope: its fixed sites
       CheckFixedTotals(want, total[c], freeSites[c]);
-    if (want.Region < 0)
-      this->WorldShares(want, c, blocks, OwnPrefix(options, world), off, free, pinned);
-    else
-      this->RegionShares(want, c, free, pinned, total[c], freeSites[c]);
+    const auto plan = [&](const LabelCount& range)
+    {
+      if (range.Region < 0)
+        this->WorldShares(range, c, blocks, OwnPrefix(options, world), off, free, pinned);
+      else
+        this->RegionShares(range, c, free, pinned, total[c], freeSites[c]);
+    };
+    // A network kept by repairs of the whole model (Connectivity.h): the blocks aim a quarter
+    // of the span inside the range on each side, which leaves the repairs room to lay or lift
+    // counted labels while they join components (they keep the whole range); the full range
+    // when the pins leave a block no room for that.
+    const std::int64_t margin =
+      options.Connected.Active() && !options.Connected.Open ? (want.Maximum - want.Minimum) / 4 : 0;
+    if (margin > 0)
+    {
+      LabelCount inner = want;
+      inner.Minimum += margin;
+      inner.Maximum -= margin;
+      try
+      {
+        plan(inner);
+        continue;
+      }
+      catch (const Error&)
+      {
+      }
+    }
+    plan(want);
   }
 }
 

@@ -18,7 +18,10 @@
  * total when the whole world is computed. Sites fixed by boundary labels or pins count in the
  * block that owns them; a block whose fixed sites leave its share impossible is refused. A block
  * run again in a repair pass must also leave the count of every other block's own sites inside it
- * unchanged.
+ * unchanged. With a connected network kept by repairs of the whole model (Connectivity.h) the
+ * shares are planned over the range narrowed by a quarter of its span on each side (the full
+ * range when pins leave a block no room for that): the repairs, which keep the whole range
+ * (BlockSolver::SetCountsOfModel), then have room to lay or lift counted labels.
  *
  * A count of a guide region (LabelCount::Region) counts the sites whose guide cell belongs to
  * the region: its range is split over the run's blocks in proportion to their own free sites in
@@ -99,6 +102,10 @@ public:
   {
     return this->Max[this->Rows.at(block) * this->Counted.size() + c];
   }
+  /// Count @p c's range over the whole model (its MIN and MAX): what a connected network's
+  /// repairs keep (BlockSolver::SetCountsOfModel).
+  std::int64_t RangeMinimum(std::size_t c) const { return this->WholeMin[c]; }
+  std::int64_t RangeMaximum(std::size_t c) const { return this->WholeMax[c]; }
 
 private:
   /// The shares of count @p c of the world (the file comment): by each block's prefix of own
@@ -118,6 +125,7 @@ private:
   std::vector<std::int64_t> Owners;
   std::unordered_map<std::int64_t, std::size_t> Rows; ///< block key → its place in the run
   std::vector<std::int64_t> Min, Max;                 ///< [block's place][counted label]
+  std::vector<std::int64_t> WholeMin, WholeMax;       ///< per count, its MIN and MAX
 };
 
 } // namespace detail

@@ -42,8 +42,10 @@ struct Repair
   NetworkParts Net;                    ///< the components now
   std::int64_t PathLabelSites = 0;     ///< sites holding path labels before the repairs
   Shortfall Now{ { 0, 0, 0 } };
-  std::int64_t Tried = 0;  ///< box attempts so far
-  std::int64_t MayTry = 0; ///< box attempts allowed (AttemptsPerPart)
+  std::int64_t Tried = 0;        ///< box attempts so far
+  std::int64_t MissesBefore = 0; ///< the solver's count misses before the repairs
+  std::int64_t LimitsBefore = 0; ///< the solver's count limits before the repairs
+  std::int64_t MayTry = 0;       ///< box attempts allowed (AttemptsPerPart)
 
   Repair(BlockSolver& solver, SharedModel& shared, const NetworkRule& rule,
     const SynthesisOptions& options, SynthesisStatistics& stats)
@@ -422,10 +424,19 @@ struct Repair
   std::string Failure() const
   {
     const std::string name = NetworkName(this->Options.Connected);
-    const std::string tried = this->OutOfWork()
-      ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
-        std::to_string(AttemptsPerPart) + " per component and path site at the start)"
-      : "no repair brought them nearer";
+    std::string counts; // what the label counts held back (BlockSolver::SetCountsOfModel)
+    if (!this->Options.Counts.empty())
+      counts = " (the label counts held back " +
+        std::to_string(this->Solver.CountLimits() - this->LimitsBefore) +
+        " box attempts at a range's end and turned down " +
+        std::to_string(this->Solver.CountMisses() - this->MissesBefore) +
+        " solved ones; wider counts leave the repairs room)";
+    const std::string tried =
+      (this->OutOfWork()
+          ? "the repairs stopped after " + std::to_string(this->Tried) + " box attempts (" +
+            std::to_string(AttemptsPerPart) + " per component and path site at the start)"
+          : "no repair brought them nearer") +
+      counts;
     if (this->Now[0] > 0 || this->Now[1] > 1)
       return name + " does not join the path: " +
         (this->Now[0] > 0 ? std::to_string(this->Now[0]) + " of its sites hold no network label"
@@ -434,7 +445,8 @@ struct Repair
     const Component& c = this->Net.Parts()[ToIndex(this->Net.BySize().begin()->second)];
     return name + " has " + std::to_string(this->Net.Count()) + " components, more than " +
       std::to_string(this->Options.Connected.Maximum) +
-      (this->OutOfWork() ? ", and " + tried : ", and none could be joined to another or removed") +
+      (this->OutOfWork() ? ", and " + tried
+                         : ", and none could be joined to another or removed" + counts) +
       " (the smallest: " + std::to_string(c.Sites) + (c.Sites == 1 ? " site at " : " sites at ") +
       Format(c.Low) + "). Try another seed, more attempts or a larger maximum";
   }
@@ -447,6 +459,17 @@ std::string RepairNetwork(BlockSolver& solver, SharedModel& shared, const Networ
 {
   Repair repair(solver, shared, rule, options, stats);
   repair.Key = firstIndex;
+  // With label counts every box keeps the model's counts in their ranges (the blocks kept
+  // them; a count's labels are not drawn where the range leaves the box none): the network,
+  // the counts and the pins (fixed labels in every box) hold together.
+  repair.MissesBefore = solver.CountMisses();
+  repair.LimitsBefore = solver.CountLimits();
+  solver.SetCountsOfModel(true);
+  struct Restore
+  {
+    BlockSolver& Solver;
+    ~Restore() { this->Solver.SetCountsOfModel(false); }
+  } restore{ solver };
   out.Before = repair.Net.Count();
   out.PathComponentsBefore = repair.Now[1];
   while (!repair.Done())

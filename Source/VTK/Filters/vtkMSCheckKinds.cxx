@@ -5,6 +5,7 @@
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
 #include "vtkMSLabelCounts.h"
+#include "vtkMSLabelGridReader.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -30,6 +31,7 @@
 #include "Formats/VoxelTileset.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 
@@ -132,11 +134,33 @@ std::vector<long long> GuideRegions(const std::string& path, const msynth::Label
       }
   return out;
 }
+
+/// The pins of @p path (a label grid; -1 free) and where its first site lies in the model (a
+/// .vti's extent, else 0): read by the reader, compared by LabelChecks.h.
+msynth::LabelGrid ReadPins(const std::string& path, std::array<long long, 3>& origin)
+{
+  if (msynth::IsImageFile(path))
+    throw msynth::Error(
+      "'" + path + "': the check reads pins from a label grid (.vti, .txt, .vox), not a picture");
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw msynth::Error(messages);
+  msynth::LabelGrid pins;
+  if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
+    throw msynth::Error::InFile(path, messages);
+  int extent[6];
+  reader->GetOutput()->GetExtent(extent);
+  origin = { { extent[0], extent[2], extent[4] } };
+  return pins;
+}
 } // namespace
 
 bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request, vtkFieldData* out)
 {
-  if (request.Counts.empty() && request.Connected.empty())
+  if (request.Counts.empty() && request.Connected.empty() && request.Pins.empty())
   {
     if (!request.Path.empty())
       throw msynth::Error("A Path needs Connected: the labels that carry the path.");
@@ -148,6 +172,20 @@ bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request,
   vtkNew<vtkStringArray> findings;
   findings->SetName("Findings");
   bool kept = true;
+  if (!request.Pins.empty())
+  {
+    std::array<long long, 3> origin{ { 0, 0, 0 } };
+    const msynth::LabelGrid pins = ReadPins(request.Pins, origin);
+    const msynth::PinsCheck p =
+      msynth::CheckPinnedLabels(model, pins, origin, request.PinsEmptyFree);
+    vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+      out, "PinsChecked", static_cast<vtkIdType>(p.Pinned));
+    vtkMSFieldData::AddFieldValue<vtkIdTypeArray>(
+      out, "PinsMissed", static_cast<vtkIdType>(p.Missed));
+    vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "PinsKept", p.Kept() ? 1 : 0);
+    findings->InsertNextValue(p.Describe());
+    kept = p.Kept();
+  }
   if (!request.Counts.empty())
   {
     std::vector<msynth::LabelCountResult> counted;
@@ -163,7 +201,7 @@ bool CheckNetwork(const msynth::LabelGrid& model, const NetworkRequest& request,
     }
     vtkMSLabelCounts::AddFields(out, counted);
     vtkMSFieldData::AddFieldValue<vtkIntArray>(out, "CountsKept", counts ? 1 : 0);
-    kept = counts;
+    kept = kept && counts;
   }
   if (!request.Connected.empty())
   {

@@ -45,7 +45,7 @@ void CheckPicture(
 void CheckVoxels(vtkImageData* model, const std::string& tileset, const std::string& tiles,
   std::size_t limit, vtkFieldData* out);
 
-/// What a label model's counts and network are checked for.
+/// What a label model's pins, counts and network are checked for.
 struct NetworkRequest
 {
   std::string Counts;    ///< "L:MIN:MAX,..."
@@ -56,10 +56,15 @@ struct NetworkRequest
   std::string Tiles;
   std::string Source; ///< the names' source in messages
   std::string Guide;  ///< the guide (.vti) whose `Region` array counts "region=R:..." read
+  /// Pinned sites (a label grid .vti, .txt, .vox of the model's size, or a smaller .vti placed
+  /// by its extent) the model must hold, "" for none; with PinsEmptyFree label 0 is free too.
+  std::string Pins;
+  bool PinsEmptyFree = false;
 };
 
 /**
- * The counts and network of @p request in @p model (LabelChecks.h) as field data: `CountNames`,
+ * The pins, counts and network of @p request in @p model (LabelChecks.h) as field data:
+ * `PinsChecked`, `PinsMissed`, `PinsKept`; `CountNames`,
  * `CountMinimum`, `CountMaximum`, `CountAchieved`, `CountsKept`; `ConnectedLabels`,
  * `ConnectedMaximum`, `ConnectedComponents`, `ConnectedKept`, with a path `ConnectedPathSites`,
  * `PathComponents`, `PathJoined`; `Findings`, one line per count, network and path. Returns

@@ -237,8 +237,8 @@ bool vtkMSCheckModel::CheckLabels(
     vtkMSCheckKinds::NetworkRequest request{ this->Counts, this->Connected, this->Path,
       own ? this->ConnectedTilesetFile : tileset,
       own || !recorded ? this->TilesetSubset : Recorded(fd, "TilesetSubset"),
-      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {},
-      this->CountGuideFile };
+      own || !recorded ? this->TilesFolder : Recorded(fd, "TilesFolder"), {}, this->CountGuideFile,
+      this->PinsFile, this->PinsEmptyFree };
     request.Source = !request.Tileset.empty() ? request.Tileset
       : examples->GetNumberOfInformationObjects() > 0
       ? vtkMSFieldData::ExampleName(vtkImageData::GetData(examples, 0))
@@ -451,6 +451,8 @@ void vtkMSCheckModel::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Path: " << this->Path << "\n";
   os << indent << "ConnectedTilesetFile: " << this->ConnectedTilesetFile << "\n";
   os << indent << "CountGuideFile: " << this->CountGuideFile << "\n";
+  os << indent << "PinsFile: " << this->PinsFile << "\n";
+  os << indent << "PinsEmptyFree: " << this->PinsEmptyFree << "\n";
   os << indent << "TimeVarying: " << this->TimeVarying << "\n";
   os << indent << "Loop: " << this->Loop << "\n";
   os << indent << "ExampleTimeFromZ: " << this->ExampleTimeFromZ << "\n";

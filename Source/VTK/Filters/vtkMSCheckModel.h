@@ -34,10 +34,11 @@
  * .vox with VoxScene) whose every tile cell must be a tile of the voxel tileset TilesetFile and
  * every adjacent pair allowed (`Cells`, `PairsChecked`).
  *
- * A label model's Counts, Connected network and Path are checked too (counted by a union-find of
- * the check's own, Discrete/LabelChecks.h; tile names of ConnectedTilesetFile, else of the
- * tileset): `CountNames`, `CountAchieved`, ..., `CountsKept`, `ConnectedComponents`,
- * `ConnectedKept`, `PathJoined`, and `Findings` (a line each). `Valid` is 0 when one is missed.
+ * A label model's pins (PinsFile), Counts, Connected network and Path are checked too (compared,
+ * counted and joined by code of the check's own, Discrete/LabelChecks.h; tile names of
+ * ConnectedTilesetFile, else of the tileset): `PinsKept`, `CountNames`, `CountAchieved`, ...,
+ * `CountsKept`, `ConnectedComponents`, `ConnectedKept`, `PathJoined`, and `Findings` (a line
+ * each). `Valid` is 0 when one is missed.
  *
  * With TimeVarying, every time step of the model is a frame, checked in space and in time
  * (D§3.5.4, Discrete/TimeVarying.h: CheckTimeVarying) against the examples' frames: the z slices
@@ -139,6 +140,18 @@ public:
   ///@}
 
   ///@{
+  /// Pinned sites the model must hold (as the synthesis's FixedFile): a label grid (.vti, .txt,
+  /// .vox) of the model's size, or a smaller .vti placed by its extent, -1 where free; with
+  /// PinsEmptyFree label 0 is free too. "" (the default): no pins checked. Compared site by
+  /// site (LabelChecks.h): `PinsChecked`, `PinsMissed`, `PinsKept` and a line in `Findings`.
+  vtkSetStdStringFromCharMacro(PinsFile);
+  vtkGetCharFromStdStringMacro(PinsFile);
+  vtkSetMacro(PinsEmptyFree, bool);
+  vtkGetMacro(PinsEmptyFree, bool);
+  vtkBooleanMacro(PinsEmptyFree, bool);
+  ///@}
+
+  ///@{
   /// A time-varying model (see above); with Loop, the last frame is followed by the first;
   /// ExampleTimeFromZ: the example's z slices are its frames. Default off.
   vtkSetMacro(TimeVarying, bool);
@@ -212,6 +225,8 @@ private:
   std::string Path;
   std::string ConnectedTilesetFile;
   std::string CountGuideFile;
+  std::string PinsFile;
+  bool PinsEmptyFree = false;
   std::string Shapes;
   double Epsilon = 0.1;
   int MaximumReported = 10;
