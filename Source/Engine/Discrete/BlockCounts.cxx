@@ -101,16 +101,12 @@ void BlockSolver::SyncCounts()
   this->ChangedSeen = changed.size();
 }
 
-int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
+void BlockSolver::CountedWeights(std::int64_t local, std::vector<double>& weight)
 {
-  const int k = this->Rules.NumberOfLabels();
   const int words = this->Rules.Words();
   const std::uint64_t* domain = this->Cat.Domain(local);
   const std::int64_t cell = this->HasGuide() ? this->GuideCellOfLocal(local) : 0;
-  const std::int32_t slot = this->Own[ToIndex(local)] - 1;
-  this->SyncCounts();
-  std::vector<double>& weight = this->Steer;
-  weight.assign(ToIndex(k), 0.0);
+  weight.assign(ToIndex(this->Rules.NumberOfLabels()), 0.0);
   double sum = 0.0;
   if (this->Options.Choice == LabelChoice::Resemblance)
   {
@@ -147,6 +143,16 @@ int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
         return true;
       });
   }
+}
+
+int BlockSolver::ChooseCounted(std::int64_t local, Random& rng)
+{
+  const int words = this->Rules.Words();
+  const std::uint64_t* domain = this->Cat.Domain(local);
+  const std::int32_t slot = this->Own[ToIndex(local)] - 1;
+  this->SyncCounts();
+  std::vector<double>& weight = this->Steer;
+  this->CountedWeights(local, weight);
   // Each counted label's probability is moved into [need, room] / (own sites left where it may
   // go): up to the
   // rate that reaches its minimum (a quarter faster), down to

@@ -199,6 +199,9 @@ private:
   /// The label of a free own site @p local, drawn with the counted labels' weights steered
   /// toward the block's shares (see CountBudget).
   int ChooseCounted(std::int64_t local, Random& rng);
+  /// The weights a counted choice at @p local starts from, as ChooseLabel's (resemblance or
+  /// site weights, a network repair's steering), before the counts move them.
+  void CountedWeights(std::int64_t local, std::vector<double>& weight);
   /// Whether the solved block keeps its shares (and, repairing, the other blocks' counts).
   bool CountsKept(const Block& block);
   /// The least and most sites of count @p c the current block's own sites may hold.
