@@ -595,7 +595,7 @@ std::int64_t ConstraintPlan::SeedsOfAllSolid() const
 
 bool ConstraintPlan::RemovesStrayParts() const
 {
-  return this->Constraints.Grounded || this->SeedsOfAllSolid() > 0;
+  return this->Constraints.Grounded || !this->SeedVertices.empty();
 }
 
 ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
@@ -633,6 +633,34 @@ ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
     {
       keep[ToIndex(order[k])] = 0;
       ++removed.BeyondSeeds;
+    }
+  }
+  else
+  {
+    // A type grown from seeds among others (a road network among houses): later blocks can
+    // cut it, so the parts holding the most of it are kept, as many as its seeds, and the
+    // other parts holding it emptied (with what stands on or against them).
+    for (const auto& c : this->Constraints.Connected)
+    {
+      if (c.Seeds <= 0 || c.Type == 0)
+        continue;
+      const std::uint64_t mask = Bit(this->BitOf(c.Type));
+      std::vector<std::int64_t> held(ToIndex(parts), 0);
+      for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
+        if (const std::int64_t p = component[ToIndex(v)];
+            p >= 0 && (this->TypesOfLabel[ToIndex(labels[ToIndex(v)])] & mask))
+          held[ToIndex(p)] += 1;
+      std::vector<std::int64_t> order;
+      for (std::int64_t p = 0; p < parts; ++p)
+        if (keep[ToIndex(p)] && held[ToIndex(p)] > 0)
+          order.push_back(p);
+      std::stable_sort(order.begin(), order.end(),
+        [&held](std::int64_t x, std::int64_t y) { return held[ToIndex(x)] > held[ToIndex(y)]; });
+      for (std::size_t k = ToIndex(c.Seeds); k < order.size(); ++k)
+      {
+        keep[ToIndex(order[k])] = 0;
+        ++removed.BeyondSeeds;
+      }
     }
   }
   for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)

@@ -107,6 +107,16 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   // nearer than keeping it and some type is further off than ProportionMargin (ties: the part found
   // first, so the choice is deterministic).
   std::vector<char> removed(ToIndex(parts), 0);
+  // A network of one type grown from seeds (a road among houses) is what the user asked to
+  // keep: the parts holding it are not emptied for the shares.
+  std::uint64_t network = 0;
+  for (const auto& c : this->Constraints.Connected)
+    if (c.Seeds > 0 && c.Type != 0)
+      network |= Bit(this->BitOf(c.Type));
+  for (std::int64_t c = 0; c < parts && network; ++c)
+    for (std::size_t t = 1; t < nt; ++t)
+      if (((network >> t) & 1u) && occupancy[ToIndex(c) * nt + t] > 0)
+        removed[ToIndex(c)] = 2; // kept: never tried
   Deviation now = DeviationOf(total, this->Target);
   std::vector<double> trial(nt);
   while (now.Worst > ProportionMargin)
@@ -139,7 +149,7 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
     for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
     {
       const std::int64_t c = component[ToIndex(v)];
-      if (c >= 0 && removed[ToIndex(c)])
+      if (c >= 0 && removed[ToIndex(c)] == 1)
         labels[ToIndex(v)] = emptyLabel;
     }
   }
