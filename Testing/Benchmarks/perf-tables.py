@@ -292,7 +292,8 @@ def callgrind_parts(t, arguments):
 
 def startup_cost(t):
     """What a 16² run costs and where: instructions by part (valgrind's callgrind, exact and
-    independent of the load), and CPU and wall milliseconds (medians of 5 runs)."""
+    independent of the load), CPU and wall milliseconds and minor page faults (the kernel's
+    share: medians of 5 runs)."""
     if not shutil.which("valgrind") or not shutil.which("callgrind_annotate"):
         sys.exit("perf-tables: startup-cost needs valgrind (Debian package 'valgrind')")
     sample = (os.path.join(t.data, "WaveFunctionCollapse", "samples", "Flowers.png") if t.data
@@ -315,10 +316,14 @@ def startup_cost(t):
             yield [part.replace("  ", "&nbsp;&nbsp;")] + [millions(parts[i])
                                                           for _, parts in measured]
         yield ["**instructions in all**"] + ["**%s**" % millions(total) for total, _ in measured]
-        yield ["CPU ms (median of runs)"] + ["%.0f" % (1000 * statistics.median(r.cpu for r in runs))
+        def median(runs, figure):
+            return statistics.median(figure(r) for r in runs)
+        yield ["CPU ms (median of runs)"] + ["%.0f" % (1000 * median(runs, lambda r: r.cpu))
                                              for runs in timed]
-        yield ["wall ms (median of runs)"] + ["%.0f" % (1000 * statistics.median(r.wall for r in runs))
+        yield ["wall ms (median of runs)"] + ["%.0f" % (1000 * median(runs, lambda r: r.wall))
                                               for runs in timed]
+        yield ["minor page faults (median of runs)"] + [count(median(runs, lambda r: r.faults))
+                                                        for runs in timed]
     t.table("startup-cost", ["part"] + [c for c, _ in columns], gen())
 
 
