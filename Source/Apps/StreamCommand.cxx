@@ -17,8 +17,8 @@
 #include "vtkMSOnDemand.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include "Core/AtomicFile.h"

@@ -30,8 +30,8 @@ const vtkMSOnDemandTable* Load()
   if (!handle)
   {
     const char* why = dlerror();
-    throw msynth::Error("the module '" + path + "' does not load (" +
-      (why ? why : "no reason given") + ")");
+    throw msynth::Error(
+      "the module '" + path + "' does not load (" + (why ? why : "no reason given") + ")");
   }
   using Entry = const vtkMSOnDemandTable* (*)();
   auto entry = reinterpret_cast<Entry>(dlsym(handle, MSYNTH_VTK_ON_DEMAND_SYMBOL));
