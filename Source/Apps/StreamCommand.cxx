@@ -14,9 +14,10 @@
 #include "vtkImageData.h"
 #include "vtkMSDiscreteSynthesis.h"
 #include "vtkMSLabelGridReader.h"
+#include "vtkMSOnDemand.h"
 #include "vtkNew.h"
-#include "vtkPNGReader.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -357,10 +358,9 @@ void WriteOverview(const std::vector<std::string>& pictures,
   std::vector<std::uint32_t> sums; // RGBA sums and a count per overview pixel
   for (std::size_t j = 0; j < pictures.size(); ++j)
   {
-    vtkNew<vtkPNGReader> png;
-    png->SetFileName(pictures[j].c_str());
+    vtkSmartPointer<vtkAlgorithm> png = vtkMSOnDemand::NewPNGReader(pictures[j]);
     Run(png);
-    vtkImageData* slab = png->GetOutput();
+    vtkImageData* slab = vtkImageData::SafeDownCast(png->GetOutputDataObject(0));
     int dims[3];
     slab->GetDimensions(dims);
     const auto& e = extents[j];

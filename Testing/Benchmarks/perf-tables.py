@@ -12,6 +12,8 @@ the load average before and after (the machine is shared: say the load next to t
 Subcommands (performance.md's section in brackets):
   whole-runs     tileset and voxel-tileset runs with the outputs users get ("Whole runs")
   startup        the fixed cost of a process: --version, 16² runs, the castle ("Whole runs")
+  startup-cost   where a 16² run's instructions go, by callgrind: loading, initialisers, the
+                 synthesis, each output, exit ("Whole runs"; needs valgrind)
   backtracks     Lines in 32² blocks: backtracking and the overlap ("Blocks, threads and
                  backtracking at scale")
   continuous     the TVCG examples and the house at 48 x 48 x 10, all outputs ("Continuous
@@ -248,6 +250,81 @@ def startup(t):
                    "%.0f" % (1000 * statistics.median(r.wall for r in done)),
                    count(statistics.median(r.faults for r in done))]
     t.table("startup", ["process", "CPU ms", "wall ms", "minor page faults"], gen())
+
+
+# Where startup-cost puts a function's inclusive instructions (callgrind_annotate --inclusive):
+# the parts in the table's order, each the first function matching its pattern.
+COST_PARTS = [
+    ("loading: mapping, relocation, symbol binding (`ld.so` before `main`)", r"rtld\.c:_dl_start "),
+    ("libraries' initialisers (static constructors)", r"dl-init\.c:_dl_init "),
+    ("`main`", r"\?\?\?:main "),
+    ("  synthesis filter: example, rules, solve", r"vtkMSDiscreteSynthesis::RequestData\("),
+    ("    of which the engine's solve", r"msynth::Synthesize\(msynth::AdjacencyRules"),
+    ("  writing `labels.vti`", r"WriteXML<vtkXMLImageDataWriter"),
+    ("  writing `picture.png`", r"msynth::cli::WritePicture\("),
+    ("exit: destructors, unmapping", r"exit\.c:exit "),
+    ("symbol binding on first calls (within the above)", r"_dl_runtime_resolve"),
+]
+
+
+def callgrind_parts(t, arguments):
+    """Instructions of one `msynth ARGUMENTS` under callgrind: the total and COST_PARTS."""
+    t.count += 1
+    out = os.path.join(t.scratch, "run%d" % t.count)
+    profile = os.path.join(t.scratch, "callgrind.%d" % t.count)
+    done = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + profile,
+                           t.msynth] + arguments.split() + ["--out", out], cwd=ROOT,
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit("perf-tables: callgrind of msynth %s failed:\n%s" % (arguments,
+                                                                       done.stderr[-3000:]))
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", profile],
+                          capture_output=True, text=True, check=True).stdout
+    lines = [(int(m.group(1).replace(",", "")), m.group(2)) for m in
+             re.finditer(r"^\s*([\d,]+) \([^)]*\)\s+(.*)$", text, re.M)]
+    total = next(n for n, what in lines if what.startswith("PROGRAM TOTALS"))
+    parts = []
+    for _, pattern in COST_PARTS:
+        found = [n for n, what in lines if re.search(pattern, what)]
+        parts.append(found[0] if found else 0)
+    return total, parts
+
+
+def startup_cost(t):
+    """What a 16² run costs and where: instructions by part (valgrind's callgrind, exact and
+    independent of the load), CPU and wall milliseconds and minor page faults (the kernel's
+    share: medians of 5 runs)."""
+    if not shutil.which("valgrind") or not shutil.which("callgrind_annotate"):
+        sys.exit("perf-tables: startup-cost needs valgrind (Debian package 'valgrind')")
+    sample = (os.path.join(t.data, "WaveFunctionCollapse", "samples", "Flowers.png") if t.data
+              else os.path.join(DATA, "Samples", "Maze.png"))
+    name = os.path.splitext(os.path.basename(sample))[0]
+    picture = ("%s --pattern 3 --symmetry 2 --ground --translate x --size 16 16 1 --seed 1" %
+               sample)
+    columns = [("%s 16²" % name, picture),
+               ("%s 16², `--outputs picture`" % name, picture + " --outputs picture"),
+               ("Lines 16² (tileset)", "Data/Tilesets/Lines.xml --size 16 16 1 --seed 1")]
+    measured = [callgrind_parts(t, "synthesize " + command) for _, command in columns]
+    timed = [t.msynth_runs("synthesize " + command, 1 if t.args.small else 5)
+             for _, command in columns]
+
+    def millions(n):
+        return "%.1f M" % (n / 1e6) if n else "–"
+
+    def gen():
+        for i, (part, _) in enumerate(COST_PARTS):
+            yield [part.replace("  ", "&nbsp;&nbsp;")] + [millions(parts[i])
+                                                          for _, parts in measured]
+        yield ["**instructions in all**"] + ["**%s**" % millions(total) for total, _ in measured]
+        def median(runs, figure):
+            return statistics.median(figure(r) for r in runs)
+        yield ["CPU ms (median of runs)"] + ["%.0f" % (1000 * median(runs, lambda r: r.cpu))
+                                             for runs in timed]
+        yield ["wall ms (median of runs)"] + ["%.0f" % (1000 * median(runs, lambda r: r.wall))
+                                              for runs in timed]
+        yield ["minor page faults (median of runs)"] + [count(median(runs, lambda r: r.faults))
+                                                        for runs in timed]
+    t.table("startup-cost", ["part"] + [c for c, _ in columns], gen())
 
 
 def continuous(t):
@@ -573,7 +650,8 @@ def render_grids(t):
             ["`model.vdb`", "write s", "file MB", "peak MB"], gen())
 
 
-SUBCOMMANDS = {"whole-runs": whole_runs, "startup": startup, "backtracks": backtracks,
+SUBCOMMANDS = {"whole-runs": whole_runs, "startup": startup, "startup-cost": startup_cost,
+               "backtracks": backtracks,
                "continuous": continuous,
                "threads": threads, "town": town, "exports": exports, "stream": stream,
                "regions": regions, "connected": connected, "failed-blocks": failed_blocks,

@@ -3,8 +3,9 @@
 """Whole-process times of every overlapping and simple-tiled entry of WaveFunctionCollapse's
 samples.xml at its own options and size (issue 45 item 3), msynth against fast-wfc's example
 program (math-fehr/fast-wfc) when given, same run. Prints a Markdown table: per entry the
-seconds of each (median of the seeds), whether `msynth check` finds each picture valid, and
-the ratio fast-wfc / msynth; then the totals.
+seconds of each (median of the seeds: wall, and CPU = user + system, which a loaded machine
+inflates less), whether `msynth check` finds each picture valid, and the ratios fast-wfc /
+msynth of both; then the totals.
 
 Options map as WaveFunctionCollapse reads them: N -> --pattern, symmetry (8) -> --symmetry,
 periodic -> --translate xy, periodicInput="False" -> --no-periodic-input, ground -> --ground,
@@ -19,6 +20,7 @@ checked with `msynth check` too (its tiled ones are not: it writes no labels).
 """
 import argparse
 import os
+import resource
 import shutil
 import statistics
 import struct
@@ -31,14 +33,22 @@ import xml.etree.ElementTree as ET
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def run(cmd, cwd=None, timeout=None):
-    """Seconds of a whole process and whether it exited 0 (None seconds on timeout)."""
-    start = time.perf_counter()
+def cpu_of_children():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def run(cmd, cwd=None, timeout=None, cpu=None):
+    """Seconds of a whole process and whether it exited 0 (None seconds on timeout); its CPU
+    seconds (user + system) are appended to the list @p cpu when given."""
+    start, start_cpu = time.perf_counter(), cpu_of_children()
     try:
         p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                            timeout=timeout)
     except subprocess.TimeoutExpired:
         return None, False, ""
+    if cpu is not None:
+        cpu.append(cpu_of_children() - start_cpu)
     return time.perf_counter() - start, p.returncode == 0, p.stdout.decode(errors="replace")
 
 
@@ -136,10 +146,11 @@ def main():
     ap.add_argument("--timeout", type=float, default=600)
     o = ap.parse_args()
     tmp = tempfile.mkdtemp()
-    total_ms = total_fw = 0.0
+    total_ms = total_fw = total_ms_cpu = total_fw_cpu = 0.0
     slower = []
-    print("| entry | msynth s | valid | fast-wfc s | valid | fast-wfc / msynth |")
-    print("|---|---|---|---|---|---|")
+    print("| entry | msynth s | msynth CPU s | valid | fast-wfc s | fast-wfc CPU s | valid | "
+          "fast-wfc / msynth | CPU ratio |")
+    print("|---|---|---|---|---|---|---|---|---|")
     seen = set()
     try:
         for kind, a, size in entries(os.path.join(o.data, "samples.xml")):
@@ -148,47 +159,54 @@ def main():
                 continue
             seen.add(key)
             synth, check = msynth_args(kind, a, size, o.data)
-            times, valid = [], True
+            times, cpus, valid = [], [], True
             for seed in range(1, o.seeds + 1):
                 out = os.path.join(tmp, "ms")
                 shutil.rmtree(out, ignore_errors=True)
                 t, ok, _ = run([o.msynth, "synthesize"] + synth +
-                               ["--seed", str(seed), "--out", out], timeout=o.timeout)
+                               ["--seed", str(seed), "--out", out], timeout=o.timeout,
+                               cpu=cpus)
                 times.append(t if t is not None else o.timeout)
                 model = os.path.join(out, "picture.png" if kind == "overlapping"
                                      else "labels.vti")
                 valid = valid and ok and run([o.msynth, "check", check[0], model] +
                                              check[1:])[1]
             ms = statistics.median(times)
-            fw_cell, fw_valid, ratio = "–", "–", "–"
+            ms_cpu = statistics.median(cpus) if cpus else o.timeout
+            fw_cell, fw_cpu_cell, fw_valid, ratio, cpu_ratio = "–", "–", "–", "–", "–"
             if o.fast_wfc:
                 d = fastwfc_dir(kind, a, size, o.data, tmp)
-                fws, fw_ok = [], True
+                fws, fw_cpus, fw_ok = [], [], True
                 for _ in range(o.seeds):
-                    t, ok, text = run([o.fast_wfc], cwd=d, timeout=o.timeout)
+                    t, ok, text = run([o.fast_wfc], cwd=d, timeout=o.timeout, cpu=fw_cpus)
                     fws.append(t if t is not None else o.timeout)
                     fw_ok = fw_ok and ok and "finished!" in text
                     if kind == "overlapping" and fw_ok:
                         pic = os.path.join(d, "results", a["name"] + "0.png")
                         fw_ok = run([o.msynth, "check", check[0], pic] + check[1:])[1]
                 fw = statistics.median(fws)
-                fw_cell = "%.3f" % fw
+                fw_cpu = statistics.median(fw_cpus) if fw_cpus else o.timeout
+                fw_cell, fw_cpu_cell = "%.3f" % fw, "%.3f" % fw_cpu
                 fw_valid = ("yes" if fw_ok else "no") if kind == "overlapping" else \
                     ("finished" if fw_ok else "failed")
                 ratio = "%.1f×" % (fw / ms)
+                cpu_ratio = "%.1f×" % (fw_cpu / max(ms_cpu, 1e-3))
                 total_fw += fw
+                total_fw_cpu += fw_cpu
                 if fw < ms:
                     slower.append(a["name"])
             total_ms += ms
-            print("| %s | %.3f | %s | %s | %s | %s |" % (label(kind, a, size), ms,
-                                                       "yes" if valid else "no", fw_cell,
-                                                       fw_valid, ratio), flush=True)
+            total_ms_cpu += ms_cpu
+            print("| %s | %.3f | %.3f | %s | %s | %s | %s | %s | %s |" % (
+                label(kind, a, size), ms, ms_cpu, "yes" if valid else "no", fw_cell,
+                fw_cpu_cell, fw_valid, ratio, cpu_ratio), flush=True)
         if o.fast_wfc:
-            print("| **total** | **%.2f** | | **%.2f** | | **%.1f×** |" %
-                  (total_ms, total_fw, total_fw / total_ms))
-            print("\nmsynth slower on: %s" % (", ".join(slower) if slower else "none"))
+            print("| **total** | **%.2f** | **%.2f** | | **%.2f** | **%.2f** | | **%.1f×** | "
+                  "**%.1f×** |" % (total_ms, total_ms_cpu, total_fw, total_fw_cpu,
+                                   total_fw / total_ms, total_fw_cpu / total_ms_cpu))
+            print("\nmsynth slower (wall) on: %s" % (", ".join(slower) if slower else "none"))
         else:
-            print("| **total** | **%.2f** | | | | |" % total_ms)
+            print("| **total** | **%.2f** | **%.2f** | | | | | | |" % (total_ms, total_ms_cpu))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return 0

@@ -3,8 +3,10 @@
 
 #include "vtkMSEngineBridge.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSOnDemand.h"
 #include "vtkMSPolyhedra.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -14,7 +16,6 @@
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
-#include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -135,9 +136,15 @@ vtkSmartPointer<vtkPolyData> ReadPiece(const std::string& path, std::string& pro
   }
   else if (ext == "obj")
   {
-    auto r = vtkSmartPointer<vtkOBJReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    try
+    {
+      reader = vtkMSOnDemand::NewOBJReader(path);
+    }
+    catch (const std::exception& e)
+    {
+      problem = "'" + path + "': could not be read: " + e.what();
+      return nullptr;
+    }
   }
   else
   {

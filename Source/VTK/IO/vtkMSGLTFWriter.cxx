@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMSGLTFWriter.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -12,9 +13,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
-#include "vtkTriangleFilter.h"
 
+#include "vtkMSOnDemand.h"
 #include "vtkMSPolyhedra.h"
 
 #include "Continuous/ContinuousMesh.h"
@@ -224,12 +226,11 @@ void vtkMSGLTFWriter::WriteData()
       for (vtkIdType c = 0; c < input->GetNumberOfPolys() + input->GetNumberOfStrips(); ++c)
         surface->GetCellData()->CopyData(input->GetCellData(), first + c, c);
     }
-    vtkNew<vtkTriangleFilter> triangles;
-    triangles->SetInputData(input->GetPoints() ? surface.GetPointer() : empty.GetPointer());
-    triangles->PassVertsOff();
-    triangles->PassLinesOff();
+    vtkSmartPointer<vtkAlgorithm> triangles = vtkMSOnDemand::NewTriangulator();
+    triangles->SetInputDataObject(
+      0, input->GetPoints() ? surface.GetPointer() : empty.GetPointer());
     triangles->Update();
-    vtkPolyData* mesh = triangles->GetOutput();
+    vtkPolyData* mesh = vtkPolyData::SafeDownCast(triangles->GetOutputDataObject(0));
     vtkDataArray* labels = mesh->GetCellData()->GetArray(this->LabelArrayName.c_str());
     vtkDataArray* colors = mesh->GetCellData()->GetArray(this->ColorArrayName.c_str());
     if (colors && colors->GetNumberOfComponents() != 3 && colors->GetNumberOfComponents() != 4)

@@ -5,11 +5,13 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSOnDemand.h"
 #include "vtkMSPipeline.h"
 #include "vtkMSPolyhedra.h"
 #include "vtkMSRenderLabels.h"
 
 #include "vtkAbstractArray.h"
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -23,13 +25,11 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPointInterpolator.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkVariant.h"
-#include "vtkVoronoiKernel.h"
 
 #include "Continuous/ContinuousMesh.h"
 #include "Core/Error.h"
@@ -482,11 +482,9 @@ vtkSmartPointer<vtkImageData> vtkMSOpenVDBWriter::ResamplePoints(vtkPolyData* in
   grid->SetOrigin(bounds[0], bounds[2], bounds[4]);
   grid->SetSpacing(voxel, voxel, voxel);
   // Each voxel takes the values of the nearest point (a Voronoi kernel): labels stay labels.
-  vtkNew<vtkPointInterpolator> interpolator;
-  interpolator->SetInputData(grid);
-  interpolator->SetSourceData(input);
-  vtkNew<vtkVoronoiKernel> nearest;
-  interpolator->SetKernel(nearest);
+  vtkSmartPointer<vtkAlgorithm> interpolator = vtkMSOnDemand::NewNearestPointResampler();
+  interpolator->SetInputDataObject(0, grid);
+  interpolator->SetInputDataObject(1, input);
   std::string messages;
   if (!vtkMSEngineBridge::Execute(interpolator, messages))
   {
