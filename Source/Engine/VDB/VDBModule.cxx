@@ -4,9 +4,8 @@
 #include "VDB/VDBBackend.h"
 
 #include "Core/Error.h"
+#include "Core/ModuleBeside.h"
 #include "VDB/IsolatedRead.h"
-
-#include <dlfcn.h>
 
 #include <string>
 
@@ -24,39 +23,22 @@ namespace detail
 {
 namespace
 {
-/// The folder of this library, where the module is installed and built beside it.
-std::string ThisLibraryFolder()
-{
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&ThisLibraryFolder), &info) == 0 || !info.dli_fname)
-  {
-    return std::string();
-  }
-  const std::string path = info.dli_fname;
-  const std::size_t slash = path.rfind('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
 const Backend* Load()
 {
-  const std::string path = ThisLibraryFolder() + MSYNTH_OPENVDB_MODULE;
-  // Kept loaded for the life of the process (OpenVDB registers types and TBB state globally).
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle)
-  {
-    const char* why = dlerror();
-    throw Error("cannot read or write OpenVDB files: the module '" + path + "' does not load (" +
-      (why ? why : "no reason given") + ")");
-  }
   using Entry = const Backend* (*)();
-  auto entry = reinterpret_cast<Entry>(dlsym(handle, MSYNTH_OPENVDB_BACKEND_SYMBOL));
-  const Backend* backend = entry ? entry() : nullptr;
-  if (!backend)
+  try
   {
-    throw Error("cannot read or write OpenVDB files: the module '" + path + "' has no " +
-      MSYNTH_OPENVDB_BACKEND_SYMBOL);
+    // Kept loaded for the life of the process (OpenVDB registers types and TBB state globally).
+    const auto entry = reinterpret_cast<Entry>(ModuleEntryBeside(
+      reinterpret_cast<const void*>(&Load), MSYNTH_OPENVDB_MODULE, MSYNTH_OPENVDB_BACKEND_SYMBOL));
+    if (const Backend* backend = entry())
+      return backend;
+    throw Error(std::string("the module '") + MSYNTH_OPENVDB_MODULE + "' gave no backend");
   }
-  return backend;
+  catch (const Error& e)
+  {
+    throw Error(std::string("cannot read or write OpenVDB files: ") + e.what());
+  }
 }
 } // namespace
 

@@ -4,43 +4,22 @@
 #include "vtkAlgorithm.h"
 
 #include "Core/Error.h"
-
-#include <dlfcn.h>
+#include "Core/ModuleBeside.h"
 
 namespace
 {
-/// The folder of this library (libModelSynthIO), where the module is built and installed.
-std::string ThisLibraryFolder()
-{
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&ThisLibraryFolder), &info) == 0 || !info.dli_fname)
-  {
-    return std::string();
-  }
-  const std::string path = info.dli_fname;
-  const std::size_t slash = path.rfind('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
 const vtkMSOnDemandTable* Load()
 {
-  const std::string path = ThisLibraryFolder() + MSYNTH_VTK_ON_DEMAND_MODULE;
-  // Kept loaded for the life of the process: the objects it made may outlive any one caller.
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle)
-  {
-    const char* why = dlerror();
-    throw msynth::Error(
-      "the module '" + path + "' does not load (" + (why ? why : "no reason given") + ")");
-  }
   using Entry = const vtkMSOnDemandTable* (*)();
-  auto entry = reinterpret_cast<Entry>(dlsym(handle, MSYNTH_VTK_ON_DEMAND_SYMBOL));
-  const vtkMSOnDemandTable* table = entry ? entry() : nullptr;
-  if (!table)
-  {
-    throw msynth::Error("the module '" + path + "' has no " MSYNTH_VTK_ON_DEMAND_SYMBOL);
-  }
-  return table;
+  // Beside this library (libModelSynthIO), kept loaded: the objects it made may outlive any
+  // one caller.
+  const auto entry =
+    reinterpret_cast<Entry>(msynth::ModuleEntryBeside(reinterpret_cast<const void*>(&Load),
+      MSYNTH_VTK_ON_DEMAND_MODULE, MSYNTH_VTK_ON_DEMAND_SYMBOL));
+  if (const vtkMSOnDemandTable* table = entry())
+    return table;
+  throw msynth::Error(
+    std::string("the module '") + MSYNTH_VTK_ON_DEMAND_MODULE + "' gave no table");
 }
 
 const vtkMSOnDemandTable& Table()
