@@ -142,18 +142,9 @@ msynth::LabelGrid ReadPins(const std::string& path, std::array<long long, 3>& or
   if (msynth::IsImageFile(path))
     throw msynth::Error(
       "'" + path + "': the check reads pins from a label grid (.vti, .txt, .vox), not a picture");
-  vtkNew<vtkMSLabelGridReader> reader;
-  reader->GenerateGeometryOff();
-  reader->SetFileName(path.c_str());
-  std::string messages;
-  if (!vtkMSEngineBridge::Execute(reader, messages))
-    throw msynth::Error(messages);
-  msynth::LabelGrid pins;
-  if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
-    throw msynth::Error::InFile(path, messages);
-  int extent[6];
-  reader->GetOutput()->GetExtent(extent);
-  origin = { { extent[0], extent[2], extent[4] } };
+  std::array<int, 3> first{};
+  msynth::LabelGrid pins = vtkMSLabelArrays::ReadLabelGridFile(path, first);
+  origin = { { first[0], first[1], first[2] } };
   return pins;
 }
 } // namespace

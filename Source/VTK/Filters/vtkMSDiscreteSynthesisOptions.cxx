@@ -255,16 +255,10 @@ msynth::LabelGrid PinsOfFile(vtkMSDiscreteSynthesis* self, const std::string& pa
 {
   if (msynth::IsImageFile(path))
     return PinsOfPicture(self, msynth::ReadImage(path), path);
-  vtkNew<vtkMSLabelGridReader> reader;
-  reader->GenerateGeometryOff();
-  reader->SetFileName(path.c_str());
-  std::string messages;
-  if (!vtkMSEngineBridge::Execute(reader, messages))
-    throw msynth::Error(messages);
-  msynth::LabelGrid pins;
-  if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, pins, messages))
-    throw msynth::Error::InFile(path, messages);
-  origin = PlacedAt(reader->GetOutput());
+  std::array<int, 3> first{};
+  msynth::LabelGrid pins = vtkMSLabelArrays::ReadLabelGridFile(path, first);
+  if (first[0] != 0 || first[1] != 0 || first[2] != 0)
+    origin = std::array<std::int64_t, 3>{ { first[0], first[1], first[2] } };
   return pins;
 }
 

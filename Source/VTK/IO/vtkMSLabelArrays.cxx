@@ -4,6 +4,7 @@
 #include "vtkMSEngineBridge.h"
 #include "vtkMSFieldData.h"
 #include "vtkMSLabelArrays.h"
+#include "vtkMSLabelGridReader.h"
 #include "vtkMSPipeline.h"
 
 #include "vtkAlgorithm.h"
@@ -411,4 +412,22 @@ void vtkMSLabelArrays::SetPicture(vtkImageData* output, const msynth::RgbaImage&
       picture.At(0, picture.Height - 1 - y) + 4 * picture.Width,
       rgba->GetPointer(4 * static_cast<vtkIdType>(y) * picture.Width));
   output->GetPointData()->SetScalars(rgba);
+}
+
+msynth::LabelGrid vtkMSLabelArrays::ReadLabelGridFile(
+  const std::string& path, std::array<int, 3>& first)
+{
+  vtkNew<vtkMSLabelGridReader> reader;
+  reader->GenerateGeometryOff();
+  reader->SetFileName(path.c_str());
+  std::string messages;
+  if (!vtkMSEngineBridge::Execute(reader, messages))
+    throw msynth::Error(messages);
+  msynth::LabelGrid grid;
+  if (!vtkMSLabelArrays::ReadLabels(reader->GetOutput(), nullptr, grid, messages))
+    throw msynth::Error::InFile(path, messages);
+  int extent[6];
+  reader->GetOutput()->GetExtent(extent);
+  first = { { extent[0], extent[2], extent[4] } };
+  return grid;
 }

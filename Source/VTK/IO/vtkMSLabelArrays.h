@@ -59,6 +59,14 @@ public:
   static msynth::LabelGrid ToLabelGrid(vtkImageData* image, vtkDataArray* labels);
 
   /**
+   * The labels of the label grid file @p path (.vti, .txt, .vox; -1 where free) as
+   * vtkMSLabelGridReader reads it without geometry, and the first corner of its extent (where a
+   * smaller grid, such as pins, lies in the world). @throw msynth::Error with the reader's
+   * reason, naming the file.
+   */
+  static msynth::LabelGrid ReadLabelGridFile(const std::string& path, std::array<int, 3>& first);
+
+  /**
    * FindLabelArray, CheckLabelArray and ToLabelGrid in one: @p image's labels (@p selected when
    * set) as a grid. False, with @p problem set to a sentence, when there is no usable array.
    */
