@@ -57,6 +57,9 @@ public:
   std::uint64_t GrowMask() const { return this->Grow; }
   /// Grounded with seeds: the types grown from their seeds, whose front is labelled first.
   std::uint64_t LeadMask() const { return this->GroundSeeded; }
+  /// Single types grown from seeds (`--connected TYPE`, not "solid"): networks kept whole at the
+  /// end (RemoveStrayParts) and never emptied for the proportions.
+  std::uint64_t NetworkMask() const { return this->Networks; }
   /**
    * The growing types that may not be chosen where the decided neighbours reach the types
    * @p reach: every group of growing types that @p reach does not meet. A group is the solid as
@@ -238,6 +241,7 @@ private:
   /// Grounded with seeds: the types that start at their seeds (on the ground) only; the other
   /// solid types start anywhere on the ground (a road network from one seed among houses).
   std::uint64_t GroundSeeded = 0;
+  std::uint64_t Networks = 0; ///< NetworkMask
   std::vector<std::int64_t> SeedVertices;
   std::vector<std::uint64_t> SeedMask; ///< per seed vertex
 };

@@ -346,6 +346,8 @@ void ConstraintPlan::PlanSeeds(std::uint64_t seed)
       continue;
     const std::uint64_t mask = c.Type == 0 ? this->Solid : Bit(t);
     this->Grow |= mask;
+    if (c.Type != 0)
+      this->Networks |= mask;
     this->GrowGroups.push_back(mask);
     this->FillMask |= mask;
     const int interior =
@@ -642,9 +644,9 @@ ConstraintPlan::Removed ConstraintPlan::RemoveStrayParts(
     // other parts holding it emptied (with what stands on or against them).
     for (const auto& c : this->Constraints.Connected)
     {
-      if (c.Seeds <= 0 || c.Type == 0)
+      const std::uint64_t mask = c.Type == 0 ? 0 : Bit(this->BitOf(c.Type));
+      if (c.Seeds <= 0 || !(mask & this->Networks))
         continue;
-      const std::uint64_t mask = Bit(this->BitOf(c.Type));
       std::vector<std::int64_t> held(ToIndex(parts), 0);
       for (std::int64_t v = 0; v < this->Arrangement.NumberOfVertices(); ++v)
         if (const std::int64_t p = component[ToIndex(v)];

@@ -109,10 +109,7 @@ ConstraintPlan::Proportioned ConstraintPlan::KeepProportionateParts(
   std::vector<char> removed(ToIndex(parts), 0);
   // A network of one type grown from seeds (a road among houses) is what the user asked to
   // keep: the parts holding it are not emptied for the shares.
-  std::uint64_t network = 0;
-  for (const auto& c : this->Constraints.Connected)
-    if (c.Seeds > 0 && c.Type != 0)
-      network |= Bit(this->BitOf(c.Type));
+  const std::uint64_t network = this->NetworkMask();
   for (std::int64_t c = 0; c < parts && network; ++c)
     for (std::size_t t = 1; t < nt; ++t)
       if (((network >> t) & 1u) && occupancy[ToIndex(c) * nt + t] > 0)
