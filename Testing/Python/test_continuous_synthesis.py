@@ -459,6 +459,13 @@ class ContinuousSynthesisTest(unittest.TestCase):
         solver.SetGrounded(True)
         solver.SetThickness("wall:z:1")
         solver.SetInputData(2, guide)
+        # The constraints read against the example alone, before any arrangement is built.
+        reader.Update()
+        self.assertEqual(solver.CheckConstraints(reader.GetOutput(), 0.01, 12), "")
+        solver.SetThickness("wall:xy:2")
+        self.assertIn("a width across several axes",
+                      solver.CheckConstraints(reader.GetOutput(), 0.01, 12))
+        solver.SetThickness("wall:z:1")
         errors = ErrorObserver(solver)
         mesh.Update()
         self.assertEqual(errors.text(), "")
